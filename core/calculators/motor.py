@@ -1,0 +1,67 @@
+"""Seed section 1: the motor system (eqs. 1-10) and its maximum-efficiency point (Appendix A)."""
+
+from __future__ import annotations
+
+from ..errors import InputError
+from ..model import Calculator, Field, Output, Result
+from ..motors import motor_fields, system_from
+
+FIELDS = motor_fields() + (
+    Field("torque", "Operating torque", "torque", "N*m", default=1, min=0,
+          help="Torque τ at the gearbox output for the operating point (eqs. 8-10)."),
+)
+
+OUTPUTS = (
+    Output("free_speed", "Free speed ω̃f", "angular_speed", "rpm"),
+    Output("stall_torque", "Stall torque τ̃s", "torque", "N*m"),
+    Output("stall_current", "Stall current ĩs", "current", "A", help="All motors together."),
+    Output("free_current", "Free current ĩf", "current", "A", help="All motors together."),
+    Output("peak_power", "Peak power P̃", "power", "W"),
+    Output("kt", "Torque constant K_T", "torque_constant", "N*m/A"),
+    Output("max_efficiency", "Max efficiency", "dimensionless", "%"),
+    Output("max_efficiency_torque", "Torque at max efficiency", "torque", "N*m"),
+    Output("max_efficiency_speed", "Speed at max efficiency", "angular_speed", "rpm"),
+    Output("max_efficiency_current", "Current at max efficiency", "current", "A"),
+    Output("speed", "Speed at torque", "angular_speed", "rpm"),
+    Output("current", "Current at torque", "current", "A"),
+    Output("output_power", "Output power at torque", "power", "W"),
+    Output("efficiency_at_torque", "Efficiency at torque", "dimensionless", "%"),
+)
+
+
+def compute(v) -> Result:
+    m, warnings = system_from(v)
+    tau = v["torque"]
+    if tau > m.stall_torque:
+        raise InputError("torque", f"is above the system's stall torque ({m.stall_torque:.4g} N*m)")
+    t_eff = m.max_efficiency_torque
+    values = {
+        "free_speed": m.free_speed,
+        "stall_torque": m.stall_torque,
+        "stall_current": m.stall_current,
+        "free_current": m.free_current,
+        "peak_power": m.peak_power,
+        "kt": m.kt,
+        "max_efficiency": m.max_efficiency,
+        "max_efficiency_torque": t_eff,
+        "max_efficiency_speed": m.speed(t_eff),
+        "max_efficiency_current": m.current(t_eff),
+        "speed": m.speed(tau),
+        "current": m.current(tau),
+        "output_power": tau * m.speed(tau),
+        # (10); at τ = 0 with ĩf = 0 it is 0/0, and its limit is the max-efficiency value
+        "efficiency_at_torque": m.efficiency_at(tau) if (tau > 0 or m.free_current > 0)
+        else m.max_efficiency,
+    }
+    return Result(values, warnings)
+
+
+CALCULATOR = Calculator(
+    id="motor",
+    title="Motor",
+    summary="Motor system: n motors at voltage V through a gearbox of efficiency η.",
+    fields=FIELDS,
+    outputs=OUTPUTS,
+    compute=compute,
+    section="1",
+)

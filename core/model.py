@@ -1,0 +1,282 @@
+"""How a calculator is described (once, as data) and the one path that solves it.
+
+The TUI, the CLI and presets all go through `solve`; none keeps its own list of fields.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass, field as dc_field
+from typing import Any, Callable, Mapping
+
+from . import units
+from .errors import InputError
+
+
+# Beyond these magnitudes (in SI) no robot part exists, and products of such values overflow
+# or underflow; rejecting them keeps every formula finite without per-field guesswork.
+MAGNITUDE_FLOOR = 1e-15
+MAGNITUDE_CEILING = 1e15
+
+
+@dataclass(frozen=True)
+class Field:
+    """One input. Bounds are in SI; `default` is what the user would type (display unit)."""
+
+    name: str
+    label: str
+    quantity: str = "dimensionless"  # a key of units.SI_UNITS
+    unit: str = ""  # display unit; a bare number typed by the user means this unit
+    default: Any = 0
+    min: float | None = None
+    max: float | None = None
+    min_exclusive: bool = False
+    max_exclusive: bool = False
+    choices: tuple[str, ...] = ()
+    choice_labels: tuple[str, ...] = ()
+    integer: bool = False
+    boolean: bool = False
+    help: str = ""
+    modes: tuple[str, ...] = ()  # shown and used only in these modes; empty means all
+
+    @property
+    def type(self) -> str:
+        if self.choices:
+            return "choice"
+        if self.boolean:
+            return "bool"
+        if self.integer:
+            return "int"
+        return "quantity"
+
+    def label_of(self, choice: str) -> str:
+        if self.choice_labels:
+            return self.choice_labels[self.choices.index(choice)]
+        return choice.replace("_", " ")
+
+    def active(self, mode: str | None) -> bool:
+        return not self.modes or mode is None or mode in self.modes
+
+    def default_text(self) -> str:
+        if self.type == "quantity":
+            return units.format_number(float(self.default)) if isinstance(self.default, (int, float)) else str(self.default)
+        if self.type == "bool":
+            return "true" if self.default else "false"
+        return str(self.default)
+
+    def parse(self, raw: Any) -> Any:
+        """SI value (float), int, bool or choice string from what a user entered."""
+        kind = self.type
+        if kind == "choice":
+            text = str(raw).strip() if isinstance(raw, str) else None
+            if text not in self.choices:
+                # accept the display label too, case-insensitively
+                lowered = {c.lower(): c for c in self.choices}
+                lowered.update({self.label_of(c).lower(): c for c in self.choices})
+                if text is not None and text.lower() in lowered:
+                    return lowered[text.lower()]
+                shown = ", ".join(self.choices[:12]) + (", ..." if len(self.choices) > 12 else "")
+                raise InputError(self.name, f"{raw!r} is not one of: {shown}")
+            return text
+        if kind == "bool":
+            if isinstance(raw, bool):
+                return raw
+            text = str(raw).strip().lower()
+            if text in ("true", "yes", "on", "1"):
+                return True
+            if text in ("false", "no", "off", "0"):
+                return False
+            raise InputError(self.name, f"{raw!r} is not true or false")
+        if kind == "int":
+            if isinstance(raw, bool):
+                raise InputError(self.name, f"expected a whole number, got {raw!r}")
+            if isinstance(raw, numbers.Integral):
+                value = int(raw)
+            else:
+                text = str(raw).strip()
+                try:
+                    as_float = float(text)
+                except ValueError:
+                    raise InputError(self.name, f"{raw!r} is not a whole number") from None
+                if not math.isfinite(as_float) or as_float != int(as_float):
+                    raise InputError(self.name, f"{raw!r} is not a whole number")
+                value = int(as_float)
+            self._check_bounds(value, str(value))
+            return value
+        value = units.parse(raw, self.unit, self.quantity, self.name)
+        self._check_bounds(value, str(raw))
+        return value
+
+    def _check_bounds(self, value: float, typed: str) -> None:
+        if self.type == "quantity" and value != 0 and not (MAGNITUDE_FLOOR <= abs(value) <= MAGNITUDE_CEILING):
+            raise InputError(self.name, f"{typed} is out of range for a mechanism "
+                                        f"(magnitude {abs(value):.3g} in SI units)")
+        def shown(si: float) -> str:
+            if self.type == "int":
+                return str(int(si))
+            return units.format_quantity(si, self.unit, self.quantity)
+
+        if self.min is not None:
+            if value < self.min or (self.min_exclusive and value == self.min):
+                word = "greater than" if self.min_exclusive else "at least"
+                raise InputError(self.name, f"{typed} is too small: must be {word} {shown(self.min)}")
+        if self.max is not None:
+            if value > self.max or (self.max_exclusive and value == self.max):
+                word = "less than" if self.max_exclusive else "at most"
+                raise InputError(self.name, f"{typed} is too large: must be {word} {shown(self.max)}")
+
+
+@dataclass(frozen=True)
+class Output:
+    name: str
+    label: str
+    quantity: str = "dimensionless"
+    unit: str = ""
+    help: str = ""
+
+
+@dataclass
+class Result:
+    """What a compute function returns: output values in SI, and warnings for the user."""
+
+    values: dict[str, Any]
+    warnings: list[str] = dc_field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class Calculator:
+    id: str
+    title: str
+    summary: str
+    fields: tuple[Field, ...]
+    outputs: tuple[Output, ...]
+    compute: Callable[[Mapping[str, Any]], Result]
+    section: str = ""  # where in the seed it comes from
+
+    def field(self, name: str) -> Field:
+        for f in self.fields:
+            if f.name == name:
+                return f
+        raise KeyError(name)
+
+    def output(self, name: str) -> Output:
+        for o in self.outputs:
+            if o.name == name:
+                return o
+        raise KeyError(name)
+
+    @property
+    def modes(self) -> tuple[str, ...]:
+        try:
+            return self.field("mode").choices
+        except KeyError:
+            return ()
+
+    def defaults(self) -> dict[str, Any]:
+        return {f.name: f.default for f in self.fields}
+
+
+@dataclass(frozen=True)
+class Value:
+    """A solved or parsed value as the outside world sees it (DESIGN.md JSON shape)."""
+
+    value: Any  # SI float, int, bool or str
+    unit: str  # SI unit ("" when dimensionless or not a quantity)
+    text: str  # for people, in the display unit
+
+    def as_json(self) -> dict[str, Any]:
+        return {"value": self.value, "unit": self.unit, "text": self.text}
+
+
+@dataclass
+class Solution:
+    calculator: str
+    inputs: dict[str, Value]
+    outputs: dict[str, Value]
+    warnings: list[str]
+
+    def as_json(self) -> dict[str, Any]:
+        return {
+            "calculator": self.calculator,
+            "inputs": {k: v.as_json() for k, v in self.inputs.items()},
+            "outputs": {k: v.as_json() for k, v in self.outputs.items()},
+            "warnings": list(self.warnings),
+        }
+
+
+def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, str]]:
+    """SI values for every field (defaults fill gaps) and the text shown for each.
+
+    Fields the current mode does not use never block a solve: a bad entry there falls back
+    to its default, so switching modes never loses or is blocked by what was typed.
+    """
+    known = {f.name for f in calc.fields}
+    for name in raw:
+        if name not in known:
+            raise InputError(name, f"unknown field for {calc.id} (fields: {', '.join(sorted(known))})")
+    mode = None
+    if "mode" in known:
+        mode = calc.field("mode").parse(raw.get("mode", calc.field("mode").default))
+    values: dict[str, Any] = {}
+    texts: dict[str, str] = {}
+    for f in calc.fields:
+        entered = raw.get(f.name, f.default)
+        if f.active(mode):
+            values[f.name] = f.parse(entered)
+        else:
+            try:
+                values[f.name] = f.parse(entered)
+            except InputError:
+                values[f.name] = f.parse(f.default)
+        texts[f.name] = _input_text(f, entered)
+    return values, texts
+
+
+def _input_text(f: Field, entered: Any) -> str:
+    if f.type == "quantity" and isinstance(entered, (int, float)) and not isinstance(entered, bool):
+        return f"{units.format_number(float(entered))} {f.unit}".rstrip()
+    if f.type == "quantity" and isinstance(entered, str) and units._NUMBER.match(entered):
+        return f"{entered.strip()} {f.unit}".rstrip()
+    if isinstance(entered, bool):
+        return "true" if entered else "false"
+    return str(entered)
+
+
+def format_value(value: Any, quantity: str, unit: str) -> Value:
+    if isinstance(value, bool) or isinstance(value, str):
+        text = ("yes" if value else "no") if isinstance(value, bool) else value
+        return Value(value, "", text)
+    if isinstance(value, numbers.Integral):
+        return Value(int(value), "", str(int(value)))
+    value = float(value)
+    return Value(value, units.SI_UNITS[quantity], units.format_quantity(value, unit, quantity))
+
+
+def solve(calc_id: str, raw: Mapping[str, Any] | None = None,
+          display_units: Mapping[str, str] | None = None) -> Solution:
+    """Parse, compute and format one calculator. Raises InputError on any bad entry."""
+    from .registry import get
+
+    calc = get(calc_id)
+    values, texts = parse_inputs(calc, raw or {})
+    result = calc.compute(values)
+    display_units = dict(display_units or {})
+    inputs = {}
+    for f in calc.fields:
+        v = values[f.name]
+        if f.type == "quantity":
+            inputs[f.name] = Value(v, units.SI_UNITS[f.quantity], texts[f.name])
+        else:
+            inputs[f.name] = Value(v, "", texts[f.name])
+    outputs = {}
+    for o in calc.outputs:
+        if o.name not in result.values:
+            continue
+        v = result.values[o.name]
+        if isinstance(v, float) and not math.isfinite(v):
+            # Last-resort guard: a calculator must never show NaN/inf. Tests assert it never fires.
+            raise InputError("(result)", f"{o.name} could not be computed from these inputs")
+        unit = display_units.get(o.name, o.unit)
+        outputs[o.name] = format_value(v, o.quantity, unit)
+    return Solution(calc.id, inputs, outputs, list(result.warnings))

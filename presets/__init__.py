@@ -1,0 +1,1 @@
+"""Built-in presets, presets/<calculator>/<name>.toml (a package so `pip install .` ships them)."""

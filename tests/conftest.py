@@ -1,0 +1,13 @@
+import os
+
+import pytest
+
+# Snapshot determinism: no colour overrides or theme from the caller's environment.
+for var in ("NO_COLOR", "TEXTUAL_THEME", "FORCE_COLOR"):
+    os.environ.pop(var, None)
+
+
+@pytest.fixture(autouse=True)
+def _isolated_config(tmp_path, monkeypatch):
+    """User presets go to a fresh directory, never the developer's ~/.config."""
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path / "config"))

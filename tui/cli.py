@@ -1,0 +1,121 @@
+"""The `gearhead` command line (DESIGN.md "Command line"). Textual loads only for the TUI."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import Sequence
+
+from core.errors import InputError
+
+EXIT_BAD_INPUT = 2
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="gearhead", description="Mechanism design calculators for FRC and VEX.")
+    sub = p.add_subparsers(dest="command")
+    s = sub.add_parser("solve", help="solve one calculator and print its outputs")
+    s.add_argument("calculator", help="calculator id (see `gearhead calculators`)")
+    s.add_argument("--preset", metavar="FILE", help="start from this preset file")
+    s.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
+                   help="set one input, e.g. --set load='25 lbf' (repeatable)")
+    s.add_argument("--json", action="store_true", help="print one JSON object (values in SI)")
+    pr = sub.add_parser("presets", help="list built-in and user presets")
+    pr.add_argument("calculator", nargs="?", help="only this calculator's presets")
+    c = sub.add_parser("calculators", help="list calculator ids, modes and fields")
+    c.add_argument("--json", action="store_true")
+    return p
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    if args.command is None:
+        from .app import run
+
+        run()
+        return 0
+    try:
+        if args.command == "solve":
+            return _solve(args)
+        if args.command == "presets":
+            return _presets(args)
+        return _calculators(args)
+    except InputError as exc:
+        print(f"gearhead: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+
+
+def _solve(args) -> int:
+    from core import presets
+    from core.model import solve
+    from core.registry import get
+
+    calc = get(args.calculator)
+    raw: dict = {}
+    if args.preset:
+        preset = presets.load(args.preset)
+        if preset.calculator != calc.id:
+            raise InputError("calculator", f"preset is for {preset.calculator!r}, not {calc.id!r}", args.preset)
+        raw.update(preset.inputs)
+    for item in args.sets:
+        name, sep, value = item.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            raise InputError(name or "--set", f"expected NAME=VALUE, got {item!r}")
+        raw[name] = value
+    solution = solve(calc.id, raw)
+    if args.json:
+        print(json.dumps(solution.as_json(), allow_nan=False))
+        return 0
+    width = max(len(calc.output(k).label) for k in solution.outputs)
+    print(f"{calc.title} ({calc.id})")
+    for name, value in solution.outputs.items():
+        print(f"  {calc.output(name).label:<{width}}  {value.text}")
+    for w in solution.warnings:
+        print(f"  warning: {w}")
+    return 0
+
+
+def _presets(args) -> int:
+    from core import presets
+    from core.registry import get
+
+    if args.calculator:
+        get(args.calculator)
+    for p in presets.listing(args.calculator):
+        kind = "built-in" if p.builtin else "user"
+        print(f"{p.calculator:<18} {kind:<8} {p.name:<28} {p.path}")
+    for problem in presets.problems(args.calculator):
+        print(f"gearhead: skipped {problem}", file=sys.stderr)
+    return 0
+
+
+def _calculators(args) -> int:
+    from core.registry import calculators
+    from core.units import SI_UNITS
+
+    described = []
+    for calc in calculators().values():
+        described.append({
+            "id": calc.id, "title": calc.title, "modes": list(calc.modes),
+            "fields": [{"name": f.name, "type": f.type, "unit": f.unit,
+                        "si_unit": SI_UNITS[f.quantity] if f.type == "quantity" else "",
+                        "default": f.default, "choices": list(f.choices), "modes": list(f.modes),
+                        "help": f.help} for f in calc.fields],
+            "outputs": [{"name": o.name, "unit": o.unit, "si_unit": SI_UNITS[o.quantity]} for o in calc.outputs],
+        })
+    if args.json:
+        print(json.dumps(described))
+        return 0
+    for d in described:
+        print(f"{d['id']}: {d['title']}")
+        if d["modes"]:
+            print(f"  modes:   {', '.join(d['modes'])}")
+        print(f"  fields:  {', '.join(f['name'] for f in d['fields'])}")
+        print(f"  outputs: {', '.join(o['name'] for o in d['outputs'])}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
