@@ -153,6 +153,8 @@ class Calculator:
     outputs: tuple[Output, ...]
     compute: Callable[[Mapping[str, Any]], Result]
     section: str = ""  # where in the seed it comes from
+    # Outputs that feed another calculator: {target_id: {target_field: output_name}}
+    exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
 
     def field(self, name: str) -> Field:
         for f in self.fields:

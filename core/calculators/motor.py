@@ -7,17 +7,17 @@ from ..model import Calculator, Field, Output, Result
 from ..motors import motor_fields, system_from
 
 FIELDS = motor_fields() + (
-    Field("torque", "Operating torque", "torque", "N*m", default=1, min=0,
+    Field("torque", "Operating torque", "torque", "N*m", default=0.2, min=0,
           help="Torque τ at the gearbox output for the operating point (eqs. 8-10)."),
 )
 
 OUTPUTS = (
-    Output("free_speed", "Free speed ω̃f", "angular_speed", "rpm"),
-    Output("stall_torque", "Stall torque τ̃s", "torque", "N*m"),
-    Output("stall_current", "Stall current ĩs", "current", "A", help="All motors together."),
-    Output("free_current", "Free current ĩf", "current", "A", help="All motors together."),
-    Output("peak_power", "Peak power P̃", "power", "W"),
-    Output("kt", "Torque constant K_T", "torque_constant", "N*m/A"),
+    Output("free_speed", "Free speed", "angular_speed", "rpm"),
+    Output("stall_torque", "Stall torque", "torque", "N*m"),
+    Output("stall_current", "Stall current", "current", "A", help="All motors together."),
+    Output("free_current", "Free current", "current", "A", help="All motors together."),
+    Output("peak_power", "Peak power", "power", "W"),
+    Output("kt", "Torque constant Kt", "torque_constant", "N*m/A"),
     Output("max_efficiency", "Max efficiency", "dimensionless", "%"),
     Output("max_efficiency_torque", "Torque at max efficiency", "torque", "N*m"),
     Output("max_efficiency_speed", "Speed at max efficiency", "angular_speed", "rpm"),

@@ -1,0 +1,29 @@
+"""One snapshot per tab (pytest-textual-snapshot), deterministic: fixed size, no blink, no clock."""
+
+import pytest
+
+from core.registry import calculators
+from tui.app import GearheadApp
+
+SIZE = (140, 45)
+
+
+async def settle(pilot):
+    await pilot.pause()
+    await pilot.app.workers.wait_for_complete()
+    await pilot.pause()
+
+
+@pytest.mark.parametrize("calc_id", list(calculators()))
+def test_tab_snapshot(snap_compare, calc_id):
+    assert snap_compare(GearheadApp(blink=False, initial=calc_id), terminal_size=SIZE, run_before=settle)
+
+
+def test_invalid_entry_snapshot(snap_compare):
+    async def type_bad_radius(pilot):
+        await settle(pilot)
+        pilot.app.query_one("#calc-gear_ratio #in-radius").value = "3 kg"
+        await settle(pilot)
+
+    assert snap_compare(GearheadApp(blink=False, initial="gear_ratio"), terminal_size=SIZE,
+                        run_before=type_bad_radius)

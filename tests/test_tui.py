@@ -1,0 +1,113 @@
+"""Pilot tests: typing, mode switching, an invalid entry, and a preset round trip in the app."""
+
+import pytest
+from textual.widgets import Input, OptionList, Select, Static
+
+from core import presets
+from core.model import solve
+from tui.app import GearheadApp
+from tui.components.calculator_tab import CalculatorTab
+
+SIZE = (140, 45)
+
+
+async def settle(pilot):
+    await pilot.pause()
+    await pilot.app.workers.wait_for_complete()
+    await pilot.pause()
+
+
+async def replace_text(pilot, selector, text):
+    entry = pilot.app.query_one(selector, Input)
+    entry.focus()
+    await pilot.pause()
+    entry.value = ""
+    await pilot.press(*list(text))
+    await settle(pilot)
+
+
+async def test_typing_updates_results():
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        await replace_text(pilot, "#calc-gear_ratio #in-load", "200 lbf")
+        expected = solve("gear_ratio", {"load": "200 lbf"}).outputs["ratio"].value
+        assert tab.solution.outputs["ratio"].value == pytest.approx(expected, rel=1e-12)
+        assert tab.solution.inputs["load"].text == "200 lbf"
+
+
+async def test_mode_switch_shows_only_that_modes_target():
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        assert not tab.query_one("#row-target_rotational_speed").display
+        tab.query_one("#in-mode", Select).value = "rotational_speed"
+        await settle(pilot)
+        assert tab.query_one("#row-target_rotational_speed").display
+        assert not tab.query_one("#row-target_current").display
+        assert "ratio_alternative" in tab.solution.outputs
+        assert tab.solution.outputs["loaded_speed"].text == "300 rpm"
+
+
+async def test_invalid_entry_names_the_field_and_keeps_the_text():
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        good = tab.solution
+        await replace_text(pilot, "#calc-gear_ratio #in-radius", "3 kg")
+        error = tab.query_one("#err-radius", Static)
+        assert error.display
+        assert "is not a length" in str(error.render())
+        assert tab.error.field == "radius"
+        assert tab.query_one("#in-radius", Input).value == "3 kg"  # nothing typed is lost
+        assert tab.solution is good  # last valid results stay, marked stale
+        assert tab.has_class("stale")
+        await replace_text(pilot, "#calc-gear_ratio #in-radius", "2 in")
+        assert not error.display and tab.error is None
+        assert tab.solution.inputs["radius"].value == pytest.approx(0.0508)
+
+
+async def test_preset_save_then_load_round_trip():
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        await replace_text(pilot, "#calc-gear_ratio #in-load", "75 lbf")
+        await pilot.press("ctrl+s")
+        await pilot.pause()
+        await pilot.press(*"Test lift")
+        await pilot.press("enter")
+        await settle(pilot)
+        saved = presets.user_dir() / "gear_ratio" / "test_lift.toml"
+        assert saved.exists()
+        assert presets.load(saved).inputs["load"] == "75 lbf"
+        await replace_text(pilot, "#calc-gear_ratio #in-load", "10 lbf")
+        await pilot.press("ctrl+o")
+        await pilot.pause()
+        options = app.screen.query_one(OptionList)
+        index = next(i for i in range(options.option_count)
+                     if "Test lift" in str(options.get_option_at_index(i).prompt))
+        options.highlighted = index
+        await pilot.press("enter")
+        await settle(pilot)
+        assert tab.query_one("#in-load", Input).value == "75 lbf"
+        assert tab.solution.inputs["load"].text == "75 lbf"
+        # saving again under the same name refuses to overwrite silently
+        await pilot.press("ctrl+s")
+        await pilot.pause()
+        await pilot.press(*"Test lift")
+        await pilot.press("enter")
+        await pilot.pause()
+        assert "file exists" in str(app.screen.query_one("#save-error", Static).render())
+
+
+async def test_command_palette_offers_presets_and_every_calculator():
+    app = GearheadApp(blink=False)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        titles = [c.title for c in app.get_system_commands(app.screen)]
+        assert "Save preset" in titles and "Load preset" in titles
+        assert "Open Gear ratio" in titles and "Open Motor" in titles

@@ -1,0 +1,109 @@
+"""The Gearhead design card: one tab per registered calculator."""
+
+from __future__ import annotations
+
+from typing import Iterable
+
+from rich.text import Text
+from textual.app import App, ComposeResult, SystemCommand
+from textual.binding import Binding
+from textual.content import Content
+from textual.screen import Screen
+from textual.widgets import Footer, Header, TabbedContent, TabPane
+
+from core.registry import calculators
+
+from .components.calculator_tab import CalculatorTab
+from .components.preset_screens import LoadPresetScreen, SavePresetScreen
+
+
+class GearheadApp(App):
+    CSS_PATH = "gearhead.tcss"
+    TITLE = "Gearhead"
+    SUB_TITLE = "mechanism design card"
+    BINDINGS = [
+        Binding("ctrl+s", "save_preset", "Save preset"),
+        Binding("ctrl+o", "load_preset", "Load preset"),
+        Binding("ctrl+g", "send", "Send to…", show=True),
+        Binding("ctrl+q", "quit", "Quit"),
+    ]
+
+    def __init__(self, blink: bool = True, initial: str | None = None) -> None:
+        super().__init__()
+        self.blink = blink  # tests switch the cursor blink off for deterministic snapshots
+        self.initial = initial
+
+    def compose(self) -> ComposeResult:
+        yield Header()
+        with TabbedContent(initial=f"tab-{self.initial}" if self.initial else ""):
+            for calc in calculators().values():
+                with TabPane(Content(calc.title), id=f"tab-{calc.id}"):
+                    yield CalculatorTab(calc, blink=self.blink, id=f"calc-{calc.id}")
+        yield Footer()
+
+    # ---- helpers ------------------------------------------------------------------------
+    @property
+    def current_tab(self) -> CalculatorTab:
+        pane_id = self.query_one(TabbedContent).active
+        return self.query_one(f"#calc-{pane_id.removeprefix('tab-')}", CalculatorTab)
+
+    def show_calculator(self, calc_id: str) -> None:
+        self.query_one(TabbedContent).active = f"tab-{calc_id}"
+
+    # ---- actions ------------------------------------------------------------------------
+    def action_save_preset(self) -> None:
+        tab = self.current_tab
+
+        def saved(path) -> None:
+            if path is not None:
+                self.notify(f"Saved {path}", title="Preset saved")
+
+        self.push_screen(SavePresetScreen(tab.calculator.id, tab.current_inputs(), self.blink), saved)
+
+    def action_load_preset(self) -> None:
+        tab = self.current_tab
+
+        def loaded(preset) -> None:
+            if preset is not None:
+                tab.set_entries(preset.inputs)
+                self.notify(Text(f"Loaded {preset.name}"), title="Preset loaded")
+
+        self.push_screen(LoadPresetScreen(tab.calculator.id, self.blink), loaded)
+
+    def action_send(self) -> None:
+        """Send this tab's results into the calculator it feeds (e.g. lead screw → gear ratio)."""
+        tab = self.current_tab
+        exports = tab.calculator.exports
+        if not exports:
+            self.notify("This calculator has nothing to send.", severity="warning")
+            return
+        if tab.solution is None or tab.error is not None:
+            self.notify("Fix the highlighted input first.", severity="error")
+            return
+        for target_id, mapping in exports.items():
+            target = self.query_one(f"#calc-{target_id}", CalculatorTab)
+            values = {field: tab.solution.outputs[out].text for field, out in mapping.items()
+                      if out in tab.solution.outputs}
+            target.set_entries(values)
+            self.show_calculator(target_id)
+            self.notify(Text(", ".join(f"{k} = {v}" for k, v in values.items())),
+                        title=f"Sent to {target.calculator.title}")
+
+    def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
+        yield from super().get_system_commands(screen)
+        yield SystemCommand("Save preset", "Save the current tab's inputs as a TOML preset",
+                            self.action_save_preset)
+        yield SystemCommand("Load preset", "Load a built-in or user preset into the current tab",
+                            self.action_load_preset)
+        for calc in calculators().values():
+            yield SystemCommand(f"Open {calc.title}", calc.summary,
+                                lambda cid=calc.id: self.show_calculator(cid))
+            if calc.exports:
+                targets = ", ".join(calculators()[t].title for t in calc.exports if t in calculators())
+                yield SystemCommand(f"Send {calc.title} results to {targets}",
+                                    "Copy the matching outputs into that calculator's inputs",
+                                    lambda cid=calc.id: (self.show_calculator(cid), self.action_send()))
+
+
+def run() -> None:
+    GearheadApp().run()

@@ -1,0 +1,223 @@
+"""One generic tab that renders any calculator from its description (core.model.Calculator).
+
+Inputs on the left (label, entry, unit, inline error), results on the right. Solving runs in a
+thread worker after a short pause in typing, so the interface never waits for pint or scipy.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+from rich.text import Text
+from textual import on, work
+from textual.app import ComposeResult
+from textual.containers import Horizontal, Vertical, VerticalScroll
+from textual.message import Message
+from textual.reactive import reactive
+from textual.widget import Widget
+from textual.widgets import Checkbox, DataTable, Input, Label, Select, Static
+from textual.worker import get_current_worker
+
+from core.errors import InputError
+from core.model import Calculator, Field, Solution
+
+DEBOUNCE_S = 0.15
+
+
+class FieldRow(Horizontal):
+    """Label, entry widget and unit for one field; an error line appears under it when needed."""
+
+    def __init__(self, field: Field, value: Any, blink: bool) -> None:
+        super().__init__(classes="field-row", id=f"row-{field.name}")
+        self.field = field
+        self.initial = value
+        self.blink = blink
+
+    def compose(self) -> ComposeResult:
+        f = self.field
+        yield Label(Text(f.label), classes="field-label")
+        if f.type == "choice":
+            options = [(Text(f.label_of(c)), c) for c in f.choices]
+            yield Select(options, value=self.initial, allow_blank=False, id=f"in-{f.name}",
+                         classes="field-input", tooltip=f.help or None, compact=True)
+        elif f.type == "bool":
+            yield Checkbox(value=bool(self.initial), id=f"in-{f.name}", classes="field-input",
+                           tooltip=f.help or None, compact=True)
+        else:
+            entry = Input(value=str(self.initial), id=f"in-{f.name}", classes="field-input",
+                          tooltip=f.help or None, select_on_focus=False, compact=True)
+            entry.cursor_blink = self.blink
+            yield entry
+        yield Label(Text(f.unit), classes="field-unit")
+
+
+class CalculatorTab(Widget):
+    """The whole card for one calculator."""
+
+    entries: reactive[dict[str, Any]] = reactive(dict, init=False, always_update=True)
+
+    class Solved(Message):
+        def __init__(self, tab: "CalculatorTab", solution: Solution | None) -> None:
+            super().__init__()
+            self.tab = tab
+            self.solution = solution
+
+    def __init__(self, calculator: Calculator, blink: bool = True, **kwargs) -> None:
+        super().__init__(**kwargs)
+        self.calculator = calculator
+        self.blink = blink
+        self.solution: Solution | None = None
+        self.error: InputError | None = None
+        self.set_reactive(CalculatorTab.entries, {f.name: self._initial(f) for f in calculator.fields})
+
+    @staticmethod
+    def _initial(f: Field) -> Any:
+        if f.type == "bool":
+            return bool(f.default)
+        if f.type == "choice":
+            return f.default
+        return f.default_text()
+
+    # ---- layout -------------------------------------------------------------------------
+    def compose(self) -> ComposeResult:
+        calc = self.calculator
+        with Horizontal(classes="card"):
+            with Vertical(classes="inputs-pane"):
+                yield Static(Text(calc.summary), classes="summary")
+                with VerticalScroll(classes="form"):
+                    for f in calc.fields:
+                        yield FieldRow(f, self.entries[f.name], self.blink)
+                        yield Static("", classes="field-error", id=f"err-{f.name}")
+                yield Static(Text("Tab moves between fields; type any unit (3.5 in, 60 psi); "
+                                  "ctrl+s saves, ctrl+o loads a preset.", style="dim"), classes="help-line")
+            with Vertical(classes="results-pane"):
+                table = DataTable(classes="results", cursor_type="none", zebra_stripes=True)
+                table.add_column("Result", key="label")
+                table.add_column("Value", key="value")
+                yield table
+                yield Static("", classes="warnings")
+                yield Static("", classes="status")
+
+    def on_mount(self) -> None:
+        self._apply_mode()
+        self.solve()
+
+    # ---- entry handling ----------------------------------------------------------------
+    def _name_of(self, widget: Widget) -> str | None:
+        wid = widget.id or ""
+        return wid[3:] if wid.startswith("in-") else None
+
+    @on(Input.Changed)
+    @on(Select.Changed)
+    @on(Checkbox.Changed)
+    def _entry_changed(self, event) -> None:
+        event.stop()
+        name = self._name_of(event.control)
+        if name is None:
+            return
+        value = event.value
+        if self.entries.get(name) == value:
+            return
+        self.entries = {**self.entries, name: value}
+
+    def watch_entries(self) -> None:
+        self._apply_mode()
+        self.solve()
+
+    def on_descendant_focus(self, event) -> None:
+        name = self._name_of(event.widget) if event.widget else None
+        if name:
+            f = self.calculator.field(name)
+            line = Text(f.label + ": ", style="bold")
+            line.append(f.help or "")
+            if f.type == "quantity":
+                line.append(f"  (bare number = {f.unit or 'plain number'}; any compatible unit may be typed)",
+                            style="dim")
+            self.query_one(".help-line", Static).update(line)
+
+    def _apply_mode(self) -> None:
+        mode = self.entries.get("mode")
+        for f in self.calculator.fields:
+            try:
+                row = self.query_one(f"#row-{f.name}", FieldRow)
+            except Exception:  # not composed yet
+                return
+            row.display = f.active(mode)
+
+    def set_entries(self, values: dict[str, Any]) -> None:
+        """Put values into the widgets (preset load, send-to), then solve once."""
+        merged = dict(self.entries)
+        for name, value in values.items():
+            f = self.calculator.field(name)
+            widget = self.query_one(f"#in-{name}")
+            if f.type == "bool":
+                value = value if isinstance(value, bool) else str(value).lower() in ("true", "yes", "1", "on")
+                widget.value = value
+            elif f.type == "choice":
+                widget.value = value
+            else:
+                value = str(value)
+                widget.value = value
+            merged[name] = value
+        self.entries = merged
+
+    def current_inputs(self) -> dict[str, Any]:
+        """What the user entered, as a preset stores it (whole numbers as TOML integers)."""
+        out: dict[str, Any] = {}
+        for f in self.calculator.fields:
+            v = self.entries[f.name]
+            if f.type == "int":
+                try:
+                    v = int(str(v).strip())
+                except ValueError:
+                    pass
+            out[f.name] = v
+        return out
+
+    # ---- solving -----------------------------------------------------------------------
+    @work(thread=True, exclusive=True, group="solve")
+    def solve(self) -> None:
+        worker = get_current_worker()
+        time.sleep(DEBOUNCE_S)  # wait for a pause in typing
+        if worker.is_cancelled:
+            return
+        from core.model import solve
+
+        entries = dict(self.entries)
+        try:
+            solution = solve(self.calculator.id, entries)
+            error = None
+        except InputError as exc:
+            solution, error = None, exc
+        if not worker.is_cancelled:
+            self.app.call_from_thread(self._show, solution, error)
+
+    def _show(self, solution: Solution | None, error: InputError | None) -> None:
+        for f in self.calculator.fields:
+            err = self.query_one(f"#err-{f.name}", Static)
+            bad = error is not None and error.field == f.name
+            err.update(Text("⚠ " + error.message, style="bold red") if bad else "")
+            err.display = bad
+            self.query_one(f"#row-{f.name}").set_class(bad, "invalid")
+        status = self.query_one(".status", Static)
+        if error is not None:
+            self.error = error
+            self.add_class("stale")
+            status.update(Text(f"✗ {error.field}: {error.message} (results show the last valid inputs)",
+                               style="red"))
+            self.post_message(self.Solved(self, None))
+            return
+        self.error = None
+        self.remove_class("stale")
+        self.solution = solution
+        table = self.query_one(DataTable)
+        table.clear()
+        for name, value in solution.outputs.items():
+            label = self.calculator.output(name).label
+            table.add_row(Text(label), Text(value.text, justify="right"), key=name)
+        warnings = self.query_one(".warnings", Static)
+        warnings.update(Text("\n".join("! " + w for w in solution.warnings), style="yellow"))
+        warnings.display = bool(solution.warnings)
+        status.update(Text("✓ solved", style="green"))
+        self.post_message(self.Solved(self, solution))

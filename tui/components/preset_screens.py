@@ -1,0 +1,106 @@
+"""Modal screens to save the current tab as a preset and to load one."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from rich.text import Text
+from textual import on
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Horizontal, Vertical
+from textual.screen import ModalScreen
+from textual.widgets import Button, Checkbox, Input, Label, OptionList, Static
+from textual.widgets.option_list import Option
+
+from core import presets
+from core.errors import InputError
+
+
+class SavePresetScreen(ModalScreen[Path | None]):
+    """Ask for a name and description; write to the user preset folder (never silently overwrite)."""
+
+    BINDINGS = [Binding("escape", "dismiss(None)", "Cancel")]
+
+    def __init__(self, calc_id: str, inputs: dict, blink: bool = True) -> None:
+        super().__init__()
+        self.calc_id = calc_id
+        self.inputs = inputs
+        self.blink = blink
+
+    def compose(self) -> ComposeResult:
+        with Vertical(classes="dialog"):
+            yield Label(Text(f"Save {self.calc_id} preset"), classes="dialog-title")
+            name = Input(placeholder="Name, e.g. Elevator 2 NEO", id="preset-name")
+            desc = Input(placeholder="Description (optional)", id="preset-description")
+            name.cursor_blink = desc.cursor_blink = self.blink
+            yield name
+            yield desc
+            yield Checkbox("Overwrite an existing preset of that name", id="overwrite")
+            yield Static("", id="save-error", classes="field-error")
+            with Horizontal(classes="dialog-buttons"):
+                yield Button("Save", variant="primary", id="save")
+                yield Button("Cancel", id="cancel")
+
+    @on(Button.Pressed, "#cancel")
+    def _cancel(self) -> None:
+        self.dismiss(None)
+
+    @on(Input.Submitted)
+    @on(Button.Pressed, "#save")
+    def _save(self) -> None:
+        name = self.query_one("#preset-name", Input).value.strip()
+        error = self.query_one("#save-error", Static)
+        if not name:
+            error.update(Text("name: enter a name for the preset", style="bold red"))
+            return
+        preset = presets.Preset(self.calc_id, name, self.query_one("#preset-description", Input).value.strip(),
+                                dict(self.inputs))
+        try:
+            path = presets.save(preset, overwrite=self.query_one("#overwrite", Checkbox).value)
+        except InputError as exc:
+            error.update(Text(str(exc), style="bold red"))
+            return
+        except OSError as exc:
+            error.update(Text(f"cannot write preset: {exc}", style="bold red"))
+            return
+        self.dismiss(path)
+
+
+class LoadPresetScreen(ModalScreen[presets.Preset | None]):
+    """Pick a built-in or user preset for this calculator, or type a file path."""
+
+    BINDINGS = [Binding("escape", "dismiss(None)", "Cancel")]
+
+    def __init__(self, calc_id: str, blink: bool = True) -> None:
+        super().__init__()
+        self.calc_id = calc_id
+        self.blink = blink
+        self.found = presets.listing(calc_id)
+
+    def compose(self) -> ComposeResult:
+        with Vertical(classes="dialog"):
+            yield Label(Text(f"Load {self.calc_id} preset"), classes="dialog-title")
+            options = [Option(Text(f"{p.name}  ({'built-in' if p.builtin else 'user'})  {p.description}"),
+                              id=str(i)) for i, p in enumerate(self.found)]
+            yield OptionList(*options, id="preset-list")
+            path = Input(placeholder="…or a preset file path, then Enter", id="preset-path")
+            path.cursor_blink = self.blink
+            yield path
+            yield Static("", id="load-error", classes="field-error")
+
+    @on(OptionList.OptionSelected)
+    def _picked(self, event: OptionList.OptionSelected) -> None:
+        self.dismiss(self.found[int(event.option.id)])
+
+    @on(Input.Submitted, "#preset-path")
+    def _from_path(self, event: Input.Submitted) -> None:
+        try:
+            preset = presets.load(Path(event.value).expanduser())
+            if preset.calculator != self.calc_id:
+                raise InputError("calculator", f"preset is for {preset.calculator!r}, not {self.calc_id!r}",
+                                 event.value)
+        except InputError as exc:
+            self.query_one("#load-error", Static).update(Text(str(exc), style="bold red"))
+            return
+        self.dismiss(preset)
