@@ -97,6 +97,12 @@ def _parse_with_unit(s: str, kind: str, field: str) -> float:
         raise InputError(field, f"cannot read {s!r} as a {_kind_words(kind)} ({_short(exc)})") from None
     if not isinstance(q, ureg.Quantity):  # e.g. a bare expression like "2*3"
         q = ureg.Quantity(q)
+    try:
+        finite = math.isfinite(float(q.magnitude))
+    except (TypeError, ValueError, OverflowError):
+        finite = False
+    if not finite:
+        raise InputError(field, f"{s!r} is not a finite number")
     target = SI_UNITS[kind] or "dimensionless"
     try:
         return float(q.to(target).magnitude)

@@ -1,0 +1,42 @@
+"""Units at the boundary: any compatible unit in, SI out; wrong kinds name the field."""
+
+import pytest
+
+from core import units
+from core.errors import InputError
+
+
+@pytest.mark.parametrize("text,unit,kind,si", [
+    ("3.5 in", "in", "length", 0.0889),
+    ("3.5", "in", "length", 0.0889),
+    ("12 ft/s", "ft/s", "speed", 3.6576),
+    ("60 psi", "psi", "pressure", 413685.43759),
+    ("5 lbf*in", "N*m", "torque", 0.56492415),
+    ("574 cc", "cc", "volume", 574e-6),
+    ("5310 rpm", "rpm", "angular_speed", 556.06189968),
+    ("45 deg", "deg", "angle", 0.78539816),
+    ("45°", "deg", "angle", 0.78539816),
+    ("90 %", "", "dimensionless", 0.9),
+    ("0.9", "", "dimensionless", 0.9),
+    ("2 lbf", "N", "force", 8.89644323),
+])
+def test_parse_to_si(text, unit, kind, si):
+    assert units.parse(text, unit, kind, "x") == pytest.approx(si, rel=1e-8)
+
+
+@pytest.mark.parametrize("text,expect", [
+    ("3 kg", "is not a length"), ("abc", "cannot read"), ("", "is empty"), ("1e999", "not a finite"),
+    ("inf", "not a finite"), ("nan", "not a finite"), ("5 parsecs/", "cannot read"),
+])
+def test_bad_entries_name_field_and_text(text, expect):
+    with pytest.raises(InputError) as e:
+        units.parse(text, "in", "length", "radius")
+    assert e.value.field == "radius"
+    assert expect in e.value.message
+
+
+def test_format_quantity_uses_display_unit():
+    assert units.format_quantity(0.18733, "mm", "length") == "187.33 mm"
+    assert units.format_quantity(556.0619, "rpm", "angular_speed") == "5310 rpm"
+    assert units.format_number(1.23456789e-7) == "1.2346e-07"
+    assert units.format_number(0.0) == "0"
