@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Iterable
 
 from rich.text import Text
@@ -18,7 +19,7 @@ from .components.preset_screens import LoadPresetScreen, SavePresetScreen
 
 
 class GearheadApp(App):
-    CSS_PATH = "gearhead.tcss"
+    CSS_PATH = Path(__file__).with_name("gearhead.tcss")  # absolute: subclasses live elsewhere
     TITLE = "Gearhead"
     SUB_TITLE = "mechanism design card"
     BINDINGS = [

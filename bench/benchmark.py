@@ -1,0 +1,70 @@
+"""Speed figures for Gearhead (printed, never asserted: timing belongs here, not in tests).
+
+Run:  .venv/bin/python bench/benchmark.py
+- first frame: wall time from process start to the app's first screen being ready (headless);
+- one `solve` per calculator: median of repeated calls after a warm-up (pint loaded);
+- cold solve: the first call in a fresh process (pays for pint's registry).
+"""
+
+from __future__ import annotations
+
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+FIRST_FRAME = r"""
+import time, asyncio
+t0 = time.perf_counter()
+from tui.app import GearheadApp
+class Timed(GearheadApp):
+    def on_ready(self):  # Textual sends Ready once the first frame is on screen
+        self.first_frame = time.perf_counter() - t0
+async def main():
+    app = Timed(blink=False)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await pilot.pause()
+    print(app.first_frame)
+asyncio.run(main())
+"""
+
+COLD_SOLVE = r"""
+import time
+t0 = time.perf_counter()
+from core.model import solve
+solve("gear_ratio", {})
+print(time.perf_counter() - t0)
+"""
+
+
+def in_fresh_process(code: str, runs: int = 5) -> float:
+    times = []
+    for _ in range(runs):
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+        times.append(float(out.stdout.strip().splitlines()[-1]))
+    return statistics.median(times)
+
+
+def main() -> None:
+    from core.model import solve
+    from core.registry import calculators
+
+    print(f"first frame (headless, median of 5 fresh processes): {in_fresh_process(FIRST_FRAME) * 1e3:8.1f} ms")
+    print(f"cold first solve incl. pint registry (median of 5):  {in_fresh_process(COLD_SOLVE) * 1e3:8.1f} ms")
+    print("warm solve, median of 200 calls:")
+    for cid in calculators():
+        solve(cid, {})
+        samples = []
+        for _ in range(200):
+            t0 = time.perf_counter()
+            solve(cid, {})
+            samples.append(time.perf_counter() - t0)
+        print(f"  {cid:<18} {statistics.median(samples) * 1e6:9.1f} µs")
+
+
+if __name__ == "__main__":
+    main()
