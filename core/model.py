@@ -37,11 +37,14 @@ class Field:
     choice_labels: tuple[str, ...] = ()
     integer: bool = False
     boolean: bool = False
+    flags: bool = False  # a set of the choices (e.g. the effects a scene switches on)
     help: str = ""
     modes: tuple[str, ...] = ()  # shown and used only in these modes; empty means all
 
     @property
     def type(self) -> str:
+        if self.flags:
+            return "flags"
         if self.choices:
             return "choice"
         if self.boolean:
@@ -63,11 +66,25 @@ class Field:
             return units.format_number(float(self.default)) if isinstance(self.default, (int, float)) else str(self.default)
         if self.type == "bool":
             return "true" if self.default else "false"
+        if self.type == "flags":
+            return flags_text(self.default)
         return str(self.default)
 
     def parse(self, raw: Any) -> Any:
         """SI value (float), int, bool or choice string from what a user entered."""
         kind = self.type
+        if kind == "flags":
+            if isinstance(raw, str):
+                items = [x for x in raw.replace(",", " ").split() if x]
+            elif isinstance(raw, (list, tuple, set, frozenset)) and all(isinstance(x, str) for x in raw):
+                items = list(raw)
+            else:
+                raise InputError(self.name, f"expected names from: {', '.join(self.choices)}")
+            unknown = [x for x in items if x not in self.choices]
+            if unknown:
+                raise InputError(self.name, f"unknown {', '.join(map(repr, unknown))}; "
+                                            f"choose from: {', '.join(self.choices)}")
+            return frozenset(items)
         if kind == "choice":
             text = str(raw).strip() if isinstance(raw, str) else None
             if text not in self.choices:
@@ -136,12 +153,27 @@ class Output:
     help: str = ""
 
 
+@dataclass(frozen=True)
+class Plot:
+    """A chart of one or more series a compute function returns (x and y in SI)."""
+
+    title: str
+    series: tuple[str, ...]  # keys of Result.series, one line each
+    x_label: str
+    x_quantity: str
+    x_unit: str
+    y_label: str
+    y_quantity: str
+    y_unit: str
+
+
 @dataclass
 class Result:
     """What a compute function returns: output values in SI, and warnings for the user."""
 
     values: dict[str, Any]
     warnings: list[str] = dc_field(default_factory=list)
+    series: dict[str, tuple[list[float], list[float]]] = dc_field(default_factory=dict)  # for plots
 
 
 @dataclass(frozen=True)
@@ -155,6 +187,9 @@ class Calculator:
     section: str = ""  # where in the seed it comes from
     # Outputs that feed another calculator: {target_id: {target_field: output_name}}
     exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
+    plots: tuple[Plot, ...] = ()
+    # Simulated calculators: simulate(values, rtol) -> core.sim.scene.SimRun (for the accuracy ladder)
+    simulate: Callable[[Mapping[str, Any], float], Any] | None = None
 
     def field(self, name: str) -> Field:
         for f in self.fields:
@@ -197,6 +232,7 @@ class Solution:
     inputs: dict[str, Value]
     outputs: dict[str, Value]
     warnings: list[str]
+    series: dict[str, tuple[list[float], list[float]]] = dc_field(default_factory=dict)
 
     def as_json(self) -> dict[str, Any]:
         return {
@@ -235,7 +271,15 @@ def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, An
     return values, texts
 
 
+def flags_text(items: Any) -> str:
+    if isinstance(items, str):
+        items = [x for x in items.replace(",", " ").split() if x]
+    return ", ".join(sorted(items))
+
+
 def _input_text(f: Field, entered: Any) -> str:
+    if f.type == "flags":
+        return flags_text(entered) if isinstance(entered, (str, list, tuple, set, frozenset)) else str(entered)
     if f.type == "quantity" and isinstance(entered, (int, float)) and not isinstance(entered, bool):
         return f"{units.format_number(float(entered))} {f.unit}".rstrip()
     if f.type == "quantity" and isinstance(entered, str) and units._NUMBER.match(entered):
@@ -269,6 +313,8 @@ def solve(calc_id: str, raw: Mapping[str, Any] | None = None,
         v = values[f.name]
         if f.type == "quantity":
             inputs[f.name] = Value(v, units.SI_UNITS[f.quantity], texts[f.name])
+        elif f.type == "flags":
+            inputs[f.name] = Value(sorted(v), "", texts[f.name])
         else:
             inputs[f.name] = Value(v, "", texts[f.name])
     outputs = {}
@@ -281,4 +327,4 @@ def solve(calc_id: str, raw: Mapping[str, Any] | None = None,
             raise InputError("(result)", f"{o.name} could not be computed from these inputs")
         unit = display_units.get(o.name, o.unit)
         outputs[o.name] = format_value(v, o.quantity, unit)
-    return Solution(calc.id, inputs, outputs, list(result.warnings))
+    return Solution(calc.id, inputs, outputs, list(result.warnings), dict(result.series))

@@ -84,6 +84,8 @@ def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = N
     if not isinstance(inputs, dict):
         raise InputError("inputs", "must be a table", src)
     for key, value in inputs.items():
+        if isinstance(value, list) and all(isinstance(x, str) for x in value):
+            continue  # a set of flags, e.g. effects = ["compressor", "regulator"]
         if not isinstance(value, (str, int, float, bool)):
             raise InputError(key, f"wrong type ({type(value).__name__}); use a string, number or boolean", src)
     try:

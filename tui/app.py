@@ -14,6 +14,7 @@ from textual.widgets import Footer, Header, TabbedContent, TabPane
 
 from core.registry import calculators
 
+from .components.accuracy_screen import AccuracyScreen
 from .components.calculator_tab import CalculatorTab
 from .components.preset_screens import LoadPresetScreen, SavePresetScreen
 
@@ -26,12 +27,14 @@ class GearheadApp(App):
         Binding("ctrl+s", "save_preset", "Save preset"),
         Binding("ctrl+o", "load_preset", "Load preset"),
         Binding("ctrl+g", "send", "Send to…", show=True),
+        Binding("ctrl+r", "accuracy", "Accuracy vs time"),
         Binding("ctrl+q", "quit", "Quit"),
     ]
 
-    def __init__(self, blink: bool = True, initial: str | None = None) -> None:
+    def __init__(self, blink: bool = True, initial: str | None = None, hide_timings: bool = False) -> None:
         super().__init__()
         self.blink = blink  # tests switch the cursor blink off for deterministic snapshots
+        self.hide_timings = hide_timings  # and hide wall-clock figures
         self.initial = initial
 
     def compose(self) -> ComposeResult:
@@ -39,7 +42,8 @@ class GearheadApp(App):
         with TabbedContent(initial=f"tab-{self.initial}" if self.initial else ""):
             for calc in calculators().values():
                 with TabPane(Content(calc.title), id=f"tab-{calc.id}"):
-                    yield CalculatorTab(calc, blink=self.blink, id=f"calc-{calc.id}")
+                    yield CalculatorTab(calc, blink=self.blink, hide_timings=self.hide_timings,
+                                        id=f"calc-{calc.id}")
         yield Footer()
 
     # ---- helpers ------------------------------------------------------------------------
@@ -90,12 +94,28 @@ class GearheadApp(App):
             self.notify(Text(", ".join(f"{k} = {v}" for k, v in values.items())),
                         title=f"Sent to {target.calculator.title}")
 
+    def action_accuracy(self) -> None:
+        """Run the current simulation at every accuracy level (the accuracy-vs-time view)."""
+        tab = self.current_tab
+        if tab.calculator.simulate is None:
+            self.notify("Only simulations have an accuracy setting.", severity="warning")
+            return
+        if tab.solution is None or tab.error is not None:
+            self.notify("Fix the highlighted input first.", severity="error")
+            return
+        from core.model import parse_inputs
+
+        values, _ = parse_inputs(tab.calculator, tab.entries)
+        self.push_screen(AccuracyScreen(tab.calculator, values, self.hide_timings))
+
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         yield from super().get_system_commands(screen)
         yield SystemCommand("Save preset", "Save the current tab's inputs as a TOML preset",
                             self.action_save_preset)
         yield SystemCommand("Load preset", "Load a built-in or user preset into the current tab",
                             self.action_load_preset)
+        yield SystemCommand("Accuracy vs time", "Run the current simulation at every accuracy level",
+                            self.action_accuracy)
         for calc in calculators().values():
             yield SystemCommand(f"Open {calc.title}", calc.summary,
                                 lambda cid=calc.id: self.show_calculator(cid))

@@ -21,6 +21,11 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
                    help="set one input, e.g. --set load='25 lbf' (repeatable)")
     s.add_argument("--json", action="store_true", help="print one JSON object (values in SI)")
+    a = sub.add_parser("accuracy", help="run a simulation at every accuracy level: error, time, evaluations")
+    a.add_argument("calculator", help="a simulated calculator (e.g. pneumatics)")
+    a.add_argument("--preset", metavar="FILE")
+    a.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE")
+    a.add_argument("--json", action="store_true")
     pr = sub.add_parser("presets", help="list built-in and user presets")
     pr.add_argument("calculator", nargs="?", help="only this calculator's presets")
     c = sub.add_parser("calculators", help="list calculator ids, modes and fields")
@@ -40,18 +45,18 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _solve(args)
         if args.command == "presets":
             return _presets(args)
+        if args.command == "accuracy":
+            return _accuracy(args)
         return _calculators(args)
     except InputError as exc:
         print(f"gearhead: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT
 
 
-def _solve(args) -> int:
+def _raw_inputs(args, calc) -> dict:
+    """Inputs from --preset then --set, as typed."""
     from core import presets
-    from core.model import solve
-    from core.registry import get
 
-    calc = get(args.calculator)
     raw: dict = {}
     if args.preset:
         preset = presets.load(args.preset)
@@ -64,7 +69,15 @@ def _solve(args) -> int:
         if not sep or not name:
             raise InputError(name or "--set", f"expected NAME=VALUE, got {item!r}")
         raw[name] = value
-    solution = solve(calc.id, raw)
+    return raw
+
+
+def _solve(args) -> int:
+    from core.model import solve
+    from core.registry import get
+
+    calc = get(args.calculator)
+    solution = solve(calc.id, _raw_inputs(args, calc))
     if args.json:
         print(json.dumps(solution.as_json(), allow_nan=False))
         return 0
@@ -74,6 +87,32 @@ def _solve(args) -> int:
         print(f"  {calc.output(name).label:<{width}}  {value.text}")
     for w in solution.warnings:
         print(f"  warning: {w}")
+    return 0
+
+
+def _accuracy(args) -> int:
+    from core.model import parse_inputs
+    from core.registry import get, calculators
+    from core.sim.scene import REFERENCE_RTOL, ladder
+
+    calc = get(args.calculator)
+    if calc.simulate is None:
+        sims = ", ".join(c.id for c in calculators().values() if c.simulate is not None)
+        raise InputError("calculator", f"{calc.id} is not a simulation (simulations: {sims})")
+    values, _ = parse_inputs(calc, _raw_inputs(args, calc))
+    rungs, reference = ladder(calc.simulate, values)
+    if args.json:
+        print(json.dumps({
+            "calculator": calc.id,
+            "reference": {"rtol": REFERENCE_RTOL, "rhs_evaluations": reference.nfev, "key": reference.key},
+            "levels": [{"level": r.level, "rtol": r.rtol, "error": r.error, "wall_time": r.wall_time,
+                        "rhs_evaluations": r.nfev} for r in rungs],
+        }, allow_nan=False))
+        return 0
+    print(f"{calc.title}: accuracy vs time (error relative to a run at rtol {REFERENCE_RTOL:.0e})")
+    print(f"  {'level':<9}{'rtol':>8}{'error':>12}{'wall time':>12}{'RHS evals':>11}")
+    for r in rungs:
+        print(f"  {r.level:<9}{r.rtol:>8.0e}{r.error:>12.2e}{r.wall_time * 1e3:>10.3f} ms{r.nfev:>11}")
     return 0
 
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Result
+from ..model import Calculator, Field, Output, Plot, Result
 from ..motors import motor_fields, system_from
 
 FIELDS = motor_fields() + (
@@ -53,7 +53,15 @@ def compute(v) -> Result:
         "efficiency_at_torque": m.efficiency_at(tau) if (tau > 0 or m.free_current > 0)
         else m.max_efficiency,
     }
-    return Result(values, warnings)
+    # motor curve: (8), (9), output power and (10) over the torque range, for the plots
+    taus = [m.stall_torque * k / 100 for k in range(101)]
+    series = {
+        "speed": (taus, [m.speed(t) for t in taus]),
+        "current": (taus, [m.current(t) for t in taus]),
+        "power": (taus, [t * m.speed(t) for t in taus]),
+        "efficiency": (taus[1:], [m.efficiency_at(t) for t in taus[1:]]),
+    }
+    return Result(values, warnings, series)
 
 
 CALCULATOR = Calculator(
@@ -64,4 +72,10 @@ CALCULATOR = Calculator(
     outputs=OUTPUTS,
     compute=compute,
     section="1",
+    plots=(
+        Plot("Speed vs torque", ("speed",), "torque", "torque", "N*m", "speed", "angular_speed", "rpm"),
+        Plot("Current vs torque", ("current",), "torque", "torque", "N*m", "current", "current", "A"),
+        Plot("Power vs torque", ("power",), "torque", "torque", "N*m", "output power", "power", "W"),
+        Plot("Efficiency vs torque", ("efficiency",), "torque", "torque", "N*m", "efficiency", "dimensionless", "%"),
+    ),
 )

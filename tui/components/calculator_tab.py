@@ -13,6 +13,7 @@ from rich.text import Text
 from textual import on, work
 from textual.app import ComposeResult
 from textual.containers import Horizontal, Vertical, VerticalScroll
+from textual.content import Content
 from textual.message import Message
 from textual.reactive import reactive
 from textual.widget import Widget
@@ -21,6 +22,9 @@ from textual.worker import get_current_worker
 
 from core.errors import InputError
 from core.model import Calculator, Field, Solution
+from core.sim.scene import VOLATILE
+
+from .plot_panel import PlotPanel
 
 DEBOUNCE_S = 0.15
 
@@ -29,7 +33,8 @@ class FieldRow(Horizontal):
     """Label, entry widget and unit for one field; an error line appears under it when needed."""
 
     def __init__(self, field: Field, value: Any, blink: bool) -> None:
-        super().__init__(classes="field-row", id=f"row-{field.name}")
+        super().__init__(classes="field-row" + (" flags-row" if field.type == "flags" else ""),
+                         id=f"row-{field.name}")
         self.field = field
         self.initial = value
         self.blink = blink
@@ -41,6 +46,12 @@ class FieldRow(Horizontal):
             options = [(Text(f.label_of(c)), c) for c in f.choices]
             yield Select(options, value=self.initial, allow_blank=False, id=f"in-{f.name}",
                          classes="field-input", tooltip=f.help or None, compact=True)
+        elif f.type == "flags":
+            chosen = set(x for x in str(self.initial).replace(",", " ").split() if x)
+            with Vertical(classes="field-input flags", id=f"in-{f.name}"):
+                for c in f.choices:
+                    yield Checkbox(Content(f.label_of(c)), value=c in chosen, id=f"flag-{f.name}--{c}",
+                                   compact=True, tooltip=f.help or None)
         elif f.type == "bool":
             yield Checkbox(value=bool(self.initial), id=f"in-{f.name}", classes="field-input",
                            tooltip=f.help or None, compact=True)
@@ -63,10 +74,12 @@ class CalculatorTab(Widget):
             self.tab = tab
             self.solution = solution
 
-    def __init__(self, calculator: Calculator, blink: bool = True, **kwargs) -> None:
+    def __init__(self, calculator: Calculator, blink: bool = True, hide_timings: bool = False,
+                 **kwargs) -> None:
         super().__init__(**kwargs)
         self.calculator = calculator
         self.blink = blink
+        self.hide_timings = hide_timings  # snapshot tests: no wall-clock figures on screen
         self.solution: Solution | None = None
         self.error: InputError | None = None
         self.set_reactive(CalculatorTab.entries, {f.name: self._initial(f) for f in calculator.fields})
@@ -96,6 +109,8 @@ class CalculatorTab(Widget):
                 table.add_column("Result", key="label")
                 table.add_column("Value", key="value")
                 yield table
+                if calc.plots:
+                    yield PlotPanel(calc.plots)
                 yield Static("", classes="warnings")
                 yield Static("", classes="status")
 
@@ -106,6 +121,8 @@ class CalculatorTab(Widget):
     # ---- entry handling ----------------------------------------------------------------
     def _name_of(self, widget: Widget) -> str | None:
         wid = widget.id or ""
+        if wid.startswith("flag-"):
+            return wid[5:].split("--")[0]
         return wid[3:] if wid.startswith("in-") else None
 
     @on(Input.Changed)
@@ -113,10 +130,17 @@ class CalculatorTab(Widget):
     @on(Checkbox.Changed)
     def _entry_changed(self, event) -> None:
         event.stop()
-        name = self._name_of(event.control)
+        wid = event.control.id or ""
+        if wid.startswith("flag-"):
+            name = wid[5:].split("--")[0]
+            f = self.calculator.field(name)
+            value = ", ".join(c for c in f.choices
+                              if self.query_one(f"#flag-{name}--{c}", Checkbox).value)
+        else:
+            name = self._name_of(event.control)
+            value = event.value
         if name is None:
             return
-        value = event.value
         if self.entries.get(name) == value:
             return
         self.entries = {**self.entries, name: value}
@@ -151,7 +175,13 @@ class CalculatorTab(Widget):
         for name, value in values.items():
             f = self.calculator.field(name)
             widget = self.query_one(f"#in-{name}")
-            if f.type == "bool":
+            if f.type == "flags":
+                chosen = set(value) if isinstance(value, (list, tuple, set, frozenset)) else \
+                    set(x for x in str(value).replace(",", " ").split() if x)
+                for c in f.choices:
+                    self.query_one(f"#flag-{name}--{c}", Checkbox).value = c in chosen
+                value = ", ".join(c for c in f.choices if c in chosen)
+            elif f.type == "bool":
                 value = value if isinstance(value, bool) else str(value).lower() in ("true", "yes", "1", "on")
                 widget.value = value
             elif f.type == "choice":
@@ -215,7 +245,10 @@ class CalculatorTab(Widget):
         table.clear()
         for name, value in solution.outputs.items():
             label = self.calculator.output(name).label
-            table.add_row(Text(label), Text(value.text, justify="right"), key=name)
+            text = "(hidden)" if self.hide_timings and name in VOLATILE else value.text
+            table.add_row(Text(label), Text(text), key=name)
+        if self.calculator.plots:
+            self.call_later(self.query_one(PlotPanel).show, solution)
         warnings = self.query_one(".warnings", Static)
         warnings.update(Text("\n".join("! " + w for w in solution.warnings), style="yellow"))
         warnings.display = bool(solution.warnings)

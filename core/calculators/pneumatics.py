@@ -1,0 +1,300 @@
+"""Seed section 10 (Appendix F): air over a match, as a scene with effects.
+
+State: storage pressure P (gauge, Pa). Between firings the compressor (if on) adds free air:
+    d(P·V)/dt = P_atm · V̇_comp(P)  ⇒  dP/dt = P_atm · V̇_comp(P) / V        (80) into (79), dt → 0
+Each firing of a cylinder group removes the air of one extend and one retract stroke (81):
+    ΔP = −(A_push·P_push + A_pull·P_pull)·L·count / V                     (79), (81), gauge (seed)
+With the `absolute_pressure` effect the bookkeeping is isothermal in absolute pressure: a stroke
+fills the chamber from empty to its absolute pressure, so it takes (P_cyl + P_atm)·A·L of P·V; and
+an unregulated stroke shares the tank's air, P_abs ← P_abs·V/(V + A·L) (exact, not linearised).
+Effects: `compressor` (off: no compressor term, and the match is answered in closed form with no
+integration), `pressure_switch` (on at or below 95 psi, off at 120 psi; without it the compressor
+runs all match and the 125 psi relief valve holds the top), `regulator` (cylinders get
+min(setting, storage pressure); without it they get storage pressure), `absolute_pressure`.
+Departures from the seed: the seed integrates with a 1 s explicit step (its own result is shown
+beside ours with the difference); events (switch flips) are located to the solver's tolerance.
+Compressor curves: 4th-degree least-squares fit of the vendor points (REFERENCE_DATA.md), as the
+seed does, clamped at zero flow.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+from ..errors import InputError
+from ..model import Calculator, Field, Output, Plot, Result
+from ..sim.integrate import Event, integrate
+from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats
+
+PSI = 6894.757293168361  # Pa
+P_ATM = 101325.0  # Pa
+CFM = 0.028316846592 / 60  # m^3/s per ft^3/min
+INCH = 0.0254
+RELIEF = 125 * PSI  # FRC relief valve
+GROUPS = 3
+MIN_PERIOD = 0.1  # s; a valve cannot cycle faster, and it bounds the work of a match
+
+# Free-air flow (CFM) at 0, 20, ..., 120 psi (ReCalc compressor data, REFERENCE_DATA.md).
+COMPRESSORS: dict[str, tuple[float, ...]] = {
+    "VIAIR 90C 12 V": (.880, .425, .302, .251, .237, .224, .210),
+    "VIAIR 90C 13.8 V": (1.030, .670, .599, .530, .450, .390, .340),
+    "VIAIR 250C-IG 13.8 V": (.879, .771, .684, .597, .519, .451, .386),
+    "Thomas 215 12 V": (.972, .764, .594, .469, .379, .297, .219),
+    "AndyMark 1.1 12 V": (1.100, .602, .502, .406, .331, .312, .300),
+}
+CURVE_PSI = (0, 20, 40, 60, 80, 100, 120)
+EFFECTS = ("compressor", "pressure_switch", "regulator", "absolute_pressure")
+
+
+@lru_cache(maxsize=None)
+def flow_fit(name: str) -> tuple[float, ...]:
+    """4th-degree fit of V̇(P): coefficients (highest first) in SI, m^3/s of free air vs Pa gauge."""
+    import numpy as np
+
+    coeffs = np.polyfit(np.array(CURVE_PSI) * PSI, np.array(COMPRESSORS[name]) * CFM, 4)
+    return tuple(float(c) for c in coeffs)
+
+
+def flow(coeffs, P: float) -> float:
+    q = 0.0
+    for c in coeffs:
+        q = q * P + c
+    return q if q > 0 else 0.0
+
+
+def _group_fields(i: int):
+    on = i == 1
+    g = f"Cylinder group {i}: "
+    return (
+        Field(f"c{i}_count", f"Cyl {i}: count", integer=True, default=2 if on else 0, min=0, max=50,
+              help=g + "number of identical cylinders firing together (0: group unused)."),
+        Field(f"c{i}_bore", f"Cyl {i}: bore", "length", "in", default=1.5, min=0, min_exclusive=True,
+              max=0.5, help=g + "bore D."),
+        Field(f"c{i}_rod", f"Cyl {i}: rod", "length", "in", default=0.4375, min=0, max=0.5,
+              help=g + "rod diameter d (smaller than the bore)."),
+        Field(f"c{i}_stroke", f"Cyl {i}: stroke", "length", "in", default=6 if on else 4, min=0,
+              min_exclusive=True, max=5, help=g + "stroke L."),
+        Field(f"c{i}_push_pressure", f"Cyl {i}: push pressure", "pressure", "psi", default=60, min=0,
+              max=200 * PSI, help=g + "pressure on the extend stroke (its regulator setting)."),
+        Field(f"c{i}_pull_pressure", f"Cyl {i}: pull pressure", "pressure", "psi", default=60, min=0,
+              max=200 * PSI, help=g + "pressure on the retract stroke."),
+        Field(f"c{i}_period", f"Cyl {i}: firing period", "time", "s", default=10 if on else 5, min=0,
+              max=1000, help=g + "time between actuations (extend + retract); 0 fires once."),
+        Field(f"c{i}_start", f"Cyl {i}: first firing", "time", "s", default=5 if on else 0, min=0,
+              max=1000, help=g + "time of the first actuation."),
+    )
+
+
+FIELDS = (
+    Field("compressor_model", "Compressor", choices=tuple(COMPRESSORS), default="VIAIR 90C 13.8 V",
+          help="Compressor flow curve (vendor data, 4th-degree fit as in the seed)."),
+    Field("tank_volume", "Storage volume", "volume", "cc", default=1148, min=1e-6, max=1.0,
+          help="Total storage: tanks plus tubing (two Clippard tanks: 1148 cc)."),
+    Field("start_pressure", "Start pressure", "pressure", "psi", default=120, min=0, max=RELIEF,
+          help="Storage pressure (gauge) when the match starts."),
+    Field("switch_on", "Switch on at", "pressure", "psi", default=95, min=0, max=RELIEF,
+          help="Pressure switch closes (compressor on) at or below this."),
+    Field("switch_off", "Switch off at", "pressure", "psi", default=120, min=0, max=RELIEF,
+          help="Pressure switch opens (compressor off) at this."),
+    Field("match_length", "Match length", "time", "s", default=150, min=0, min_exclusive=True, max=3600,
+          help="Simulated time."),
+    effects_field(EFFECTS, ("compressor", "pressure_switch", "regulator"),
+                  "compressor, pressure_switch, regulator, absolute_pressure (isothermal, absolute "
+                  "P·V bookkeeping instead of the seed's gauge P·V)."),
+    accuracy_field(),
+) + tuple(f for i in range(1, GROUPS + 1) for f in _group_fields(i))
+
+OUTPUTS = (
+    Output("min_pressure", "Minimum pressure", "pressure", "psi"),
+    Output("min_pressure_time", "…at time", "time", "s"),
+    Output("final_pressure", "Final pressure", "pressure", "psi"),
+    Output("compressor_duty", "Compressor duty", "dimensionless", "%",
+           help="Fraction of the match the compressor runs."),
+    Output("firings", "Actuations"),
+    Output("tank_empty", "Tank emptied"),
+    *[o for i in range(1, GROUPS + 1) for o in (
+        Output(f"push_force_{i}", f"Cyl {i}: push force", "force", "lbf", help="(82) at its push pressure."),
+        Output(f"pull_force_{i}", f"Cyl {i}: pull force", "force", "lbf", help="(83) at its pull pressure."),
+    )],
+    Output("seed_min_pressure", "Seed 1 s step: minimum", "pressure", "psi"),
+    Output("seed_final_pressure", "Seed 1 s step: final", "pressure", "psi"),
+    Output("seed_difference", "Seed minus accurate (final)", "pressure", "psi"),
+    *STATS_OUTPUTS,
+)
+
+
+def groups(v) -> list[dict]:
+    out = []
+    for i in range(1, GROUPS + 1):
+        if v[f"c{i}_count"] == 0:
+            continue
+        D, d = v[f"c{i}_bore"], v[f"c{i}_rod"]
+        if d >= D:
+            raise InputError(f"c{i}_rod", "must be smaller than the bore")
+        out.append({
+            "index": i, "count": v[f"c{i}_count"], "stroke": v[f"c{i}_stroke"],
+            "A_push": math.pi * D**2 / 4, "A_pull": math.pi * (D**2 - d**2) / 4,
+            "P_push": v[f"c{i}_push_pressure"], "P_pull": v[f"c{i}_pull_pressure"],
+            "period": v[f"c{i}_period"], "start": v[f"c{i}_start"],
+        })
+        if 0 < v[f"c{i}_period"] < MIN_PERIOD:
+            raise InputError(f"c{i}_period", f"must be 0 (fire once) or at least {MIN_PERIOD} s")
+    return out
+
+
+def firing_times(gs: list[dict], T: float) -> list[tuple[float, dict]]:
+    times = []
+    for g in gs:
+        t = g["start"]
+        while t < T:
+            times.append((t, g))
+            if g["period"] <= 0:
+                break
+            t += g["period"]
+    times.sort(key=lambda x: x[0])
+    return times
+
+
+def fire(P: float, g: dict, V: float, effects) -> float:
+    """Storage pressure (gauge) after one actuation of group g: extend, then retract."""
+    absolute = "absolute_pressure" in effects
+    for A, setting in ((g["A_push"], g["P_push"]), (g["A_pull"], g["P_pull"])):
+        Vc = A * g["stroke"] * g["count"]
+        regulated = "regulator" in effects and setting < P
+        if not absolute:
+            P_cyl = setting if regulated else P
+            P = P - P_cyl * Vc / V  # (81) into (79), gauge as in the seed
+        else:
+            P_abs = P + P_ATM
+            if regulated and P_abs - (setting + P_ATM) * Vc / V >= setting + P_ATM:
+                P_abs -= (setting + P_ATM) * Vc / V
+            else:  # no regulator, or it opens fully: the chamber shares the tank's air
+                P_abs = P_abs * V / (V + Vc)
+            P = P_abs - P_ATM
+        P = max(P, 0.0)  # a tank cannot go below atmospheric: the stroke is incomplete
+    return P
+
+
+def simulate(v, rtol: float) -> SimRun:
+    effects = v["effects"]
+    V, T = v["tank_volume"], v["match_length"]
+    gs = groups(v)
+    if v["switch_on"] >= v["switch_off"]:
+        raise InputError("switch_on", "must be below the switch-off pressure")
+    coeffs = flow_fit(v["compressor_model"])
+    k = P_ATM / V
+    rhs = lambda t, y: [k * flow(coeffs, y[0])]  # noqa: E731  (80) into (79)
+    has_comp = "compressor" in effects
+    switch = "pressure_switch" in effects
+    top = v["switch_off"] if switch else RELIEF
+    stop = [Event("full", lambda t, y: y[0] - top, +1)]
+    P = v["start_pressure"]
+    on = has_comp and P < top
+    t = 0.0
+    ts, Ps = [0.0], [P]
+    run_time = 0.0
+    nfev = 0
+    h = None
+    empty = False
+    warnings = []
+    schedule = firing_times(gs, T) + [(T, None)]
+    for tf, g in schedule:
+        if on and tf > t:
+            run = integrate(rhs, t, tf, [P], rtol=rtol, atol=rtol * PSI, events=stop, first_step=h)
+            nfev += run.nfev
+            h = (run.t[-1] - run.t[-2]) if len(run.t) > 1 else None
+            ts.extend(run.t[1:])
+            Ps.extend(y[0] for y in run.y[1:])
+            P = run.y[-1][0]
+            if run.event == "full":
+                run_time += run.t[-1] - t
+                P = top
+                on = not switch  # without a switch the relief valve holds the top, motor still runs
+                if not switch:
+                    run_time += tf - run.t[-1]
+                ts.append(tf)
+                Ps.append(P)
+            else:
+                run_time += tf - t
+        elif tf > t:
+            if on:
+                run_time += tf - t
+            ts.append(tf)
+            Ps.append(P)
+        t = tf
+        if g is None:
+            break
+        P_before = P
+        P = fire(P, g, V, effects)
+        if P == 0.0 and not empty:
+            empty = True
+            warnings.append(f"The tank empties at t = {tf:.3g} s: strokes after that are incomplete.")
+        ts.append(tf)
+        Ps.append(P)
+        if has_comp and (not switch or P <= v["switch_on"]) and P < top:
+            on = True
+        elif has_comp and not switch and P_before >= top > P:
+            on = True
+    i_min = min(range(len(Ps)), key=Ps.__getitem__)
+    values = {
+        "min_pressure": Ps[i_min],
+        "min_pressure_time": ts[i_min],
+        "final_pressure": P,
+        "compressor_duty": run_time / T,
+        "firings": len(schedule) - 1,
+        "tank_empty": empty,
+    }
+    for g in gs:
+        values[f"push_force_{g['index']}"] = g["A_push"] * g["P_push"]  # (82)
+        values[f"pull_force_{g['index']}"] = g["A_pull"] * g["P_pull"]  # (83)
+    if not has_comp:
+        warnings.append("No compressor: pressure only falls; answered in closed form (no integration).")
+    return SimRun(values, {"min_pressure": Ps[i_min] + P_ATM, "final_pressure": P + P_ATM}, nfev, warnings,
+                  {"pressure": (ts, Ps)})
+
+
+def seed_step(v) -> tuple[float, float]:
+    """The seed's own scheme: explicit 1 s steps of (79)-(81), the same effects, gauge pressure."""
+    effects = v["effects"]
+    V, T = v["tank_volume"], v["match_length"]
+    gs = groups(v)
+    coeffs = flow_fit(v["compressor_model"])
+    switch = "pressure_switch" in effects
+    top = v["switch_off"] if switch else RELIEF
+    P = v["start_pressure"]
+    on = "compressor" in effects and P < top
+    schedule = firing_times(gs, T)
+    low = P
+    for n in range(int(math.ceil(T))):
+        W_comp = flow(coeffs, P) * 1.0 * P_ATM if on else 0.0  # (80), dt = 1 s
+        P = min(P + W_comp / V, top) if on else P  # (79)
+        for tf, g in schedule:
+            if n <= tf < n + 1:
+                P = fire(P, g, V, effects - {"absolute_pressure"})  # (81): the seed is gauge only
+        low = min(low, P)
+        if "compressor" in effects:
+            on = (P < top) if not switch else ((on and P < top) or P <= v["switch_on"])
+    return low, P
+
+
+def compute(v) -> Result:
+    run = run_with_stats(simulate, v)
+    seed_min, seed_final = seed_step(v)
+    run.values["seed_min_pressure"] = seed_min
+    run.values["seed_final_pressure"] = seed_final
+    run.values["seed_difference"] = seed_final - run.values["final_pressure"]
+    return Result(run.values, run.warnings, run.series)
+
+
+CALCULATOR = Calculator(
+    id="pneumatics",
+    title="Pneumatics",
+    summary="Storage pressure over a match: compressor, pressure switch, regulator, cylinders.",
+    fields=FIELDS,
+    outputs=OUTPUTS,
+    compute=compute,
+    section="10",
+    simulate=simulate,
+    plots=(Plot("Storage pressure", ("pressure",), "time", "time", "s", "pressure", "pressure", "psi"),),
+)

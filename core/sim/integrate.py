@@ -1,0 +1,214 @@
+"""One ODE interface, several methods behind it (in the manner of scipy.integrate.solve_ivp).
+
+- "DP54": Dormand–Prince 5(4) with FSAL, 4th-order dense output and event location, on plain
+  Python floats. Written by hand because solve_ivp spends ~60 µs of numpy overhead per step on
+  systems of 1-6 states; this costs a few µs, which is what keeps a 150 s match under 5 ms.
+- "RK45", "DOP853", "Radau", "LSODA": scipy.integrate.solve_ivp (used for tight references).
+
+Every run returns its right-hand-side evaluation count, so the cost of accuracy is visible.
+Events are located on the dense output with scipy.optimize.brentq to ~1e-13 of the step, not to
+a step boundary.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable, Sequence
+
+Vector = list[float]
+RHS = Callable[[float, Vector], Vector]
+
+# Dormand & Prince (1980) coefficients; dense output from Hairer, Nørsett & Wanner, DOPRI5.
+_C = (0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0)
+_A = (
+    (),
+    (1 / 5,),
+    (3 / 40, 9 / 40),
+    (44 / 45, -56 / 15, 32 / 9),
+    (19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729),
+    (9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656),
+    (35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84),
+)
+_E = (71 / 57600, 0.0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40)
+_D = (-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799, -10690763975 / 1880347072,
+      701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423)
+
+METHODS = ("DP54", "RK45", "DOP853", "Radau", "LSODA")
+
+
+@dataclass
+class Event:
+    """g(t, y) = 0 crossing. direction +1: only rising, -1: only falling, 0: both."""
+
+    name: str
+    g: Callable[[float, Vector], float]
+    direction: int = 0
+    terminal: bool = True
+
+
+@dataclass
+class Run:
+    t: list[float]
+    y: list[Vector]
+    nfev: int
+    steps: int
+    rejected: int
+    event: str | None = None  # name of the terminal event that ended the run
+    dense: list = field(default_factory=list)  # (t0, h, coefficients) per step, for DP54
+
+    def at(self, t: float) -> Vector:
+        """Interpolated state (DP54 dense output, 4th order)."""
+        for t0, h, rc in self.dense:
+            if (h > 0 and t0 <= t <= t0 + h) or (h < 0 and t0 + h <= t <= t0):
+                return _interp(rc, (t - t0) / h)
+        raise ValueError(f"t = {t} outside the integrated span")
+
+
+def _interp(rc, theta: float) -> Vector:
+    r1, r2, r3, r4, r5 = rc
+    one = 1 - theta
+    return [a + theta * (b + one * (c + theta * (d + one * e))) for a, b, c, d, e in zip(r1, r2, r3, r4, r5)]
+
+
+def integrate(rhs: RHS, t0: float, t1: float, y0: Sequence[float], rtol: float = 1e-6,
+              atol: float = 1e-9, events: Sequence[Event] = (), method: str = "DP54",
+              max_steps: int = 100_000, first_step: float | None = None, dense: bool = False) -> Run:
+    if method != "DP54":
+        return _scipy(rhs, t0, t1, y0, rtol, atol, events, method)
+    return _dp54(rhs, t0, t1, list(map(float, y0)), rtol, atol, events, max_steps, first_step, dense)
+
+
+def _norm(v, y0, y1, rtol, atol) -> float:
+    s = 0.0
+    for e, a, b in zip(v, y0, y1):
+        sc = atol + rtol * max(abs(a), abs(b))
+        s += (e / sc) ** 2
+    return math.sqrt(s / len(v))
+
+
+def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense) -> Run:
+    n = len(y)
+    direction = 1.0 if t1 >= t0 else -1.0
+    span = abs(t1 - t0)
+    ts, ys = [t0], [list(y)]
+    dense = []
+    if span == 0:
+        return Run(ts, ys, 0, 0, 0)
+    k1 = rhs(t0, y)
+    nfev = 1
+    # initial step (Hairer's heuristic, one extra evaluation)
+    if first_step is None:
+        d0 = _norm(y, y, y, rtol, atol) or 1e-5
+        d1 = _norm(k1, y, y, rtol, atol) or 1e-5
+        h0 = 0.01 * d0 / d1 if d0 > 1e-5 and d1 > 1e-5 else 1e-6
+        h0 = min(h0, span)
+        y1 = [a + direction * h0 * b for a, b in zip(y, k1)]
+        k2 = rhs(t0 + direction * h0, y1)
+        nfev += 1
+        d2 = _norm([(b - a) for a, b in zip(k1, k2)], y, y, rtol, atol) / h0
+        h1 = (0.01 / max(d1, d2)) ** 0.2 if max(d1, d2) > 1e-15 else max(1e-6, h0 * 1e-3)
+        h = min(100 * h0, h1, span)
+    else:
+        h = min(abs(first_step), span)
+    g_prev = [ev.g(t0, y) for ev in events]
+    t = t0
+    steps = rejected = 0
+    while True:
+        if steps + rejected >= max_steps:
+            raise RuntimeError(f"integration did not finish in {max_steps} steps (t = {t:.6g})")
+        if abs(t1 - t) <= h * (1 + 1e-12):
+            h = abs(t1 - t)
+            last = True
+        else:
+            last = False
+        hs = direction * h
+        ks = [k1]
+        for i in range(1, 7):
+            a = _A[i]
+            yi = [y[j] + hs * sum(a[m] * ks[m][j] for m in range(i)) for j in range(n)]
+            ks.append(rhs(t + _C[i] * hs, yi))
+        nfev += 6
+        y_new = yi  # stage 7 sits at the 5th-order solution (FSAL)
+        err_vec = [hs * sum(_E[m] * ks[m][j] for m in range(7)) for j in range(n)]
+        err = _norm(err_vec, y, y_new, rtol, atol)
+        if not math.isfinite(err):
+            err = 1e10
+        if err <= 1.0:
+            t_new = t1 if last else t + hs
+            rc = None
+            if events or keep_dense:
+                rc = ([*y], [b - a for a, b in zip(y, y_new)], None, None, None)
+                r2 = rc[1]
+                r3 = [hs * k - d for k, d in zip(ks[0], r2)]
+                r4 = [d - hs * k - c for d, k, c in zip(r2, ks[6], r3)]
+                r5 = [hs * sum(_D[m] * ks[m][j] for m in range(7)) for j in range(n)]
+                rc = (rc[0], r2, r3, r4, r5)
+                if keep_dense:
+                    dense.append((t, hs, rc))
+            # events on this step
+            hit = None
+            for idx, ev in enumerate(events):
+                g_new = ev.g(t_new, y_new)
+                g_old = g_prev[idx]
+                crossed = (g_old < 0 <= g_new and ev.direction >= 0) or (g_old > 0 >= g_new and ev.direction <= 0)
+                if crossed and ev.terminal:
+                    te = _locate(ev, rc, t, hs, g_old, g_new)
+                    if hit is None or (te - hit[0]) * direction < 0:
+                        hit = (te, ev)
+                g_prev[idx] = g_new
+            steps += 1
+            if hit is not None:
+                te, ev = hit
+                theta = (te - t) / hs
+                ye = _interp(rc, theta)
+                ts.append(te)
+                ys.append(ye)
+                return Run(ts, ys, nfev, steps, rejected, ev.name, dense)
+            t, y, k1 = t_new, y_new, ks[6]
+            ts.append(t)
+            ys.append(y)
+            if last:
+                return Run(ts, ys, nfev, steps, rejected, None, dense)
+            fac = 0.9 * err ** -0.2 if err > 0 else 10.0
+            h = h * min(10.0, max(0.2, fac))
+        else:
+            rejected += 1
+            h = h * max(0.1, 0.9 * err ** -0.2)
+        if h < 1e-14 * max(1.0, abs(t)):
+            raise RuntimeError(f"step size underflow at t = {t:.6g}")
+
+
+def _locate(ev: Event, rc, t: float, hs: float, g_old: float, g_new: float) -> float:
+    from scipy.optimize import brentq
+
+    if g_new == 0:
+        return t + hs
+    f = lambda theta: ev.g(t + theta * hs, _interp(rc, theta))  # noqa: E731
+    theta = brentq(f, 0.0, 1.0, xtol=1e-15, rtol=1e-15, maxiter=200)
+    return t + theta * hs
+
+
+def _scipy(rhs, t0, t1, y0, rtol, atol, events, method) -> Run:
+    import numpy as np
+    from scipy.integrate import solve_ivp
+
+    fns = []
+    for ev in events:
+        fn = (lambda e: (lambda t, y: e.g(t, list(y))))(ev)
+        fn.terminal = ev.terminal
+        fn.direction = ev.direction
+        fns.append(fn)
+    sol = solve_ivp(lambda t, y: np.asarray(rhs(t, list(y)), dtype=float), (t0, t1), np.asarray(y0, float),
+                    method=method, rtol=rtol, atol=atol, events=fns or None)
+    if sol.status == -1:
+        raise RuntimeError(sol.message)
+    ts = [float(x) for x in sol.t]
+    ys = [list(map(float, col)) for col in sol.y.T]
+    name = None
+    if sol.status == 1:
+        for ev, te in zip(events, sol.t_events):
+            if len(te):
+                name = ev.name
+                break
+    return Run(ts, ys, int(sol.nfev), len(ts) - 1, 0, name)

@@ -1,0 +1,105 @@
+"""What every simulated calculator shares: effects, accuracy levels, cost reporting, the ladder.
+
+A scene is a calculator whose `effects` field names the physics switched on. Its simulate
+function takes the parsed inputs and a relative tolerance and returns a SimRun; the generic code
+here times it, estimates its error against a run 100x tighter, and builds the accuracy ladder.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping
+
+from ..model import Field, Output
+
+# Named accuracy levels -> relative tolerance. "default" sits where the error-vs-time curve bends
+# (measured with bench/benchmark.py: tighter than this costs time for digits no design needs).
+LEVELS: dict[str, float] = {"coarse": 1e-3, "default": 1e-6, "fine": 1e-9, "tight": 1e-11}
+REFERENCE_RTOL = 1e-13
+ESTIMATE_FACTOR = 100.0  # the error estimate compares with a run at rtol / 100
+
+
+def accuracy_field(default: str = "default") -> Field:
+    return Field("accuracy", "Accuracy", choices=tuple(LEVELS), default=default,
+                 choice_labels=tuple(f"{k} (rtol {v:.0e})" for k, v in LEVELS.items()),
+                 help="Solver tolerance. Each result shows its error estimate, wall time and "
+                      "right-hand-side evaluations; ctrl+r runs the accuracy-vs-time ladder.")
+
+
+def effects_field(choices: tuple[str, ...], default: tuple[str, ...], help: str) -> Field:
+    return Field("effects", "Effects", choices=choices, flags=True, default=", ".join(default), help=help)
+
+
+STATS_OUTPUTS = (
+    Output("error_estimate", "Error estimate", help="Largest difference of the key results to a run "
+           "at 100x tighter tolerance, relative."),
+    Output("rhs_evaluations", "RHS evaluations", help="Right-hand-side evaluations of the main run."),
+    Output("wall_time", "Wall time", "time", "ms", help="Wall time of the main run (not the estimate)."),
+)
+VOLATILE = frozenset({"wall_time"})  # differs run to run: hidden from snapshots
+
+
+@dataclass
+class SimRun:
+    """One simulation at one tolerance."""
+
+    values: dict[str, Any]  # outputs (SI)
+    key: dict[str, float]  # the results whose error is estimated (e.g. min and final pressure)
+    nfev: int
+    warnings: list[str] = field(default_factory=list)
+    series: dict[str, tuple[list[float], list[float]]] = field(default_factory=dict)  # plots
+
+
+Simulate = Callable[[Mapping[str, Any], float], SimRun]
+
+
+def timed(simulate: Simulate, values: Mapping[str, Any], rtol: float) -> tuple[SimRun, float]:
+    t0 = time.perf_counter()
+    run = simulate(values, rtol)
+    return run, time.perf_counter() - t0
+
+
+def relative_difference(a: Mapping[str, float], b: Mapping[str, float]) -> float:
+    worst = 0.0
+    for k, va in a.items():
+        vb = b[k]
+        scale = max(abs(va), abs(vb), 1e-300)
+        worst = max(worst, abs(va - vb) / scale if scale > 1e-12 else abs(va - vb))
+    return worst
+
+
+def run_with_stats(simulate: Simulate, values: Mapping[str, Any]) -> SimRun:
+    """The run at the chosen accuracy, with error estimate, evaluations and wall time added."""
+    rtol = LEVELS[values["accuracy"]]
+    run, wall = timed(simulate, values, rtol)
+    if run.nfev:
+        check = simulate(values, rtol / ESTIMATE_FACTOR)
+        run.values["error_estimate"] = relative_difference(run.key, check.key)
+    else:
+        run.values["error_estimate"] = 0.0  # closed form: nothing was integrated
+    run.values["rhs_evaluations"] = run.nfev
+    run.values["wall_time"] = wall
+    return run
+
+
+@dataclass
+class Rung:
+    level: str
+    rtol: float
+    error: float
+    wall_time: float
+    nfev: int
+
+
+def ladder(simulate: Simulate, values: Mapping[str, Any], repeats: int = 3) -> tuple[list[Rung], SimRun]:
+    """Each accuracy level against a reference at REFERENCE_RTOL: error, wall time, evaluations."""
+    reference = simulate(values, REFERENCE_RTOL)
+    rungs = []
+    for level, rtol in LEVELS.items():
+        best = None
+        for _ in range(repeats):  # best of a few: wall time is noisy, the work is not
+            run, wall = timed(simulate, values, rtol)
+            best = wall if best is None else min(best, wall)
+        rungs.append(Rung(level, rtol, relative_difference(run.key, reference.key), best, run.nfev))
+    return rungs, reference

@@ -1,0 +1,73 @@
+"""Accuracy vs time: one scene at every accuracy level against a tight reference (table + plot)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from rich.markup import escape
+from rich.text import Text
+from textual import work
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Vertical
+from textual.screen import ModalScreen
+from textual.widgets import DataTable, Label, Static
+
+from core.model import Calculator
+
+
+class AccuracyScreen(ModalScreen[None]):
+    BINDINGS = [Binding("escape", "dismiss(None)", "Close")]
+
+    def __init__(self, calculator: Calculator, values: dict[str, Any], hide_timings: bool = False) -> None:
+        super().__init__()
+        self.calculator = calculator
+        self.values = values
+        self.hide_timings = hide_timings
+        self.rungs = []
+
+    def compose(self) -> ComposeResult:
+        with Vertical(classes="dialog accuracy-dialog"):
+            yield Label(Text(f"{self.calculator.title}: accuracy vs time"), classes="dialog-title")
+            table = DataTable(cursor_type="none", id="ladder")
+            for key, label in (("level", "Level"), ("rtol", "rtol"), ("error", "Error vs reference"),
+                               ("time", "Wall time"), ("nfev", "RHS evaluations")):
+                table.add_column(label, key=key)
+            yield table
+            yield Static(Text("running…", style="dim"), id="ladder-status")
+            yield Vertical(id="ladder-plot")
+
+    def on_mount(self) -> None:
+        self.run_ladder()
+
+    @work(thread=True, exclusive=True)
+    def run_ladder(self) -> None:
+        from core.sim.scene import REFERENCE_RTOL, ladder
+
+        rungs, reference = ladder(self.calculator.simulate, self.values)
+        self.app.call_from_thread(self._show, rungs, reference.nfev, REFERENCE_RTOL)
+
+    async def _show(self, rungs, ref_nfev: int, ref_rtol: float) -> None:
+        self.rungs = rungs
+        table = self.query_one(DataTable)
+        for r in rungs:
+            wall = "(hidden)" if self.hide_timings else f"{r.wall_time * 1e3:.3f} ms"
+            table.add_row(r.level, f"{r.rtol:.0e}", f"{r.error:.2e}", wall, str(r.nfev), key=r.level)
+        self.query_one("#ladder-status", Static).update(Text(
+            f"reference: rtol {ref_rtol:.0e}, {ref_nfev} RHS evaluations; wall time is the best of 3 runs",
+            style="dim"))
+        from textual_plot import PlotWidget
+
+        plot = PlotWidget(allow_pan_and_zoom=False)
+        await self.query_one("#ladder-plot").mount(plot)
+        floor = 1e-17  # an exact hit still needs a place on a log axis
+        xs = [math.log10(max(r.wall_time, 1e-9) * 1e3) if not self.hide_timings else math.log10(r.nfev)
+              for r in rungs]
+        ys = [math.log10(max(r.error, floor)) for r in rungs]
+        from textual_plot import HiResMode
+
+        plot.scatter(xs, ys, marker="●")
+        plot.plot(xs, ys, line_style="cyan", hires_mode=HiResMode.BRAILLE)
+        plot.set_xlabel(escape("log10 evaluations" if self.hide_timings else "log10 wall time [ms]"))
+        plot.set_ylabel(escape("log10 error"))
