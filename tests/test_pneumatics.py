@@ -1,0 +1,117 @@
+"""Pneumatics scene (seed section 10): closed forms, exact compressor time, effects and their cost."""
+
+import math
+
+import mpmath as mp
+import pytest
+
+from core.calculators import pneumatics as pn
+from core.errors import InputError
+from core.model import parse_inputs, solve
+from core.registry import get
+
+PSI = 6894.757293168361
+IN = 0.0254
+NO_CYL = {"c1_count": 0}
+
+
+def values(**raw):
+    return parse_inputs(get("pneumatics"), raw)[0]
+
+
+def test_forces_eqs_82_83():
+    out = solve("pneumatics", {}).outputs
+    assert out["push_force_1"].value == pytest.approx(math.pi * (1.5 * IN) ** 2 / 4 * 60 * PSI, rel=1e-12)
+    assert out["pull_force_1"].value == pytest.approx(
+        math.pi * ((1.5 * IN) ** 2 - (0.4375 * IN) ** 2) / 4 * 60 * PSI, rel=1e-12)
+    assert out["push_force_1"].text == "106.03 lbf"
+
+
+def test_no_compressor_is_closed_form_with_no_integration():
+    raw = {"effects": "regulator", "c1_period": 20, "c1_start": 0}
+    run = pn.simulate(values(**raw), 1e-6)
+    assert run.nfev == 0
+    V = 1148e-6
+    A_push, A_pull = math.pi * (1.5 * IN) ** 2 / 4, math.pi * ((1.5 * IN) ** 2 - (0.4375 * IN) ** 2) / 4
+    # push stroke: 2 cylinders x 347.5 cc at 60 psi out of 1148 cc is 18.16 psi (by hand)
+    assert A_push * 6 * IN * 2 * 60 * PSI / V == pytest.approx(18.16 * PSI, rel=1e-3)
+    P = 120 * PSI
+    for _ in range(8):  # firings at 0, 20, ..., 140 s; (81) into (79) per stroke
+        for A in (A_push, A_pull):
+            P_cyl = 60 * PSI if 60 * PSI < P else P  # the regulator passes tank pressure below its setting
+            P = max(P - P_cyl * A * 6 * IN * 2 / V, 0.0)
+    assert run.values["final_pressure"] == pytest.approx(P, rel=1e-12)
+    sol = solve("pneumatics", raw)
+    assert sol.outputs["rhs_evaluations"].value == 0
+    assert sol.outputs["error_estimate"].value == 0
+
+
+def exact_fill_time(name, p0, p1, V):
+    """∫ dP / (P_atm·V̇(P)/V) from p0 to p1, with mpmath (the inverse of the scene's ODE)."""
+    c = pn.flow_fit(name)
+    q = lambda p: sum(ci * p ** (len(c) - 1 - i) for i, ci in enumerate(c))  # noqa: E731
+    return float(mp.quad(lambda p: V / (pn.P_ATM * q(p)), [p0, p1]))
+
+
+@pytest.mark.parametrize("compressor", list(pn.COMPRESSORS))
+def test_switch_off_time_matches_the_quadrature(compressor):
+    raw = {**NO_CYL, "compressor_model": compressor, "start_pressure": "60 psi", "accuracy": "tight"}
+    run = pn.simulate(values(**raw), 1e-11)
+    t_on = run.values["compressor_duty"] * 150
+    assert t_on == pytest.approx(exact_fill_time(compressor, 60 * PSI, 120 * PSI, 1148e-6), rel=1e-8)
+    assert run.values["final_pressure"] == pytest.approx(120 * PSI, rel=1e-12)
+
+
+def test_absolute_bookkeeping_uses_more_air_than_the_seeds_gauge():
+    gauge = solve("pneumatics", {}).outputs["final_pressure"].value
+    absolute = solve("pneumatics", {"effects": "compressor, pressure_switch, regulator, absolute_pressure"})
+    assert absolute.outputs["final_pressure"].value < gauge
+
+
+def test_unregulated_stroke_shares_air_exactly_in_absolute_mode():
+    v = values(effects="absolute_pressure", c1_period=0, c1_start=0)
+    V = 1148e-6
+    g = pn.groups(v)[0]
+    P_abs = (120 * PSI + pn.P_ATM) * V / (V + g["A_push"] * 6 * IN * 2)
+    P_abs = P_abs * V / (V + g["A_pull"] * 6 * IN * 2)
+    assert pn.simulate(v, 1e-6).values["final_pressure"] == pytest.approx(P_abs - pn.P_ATM, rel=1e-13)
+
+
+def test_tank_that_empties_warns_and_stays_finite():
+    sol = solve("pneumatics", {"effects": "compressor", "c1_count": 20, "c1_bore": "2 in", "c1_stroke": "12 in",
+                               "c1_period": 1, "c1_start": 0})
+    assert sol.outputs["tank_empty"].value is True
+    assert sol.outputs["min_pressure"].value == 0.0
+    assert any("empties" in w for w in sol.warnings)
+
+
+def test_effect_off_removes_its_cost():
+    with_switch = pn.simulate(values(), 1e-6)
+    no_comp = pn.simulate(values(effects="pressure_switch, regulator"), 1e-6)
+    assert no_comp.nfev == 0 < with_switch.nfev
+
+
+def test_seed_one_second_step_is_reported_beside_the_accurate_result():
+    out = solve("pneumatics", {}).outputs
+    assert out["seed_difference"].value == pytest.approx(
+        out["seed_final_pressure"].value - out["final_pressure"].value, rel=1e-12)
+    # the 1 s explicit step is close but not equal
+    assert 0 < abs(out["seed_difference"].value) < 10 * PSI
+
+
+def test_error_estimate_brackets_the_true_error():
+    v = values(accuracy="coarse")
+    rough = pn.simulate(v, 1e-3).key
+    tight = pn.simulate(v, 1e-13).key
+    true = max(abs(rough[k] - tight[k]) / abs(tight[k]) for k in rough)
+    est = solve("pneumatics", {"accuracy": "coarse"}).outputs["error_estimate"].value
+    assert true / 10 <= est <= true * 10
+
+
+def test_bad_switch_settings_and_rods_name_fields():
+    with pytest.raises(InputError) as e:
+        solve("pneumatics", {"switch_on": "125 psi"})
+    assert e.value.field == "switch_on"
+    with pytest.raises(InputError) as e:
+        solve("pneumatics", {"c1_rod": "2 in"})
+    assert e.value.field == "c1_rod"
