@@ -66,5 +66,35 @@ def main() -> None:
         print(f"  {cid:<18} {statistics.median(samples) * 1e6:9.1f} µs")
 
 
+def simulations() -> None:
+    from core.model import parse_inputs
+    from core.registry import calculators
+    from core.sim.scene import LEVELS, ladder
+
+    print("simulations at the default accuracy (median of 50; the scene alone, then the full solve "
+          "including the 100x-tighter error estimate):")
+    from core.model import solve
+
+    for cid, calc in calculators().items():
+        if calc.simulate is None:
+            continue
+        values, _ = parse_inputs(calc, {})
+        calc.simulate(values, LEVELS["default"])
+        one, full = [], []
+        for _ in range(50):
+            t0 = time.perf_counter()
+            calc.simulate(values, LEVELS["default"])
+            one.append(time.perf_counter() - t0)
+            t0 = time.perf_counter()
+            solve(cid, {})
+            full.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        ladder(calc.simulate, values)
+        view = time.perf_counter() - t0
+        print(f"  {cid:<18} scene {statistics.median(one) * 1e3:7.3f} ms   solve {statistics.median(full) * 1e3:7.3f} ms"
+              f"   accuracy view {view * 1e3:8.1f} ms")
+
+
 if __name__ == "__main__":
     main()
+    simulations()

@@ -39,12 +39,30 @@ class GearheadApp(App):
 
     def compose(self) -> ComposeResult:
         yield Header()
-        with TabbedContent(initial=f"tab-{self.initial}" if self.initial else ""):
+        first = self.initial or next(iter(calculators()))
+        with TabbedContent(initial=f"tab-{first}"):
             for calc in calculators().values():
                 with TabPane(Content(calc.title), id=f"tab-{calc.id}"):
-                    yield CalculatorTab(calc, blink=self.blink, hide_timings=self.hide_timings,
-                                        id=f"calc-{calc.id}")
+                    # only the first tab is built now; the others on first visit (fast first frame)
+                    if calc.id == first:
+                        yield self._card(calc.id)
         yield Footer()
+
+    def _card(self, calc_id: str) -> CalculatorTab:
+        return CalculatorTab(calculators()[calc_id], blink=self.blink, hide_timings=self.hide_timings,
+                             id=f"calc-{calc_id}")
+
+    async def card(self, calc_id: str) -> CalculatorTab:
+        """The tab of a calculator, built if it has not been visited yet."""
+        found = self.query(f"#calc-{calc_id}")
+        if found:
+            return found.first(CalculatorTab)
+        tab = self._card(calc_id)
+        await self.query_one(f"#tab-{calc_id}", TabPane).mount(tab)
+        return tab
+
+    async def on_tabbed_content_tab_activated(self, event: TabbedContent.TabActivated) -> None:
+        await self.card(event.pane.id.removeprefix("tab-"))
 
     # ---- helpers ------------------------------------------------------------------------
     @property
@@ -75,7 +93,7 @@ class GearheadApp(App):
 
         self.push_screen(LoadPresetScreen(tab.calculator.id, self.blink), loaded)
 
-    def action_send(self) -> None:
+    async def action_send(self) -> None:
         """Send this tab's results into the calculator it feeds (e.g. lead screw → gear ratio)."""
         tab = self.current_tab
         exports = tab.calculator.exports
@@ -86,7 +104,7 @@ class GearheadApp(App):
             self.notify("Fix the highlighted input first.", severity="error")
             return
         for target_id, mapping in exports.items():
-            target = self.query_one(f"#calc-{target_id}", CalculatorTab)
+            target = await self.card(target_id)
             values = {field: tab.solution.outputs[out].text for field, out in mapping.items()
                       if out in tab.solution.outputs}
             target.set_entries(values)
@@ -123,8 +141,13 @@ class GearheadApp(App):
                 targets = ", ".join(calculators()[t].title for t in calc.exports if t in calculators())
                 yield SystemCommand(f"Send {calc.title} results to {targets}",
                                     "Copy the matching outputs into that calculator's inputs",
-                                    lambda cid=calc.id: (self.show_calculator(cid), self.action_send()))
+                                    lambda cid=calc.id: self._send_from(cid))
 
+
+    async def _send_from(self, calc_id: str) -> None:
+        self.show_calculator(calc_id)
+        await self.card(calc_id)
+        await self.action_send()
 
 def run() -> None:
     GearheadApp().run()
