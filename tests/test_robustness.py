@@ -25,6 +25,9 @@ junk = st.sampled_from(["", " ", "abc", "nan", "inf", "-inf", "1e999", "5 parsec
 
 
 def field_value(f):
+    if f.type == "flags":
+        return st.one_of(st.lists(st.sampled_from(f.choices), unique=True).map(", ".join),
+                         st.just("warp_drive"))
     if f.type == "choice":
         return st.one_of(st.sampled_from(f.choices), st.just("not-a-choice"))
     if f.type == "bool":

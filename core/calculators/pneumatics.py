@@ -146,12 +146,14 @@ def groups(v) -> list[dict]:
 def firing_times(gs: list[dict], T: float) -> list[tuple[float, dict]]:
     times = []
     for g in gs:
+        k = 0
         t = g["start"]
-        while t < T:
+        while t < T * (1 - 1e-12):  # start + k·period, not a running sum: no drift over many firings
             times.append((t, g))
             if g["period"] <= 0:
                 break
-            t += g["period"]
+            k += 1
+            t = g["start"] + k * g["period"]
     times.sort(key=lambda x: x[0])
     return times
 
