@@ -56,6 +56,7 @@ class Run:
     rejected: int
     event: str | None = None  # name of the terminal event that ended the run
     dense: list = field(default_factory=list)  # (t0, h, coefficients) per step, for DP54
+    crossings: list = field(default_factory=list)  # (name, t, y) of non-terminal events, located
 
     def at(self, t: float) -> Vector:
         """Interpolated state (DP54 dense output, 4th order)."""
@@ -112,6 +113,7 @@ def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense)
     else:
         h = min(abs(first_step), span)
     g_prev = [ev.g(t0, y) for ev in events]
+    crossings: list = []
     t = t0
     steps = rejected = 0
     while True:
@@ -152,10 +154,13 @@ def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense)
                 g_new = ev.g(t_new, y_new)
                 g_old = g_prev[idx]
                 crossed = (g_old < 0 <= g_new and ev.direction >= 0) or (g_old > 0 >= g_new and ev.direction <= 0)
-                if crossed and ev.terminal:
+                if crossed:
                     te = _locate(ev, rc, t, hs, g_old, g_new)
-                    if hit is None or (te - hit[0]) * direction < 0:
-                        hit = (te, ev)
+                    if ev.terminal:
+                        if hit is None or (te - hit[0]) * direction < 0:
+                            hit = (te, ev)
+                    else:
+                        crossings.append((ev.name, te, _interp(rc, (te - t) / hs)))
                 g_prev[idx] = g_new
             steps += 1
             if hit is not None:
@@ -164,12 +169,13 @@ def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense)
                 ye = _interp(rc, theta)
                 ts.append(te)
                 ys.append(ye)
-                return Run(ts, ys, nfev, steps, rejected, ev.name, dense)
+                crossings[:] = [c for c in crossings if (c[1] - te) * direction <= 0]
+                return Run(ts, ys, nfev, steps, rejected, ev.name, dense, crossings)
             t, y, k1 = t_new, y_new, ks[6]
             ts.append(t)
             ys.append(y)
             if last:
-                return Run(ts, ys, nfev, steps, rejected, None, dense)
+                return Run(ts, ys, nfev, steps, rejected, None, dense, crossings)
             fac = 0.9 * err ** -0.2 if err > 0 else 10.0
             h = h * min(10.0, max(0.2, fac))
         else:
