@@ -256,7 +256,7 @@ def simulate(v, rtol: float) -> SimRun:
                   {"pressure": (ts, Ps)})
 
 
-def seed_step(v) -> tuple[float, float]:
+def seed_step(v) -> tuple[float, float, tuple[list[float], list[float]]]:
     """The seed's own scheme: explicit 1 s steps of (79)-(81), the same effects, gauge pressure."""
     effects = v["effects"]
     V, T = v["tank_volume"], v["match_length"]
@@ -268,6 +268,7 @@ def seed_step(v) -> tuple[float, float]:
     on = "compressor" in effects and P < top
     schedule = firing_times(gs, T)
     low = P
+    ts, Ps = [0.0], [P]
     for n in range(int(math.ceil(T))):
         W_comp = flow(coeffs, P) * 1.0 * P_ATM if on else 0.0  # (80), dt = 1 s
         P = min(P + W_comp / V, top) if on else P  # (79)
@@ -275,14 +276,17 @@ def seed_step(v) -> tuple[float, float]:
             if n <= tf < n + 1:
                 P = fire(P, g, V, effects - {"absolute_pressure"})  # (81): the seed is gauge only
         low = min(low, P)
+        ts.append(float(n + 1))
+        Ps.append(P)
         if "compressor" in effects:
             on = (P < top) if not switch else ((on and P < top) or P <= v["switch_on"])
-    return low, P
+    return low, P, (ts, Ps)
 
 
 def compute(v) -> Result:
     run = run_with_stats(simulate, v)
-    seed_min, seed_final = seed_step(v)
+    seed_min, seed_final, seed_trace = seed_step(v)
+    run.series["seed 1 s step"] = seed_trace
     run.values["seed_min_pressure"] = seed_min
     run.values["seed_final_pressure"] = seed_final
     run.values["seed_difference"] = seed_final - run.values["final_pressure"]
@@ -298,5 +302,5 @@ CALCULATOR = Calculator(
     compute=compute,
     section="10",
     simulate=simulate,
-    plots=(Plot("Storage pressure", ("pressure",), "time", "time", "s", "pressure", "pressure", "psi"),),
+    plots=(Plot("Storage pressure", ("pressure", "seed 1 s step"), "time", "time", "s", "pressure", "pressure", "psi"),),
 )

@@ -55,6 +55,8 @@ class PlotPanel(Vertical):
             fy = units.factor(spec.y_unit, spec.y_quantity)
             plot.plot([x / fx for x in xs], [y / fy for y in ys], line_style=colour,
                       hires_mode=HiResMode.BRAILLE, label=escape(name) if len(spec.series) > 1 else None)
+        if len(spec.series) > 1:
+            plot.show_legend()
         # Textual markup would swallow "[psi]": escape every label (DESIGN.md pitfall)
         plot.set_xlabel(escape(f"{spec.x_label} [{spec.x_unit}]"))
         plot.set_ylabel(escape(f"{spec.y_label} [{spec.y_unit}]"))
