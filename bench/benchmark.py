@@ -95,6 +95,19 @@ def simulations() -> None:
               f"   accuracy view {view * 1e3:8.1f} ms")
 
 
+def extras() -> None:
+    """Figures of one calculator beyond the generic ones: each bench/bench_<calc>.py has main()."""
+    import importlib.util
+
+    for path in sorted(Path(__file__).parent.glob("bench_*.py")):
+        spec = importlib.util.spec_from_file_location(path.stem, path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        print(f"{path.stem.removeprefix('bench_')}:")
+        module.main()
+
+
 if __name__ == "__main__":
     main()
     simulations()
+    extras()
