@@ -308,6 +308,12 @@ def solve(calc_id: str, raw: Mapping[str, Any] | None = None,
     values, texts = parse_inputs(calc, raw or {})
     result = calc.compute(values)
     display_units = dict(display_units or {})
+    for name, unit in display_units.items():
+        try:
+            out = calc.output(name)
+        except KeyError:
+            raise InputError(name, f"is not an output of {calc.id}") from None
+        units.check_unit(unit, out.quantity, name)
     inputs = {}
     for f in calc.fields:
         v = values[f.name]

@@ -131,6 +131,51 @@ _EXAMPLES = {
 }
 
 
+# Units a results table cycles through for each kind (the calculator's own unit comes first).
+COMMON_UNITS: dict[str, tuple[str, ...]] = {
+    "length": ("mm", "cm", "m", "in", "ft"),
+    "area": ("mm**2", "in**2", "m**2"),
+    "volume": ("cc", "in**3", "L", "m**3"),
+    "area_moment": ("mm**4", "in**4", "m**4"),
+    "mass": ("g", "kg", "lb"),
+    "time": ("ms", "s", "min"),
+    "force": ("N", "lbf", "kN"),
+    "torque": ("N*m", "in*lbf", "ft*lbf"),
+    "energy": ("J", "ft*lbf", "kJ"),
+    "power": ("W", "hp", "kW"),
+    "speed": ("m/s", "ft/s", "in/s", "km/h", "mph"),
+    "angular_speed": ("rpm", "rad/s", "deg/s"),
+    "angle": ("deg", "rad"),
+    "current": ("A", "mA"),
+    "voltage": ("V",),
+    "resistance": ("ohm", "mohm"),
+    "pressure": ("psi", "kPa", "bar", "Pa"),
+    "modulus": ("GPa", "MPa", "ksi", "psi"),
+    "inertia": ("kg*m**2", "lb*in**2"),
+    "flow": ("L/s", "ft**3/min"),
+    "density": ("kg/m**3", "g/cc"),
+    "acceleration": ("m/s**2", "ft/s**2"),
+    "dimensionless": ("", "%"),
+}
+
+
+def cycle_units(current: str, kind: str) -> tuple[str, ...]:
+    """The display units to cycle through, starting after `current`."""
+    units = COMMON_UNITS.get(kind, ())
+    ring = (current,) + tuple(u for u in units if u != current)
+    return ring[1:] + ring[:1]
+
+
+def check_unit(unit: str, kind: str, name: str) -> str:
+    """`unit` if it can show a `kind`, else an InputError naming `name`."""
+    try:
+        factor(unit, kind)
+    except Exception:  # unknown unit or wrong dimension: both mean "cannot show it in that"
+        raise InputError(name, f"cannot show a {_kind_words(kind)} in {unit!r} "
+                               f"(units like {example_unit(kind)})") from None
+    return unit
+
+
 def example_unit(kind: str) -> str:
     return _EXAMPLES.get(kind, SI_UNITS.get(kind, "") or "a plain number")
 

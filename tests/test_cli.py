@@ -72,3 +72,19 @@ def test_console_script_entry_point_runs():
     out = subprocess.run([sys.executable, "-m", "tui", "solve", "motor", "--json"], capture_output=True,
                          text=True, cwd=ROOT)
     assert out.returncode == 0 and json.loads(out.stdout)["calculator"] == "motor"
+
+
+def test_unit_option_changes_only_the_display(capsys):
+    code, out, _ = run(capsys, "solve", "gear_ratio", "--unit", "free_speed=rad/s", "--json")
+    assert code == 0
+    default = json.loads(run(capsys, "solve", "gear_ratio", "--json")[1])["outputs"]["free_speed"]
+    shown = json.loads(out)["outputs"]["free_speed"]
+    assert shown["value"] == default["value"] and shown["text"].endswith(" rad/s")
+    assert float(shown["text"].split()[0]) == pytest.approx(default["value"], rel=1e-4)
+
+
+@pytest.mark.parametrize("spec, named", [("free_speed=lbf", "free_speed"), ("nothing=m", "nothing"),
+                                         ("free_speed=furlongs/", "free_speed")])
+def test_bad_unit_option_exits_2_naming_the_output(capsys, spec, named):
+    code, out, err = run(capsys, "solve", "gear_ratio", "--unit", spec)
+    assert code == 2 and out == "" and named in err and len(err.strip().splitlines()) == 1

@@ -146,3 +146,25 @@ async def test_tabs_are_built_on_first_visit_and_work():
         tab.query_one("#flag-effects--compressor", Checkbox).value = False
         await settle(pilot)
         assert tab.solution.outputs["rhs_evaluations"].value == 0
+
+
+async def test_enter_on_a_result_shows_it_in_the_next_unit():
+    """Display units are the user's: Enter on "Free speed" turns rpm into rad/s, value unchanged."""
+    from textual.widgets import DataTable
+
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        before = tab.solution.outputs["free_speed"]
+        assert before.text.endswith(" rpm")
+        table = tab.query_one(".results", DataTable)
+        table.focus()
+        table.move_cursor(row=table.get_row_index("free_speed"))
+        await pilot.press("enter")
+        await settle(pilot)
+        after = tab.solution.outputs["free_speed"]
+        assert after.value == before.value and after.text.endswith(" rad/s")
+        shown = float(after.text.split()[0])
+        assert shown == pytest.approx(before.value, rel=1e-4)  # SI value is rad/s
+        assert table.cursor_row == table.get_row_index("free_speed")  # the cursor stays put

@@ -20,6 +20,8 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument("--preset", metavar="FILE", help="start from this preset file")
     s.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
                    help="set one input, e.g. --set load='25 lbf' (repeatable)")
+    s.add_argument("--unit", dest="units", action="append", default=[], metavar="OUTPUT=UNIT",
+                   help="show an output in another unit, e.g. --unit center_distance=in (repeatable)")
     s.add_argument("--json", action="store_true", help="print one JSON object (values in SI)")
     a = sub.add_parser("accuracy", help="run a simulation at every accuracy level: error, time, evaluations")
     a.add_argument("calculator", help="a simulated calculator (e.g. pneumatics)")
@@ -77,7 +79,13 @@ def _solve(args) -> int:
     from core.registry import get
 
     calc = get(args.calculator)
-    solution = solve(calc.id, _raw_inputs(args, calc))
+    display_units = {}
+    for item in args.units:
+        name, sep, unit = item.partition("=")
+        if not sep or not name.strip():
+            raise InputError(name.strip() or "--unit", f"expected OUTPUT=UNIT, got {item!r}")
+        display_units[name.strip()] = unit.strip()
+    solution = solve(calc.id, _raw_inputs(args, calc), display_units)
     if args.json:
         print(json.dumps(solution.as_json(), allow_nan=False))
         return 0

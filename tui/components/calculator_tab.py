@@ -82,6 +82,7 @@ class CalculatorTab(Widget):
         self.hide_timings = hide_timings  # snapshot tests: no wall-clock figures on screen
         self.solution: Solution | None = None
         self.error: InputError | None = None
+        self.display_units: dict[str, str] = {}  # output -> unit the user chose (Enter on a result)
         self.set_reactive(CalculatorTab.entries, {f.name: self._initial(f) for f in calculator.fields})
 
     @staticmethod
@@ -102,10 +103,11 @@ class CalculatorTab(Widget):
                     for f in calc.fields:
                         yield FieldRow(f, self.entries[f.name], self.blink)
                         yield Static("", classes="field-error", id=f"err-{f.name}")
-                yield Static(Text("Tab moves between fields; type any unit (3.5 in, 60 psi); "
+                yield Static(Text("Tab moves between fields; type any unit (3.5 in, 60 psi); Enter on a result changes its unit; "
                                   "ctrl+s saves, ctrl+o loads a preset.", style="dim"), classes="help-line")
             with Vertical(classes="results-pane"):
-                table = DataTable(classes="results", cursor_type="none", zebra_stripes=True)
+                table = DataTable(classes="results", cursor_type="row", zebra_stripes=True)
+                table.tooltip = "Enter or click on a result shows it in another unit"
                 table.add_column("Result", key="label")
                 table.add_column("Value", key="value")
                 yield table
@@ -205,6 +207,24 @@ class CalculatorTab(Widget):
             out[f.name] = v
         return out
 
+    @on(DataTable.RowSelected, ".results")
+    def _cycle_unit(self, event: DataTable.RowSelected) -> None:
+        """Show the chosen result in the next common unit of its kind (mm → cm → m → in → ft …)."""
+        event.stop()
+        from core import units
+
+        name = str(event.row_key.value)
+        out = self.calculator.output(name)
+        if out.quantity not in units.SI_UNITS or self.solution is None:
+            return
+        value = self.solution.outputs.get(name)
+        if value is None or isinstance(value.value, (bool, str, int)):
+            return
+        ring = units.cycle_units(self.display_units.get(name, out.unit), out.quantity)
+        if ring:
+            self.display_units = {**self.display_units, name: ring[0]}
+            self.solve()
+
     # ---- solving -----------------------------------------------------------------------
     @work(thread=True, exclusive=True, group="solve")
     def solve(self) -> None:
@@ -216,7 +236,7 @@ class CalculatorTab(Widget):
 
         entries = dict(self.entries)
         try:
-            solution = solve(self.calculator.id, entries)
+            solution = solve(self.calculator.id, entries, self.display_units)
             error = None
         except InputError as exc:
             solution, error = None, exc
@@ -242,11 +262,14 @@ class CalculatorTab(Widget):
         self.remove_class("stale")
         self.solution = solution
         table = self.query_one(DataTable)
+        cursor = table.cursor_row
         table.clear()
         for name, value in solution.outputs.items():
             label = self.calculator.output(name).label
             text = "(hidden)" if self.hide_timings and name in VOLATILE else value.text
             table.add_row(Text(label), Text(text), key=name)
+        if 0 < cursor < table.row_count:
+            table.move_cursor(row=cursor, animate=False)
         if self.calculator.plots:
             self.call_later(self.query_one(PlotPanel).show, solution)
         warnings = self.query_one(".warnings", Static)
