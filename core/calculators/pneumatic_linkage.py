@@ -191,7 +191,7 @@ def reverse(theta1: float, theta2: float, X: float, Y: float, L: float, dL: floa
     along = (c * c - dL * (L + L2)) / (2 * c)  # distance along the chord: L² − (L+ΔL)² = −ΔL(2L+ΔL)
     across = math.sqrt(max(heron16(L, L2, c), 0.0)) / (2 * c)  # 2·area / c
     found, rejected = [], []
-    for side in (1.0, -1.0):  # left, then right of the chord
+    for side in (1.0, -1.0) if across > 0 else (1.0,):  # left, then right of the chord (one if touching)
         cx = px + along * ex - side * across * ey
         cy = py + along * ey + side * across * ex
         psi = math.atan2(cy, cx)
