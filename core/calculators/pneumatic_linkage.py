@@ -40,7 +40,7 @@ from ..model import Calculator, Field, Output, Plot, Result
 from ..units import format_quantity
 
 MODES = ("forward", "reverse")
-MODE_LABELS = ("Arm angles from the pivot position", "Pivot position from the arm angles")
+MODE_LABELS = ("Arm angles from pivot", "Pivot from arm angles")
 TOUCH = 1e-10  # relative slack: inputs meant to be exactly at dead centre still solve (as touching)
 NEAR_DEAD_CENTRE = math.radians(5)
 CURVE_POINTS = 61
@@ -78,7 +78,7 @@ OUTPUTS = (
     Output("pivot_y", "Cylinder pivot B", "length", "in"),
     Output("sweep", "Arm swing θ2 − θ1", "angle", "deg"),
     Output("retracted_angle_alt", "Other assembly: θ1", "angle", "deg",
-           help="Mirror assembly: extending turns the arm clockwise."),
+           help="Mirror assembly: extending turns the arm clockwise. θ2 values continue from θ1 (may pass ±180°)."),
     Output("extended_angle_alt", "Other assembly: θ2", "angle", "deg"),
     Output("pivot_x_alt", "Second pivot A", "length", "in"),
     Output("pivot_y_alt", "Second pivot B", "length", "in"),
