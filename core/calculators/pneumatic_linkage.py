@@ -43,6 +43,7 @@ MODES = ("forward", "reverse")
 MODE_LABELS = ("Arm angles from pivot", "Pivot from arm angles")
 TOUCH = 1e-10  # relative slack: inputs meant to be exactly at dead centre still solve (as touching)
 NEAR_DEAD_CENTRE = math.radians(5)
+SIDE_SLACK = 1e-9  # sin of the angle by which a rod end may sit past the line through both pivots (rounding)
 CURVE_POINTS = 61
 
 FIELDS = (
@@ -196,12 +197,17 @@ def reverse(theta1: float, theta2: float, X: float, Y: float, L: float, dL: floa
         cy = py + along * ey + side * across * ex
         psi = math.atan2(cy, cx)
         # the arm stays on one side of the line through both pivots iff it never passes dead centre
-        ok = all(turn * math.sin(t + phi - psi) >= -1e-9 for t in (theta1, theta2))
+        ok = all(turn * math.sin(t + phi - psi) >= -SIDE_SLACK for t in (theta1, theta2))
         (found if ok else rejected).append((-cx, cy))
     # Both valid: the one on the arm pivot's side of the chord first (the compact linkage).
     if len(found) == 2 and turn < 0:
         found.reverse()
     return {"r": r, "found": found, "rejected": rejected, "chord": c}
+
+
+def where_text(pivot: tuple[float, float]) -> str:
+    A, B = pivot
+    return f"A = {format_quantity(A, 'in', 'length')}, B = {format_quantity(B, 'in', 'length')}"
 
 
 def stroke_curve(r: float, d: float, theta1: float, turn: float, L: float, dL: float, F: float):
@@ -234,11 +240,9 @@ def compute(v) -> Result:
     else:
         theta1, theta2 = v["retracted_angle"], v["extended_angle"]
         rv = reverse(theta1, theta2, X, Y, L, dL)
-        def where(p):
-            return f"A = {format_quantity(p[0], 'in', 'length')}, B = {format_quantity(p[1], 'in', 'length')}"
         if not rv["found"]:
             raise InputError("stroke", "no cylinder pivot works: both positions giving L at θ1 and L + ΔL at θ2 "
-                                       f"({'; '.join(map(where, rv['rejected']))}) put the arm through dead centre "
+                                       f"({'; '.join(map(where_text, rv['rejected']))}) put the arm through dead centre "
                                        f"in between. Use a stroke nearer the rod end's straight-line travel "
                                        f"({format_quantity(rv['chord'], 'in', 'length')}) or change L")
         (A, B), *alt = rv["found"]
@@ -246,9 +250,9 @@ def compute(v) -> Result:
         values.update(pivot_x=A, pivot_y=B)
         if alt:
             values.update(pivot_x_alt=alt[0][0], pivot_y_alt=alt[0][1])
-            warnings.append(f"Two pivot positions work: {where((A, B))} and {where(alt[0])}.")
+            warnings.append("Two pivot positions work; the second is listed as Second pivot A, B.")
         for p in rv["rejected"]:
-            warnings.append(f"The other intersection, {where(p)}, is not a working linkage: the arm would "
+            warnings.append(f"The other intersection, {where_text(p)}, is not a working linkage: the arm would "
                             f"pass dead centre between θ1 and θ2.")
         f = {"lo": abs(d - r), "hi": d + r}
     values["sweep"] = theta2 - theta1
