@@ -301,3 +301,18 @@ def test_required_outputs_present():
     for name in ("area_moment", "torsion_constant", "max_deflection", "max_deflection_position",
                  "buckling_load", "twist_angle"):
         assert sol["outputs"][name]["unit"] in ("m**4", "m", "N", "rad")
+
+
+def test_short_column_warns_with_johnson_load():
+    """Solid 1 in square 6061, 10 in pinned: r = a/√12 = 0.0073323 m, KL/r = 0.254/0.0073323 = 34.641;
+    Euler σ = π²E/(KL/r)² = 9.8696·68.9e9/1200 = 566.7 MPa > Sy/2 → Johnson:
+    σ = Sy − (Sy·34.641/2π)²/E = 276e6 − (1.52167e9)²/68.9e9 = 276e6 − 33.607e6 = 242.39 MPa;
+    P = 242.39e6·0.0254² = 156,380 N."""
+    sol = solve("beam", {"section": "square", "outer_size": "1 in", "length": "10 in",
+                         "load_position": "5 in", "end_condition": "pinned_pinned", "k_values": "theoretical"})
+    (warning,) = [w for w in sol.warnings if "Johnson" in w]
+    newtons = float(warning.split("gives ")[1].split(" N")[0])
+    assert newtons == pytest.approx(156380, rel=1e-3)
+    long_column = solve("beam", {"section": "square", "outer_size": "1 in", "length": "100 in",
+                                 "load_position": "5 in"})
+    assert not any("Johnson" in w for w in long_column.warnings)

@@ -26,6 +26,7 @@ import math
 from .. import beams
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
+from ..units import format_number
 
 LBF = 4.4482216152605  # N per lbf
 
@@ -50,7 +51,7 @@ END_CONDITIONS = {
 FIELDS = (
     Field("section", "Cross section", choices=beams.SECTIONS, choice_labels=beams.SECTION_LABELS,
           default="rectangular_tube", help="Shape of the beam's cross section (seed 5.1)."),
-    Field("outer_size", "Outer size (hex flats, diameter, side)", "length", "in", default=0.5,
+    Field("outer_size", "Outer size (flats/diameter)", "length", "in", default=0.5,
           min=0, min_exclusive=True,
           help="Hex: across flats. Round and round tube: outside diameter. Square: side. "
                "Not used by the rectangular tube."),
@@ -193,8 +194,8 @@ def compute(v) -> Result:
         slenderness = K * l / math.sqrt(sec.min_area_moment / sec.area)
         johnson = sec.area * (Sy - (Sy * slenderness / (2 * math.pi)) ** 2 / E)
         warnings.append(f"Short column (KL/r = {slenderness:.3g}): Euler's load overestimates; "
-                        f"Johnson's parabola gives {max(johnson, 0.0):.4g} N "
-                        f"({max(johnson, 0.0) / LBF:.4g} lbf).")
+                        f"Johnson's parabola gives {format_number(max(johnson, 0.0))} N "
+                        f"({format_number(max(johnson, 0.0) / LBF)} lbf).")
     if y_max > 0.1 * l:
         warnings.append(f"The deflection is {y_max / l:.0%} of the length: beyond small-deflection "
                         "beam theory, treat the numbers as rough.")
