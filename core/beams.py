@@ -8,6 +8,8 @@ Sections (seed 5.1) give the exact second moment of area I and torsion constant 
   The seed's 0.1154 is 0.30 % high.
 - round tube (47)/(48): the seed's π/8·d³h and π/4·d³h are thin-wall forms; exact
   I = π/64·(D⁴ − d⁴), J = 2I, written as (D² + d²)(D + d)·2t so a thin wall does not cancel.
+  With d the mean diameter d_m = D − t, (48) is low by the factor d_m²/(d_m² + t²) (shown as the
+  thin-wall error); read with d = the outside diameter, it would be high by (D/d_m)³ instead.
 - square (50): the seed's 9/64 = 0.140625 is Saint-Venant's series rounded; the series is
   summed here: J = 0.1405770·a⁴.
 - rectangular tube (51): the seed's I = x²yh/3 is wrong (a thin square tube has 2/3·a³t, twice
