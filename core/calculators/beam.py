@@ -1,0 +1,215 @@
+"""Seed section 5: the beam bend calculator (eqs. 43-60).
+
+A straight beam of one cross section and material: bending deflection under a point force
+(between simple supports, between fixed supports, or as a cantilever), the largest bending
+stress and its safety factor against yield, Euler column buckling (59) with the seed's K table,
+and twist under a torque (60). Section properties and load cases live in core/beams.py, whose
+docstring lists where the seed is corrected: (44) hex J, (47)/(48) thin-wall round tube,
+(50) rounded square J, (51) wrong rectangular-tube I, (52) typo in Bredt's denominator, and
+(53)-(57) being the fixed-fixed case with a the distance to the FARTHER support.
+
+Other choices:
+- Dimension fields are generic (outer_size, height, width, wall) because `section` is not the
+  mode field; each section checks the ones it uses and names the field when one cannot close.
+- The hex's extreme fibre is taken at a corner (s/√3), the conservative orientation.
+- Buckling uses the weakest axis of the section; the Euler load is a warning-backed upper bound
+  for short columns (Johnson's parabola is given when σ_Euler > yield/2).
+- The torque twists the whole length (one end held, the torque at the other): θ = TL/(GJ) (60).
+- Polycarbonate's shear modulus is not in REFERENCE_DATA: G = E/(2(1+ν)) with ν = 0.37
+  (typical datasheet value, e.g. the Wikipedia polycarbonate infobox).
+"""
+
+from __future__ import annotations
+
+import math
+
+from .. import beams
+from ..errors import InputError
+from ..model import Calculator, Field, Output, Plot, Result
+from ..units import format_number
+
+LBF = 4.4482216152605  # N per lbf
+
+# name: (label, E Pa, G Pa, yield Pa or None, density kg/m³ or None); REFERENCE_DATA.md
+MATERIALS = {
+    "6061_t6": ("6061-T6 aluminium", 68.9e9, 26.0e9, 276e6, 2700.0),
+    "steel": ("Steel", 200e9, 79.3e9, None, 7850.0),  # density: typical carbon steel, 7.85 g/cm³
+    "polycarbonate": ("Polycarbonate", 2.34e9, 2.34e9 / (2 * 1.37), 62e6, 1200.0),
+    "custom": ("Custom", None, None, None, None),
+}
+
+# (theoretical K, recommended design K) for column buckling, seed table under (59)
+END_CONDITIONS = {
+    "fixed_fixed": ("Both ends fixed", 0.5, 0.65),
+    "fixed_pinned": ("Fixed, other end pinned", 0.7, 0.80),
+    "fixed_guided": ("Fixed, other end guided (turns fixed, slides)", 1.0, 1.2),
+    "pinned_pinned": ("Both ends pinned", 1.0, 1.0),
+    "fixed_free": ("Fixed, other end free", 2.0, 2.10),
+    "pinned_guided": ("Pinned, other end guided (turns fixed, slides)", 2.0, 2.0),
+}
+
+FIELDS = (
+    Field("section", "Cross section", choices=beams.SECTIONS, choice_labels=beams.SECTION_LABELS,
+          default="rectangular_tube", help="Shape of the beam's cross section (seed 5.1)."),
+    Field("outer_size", "Outer size (flats/diameter)", "length", "in", default=0.5,
+          min=0, min_exclusive=True,
+          help="Hex: across flats. Round and round tube: outside diameter. Square: side. "
+               "Not used by the rectangular tube."),
+    Field("height", "Tube height (along the force)", "length", "in", default=2, min=0, min_exclusive=True,
+          help="Rectangular tube only: outside size in the direction of the force (x)."),
+    Field("width", "Tube width (across the force)", "length", "in", default=1, min=0, min_exclusive=True,
+          help="Rectangular tube only: outside size across the force (y)."),
+    Field("wall", "Wall thickness", "length", "in", default=0.0625, min=0, min_exclusive=True,
+          help="Tubes only: wall thickness h, less than half the smallest outside size."),
+    Field("material", "Material", choices=tuple(MATERIALS), choice_labels=tuple(m[0] for m in MATERIALS.values()),
+          default="6061_t6", help="6061-T6, steel or polycarbonate (REFERENCE_DATA), or your own figures."),
+    Field("youngs_modulus", "Custom Young's modulus E", "modulus", "GPa", default=68.9, min=0,
+          min_exclusive=True, help="Used only when the material is Custom."),
+    Field("shear_modulus", "Custom shear modulus G", "modulus", "GPa", default=26, min=0,
+          min_exclusive=True, help="Used only when the material is Custom."),
+    Field("yield_strength", "Custom yield strength", "pressure", "MPa", default=276, min=0,
+          help="Used only when the material is Custom; 0 if unknown (no safety factor)."),
+    Field("density", "Custom density", "density", "g/cm**3", default=2.7, min=0,
+          help="Used only when the material is Custom; 0 if unknown (no mass)."),
+    Field("support", "Load case", choices=beams.SUPPORTS, choice_labels=beams.SUPPORT_LABELS,
+          default="simple", help="Force between two simple supports, two fixed supports, "
+                                 "or on a cantilever (seed 5.2)."),
+    Field("length", "Length", "length", "in", default=24, min=0, min_exclusive=True,
+          help="Distance between supports l, or the cantilever's length; also the column and "
+               "twisted length."),
+    Field("load_position", "Load position", "length", "in", default=12, min=0,
+          help="Distance a of the force from the left support (cantilever: from the fixed end)."),
+    Field("force", "Force", "force", "lbf", default=100, min=0, help="Point force F across the beam."),
+    Field("torque", "Torque", "torque", "in*lbf", default=100, min=0,
+          help="Torque T twisting the beam over its length (60)."),
+    Field("end_condition", "Column end condition", choices=tuple(END_CONDITIONS),
+          choice_labels=tuple(e[0] for e in END_CONDITIONS.values()), default="pinned_pinned",
+          help="End fixity for column buckling: sets K in (59)."),
+    Field("k_values", "K values", choices=("recommended", "theoretical"),
+          choice_labels=("Recommended design", "Theoretical"), default="recommended",
+          help="The seed's recommended design K (allows for imperfect fixity) or the theoretical K."),
+)
+
+OUTPUTS = (
+    Output("area_moment", "Area moment of inertia I", "area_moment", "in**4",
+           help="Exact second moment of area about the bending axis."),
+    Output("torsion_constant", "Torsion constant J", "area_moment", "in**4",
+           help="Exact (hex and rectangular tube: converged finite-element value)."),
+    Output("thin_wall_torsion_constant", "Thin-wall J (seed)", "area_moment", "in**4",
+           help="Tubes: the seed's thin-wall formula (48) or Bredt's (52), for comparison."),
+    Output("thin_wall_error", "Thin-wall J error", "dimensionless", "%",
+           help="How far the thin-wall J is from the exact J."),
+    Output("max_deflection", "Max deflection", "length", "in"),
+    Output("max_deflection_position", "Max deflection at", "length", "in",
+           help="Distance from the left support (cantilever: from the fixed end)."),
+    Output("max_bending_moment", "Max bending moment", "torque", "in*lbf"),
+    Output("max_bending_stress", "Max bending stress", "pressure", "MPa", help="M·c/I at the extreme fibre."),
+    Output("safety_factor", "Safety factor (bending yield)", help="Yield strength / max bending stress."),
+    Output("buckling_load", "Buckling load", "force", "lbf", help="Euler's critical load (59), weakest axis."),
+    Output("twist_angle", "Twist angle", "angle", "deg", help="θ = T·L/(G·J) (60)."),
+    Output("cross_section_area", "Cross-section area", "area", "in**2"),
+    Output("mass", "Beam mass", "mass", "lb", help="Density × area × length."),
+)
+
+PLOTS = (Plot("Deflection along the beam", ("deflection",), "position", "length", "in",
+              "deflection", "length", "in"),)
+
+
+def section_from(v) -> beams.Section:
+    """The chosen section, each dimension checked where the section needs it."""
+    name = v["section"]
+    if name == "hex":
+        return beams.hex_section(v["outer_size"])
+    if name == "round":
+        return beams.round_section(v["outer_size"])
+    if name == "square":
+        return beams.square_section(v["outer_size"])
+    h = v["wall"]
+    if name == "round_tube":
+        D = v["outer_size"]
+        if h >= D / 2:
+            raise InputError("wall", f"must be less than half the outer diameter ({D / 2 * 1e3:.4g} mm): "
+                                     "the tube would have no bore (use Round for a solid bar)")
+        return beams.round_tube_section(D, h)
+    x, y = v["height"], v["width"]
+    if h >= min(x, y) / 2:
+        raise InputError("wall", f"must be less than half the smaller outside size "
+                                 f"({min(x, y) / 2 * 1e3:.4g} mm): the tube would have no hole")
+    return beams.rectangular_tube_section(x, y, h)
+
+
+def material_from(v):
+    label, E, G, Sy, rho = MATERIALS[v["material"]]
+    if v["material"] == "custom":
+        E, G = v["youngs_modulus"], v["shear_modulus"]
+        Sy = v["yield_strength"] or None
+        rho = v["density"] or None
+    return E, G, Sy, rho
+
+
+def compute(v) -> Result:
+    sec = section_from(v)
+    E, G, Sy, rho = material_from(v)
+    support, l, a, F, T = v["support"], v["length"], v["load_position"], v["force"], v["torque"]
+    if a > l:
+        raise InputError("load_position", f"must be within the length ({l * 1e3:.4g} mm)")
+    warnings: list[str] = []
+
+    EI = E * sec.area_moment
+    y_max, x_max = beams.max_deflection(support, F, a, l, EI)  # (53)-(58)
+    M = beams.max_moment(support, F, a, l)
+    sigma = M * sec.extreme_fiber / sec.area_moment
+    label, K_theory, K_design = END_CONDITIONS[v["end_condition"]]
+    K = K_design if v["k_values"] == "recommended" else K_theory
+    P_cr = math.pi**2 * E * sec.min_area_moment / (K * l) ** 2  # (59)
+    theta = T * l / (G * sec.torsion_constant)  # (60)
+
+    values = {
+        "area_moment": sec.area_moment,
+        "torsion_constant": sec.torsion_constant,
+        "max_deflection": y_max,
+        "max_deflection_position": x_max,
+        "max_bending_moment": M,
+        "max_bending_stress": sigma,
+        "buckling_load": P_cr,
+        "twist_angle": theta,
+        "cross_section_area": sec.area,
+    }
+    if sec.thin_wall_torsion_constant is not None:
+        error = sec.thin_wall_torsion_constant / sec.torsion_constant - 1
+        values["thin_wall_torsion_constant"] = sec.thin_wall_torsion_constant
+        values["thin_wall_error"] = error
+        if abs(error) > 0.05:
+            warnings.append(f"The seed's thin-wall torsion constant is {abs(error):.0%} "
+                            f"{'low' if error < 0 else 'high'} for this wall; the exact J is used.")
+    if rho is not None:
+        values["mass"] = rho * sec.area * l
+    if Sy is not None and sigma > 0:
+        values["safety_factor"] = Sy / sigma
+        if sigma > Sy:
+            warnings.append("The bending stress exceeds the yield strength: the beam bends permanently.")
+    elif Sy is None and v["material"] == "steel":
+        warnings.append("Steel's yield strength depends on the grade: choose Custom to get a safety factor.")
+    if Sy is not None and P_cr / sec.area > Sy / 2:
+        slenderness = K * l / math.sqrt(sec.min_area_moment / sec.area)
+        johnson = sec.area * (Sy - (Sy * slenderness / (2 * math.pi)) ** 2 / E)
+        warnings.append(f"Short column (KL/r = {slenderness:.3g}): Euler's load overestimates; "
+                        f"Johnson's parabola gives {format_number(max(johnson, 0.0))} N "
+                        f"({format_number(max(johnson, 0.0) / LBF)} lbf).")
+    if y_max > 0.1 * l:
+        warnings.append(f"The deflection is {y_max / l:.0%} of the length: beyond small-deflection "
+                        "beam theory, treat the numbers as rough.")
+    xs, ys = beams.deflection_curve(support, F, a, l, EI)
+    return Result(values, warnings, {"deflection": (xs, ys)})
+
+
+CALCULATOR = Calculator(
+    id="beam",
+    title="Beam",
+    summary="Deflection, stress, buckling and twist of a beam (seed section 5).",
+    fields=FIELDS,
+    outputs=OUTPUTS,
+    compute=compute,
+    section="5",
+    plots=PLOTS,
+)
