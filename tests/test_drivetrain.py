@@ -123,3 +123,19 @@ def test_shift_speed_is_where_both_gears_push_equally(motor, n, d, G1, G2):
     scale = m.stall_torque * max(G1, G2) / r
     assert force(G1) == pytest.approx(force(G2), abs=1e-12 * scale)
     assert 0 < v < min(o["low_free_speed"], o["high_free_speed"])
+
+
+def test_builtin_presets_load_and_solve():
+    from core import presets
+
+    found = presets.listing("drivetrain")
+    assert len(found) >= 3 and presets.problems("drivetrain") == []
+    modes = set()
+    for p in found:
+        s = solve("drivetrain", p.inputs)
+        modes.add(p.inputs["mode"])
+        assert s.outputs and not s.warnings
+    assert modes == {"forward", "reverse", "shifting"}
+    # swerve: 6000 rpm · π · 4 in / 6.75 = 628.3185·0.0508/6.75 = 4.72867 m/s = 15.514 ft/s
+    swerve = next(p for p in found if "Swerve" in p.name)
+    assert solve("drivetrain", swerve.inputs).outputs["free_speed"].value == pytest.approx(4.72867, rel=1e-5)

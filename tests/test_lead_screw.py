@@ -167,3 +167,14 @@ def test_equivalent_wheel_reverses_the_screw(d, p_frac, n, angle, mu, F, omega):
     assert ideal["raise_torque"] == pytest.approx(F * n * p / (2 * math.pi), rel=1e-12, abs=1e-300)
     assert ideal["lower_torque"] == pytest.approx(-F * n * p / (2 * math.pi), rel=1e-12, abs=1e-300)
     assert ideal["efficiency"] == pytest.approx(1, rel=1e-12)
+
+
+def test_builtin_presets_load_and_solve():
+    from core import presets
+
+    found = presets.listing("lead_screw")
+    assert len(found) >= 3 and presets.problems("lead_screw") == []
+    by_name = {p.name: {k: v.value for k, v in solve("lead_screw", p.inputs).outputs.items()} for p in found}
+    # T8x8 with μ = 0.2: l·cos 15°/(π·dm) = 8·0.96593/(π·7) = 0.3514 > 0.2, so it backdrives
+    assert by_name["T8x8 lift (backdrivable)"]["backdrivable"] is True
+    assert by_name["Climber, 1/2-10 Acme 2-start"]["backdrivable"] is False
