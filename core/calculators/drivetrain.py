@@ -118,15 +118,12 @@ def shift_speed(v1, v2):
     return v1 * v2 / (v1 + v2)  # (40)
 
 
-def force_curve(m: MotorSystem, d, G, traction=None, points=60):
-    """Wheel force over speed, (99): τ̃s·G/r·(1 − v·G/(r·ω̃f)), capped by traction μ·W̃."""
+def force_curve(m: MotorSystem, d, G, points=60):
+    """Wheel force over speed, (99): τ̃s·G/r·(1 − v·G/(r·ω̃f)), from stall to free speed."""
     r = d / 2
     v_free = free_speed(m, d, G)
     vs = [v_free * k / points for k in range(points + 1)]
-    fs = [m.stall_torque * G / r * (1 - v / v_free) for v in vs]
-    if traction is not None:
-        fs = [min(f, traction) for f in fs]
-    return vs, fs
+    return vs, [m.stall_torque * G / r * (1 - v / v_free) for v in vs]
 
 
 def compute(v) -> Result:
@@ -184,7 +181,8 @@ def compute(v) -> Result:
     if stall_force < traction:
         warnings.append(f"The motors stall before the wheels slip: they push {stall_force:.4g} N "
                         f"but traction allows {traction:.4g} N (the slip current is not reached).")
-    series["pushing force"] = force_curve(m, d, G, traction)
+    series["motor force"] = force_curve(m, d, G)
+    series["traction limit"] = ([0.0, v_free], [traction, traction])
     return Result(values, warnings, series)
 
 
@@ -197,7 +195,7 @@ CALCULATOR = Calculator(
     compute=compute,
     section="4",
     plots=(
-        Plot("Pushing force vs speed", ("pushing force", "low gear", "high gear"), "speed", "speed",
-             "ft/s", "force at the wheels", "force", "lbf"),
+        Plot("Force at the wheels vs speed", ("motor force", "traction limit", "low gear", "high gear"),
+             "speed", "speed", "ft/s", "force", "force", "lbf"),
     ),
 )
