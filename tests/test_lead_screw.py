@@ -178,3 +178,27 @@ def test_builtin_presets_load_and_solve():
     # T8x8 with μ = 0.2: l·cos 15°/(π·dm) = 8·0.96593/(π·7) = 0.3514 > 0.2, so it backdrives
     assert by_name["T8x8 lift (backdrivable)"]["backdrivable"] is True
     assert by_name["Climber, 1/2-10 Acme 2-start"]["backdrivable"] is False
+
+
+async def test_ctrl_g_sends_equivalent_load_and_radius_to_gear_ratio():
+    """The TUI path: ctrl+g on the lead screw tab fills the gear-ratio tab's load and radius."""
+    from tui.app import GearheadApp
+    from tui.components.calculator_tab import CalculatorTab
+
+    app = GearheadApp(blink=False, initial="lead_screw")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await pilot.pause()
+        await app.workers.wait_for_complete()
+        await pilot.pause()
+        screw_out = app.query_one("#calc-lead_screw", CalculatorTab).solution.outputs
+        await pilot.press("ctrl+g")
+        await pilot.pause()
+        await app.workers.wait_for_complete()
+        await pilot.pause()
+        gear = app.query_one("#calc-gear_ratio", CalculatorTab)
+        assert gear.entries["load"] == screw_out["equivalent_raise_load"].text
+        assert gear.entries["radius"] == screw_out["equivalent_radius"].text
+        # at the default ratio G the gearbox input sees T_R/G (5 significant figures were sent)
+        G = gear.solution.outputs["ratio"].value
+        assert gear.solution.outputs["motor_torque"].value == pytest.approx(
+            screw_out["raise_torque"].value / G, rel=1e-4)
