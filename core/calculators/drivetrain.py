@@ -17,7 +17,11 @@ sympy (see tests/test_drivetrain.py for hand values):
 
 Corrections to the seed:
 - (37) is written for ω in rev/s; in SI (rad/s) v_free = ω̃f·(d/2)/G.
-- Appendix C lists "v_2 = Gear 1 Free Speed": v_1 is gear 1's free speed.
+- The symbol list after (40) reads "v_2 = Gear 1 Free Speed": that is v_1.
+- (42) assumes the motors can reach the slip current. When the allowed current is at or above
+  the stall current ĩs, (42) gives a ratio at which the motors stall before the wheels slip; the
+  fastest ratio that still slips them is then G = μ·W̃·r/τ̃s (stall force equal to traction), which
+  is reported instead, with a warning. (The two agree exactly when i_tot = ĩs.)
 """
 
 from __future__ import annotations
@@ -110,6 +114,11 @@ def max_ratio(m: MotorSystem, W, mu, d, i_tot):
     return mu * d * W / (2 * m.kt * (i_tot - m.free_current))  # (42)
 
 
+def stall_ratio(m: MotorSystem, W, mu, d):
+    """Reduction at which the motors' stall force τ̃s·G/r equals the traction μ·W̃ ((12) at the wheel)."""
+    return mu * W * (d / 2) / m.stall_torque
+
+
 def total_current(V_batt, V_min, R_batt, R_main, R_br, n):
     return (V_batt - V_min) / (R_batt + R_main + R_br / n)  # (41)
 
@@ -160,11 +169,16 @@ def compute(v) -> Result:
             raise InputError("min_voltage", f"the allowed current {i_tot:.4g} A is not above the motors' "
                                             f"free current {m.free_current:.4g} A: lower the minimum "
                                             f"voltage or the resistances")
-        G = max_ratio(m, W, mu, d, i_tot)
+        if i_tot < m.stall_current:
+            G = max_ratio(m, W, mu, d, i_tot)  # (42)
+        else:
+            # (42) would give a ratio at which the slip current exceeds the stall current: the
+            # motors stall first. The fastest ratio that slips at all has stall force = traction.
+            G = stall_ratio(m, W, mu, d)
+            warnings.append(f"The allowed current ({i_tot:.4g} A) is at or above the motors' stall "
+                            f"current ({m.stall_current:.4g} A): the battery never sags to the minimum "
+                            f"voltage, and the fastest ratio is where the stall force equals traction.")
         values.update(total_current=i_tot, max_ratio=G)
-        if i_tot > m.stall_current:
-            warnings.append(f"The allowed current ({i_tot:.4g} A) exceeds the motors' stall current "
-                            f"({m.stall_current:.4g} A): the battery never sags to the minimum voltage.")
     else:
         G = v["ratio"]
 
@@ -178,7 +192,7 @@ def compute(v) -> Result:
         slip_current_total=i_slip,
         pushing_force=min(traction, stall_force),
     )
-    if stall_force < traction:
+    if stall_force < traction * (1 - 1e-12):  # (not when equal but for rounding: reverse mode's limit)
         warnings.append(f"The motors stall before the wheels slip: they push {stall_force:.4g} N "
                         f"but traction allows {traction:.4g} N (the slip current is not reached).")
     series["motor force"] = force_curve(m, d, G)
