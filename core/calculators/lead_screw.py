@@ -107,28 +107,28 @@ def compute(v) -> Result:
     l = n * p  # lead
     cos_alpha = math.cos(alpha)
     r_eq = l / (2 * math.pi)  # (34)
-    drivable = raise_denominator(d_m, l, mu, cos_alpha) > 0
-    T_L = lower_torque(F, d_m, l, mu, cos_alpha)  # (32)
     values = {
         "lead": l,
+        "linear_speed": omega * l / (2 * math.pi),  # (29) in SI
         "mean_diameter": d_m,
-        "drivable": drivable,
-        "lower_torque": T_L,
-        "backdrivable": lower_numerator(d_m, l, mu, cos_alpha) < 0,  # T_L < 0
-        "efficiency": efficiency(d_m, l, mu, cos_alpha),  # (33)
-        "linear_speed": omega * r_eq,  # (29) in SI
-        "equivalent_radius": r_eq,
-        "equivalent_lower_load": T_L / r_eq,  # (36)
+        "drivable": raise_denominator(d_m, l, mu, cos_alpha) > 0,
     }
-    if drivable:
+    if values["drivable"]:
         T_R = raise_torque(F, d_m, l, mu, cos_alpha)  # (31)
         values["raise_torque"] = T_R
         values["raise_power"] = T_R * omega
-        values["equivalent_raise_load"] = T_R / r_eq  # (35)
     else:
         limit = math.pi * d_m * cos_alpha / l
         warnings.append(f"The screw cannot be driven: with friction {mu:.4g} ≥ {limit:.4g} "
                         f"(π·dm·cos α / lead) no torque raises the load.")
+    T_L = lower_torque(F, d_m, l, mu, cos_alpha)  # (32)
+    values["lower_torque"] = T_L
+    values["backdrivable"] = lower_numerator(d_m, l, mu, cos_alpha) < 0  # T_L < 0
+    values["efficiency"] = efficiency(d_m, l, mu, cos_alpha)  # (33)
+    values["equivalent_radius"] = r_eq
+    if values["drivable"]:
+        values["equivalent_raise_load"] = T_R / r_eq  # (35)
+    values["equivalent_lower_load"] = T_L / r_eq  # (36)
     return Result(values, warnings)
 
 
