@@ -202,3 +202,18 @@ async def test_ctrl_g_sends_equivalent_load_and_radius_to_gear_ratio():
         G = gear.solution.outputs["ratio"].value
         assert gear.solution.outputs["motor_torque"].value == pytest.approx(
             screw_out["raise_torque"].value / G, rel=1e-4)
+
+
+def test_friction_sweep_plot_series():
+    """The plots: efficiency 1 at μ = 0 falling with μ; the lower torque changes sign at the
+    backdrive limit l·cos α/(π·dm) = 0.0685 (default screw); the sweep stops short of locking."""
+    s = solve("lead_screw", {}).series
+    mus, eta = s["efficiency"]
+    assert mus[0] == 0 and eta[0] == pytest.approx(1, rel=1e-15) and mus[-1] == pytest.approx(0.3)
+    assert all(a > b for a, b in zip(eta, eta[1:]))
+    mus, T_L = s["lower torque"]
+    limit = 0.1 * IN * math.cos(math.radians(14.5)) / (math.pi * 0.45 * IN)  # 0.06851
+    assert all((t < 0) == (m < limit) for m, t in zip(mus, T_L))
+    steep = solve("lead_screw", {"starts": 16, "friction": 0.8}).series["raise torque"]
+    assert steep[0][-1] == pytest.approx(0.95 * math.pi * 0.45 * math.cos(math.radians(14.5)) / 1.6)
+    assert all(math.isfinite(t) and t > 0 for t in steep[1])

@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Result
+from ..model import Calculator, Field, Output, Plot, Result
 
 FIELDS = (
     Field("diameter", "Screw diameter", "length", "in", default=0.5, min=0, min_exclusive=True,
@@ -93,6 +93,21 @@ def efficiency(d_m, l, mu, cos_alpha):
     return l / (math.pi * d_m) * den / (math.pi * mu * d_m + l * cos_alpha)
 
 
+def friction_sweep(F, d_m, l, mu, cos_alpha, points=60):
+    """(31)-(33) over friction from 0 to twice the entered μ (at least 0.3), stopping short of
+    the locking friction π·dm·cos α/l where (31) has no value: how sensitive the screw is to μ."""
+    mu_lock = math.pi * d_m * cos_alpha / l
+    top = max(2 * mu, 0.3)
+    if top >= mu_lock:
+        top = 0.95 * mu_lock
+    mus = [top * k / points for k in range(points + 1)]
+    return {
+        "efficiency": (mus, [efficiency(d_m, l, m, cos_alpha) for m in mus]),
+        "raise torque": (mus, [raise_torque(F, d_m, l, m, cos_alpha) for m in mus]),
+        "lower torque": (mus, [lower_torque(F, d_m, l, m, cos_alpha) for m in mus]),
+    }
+
+
 def compute(v) -> Result:
     d, p, n = v["diameter"], v["pitch"], v["starts"]
     alpha = v["thread_angle"] / 2  # the seed's α is half the thread angle
@@ -129,7 +144,7 @@ def compute(v) -> Result:
     if values["drivable"]:
         values["equivalent_raise_load"] = T_R / r_eq  # (35)
     values["equivalent_lower_load"] = T_L / r_eq  # (36)
-    return Result(values, warnings)
+    return Result(values, warnings, friction_sweep(F, d_m, l, mu, cos_alpha))
 
 
 CALCULATOR = Calculator(
@@ -141,4 +156,10 @@ CALCULATOR = Calculator(
     compute=compute,
     section="3",
     exports={"gear_ratio": {"load": "equivalent_raise_load", "radius": "equivalent_radius"}},
+    plots=(
+        Plot("Efficiency vs friction", ("efficiency",), "friction μ", "dimensionless", "",
+             "efficiency", "dimensionless", "%"),
+        Plot("Torques vs friction", ("raise torque", "lower torque"), "friction μ", "dimensionless", "",
+             "torque", "torque", "N*m"),
+    ),
 )
