@@ -196,12 +196,15 @@ async def test_ctrl_g_sends_equivalent_load_and_radius_to_gear_ratio():
         await app.workers.wait_for_complete()
         await pilot.pause()
         gear = app.query_one("#calc-gear_ratio", CalculatorTab)
-        assert gear.entries["load"] == screw_out["equivalent_raise_load"].text
-        assert gear.entries["radius"] == screw_out["equivalent_radius"].text
-        # at the default ratio G the gearbox input sees T_R/G (5 significant figures were sent)
+        # every digit is sent (in the display unit), not the 5-figure display text
+        assert gear.solution.inputs["load"].value == pytest.approx(
+            screw_out["equivalent_raise_load"].value, rel=1e-14)
+        assert gear.solution.inputs["radius"].value == pytest.approx(
+            screw_out["equivalent_radius"].value, rel=1e-14)
+        # at the default ratio G the gearbox input sees T_R/G
         G = gear.solution.outputs["ratio"].value
         assert gear.solution.outputs["motor_torque"].value == pytest.approx(
-            screw_out["raise_torque"].value / G, rel=1e-4)
+            screw_out["raise_torque"].value / G, rel=1e-12)
 
 
 def test_friction_sweep_plot_series():

@@ -19,6 +19,17 @@ from .components.calculator_tab import CalculatorTab
 from .components.preset_screens import LoadPresetScreen, SavePresetScreen
 
 
+def exact_text(value, output) -> str:
+    """A result as an entry for another calculator: its display unit, every significant digit
+    (the 5-figure display text would pass on a rounding error)."""
+    from core import units
+
+    if not isinstance(value.value, float):
+        return value.text
+    shown = units.to_unit(value.value, output.unit, output.quantity)
+    return f"{shown!r} {output.unit}".rstrip()
+
+
 class GearheadApp(App):
     CSS_PATH = Path(__file__).with_name("gearhead.tcss")  # absolute: subclasses live elsewhere
     TITLE = "Gearhead"
@@ -105,8 +116,8 @@ class GearheadApp(App):
             return
         for target_id, mapping in exports.items():
             target = await self.card(target_id)
-            values = {field: tab.solution.outputs[out].text for field, out in mapping.items()
-                      if out in tab.solution.outputs}
+            values = {field: exact_text(tab.solution.outputs[out], tab.calculator.output(out))
+                      for field, out in mapping.items() if out in tab.solution.outputs}
             target.set_entries(values)
             self.show_calculator(target_id)
             self.notify(Text(", ".join(f"{k} = {v}" for k, v in values.items())),

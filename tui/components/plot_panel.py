@@ -14,6 +14,10 @@ from core.model import Plot, Solution
 COLOURS = ("cyan", "magenta", "yellow", "green", "red")
 
 
+def axis_label(label: str, unit: str) -> str:
+    return f"{label} [{unit}]" if unit else label
+
+
 class PlotPanel(Vertical):
     def __init__(self, plots: tuple[Plot, ...]) -> None:
         super().__init__(classes="plot-panel")
@@ -58,5 +62,5 @@ class PlotPanel(Vertical):
         if len(spec.series) > 1:
             plot.show_legend()
         # Textual markup would swallow "[psi]": escape every label (DESIGN.md pitfall)
-        plot.set_xlabel(escape(f"{spec.x_label} [{spec.x_unit}]"))
-        plot.set_ylabel(escape(f"{spec.y_label} [{spec.y_unit}]"))
+        plot.set_xlabel(escape(axis_label(spec.x_label, spec.x_unit)))
+        plot.set_ylabel(escape(axis_label(spec.y_label, spec.y_unit)))
