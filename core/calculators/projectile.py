@@ -42,9 +42,10 @@ G = 9.80665  # m/s², standard gravity
 HALF_PI = math.pi / 2
 EFFECTS = ("air_drag", "magnus")
 PATH_POINTS = 80
-MAX_STEPS = 20_000  # per flight: a path curled up by extreme Magnus lift is refused, not crawled along
-MAX_FLIGHTS = 150
-FLOOR_SLACK = 1e-9  # relative: a target on the floor (h_f = 0) is reached, not "hit the floor first"  # flights the reverse root finder may try
+MAX_STEPS = 5_000  # per flight (a real throw takes < 100): a path curled up by extreme Magnus lift is
+MAX_FLIGHTS = 150  # refused, not crawled along; the reverse root finder may try this many flights
+MAX_NFEV = 100_000  # and this much work in all (about 0.5 s)
+FLOOR_SLACK = 1e-9  # relative: a target on the floor (h_f = 0) is reached, not "hit the floor first"
 
 MODES = ("forward", "reverse")
 MODE_LABELS = ("Forward: where the ball goes", "Reverse: how to throw it")
@@ -246,7 +247,7 @@ def simulate(v, rtol: float) -> SimRun:
                 guess = (min(line + 0.2, 1.4), math.sqrt(G / a.k_magnus) * 2, 0.0)
             try:
                 theta_i, v_i, used = aim(a, h_i, h_f, d, theta_f, rtol, guess[:2],
-                                         max_flights=MAX_FLIGHTS, max_steps=MAX_STEPS)
+                                         max_flights=MAX_FLIGHTS, max_steps=MAX_STEPS, max_nfev=MAX_NFEV)
             except (ValueError, RuntimeError):
                 raise InputError("target_angle", f"no release reaches the target arriving at "
                                  f"{math.degrees(theta_f):.4g}° with these flight effects (drag "

@@ -102,10 +102,11 @@ def fly(a: Air, h_i: float, theta_i: float, v_i: float, d: float, rtol: float,
 
 
 def aim(a: Air, h_i: float, h_f: float, d: float, theta_f: float, rtol: float,
-        guess: tuple[float, float], max_flights: int = 400,
-        max_steps: int = 100_000) -> tuple[float, float, int]:
+        guess: tuple[float, float], max_flights: int = 400, max_steps: int = 100_000,
+        max_nfev: int | None = None) -> tuple[float, float, int]:
     """Release angle and speed that reach (d, h_f) arriving at angle theta_f, by root finding
-    (scipy.optimize.root, hybrid Powell) from the vacuum solution. Returns (θ_i, v_i, nfev)."""
+    (scipy.optimize.root, hybrid Powell) from the vacuum solution. Returns (θ_i, v_i, nfev).
+    ValueError when there is none, or when the flights tried exceed max_nfev evaluations."""
     from scipy.optimize import root
 
     count = [0]
@@ -116,6 +117,8 @@ def aim(a: Air, h_i: float, h_f: float, d: float, theta_f: float, rtol: float,
             return [1e3, 1e3]  # outside any throw: push the solver back
         f = fly(a, h_i, theta, math.exp(log_v), d, rtol, ground=-1e9, max_steps=max_steps)
         count[0] += f.nfev
+        if max_nfev is not None and count[0] > max_nfev:
+            raise ValueError(f"no release found within {max_nfev} right-hand-side evaluations")
         if not f.reached:  # short: push the solver toward faster throws
             return [f.height - h_f - 1e3 * (d - f.x_end), f.angle - theta_f]
         return [(f.height - h_f) / max(d, 1.0), f.angle - theta_f]
