@@ -156,7 +156,7 @@ def reverse_vacuum(h_i: float, h_f: float, d: float, theta_f: float) -> tuple[fl
 def _too_high(h_i, h_f, d, theta_f) -> str:
     line = math.degrees(line_angle(h_i, h_f, d))
     return (f"{math.degrees(theta_f):.6g}° cannot be reached: a thrown ball curves downward, so it must "
-            f"arrive below the straight line from release to target ({line:.6g}°); at that angle it "
+            f"arrive below the straight line from release to target ({line:.6g}°); even on that line it "
             f"would need infinite speed")
 
 
