@@ -204,6 +204,24 @@ def test_reverse_of_forward_with_drag(h_i, th, v, d, spin):
     assert back["release_speed"] == pytest.approx(v, rel=1e-7)
 
 
+def test_backspin_reaches_a_target_angle_above_the_line_of_sight():
+    """Magnus alone with strong backspin (k_m·v² ≈ 3.5 g) bends the path upward: the ball arrives at
+    42.9°, above the 23.9° line from release to target, which the closed form (rightly) refuses."""
+    common = {"effects": "magnus", "ball_mass": 0.05, "lift_coefficient": 1, "spin": "3000 rpm",
+              "release_height": 0.5, "distance": 1.5, "accuracy": "tight"}
+    fwd = out({**common, "release_angle": 5, "release_speed": 8})
+    line = math.atan2(fwd["target_height"] - 0.5, 1.5)
+    assert fwd["target_angle"] > line + 0.3
+    reverse = {**common, "mode": "reverse", "target_height": fwd["target_height"],
+               "target_angle": f"{fwd['target_angle']!r} rad"}
+    back = out(reverse)
+    assert math.degrees(back["release_angle"]) == pytest.approx(5, abs=1e-6)
+    assert back["release_speed"] == pytest.approx(8, rel=1e-7)
+    with pytest.raises(InputError) as e:
+        solve("projectile", {**reverse, "effects": ""})
+    assert e.value.field == "target_angle"
+
+
 def test_drag_unreachable_target_angle_names_the_field():
     # 40 m away with heavy drag, arriving almost level: no release does it
     with pytest.raises(InputError) as e:

@@ -26,7 +26,8 @@ Departures from / corrections to the seed:
 Effects (core.sim.flight): `air_drag` (quadratic, C_d, frontal area, air density) and `magnus`
 (lift C_L·½ρA|v|² perpendicular to the path, upward for backspin). With no effect the answer is the
 closed form above, with no integration. With effects, forward integrates to the target distance;
-reverse finds θ_i and v_i by root finding (hybrid Powell) from the vacuum answer.
+reverse finds θ_i and v_i by root finding (hybrid Powell) from the vacuum answer (or, when Magnus lift
+from backspin bends the path upward so that no vacuum answer exists, from a throw above the line).
 """
 
 from __future__ import annotations
@@ -68,7 +69,8 @@ FIELDS = (
     Field("target_angle", "Target angle", "angle", "deg", default=-45, min=-HALF_PI, max=HALF_PI,
           min_exclusive=True, max_exclusive=True, modes=("reverse",),
           help="Angle θ_f of the ball's path at the target (negative: coming down). It must be "
-               "below the line from release to target: a thrown ball curves downward."),
+               "below the line from release to target: a thrown ball curves downward (only strong "
+               "backspin with `magnus` can bend it up)."),
     effects_field(EFFECTS, (), "air_drag (quadratic drag), magnus (spin lift). None: the seed's "
                                "closed form, no integration."),
     accuracy_field(),
