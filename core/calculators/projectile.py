@@ -252,8 +252,8 @@ def simulate(v, rtol: float) -> SimRun:
                                          max_flights=MAX_FLIGHTS, max_steps=MAX_STEPS, max_nfev=MAX_NFEV)
             except (ValueError, RuntimeError):
                 raise InputError("target_angle", f"no release reaches the target arriving at "
-                                 f"{math.degrees(theta_f):.4g}° with these flight effects (drag "
-                                 f"steepens the descent): try a steeper target angle, less drag or "
+                                 f"{math.degrees(theta_f):.4g}° with these flight effects (drag and "
+                                 f"topspin steepen the descent): try a steeper target angle, less drag or "
                                  f"a shorter distance") from None
             if not v_i <= 10_000:
                 raise InputError("target_angle", f"needs a release speed of {v_i:.3g} m/s")
@@ -274,7 +274,9 @@ def simulate(v, rtol: float) -> SimRun:
         if v["spin"] == 0:
             warnings.append("magnus is on but the spin is 0: no Magnus force.")
     if a.vacuum:
-        warnings.append("No flight effects: the seed's closed form (section 6), no integration.")
+        warnings.append("No flight effects: the seed's closed form (section 6), no integration." if not v["effects"]
+                        else "The effects on exert no force here (zero drag coefficient, density or spin): "
+                             "closed form, no integration.")
     return SimRun(values, key, nfev, warnings, series)
 
 
