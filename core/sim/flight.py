@@ -78,40 +78,54 @@ class Flight:
 
 
 def fly(a: Air, h_i: float, theta_i: float, v_i: float, d: float, rtol: float,
-        ground: float = 0.0) -> Flight:
-    """Integrate from release to the target distance d (terminal event), the ground, or T_MAX."""
+        ground: float = 0.0, samples: int = 0, max_steps: int = 100_000) -> Flight:
+    """Integrate from release to the target distance d (terminal event), the ground, or T_MAX.
+
+    The path is the step points, or `samples` points evenly spaced in time on the dense output.
+    The apex is the highest point flown: a ball still rising at the target peaks there."""
     s0 = [0.0, h_i, v_i * math.cos(theta_i), v_i * math.sin(theta_i)]
     scale = max(abs(h_i), d, v_i, 1.0)
     events = [Event("target", lambda t, s: s[0] - d, +1),
               Event("ground", lambda t, s: s[1] - ground, -1),
               Event("apex", lambda t, s: s[3], -1, terminal=False)]
-    run = integrate(rhs_for(a), 0.0, T_MAX, s0, rtol=rtol, atol=rtol * scale * 1e-3, events=events)
+    run = integrate(rhs_for(a), 0.0, T_MAX, s0, rtol=rtol, atol=rtol * scale * 1e-3, events=events,
+                    dense=samples > 0, max_steps=max_steps)
     end = run.y[-1]
-    apex = max([h_i] + [c[2][1] for c in run.crossings if c[0] == "apex"])
+    apex = max([h_i, end[1]] + [c[2][1] for c in run.crossings if c[0] == "apex"])
+    points = run.y
+    if samples > 0 and run.dense:
+        t_end = run.t[-1]
+        points = [run.at(min(t_end * i / samples, t_end)) for i in range(samples)] + [end]
     return Flight(run.event == "target", run.t[-1], end[1], math.atan2(end[3], end[2]),
                   math.hypot(end[2], end[3]), apex, end[0], run.nfev,
-                  ([s[0] for s in run.y], [s[1] for s in run.y]))
+                  ([s[0] for s in points], [s[1] for s in points]))
 
 
 def aim(a: Air, h_i: float, h_f: float, d: float, theta_f: float, rtol: float,
-        guess: tuple[float, float]) -> tuple[float, float, int]:
+        guess: tuple[float, float], max_flights: int = 400, max_steps: int = 100_000,
+        max_nfev: int | None = None) -> tuple[float, float, int]:
     """Release angle and speed that reach (d, h_f) arriving at angle theta_f, by root finding
-    (scipy.optimize.root, hybrid Powell) from the vacuum solution. Returns (θ_i, v_i, nfev)."""
+    (scipy.optimize.root, hybrid Powell) from the vacuum solution. Returns (θ_i, v_i, nfev).
+    ValueError when there is none, or when the flights tried exceed max_nfev evaluations."""
     from scipy.optimize import root
 
     count = [0]
 
     def residual(p):
         theta, log_v = p
-        f = fly(a, h_i, theta, math.exp(log_v), d, rtol, ground=-1e9)
+        if not (-math.pi / 2 < theta < math.pi / 2) or not (-50.0 < log_v < 50.0):
+            return [1e3, 1e3]  # outside any throw: push the solver back
+        f = fly(a, h_i, theta, math.exp(log_v), d, rtol, ground=-1e9, max_steps=max_steps)
         count[0] += f.nfev
+        if max_nfev is not None and count[0] > max_nfev:
+            raise ValueError(f"no release found within {max_nfev} right-hand-side evaluations")
         if not f.reached:  # short: push the solver toward faster throws
             return [f.height - h_f - 1e3 * (d - f.x_end), f.angle - theta_f]
         return [(f.height - h_f) / max(d, 1.0), f.angle - theta_f]
 
-    sol = root(residual, [guess[0], math.log(guess[1])], method="hybr", options={"xtol": 1e-11})
-    theta, v = float(sol.x[0]), float(math.exp(sol.x[1]))
+    sol = root(residual, [guess[0], math.log(guess[1])], method="hybr",
+               options={"xtol": 1e-11, "maxfev": max_flights})
     res = residual(sol.x)
-    if not sol.success or max(abs(r) for r in res) > 1e-6 or not (-math.pi / 2 < theta < math.pi / 2):
+    if not sol.success or max(abs(r) for r in res) > 1e-6:  # includes a root outside any throw
         raise ValueError("no release reaches that target with these flight effects")
-    return theta, v, count[0]
+    return float(sol.x[0]), float(math.exp(sol.x[1])), count[0]

@@ -1,0 +1,298 @@
+"""Seed section 6 (Appendix D): the projectile trajectory calculator, as a scene with flight effects.
+
+Heights are above the floor, d is the horizontal distance from release to target, angles are from
+the horizontal (negative: downward), g = 9.80665 m/s².
+Forward (h_i, θ_i, v_i, d → h_f, θ_f):
+    t   = d / (v_i·cos θ_i)                                         (103)
+    h_f = h_i + (v_i·sin θ_i − g·t/2)·t = h_i + d·tan θ_i − g·d²/(2 v_i² cos² θ_i)    (104), (61)
+    θ_f = atan2(v_i·sin θ_i − g·t, v_i·cos θ_i)                     (105), equal to (62)
+Reverse (h_i, h_f, d, θ_f → θ_i, v_i), derived again (sympy) from (103)-(105) with Δh = h_f − h_i:
+    m   = Δh − d·tan θ_f  (= d·tan θ_i − Δh = g·t²/2, how far gravity pulls the ball below the line
+                            of the release direction; it must be positive)
+    θ_i = atan2(Δh + m, d)                                          (63): tan θ_i = 2Δh/d − tan θ_f
+    t   = sqrt(2m/g),  v_i = hypot(d, Δh + m) / t                   (64) corrected
+Departures from / corrections to the seed:
+- (64) takes |tan θ_i − tan θ_f|. The derivation (107) gives v_i² cos² θ_i = g·d / (tan θ_i − tan θ_f)
+  with no absolute value: the arc bends down, so the target angle must lie below the straight line
+  from release to target, θ_f < atan(Δh/d). The seed's |·| returns a finite speed for targets no
+  thrown ball can meet; here that is an error naming `target_angle`. At equality (θ_i = θ_f, both
+  on the line of sight) the speed is infinite: also an error.
+- (64) is evaluated as hypot(d, Δh + m)/sqrt(2m/g): the seed's sec θ_i·sqrt(g·d/(tan θ_i − tan θ_f))
+  loses digits when θ_i nears 90° (tan θ_i huge) and when m is small (tan θ_i − tan θ_f cancels
+  after tan θ_i was rounded); here m is one subtraction of the inputs.
+- Added, not in the seed: time of flight, apex (highest point between release and target), speed at
+  the target, and the floor: a ball that reaches the floor before the target distance is an error
+  naming `distance`.
+Effects (core.sim.flight): `air_drag` (quadratic, C_d, frontal area, air density) and `magnus`
+(lift C_L·½ρA|v|² perpendicular to the path, upward for backspin). With no effect the answer is the
+closed form above, with no integration. With effects, forward integrates to the target distance;
+reverse finds θ_i and v_i by root finding (hybrid Powell) from the vacuum answer (or, when Magnus lift
+from backspin bends the path upward so that no vacuum answer exists, from a throw above the line).
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..errors import InputError
+from ..model import Calculator, Field, Output, Plot, Result
+from ..sim.flight import Air, air, aim, fly
+from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats
+
+G = 9.80665  # m/s², standard gravity
+HALF_PI = math.pi / 2
+EFFECTS = ("air_drag", "magnus")
+PATH_POINTS = 80
+MAX_STEPS = 5_000  # per flight (a real throw takes < 100): a path curled up by extreme Magnus lift is
+MAX_FLIGHTS = 150  # refused, not crawled along; the reverse root finder may try this many flights
+MAX_NFEV = 100_000  # and this much work in all (about 0.5 s)
+FLOOR_SLACK = 1e-9  # relative: a target on the floor (h_f = 0) is reached, not "hit the floor first"
+
+MODES = ("forward", "reverse")
+MODE_LABELS = ("Forward: where the ball goes", "Reverse: how to throw it")
+
+FIELDS = (
+    Field("mode", "Solve", choices=MODES, choice_labels=MODE_LABELS, default="forward",
+          help="Forward: from the release to the target height and angle (6.1). "
+               "Reverse: from the target to the release angle and speed (6.2)."),
+    Field("release_height", "Release height", "length", "m", default=0.6, min=0, max=1000,
+          help="Height h_i of the ball above the floor when it leaves the mechanism."),
+    Field("release_angle", "Release angle", "angle", "deg", default=60, min=-HALF_PI, max=HALF_PI,
+          min_exclusive=True, max_exclusive=True, modes=("forward",),
+          help="Angle θ_i of the release velocity above the horizontal."),
+    Field("release_speed", "Release speed", "speed", "m/s", default=7.5, min=0, min_exclusive=True,
+          max=10_000, modes=("forward",), help="Speed v_i of the ball as it leaves the mechanism."),
+    Field("distance", "Distance to target", "length", "m", default=3, min=0, min_exclusive=True,
+          max=10_000, help="Horizontal distance d from the release point to the target."),
+    Field("target_height", "Target height", "length", "m", default=2.64, min=0, max=1000,
+          modes=("reverse",), help="Height h_f above the floor where the ball must pass."),
+    Field("target_angle", "Target angle", "angle", "deg", default=-45, min=-HALF_PI, max=HALF_PI,
+          min_exclusive=True, max_exclusive=True, modes=("reverse",),
+          help="Angle θ_f of the ball's path at the target (negative: coming down). It must be "
+               "below the line from release to target: a thrown ball curves downward (only strong "
+               "backspin with `magnus` can bend it up)."),
+    effects_field(EFFECTS, (), "air_drag (quadratic drag), magnus (spin lift). None: the seed's "
+                               "closed form, no integration."),
+    accuracy_field(),
+    Field("ball_mass", "Ball mass", "mass", "kg", default=0.27, min=1e-3, max=100,
+          help="Mass of the game piece (2022 FRC cargo: 0.27 kg)."),
+    Field("ball_diameter", "Ball diameter", "length", "m", default=0.24, min=1e-3, max=2,
+          help="Diameter; the frontal area is π·D²/4 (2022 FRC cargo: 0.24 m)."),
+    Field("drag_coefficient", "Drag coefficient", default=0.47, min=0, max=2,
+          help="C_d for `air_drag` (smooth sphere ≈ 0.47, foam ball ≈ 0.5)."),
+    Field("lift_coefficient", "Lift coefficient", default=0.2, min=0, max=1,
+          help="C_L for `magnus`, constant over the flight. It grows with the spin ratio "
+               "ω·r/v (shown as an output): about 0.1-0.3 for spin ratios 0.1-0.4."),
+    Field("spin", "Spin", "angular_speed", "rpm", default=0, min=-1e5, max=1e5,
+          help="Spin of the ball; positive is backspin (lifts), negative topspin (drops). Its sign "
+               "sets the direction of the Magnus force, C_L sets its size; 0: no Magnus force."),
+    Field("air_density", "Air density", "density", "kg/m^3", default=1.204, min=0, max=2,
+          help="ρ (1.204 kg/m³ at 20 °C and sea level; ≈ 1.0 at 1600 m)."),
+)
+
+OUTPUTS = (
+    Output("target_height", "Target height", "length", "m", help="h_f (61): height at the target distance."),
+    Output("target_angle", "Target angle", "angle", "deg", help="θ_f (62): path angle at the target."),
+    Output("release_angle", "Release angle", "angle", "deg", help="θ_i (63)."),
+    Output("release_speed", "Release speed", "speed", "m/s", help="v_i (64), corrected."),
+    Output("time_of_flight", "Time of flight", "time", "s", help="From release to the target distance (103)."),
+    Output("apex_height", "Apex height", "length", "m",
+           help="Highest point between release and target (the target height if still rising)."),
+    Output("target_speed", "Speed at target", "speed", "m/s"),
+    Output("spin_ratio", "Spin ratio ω·r/v", help="At release; guides the choice of C_L (magnus)."),
+    *STATS_OUTPUTS,
+)
+
+
+# --- closed form (no effects) -------------------------------------------------------------------
+
+def _xp(*args):
+    """math for scalars, numpy for arrays: the forward formulas run over sweeps in one call."""
+    if all(isinstance(a, (int, float)) for a in args):
+        return math, math.atan2
+    import numpy as np
+
+    return np, np.arctan2
+
+
+def forward_vacuum(h_i, theta_i, v_i, d):
+    """(h_f, θ_f, t) of the vacuum arc; accepts numpy arrays. cos θ_i > 0 (|θ_i| < 90°)."""
+    xp, atan2 = _xp(h_i, theta_i, v_i, d)
+    vx = v_i * xp.cos(theta_i)
+    vy_i = v_i * xp.sin(theta_i)
+    t = d / vx  # (103)
+    h_f = h_i + (vy_i - G * t / 2) * t  # (104) = (61)
+    theta_f = atan2(vy_i - G * t, vx)  # (105) = (62)
+    return h_f, theta_f, t
+
+
+def apex_vacuum(h_i: float, theta_i: float, v_i: float, t: float, h_f: float) -> float:
+    """Highest point flown before the target: the vertex if it comes before t, else an end."""
+    vy_i = v_i * math.sin(theta_i)
+    if vy_i > 0 and vy_i / G < t:
+        return h_i + vy_i * vy_i / (2 * G)
+    return max(h_i, h_f)
+
+
+def line_angle(h_i: float, h_f: float, d: float) -> float:
+    """Angle of the straight line from release to target: θ_f must lie below it."""
+    return math.atan2(h_f - h_i, d)
+
+
+def reverse_vacuum(h_i: float, h_f: float, d: float, theta_f: float) -> tuple[float, float, float]:
+    """(θ_i, v_i, t) from (63) and the corrected (64); InputError if no thrown ball arrives so."""
+    dh = h_f - h_i
+    m = dh - d * math.tan(theta_f)  # = d·tan θ_i − Δh = g·t²/2 > 0
+    if not m > 0:
+        raise InputError("target_angle", _too_high(h_i, h_f, d, theta_f))
+    theta_i = math.atan2(dh + m, d)  # (63)
+    t = math.sqrt(2 * m / G)  # (104) with (103)
+    v_i = math.hypot(d, dh + m) / t  # (64), corrected (no |·|)
+    if not v_i <= 10_000:
+        raise InputError("target_angle", f"is so close to the line from release to target "
+                         f"({math.degrees(line_angle(h_i, h_f, d)):.6g}°) that it needs a release speed of "
+                         f"{v_i:.3g} m/s: choose a steeper downward target angle")
+    return theta_i, v_i, t
+
+
+def _too_high(h_i, h_f, d, theta_f) -> str:
+    line = math.degrees(line_angle(h_i, h_f, d))
+    return (f"{math.degrees(theta_f):.6g}° cannot be reached: a thrown ball curves downward, so it must "
+            f"arrive below the straight line from release to target ({line:.6g}°); even on that line it "
+            f"would need infinite speed")
+
+
+def landing_distance(h_i: float, theta_i: float, v_i: float) -> float:
+    """Where the vacuum arc meets the floor: t = (q + sqrt(q² + 2gh))/g, q = v·sin θ, stably."""
+    q = v_i * math.sin(theta_i)
+    root = math.sqrt(q * q + 2 * G * h_i)
+    t = (q + root) / G if q >= 0 else (2 * h_i / (root - q) if root - q > 0 else 0.0)
+    return v_i * math.cos(theta_i) * t
+
+
+def _floor_error(x: float) -> InputError:
+    return InputError("distance", f"is beyond where the ball comes down to the floor "
+                                  f"(x = {max(x, 0.0):.4g} m): it never reaches the target distance")
+
+
+def _parabola(h_i, theta_i, v_i, t_end):
+    vx, vy = v_i * math.cos(theta_i), v_i * math.sin(theta_i)
+    ts = [t_end * k / PATH_POINTS for k in range(PATH_POINTS + 1)]
+    return [vx * t for t in ts], [h_i + (vy - G * t / 2) * t for t in ts]
+
+
+# --- the scene ----------------------------------------------------------------------------------
+
+def scene_air(v) -> Air:
+    return air(v["effects"], v["ball_mass"], v["ball_diameter"], v["drag_coefficient"],
+               v["lift_coefficient"], v["air_density"], v["spin"], G)
+
+
+def _check_release(h_i: float, theta_i: float) -> None:
+    if h_i == 0 and theta_i <= 0:
+        raise InputError("release_angle", "must point upward when the ball is released at floor level")
+
+
+def _fly(a: Air, h_i, theta_i, v_i, d, rtol, samples=0):
+    try:
+        f = fly(a, h_i, theta_i, v_i, d, rtol, ground=-FLOOR_SLACK * max(1.0, d), samples=samples,
+                max_steps=MAX_STEPS)
+    except RuntimeError:  # step limit: a flight no solver budget covers
+        raise InputError("spin", "the flight curls up too tightly to integrate (Magnus force far "
+                                 "above gravity): lower the lift coefficient or the spin") from None
+    if not f.reached:
+        raise _floor_error(f.x_end)
+    return f
+
+
+def simulate(v, rtol: float) -> SimRun:
+    a = scene_air(v)
+    h_i, d = v["release_height"], v["distance"]
+    forward = v["mode"] == "forward"
+    values: dict = {}
+    series: dict = {}
+    warnings: list[str] = []
+    nfev = 0
+    if forward:
+        theta_i, v_i = v["release_angle"], v["release_speed"]
+        _check_release(h_i, theta_i)
+    else:
+        h_f, theta_f = v["target_height"], v["target_angle"]
+    if a.vacuum:
+        if forward:
+            h_f, theta_f, t = forward_vacuum(h_i, theta_i, v_i, d)
+            if h_f < -FLOOR_SLACK * max(1.0, d):
+                raise _floor_error(landing_distance(h_i, theta_i, v_i))
+            h_f = max(h_f, 0.0)
+        else:
+            theta_i, v_i, t = reverse_vacuum(h_i, h_f, d, theta_f)
+        vx, vy_f = v_i * math.cos(theta_i), v_i * math.sin(theta_i) - G * t
+        apex = apex_vacuum(h_i, theta_i, v_i, t, h_f)
+        speed_f = math.hypot(vx, vy_f)
+        series["flight"] = _parabola(h_i, theta_i, v_i, t)
+    else:
+        if forward:
+            f = _fly(a, h_i, theta_i, v_i, d, rtol, samples=PATH_POINTS)
+            nfev = f.nfev
+            h_f, theta_f = max(f.height, 0.0), f.angle
+            vac = forward_vacuum(h_i, theta_i, v_i, d)
+            if vac[0] >= 0:
+                series["vacuum"] = _parabola(h_i, theta_i, v_i, vac[2])
+        else:
+            try:
+                guess = reverse_vacuum(h_i, h_f, d, theta_f)
+                series["vacuum"] = _parabola(h_i, guess[0], guess[1], guess[2])
+            except InputError:
+                if a.k_magnus <= 0:  # drag and topspin only bend the path further down
+                    raise
+                line = line_angle(h_i, h_f, d)  # backspin may lift it: start just above the line
+                guess = (min(line + 0.2, 1.4), math.sqrt(G / a.k_magnus) * 2, 0.0)
+            try:
+                theta_i, v_i, used = aim(a, h_i, h_f, d, theta_f, rtol, guess[:2],
+                                         max_flights=MAX_FLIGHTS, max_steps=MAX_STEPS, max_nfev=MAX_NFEV)
+            except (ValueError, RuntimeError):
+                raise InputError("target_angle", f"no release reaches the target arriving at "
+                                 f"{math.degrees(theta_f):.4g}° with these flight effects (drag and "
+                                 f"topspin steepen the descent): try a steeper target angle, less drag or "
+                                 f"a shorter distance") from None
+            if not v_i <= 10_000:
+                raise InputError("target_angle", f"needs a release speed of {v_i:.3g} m/s")
+            f = _fly(a, h_i, theta_i, v_i, d, rtol, samples=PATH_POINTS)
+            nfev = used + f.nfev
+        t, apex, speed_f = f.t, max(f.apex, h_f), f.speed
+        series["flight"] = f.path
+    if forward:
+        values.update(target_height=h_f, target_angle=theta_f)
+        key = {"target_height": d + h_f}  # offset by d: a relative error that stays meaningful at h_f = 0
+    else:
+        values.update(release_angle=theta_i, release_speed=v_i)
+        key = {"release_speed": v_i, "release_angle": theta_i + math.pi}  # θ + π ∈ (π/2, 3π/2)
+    values.update(time_of_flight=t, apex_height=apex, target_speed=speed_f)
+    key.update(time_of_flight=t, target_speed=speed_f)
+    if "magnus" in v["effects"]:
+        values["spin_ratio"] = abs(v["spin"]) * v["ball_diameter"] / 2 / v_i
+        if v["spin"] == 0:
+            warnings.append("magnus is on but the spin is 0: no Magnus force.")
+    if a.vacuum:
+        warnings.append("No flight effects: the seed's closed form (section 6), no integration." if not v["effects"]
+                        else "The effects on exert no force here (zero drag coefficient, density or spin): "
+                             "closed form, no integration.")
+    return SimRun(values, key, nfev, warnings, series)
+
+
+def compute(v) -> Result:
+    run = run_with_stats(simulate, v)
+    return Result(run.values, run.warnings, run.series)
+
+
+CALCULATOR = Calculator(
+    id="projectile",
+    title="Projectile",
+    summary="Ball trajectory from release to target, forward and reverse, with air drag and Magnus lift.",
+    fields=FIELDS,
+    outputs=OUTPUTS,
+    compute=compute,
+    section="6",
+    simulate=simulate,
+    plots=(Plot("Trajectory", ("flight", "vacuum"), "distance", "length", "m", "height", "length", "m"),),
+)
