@@ -40,6 +40,9 @@ class Field:
     flags: bool = False  # a set of the choices (e.g. the effects a scene switches on)
     help: str = ""
     modes: tuple[str, ...] = ()  # shown and used only in these modes; empty means all
+    # shown and used only when other choice fields hold one of these values,
+    # e.g. (("section", ("round_tube", "rectangular_tube")),) for a wall thickness
+    when: tuple[tuple[str, tuple[str, ...]], ...] = ()
 
     @property
     def type(self) -> str:
@@ -58,8 +61,15 @@ class Field:
             return self.choice_labels[self.choices.index(choice)]
         return choice.replace("_", " ")
 
-    def active(self, mode: str | None) -> bool:
-        return not self.modes or mode is None or mode in self.modes
+    def active(self, mode: str | None, choices: Mapping[str, Any] | None = None) -> bool:
+        """Whether this field is shown and used, given the mode and the other choices made."""
+        if self.modes and mode is not None and mode not in self.modes:
+            return False
+        if choices is not None:
+            for name, allowed in self.when:
+                if name in choices and choices[name] not in allowed:
+                    return False
+        return True
 
     def default_text(self) -> str:
         if self.type == "quantity":
@@ -256,11 +266,12 @@ def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, An
     mode = None
     if "mode" in known:
         mode = calc.field("mode").parse(raw.get("mode", calc.field("mode").default))
+    choices = choice_values(calc, raw)
     values: dict[str, Any] = {}
     texts: dict[str, str] = {}
     for f in calc.fields:
         entered = raw.get(f.name, f.default)
-        if f.active(mode):
+        if f.active(mode, choices):
             values[f.name] = f.parse(entered)
         else:
             try:
@@ -269,6 +280,19 @@ def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, An
                 values[f.name] = f.parse(f.default)
         texts[f.name] = _input_text(f, entered)
     return values, texts
+
+
+def choice_values(calc: Calculator, raw: Mapping[str, Any]) -> dict[str, Any]:
+    """The choice fields that other fields' `when` depends on, parsed (default if unreadable)."""
+    names = {name for f in calc.fields for name, _ in f.when}
+    out = {}
+    for name in names:
+        f = calc.field(name)
+        try:
+            out[name] = f.parse(raw.get(name, f.default))
+        except InputError:
+            out[name] = f.default
+    return out
 
 
 def flags_text(items: Any) -> str:

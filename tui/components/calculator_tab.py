@@ -27,6 +27,7 @@ from core.sim.scene import VOLATILE
 from .plot_panel import PlotPanel
 
 DEBOUNCE_S = 0.15
+VALUE_WIDTH = 20  # "-1.2346e+05 in*lbf" fits
 
 
 class FieldRow(Horizontal):
@@ -108,8 +109,11 @@ class CalculatorTab(Widget):
             with Vertical(classes="results-pane"):
                 table = DataTable(classes="results", cursor_type="row", zebra_stripes=True)
                 table.tooltip = "Enter or click on a result shows it in another unit"
-                table.add_column("Result", key="label")
-                table.add_column("Value", key="value")
+                # fixed widths from the description: no re-measuring on idle, so the
+                # layout is the same every time (snapshots) and never jumps while typing
+                label_width = max([len(o.label) for o in calc.outputs] + [6])
+                table.add_column("Result", key="label", width=min(label_width, 34))
+                table.add_column("Value", key="value", width=VALUE_WIDTH)
                 yield table
                 if calc.plots:
                     yield PlotPanel(calc.plots)
@@ -163,13 +167,16 @@ class CalculatorTab(Widget):
             self.query_one(".help-line", Static).update(line)
 
     def _apply_mode(self) -> None:
+        from core.model import choice_values
+
         mode = self.entries.get("mode")
+        choices = choice_values(self.calculator, self.entries)
         for f in self.calculator.fields:
             try:
                 row = self.query_one(f"#row-{f.name}", FieldRow)
             except Exception:  # not composed yet
                 return
-            row.display = f.active(mode)
+            row.display = f.active(mode, choices)
 
     def set_entries(self, values: dict[str, Any]) -> None:
         """Put values into the widgets (preset load, send-to), then solve once."""
