@@ -251,7 +251,7 @@ scene_params = st.fixed_dictionaries({
 def scene(p, model):
     hood = p["hood"]
     return fw.Scene(r_w=p["r_w"], I=p["I"], r_b=0.05, k_b=p["k_b"], s=0.5 if hood else 1.0,
-                    sigma=1.0 if hood else 0.0, f=p["f"], model=model, motor_on=False, A=1.0, B=1e-3, grip=10.0)
+                    sigma=1.0 if hood else 0.0, f=p["f"], model=model, motor_on=False, A=1.0, free_speed=1e3, grip=10.0)
 
 
 @settings(max_examples=200, deadline=None)
@@ -278,7 +278,7 @@ def test_momentum_model_conserves_angular_impulse(p):
 @given(st.floats(1e-3, 1e3), st.floats(0, 1e3), st.floats(0.01, 10))
 def test_recovery_reverses_free_run(w_frac, dt, T_scale):
     sc = fw.Scene(r_w=0.05, I=T_scale * 1e-3, r_b=0.05, k_b=0.4, s=0.5, sigma=1.0, f=0.0, model="energy",
-                  motor_on=False, A=1.0, B=1e-3, grip=10.0)  # free speed 1000 rad/s, T = T_scale s
+                  motor_on=False, A=1.0, free_speed=1e3, grip=10.0)  # free speed 1000 rad/s, T = T_scale s
     w0 = min(w_frac, 999.0)
     dt = dt * sc.T / 100
     w1 = fw.free_run(sc, w0, dt)

@@ -161,12 +161,12 @@ class Scene:
     model: str  # "energy" or "momentum"
     motor_on: bool  # motor_during_shot
     A: float  # G·τ̃s, N·m at the wheel at stall
-    B: float  # G²·τ̃s/ω̃f, N·m·s
+    free_speed: float  # ω̃f/G, rad/s of the wheel
     grip: float  # N
 
     @property
-    def free_speed(self) -> float:
-        return self.A / self.B  # ω̃f/G
+    def B(self) -> float:
+        return self.A / self.free_speed  # G²·τ̃s/ω̃f, N·m·s
 
     @property
     def T(self) -> float:
@@ -197,7 +197,7 @@ def scene_from(v) -> tuple[Scene, list[str]]:
     sc = Scene(r_w=v["wheel_diameter"] / 2, I=v["wheel_count"] * inertia_each(v), r_b=v["ball_diameter"] / 2,
                k_b=v["ball_inertia_factor"], s=0.5 if hood else 1.0, sigma=1.0 if hood else 0.0,
                f=v["loss_fraction"], model=models[0], motor_on=motor_on,
-               A=G * system.stall_torque, B=G * G * system.stall_torque / system.free_speed,
+               A=G * system.stall_torque, free_speed=system.free_speed / G,
                grip=v["grip_force"])
     return sc, warnings
 
@@ -210,6 +210,7 @@ def beta(sc: Scene, m: float) -> float:
 @dataclasses.dataclass
 class Shot:
     omega_after: float  # rad/s
+    drop: float  # ω₀ − ω₁, formed without cancellation where the model has a closed form
     V: float  # ball speed, m/s
     spin: float  # rad/s
     energy: float  # J
@@ -223,16 +224,21 @@ def shot(sc: Scene, omega0: float, m: float, target: float, rtol: float) -> Shot
     m_e = m * (1 + sc.sigma * sc.k_b)
     t_c, nfev = 0.0, 0
     if sc.model == "energy":
-        omega1 = omega0 / math.sqrt(1 + b / (1 - sc.f))  # (5) with losses: E_b = (1−f)·ΔE_w
+        x = b / (1 - sc.f)
+        root = math.sqrt(1 + x)
+        omega1 = omega0 / root  # (5) with losses: E_b = (1−f)·ΔE_w
+        drop = omega0 * x / (root * (1 + root))  # ω₀·(1 − 1/√(1+x)), rationalised
         V = sc.s * sc.r_w * omega1  # (2)
     elif not sc.motor_on or m_e == 0:
         omega1 = omega0 / (1 + b)  # angular impulse: I·(ω₀ − ω₁) = r_w·J, J = s·m_e·V, V = s·r_w·ω₁
+        drop = omega0 * b / (1 + b)
         V = sc.s * sc.r_w * omega1 * math.sqrt(1 - sc.f)
     else:
         omega1, V, t_c, nfev = slip_phase(sc, omega0, m_e, target, rtol)
+        drop = omega0 - omega1
         V *= math.sqrt(1 - sc.f)
     spin = sc.sigma * V / sc.r_b  # (2)
-    return Shot(omega1, V, spin, 0.5 * m_e * V * V, t_c, nfev)  # (3)
+    return Shot(omega1, drop, V, spin, 0.5 * m_e * V * V, t_c, nfev)  # (3)
 
 
 def slip_phase(sc: Scene, omega0: float, m_e: float, target: float, rtol: float) -> tuple[float, float, float, int]:
@@ -330,12 +336,14 @@ def range_error_linear(sc: Scene, m0: float, e_m: float) -> float:
     return -e_m * b0 / (1 + b0)
 
 
-def recovery(sc: Scene, omega_from: float, omega_to: float) -> float:
-    """Full-power time from omega_from up to omega_to (< free speed): T·ln((ω_f − ω₁)/(ω_f − ω_t))."""
-    wf = sc.free_speed
-    if omega_from >= omega_to:
+def recovery(sc: Scene, omega_from: float, omega_to: float, gap: float | None = None) -> float:
+    """Full-power time from omega_from up to omega_to (< free speed): T·ln((ω_f − ω₁)/(ω_f − ω_t)),
+    as T·log1p(gap/(ω_f − ω_t)) with gap = ω_t − ω₁ (given when known without cancellation)."""
+    if gap is None:
+        gap = omega_to - omega_from
+    if gap <= 0:
         return 0.0
-    return sc.T * math.log1p((omega_to - omega_from) / (wf - omega_to))
+    return sc.T * math.log1p(gap / (sc.free_speed - omega_to))
 
 
 def free_run(sc: Scene, omega: float, dt: float) -> float:
@@ -424,7 +432,7 @@ def simulate(v, rtol: float) -> SimRun:
         "free_speed": sc.free_speed,
         "time_constant": sc.T,
         "spin_up_time": t_spin,
-        "recovery_time": recovery(sc, first.omega_after, target),
+        "recovery_time": recovery(sc, first.omega_after, target, first.drop),
         "slowest_ball_speed": slowest,
     })
     if slowest < first.V * (1 - 1e-9):
