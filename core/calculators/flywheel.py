@@ -438,8 +438,8 @@ def simulate(v, rtol: float) -> SimRun:
     if slowest < first.V * (1 - 1e-9):
         warnings.append(f"The wheel does not recover between shots: the slowest ball leaves at "
                         f"{slowest:.3g} m/s instead of {first.V:.3g} m/s.")
-    t_end = trace[0][-1]
-    series = {"wheel speed": trace, "target": ([0.0, t_end], [target, target])}
+    first_shot = next(i for i, t in enumerate(trace[0]) if t >= t_spin)
+    series = {"wheel speed": trace, "burst": (trace[0][first_shot:], trace[1][first_shot:])}
     key = {"ball_speed": first.V, "wheel_speed_after": first.omega_after, "slowest_ball_speed": slowest}
     return SimRun(values, key, shots.nfev, warnings, series)
 
@@ -458,6 +458,6 @@ CALCULATOR = Calculator(
     compute=compute,
     section="seed 000",
     simulate=simulate,
-    plots=(Plot("Wheel speed over a burst", ("wheel speed", "target"), "time", "time", "s",
-                "wheel speed", "angular_speed", "rpm"),),
+    plots=(Plot("Wheel speed over the burst", ("burst",), "time", "time", "s", "wheel speed", "angular_speed", "rpm"),
+           Plot("Spin-up and burst", ("wheel speed",), "time", "time", "s", "wheel speed", "angular_speed", "rpm")),
 )
