@@ -304,3 +304,46 @@ def test_cli_json_reproduces_the_seed_table():
                  "range_error", "range_error_linear", "spin_up_time", "recovery_time", "range_error_6"):
         assert name in o
     assert o["ball_speed"]["unit"] == "m/s" and o["range_error"]["unit"] == ""
+
+
+@pytest.mark.parametrize("b", [1e-3, 1.0, 150.0])
+@pytest.mark.parametrize("a_over_b,u_t", [(0.3, 1.0), (5.0, 1.0), (5.0, 1.4), (1.2, 1.4), (-2.0, 1.2)])
+def test_slip_phase_integrated_equals_its_closed_form(b, a_over_b, u_t):
+    """The integrated slip (DP54 with the controller's switch, event at rolling) against the closed
+    form the stiff branch uses, on both sides of the switch and below the stiffness threshold."""
+    span = max(1.0, u_t) * (1 + 1e-9) + 1e-12
+    a = a_over_b * b
+    tau, u = fw.slip_closed_form(a, b, u_t, span)
+    rhs = lambda t, y: [min(a - b * y[0], 0.0) if y[0] >= u_t else a - b * y[0], 1.0]  # noqa: E731
+    run = integrate(rhs, 0.0, span, [1.0, 0.0], rtol=1e-11, atol=1e-14,
+                    events=[Event("rolling", lambda t, y: y[0] - y[1], -1)])
+    assert run.event == "rolling"
+    assert run.t[-1] == pytest.approx(tau, rel=1e-8)
+    assert run.y[-1][0] == pytest.approx(u, rel=1e-8)
+
+
+def test_stiff_slip_uses_the_closed_form_and_stays_finite():
+    # a wheel of 1e-9 lb·in² on two Krakens: its time constant is ~1e-10 s against a ~7 ms slip
+    raw = {**seed_raw(), "mode": "moment_of_inertia", "wheel_inertia": "1e-9 lb*in**2", "motor": "Kraken X60",
+           "voltage": 12, "ratio": 0.2, "effects": "momentum, motor_during_shot"}
+    o = out(raw)
+    assert o["rhs_evaluations"].value == 0
+    # held at the target (A − B·ω_t = 2.647 N·m ≥ r_w·F = 2.54 N·m): V = s·r_w·ω_t
+    assert o["ball_speed"].value == pytest.approx(R_W / 2 * W_T, rel=1e-12)
+
+
+@pytest.mark.parametrize("omega0_frac,grip", [(0.7, 40.0), (0.95, 2.0), (0.5, 400.0), (1.0, 40.0)])
+def test_module_slip_phase_below_the_target_matches_the_closed_form(omega0_frac, grip):
+    """A shot in an unrecovered burst starts below the target: the wheel may reach the target during
+    the slip (event "target") and is then held; compare with the closed form at rtol 1e-11."""
+    sc = fw.Scene(r_w=R_W, I=I_1, r_b=2 * IN, k_b=0.4, s=0.5, sigma=1.0, f=0.0, model="momentum",
+                  motor_on=True, A=2.836, free_speed=3141.6, grip=grip)
+    w0, m_e = W_T * omega0_frac, 0.06 * 1.4
+    w1, V, t_c, nfev = fw.slip_phase(sc, w0, m_e, W_T, 1e-11)
+    t0 = 0.25 * m_e * R_W * w0 / grip
+    a, b, u_t = t0 * (sc.A - R_W * grip) / (I_1 * w0), t0 * sc.B / I_1, W_T / w0
+    tau, u = fw.slip_closed_form(a, b, u_t, max(1.0, u_t) * (1 + 1e-9) + 1e-12)
+    assert t_c == pytest.approx(tau * t0, rel=1e-9)
+    assert w1 == pytest.approx(u * w0, rel=1e-9)
+    assert V == pytest.approx(0.5 * R_W * w1, rel=1e-9)  # rolling at the end
+    assert w1 <= W_T * (1 + 1e-12)

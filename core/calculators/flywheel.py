@@ -36,7 +36,12 @@ turns per wheel turn) by n motors:  I·dω/dt = G·τ̃s·(1 − G·ω/ω̃f)  �
 ω_f,w = ω̃f/G, T = I·ω̃f/(G²·τ̃s). Full power below the target speed, held at the target above it.
 Spin-up and recovery are closed forms. Effect `motor_during_shot` (momentum model only): the motor
 keeps driving while the ball slips under a constant grip force F (μ·N) until it rolls; that phase
-is integrated (core.sim.integrate, event at the end of slip); tests check it against its closed form.
+is integrated (core.sim.integrate; events at the end of slip and where the controller reaches the
+target) and tests check it against its closed form, which also answers when the phase is stiff
+(wheel time constant far below the slip time: an explicit step would need thousands of steps).
+With F → ∞ it tends to the impulse model; a motor strong enough to hold the target against r_w·F
+launches the ball at the full s·r_w·ω_t (no range error).
+Range-error table (the seed's, n = 1..6): the same wheel, motor and target speed with n wheels.
 """
 
 from __future__ import annotations
@@ -53,6 +58,9 @@ from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, ru
 G_ACC = 9.80665  # m/s²
 RPM = 2 * math.pi / 60
 TABLE_WHEELS = range(1, 7)
+# Slip phase: when the wheel's time constant is this many times shorter than the slip (b·τ_end), an
+# explicit integrator needs ~b·τ_end/3 steps for stability alone; the closed form is used instead.
+STIFF = 200.0
 EFFECTS = ("energy", "momentum", "motor_during_shot")
 SHOOTERS = ("hood", "two_wheel")
 SHOOTER_LABELS = ("Single wheel with hood (ball at half surface speed)", "Two wheels (ball at surface speed)")
@@ -243,31 +251,57 @@ def shot(sc: Scene, omega0: float, m: float, target: float, rtol: float) -> Shot
 
 def slip_phase(sc: Scene, omega0: float, m_e: float, target: float, rtol: float) -> tuple[float, float, float, int]:
     """Motor on while the ball slips, until it rolls (r_w·ω = V/s):
-        I·dω/dt = A − B·ω − r_w·F   below the target speed (full power),
-                  min(A − B·ω − r_w·F, 0)   at it (the controller holds the target, never exceeds it),
+        I·dω/dt = A − B·ω − r_w·F   below the target speed (full power); at the target the
+                                    controller holds it (never exceeds it)
         m_e·s·dV/dt = F             (the grip F at the wheel contact, moving at V/s once rolling).
-    The controller's switch makes the right-hand side piecewise: it is integrated.
     Scaled: u = ω/ω₀, v = V/(s·r_w·ω₀), τ = t/t₀ with t₀ = s²·m_e·r_w·ω₀/F, so dv/dτ = 1 and the
-    slip ends at u = v. Returns (ω₁, V, contact time, evaluations).
+    slip ends at u = v. The controller's switch is an event ("target"), not a kink in the
+    right-hand side: once held, u = u_t until v reaches it. Returns (ω₁, V, contact time, evaluations).
     """
     F = sc.grip
     t0 = sc.s * sc.s * m_e * sc.r_w * omega0 / F
     a = t0 * (sc.A - sc.r_w * F) / (sc.I * omega0)
     b = t0 * sc.B / sc.I
     u_t = target / omega0  # ≥ 1: a shot starts at or below the target
-
-    def rhs(t, y):
-        du = a - b * y[0]
-        return [min(du, 0.0) if y[0] >= u_t else du, 1.0]
-
     span = max(1.0, u_t) * (1 + 1e-9) + 1e-12  # u stays in [0, u_t], so u = τ happens before this
-    run = integrate(rhs, 0.0, span, [1.0, 0.0], rtol=rtol, atol=rtol * 1e-3,
-                    events=[Event("rolling", lambda t, y: y[0] - y[1], -1)])
+    if u_t <= 1.0 and a - b >= 0:  # at the target and the motor can hold it: no slip of the wheel
+        return omega0, sc.s * sc.r_w * omega0, t0, 0
+    if b * span > STIFF:
+        tau, u = slip_closed_form(a, b, u_t, span)
+        return u * omega0, sc.s * sc.r_w * omega0 * tau, tau * t0, 0
+    events = [Event("rolling", lambda t, y: y[0] - y[1], -1)]
+    if u_t > 1.0:
+        events.append(Event("target", lambda t, y: y[0] - u_t, +1))
+    try:
+        run = integrate(lambda t, y: [a - b * y[0], 1.0], 0.0, span, [1.0, 0.0], rtol=rtol,
+                        atol=rtol * 1e-3, events=events)
+    except RuntimeError:  # beyond what a step-size controller can follow: the closed form answers
+        tau, u = slip_closed_form(a, b, u_t, span)
+        return u * omega0, sc.s * sc.r_w * omega0 * tau, tau * t0, 0
     u, v_end = run.y[-1]
-    tau = run.t[-1]
-    if run.event != "rolling":  # cannot happen by the bound above; the end point is then the answer
+    if run.event == "target":  # held at the target until the ball catches up: v = τ = u_t
+        u = v_end = u_t
+    elif run.event != "rolling":  # cannot happen by the bound on span; the end point is the answer
         u = v_end = min(u, v_end)
-    return u * omega0, sc.s * sc.r_w * omega0 * v_end, tau * t0, run.nfev
+    return u * omega0, sc.s * sc.r_w * omega0 * v_end, v_end * t0, run.nfev
+
+
+def slip_closed_form(a: float, b: float, u_t: float, span: float) -> tuple[float, float]:
+    """The slip phase in closed form (used when it is stiff): u(τ) = u_eq + (1 − u_eq)·e^(−b·τ),
+    u_eq = a/b, held at u_t from the time it reaches it; the slip ends at the root of u(τ) = τ."""
+    from scipy.optimize import brentq
+
+    u_eq = a / b
+    if u_eq > u_t:  # rises to the target and is held there
+        tau_hit = math.log((u_eq - 1) / (u_eq - u_t)) / b if u_t > 1 else 0.0
+    else:
+        tau_hit = math.inf
+
+    def u(tau: float) -> float:
+        return u_t if tau >= tau_hit else u_eq + (1 - u_eq) * math.exp(-b * tau)
+
+    tau = brentq(lambda x: u(x) - x, 0.0, span, xtol=1e-300, rtol=1e-15, maxiter=500)
+    return tau, u(tau)
 
 
 def projectile_range(V: float, theta: float, h: float) -> float:
