@@ -327,16 +327,17 @@ def range_gain(V0: float, V1: float, dV2_rel: float, theta: float, h: float) -> 
     return cs / G_ACC * V0 * V0 * dV2_rel * bracket / R0
 
 
-def speed_sq_change(sc: Scene, m0: float, m1: float, shot0: Shot, shot1: Shot) -> float:
-    """(V1² − V0²)/V0² for ball masses m0 → m1, exact algebra where the model has a closed form."""
+def speed_sq_change(sc: Scene, m0: float, dm: float, shot0: Shot, shot1: Shot) -> float:
+    """(V1² − V0²)/V0² when the ball mass goes from m0 to m0 + dm; where the model has a closed form
+    the change of β is β(dm) (β is linear in m), so nothing is formed by subtraction."""
     if shot0.V == 0:
         return 0.0
+    m1 = m0 + dm
     if sc.model == "energy":  # V² ∝ 1/(1 + β/(1−f)):  (7)
-        b0, b1 = beta(sc, m0) / (1 - sc.f), beta(sc, m1) / (1 - sc.f)
-        return (b0 - b1) / (1 + b1)
+        b1 = beta(sc, m1) / (1 - sc.f)
+        return -(beta(sc, dm) / (1 - sc.f)) / (1 + b1)
     if not sc.motor_on or m0 == 0 or m1 == 0:  # V ∝ 1/(1 + β): q² − 1 = (q − 1)(q + 1)
-        b0, b1 = beta(sc, m0), beta(sc, m1)
-        q_minus_1 = (b0 - b1) / (1 + b1)
+        q_minus_1 = -beta(sc, dm) / (1 + beta(sc, m1))
         return q_minus_1 * (q_minus_1 + 2)
     return (shot1.V - shot0.V) * (shot1.V + shot0.V) / (shot0.V * shot0.V)
 
@@ -357,11 +358,11 @@ class Shots:
         return self.done[key]
 
 
-def range_change(sc: Scene, v, shots: Shots, m1: float) -> float:
-    """Exact relative range change when the ball mass goes from m₀ to m1 (shots at the target)."""
+def range_change(sc: Scene, v, shots: Shots, dm: float) -> float:
+    """Exact relative range change when the ball mass goes from m₀ to m₀ + dm (shots at the target)."""
     m0, target = v["ball_mass"], shots.target
-    s0, s1 = shots(sc, target, m0), shots(sc, target, m1)
-    return range_gain(s0.V, s1.V, speed_sq_change(sc, m0, m1, s0, s1), v["launch_angle"], v["release_height"])
+    s0, s1 = shots(sc, target, m0), shots(sc, target, m0 + dm)
+    return range_gain(s0.V, s1.V, speed_sq_change(sc, m0, dm, s0, s1), v["launch_angle"], v["release_height"])
 
 
 def range_error_linear(sc: Scene, m0: float, e_m: float) -> float:
@@ -449,9 +450,9 @@ def simulate(v, rtol: float) -> SimRun:
         "wheel_speed_after": first.omega_after,
         "wheel_inertia_total": sc.I,
         "range": R,
-        "range_error": range_change(sc, v, shots, m0 * (1 + e_m)),
+        "range_error": range_change(sc, v, shots, m0 * e_m),
         "range_error_linear": range_error_linear(sc, m0, e_m),
-        "range_spread": R * (range_change(sc, v, shots, m0 * (1 - e_m)) - range_change(sc, v, shots, m0 * (1 + e_m))),
+        "range_spread": R * (range_change(sc, v, shots, -m0 * e_m) - range_change(sc, v, shots, m0 * e_m)),
     }
     if sc.motor_on:
         values["contact_time"] = first.contact_time
@@ -459,7 +460,7 @@ def simulate(v, rtol: float) -> SimRun:
         values["mass_ratio_coefficient"] = (1 + sc.sigma * sc.k_b) * sc.s ** 2 / v["gyration_fraction"] ** 2  # (6)
     for n in TABLE_WHEELS:  # the seed's table; the free speed ω̃f/G does not depend on n
         sc_n = sc if n == v["wheel_count"] else dataclasses.replace(sc, I=n * inertia_each(v))
-        values[f"range_error_{n}"] = range_change(sc_n, v, shots, m0 * (1 + e_m))
+        values[f"range_error_{n}"] = range_change(sc_n, v, shots, m0 * e_m)
         values[f"range_error_linear_{n}"] = range_error_linear(sc_n, m0, e_m)
     trace, slowest, t_spin = burst(sc, v, shots)
     values.update({
