@@ -450,7 +450,7 @@ def simulate(v, rtol: float) -> SimRun:
         "wheel_speed_after": first.omega_after,
         "wheel_inertia_total": sc.I,
         "range": R,
-        "range_error": range_change(sc, v, shots, m0 * e_m),
+        "range_error": range_change(sc, v, shots, m0 * e_m),  # (8), with h and the chosen model
         "range_error_linear": range_error_linear(sc, m0, e_m),
         "range_spread": R * (range_change(sc, v, shots, -m0 * e_m) - range_change(sc, v, shots, m0 * e_m)),
     }
