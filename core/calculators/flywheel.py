@@ -1,0 +1,498 @@
+"""Seed 000 (flywheel study, VEX Nothing but Net 2015-16): energy to the ball, range error from the
+ball-mass tolerance, spin-up and recovery, as a scene with effects.
+
+The seed's model, in its order (equations numbered here (1)-(9) in the order the seed writes them):
+    (1) R = V²/g · sin 2θ                                   vacuum range, release at ground level
+    (2) V = r_w·ω_w/2,  ω_b = V/r_b                         hooded shooter: ball rolls on the hood
+    (3) E_b = ½·m·V² + ½·I_b·ω_b² = ½·m·V²·(1 + k_b),  k_b = I_b/(m·r_b²) = 2/5 (solid sphere)
+    (4) E_w = ½·I_w·ω_w²,  I_w = m_w·(0.84·r_w)²            radius of gyration 0.84·r_w
+    (5) E_w,initial = E_w,final + E_b                       energy conservation, motor off in the shot
+    (6) β = E_b/E_w,final = (1+k_b)·s²/k² · m/m_w           (s = V/(r_w·ω_w); seed: ".4954"·m/m_w)
+    (7) R/R₀ = (1 + β₀)/(1 + β)                             R ∝ V² ∝ ω_final² ∝ E_w,final
+    (8) e_r = −e_m/(m_w/(c·m₀) + 1 + e_m),  c = β·m_w/m     exact within the model
+    (9) e_r ≈ −e_m/(n·6.06 + 1)                             the seed's table (e_m dropped below)
+
+Where this module departs from or corrects the seed:
+- (3) The seed's first version had (1 + 4/5); its own 5/29 correction to (1 + 2/5) is used, and k_b
+  is a field (2/5 solid sphere, 2/3 thin shell; the real foam ball lies between).
+- (6) The seed's ".4954" is a rounding slip: (1 + 2/5)·(1/2)²/0.84² = 0.35/0.7056 = 0.49603 (0.4954
+  is 0.35/0.7065, the digits of 0.84² transposed). Its 2.02 (= 1/0.4954 = 2.0186) becomes 2.0160
+  and its 6.06 = 3·2.02 becomes 6.048. The seed's linearised table (9) is unchanged at its two
+  decimals (−1.42, −0.76, −0.52, −0.40, −0.32 % for 10 %): `range_error_linear_n`.
+- (9) drops e_m from the denominator of (8); it is the first-order term. `range_error_n` gives the
+  exact value beside it (n = 1: −1.399 % instead of −1.419 %). Linear: −e_m·β₀/(1 + β₀).
+- (1) with a release height h ≥ 0: R = V·cosθ/g·(V·sinθ + √(V²·sin²θ + 2·g·h)); h = 0 is the seed.
+  Range differences are formed without cancellation (see `range_gain`).
+- The seed's own scene reaches its wheel speed with the motor off during the shot. The `momentum`
+  effect replaces (5) by angular-impulse transfer with slip until the ball rolls (the Team 449
+  model): I_w·(ω₀ − ω₁) = r_w·J, m_e·V = J/s  ⇒  ω₁ = ω₀/(1 + β); the slip dissipates energy, so
+  the range error per unit mass error is about twice the energy model's.
+- Two-wheel shooter: V = r_w·ω_w (s = 1), no spin (symmetric), all n wheels' inertia shared.
+- `loss_fraction` f (friction, ball compression): energy model, E_b = (1−f)·(E_w,initial − E_w,final)
+  ⇒ ω₁ = ω₀/√(1 + β/(1−f)); momentum model, the ball leaves with (1−f) of its energy (V·√(1−f)).
+
+Motor (linear model, core.motors): the wheel set of inertia I is driven through reduction G (motor
+turns per wheel turn) by n motors:  I·dω/dt = G·τ̃s·(1 − G·ω/ω̃f)  ⇒  ω(t) = ω_f,w·(1 − e^(−t/T)),
+ω_f,w = ω̃f/G, T = I·ω̃f/(G²·τ̃s). Full power below the target speed, held at the target above it.
+Spin-up and recovery are closed forms. Effect `motor_during_shot` (momentum model only): the motor
+keeps driving while the ball slips under a constant grip force F (μ·N) until it rolls; that phase
+is integrated (core.sim.integrate; events at the end of slip and where the controller reaches the
+target) and tests check it against its closed form, which also answers when the phase is stiff
+(wheel time constant far below the slip time: an explicit step would need thousands of steps).
+With F → ∞ it tends to the impulse model; a motor strong enough to hold the target against r_w·F
+launches the ball at the full s·r_w·ω_t (no range error).
+Range-error table (the seed's, n = 1..6): the same wheel, motor and target speed with n wheels.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from ..errors import InputError
+from ..model import Calculator, Field, Output, Plot, Result
+from ..motors import motor_fields, system_from
+from ..sim.integrate import Event, integrate
+from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats
+
+G_ACC = 9.80665  # m/s²
+RPM = 2 * math.pi / 60
+TABLE_WHEELS = range(1, 7)
+# Slip phase: when the wheel's time constant is this many times shorter than the slip (b·τ_end), an
+# explicit integrator needs ~b·τ_end/3 steps for stability alone; the closed form is used instead.
+STIFF = 200.0
+EFFECTS = ("energy", "momentum", "motor_during_shot")
+SHOOTERS = ("hood", "two_wheel")
+SHOOTER_LABELS = ("Single wheel with hood (ball at half surface speed)", "Two wheels (ball at surface speed)")
+INERTIA_MODES = ("radius_of_gyration", "moment_of_inertia")
+
+
+def _motor_fields():
+    out = []
+    for f in motor_fields(default_motor="VEX 393", default_count=2):
+        if f.name == "voltage":
+            f = dataclasses.replace(f, default=7.2, help="Applied voltage (VEX 393: 7.2 V; V5 and FRC: 12 V); "
+                                                        "motor data is scaled by V/V_spec.")
+        out.append(f)
+    return tuple(out)
+
+
+FIELDS = (
+    Field("mode", "Wheel inertia from", choices=INERTIA_MODES, default="radius_of_gyration",
+          choice_labels=("Mass and radius of gyration", "Moment of inertia"),
+          help="How the wheel's moment of inertia is given."),
+    Field("wheel_diameter", "Wheel diameter", "length", "in", default=5, min=0, min_exclusive=True, max=2,
+          help="Flywheel diameter 2·r_w."),
+    Field("wheel_mass", "Wheel mass (each)", "mass", "g", default=180, min=0, min_exclusive=True, max=1000,
+          modes=("radius_of_gyration",), help="Mass m_w of one wheel (VEX 5 in wheel: 180 g)."),
+    Field("gyration_fraction", "Radius of gyration / radius", "dimensionless", "", default=0.84, min=0,
+          min_exclusive=True, max=1, modes=("radius_of_gyration",),
+          help="k/r_w with I = m_w·(k·r_w)² (seed: 0.84 for the VEX 5 in wheel; disc 0.707; rim 1)."),
+    Field("wheel_inertia", "Wheel inertia (each)", "inertia", "lb*in**2", default=1.75, min=0,
+          min_exclusive=True, max=1e6, modes=("moment_of_inertia",),
+          help="Moment of inertia of one wheel about its axle (with its share of shaft and gears)."),
+    Field("wheel_count", "Wheels", integer=True, default=1, min=1, max=20,
+          help="Wheels spinning together (all wheels of both sides for a two-wheel shooter)."),
+    Field("shooter", "Shooter", choices=SHOOTERS, choice_labels=SHOOTER_LABELS, default="hood",
+          help="Hood: the ball rolls on the hood and leaves at half the surface speed with spin V/r_b. "
+               "Two wheels: surface speed, no spin."),
+    Field("ball_diameter", "Ball diameter", "length", "in", default=4, min=0, min_exclusive=True, max=2),
+    Field("ball_mass", "Ball mass", "mass", "g", default=60, min=0, max=100,
+          help="Nominal ball mass m₀ (NbN ball: 60 g)."),
+    Field("ball_inertia_factor", "Ball I/(m·r²)", "dimensionless", "", default=0.4, min=0, max=0.67,
+          help="k_b: 2/5 solid sphere (seed), 2/3 thin shell."),
+    Field("ball_mass_tolerance", "Ball mass tolerance", "dimensionless", "%", default=10, min=0, max=0.9,
+          help="e_m: balls up to m₀·(1 ± e_m); range errors are for the heavy ball, as in the seed."),
+    Field("target_speed", "Wheel target speed", "angular_speed", "rpm", default=2000, min=0, min_exclusive=True,
+          help="Wheel speed the controller spins up to and holds; the shot starts at it."),
+    Field("launch_angle", "Launch angle", "angle", "deg", default=45, min=0, min_exclusive=True,
+          max=math.pi / 2, max_exclusive=True, help="Elevation θ of the release above horizontal."),
+    Field("release_height", "Release height above target", "length", "m", default=0, min=0, max=100,
+          help="h: the release point above the landing height (0: the seed's R = V²·sin2θ/g)."),
+    *_motor_fields(),
+    Field("ratio", "Gear ratio (motor : wheel)", "dimensionless", "", default=0.04, min=0, min_exclusive=True,
+          max=1e4, help="G, motor turns per wheel turn (a speed-up is below 1: 1:25 is 0.04)."),
+    Field("loss_fraction", "Loss fraction", "dimensionless", "%", default=0, min=0, max=1, max_exclusive=True,
+          help="f: friction and ball compression (energy model: of the energy the wheel gives up; "
+               "momentum model: of the ball's energy)."),
+    Field("grip_force", "Grip force μ·N (motor during shot)", "force", "N", default=40, min=0.1, max=1e5,
+          help="Friction force of the wheels on the slipping ball; used by motor_during_shot only."),
+    Field("shots", "Shots in the burst", integer=True, default=4, min=1, max=50),
+    Field("shot_interval", "Shot interval", "time", "s", default=0.5, min=0.01, max=60,
+          help="Cadence of the burst: time from one shot to the next."),
+    effects_field(EFFECTS, ("energy",),
+                  "Transfer model: energy (seed: energy conservation, translation + spin) or momentum "
+                  "(angular impulse with slip, Team 449); motor_during_shot (momentum only): the motor "
+                  "drives during the slip."),
+    accuracy_field(),
+)
+
+OUTPUTS = (
+    Output("ball_speed", "Ball speed", "speed", "m/s", help="Release speed V at the target wheel speed."),
+    Output("ball_spin", "Ball spin", "angular_speed", "rpm"),
+    Output("ball_energy", "Ball energy", "energy", "J", help="Translation plus spin."),
+    Output("energy_ratio", "Ball / wheel energy after", help="E_b/E_w,final (seed: .165 for one wheel)."),
+    Output("wheel_speed_after", "Wheel speed after shot", "angular_speed", "rpm"),
+    Output("contact_time", "Slip time of the shot", "time", "ms", help="motor_during_shot only."),
+    Output("wheel_inertia_total", "Wheel inertia (all)", "inertia", "lb*in**2"),
+    Output("mass_ratio_coefficient", "β per m/m_w (seed .4954)",
+           help="(1+k_b)·s²/k²: E_b/E_w,final per ball-to-wheel mass ratio (radius-of-gyration mode)."),
+    Output("range", "Range", "length", "m", help="Vacuum range from the release height."),
+    Output("range_error", "Range error (heavy ball)", "dimensionless", "%",
+           help="Exact, for m₀·(1+e_m), with the effects and losses chosen."),
+    Output("range_error_linear", "Range error, seed linear", "dimensionless", "%",
+           help="The seed's −e_m/(m_w/(c·m₀) + 1) with c computed exactly."),
+    Output("range_spread", "Range spread light to heavy", "length", "m",
+           help="R(m₀·(1−e_m)) − R(m₀·(1+e_m))."),
+    *[Output(f"range_error_{n}", f"Range error, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%")
+      for n in TABLE_WHEELS],
+    *[Output(f"range_error_linear_{n}", f"Seed linear, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%")
+      for n in TABLE_WHEELS],
+    Output("free_speed", "Wheel free speed", "angular_speed", "rpm", help="ω̃f/G."),
+    Output("time_constant", "Spin-up time constant", "time", "s", help="T = I·ω̃f/(G²·τ̃s)."),
+    Output("spin_up_time", "Spin-up time", "time", "s", help="From rest to the target speed at full power."),
+    Output("recovery_time", "Recovery time", "time", "s", help="After one shot, back to the target speed."),
+    Output("slowest_ball_speed", "Slowest ball in burst", "speed", "m/s"),
+    *STATS_OUTPUTS,
+)
+
+
+@dataclasses.dataclass(frozen=True)
+class Scene:
+    r_w: float  # wheel radius, m
+    I: float  # all wheels, kg·m²
+    r_b: float
+    k_b: float
+    s: float  # V / (r_w·ω_w) at release
+    sigma: float  # 1: the ball spins at V/r_b (hood); 0: no spin
+    f: float  # loss fraction
+    model: str  # "energy" or "momentum"
+    motor_on: bool  # motor_during_shot
+    A: float  # G·τ̃s, N·m at the wheel at stall
+    free_speed: float  # ω̃f/G, rad/s of the wheel
+    grip: float  # N
+
+    @property
+    def B(self) -> float:
+        return self.A / self.free_speed  # G²·τ̃s/ω̃f, N·m·s
+
+    @property
+    def T(self) -> float:
+        return self.I / self.B
+
+
+def inertia_each(v) -> float:
+    if v["mode"] == "moment_of_inertia":
+        return v["wheel_inertia"]
+    return v["wheel_mass"] * (v["gyration_fraction"] * v["wheel_diameter"] / 2) ** 2  # (4)
+
+
+def scene_from(v) -> tuple[Scene, list[str]]:
+    effects = v["effects"]
+    warnings: list[str] = []
+    models = [m for m in ("energy", "momentum") if m in effects]
+    if len(models) != 1:
+        raise InputError("effects", "switch on exactly one transfer model: energy or momentum")
+    motor_on = "motor_during_shot" in effects
+    if motor_on and models[0] == "energy":
+        warnings.append("motor_during_shot is ignored by the energy model (it has no shot duration); "
+                        "use the momentum model.")
+        motor_on = False
+    system, notes = system_from(v)
+    warnings += notes
+    G = v["ratio"]
+    hood = v["shooter"] == "hood"
+    sc = Scene(r_w=v["wheel_diameter"] / 2, I=v["wheel_count"] * inertia_each(v), r_b=v["ball_diameter"] / 2,
+               k_b=v["ball_inertia_factor"], s=0.5 if hood else 1.0, sigma=1.0 if hood else 0.0,
+               f=v["loss_fraction"], model=models[0], motor_on=motor_on,
+               A=G * system.stall_torque, free_speed=system.free_speed / G,
+               grip=v["grip_force"])
+    return sc, warnings
+
+
+def beta(sc: Scene, m: float) -> float:
+    """(6): E_b/E_w,final in the lossless energy model = m_e·s²·r_w²/I, m_e = m·(1 + σ·k_b)."""
+    return m * (1 + sc.sigma * sc.k_b) * (sc.s * sc.r_w) ** 2 / sc.I
+
+
+@dataclasses.dataclass
+class Shot:
+    omega_after: float  # rad/s
+    drop: float  # ω₀ − ω₁, formed without cancellation where the model has a closed form
+    V: float  # ball speed, m/s
+    spin: float  # rad/s
+    energy: float  # J
+    contact_time: float  # s (0: instantaneous)
+    nfev: int
+
+
+def shot(sc: Scene, omega0: float, m: float, target: float, rtol: float) -> Shot:
+    """The ball leaves a wheel set spinning at omega0: wheel speed after, ball speed, spin, energy."""
+    b = beta(sc, m)
+    m_e = m * (1 + sc.sigma * sc.k_b)
+    t_c, nfev = 0.0, 0
+    if sc.model == "energy":
+        x = b / (1 - sc.f)
+        root = math.sqrt(1 + x)
+        omega1 = omega0 / root  # (5) with losses: E_b = (1−f)·ΔE_w
+        drop = omega0 * x / (root * (1 + root))  # ω₀·(1 − 1/√(1+x)), rationalised
+        V = sc.s * sc.r_w * omega1  # (2)
+    elif not sc.motor_on or m_e == 0:
+        omega1 = omega0 / (1 + b)  # angular impulse: I·(ω₀ − ω₁) = r_w·J, J = s·m_e·V, V = s·r_w·ω₁
+        drop = omega0 * b / (1 + b)
+        V = sc.s * sc.r_w * omega1 * math.sqrt(1 - sc.f)
+    else:
+        omega1, V, t_c, nfev = slip_phase(sc, omega0, m_e, target, rtol)
+        drop = omega0 - omega1
+        V *= math.sqrt(1 - sc.f)
+    spin = sc.sigma * V / sc.r_b  # (2)
+    return Shot(omega1, drop, V, spin, 0.5 * m_e * V * V, t_c, nfev)  # (3)
+
+
+def slip_phase(sc: Scene, omega0: float, m_e: float, target: float, rtol: float) -> tuple[float, float, float, int]:
+    """Motor on while the ball slips, until it rolls (r_w·ω = V/s):
+        I·dω/dt = A − B·ω − r_w·F   below the target speed (full power); at the target the
+                                    controller holds it (never exceeds it)
+        m_e·s·dV/dt = F             (the grip F at the wheel contact, moving at V/s once rolling).
+    Scaled: u = ω/ω₀, v = V/(s·r_w·ω₀), τ = t/t₀ with t₀ = s²·m_e·r_w·ω₀/F, so dv/dτ = 1 and the
+    slip ends at u = v. The controller's switch is an event ("target"), not a kink in the
+    right-hand side: once held, u = u_t until v reaches it. Returns (ω₁, V, contact time, evaluations).
+    """
+    F = sc.grip
+    t0 = sc.s * sc.s * m_e * sc.r_w * omega0 / F
+    a = t0 * (sc.A - sc.r_w * F) / (sc.I * omega0)
+    b = t0 * sc.B / sc.I
+    u_t = target / omega0  # ≥ 1: a shot starts at or below the target
+    span = max(1.0, u_t) * (1 + 1e-9) + 1e-12  # u stays in [0, u_t], so u = τ happens before this
+    if u_t <= 1.0 and a - b >= 0:  # at the target and the motor can hold it: no slip of the wheel
+        return omega0, sc.s * sc.r_w * omega0, t0, 0
+    if b * span > STIFF:
+        tau, u = slip_closed_form(a, b, u_t, span)
+        return u * omega0, sc.s * sc.r_w * omega0 * tau, tau * t0, 0
+    events = [Event("rolling", lambda t, y: y[0] - y[1], -1)]
+    if u_t > 1.0:
+        events.append(Event("target", lambda t, y: y[0] - u_t, +1))
+    try:
+        run = integrate(lambda t, y: [a - b * y[0], 1.0], 0.0, span, [1.0, 0.0], rtol=rtol,
+                        atol=rtol * 1e-3, events=events)
+    except RuntimeError:  # beyond what a step-size controller can follow: the closed form answers
+        tau, u = slip_closed_form(a, b, u_t, span)
+        return u * omega0, sc.s * sc.r_w * omega0 * tau, tau * t0, 0
+    u, v_end = run.y[-1]
+    if run.event == "target":  # held at the target until the ball catches up: v = τ = u_t
+        u = v_end = u_t
+    elif run.event != "rolling":  # cannot happen by the bound on span; the end point is the answer
+        u = v_end = min(u, v_end)
+    return u * omega0, sc.s * sc.r_w * omega0 * v_end, v_end * t0, run.nfev
+
+
+def slip_closed_form(a: float, b: float, u_t: float, span: float) -> tuple[float, float]:
+    """The slip phase in closed form (used when it is stiff): u(τ) = u_eq + (1 − u_eq)·e^(−b·τ),
+    u_eq = a/b, held at u_t from the time it reaches it; the slip ends at the root of u(τ) = τ."""
+    from scipy.optimize import brentq
+
+    u_eq = a / b
+    if u_eq > u_t:  # rises to the target and is held there
+        tau_hit = math.log((u_eq - 1) / (u_eq - u_t)) / b if u_t > 1 else 0.0
+    else:
+        tau_hit = math.inf
+
+    def u(tau: float) -> float:
+        return u_t if tau >= tau_hit else u_eq + (1 - u_eq) * math.exp(-b * tau)
+
+    tau = brentq(lambda x: u(x) - x, 0.0, span, xtol=1e-300, rtol=1e-15, maxiter=500)
+    return tau, u(tau)
+
+
+def projectile_range(V: float, theta: float, h: float) -> float:
+    """(1) from release height h: R = V·cosθ/g·(V·sinθ + √(V²·sin²θ + 2·g·h))."""
+    sn, cs = math.sin(theta), math.cos(theta)
+    return V * cs / G_ACC * (V * sn + math.sqrt((V * sn) ** 2 + 2 * G_ACC * h))
+
+
+def range_gain(V0: float, V1: float, dV2_rel: float, theta: float, h: float) -> float:
+    """(R(V1) − R(V0))/R(V0) with dV2_rel = (V1² − V0²)/V0² given without cancellation.
+
+    R1 − R0 = cosθ/g·(V1² − V0²)·[sinθ + (sin²θ·(V1² + V0²) + 2gh)/(V1·S1 + V0·S0)], S = √(V²sin²θ + 2gh)
+    (the difference of square roots rationalised).
+    """
+    R0 = projectile_range(V0, theta, h)
+    if R0 <= 0:
+        return 0.0
+    sn, cs = math.sin(theta), math.cos(theta)
+    S0 = math.sqrt((V0 * sn) ** 2 + 2 * G_ACC * h)
+    S1 = math.sqrt((V1 * sn) ** 2 + 2 * G_ACC * h)
+    den = V1 * S1 + V0 * S0
+    bracket = sn + ((sn * sn) * (V1 * V1 + V0 * V0) + 2 * G_ACC * h) / den if den > 0 else 2 * sn
+    return cs / G_ACC * V0 * V0 * dV2_rel * bracket / R0
+
+
+def speed_sq_change(sc: Scene, m0: float, dm: float, shot0: Shot, shot1: Shot) -> float:
+    """(V1² − V0²)/V0² when the ball mass goes from m0 to m0 + dm; where the model has a closed form
+    the change of β is β(dm) (β is linear in m), so nothing is formed by subtraction."""
+    if shot0.V == 0:
+        return 0.0
+    m1 = m0 + dm
+    if sc.model == "energy":  # V² ∝ 1/(1 + β/(1−f)):  (7)
+        b1 = beta(sc, m1) / (1 - sc.f)
+        return -(beta(sc, dm) / (1 - sc.f)) / (1 + b1)
+    if not sc.motor_on or m0 == 0 or m1 == 0:  # V ∝ 1/(1 + β): q² − 1 = (q − 1)(q + 1)
+        q_minus_1 = -beta(sc, dm) / (1 + beta(sc, m1))
+        return q_minus_1 * (q_minus_1 + 2)
+    return (shot1.V - shot0.V) * (shot1.V + shot0.V) / (shot0.V * shot0.V)
+
+
+class Shots:
+    """Shots of one simulate call, each computed once (the table and the burst reuse them)."""
+
+    def __init__(self, target: float, rtol: float):
+        self.target, self.rtol = target, rtol
+        self.done: dict[tuple, Shot] = {}
+        self.nfev = 0
+
+    def __call__(self, sc: Scene, omega0: float, m: float) -> Shot:
+        key = (sc, omega0, m)
+        if key not in self.done:
+            self.done[key] = shot(sc, omega0, m, self.target, self.rtol)
+            self.nfev += self.done[key].nfev
+        return self.done[key]
+
+
+def range_change(sc: Scene, v, shots: Shots, dm: float) -> float:
+    """Exact relative range change when the ball mass goes from m₀ to m₀ + dm (shots at the target)."""
+    m0, target = v["ball_mass"], shots.target
+    s0, s1 = shots(sc, target, m0), shots(sc, target, m0 + dm)
+    return range_gain(s0.V, s1.V, speed_sq_change(sc, m0, dm, s0, s1), v["launch_angle"], v["release_height"])
+
+
+def range_error_linear(sc: Scene, m0: float, e_m: float) -> float:
+    """(9): the seed's −e_m/(m_w/(c·m₀) + 1) = −e_m·β₀/(1 + β₀) (lossless energy model, R ∝ V²)."""
+    b0 = beta(sc, m0)
+    return -e_m * b0 / (1 + b0)
+
+
+def recovery(sc: Scene, omega_from: float, omega_to: float, gap: float | None = None) -> float:
+    """Full-power time from omega_from up to omega_to (< free speed): T·ln((ω_f − ω₁)/(ω_f − ω_t)),
+    as T·log1p(gap/(ω_f − ω_t)) with gap = ω_t − ω₁ (given when known without cancellation)."""
+    if gap is None:
+        gap = omega_to - omega_from
+    if gap <= 0:
+        return 0.0
+    return sc.T * math.log1p(gap / (sc.free_speed - omega_to))
+
+
+def free_run(sc: Scene, omega: float, dt: float) -> float:
+    """Speed after dt at full power from omega: ω_f − (ω_f − ω)·e^(−dt/T)."""
+    wf = sc.free_speed
+    return wf - (wf - omega) * math.exp(-dt / sc.T)
+
+
+def burst(sc: Scene, v, shots: Shots):
+    """Spin-up from rest, then `shots` shots at the cadence; closed form between shots."""
+    m0 = v["ball_mass"]
+    interval, target = v["shot_interval"], shots.target
+    T = sc.T
+    t_spin = recovery(sc, 0.0, target)
+    ts: list[float] = []
+    ws: list[float] = []
+
+    def ramp(t_start: float, w_start: float, duration: float) -> None:
+        """Full power toward the target for `duration`, holding the target once reached (sampled)."""
+        t_hit = recovery(sc, w_start, target)
+        if t_hit > 0:
+            reach = min(t_hit, duration)
+            for i in range(1, 25):
+                dt = reach * i / 24
+                ts.append(t_start + dt)
+                ws.append(min(free_run(sc, w_start, dt), target))
+        if duration > t_hit:
+            ts.append(t_start + duration)
+            ws.append(target)
+
+    ts.append(0.0)
+    ws.append(0.0)
+    ramp(0.0, 0.0, t_spin)
+    t, w = t_spin, target
+    slowest = math.inf
+    for k in range(v["shots"]):
+        one = shots(sc, w, m0)
+        slowest = min(slowest, one.V)
+        t_end = t + one.contact_time
+        w = one.omega_after
+        ts.append(t_end)
+        ws.append(w)
+        if k + 1 < v["shots"]:
+            wait = max(interval - one.contact_time, 0.0)
+            ramp(t_end, w, wait)
+            w = ws[-1]
+            t = t_end + wait
+        else:
+            ramp(t_end, w, recovery(sc, w, target) + 0.25 * T)
+    return (ts, ws), slowest, t_spin
+
+
+def simulate(v, rtol: float) -> SimRun:
+    sc, warnings = scene_from(v)
+    target = v["target_speed"]
+    if target >= sc.free_speed:
+        raise InputError("target_speed", f"the wheels cannot reach it: their free speed is "
+                                         f"{sc.free_speed / RPM:.4g} rpm with this motor and ratio")
+    m0, e_m = v["ball_mass"], v["ball_mass_tolerance"]
+    shots = Shots(target, rtol)
+    first = shots(sc, target, m0)
+    E_w_after = 0.5 * sc.I * first.omega_after ** 2
+    R = projectile_range(first.V, v["launch_angle"], v["release_height"])
+    values = {
+        "ball_speed": first.V,
+        "ball_spin": first.spin,
+        "ball_energy": first.energy,
+        "energy_ratio": first.energy / E_w_after if E_w_after > 0 else 0.0,
+        "wheel_speed_after": first.omega_after,
+        "wheel_inertia_total": sc.I,
+        "range": R,
+        "range_error": range_change(sc, v, shots, m0 * e_m),  # (8), with h and the chosen model
+        "range_error_linear": range_error_linear(sc, m0, e_m),
+        "range_spread": R * (range_change(sc, v, shots, -m0 * e_m) - range_change(sc, v, shots, m0 * e_m)),
+    }
+    if sc.motor_on:
+        values["contact_time"] = first.contact_time
+    if v["mode"] == "radius_of_gyration":
+        values["mass_ratio_coefficient"] = (1 + sc.sigma * sc.k_b) * sc.s ** 2 / v["gyration_fraction"] ** 2  # (6)
+    for n in TABLE_WHEELS:  # the seed's table; the free speed ω̃f/G does not depend on n
+        sc_n = sc if n == v["wheel_count"] else dataclasses.replace(sc, I=n * inertia_each(v))
+        values[f"range_error_{n}"] = range_change(sc_n, v, shots, m0 * e_m)
+        values[f"range_error_linear_{n}"] = range_error_linear(sc_n, m0, e_m)
+    trace, slowest, t_spin = burst(sc, v, shots)
+    values.update({
+        "free_speed": sc.free_speed,
+        "time_constant": sc.T,
+        "spin_up_time": t_spin,
+        "recovery_time": recovery(sc, first.omega_after, target, first.drop),
+        "slowest_ball_speed": slowest,
+    })
+    if slowest < first.V * (1 - 1e-9):
+        warnings.append(f"The wheel does not recover between shots: the slowest ball leaves at "
+                        f"{slowest:.3g} m/s instead of {first.V:.3g} m/s.")
+    first_shot = next(i for i, t in enumerate(trace[0]) if t >= t_spin)
+    series = {"wheel speed": trace, "burst": (trace[0][first_shot:], trace[1][first_shot:])}
+    key = {"ball_speed": first.V, "wheel_speed_after": first.omega_after, "slowest_ball_speed": slowest}
+    return SimRun(values, key, shots.nfev, warnings, series)
+
+
+def compute(v) -> Result:
+    run = run_with_stats(simulate, v)
+    return Result(run.values, run.warnings, run.series)
+
+
+CALCULATOR = Calculator(
+    id="flywheel",
+    title="Flywheel",
+    summary="Flywheel shooter: energy to the ball, range error from ball-mass tolerance, spin-up and recovery.",
+    fields=FIELDS,
+    outputs=OUTPUTS,
+    compute=compute,
+    section="seed 000",
+    simulate=simulate,
+    plots=(Plot("Wheel speed over the burst", ("burst",), "time", "time", "s", "wheel speed", "angular_speed", "rpm"),
+           Plot("Spin-up and burst", ("wheel speed",), "time", "time", "s", "wheel speed", "angular_speed", "rpm")),
+)
