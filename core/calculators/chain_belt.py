@@ -88,7 +88,7 @@ OUTPUTS = (
     Output("pitch_diameter_1", "Pitch diameter 1", "length", "in"),
     Output("pitch_diameter_2", "Pitch diameter 2", "length", "in"),
     Output("wrap_angle_small", "Wrap on the smaller sprocket", "angle", "deg",
-           help="Angle of contact on the smaller sprocket: π − 2·sin⁻¹(Δ/D)."),
+           help="Angle of contact on the smaller sprocket: π − 2·sin⁻¹(|r_2 − r_1|/D)."),
     Output("minimum_links", "Fewest links that wrap both",
            help="Shortest usable count whose length reaches around both (D ≥ |r_2 − r_1|)."),
     Output("center_difference_other_method", "Other pitch-diameter choice moves D by", "length", "mm",
@@ -136,8 +136,12 @@ def minimum_length(r1: float, r2: float) -> float:
     return 2 * math.pi * max(r1, r2)
 
 
-def center_from_length(L: float, r1: float, r2: float) -> float:
-    """D from L (inverse of (68)); L must be at least minimum_length. Relative error ~1e-15."""
+def span_from_length(L: float, r1: float, r2: float) -> tuple[float, float]:
+    """(D, X): center distance and straight span X = √(D² − Δ²) from L (inverse of (68)).
+
+    L must be at least minimum_length. Relative error ~1e-15 in D, and in X too (X is solved
+    for directly, so it stays accurate near the minimum where D − Δ would cancel).
+    """
     r_large = max(r1, r2)
     delta = r_large - min(r1, r2)
     S = (L - 2 * math.pi * r_large) / 2  # = Δ·(u − tan⁻¹ u), u = X/Δ
@@ -146,10 +150,10 @@ def center_from_length(L: float, r1: float, r2: float) -> float:
     if S < 0:
         raise ValueError("length shorter than the wrap minimum")
     if delta == 0:
-        return S  # equal sprockets: D = (L − π d)/2
+        return S, S  # equal sprockets: D = X = (L − π d)/2
     s = S / delta
     if s == 0:
-        return delta
+        return delta, 0.0
     from scipy.optimize import brentq
 
     lo = max(s, (3 * s) ** (1 / 3)) if s < 1e100 else s  # u − tan⁻¹u ≤ min(u, u³/3)
@@ -162,7 +166,16 @@ def center_from_length(L: float, r1: float, r2: float) -> float:
         u = hi
     else:
         u = brentq(f, lo, hi, xtol=1e-300, rtol=1e-15, maxiter=500)
-    return delta * math.hypot(1.0, u)  # D = √(X² + Δ²)
+    return delta * math.hypot(1.0, u), delta * u  # D = √(X² + Δ²)
+
+
+def center_from_length(L: float, r1: float, r2: float) -> float:
+    return span_from_length(L, r1, r2)[0]
+
+
+def wrap_angle(X: float, r1: float, r2: float) -> float:
+    """Angle of contact on the smaller sprocket, π − 2·sin⁻¹(Δ/D) = 2·tan⁻¹(X/Δ) (accurate at X → 0)."""
+    return 2 * math.atan2(X, abs(r2 - r1))
 
 
 # --- the calculator --------------------------------------------------------------------------
@@ -206,9 +219,9 @@ def compute(v) -> Result:
         if kind == "chain" and l % 2 and not v["half_links"]:
             warnings.append("An odd number of links needs a half (offset) link: allow half links "
                             "or use an even count.")
-        D = center_from_length(L, r1, r2)
+        D, X = span_from_length(L, r1, r2)
         values.update(center_distance=D, length=L, clearance=D - (r1 + r2))  # (67)
-        values["wrap_angle_small"] = wrap_angle(D, r1, r2)
+        values["wrap_angle_small"] = wrap_angle(X, r1, r2)
         o1, o2 = pitch_radius(n1, p, other), pitch_radius(n2, p, other)
         if L >= minimum_length(o1, o2):
             values["center_difference_other_method"] = center_from_length(L, o1, o2) - D
@@ -242,14 +255,6 @@ def compute(v) -> Result:
     values["links_above"] = above
     values["center_above"] = center_from_length(above * p, r1, r2)
     return Result(values, warnings)
-
-
-def wrap_angle(D: float, r1: float, r2: float) -> float:
-    """Angle of contact on the smaller sprocket, π − 2·sin⁻¹(Δ/D)."""
-    delta = abs(r2 - r1)
-    if D <= 0:
-        return math.pi
-    return math.pi - 2 * math.asin(min(1.0, delta / D))
 
 
 CALCULATOR = Calculator(
