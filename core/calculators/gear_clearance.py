@@ -37,9 +37,9 @@ def _dp(name, label, help):
 FIELDS = (
     Field("teeth_1", "Gear 1 teeth (shaft A)", integer=True, default=36, min=1, max=100000,
           help="Gear 1 shares shaft A with gear 2; checked against shaft B and gear 4. " + _WHERE),
-    Field("teeth_2", "Gear 2 teeth (shaft A, meshes 3)", integer=True, default=50, min=1, max=100000,
+    Field("teeth_2", "Gear 2 teeth (shaft A)", integer=True, default=50, min=1, max=100000,
           help="Gear 2 on shaft A meshes gear 3 on shaft B. " + _WHERE),
-    Field("teeth_3", "Gear 3 teeth (shaft B, meshes 2)", integer=True, default=12, min=1, max=100000,
+    Field("teeth_3", "Gear 3 teeth (shaft B)", integer=True, default=12, min=1, max=100000,
           help="Gear 3 on shaft B meshes gear 2 on shaft A. " + _WHERE),
     Field("teeth_4", "Gear 4 teeth (shaft B)", integer=True, default=20, min=1, max=100000,
           help="Gear 4 shares shaft B with gear 3; checked against gear 1 (and shaft A). " + _WHERE),
