@@ -166,3 +166,32 @@ def test_presets_load_and_solve():
     for p in found:
         sol = solve("chain_belt", p.inputs)
         assert sol.outputs
+
+
+def test_minimum_links_chordal_chain():
+    # #25 chain 12T/36T, p/sin(180°/n): L_min = 2π r_2 = π p / sin(5°) = 36.0458 p -> 37 links,
+    # even for chain -> 38 (with half links 37)
+    o = out(kind="chain", pitch_standard="chain_25", teeth_1=12, teeth_2=36, links=38, pitch_diameter="chordal")
+    assert math.pi / math.sin(math.radians(5)) == pytest.approx(36.0458, abs=1e-4)
+    assert o["minimum_links"] == 38
+    h = out(kind="chain", pitch_standard="chain_25", teeth_1=12, teeth_2=36, links=38, pitch_diameter="chordal",
+            half_links=True)
+    assert h["minimum_links"] == 37
+    with pytest.raises(InputError):
+        solve("chain_belt", {"kind": "chain", "pitch_standard": "chain_25", "teeth_1": 12, "teeth_2": 36,
+                             "links": 36, "pitch_diameter": "chordal"})
+
+
+@pytest.mark.parametrize("method", ["circumference", "chordal"])
+@pytest.mark.parametrize("factor", [1.0, 1 + 1e-15, 1 + 1e-9])
+def test_reverse_at_the_wrap_minimum(method, factor):
+    # D = Δ (the small sprocket inside the large one): the length is the minimum, 2π r_2
+    p = 0.375 * IN
+    r1, r2 = cb.pitch_radius(15, p, method), cb.pitch_radius(40, p, method)
+    sol = solve("chain_belt", {"kind": "chain", "pitch_standard": "chain_35", "teeth_1": 15, "teeth_2": 40,
+                               "pitch_diameter": method, "mode": "links_from_center",
+                               "target_center": f"{(r2 - r1) * factor!r} m"})
+    o = {k: v.value for k, v in sol.outputs.items()}
+    assert o["links_exact"] == pytest.approx(cb.minimum_length(r1, r2) / p, rel=1e-6)
+    assert o["links_above"] == o["minimum_links"] and o["links_above"] % 2 == 0
+    assert o["center_above"] >= r2 - r1

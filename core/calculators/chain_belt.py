@@ -136,15 +136,16 @@ def minimum_length(r1: float, r2: float) -> float:
     return 2 * math.pi * max(r1, r2)
 
 
-def span_from_length(L: float, r1: float, r2: float) -> tuple[float, float]:
+def span_from_length(L: float, r1: float, r2: float, excess: float | None = None) -> tuple[float, float]:
     """(D, X): center distance and straight span X = √(D² − Δ²) from L (inverse of (68)).
 
     L must be at least minimum_length. Relative error ~1e-15 in D, and in X too (X is solved
-    for directly, so it stays accurate near the minimum where D − Δ would cancel).
+    for directly, so it stays accurate near the minimum where D − Δ would cancel). `excess`,
+    if known exactly, is S = (L − 2π r_large)/2 (for n·p/π diameters it is (l − n_large)·p/2).
     """
     r_large = max(r1, r2)
     delta = r_large - min(r1, r2)
-    S = (L - 2 * math.pi * r_large) / 2  # = Δ·(u − tan⁻¹ u), u = X/Δ
+    S = (L - 2 * math.pi * r_large) / 2 if excess is None else excess  # = Δ·(u − tan⁻¹ u), u = X/Δ
     if -1e-13 * L <= S < 0:  # at the minimum, lost to rounding
         S = 0.0
     if S < 0:
@@ -169,8 +170,8 @@ def span_from_length(L: float, r1: float, r2: float) -> tuple[float, float]:
     return delta * math.hypot(1.0, u), delta * u  # D = √(X² + Δ²)
 
 
-def center_from_length(L: float, r1: float, r2: float) -> float:
-    return span_from_length(L, r1, r2)[0]
+def center_from_length(L: float, r1: float, r2: float, excess: float | None = None) -> float:
+    return span_from_length(L, r1, r2, excess)[0]
 
 
 def wrap_angle(X: float, r1: float, r2: float) -> float:
@@ -203,28 +204,36 @@ def compute(v) -> Result:
                         "chain sprockets.")
     r1, r2 = pitch_radius(n1, p, method), pitch_radius(n2, p, method)
     step = step_of(kind, v["half_links"])
-    L_min = minimum_length(r1, r2)
-    l_min = step * math.ceil(L_min / p / step * (1 - 1e-12))
-    if l_min * p < L_min:
+    unit = "links" if kind == "chain" else "belt teeth"
+
+    def spare(l: int, how: str = method) -> float:
+        """S = (l·p − 2π r_large)/2, the length beyond the wrap minimum, halved; exact for n·p/π
+        diameters, where 2π r = n p (65). Rounding-size negatives count as exactly zero."""
+        if how == "circumference":
+            return (l - max(n1, n2)) * p / 2
+        S = (l * p - 2 * math.pi * pitch_radius(max(n1, n2), p, how)) / 2
+        return 0.0 if -1e-13 * l * p <= S < 0 else S
+
+    l_min = max(step, step * (math.ceil(minimum_length(r1, r2) / p / step) - 1))
+    while spare(l_min) < 0:
         l_min += step
     values = {"pitch_diameter_1": 2 * r1, "pitch_diameter_2": 2 * r2, "minimum_links": l_min}
-    unit = "links" if kind == "chain" else "belt teeth"
 
     if v["mode"] == "center_from_links":
         l = v["links"]
         L = l * p  # (66)
-        if L < L_min:
+        if spare(l) < 0:
             raise InputError("links", f"{l} {unit} are too short to wrap both sprockets: "
                                       f"at least {l_min} are needed")
         if kind == "chain" and l % 2 and not v["half_links"]:
             warnings.append("An odd number of links needs a half (offset) link: allow half links "
                             "or use an even count.")
-        D, X = span_from_length(L, r1, r2)
+        D, X = span_from_length(L, r1, r2, spare(l))
         values.update(center_distance=D, length=L, clearance=D - (r1 + r2))  # (67)
         values["wrap_angle_small"] = wrap_angle(X, r1, r2)
         o1, o2 = pitch_radius(n1, p, other), pitch_radius(n2, p, other)
-        if L >= minimum_length(o1, o2):
-            values["center_difference_other_method"] = center_from_length(L, o1, o2) - D
+        if spare(l, other) >= 0:
+            values["center_difference_other_method"] = center_from_length(L, o1, o2, spare(l, other)) - D
         if D - (r1 + r2) < 0:
             warnings.append("The pitch circles overlap (negative clearance): this length is too "
                             "short for these sprockets.")
@@ -247,13 +256,15 @@ def compute(v) -> Result:
     else:
         below = step * math.floor(l_exact / step)
         above = below + step
-    if below * p >= L_min:
+    if below >= 1 and spare(below) >= 0:
         values["links_below"] = below
-        values["center_below"] = center_from_length(below * p, r1, r2)
+        values["center_below"] = center_from_length(below * p, r1, r2, spare(below))
     else:
         warnings.append(f"No shorter usable length: fewer than {l_min} {unit} cannot wrap both.")
+    while spare(above) < 0:  # only when rounding put the exact count a hair under the minimum
+        above += step
     values["links_above"] = above
-    values["center_above"] = center_from_length(above * p, r1, r2)
+    values["center_above"] = center_from_length(above * p, r1, r2, spare(above))
     return Result(values, warnings)
 
 
