@@ -127,8 +127,9 @@ def length_from_center(D: float, r1: float, r2: float) -> float:
     if delta == 0:
         return 2 * D + 2 * math.pi * r_large
     X = math.sqrt(max(0.0, (D - delta) * (D + delta)))  # (111), factored: no cancellation
+    # (110)-(113) with (112) corrected: L = 2X + π(r_1 + r_2) + 2Δ·sin⁻¹(Δ/D), rewritten
+    # with sin⁻¹(Δ/D) = π/2 − tan⁻¹(X/Δ) so that it stays accurate as X → 0
     return 2 * math.pi * r_large + 2 * delta * u_minus_atan(X / delta)
-    # = 2X + π(r_1 + r_2) + 2Δ·sin⁻¹(Δ/D), eqs. (110)-(113) with (112) corrected
 
 
 def minimum_length(r1: float, r2: float) -> float:

@@ -23,8 +23,6 @@ from __future__ import annotations
 
 from ..model import Calculator, Field, Output, Result
 
-INCH = 0.0254
-
 _WHERE = ("Gears 2 and 3 mesh. Gear 1 is on the shaft of gear 2 (shaft A); gear 4 is on the shaft "
           "of gear 3 (shaft B).")
 

@@ -15,6 +15,8 @@ import math
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Result
 
+IN = 0.0254
+
 FIELDS = (
     Field("ratio", "Gear ratio", default=2.5, min=1,
           help="G = N/n (75): large gear teeth over small gear teeth (at least 1)."),
@@ -103,8 +105,8 @@ def compute(v) -> Result:
     values.update(small_pitch_diameter=n_best / p, small_outside_diameter=(n_best + 2) / p,  # (69), (70)
                   large_pitch_diameter=N_best / p, large_outside_diameter=(N_best + 2) / p)
     if abs(total - total_exact) > SNAP * total_exact:
-        warnings.append(f"Whole teeth need the center distance {total / (2 * p) / 0.0254:.4g} in "
-                        f"instead of {d / 0.0254:.4g} in (N + n = {total}).")
+        warnings.append(f"Whole teeth need the center distance {total / (2 * p) / IN:.4g} in "
+                        f"instead of {d / IN:.4g} in (N + n = {total}).")
     if below is None:
         warnings.append("No whole-tooth pair reaches down to this ratio at this center distance.")
     if n < 1:
