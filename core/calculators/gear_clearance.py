@@ -8,8 +8,9 @@ another plane) must not reach shaft B, and if gears 1 and 4 share a plane they m
 
 Corrections to the seed:
 - (71) and (72) add the *outside* radii r_o2 + r_o3 for the center distance; meshing gears sit
-  at the sum of their *pitch* radii (69), r_p2 + r_p3 = (n_2 + n_3)/(2 p_23). (73)/(74) do use
-  pitch radii for gears 2 and 3, so (71)/(72) and (73)/(74) disagree with each other.
+  at the sum of their *pitch* radii (69), r_p2 + r_p3 = (n_2 + n_3)/(2 p_23); (71)/(72) are
+  2/p_23 too large (0.1 in at 20 DP). (73)/(74) do use pitch radii for gears 2 and 3, so
+  (71)/(72) and (73)/(74) disagree with each other.
 - (73)/(74) then also use pitch radii for gears 1 and 4 (n_1/(2p_1), n_4/(2p_4)); what collides
   is the tooth tips, the outside radius (70): (n + 2)/(2p). The seed's values are 1/p_1 (and
   1/p_4) too optimistic: 0.05 in each at 20 DP. Corrected:
