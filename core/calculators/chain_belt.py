@@ -1,0 +1,281 @@
+"""Seed section 7 and Appendix E: chain/belt center-to-center distance (eqs. 65-68, 110-113).
+
+Symbols as in the seed: p pitch, n_i teeth, r_i pitch radii, l links (belt teeth), L = l·p the
+length (66), D the center distance, C = D − (r_1 + r_2) the clearance between pitch circles (67).
+Sprocket 2 is whichever is larger below (Δ = r_2 − r_1 ≥ 0); the length is symmetric anyway.
+
+Corrections to the seed (derived again; checked against mpmath in tests/test_chain_belt.py):
+- (112) claims cos⁻¹((r_2 − r_1)/D) = cos⁻¹((r_1 − r_2)/D); false, cos⁻¹(−x) = π − cos⁻¹(x).
+  The first form is right, so Appendix E's final (68) should read
+      L = 2√(D² − Δ²) + 2(r_1 − r_2)·cos⁻¹((r_2 − r_1)/D) + 2π r_2,
+  i.e. the exact open-drive length L = 2X + π(r_1 + r_2) + 2Δ·sin⁻¹(Δ/D), X = √(D² − Δ²), the
+  same as L = 2D cos β + (π/2)(D_1 + D_2) + β(D_2 − D_1) with sin β = (D_2 − D_1)/(2D).
+  The seed's form swaps the two wrap angles, giving a length short by 4Δ·sin⁻¹(Δ/D): for 20T
+  and 30T on a 100-tooth 5 mm belt it gives D = 188.005 mm instead of 187.331 mm (ReCalc).
+- Section 7's printed (68) also has 2(r_1 + r_2) for 2(r_1 − r_2) (a typo): 109.9 mm there.
+- The seed solves (68) by Newton from D = L/2. Near the shortest length that wraps both
+  (D → Δ) dL/dD = 2X/D → 0 and Newton fails. Here L is rewritten with u = X/Δ as
+      L = 2π r_2 + 2Δ·(u − tan⁻¹ u),
+  (u − tan⁻¹ u by its series for small u, no cancellation) and u is bracketed for brentq:
+  (3s)^(1/3) ≥ u ≥ s and u ≤ s + π/2 where s = (L − 2π r_2)/(2Δ). Equal sprockets (Δ = 0)
+  have the closed form D = (L − π d)/2.
+- The seed takes the pitch diameter as n·p/π (65): exact for belts, but a chain sprocket's pitch
+  circle passes through the roller centres, d = p / sin(180°/n) (slightly larger). Both are
+  offered; the forward result reports how far the other choice moves the center distance.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..errors import InputError
+from ..model import Calculator, Field, Output, Result
+
+MM = 1e-3
+IN = 0.0254
+
+STANDARDS = ("chain_25", "chain_35", "chain_40", "htd_5mm", "gt2_3mm", "rt25", "custom")
+STANDARD_LABELS = ("#25 chain (1/4 in)", "#35 chain (3/8 in)", "#40 chain (1/2 in)",
+                   "HTD 5 mm belt", "GT2 3 mm belt", "RT25 belt (1/4 in)", "Custom pitch")
+STANDARD_PITCH = {"chain_25": 0.25 * IN, "chain_35": 0.375 * IN, "chain_40": 0.5 * IN,
+                  "htd_5mm": 5 * MM, "gt2_3mm": 3 * MM, "rt25": 0.25 * IN}
+STANDARD_KIND = {"chain_25": "chain", "chain_35": "chain", "chain_40": "chain",
+                 "htd_5mm": "belt", "gt2_3mm": "belt", "rt25": "belt"}
+
+FIELDS = (
+    Field("mode", "Solve for", choices=("center_from_links", "links_from_center"),
+          choice_labels=("Center distance from length", "Length from center distance"),
+          default="center_from_links",
+          help="Forward: a chain/belt length gives the center distance. Reverse: a wanted center "
+               "distance gives the nearest usable lengths below and above it."),
+    Field("kind", "Chain or belt", choices=("chain", "belt"), default="belt",
+          help="Chains use an even number of links unless a half (offset) link is allowed; "
+               "belts may have any number of teeth."),
+    Field("pitch_standard", "Pitch standard", choices=STANDARDS, choice_labels=STANDARD_LABELS,
+          default="htd_5mm", help="A standard sets the pitch; choose Custom to type it below."),
+    Field("pitch", "Custom pitch", "length", "mm", default=5, min=0, min_exclusive=True,
+          help="Chain pitch or belt tooth pitch p, used when the standard is Custom."),
+    Field("teeth_1", "Sprocket/pulley 1 teeth", integer=True, default=20, min=3, max=10000,
+          help="Teeth n_1 on the first sprocket or pulley."),
+    Field("teeth_2", "Sprocket/pulley 2 teeth", integer=True, default=30, min=3, max=10000,
+          help="Teeth n_2 on the second sprocket or pulley."),
+    Field("links", "Links / belt teeth", integer=True, default=100, min=1,
+          modes=("center_from_links",), help="Chain links or belt teeth l; length L = l·p (66)."),
+    Field("target_center", "Wanted center distance", "length", "in", default=7.5, min=0,
+          min_exclusive=True, modes=("links_from_center",),
+          help="Center distance D you would like; the nearest usable lengths are found."),
+    Field("half_links", "Allow half links", boolean=True, default=False,
+          help="Chain only: a half (offset) link allows an odd number of links."),
+    Field("pitch_diameter", "Pitch diameter", choices=("circumference", "chordal"),
+          choice_labels=("n·p/π (seed; exact for belts)", "p/sin(180°/n) (exact chain sprocket)"),
+          default="circumference",
+          help="How the pitch diameter follows from the teeth: n·p/π as the seed (65), or the "
+               "sprocket's true pitch circle through the roller centres, p/sin(180°/n)."),
+)
+
+OUTPUTS = (
+    Output("center_distance", "Center distance", "length", "in",
+           help="Sprocket center to center distance D."),
+    Output("clearance", "Clearance between pitch circles", "length", "in",
+           help="C = D − (r_1 + r_2) (67); negative means the sprockets overlap."),
+    Output("length", "Chain/belt length", "length", "in", help="L = l·p (66)."),
+    Output("links_exact", "Exact links for that distance",
+           help="Fractional link (belt tooth) count giving exactly the wanted center distance."),
+    Output("links_below", "Shorter usable length (links)"),
+    Output("center_below", "Center distance, shorter", "length", "in"),
+    Output("links_above", "Longer usable length (links)"),
+    Output("center_above", "Center distance, longer", "length", "in"),
+    Output("pitch_diameter_1", "Pitch diameter 1", "length", "in"),
+    Output("pitch_diameter_2", "Pitch diameter 2", "length", "in"),
+    Output("wrap_angle_small", "Wrap on the smaller sprocket", "angle", "deg",
+           help="Angle of contact on the smaller sprocket: π − 2·sin⁻¹(|r_2 − r_1|/D)."),
+    Output("minimum_links", "Fewest links that wrap both",
+           help="Shortest usable count whose length reaches around both (D ≥ |r_2 − r_1|)."),
+    Output("center_difference_other_method", "Other pitch-diameter choice moves D by", "length", "mm",
+           help="Center distance with the other pitch-diameter formula minus this one."),
+)
+
+
+# --- pitch radii (65) -----------------------------------------------------------------------
+
+def pitch_radius(n: int, p: float, method: str) -> float:
+    if method == "chordal":
+        return p / (2 * math.sin(math.pi / n))  # true sprocket pitch circle
+    return n * p / (2 * math.pi)  # (65): 2π r = n p
+
+
+# --- length equation (68), exact form --------------------------------------------------------
+
+def u_minus_atan(u: float) -> float:
+    """u − tan⁻¹(u) for u ≥ 0 without cancellation: series u³/3 − u⁵/5 + ... for small u."""
+    if u > 0.25:
+        return u - math.atan(u)
+    u2, term, total, k = u * u, u * u * u, 0.0, 3
+    while True:
+        piece = term / k
+        total += piece
+        if abs(piece) <= 1e-18 * abs(total) or term == 0:
+            return total
+        term *= -u2
+        k += 2
+
+
+def length_from_center(D: float, r1: float, r2: float) -> float:
+    """Exact open-drive length L(D) (Appendix E corrected), D ≥ |r_2 − r_1|."""
+    r_small, r_large = min(r1, r2), max(r1, r2)
+    delta = r_large - r_small
+    if delta == 0:
+        return 2 * D + 2 * math.pi * r_large
+    X = math.sqrt(max(0.0, (D - delta) * (D + delta)))  # (111), factored: no cancellation
+    # (110)-(113) with (112) corrected: L = 2X + π(r_1 + r_2) + 2Δ·sin⁻¹(Δ/D), rewritten
+    # with sin⁻¹(Δ/D) = π/2 − tan⁻¹(X/Δ) so that it stays accurate as X → 0
+    return 2 * math.pi * r_large + 2 * delta * u_minus_atan(X / delta)
+
+
+def minimum_length(r1: float, r2: float) -> float:
+    """Shortest length that wraps both: D = |r_2 − r_1|, the small one inside the large one."""
+    return 2 * math.pi * max(r1, r2)
+
+
+def span_from_length(L: float, r1: float, r2: float, excess: float | None = None) -> tuple[float, float]:
+    """(D, X): center distance and straight span X = √(D² − Δ²) from L (inverse of (68)).
+
+    L must be at least minimum_length. Relative error ~1e-15 in D, and in X too (X is solved
+    for directly, so it stays accurate near the minimum where D − Δ would cancel). `excess`,
+    if known exactly, is S = (L − 2π r_large)/2 (for n·p/π diameters it is (l − n_large)·p/2).
+    """
+    r_large = max(r1, r2)
+    delta = r_large - min(r1, r2)
+    S = (L - 2 * math.pi * r_large) / 2 if excess is None else excess  # = Δ·(u − tan⁻¹ u), u = X/Δ
+    if -1e-13 * L <= S < 0:  # at the minimum, lost to rounding
+        S = 0.0
+    if S < 0:
+        raise ValueError("length shorter than the wrap minimum")
+    if delta == 0:
+        return S, S  # equal sprockets: D = X = (L − π d)/2
+    s = S / delta
+    if s == 0:
+        return delta, 0.0
+    from scipy.optimize import brentq
+
+    lo = max(s, (3 * s) ** (1 / 3)) if s < 1e100 else s  # u − tan⁻¹u ≤ min(u, u³/3)
+    hi = s + math.pi / 2  # u − tan⁻¹u ≥ u − π/2
+    lo = min(lo, hi)
+    f = lambda u: u_minus_atan(u) - s  # noqa: E731
+    if f(lo) >= 0:
+        u = lo
+    elif f(hi) <= 0:
+        u = hi
+    else:
+        u = brentq(f, lo, hi, xtol=1e-300, rtol=1e-15, maxiter=500)
+    return delta * math.hypot(1.0, u), delta * u  # D = √(X² + Δ²)
+
+
+def center_from_length(L: float, r1: float, r2: float, excess: float | None = None) -> float:
+    return span_from_length(L, r1, r2, excess)[0]
+
+
+def wrap_angle(X: float, r1: float, r2: float) -> float:
+    """Angle of contact on the smaller sprocket, π − 2·sin⁻¹(Δ/D) = 2·tan⁻¹(X/Δ) (accurate at X → 0)."""
+    return 2 * math.atan2(X, abs(r2 - r1))
+
+
+# --- the calculator --------------------------------------------------------------------------
+
+def step_of(kind: str, half_links: bool) -> int:
+    return 2 if kind == "chain" and not half_links else 1
+
+
+def compute(v) -> Result:
+    warnings: list[str] = []
+    kind, standard = v["kind"], v["pitch_standard"]
+    if standard == "custom":
+        p = v["pitch"]
+    else:
+        if STANDARD_KIND[standard] != kind:
+            label = STANDARD_LABELS[STANDARDS.index(standard)]
+            raise InputError("pitch_standard", f"{label} is a {STANDARD_KIND[standard]} pitch; "
+                                               f"choose a {kind} standard or Custom")
+        p = STANDARD_PITCH[standard]  # the custom pitch field is not used
+    n1, n2 = v["teeth_1"], v["teeth_2"]
+    method = v["pitch_diameter"]
+    other = "chordal" if method == "circumference" else "circumference"
+    if kind == "belt" and method == "chordal":
+        warnings.append("Belts: n·p/π is the exact pulley pitch diameter; p/sin(180°/n) is for "
+                        "chain sprockets.")
+    r1, r2 = pitch_radius(n1, p, method), pitch_radius(n2, p, method)
+    step = step_of(kind, v["half_links"])
+    unit = "links" if kind == "chain" else "belt teeth"
+
+    def spare(l: int, how: str = method) -> float:
+        """S = (l·p − 2π r_large)/2, the length beyond the wrap minimum, halved; exact for n·p/π
+        diameters, where 2π r = n p (65). Rounding-size negatives count as exactly zero."""
+        if how == "circumference":
+            return (l - max(n1, n2)) * p / 2
+        S = (l * p - 2 * math.pi * pitch_radius(max(n1, n2), p, how)) / 2
+        return 0.0 if -1e-13 * l * p <= S < 0 else S
+
+    l_min = max(step, step * (math.ceil(minimum_length(r1, r2) / p / step) - 1))
+    while spare(l_min) < 0:
+        l_min += step
+    values = {"pitch_diameter_1": 2 * r1, "pitch_diameter_2": 2 * r2, "minimum_links": l_min}
+
+    if v["mode"] == "center_from_links":
+        l = v["links"]
+        L = l * p  # (66)
+        if spare(l) < 0:
+            raise InputError("links", f"{l} {unit} are too short to wrap both sprockets: "
+                                      f"at least {l_min} are needed")
+        if kind == "chain" and l % 2 and not v["half_links"]:
+            warnings.append("An odd number of links needs a half (offset) link: allow half links "
+                            "or use an even count.")
+        D, X = span_from_length(L, r1, r2, spare(l))
+        values.update(center_distance=D, length=L, clearance=D - (r1 + r2))  # (67)
+        values["wrap_angle_small"] = wrap_angle(X, r1, r2)
+        o1, o2 = pitch_radius(n1, p, other), pitch_radius(n2, p, other)
+        if spare(l, other) >= 0:
+            values["center_difference_other_method"] = center_from_length(L, o1, o2, spare(l, other)) - D
+        if D - (r1 + r2) < 0:
+            warnings.append("The pitch circles overlap (negative clearance): this length is too "
+                            "short for these sprockets.")
+        return Result(values, warnings)
+
+    # links_from_center: the reverse calculation
+    D = v["target_center"]
+    delta = abs(r2 - r1)
+    if D < delta:
+        raise InputError("target_center", "shorter than the difference of the pitch radii "
+                                          f"({delta / IN:.4g} in): no chain path wraps both")
+    L = length_from_center(D, r1, r2)
+    l_exact = L / p
+    values["links_exact"] = l_exact
+    if D - (r1 + r2) < 0:
+        warnings.append("The pitch circles overlap at this center distance (negative clearance).")
+    nearest = step * round(l_exact / step)
+    if abs(nearest - l_exact) <= 1e-9 * l_exact:
+        below = above = nearest
+    else:
+        below = step * math.floor(l_exact / step)
+        above = below + step
+    if below >= 1 and spare(below) >= 0:
+        values["links_below"] = below
+        values["center_below"] = center_from_length(below * p, r1, r2, spare(below))
+    else:
+        warnings.append(f"No shorter usable length: fewer than {l_min} {unit} cannot wrap both.")
+    while spare(above) < 0:  # only when rounding put the exact count a hair under the minimum
+        above += step
+    values["links_above"] = above
+    values["center_above"] = center_from_length(above * p, r1, r2, spare(above))
+    return Result(values, warnings)
+
+
+CALCULATOR = Calculator(
+    id="chain_belt",
+    title="Chain/belt C-C",
+    summary="Center distance from a chain or belt length, or the nearest lengths for a wanted "
+            "center distance (seed section 7, Appendix E).",
+    fields=FIELDS,
+    outputs=OUTPUTS,
+    compute=compute,
+    section="7",
+)

@@ -1,0 +1,197 @@
+"""Chain/belt C-C calculator (seed section 7, Appendix E): hand values, the ReCalc cross-check,
+the corrected length equation against an independent form, and links → center → links."""
+
+import math
+
+import mpmath as mp
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from core import presets
+from core.calculators import chain_belt as cb
+from core.errors import InputError
+from core.model import solve
+
+IN = 0.0254
+MM = 1e-3
+
+
+def out(**raw):
+    return {k: v.value for k, v in solve("chain_belt", raw).outputs.items()}
+
+
+def belt_length_beta_form(C, D1, D2):
+    """The open-drive length as the issue writes it (independent of the code's u-form):
+    L = 2C cos β + (π/2)(D1 + D2) + β(D2 − D1), sin β = (D2 − D1)/(2C)."""
+    beta = mp.asin((D2 - D1) / (2 * C))
+    return 2 * C * mp.cos(beta) + mp.pi / 2 * (D1 + D2) + beta * (D2 - D1)
+
+
+def mp_center(L, D1, D2):
+    """mpmath reference: solve the β-form for C by bisection-safe findroot (anderson)."""
+    lo = (max(D1, D2) - min(D1, D2)) / 2
+    return mp.findroot(lambda C: belt_length_beta_form(C, D1, D2) - L, (lo + mp.mpf("1e-30"), L / 2),
+                       solver="anderson")
+
+
+def test_recalc_belt_cross_check():
+    # ReCalc: 20T and 30T, 5 mm pitch, 100-tooth belt -> 187.331 mm
+    o = out(kind="belt", pitch_standard="htd_5mm", teeth_1=20, teeth_2=30, links=100)
+    assert o["center_distance"] / MM == pytest.approx(187.331, abs=5e-4)
+    mp.mp.dps = 40
+    ref = mp_center(mp.mpf(500), mp.mpf(100) / mp.pi, mp.mpf(150) / mp.pi)  # D_i = n p / π in mm
+    assert o["center_distance"] / MM == pytest.approx(float(ref), rel=1e-13)
+    assert o["length"] == pytest.approx(0.5, rel=1e-15)  # (66) L = l p = 100 * 5 mm
+
+
+def test_seed_appendix_form_is_off_by_four_delta_asin():
+    # The seed's final (68) uses acos((r1 - r2)/D); with r1 < r2 that is π/2 + asin(Δ/D), the
+    # wrap angles swapped: L_seed = L_exact - 4Δ asin(Δ/D). At the ReCalc case it gives 188.005 mm.
+    r1, r2 = 50 / math.pi, 75 / math.pi  # mm
+    D = 187.3309535438752
+    seed = 2 * math.sqrt(D**2 - (r1 - r2) ** 2) + 2 * (r1 - r2) * math.acos((r1 - r2) / D) + 2 * math.pi * r2
+    exact = cb.length_from_center(D, r1, r2)
+    delta = r2 - r1
+    assert exact == pytest.approx(500, rel=1e-14)
+    assert exact - seed == pytest.approx(4 * delta * math.asin(delta / D), rel=1e-12)
+
+
+def test_equal_sprockets_closed_form():
+    # 16T/16T #25 chain, 60 links: D = (L - π d)/2 = (60·0.25 - π·(16·0.25/π))/2 = (15 - 4)/2 = 5.5 in
+    o = out(kind="chain", pitch_standard="chain_25", teeth_1=16, teeth_2=16, links=60)
+    assert o["center_distance"] / IN == pytest.approx(5.5, rel=1e-14)
+    assert o["clearance"] / IN == pytest.approx(5.5 - 4 / math.pi, rel=1e-14)  # (67): D - 2r, r = 2/π in
+    assert o["wrap_angle_small"] == pytest.approx(math.pi, rel=1e-15)
+
+
+def test_shortest_belt_that_wraps_both():
+    # 20T/30T HTD 5 mm: L_min = 2π r2 = 30 teeth * 5 mm; there D = Δ = (30 - 20)·5 mm/(2π).
+    o = out(teeth_1=20, teeth_2=30, links=30)
+    assert o["center_distance"] == pytest.approx(10 * 5 * MM / (2 * math.pi), rel=1e-14)
+    assert o["minimum_links"] == 30
+    assert o["wrap_angle_small"] == pytest.approx(0, abs=1e-7)
+    with pytest.raises(InputError) as e:
+        solve("chain_belt", {"teeth_1": 20, "teeth_2": 30, "links": 29})
+    assert e.value.field == "links" and "too short" in e.value.message and "30" in e.value.message
+
+
+def test_overlapping_sprockets_warn():
+    sol = solve("chain_belt", {"teeth_1": 20, "teeth_2": 30, "links": 40})
+    assert sol.outputs["clearance"].value < 0
+    assert any("overlap" in w for w in sol.warnings)
+
+
+def test_chordal_pitch_diameter_option():
+    # #25 chain 16T: exact p/sin(180°/16) = 0.25/0.19509032 = 1.281457 in; seed 16·0.25/π = 1.273240 in
+    o = out(kind="chain", pitch_standard="chain_25", teeth_1=16, teeth_2=32, links=80, pitch_diameter="chordal")
+    assert o["pitch_diameter_1"] / IN == pytest.approx(1.281457, abs=2e-6)
+    s = out(kind="chain", pitch_standard="chain_25", teeth_1=16, teeth_2=32, links=80)
+    assert s["pitch_diameter_1"] / IN == pytest.approx(4 / math.pi, rel=1e-15)
+    # the reported difference is exactly the other method's center distance minus this one
+    assert s["center_difference_other_method"] == pytest.approx(o["center_distance"] - s["center_distance"], rel=1e-9)
+    assert o["center_difference_other_method"] == pytest.approx(-s["center_difference_other_method"], rel=1e-9)
+    assert s["center_difference_other_method"] < 0  # larger sprockets take up more chain
+
+
+def test_reverse_even_links_for_chain_and_half_links():
+    # #25, 12T/36T, wanted 6 in: exact count from the β-form in mpmath
+    mp.mp.dps = 30
+    D1, D2 = 12 * mp.mpf("0.25") / mp.pi, 36 * mp.mpf("0.25") / mp.pi
+    exact_links = belt_length_beta_form(mp.mpf(6), D1, D2) / mp.mpf("0.25")  # 72.609...
+    o = out(kind="chain", pitch_standard="chain_25", teeth_1=12, teeth_2=36, mode="links_from_center",
+            target_center="6 in")
+    assert o["links_exact"] == pytest.approx(float(exact_links), rel=1e-13)
+    assert (o["links_below"], o["links_above"]) == (72, 74)
+    assert o["center_below"] / IN < 6 < o["center_above"] / IN
+    h = out(kind="chain", pitch_standard="chain_25", teeth_1=12, teeth_2=36, mode="links_from_center",
+            target_center="6 in", half_links=True)
+    assert (h["links_below"], h["links_above"]) == (72, 73)
+    b = out(kind="belt", pitch_standard="rt25", teeth_1=12, teeth_2=36, mode="links_from_center",
+            target_center="6 in")
+    assert (b["links_below"], b["links_above"]) == (72, 73)
+
+
+def test_odd_chain_links_warn():
+    sol = solve("chain_belt", {"kind": "chain", "pitch_standard": "chain_35", "links": 71})
+    assert any("half" in w for w in sol.warnings)
+
+
+def test_standard_of_the_other_kind_is_an_input_error():
+    with pytest.raises(InputError) as e:
+        solve("chain_belt", {"kind": "belt", "pitch_standard": "chain_25"})
+    assert e.value.field == "pitch_standard" and "chain" in e.value.message
+
+
+def test_custom_pitch_is_used_only_for_custom():
+    a = out(pitch_standard="custom", pitch="8 mm", teeth_1=20, teeth_2=20, links=50)
+    # equal pulleys: D = (L - π d)/2 = (400 mm - 160 mm)/2 = 120 mm
+    assert a["center_distance"] / MM == pytest.approx(120, rel=1e-14)
+    b = out(pitch_standard="gt2_3mm", pitch="8 mm", teeth_1=20, teeth_2=20, links=50)
+    assert b["center_distance"] / MM == pytest.approx((150 - 60) / 2, rel=1e-14)
+
+
+def test_target_inside_radius_difference_is_an_input_error():
+    with pytest.raises(InputError) as e:
+        solve("chain_belt", {"mode": "links_from_center", "teeth_1": 10, "teeth_2": 60, "target_center": "1 mm"})
+    assert e.value.field == "target_center"
+
+
+@settings(max_examples=200, deadline=None)
+@given(n1=st.integers(3, 120), n2=st.integers(3, 120), extra=st.integers(1, 400),
+       p=st.floats(1e-3, 0.03), chordal=st.booleans())
+def test_links_to_center_to_links(n1, n2, extra, p, chordal):
+    method = "chordal" if chordal else "circumference"
+    r1, r2 = cb.pitch_radius(n1, p, method), cb.pitch_radius(n2, p, method)
+    links = math.ceil(cb.minimum_length(r1, r2) / p) + extra
+    raw = dict(pitch_standard="custom", pitch=f"{p} m", teeth_1=n1, teeth_2=n2, pitch_diameter=method)
+    D = out(**raw, links=links)["center_distance"]
+    assert cb.length_from_center(D, r1, r2) == pytest.approx(links * p, rel=1e-12)
+    back = out(**raw, mode="links_from_center", target_center=f"{D!r} m")
+    assert back["links_exact"] == pytest.approx(links, rel=1e-12)
+    assert back["links_below"] == back["links_above"] == links
+    assert back["center_below"] == pytest.approx(D, rel=1e-12)
+
+
+@settings(max_examples=200, deadline=None)
+@given(r1=st.floats(1e-4, 1.0), r2=st.floats(1e-4, 1.0), s=st.floats(0, 1e6))
+def test_center_from_length_inverts_length(r1, r2, s):
+    L = cb.minimum_length(r1, r2) * (1 + s)
+    D = cb.center_from_length(L, r1, r2)
+    assert cb.length_from_center(D, r1, r2) == pytest.approx(L, rel=1e-12)
+
+
+def test_presets_load_and_solve():
+    found = [p for p in presets.listing("chain_belt") if p.builtin]
+    assert len(found) >= 2
+    for p in found:
+        sol = solve("chain_belt", p.inputs)
+        assert sol.outputs
+
+
+def test_minimum_links_chordal_chain():
+    # #25 chain 12T/36T, p/sin(180°/n): L_min = 2π r_2 = π p / sin(5°) = 36.0458 p -> 37 links,
+    # even for chain -> 38 (with half links 37)
+    o = out(kind="chain", pitch_standard="chain_25", teeth_1=12, teeth_2=36, links=38, pitch_diameter="chordal")
+    assert math.pi / math.sin(math.radians(5)) == pytest.approx(36.0458, abs=1e-4)
+    assert o["minimum_links"] == 38
+    h = out(kind="chain", pitch_standard="chain_25", teeth_1=12, teeth_2=36, links=38, pitch_diameter="chordal",
+            half_links=True)
+    assert h["minimum_links"] == 37
+    with pytest.raises(InputError):
+        solve("chain_belt", {"kind": "chain", "pitch_standard": "chain_25", "teeth_1": 12, "teeth_2": 36,
+                             "links": 36, "pitch_diameter": "chordal"})
+
+
+@pytest.mark.parametrize("method", ["circumference", "chordal"])
+@pytest.mark.parametrize("factor", [1.0, 1 + 1e-15, 1 + 1e-9])
+def test_reverse_at_the_wrap_minimum(method, factor):
+    # D = Δ (the small sprocket inside the large one): the length is the minimum, 2π r_2
+    p = 0.375 * IN
+    r1, r2 = cb.pitch_radius(15, p, method), cb.pitch_radius(40, p, method)
+    sol = solve("chain_belt", {"kind": "chain", "pitch_standard": "chain_35", "teeth_1": 15, "teeth_2": 40,
+                               "pitch_diameter": method, "mode": "links_from_center",
+                               "target_center": f"{(r2 - r1) * factor!r} m"})
+    o = {k: v.value for k, v in sol.outputs.items()}
+    assert o["links_exact"] == pytest.approx(cb.minimum_length(r1, r2) / p, rel=1e-6)
+    assert o["links_above"] == o["minimum_links"] and o["links_above"] % 2 == 0
+    assert o["center_above"] >= r2 - r1
