@@ -247,7 +247,7 @@ def release_gauge(beta: float):
     return gauge
 
 
-T_SWING = 60.0  # s: no counterweight swing lasts longer; bounds the work of a stalled scene
+T_SWING = 1000.0  # s: bounds the work of a stalled scene (a near-balanced arm may take minutes)
 
 
 @dataclass
