@@ -259,7 +259,7 @@ def test_optimise_evaluates_over_a_thousand_throws_and_beats_the_defaults():
     p = seed_machine(l=out["best_sling_length"].value)
     released, (x, z, vx, vy) = tb.batch_swing(p, [p.l], [out["best_release_angle"].value], True)
     batch = tb.batch_ranges(released, x, z, vx, vy, 9.81, 0.0)[0, 0]
-    assert batch == pytest.approx(best, rel=1e-3)
+    assert batch == pytest.approx(best, rel=2e-3)  # RK4 at τ/400 and a linearly located release
     # no accurate throw on a few other candidates goes further
     for beta, l in ((30, 8), (40, 10), (35, 6), (45, 5)):
         other = solve("trebuchet", {"release_angle": beta, "sling_length": l}).outputs["range"].value
@@ -296,3 +296,29 @@ def test_presets_load_and_solve():
     v = parse_inputs(get("trebuchet"), seed.inputs)[0]
     assert (v["counterweight_mass"], v["arm_length"], v["short_arm_fraction"], v["pivot_height"]) == (500, 15, 0.25, 4)
     assert names
+
+
+def test_touchdown_stops_the_fall_and_loses_the_plastic_impact_energy():
+    """A plastic landing: the projectile's vertical speed becomes 0 and the kinetic energy lost is
+    ½·(J·q̇)²/(J·M⁻¹·Jᵀ) (the effective mass seen by the ground), M and J from the sympy Lagrangian."""
+    Mf, rf, Jf, Jdf = sympy_equations()
+    rnd = random.Random(7)
+    for pend in (False, True):
+        p = seed_machine(rigid=not pend, d=1.3 if pend else 0.0)
+        for _ in range(3):
+            q = [rnd.uniform(-1, 1) for _ in range(6)]  # φ, θ, ψ, φ̇, θ̇, ψ̇
+            if not pend:
+                q[2] = q[5] = 0.0
+            y = [q[0], q[3], q[0] + q[1], q[3] + q[4]] + ([q[2], q[5]] if pend else [])
+            after = tb.touchdown(p, y)
+            assert tb.projectile(p, after)[3] == pytest.approx(0, abs=1e-12)
+            args = (p.M, p.k, p.m, p.L, p.a, p.h, p.m_p, p.l, p.g, p.d, *q)
+            Mn = np.array(Mf(*args), float)
+            J = np.array(Jf(*args), float).ravel()
+            idx = [0, 1, 2] if pend else [0, 1]
+            Mn, J = Mn[np.ix_(idx, idx)], J[idx]
+            if not pend:  # the rigid counterweight turns with the arm: its k enters M11
+                Mn[0, 0] += p.M * p.k**2
+            vy = tb.projectile(p, y)[3]
+            loss = 0.5 * vy**2 / float(J @ np.linalg.solve(Mn, J))
+            assert tb.energy(p, y)[0] - tb.energy(p, after)[0] == pytest.approx(loss, rel=1e-9)

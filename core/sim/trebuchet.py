@@ -247,6 +247,7 @@ def release_gauge(beta: float):
     return gauge
 
 
+SUBSTEPS = (0.25, 0.5, 0.75)  # dense-output points drawn inside each step (plots, lowest heights)
 T_SWING = 1000.0  # s: bounds the work of a stalled scene (a near-balanced arm may take minutes)
 
 
@@ -270,6 +271,7 @@ class Swing:
     min_counterweight_height: float
     nfev: int
     liftoff: float | None = None  # time the sling lifts the projectile off the ground
+    touchdowns: int = 0  # times it fell back onto the ground afterwards (ground_contact)
 
 
 def initial_state(p: Machine) -> list:
@@ -283,8 +285,38 @@ def initial_state(p: Machine) -> list:
     return y
 
 
+MAX_TOUCHDOWNS = 20
+
+
+def touchdown(p: Machine, y: list) -> list:
+    """State after the projectile lands on the ground (plastic: its vertical speed goes to zero).
+
+    The ground's impulse Λ acts along Jᵀ: q̇⁺ = q̇⁻ − M⁻¹·Jᵀ·(J·q̇⁻)/(J·M⁻¹·Jᵀ), so that J·q̇⁺ = 0
+    (the impulsive form of the contact constraint; it only removes energy).
+    """
+    phi, w, gam, gd, psi, pd = unpack(p, y)
+    R, l = p.R, p.l
+    A = p.m_p * R * l
+    m12, m22 = A * math.cos(gam - phi), p.m_p * l * l
+    den = p.I_phi + p.m_p * R * R - m12 * m12 / m22
+    J1, J2 = R * math.cos(phi), l * math.cos(gam)
+    m13 = m33 = 1.0
+    if p.pendulum:
+        m13, m33 = -p.M * p.r * p.d * math.sin(psi - phi), p.M * (p.d**2 + p.k**2)
+        den -= m13 * m13 / m33
+    y1 = (J1 - m12 * J2 / m22) / den
+    y2 = (J2 - m12 * y1) / m22
+    y3 = -m13 * y1 / m33 if p.pendulum else 0.0
+    Jy = J1 * y1 + J2 * y2
+    lam = (J1 * w + J2 * gd) / Jy if Jy > 0 else 0.0
+    out = [phi, w - lam * y1, gam, gd - lam * y2]
+    if p.pendulum:
+        out += [psi, pd - lam * y3]
+    return out
+
+
 def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
-    from .integrate import Event, integrate
+    from .integrate import Event, Run, _interp, integrate
 
     atol = rtol
     sin, cos = math.sin, math.cos
@@ -299,9 +331,19 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
     min_T = math.inf
     nfev = 0
 
-    def record(machine, run_t, run_y, in_flight_phase, contact_now):
+    def record(machine, run, skip_first, in_flight_phase, contact_now):
+        """Plot points (steps and 3 dense-output points inside each), energy and tension at steps."""
         nonlocal min_T
-        for t, s in zip(run_t, run_y):
+        end = run.t[-1]
+        pts = []
+        for i, (t0, hs, rc) in enumerate(run.dense):
+            if not (i == 0 and skip_first):
+                pts.append((t0, run.y[i], True))
+            for frac in SUBSTEPS:
+                if (t0 + frac * hs - end) * hs < 0:
+                    pts.append((t0 + frac * hs, _interp(rc, frac), False))
+        pts.append((end, run.y[-1], True))
+        for t, s, at_step in pts:
             ph, w, gam, *_ = unpack(machine, s)
             t_.append(t)
             phi_.append(ph)
@@ -311,14 +353,15 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
                 x, z, _, _ = projectile(machine, s)
                 xs.append(x)
                 zs.append(z)
-                T, V = energy(machine, s)
-                E_.append((T, T + V))
-                if machine.sling:
-                    min_T = min(min_T, sling_tension(machine, s, contact_now))
+                if at_step:
+                    T, V = energy(machine, s)
+                    E_.append((T, T + V))
+                    if machine.sling:
+                        min_T = min(min_T, sling_tension(machine, s, contact_now))
 
     cw0 = counterweight_height(p, y)
     if wd0 <= 0:  # the counterweight cannot lift the arm off the ground
-        record(p, [0.0], [y], True, contact)
+        record(p, Run([0.0], [y], 0, 0, 0), False, True, contact)
         return Swing(False, "stuck", t_, phi_, w_, th_, (xs, zs), None, 0.0, 0.0, None,
                      min_T, zs[0], cw0, 0)
     gauge = release_gauge(beta)
@@ -332,6 +375,9 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
               Event("arm_ground", lambda t, s: p.h + p.R * sin(s[0]), -1),
               Event("vertical", lambda t, s: s[0] - math.pi / 2, +1, terminal=False)]
     lift = Event("liftoff", lambda t, s: accelerations(p, *unpack(p, s), True, sin, cos)[3], -1)
+    touch = Event("touchdown", lambda t, s: p.h + p.R * sin(s[0]) + p.l * sin(s[2]), -1)
+    touchdowns = 0
+    lost = 0.0  # energy taken by plastic touchdowns (the ground stops the projectile's fall)
     t = 0.0
     vertical = None
     liftoff = None
@@ -339,10 +385,12 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
     cw_min = cw0
     first = True
     while True:
-        evs = events + ([lift] if contact else [])
-        run = integrate(rhs_for(p, contact), t, T_SWING, y, rtol=rtol, atol=atol, events=evs)
+        evs = events + ([lift] if contact else [touch] if ground_contact and p.sling else [])
+        run = integrate(rhs_for(p, contact), t, T_SWING, y, rtol=rtol, atol=atol, events=evs, dense=True)
         nfev += run.nfev
-        record(p, run.t if first else run.t[1:], run.y if first else run.y[1:], True, contact)
+        n_E = len(E_)
+        record(p, run, not first, True, contact)
+        E_[n_E:] = [(T, E + lost) for T, E in E_[n_E:]]
         first = False
         cw_min = min(cw_min, min(counterweight_height(p, s) for s in run.y))
         for name, tc, yc in run.crossings:
@@ -352,6 +400,16 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
         if run.event == "liftoff":
             contact = False
             liftoff = t
+            continue
+        if run.event == "touchdown":
+            if touchdowns == MAX_TOUCHDOWNS:
+                ending = "bouncing"
+                break
+            touchdowns += 1
+            T_before = energy(p, y)[0]
+            y = touchdown(p, y)
+            lost += T_before - energy(p, y)[0]
+            contact = accelerations(p, *unpack(p, y), True, sin, cos)[3] > 0
             continue
         if run.event == "release":
             _, _, vx, vy = projectile(p, y)
@@ -372,16 +430,16 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
         T0 = energy(q, yq)[0]
         ev = [Event("vertical", lambda t, s: s[0] - math.pi / 2, +1),
               Event("stopped", lambda t, s: s[1], -1)]
-        run = integrate(rhs_for(q, False), t, T_SWING, yq, rtol=rtol, atol=atol, events=ev)
+        run = integrate(rhs_for(q, False), t, T_SWING, yq, rtol=rtol, atol=atol, events=ev, dense=True)
         nfev += run.nfev
-        record(q, run.t[1:], run.y[1:], False, False)
+        record(q, run, True, False, False)
         cw_min = min(cw_min, min(counterweight_height(q, s) for s in run.y))
         if run.event == "vertical":
             vertical = (run.t[-1], run.y[-1][1])
         if T0 > 0:
             drift = max(drift, max(abs(sum(energy(q, s)) - E0) for s in run.y) / max(T0, KE_max))
     return Swing(released, ending, t_, phi_, w_, th_, (xs, zs), release, cw_drop, drift, vertical,
-                 min_T, min(zs), cw_min, nfev, liftoff)
+                 min_T, min(zs), cw_min, nfev, liftoff, touchdowns)
 
 
 # ---- many throws at once (numpy): the optimiser's batch ------------------------------------------
