@@ -75,10 +75,10 @@ FIELDS = (
                "(the seed's hinged case); > 0: a pendulum."),
     Field("release_angle", "Release angle", "angle", "deg", default=45, min=0, max=89 * DEG,
           help="Release when the projectile's velocity points this far above the horizontal, toward the throw."),
-    Field("projectile_diameter", "Projectile diameter", "length", "m", default=0.2, min=1e-3, max=100,
+    Field("projectile_diameter", "Projectile diameter", "length", "m", default=0.2, min=1e-3, max=5,
           help="air_drag: diameter for the drag area."),
-    Field("drag_coefficient", "Drag coefficient", default=0.47, min=0, max=10, help="air_drag: C_d (sphere 0.47)."),
-    Field("air_density", "Air density", "density", "kg/m**3", default=1.225, min=0, max=100,
+    Field("drag_coefficient", "Drag coefficient", default=0.47, min=0, max=2, help="air_drag: C_d (sphere 0.47)."),
+    Field("air_density", "Air density", "density", "kg/m**3", default=1.225, min=0, max=20,
           help="air_drag: density of air."),
     Field("sling_min", "Optimise: shortest sling", "length", "m", default=1, min=1e-2, max=1e3,
           help="optimise: the sling lengths searched start here."),
@@ -153,8 +153,15 @@ def fly(v, g: float, z0: float, speed: float, angle: float, rtol: float):
         return X, apex, xs, zs, 0
     air = flight.air(v["effects"], v["projectile_mass"], v["projectile_diameter"], v["drag_coefficient"], 0.0,
                      v["air_density"], 0.0, g)
-    f = flight.fly(air, z0, angle, speed, 2 * X + 1.0, rtol)
+    try:
+        f = flight.fly(air, z0, angle, speed, 2 * X + 1.0, rtol)
+    except RuntimeError as exc:
+        raise InputError("projectile_diameter", f"the flight could not be integrated ({exc}): drag far too "
+                                                "large for the projectile's mass") from None
     xs, zs = sample(*f.path)
+    if f.t >= flight.T_MAX * (1 - 1e-9):
+        raise InputError("projectile_diameter", f"the projectile is still in the air after {flight.T_MAX:.0f} s "
+                                                "(drag far too large for its mass)")
     return f.x_end, f.apex, xs, zs, f.nfev
 
 
@@ -169,7 +176,9 @@ def simulate(v, rtol: float) -> SimRun:
                          f"the swing could not be integrated ({exc}); the machine's proportions are too extreme") from None
     warnings: list[str] = []
     values: dict = {"energy_drift": s.drift}
-    key: dict = {}
+    # the results whose error is estimated; all present in every run (0 when absent), so a run at
+    # a tighter tolerance that ends differently (e.g. no release) shows as a large error estimate
+    key = dict.fromkeys(("release_time", "release_speed", "range", "time_to_vertical", "arm_speed_at_vertical"), 0.0)
     series = {"φ arm": sample(s.t, s.phi), "ω arm": sample(s.t, s.omega)}
     if p.sling:
         n = len(s.theta)
