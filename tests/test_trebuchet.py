@@ -204,6 +204,9 @@ def test_ground_contact_holds_the_projectile_on_the_ground_until_liftoff():
     s = tb.swing(p, 45 * DEG, True, 1e-10)
     assert s.min_projectile_height > -1e-8
     assert 0 < s.liftoff < s.release[0]
+    on_ground = [z for t, z in zip(s.t, s.path[1]) if t <= s.liftoff]
+    assert len(on_ground) > 10 and max(abs(z) for z in on_ground) < 1e-8
+    assert max(s.path[1]) > 10
     # at lift-off the ground's push is zero (the event), and just after the sling carries it
     free = tb.swing(p, 45 * DEG, False, 1e-10)
     assert free.min_projectile_height < -0.5  # without ground contact it sinks

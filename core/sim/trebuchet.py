@@ -316,6 +316,22 @@ def touchdown(p: Machine, y: list) -> list:
     return out
 
 
+def onto_ground(p: Machine, y: list) -> list:
+    """The state moved onto the ground constraint: y_P = 0 (by γ) and no vertical speed (by γ̇).
+
+    The contact phase integrates the constraint's second derivative, so y_P and ẏ_P drift by the
+    solver's tolerance; at lift-off they are set back exactly (a change of the order of that drift).
+    """
+    phi, w, gam, gd = y[0], y[1], y[2], y[3]
+    c = -(p.h + p.R * math.sin(phi)) / p.l
+    if abs(c) > 1 or abs(math.cos(gam)) < 1e-9:
+        return y
+    gam_new = math.pi - math.asin(c) if math.cos(gam) < 0 else math.asin(c)  # keep the branch...
+    gam_new += 2 * math.pi * round((gam - gam_new) / (2 * math.pi))  # ...and the turn
+    gd_new = -p.R * w * math.cos(phi) / (p.l * math.cos(gam_new))  # ẏ_P = R·ω·cos φ + l·γ̇·cos γ = 0
+    return [phi, w, gam_new, gd_new] + list(y[4:])
+
+
 def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
     from .integrate import Event, Run, _interp, integrate
 
@@ -330,11 +346,12 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
         wd0 = accelerations(p, *unpack(p, y), False, sin, cos)[0]
     t_, phi_, w_, th_, xs, zs, E_ = [], [], [], [], [], [], []
     min_T = math.inf
+    min_z = math.inf
     nfev = 0
 
     def record(machine, run, skip_first, in_flight_phase, contact_now):
         """Plot points (steps and 3 dense-output points inside each), energy and tension at steps."""
-        nonlocal min_T
+        nonlocal min_T, min_z
         end = run.t[-1]
         pts = []
         for i, (t0, hs, rc) in enumerate(run.dense):
@@ -354,6 +371,8 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
                 x, z, _, _ = projectile(machine, s)
                 xs.append(x)
                 zs.append(z)
+                if not contact_now:  # on the ground the constraint holds it (to the solver's drift)
+                    min_z = min(min_z, z)
                 if at_step:
                     T, V = energy(machine, s)
                     E_.append((T, T + V))
@@ -364,7 +383,7 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
     if wd0 <= 0:  # the counterweight cannot lift the arm off the ground
         record(p, Run([0.0], [y], 0, 0, 0), False, True, contact)
         return Swing(False, "stuck", t_, phi_, w_, th_, (xs, zs), None, 0.0, 0.0, None,
-                     min_T, zs[0], cw0, 0)
+                     min_T, 0.0, cw0, 0)
     gauge = release_gauge(beta)
 
     def release_g(t, s):
@@ -402,6 +421,7 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
         if run.event == "liftoff":
             contact = False
             liftoff = t
+            y = onto_ground(p, y)  # remove the constraint's drift, so the touchdown gauge starts at 0
             continue
         if run.event == "touchdown":
             if touchdowns == MAX_TOUCHDOWNS:
@@ -442,7 +462,7 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
         if T0 > 0:
             drift = max(drift, max(abs(sum(energy(q, s)) - E0) for s in run.y) / max(T0, KE_max))
     return Swing(released, ending, t_, phi_, w_, th_, (xs, zs), release, cw_drop, drift, vertical,
-                 min_T, min(zs), cw_min, nfev, liftoff, touchdowns)
+                 min_T, min(min_z, 0.0), cw_min, nfev, liftoff, touchdowns)
 
 
 # ---- many throws at once (numpy): the optimiser's batch ------------------------------------------
