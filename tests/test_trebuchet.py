@@ -325,3 +325,25 @@ def test_touchdown_stops_the_fall_and_loses_the_plastic_impact_energy():
             vy = tb.projectile(p, y)[3]
             loss = 0.5 * vy**2 / float(J @ np.linalg.solve(Mn, J))
             assert tb.energy(p, y)[0] - tb.energy(p, after)[0] == pytest.approx(loss, rel=1e-9)
+
+
+async def test_accuracy_view_of_the_seed_scene():
+    """ctrl+r on the trebuchet tab: every accuracy level, errors falling with the tolerance."""
+    from textual.widgets import DataTable
+
+    from core.sim.scene import LEVELS
+    from tui.app import GearheadApp
+
+    app = GearheadApp(blink=False, initial="trebuchet", hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        for _ in range(2):
+            await pilot.pause()
+            await app.workers.wait_for_complete()
+        await pilot.press("ctrl+r")
+        for _ in range(2):
+            await pilot.pause()
+            await app.workers.wait_for_complete()
+        table = app.screen.query_one("#ladder", DataTable)
+        assert table.row_count == len(LEVELS)
+        errors = [float(table.get_row(level)[2]) for level in LEVELS]
+        assert errors[-1] < 1e-9 < errors[0]

@@ -338,7 +338,6 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
     atol = rtol
     sin, cos = math.sin, math.cos
     y = initial_state(p)
-    phi0 = y[0]
     contact = p.sling and ground_contact
     wd0, _, _, lam0 = accelerations(p, *unpack(p, y), contact, sin, cos)
     if contact and lam0 <= 0:
