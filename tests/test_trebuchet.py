@@ -269,6 +269,20 @@ def test_optimise_evaluates_over_a_thousand_throws_and_beats_the_defaults():
         assert other <= best * 1.001
 
 
+@pytest.mark.parametrize("kw", [dict(rigid=False, d=0.2), dict(rigid=False), dict(l=2.0)])
+@pytest.mark.parametrize("contact", [False, True])
+def test_batch_throws_agree_with_the_accurate_scene(kw, contact):
+    p = seed_machine(**kw)
+    betas = [20 * DEG, 45 * DEG, 70 * DEG]
+    released, (x, z, vx, vy) = tb.batch_swing(p, [p.l], betas, contact)
+    batch = tb.batch_ranges(released, x, z, vx, vy, 9.81, 0.0)[0]
+    for beta, r in zip(betas, batch):
+        s = tb.swing(p, beta, contact, 1e-10)
+        t, xr, zr, vxr, vyr = s.release
+        X = calc.vacuum_flight(9.81, zr, math.hypot(vxr, vyr), math.atan2(vyr, -vxr))[0]
+        assert r == pytest.approx(-xr + X, rel=2e-3)
+
+
 # --- warnings and errors --------------------------------------------------------------------------
 
 def test_too_light_counterweight_never_releases():

@@ -476,7 +476,9 @@ def batch_swing(p: Machine, lengths, betas, ground_contact: bool):
 
     The swing does not depend on the release angle, so each length is integrated once (all
     lengths together, as numpy arrays) and every angle's release is caught on the way: the same
-    gauge as the accurate run, its zero located by linear interpolation within the step.
+    gauge as the accurate run, its zero located by linear interpolation within the step. Lift-off
+    is caught at step ends and a fall back onto the ground is not modelled here: the batch only
+    ranks candidates, and the winner is re-run with the accurate scene.
     Returns arrays (N_l, N_b): released, x, z, vx, vy at release.
     """
     import numpy as np
