@@ -1,0 +1,303 @@
+"""Seed 001 (kastmaskin): a counterweight trebuchet as a scene with effects.
+
+The machine (seed's nominal values): counterweight M with radius of gyration k on the short arm
+aL, arm of mass m and length L turning about a pivot at height h, projectile m_p on a sling of
+length l at the long end C. Starts at rest with C on the ground (seed 1.3). Equations of motion:
+core/sim/trebuchet.py (Lagrange, checked against sympy in the tests).
+
+Scenes from the effects:
+- none: the arm alone, one degree of freedom; the projectile rides in a cup at C and the
+  counterweight is rigid (inertia M·k² about its centre, seed 1.2 "stel");
+- `hinged_counterweight`: hanger length 0 is the seed's hinged counterweight (k drops out of
+  I_tot, seed 1.2 "gångjärnsledd"); a hanger length d > 0 makes it a pendulum (one more degree of
+  freedom, beyond the seed);
+- `sling`: the seed's section 2 (two degrees of freedom, θ relative to the arm);
+- `ground_contact`: the projectile starts on the ground and slides (frictionless) until the sling
+  lifts it (the ground's push, a Lagrange multiplier, falls to zero);
+- `air_drag`: the flight after release with quadratic drag (core/sim/flight.py); without it the
+  flight is the vacuum parabola in closed form;
+- `optimise`: the release angle and sling length of longest range: a grid of 1640 candidate
+  throws integrated together (numpy, fixed-step RK4, one swing per sling length serves every
+  release angle), then the best polished by Nelder–Mead on accurate single throws (rtol 1e-8).
+
+Frame: the seed's, φ from the horizontal, φ = 0 to the right. The counterweight starts up on the
+left, so C swings up and over the top to the left: the throw goes toward −x (the side away from
+where the projectile lay). Release happens when the projectile's velocity points up at the
+release angle over the horizontal, toward the throw. `range` is measured from the pivot toward
+the throw; the path plot shows x toward the throw (the projectile starts behind the pivot).
+
+Departures from the seed:
+- The seed's moment and energy lines, M_m = C·sin φ and V = C·cos φ with C = M·g·aL −
+  m·g·(L/2 − aL), measure φ from the vertical, not from the horizontal as it states. With φ from
+  the horizontal (and the projectile in the cup) V = −(C − m_p·g·R)·sin φ and the moment is
+  −dV/dφ = (C − m_p·g·R)·cos φ.
+- The seed's pivot-force lines F_n = (mL/2)·ω² − ..., F_s = (mL/2)·ω̇ − ... put the arm's centre
+  of mass at L/2 from the pivot; it is at L/2 − aL (they are not used here).
+- The seed's section-1 model has no projectile; here the arm alone carries it in a cup at C
+  (the seed's model is the limit m_p → 0).
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..errors import InputError
+from ..model import Calculator, Field, Output, Plot, Result
+from ..sim import flight
+from ..sim import trebuchet as tb
+from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats
+
+EFFECTS = ("sling", "ground_contact", "hinged_counterweight", "air_drag", "optimise")
+DEG = math.pi / 180
+PLOT_POINTS = 240
+
+FIELDS = (
+    Field("counterweight_mass", "Counterweight mass M", "mass", "kg", default=500, min=1e-3, max=1e7,
+          help="Counterweight mass."),
+    Field("counterweight_gyration", "Counterweight gyration k", "length", "m", default=2, min=0, max=1e3,
+          help="Radius of gyration of the counterweight about its centre (its inertia is M·k²)."),
+    Field("arm_mass", "Arm mass m", "mass", "kg", default=50, min=0, max=1e7,
+          help="Mass of the throwing arm (a uniform bar)."),
+    Field("arm_length", "Arm length L", "length", "m", default=15, min=1e-2, max=1e3,
+          help="Length of the throwing arm, counterweight hinge B to long end C."),
+    Field("short_arm_fraction", "Short-arm fraction a", default=0.25, min=0, max=1, min_exclusive=True,
+          max_exclusive=True, help="Pivot to counterweight hinge as a fraction of L (short arm aL, long arm (1−a)L)."),
+    Field("pivot_height", "Pivot height h", "length", "m", default=4, min=0, min_exclusive=True, max=1e3,
+          help="Height of the pivot A above the ground; must be below the long arm (1−a)L so C rests on the ground."),
+    Field("projectile_mass", "Projectile mass m_p", "mass", "kg", default=5, min=1e-3, max=1e7,
+          help="Projectile mass."),
+    Field("sling_length", "Sling length l", "length", "m", default=5, min=1e-2, max=1e3,
+          help="Sling length (with the sling effect)."),
+    Field("gravity", "Gravity g", "acceleration", "m/s**2", default=9.81, min=0.1, max=100,
+          help="Gravitational acceleration."),
+    Field("hanger_length", "Hanger length d", "length", "m", default=0, min=0, max=1e3,
+          help="hinged_counterweight: hinge to counterweight centre. 0: hinged at its centre of mass "
+               "(the seed's hinged case); > 0: a pendulum."),
+    Field("release_angle", "Release angle", "angle", "deg", default=45, min=0, max=89 * DEG,
+          help="Release when the projectile's velocity points this far above the horizontal, toward the throw."),
+    Field("projectile_diameter", "Projectile diameter", "length", "m", default=0.2, min=1e-3, max=5,
+          help="air_drag: diameter for the drag area."),
+    Field("drag_coefficient", "Drag coefficient", default=0.47, min=0, max=2, help="air_drag: C_d (sphere 0.47)."),
+    Field("air_density", "Air density", "density", "kg/m**3", default=1.225, min=0, max=20,
+          help="air_drag: density of air."),
+    Field("sling_min", "Optimise: shortest sling", "length", "m", default=1, min=1e-2, max=1e3,
+          help="optimise: the sling lengths searched start here."),
+    Field("sling_max", "Optimise: longest sling", "length", "m", default=12, min=1e-2, max=1e3,
+          help="optimise: the sling lengths searched end here."),
+    effects_field(EFFECTS, ("sling", "ground_contact"),
+                  "sling (2 DOF), ground_contact (projectile slides until lifted), hinged_counterweight "
+                  "(hinge or pendulum), air_drag (flight), optimise (best release angle and sling length)."),
+    accuracy_field(),
+)
+
+OUTPUTS = (
+    Output("release_time", "Release time", "time", "s"),
+    Output("release_speed", "Release speed", "speed", "m/s"),
+    Output("release_angle", "Release angle", "angle", "deg", help="Of the velocity, above the horizontal toward the throw."),
+    Output("release_height", "Release height", "length", "m"),
+    Output("range", "Range", "length", "m", help="Pivot to landing point, toward the throw."),
+    Output("max_height", "Max height", "length", "m", help="Highest point of the projectile's path."),
+    Output("efficiency", "Efficiency", "dimensionless", "%",
+           help="Projectile energy at release (kinetic + potential gained) over the counterweight's potential-energy drop."),
+    Output("liftoff_time", "Lift-off time", "time", "s", help="ground_contact: when the sling lifts the projectile."),
+    Output("arm_speed_at_vertical", "Arm speed at vertical", "angular_speed", "rad/s",
+           help="The arm's angular speed when the long arm first points straight up."),
+    Output("time_to_vertical", "Time to vertical", "time", "s", help="From rest until the long arm points straight up."),
+    Output("energy_drift", "Energy drift", help="Largest change of total energy over the swing, relative to the largest kinetic energy."),
+    Output("best_release_angle", "Best release angle", "angle", "deg"),
+    Output("best_sling_length", "Best sling length", "length", "m"),
+    Output("best_range", "Best range", "length", "m"),
+    Output("candidates", "Candidates evaluated", help="optimise: throws evaluated in the batch."),
+    *STATS_OUTPUTS,
+)
+
+
+def machine(v, sling: bool | None = None, l: float | None = None) -> tb.Machine:
+    effects = v["effects"]
+    a, L, h = v["short_arm_fraction"], v["arm_length"], v["pivot_height"]
+    if h >= (1 - a) * L:
+        raise InputError("pivot_height", f"must be below the long arm (1−a)·L = {(1 - a) * L:.4g} m, "
+                                         "so that the long end C can rest on the ground")
+    hinged = "hinged_counterweight" in effects
+    return tb.Machine(M=v["counterweight_mass"], k=v["counterweight_gyration"], m=v["arm_mass"], L=L, a=a, h=h,
+                      m_p=v["projectile_mass"], l=v["sling_length"] if l is None else l, g=v["gravity"],
+                      rigid=not hinged, d=v["hanger_length"] if hinged else 0.0,
+                      sling=("sling" in effects) if sling is None else sling)
+
+
+def sample(ts: list, ys: list, n: int = PLOT_POINTS) -> tuple[list, list]:
+    """At most n points of a series, for plotting."""
+    if len(ts) <= n:
+        return list(ts), list(ys)
+    step = (len(ts) - 1) / (n - 1)
+    idx = sorted({round(i * step) for i in range(n)})
+    return [ts[i] for i in idx], [ys[i] for i in idx]
+
+
+def vacuum_flight(g: float, z0: float, speed: float, angle: float):
+    """Distance, apex, flight time of the parabola from height z0 > 0 (closed form)."""
+    vc, vs = speed * math.cos(angle), speed * math.sin(angle)
+    t_land = (vs + math.sqrt(vs * vs + 2 * g * z0)) / g
+    apex = z0 + vs * vs / (2 * g) if vs > 0 else z0
+    return vc * t_land, apex, t_land
+
+
+def fly(v, g: float, z0: float, speed: float, angle: float, rtol: float):
+    """(distance from the release point toward the throw, apex, path xs, path zs, nfev)."""
+    X, apex, t_land = vacuum_flight(g, z0, speed, angle)
+    if "air_drag" not in v["effects"]:
+        ts = [t_land * i / (PLOT_POINTS - 1) for i in range(PLOT_POINTS)]
+        xs = [speed * math.cos(angle) * t for t in ts]
+        zs = [z0 + speed * math.sin(angle) * t - 0.5 * g * t * t for t in ts]
+        zs[-1] = 0.0
+        return X, apex, xs, zs, 0
+    air = flight.air(v["effects"], v["projectile_mass"], v["projectile_diameter"], v["drag_coefficient"], 0.0,
+                     v["air_density"], 0.0, g)
+    try:
+        f = flight.fly(air, z0, angle, speed, 2 * X + 1.0, rtol)
+    except RuntimeError as exc:
+        raise InputError("projectile_diameter", f"the flight could not be integrated ({exc}): drag far too "
+                                                "large for the projectile's mass") from None
+    xs, zs = sample(*f.path)
+    if f.t >= flight.T_MAX * (1 - 1e-9):
+        raise InputError("projectile_diameter", f"the projectile is still in the air after {flight.T_MAX:.0f} s "
+                                                "(drag far too large for its mass)")
+    return f.x_end, f.apex, xs, zs, f.nfev
+
+
+def simulate(v, rtol: float) -> SimRun:
+    effects = v["effects"]
+    p = machine(v)
+    beta = v["release_angle"]
+    try:
+        s = tb.swing(p, beta, "ground_contact" in effects, rtol)
+    except RuntimeError as exc:  # step-size underflow: a machine too stiff to resolve
+        raise InputError("sling_length" if p.sling else "projectile_mass",
+                         f"the swing could not be integrated ({exc}); the machine's proportions are too extreme") from None
+    warnings: list[str] = []
+    values: dict = {"energy_drift": s.drift}
+    # the results whose error is estimated; all present in every run (0 when absent), so a run at
+    # a tighter tolerance that ends differently (e.g. no release) shows as a large error estimate
+    key = dict.fromkeys(("release_time", "release_speed", "range", "time_to_vertical", "arm_speed_at_vertical"), 0.0)
+    series = {"φ arm": sample(s.t, s.phi), "ω arm": sample(s.t, s.omega)}
+    if p.sling:
+        n = len(s.theta)
+        series["θ sling"] = sample(s.t[:n], s.theta)
+    if s.vertical is not None:
+        values["time_to_vertical"], values["arm_speed_at_vertical"] = s.vertical
+        key["time_to_vertical"], key["arm_speed_at_vertical"] = s.vertical
+    else:
+        warnings.append("The long arm never points straight up: the counterweight cannot raise it that far.")
+    if s.liftoff is not None:
+        values["liftoff_time"] = s.liftoff
+    if "ground_contact" in effects and not p.sling:
+        warnings.append("ground_contact needs the sling (without it the projectile rides in a cup at C).")
+    scale = p.L * 1e-5  # deeper than the solver's drift
+    if s.min_tension < 0:
+        warnings.append(f"The sling would push (compression {-s.min_tension:.3g} N) before release: a real sling "
+                        "goes slack there, so the rigid-sling result is not valid.")
+    if s.min_projectile_height < -scale:
+        warnings.append(f"The projectile goes {-s.min_projectile_height:.3g} m below the ground before release "
+                        "(switch on ground_contact).")
+    if s.touchdowns:
+        warnings.append(f"The projectile falls back onto the ground {s.touchdowns} time(s) after lift-off "
+                        "(plastic landing: energy is lost, see energy drift).")
+    if s.min_counterweight_height < -scale:
+        warnings.append(f"The counterweight's centre goes {-s.min_counterweight_height:.3g} m below the ground: "
+                        "raise the pivot or shorten the short arm or hanger.")
+    # the projectile path, x toward the throw (−x of the seed's frame)
+    path_x = [-x for x in s.path[0]]
+    path_z = list(s.path[1])
+    nfev = s.nfev
+    if not s.released:
+        why = {"stuck": "the counterweight cannot lift the arm off the ground",
+               "stopped": "the arm swings back first", "arm_ground": "the arm hits the ground first",
+               "time": f"not within {tb.T_SWING:.0f} s",
+               "bouncing": f"the projectile falls back onto the ground {tb.MAX_TOUCHDOWNS} times"}[s.ending]
+        warnings.append(f"The throw never releases at {v['release_angle'] / DEG:.4g}°: {why}.")
+        series["projectile"] = sample(path_x, path_z)
+        return SimRun(values, key, nfev, warnings, series)
+    t_r, x_r, z_r, vx, vy = s.release
+    speed = math.hypot(vx, vy)
+    angle = math.atan2(vy, -vx)  # toward the throw
+    values.update(release_time=t_r, release_speed=speed, release_angle=angle, release_height=z_r)
+    key.update(release_time=t_r, release_speed=speed)
+    E_p = 0.5 * p.m_p * speed**2 + p.m_p * p.g * (z_r - s.path[1][0])
+    if s.cw_drop > 0:
+        values["efficiency"] = max(E_p, 0.0) / (p.M * p.g * s.cw_drop)
+    if z_r > 0:
+        X, apex, fx, fz, n_fly = fly(v, p.g, z_r, speed, angle, rtol)
+        nfev += n_fly
+        path_x += [-x_r + x for x in fx[1:]]
+        path_z += fz[1:]
+    else:
+        X, apex = 0.0, z_r
+        warnings.append("The projectile is released below ground level: it lands where it is released.")
+    values["range"] = -x_r + X
+    values["max_height"] = max(apex, max(s.path[1]))
+    key["range"] = values["range"]
+    series["projectile"] = sample(path_x, path_z, 2 * PLOT_POINTS)
+    return SimRun(values, key, nfev, warnings, series)
+
+
+def refine(v, beta: float, l: float, lo: float, hi: float) -> tuple[float, float, float]:
+    """Polish the grid's best throw with accurate single throws (Nelder–Mead inside the search box)."""
+    from scipy.optimize import minimize
+
+    effects = v["effects"] - {"optimise"} | {"sling"}
+    scale = max(abs(l), 1.0)
+
+    def miss(x):
+        b, length = x[0], x[1] * scale
+        if not (5 * DEG <= b <= 85 * DEG and lo <= length <= hi):
+            return 1e30
+        try:
+            run = simulate(dict(v, release_angle=b, sling_length=length, effects=effects), 1e-8)
+        except InputError:
+            return 1e30
+        return -run.values.get("range", -1e30)
+
+    res = minimize(miss, [beta, l / scale], method="Nelder-Mead",
+                   options={"xatol": 1e-5, "fatol": 1e-9 * scale, "maxfev": 200,
+                            "initial_simplex": [[beta, l / scale], [beta + 2 * DEG, l / scale],
+                                                [beta, l / scale * 1.05]]})
+    start = -miss([beta, l / scale])
+    if -res.fun >= start:
+        return float(res.x[0]), float(res.x[1] * scale), float(-res.fun)
+    return beta, l, start
+
+
+def compute(v) -> Result:
+    run = run_with_stats(simulate, v)
+    if "optimise" in v["effects"]:
+        from ..sim.trebuchet import optimise
+
+        lo, hi = v["sling_min"], v["sling_max"]
+        if lo > hi:
+            raise InputError("sling_min", "must not exceed the longest sling searched")
+        best = optimise(machine(v, sling=True), v, lo, hi)
+        if best is None:
+            run.warnings.append("optimise: no candidate throw released.")
+        else:
+            beta, l, n = best
+            beta, l, reach = refine(v, beta, l, lo, hi)
+            if reach > -1e29:
+                run.values.update(best_release_angle=beta, best_sling_length=l, best_range=reach, candidates=n)
+    return Result(run.values, run.warnings, run.series)
+
+
+CALCULATOR = Calculator(
+    id="trebuchet",
+    title="Trebuchet",
+    summary="Counterweight trebuchet from rest to landing: arm, sling, ground contact, hinged counterweight, drag.",
+    fields=FIELDS,
+    outputs=OUTPUTS,
+    compute=compute,
+    section="001",
+    simulate=simulate,
+    plots=(
+        Plot("Projectile path", ("projectile",), "x toward the throw", "length", "m", "height", "length", "m"),
+        Plot("Arm and sling angles", ("φ arm", "θ sling"), "time", "time", "s", "angle", "angle", "deg"),
+        Plot("Arm speed", ("ω arm",), "time", "time", "s", "ω", "angular_speed", "rad/s"),
+    ),
+)
