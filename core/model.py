@@ -40,8 +40,8 @@ class Field:
     flags: bool = False  # a set of the choices (e.g. the effects a scene switches on)
     help: str = ""
     modes: tuple[str, ...] = ()  # shown and used only in these modes; empty means all
-    # shown and used only when other choice fields hold one of these values,
-    # e.g. (("section", ("round_tube", "rectangular_tube")),) for a wall thickness
+    # shown and used only when other choice fields hold one of these values (for a flags field:
+    # when one of them is on), e.g. (("section", ("round_tube", "rectangular_tube")),) for a wall
     when: tuple[tuple[str, tuple[str, ...]], ...] = ()
 
     @property
@@ -67,7 +67,13 @@ class Field:
             return False
         if choices is not None:
             for name, allowed in self.when:
-                if name in choices and choices[name] not in allowed:
+                if name not in choices:
+                    continue
+                chosen = choices[name]
+                if isinstance(chosen, frozenset):  # a flags field: any of the allowed is on
+                    if not chosen & set(allowed):
+                        return False
+                elif chosen not in allowed:
                     return False
         return True
 

@@ -274,7 +274,7 @@ def test_custom_material_and_unknown_yield():
     ({"section": "rectangular_tube", "height": "2 in", "width": "1 in", "wall": "0.6 in"}, "wall"),
     ({"length": "10 in", "load_position": "11 in"}, "load_position"),
     ({"force": "-5 lbf"}, "force"),
-    ({"outer_size": "3 kg"}, "outer_size"),
+    ({"section": "round", "outer_size": "3 kg"}, "outer_size"),
 ])
 def test_bad_inputs_name_the_field(raw, field):
     with pytest.raises(InputError) as e:

@@ -168,3 +168,25 @@ async def test_enter_on_a_result_shows_it_in_the_next_unit():
         shown = float(after.text.split()[0])
         assert shown == pytest.approx(before.value, rel=1e-4)  # SI value is rad/s
         assert table.cursor_row == table.get_row_index("free_speed")  # the cursor stays put
+
+
+async def test_fields_follow_the_choices_they_depend_on():
+    """Choosing a hex section hides the tube's wall; ticking air drag shows the drag coefficient."""
+    app = GearheadApp(blink=False, initial="beam")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        beam = app.query_one("#calc-beam", CalculatorTab)
+        assert beam.query_one("#row-wall").display and not beam.query_one("#row-outer_size").display
+        beam.query_one("#in-section", Select).value = "hex"
+        await settle(pilot)
+        assert not beam.query_one("#row-wall").display and beam.query_one("#row-outer_size").display
+        assert not beam.query_one("#row-youngs_modulus").display  # 6061-T6: no custom figures
+        app.show_calculator("projectile")
+        await settle(pilot)
+        proj = app.query_one("#calc-projectile", CalculatorTab)
+        assert not proj.query_one("#row-drag_coefficient").display
+        proj.query_one("#flag-effects--air_drag").value = True
+        await settle(pilot)
+        assert proj.query_one("#row-drag_coefficient").display
+        assert not proj.query_one("#row-spin").display
+        assert proj.solution.inputs["effects"].value == ["air_drag"]

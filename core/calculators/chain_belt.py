@@ -54,7 +54,8 @@ FIELDS = (
     Field("pitch_standard", "Pitch standard", choices=STANDARDS, choice_labels=STANDARD_LABELS,
           default="htd_5mm", help="A standard sets the pitch; choose Custom to type it below."),
     Field("pitch", "Custom pitch", "length", "mm", default=5, min=0, min_exclusive=True,
-          help="Chain pitch or belt tooth pitch p, used when the standard is Custom."),
+          help="Chain pitch or belt tooth pitch p, used when the standard is Custom.",
+          when=(("pitch_standard", ("custom",)),)),
     Field("teeth_1", "Sprocket/pulley 1 teeth", integer=True, default=20, min=3, max=10000,
           help="Teeth n_1 on the first sprocket or pulley."),
     Field("teeth_2", "Sprocket/pulley 2 teeth", integer=True, default=30, min=3, max=10000,
@@ -65,7 +66,8 @@ FIELDS = (
           min_exclusive=True, modes=("links_from_center",),
           help="Center distance D you would like; the nearest usable lengths are found."),
     Field("half_links", "Allow half links", boolean=True, default=False,
-          help="Chain only: a half (offset) link allows an odd number of links."),
+          help="Chain only: a half (offset) link allows an odd number of links.",
+          when=(("kind", ("chain",)),)),
     Field("pitch_diameter", "Pitch diameter", choices=("circumference", "chordal"),
           choice_labels=("n·p/π (seed; exact for belts)", "p/sin(180°/n) (exact chain sprocket)"),
           default="circumference",
@@ -91,7 +93,7 @@ OUTPUTS = (
            help="Angle of contact on the smaller sprocket: π − 2·sin⁻¹(|r_2 − r_1|/D)."),
     Output("minimum_links", "Fewest links that wrap both",
            help="Shortest usable count whose length reaches around both (D ≥ |r_2 − r_1|)."),
-    Output("center_difference_other_method", "Other pitch-diameter choice moves D by", "length", "mm",
+    Output("center_difference_other_method", "Center shift, other pitch dia.", "length", "mm",
            help="Center distance with the other pitch-diameter formula minus this one."),
 )
 

@@ -75,19 +75,25 @@ FIELDS = (
                                "closed form, no integration."),
     accuracy_field(),
     Field("ball_mass", "Ball mass", "mass", "kg", default=0.27, min=1e-3, max=100,
-          help="Mass of the game piece (2022 FRC cargo: 0.27 kg)."),
+          help="Mass of the game piece (2022 FRC cargo: 0.27 kg).",
+          when=(("effects", ("air_drag", "magnus")),)),
     Field("ball_diameter", "Ball diameter", "length", "m", default=0.24, min=1e-3, max=2,
-          help="Diameter; the frontal area is π·D²/4 (2022 FRC cargo: 0.24 m)."),
+          help="Diameter; the frontal area is π·D²/4 (2022 FRC cargo: 0.24 m).",
+          when=(("effects", ("air_drag", "magnus")),)),
     Field("drag_coefficient", "Drag coefficient", default=0.47, min=0, max=2,
-          help="C_d for `air_drag` (smooth sphere ≈ 0.47, foam ball ≈ 0.5)."),
+          help="C_d for `air_drag` (smooth sphere ≈ 0.47, foam ball ≈ 0.5).",
+          when=(("effects", ("air_drag",)),)),
     Field("lift_coefficient", "Lift coefficient", default=0.2, min=0, max=1,
           help="C_L for `magnus`, constant over the flight. It grows with the spin ratio "
-               "ω·r/v (shown as an output): about 0.1-0.3 for spin ratios 0.1-0.4."),
+               "ω·r/v (shown as an output): about 0.1-0.3 for spin ratios 0.1-0.4.",
+          when=(("effects", ("magnus",)),)),
     Field("spin", "Spin", "angular_speed", "rpm", default=0, min=-1e5, max=1e5,
           help="Spin of the ball; positive is backspin (lifts), negative topspin (drops). Its sign "
-               "sets the direction of the Magnus force, C_L sets its size; 0: no Magnus force."),
+               "sets the direction of the Magnus force, C_L sets its size; 0: no Magnus force.",
+          when=(("effects", ("magnus",)),)),
     Field("air_density", "Air density", "density", "kg/m^3", default=1.204, min=0, max=2,
-          help="ρ (1.204 kg/m³ at 20 °C and sea level; ≈ 1.0 at 1600 m)."),
+          help="ρ (1.204 kg/m³ at 20 °C and sea level; ≈ 1.0 at 1600 m).",
+          when=(("effects", ("air_drag", "magnus")),)),
 )
 
 OUTPUTS = (

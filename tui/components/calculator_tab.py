@@ -27,7 +27,7 @@ from core.sim.scene import VOLATILE
 from .plot_panel import PlotPanel
 
 DEBOUNCE_S = 0.15
-VALUE_WIDTH = 20  # "-1.2346e+05 in*lbf" fits
+VALUE_WIDTH = 18  # "-1.2346e-05 N*m/A" fits
 
 
 class FieldRow(Horizontal):
@@ -112,7 +112,7 @@ class CalculatorTab(Widget):
                 # fixed widths from the description: no re-measuring on idle, so the
                 # layout is the same every time (snapshots) and never jumps while typing
                 label_width = max([len(o.label) for o in calc.outputs] + [6])
-                table.add_column("Result", key="label", width=min(label_width, 34))
+                table.add_column("Result", key="label", width=min(label_width, 33))
                 table.add_column("Value", key="value", width=VALUE_WIDTH)
                 yield table
                 if calc.plots:

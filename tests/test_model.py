@@ -1,0 +1,33 @@
+"""The calculator description: fields that depend on other choices (Field.when)."""
+
+import pytest
+
+from core.errors import InputError
+from core.model import parse_inputs, solve
+from core.registry import get
+
+
+def test_field_used_only_for_its_section():
+    beam = get("beam")
+    wall = beam.field("wall")
+    assert wall.active(None, {"section": "round_tube"})
+    assert not wall.active(None, {"section": "hex"})
+    # a bad entry in a field the chosen section does not use neither blocks nor leaks
+    values, _ = parse_inputs(beam, {"section": "hex", "wall": "3 kg"})
+    assert values["wall"] == pytest.approx(0.0625 * 0.0254)
+    with pytest.raises(InputError) as err:
+        parse_inputs(beam, {"section": "round_tube", "wall": "3 kg"})
+    assert err.value.field == "wall"
+
+
+def test_field_shown_when_any_named_effect_is_on():
+    projectile = get("projectile")
+    drag = projectile.field("drag_coefficient")
+    assert not drag.active("forward", {"effects": frozenset()})
+    assert not drag.active("forward", {"effects": frozenset({"magnus"})})
+    assert drag.active("forward", {"effects": frozenset({"air_drag", "magnus"})})
+    # vacuum flight ignores a nonsense drag coefficient; with drag on it is named
+    assert solve("projectile", {"effects": "", "drag_coefficient": "-3"}).outputs
+    with pytest.raises(InputError) as err:
+        solve("projectile", {"effects": "air_drag", "drag_coefficient": "-3"})
+    assert err.value.field == "drag_coefficient"
