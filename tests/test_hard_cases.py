@@ -1,6 +1,8 @@
 """Hard-case catalogue: numerically delicate inputs, each against a closed form or an mpmath reference.
 
-Every case states why it is delicate. Cases for calculators added later live in the same list.
+Every case states why it is delicate. This file holds the motor, gear-ratio, pneumatics and
+integrator cases; each other calculator keeps its own in tests/test_hard_<calculator>.py
+(`pytest tests/test_hard_*.py` runs the whole catalogue: 48 cases).
 """
 
 import math
