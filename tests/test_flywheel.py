@@ -347,3 +347,17 @@ def test_module_slip_phase_below_the_target_matches_the_closed_form(omega0_frac,
     assert w1 == pytest.approx(u * w0, rel=1e-9)
     assert V == pytest.approx(0.5 * R_W * w1, rel=1e-9)  # rolling at the end
     assert w1 <= W_T * (1 + 1e-12)
+
+
+@pytest.mark.parametrize("rpm", [2000, 2389])  # 2389: t_spin·24/24 rounds below t_spin
+def test_burst_plot_starts_at_the_target_then_drops_by_the_first_shot(rpm):
+    sol = solve("flywheel", {**seed_raw(), "target_speed": f"{rpm} rpm"})
+    ts, ws = sol.series["burst"]
+    w_t = rpm * RPM
+    T = I_1 * W_F / A
+    t_spin = T * math.log(W_F / (W_F - w_t))  # full power from rest: ω_f·(1 − e^(−t/T)) = ω_t
+    assert ts[0] == pytest.approx(t_spin, rel=1e-12) and ws[0] == pytest.approx(w_t, rel=1e-12)
+    # energy model, contact time 0: the drop is vertical, to ω_t/√(1 + β)
+    assert ts[1] == pytest.approx(t_spin, rel=1e-12)
+    assert ws[1] == pytest.approx(w_t / math.sqrt(1 + 0.35 / 0.84**2 / 3), rel=1e-12)
+    assert all(b >= a for a, b in zip(ts, ts[1:]))

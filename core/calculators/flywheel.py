@@ -402,7 +402,7 @@ def burst(sc: Scene, v, shots: Shots):
         if t_hit > 0:
             reach = min(t_hit, duration)
             for i in range(1, 25):
-                dt = reach * i / 24
+                dt = reach * i / 24 if i < 24 else reach  # reach·24/24 need not round to reach
                 ts.append(t_start + dt)
                 ws.append(min(free_run(sc, w_start, dt), target))
         if duration > t_hit:
@@ -412,7 +412,8 @@ def burst(sc: Scene, v, shots: Shots):
     ts.append(0.0)
     ws.append(0.0)
     ramp(0.0, 0.0, t_spin)
-    t, w = t_spin, target
+    first_shot = len(ts) - 1  # the burst plot starts at the end of the spin-up (not found by time:
+    t, w = t_spin, target       # the last sample's reach·24/24 can round below t_spin)
     slowest = math.inf
     for k in range(v["shots"]):
         one = shots(sc, w, m0)
@@ -428,7 +429,7 @@ def burst(sc: Scene, v, shots: Shots):
             t = t_end + wait
         else:
             ramp(t_end, w, recovery(sc, w, target) + 0.25 * T)
-    return (ts, ws), slowest, t_spin
+    return (ts, ws), slowest, t_spin, first_shot
 
 
 def simulate(v, rtol: float) -> SimRun:
@@ -462,7 +463,7 @@ def simulate(v, rtol: float) -> SimRun:
         sc_n = sc if n == v["wheel_count"] else dataclasses.replace(sc, I=n * inertia_each(v))
         values[f"range_error_{n}"] = range_change(sc_n, v, shots, m0 * e_m)
         values[f"range_error_linear_{n}"] = range_error_linear(sc_n, m0, e_m)
-    trace, slowest, t_spin = burst(sc, v, shots)
+    trace, slowest, t_spin, first_shot = burst(sc, v, shots)
     values.update({
         "free_speed": sc.free_speed,
         "time_constant": sc.T,
@@ -473,7 +474,6 @@ def simulate(v, rtol: float) -> SimRun:
     if slowest < first.V * (1 - 1e-9):
         warnings.append(f"The wheel does not recover between shots: the slowest ball leaves at "
                         f"{slowest:.3g} m/s instead of {first.V:.3g} m/s.")
-    first_shot = next(i for i, t in enumerate(trace[0]) if t >= t_spin)
     series = {"wheel speed": trace, "burst": (trace[0][first_shot:], trace[1][first_shot:])}
     key = {"ball_speed": first.V, "wheel_speed_after": first.omega_after, "slowest_ball_speed": slowest}
     return SimRun(values, key, shots.nfev, warnings, series)
