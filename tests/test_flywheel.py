@@ -411,3 +411,11 @@ def test_motor_during_shot_burst_waits_the_interval_from_shot_to_shot():
     assert ws[i2] == pytest.approx(w2, rel=1e-8)
     calm = solve("flywheel", {**seed_raw(), "effects": "momentum, motor_during_shot", "shot_interval": "2 s"})
     assert not any("does not recover" in w for w in calm.warnings)
+
+
+def test_momentum_model_warns_that_the_seed_linear_column_is_the_energy_model():
+    sol = solve("flywheel", {**seed_raw(), "effects": "momentum"})
+    b0 = 0.35 / 0.84**2 / 3
+    assert sol.outputs["range_error_linear"].value == pytest.approx(-0.1 * b0 / (1 + b0), rel=1e-12)
+    assert any("seed linear" in w for w in sol.warnings)
+    assert not any("seed linear" in w for w in solve("flywheel", seed_raw()).warnings)

@@ -141,12 +141,14 @@ OUTPUTS = (
     Output("range_error", "Range error (heavy ball)", "dimensionless", "%",
            help="Exact, for m₀·(1+e_m), with the effects and losses chosen."),
     Output("range_error_linear", "Range error, seed linear", "dimensionless", "%",
-           help="The seed's −e_m/(m_w/(c·m₀) + 1) with c computed exactly."),
+           help="The seed's −e_m/(m_w/(c·m₀) + 1) with c computed exactly: its lossless energy model at "
+                "h = 0, whatever model is chosen (the momentum model's error is about twice it)."),
     Output("range_spread", "Range spread light to heavy", "length", "m",
            help="R(m₀·(1−e_m)) − R(m₀·(1+e_m))."),
     *[Output(f"range_error_{n}", f"Range error, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%")
       for n in TABLE_WHEELS],
-    *[Output(f"range_error_linear_{n}", f"Seed linear, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%")
+    *[Output(f"range_error_linear_{n}", f"Seed linear, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%",
+             help="The seed's table (9): lossless energy model, h = 0, whatever model is chosen.")
       for n in TABLE_WHEELS],
     Output("free_speed", "Wheel free speed", "angular_speed", "rpm", help="ω̃f/G."),
     Output("time_constant", "Spin-up time constant", "time", "s", help="T = I·ω̃f/(G²·τ̃s)."),
@@ -457,6 +459,9 @@ def simulate(v, rtol: float) -> SimRun:
     }
     if sc.motor_on:
         values["contact_time"] = first.contact_time
+    if sc.model == "momentum":
+        warnings.append("The 'seed linear' range errors are the seed's energy model; the momentum model's "
+                        "exact range errors are about twice them (R ∝ 1/(1 + β)² instead of 1/(1 + β)).")
     if v["mode"] == "radius_of_gyration":
         values["mass_ratio_coefficient"] = (1 + sc.sigma * sc.k_b) * sc.s ** 2 / v["gyration_fraction"] ** 2  # (6)
     for n in TABLE_WHEELS:  # the seed's table; the free speed ω̃f/G does not depend on n
