@@ -419,3 +419,14 @@ def test_momentum_model_warns_that_the_seed_linear_column_is_the_energy_model():
     assert sol.outputs["range_error_linear"].value == pytest.approx(-0.1 * b0 / (1 + b0), rel=1e-12)
     assert any("seed linear" in w for w in sol.warnings)
     assert not any("seed linear" in w for w in solve("flywheel", seed_raw()).warnings)
+
+
+def test_weak_grip_warns_that_the_ball_leaves_while_slipping():
+    # F = 1 N: the 393s cannot hold the target; the slip lasts ~0.26 s and the ball, accelerating
+    # uniformly from rest, covers V·t_c/2 ≈ 6.13·0.2575/2 ≈ 0.79 m before rolling
+    raw = {**seed_raw(), "effects": "momentum, motor_during_shot", "grip_force": "1 N"}
+    sol = solve("flywheel", raw)
+    t_c, _, V = slip_closed_form(I_1, A, B, 1.0, 0.5, 0.084, R_W, W_T)
+    assert V * t_c / 2 == pytest.approx(0.79, abs=0.01)
+    assert any("slips 0.79" in w for w in sol.warnings)
+    assert not any("slips" in w for w in solve("flywheel", {**raw, "grip_force": "40 N"}).warnings)

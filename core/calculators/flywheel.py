@@ -40,7 +40,8 @@ is integrated (core.sim.integrate; events at the end of slip and where the contr
 target) and tests check it against its closed form, which also answers when the phase is stiff
 (wheel time constant far below the slip time: an explicit step would need thousands of steps).
 With F → ∞ it tends to the impulse model; a motor strong enough to hold the target against r_w·F
-launches the ball at the full s·r_w·ω_t (no range error).
+launches the ball at the full s·r_w·ω_t (no range error). The model has no contact length: a warning
+says when the ball would slip over more than 0.5 m (weak grip) and so leave before it rolls.
 Range-error table (the seed's, n = 1..6): the same wheel, motor and target speed with n wheels.
 """
 
@@ -61,6 +62,7 @@ TABLE_WHEELS = range(1, 7)
 # Slip phase: when the wheel's time constant is this many times shorter than the slip (b·τ_end), an
 # explicit integrator needs ~b·τ_end/3 steps for stability alone; the closed form is used instead.
 STIFF = 200.0
+SLIP_LENGTH_WARN = 0.5  # m: longer than the contact path of any hood or wheel pair
 EFFECTS = ("energy", "momentum", "motor_during_shot")
 SHOOTERS = ("hood", "two_wheel")
 SHOOTER_LABELS = ("Single wheel with hood (ball at half surface speed)", "Two wheels (ball at surface speed)")
@@ -459,6 +461,11 @@ def simulate(v, rtol: float) -> SimRun:
     }
     if sc.motor_on:
         values["contact_time"] = first.contact_time
+        # the grip is constant, so the ball accelerates uniformly from rest: it slips over V·t_c/2
+        slip_length = first.V / math.sqrt(1 - sc.f) * first.contact_time / 2
+        if slip_length > SLIP_LENGTH_WARN:
+            warnings.append(f"The ball slips {slip_length:.3g} m before it rolls, longer than a shooter's "
+                            f"contact path: it would leave while still slipping. Raise the grip force.")
     if sc.model == "momentum":
         warnings.append("The 'seed linear' range errors are the seed's energy model; the momentum model's "
                         "exact range errors are about twice them (R ∝ 1/(1 + β)² instead of 1/(1 + β)).")
