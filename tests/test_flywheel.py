@@ -430,3 +430,12 @@ def test_weak_grip_warns_that_the_ball_leaves_while_slipping():
     assert V * t_c / 2 == pytest.approx(0.79, abs=0.01)
     assert any("slips 0.79" in w for w in sol.warnings)
     assert not any("slips" in w for w in solve("flywheel", {**raw, "grip_force": "40 N"}).warnings)
+
+
+def test_fields_shown_only_where_used():
+    calc = get("flywheel")
+    grip, k_b = calc.field("grip_force"), calc.field("ball_inertia_factor")
+    assert not grip.active("radius_of_gyration", {"effects": frozenset({"energy"}), "shooter": "hood"})
+    assert grip.active("radius_of_gyration", {"effects": frozenset({"momentum", "motor_during_shot"}), "shooter": "hood"})
+    assert k_b.active("radius_of_gyration", {"effects": frozenset({"energy"}), "shooter": "hood"})
+    assert not k_b.active("radius_of_gyration", {"effects": frozenset({"energy"}), "shooter": "two_wheel"})

@@ -98,11 +98,12 @@ FIELDS = (
     Field("shooter", "Shooter", choices=SHOOTERS, choice_labels=SHOOTER_LABELS, default="hood",
           help="Hood: the ball rolls on the hood and leaves at half the surface speed with spin V/r_b. "
                "Two wheels: surface speed, no spin."),
-    Field("ball_diameter", "Ball diameter", "length", "in", default=4, min=0, min_exclusive=True, max=2),
+    Field("ball_diameter", "Ball diameter", "length", "in", default=4, min=0, min_exclusive=True, max=2,
+          when=(("shooter", ("hood",)),), help="2·r_b: sets the spin V/r_b of a ball rolling on the hood."),
     Field("ball_mass", "Ball mass", "mass", "g", default=60, min=0, max=100,
           help="Nominal ball mass m₀ (NbN ball: 60 g)."),
     Field("ball_inertia_factor", "Ball I/(m·r²)", "dimensionless", "", default=0.4, min=0, max=0.67,
-          help="k_b: 2/5 solid sphere (seed), 2/3 thin shell."),
+          when=(("shooter", ("hood",)),), help="k_b: 2/5 solid sphere (seed), 2/3 thin shell."),
     Field("ball_mass_tolerance", "Ball mass tolerance", "dimensionless", "%", default=10, min=0, max=0.9,
           help="e_m: balls up to m₀·(1 ± e_m); range errors are for the heavy ball, as in the seed."),
     Field("target_speed", "Wheel target speed", "angular_speed", "rpm", default=2000, min=0, min_exclusive=True,
@@ -118,6 +119,7 @@ FIELDS = (
           help="f: friction and ball compression (energy model: of the energy the wheel gives up; "
                "momentum model: of the ball's energy)."),
     Field("grip_force", "Grip force μ·N (motor during shot)", "force", "N", default=40, min=0.1, max=1e5,
+          when=(("effects", ("motor_during_shot",)),),
           help="Friction force of the wheels on the slipping ball; used by motor_during_shot only."),
     Field("shots", "Shots in the burst", integer=True, default=4, min=1, max=50),
     Field("shot_interval", "Shot interval", "time", "s", default=0.5, min=0.01, max=60,
