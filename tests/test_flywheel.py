@@ -347,3 +347,95 @@ def test_module_slip_phase_below_the_target_matches_the_closed_form(omega0_frac,
     assert w1 == pytest.approx(u * w0, rel=1e-9)
     assert V == pytest.approx(0.5 * R_W * w1, rel=1e-9)  # rolling at the end
     assert w1 <= W_T * (1 + 1e-12)
+
+
+@pytest.mark.parametrize("rpm", [2000, 2389])  # 2389: t_spin·24/24 rounds below t_spin
+def test_burst_plot_starts_at_the_target_then_drops_by_the_first_shot(rpm):
+    sol = solve("flywheel", {**seed_raw(), "target_speed": f"{rpm} rpm"})
+    ts, ws = sol.series["burst"]
+    w_t = rpm * RPM
+    T = I_1 * W_F / A
+    t_spin = T * math.log(W_F / (W_F - w_t))  # full power from rest: ω_f·(1 − e^(−t/T)) = ω_t
+    assert ts[0] == pytest.approx(t_spin, rel=1e-12) and ws[0] == pytest.approx(w_t, rel=1e-12)
+    # energy model, contact time 0: the drop is vertical, to ω_t/√(1 + β)
+    assert ts[1] == pytest.approx(t_spin, rel=1e-12)
+    assert ws[1] == pytest.approx(w_t / math.sqrt(1 + 0.35 / 0.84**2 / 3), rel=1e-12)
+    assert all(b >= a for a, b in zip(ts, ts[1:]))
+
+
+def test_range_spread_and_range_error_with_losses_by_hand():
+    b0 = 0.35 / 0.84**2 / 3  # β₀ = 0.165344
+    o = out(seed_raw())
+    # R ∝ 1/(1 + β): light ball (1 − e_m) minus heavy ball (1 + e_m), R₀ = V²/g at 45°
+    # = R₀·(1 + β₀)·(1/(1 + 0.9·β₀) − 1/(1 + 1.1·β₀)) = 3.8693·1.165344·0.028386 = 0.10982 m
+    spread = o["range"].value * (1 + b0) * (1 / (1 + 0.9 * b0) - 1 / (1 + 1.1 * b0))
+    assert o["range_spread"].value == pytest.approx(spread, rel=1e-12)
+    assert o["range_spread"].value == pytest.approx(0.10982, abs=1e-5)
+    # energy model with 20 % loss: ω₁² ∝ 1/(1 + β/0.8), so e_r = (1 + β₀/0.8)/(1 + 1.1·β₀/0.8) − 1
+    lossy = out(seed_raw(), loss_fraction="20 %")
+    assert lossy["range_error"].value == pytest.approx((1 + b0 / 0.8) / (1 + 1.1 * b0 / 0.8) - 1, rel=1e-12)
+    assert lossy["range_error_2"].value == pytest.approx((1 + b0 / 1.6) / (1 + 1.1 * b0 / 1.6) - 1, rel=1e-12)
+
+
+def test_motor_during_shot_range_error_and_wheel_table_against_the_closed_form():
+    """393s cannot hold the target against the grip, so each shot is the decelerating slip of
+    `slip_closed_form` (mpmath); R ∝ V² at 45°, h = 0; n wheels: I = n·I₁ with the same motor."""
+    raw = {**seed_raw(), "effects": "momentum, motor_during_shot", "accuracy": "fine"}
+    o = out(raw)
+    for n in (1, 2, 6):
+        _, _, V0 = slip_closed_form(n * I_1, A, B, 40.0, 0.5, 0.06 * 1.4, R_W, W_T)
+        _, _, V1 = slip_closed_form(n * I_1, A, B, 40.0, 0.5, 0.066 * 1.4, R_W, W_T)
+        assert o[f"range_error_{n}"].value == pytest.approx((V1 / V0) ** 2 - 1, rel=1e-6)
+    assert o["range_error"].value == o["range_error_1"].value
+
+
+def test_motor_during_shot_burst_waits_the_interval_from_shot_to_shot():
+    """Shot 1 from ω_t slips for t_c; the motor then has 0.1 s − t_c at full power before shot 2,
+    which starts below the target and (393s, u_eq < 0) keeps decelerating until the ball rolls."""
+    sol = solve("flywheel", {**seed_raw(), "effects": "momentum, motor_during_shot", "accuracy": "fine",
+                             "shots": 2, "shot_interval": "0.1 s"})
+    T = I_1 * W_F / A
+    t_c, w1, V1 = slip_closed_form(I_1, A, B, 40.0, 0.5, 0.084, R_W, W_T)
+    w2 = W_F - (W_F - w1) * math.exp(-(0.1 - t_c) / T)
+    assert w2 < W_T
+    _, _, V2 = slip_closed_form(I_1, A, B, 40.0, 0.5, 0.084, R_W, w2)
+    assert sol.outputs["ball_speed"].value == pytest.approx(V1, rel=1e-8)
+    assert sol.outputs["slowest_ball_speed"].value == pytest.approx(V2, rel=1e-8)
+    assert any("does not recover" in w for w in sol.warnings)
+    ts, ws = sol.series["burst"]
+    assert ts[1] - ts[0] == pytest.approx(t_c, rel=1e-8)  # the slip, then the recovery ramp
+    drops = [i for i in range(len(ws) - 1) if ws[i + 1] < ws[i]]  # the two slips
+    assert len(drops) == 2 and drops[0] == 0
+    i2 = drops[1]
+    assert ts[i2] == pytest.approx(ts[0] + 0.1, rel=1e-12)  # shot 2 starts one interval after shot 1
+    assert ws[i2] == pytest.approx(w2, rel=1e-8)
+    calm = solve("flywheel", {**seed_raw(), "effects": "momentum, motor_during_shot", "shot_interval": "2 s"})
+    assert not any("does not recover" in w for w in calm.warnings)
+
+
+def test_momentum_model_warns_that_the_seed_linear_column_is_the_energy_model():
+    sol = solve("flywheel", {**seed_raw(), "effects": "momentum"})
+    b0 = 0.35 / 0.84**2 / 3
+    assert sol.outputs["range_error_linear"].value == pytest.approx(-0.1 * b0 / (1 + b0), rel=1e-12)
+    assert any("seed linear" in w for w in sol.warnings)
+    assert not any("seed linear" in w for w in solve("flywheel", seed_raw()).warnings)
+
+
+def test_weak_grip_warns_that_the_ball_leaves_while_slipping():
+    # F = 1 N: the 393s cannot hold the target; the slip lasts ~0.26 s and the ball, accelerating
+    # uniformly from rest, covers V·t_c/2 ≈ 6.13·0.2575/2 ≈ 0.79 m before rolling
+    raw = {**seed_raw(), "effects": "momentum, motor_during_shot", "grip_force": "1 N"}
+    sol = solve("flywheel", raw)
+    t_c, _, V = slip_closed_form(I_1, A, B, 1.0, 0.5, 0.084, R_W, W_T)
+    assert V * t_c / 2 == pytest.approx(0.79, abs=0.01)
+    assert any("slips 0.79" in w for w in sol.warnings)
+    assert not any("slips" in w for w in solve("flywheel", {**raw, "grip_force": "40 N"}).warnings)
+
+
+def test_fields_shown_only_where_used():
+    calc = get("flywheel")
+    grip, k_b = calc.field("grip_force"), calc.field("ball_inertia_factor")
+    assert not grip.active("radius_of_gyration", {"effects": frozenset({"energy"}), "shooter": "hood"})
+    assert grip.active("radius_of_gyration", {"effects": frozenset({"momentum", "motor_during_shot"}), "shooter": "hood"})
+    assert k_b.active("radius_of_gyration", {"effects": frozenset({"energy"}), "shooter": "hood"})
+    assert not k_b.active("radius_of_gyration", {"effects": frozenset({"energy"}), "shooter": "two_wheel"})

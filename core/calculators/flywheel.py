@@ -40,7 +40,8 @@ is integrated (core.sim.integrate; events at the end of slip and where the contr
 target) and tests check it against its closed form, which also answers when the phase is stiff
 (wheel time constant far below the slip time: an explicit step would need thousands of steps).
 With F → ∞ it tends to the impulse model; a motor strong enough to hold the target against r_w·F
-launches the ball at the full s·r_w·ω_t (no range error).
+launches the ball at the full s·r_w·ω_t (no range error). The model has no contact length: a warning
+says when the ball would slip over more than 0.5 m (weak grip) and so leave before it rolls.
 Range-error table (the seed's, n = 1..6): the same wheel, motor and target speed with n wheels.
 """
 
@@ -61,6 +62,7 @@ TABLE_WHEELS = range(1, 7)
 # Slip phase: when the wheel's time constant is this many times shorter than the slip (b·τ_end), an
 # explicit integrator needs ~b·τ_end/3 steps for stability alone; the closed form is used instead.
 STIFF = 200.0
+SLIP_LENGTH_WARN = 0.5  # m: longer than the contact path of any hood or wheel pair
 EFFECTS = ("energy", "momentum", "motor_during_shot")
 SHOOTERS = ("hood", "two_wheel")
 SHOOTER_LABELS = ("Single wheel with hood (ball at half surface speed)", "Two wheels (ball at surface speed)")
@@ -96,11 +98,12 @@ FIELDS = (
     Field("shooter", "Shooter", choices=SHOOTERS, choice_labels=SHOOTER_LABELS, default="hood",
           help="Hood: the ball rolls on the hood and leaves at half the surface speed with spin V/r_b. "
                "Two wheels: surface speed, no spin."),
-    Field("ball_diameter", "Ball diameter", "length", "in", default=4, min=0, min_exclusive=True, max=2),
+    Field("ball_diameter", "Ball diameter", "length", "in", default=4, min=0, min_exclusive=True, max=2,
+          when=(("shooter", ("hood",)),), help="2·r_b: sets the spin V/r_b of a ball rolling on the hood."),
     Field("ball_mass", "Ball mass", "mass", "g", default=60, min=0, max=100,
           help="Nominal ball mass m₀ (NbN ball: 60 g)."),
     Field("ball_inertia_factor", "Ball I/(m·r²)", "dimensionless", "", default=0.4, min=0, max=0.67,
-          help="k_b: 2/5 solid sphere (seed), 2/3 thin shell."),
+          when=(("shooter", ("hood",)),), help="k_b: 2/5 solid sphere (seed), 2/3 thin shell."),
     Field("ball_mass_tolerance", "Ball mass tolerance", "dimensionless", "%", default=10, min=0, max=0.9,
           help="e_m: balls up to m₀·(1 ± e_m); range errors are for the heavy ball, as in the seed."),
     Field("target_speed", "Wheel target speed", "angular_speed", "rpm", default=2000, min=0, min_exclusive=True,
@@ -116,6 +119,7 @@ FIELDS = (
           help="f: friction and ball compression (energy model: of the energy the wheel gives up; "
                "momentum model: of the ball's energy)."),
     Field("grip_force", "Grip force μ·N (motor during shot)", "force", "N", default=40, min=0.1, max=1e5,
+          when=(("effects", ("motor_during_shot",)),),
           help="Friction force of the wheels on the slipping ball; used by motor_during_shot only."),
     Field("shots", "Shots in the burst", integer=True, default=4, min=1, max=50),
     Field("shot_interval", "Shot interval", "time", "s", default=0.5, min=0.01, max=60,
@@ -141,12 +145,14 @@ OUTPUTS = (
     Output("range_error", "Range error (heavy ball)", "dimensionless", "%",
            help="Exact, for m₀·(1+e_m), with the effects and losses chosen."),
     Output("range_error_linear", "Range error, seed linear", "dimensionless", "%",
-           help="The seed's −e_m/(m_w/(c·m₀) + 1) with c computed exactly."),
+           help="The seed's −e_m/(m_w/(c·m₀) + 1) with c computed exactly: its lossless energy model at "
+                "h = 0, whatever model is chosen (the momentum model's error is about twice it)."),
     Output("range_spread", "Range spread light to heavy", "length", "m",
            help="R(m₀·(1−e_m)) − R(m₀·(1+e_m))."),
     *[Output(f"range_error_{n}", f"Range error, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%")
       for n in TABLE_WHEELS],
-    *[Output(f"range_error_linear_{n}", f"Seed linear, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%")
+    *[Output(f"range_error_linear_{n}", f"Seed linear, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%",
+             help="The seed's table (9): lossless energy model, h = 0, whatever model is chosen.")
       for n in TABLE_WHEELS],
     Output("free_speed", "Wheel free speed", "angular_speed", "rpm", help="ω̃f/G."),
     Output("time_constant", "Spin-up time constant", "time", "s", help="T = I·ω̃f/(G²·τ̃s)."),
@@ -402,7 +408,7 @@ def burst(sc: Scene, v, shots: Shots):
         if t_hit > 0:
             reach = min(t_hit, duration)
             for i in range(1, 25):
-                dt = reach * i / 24
+                dt = reach * i / 24 if i < 24 else reach  # reach·24/24 need not round to reach
                 ts.append(t_start + dt)
                 ws.append(min(free_run(sc, w_start, dt), target))
         if duration > t_hit:
@@ -412,7 +418,8 @@ def burst(sc: Scene, v, shots: Shots):
     ts.append(0.0)
     ws.append(0.0)
     ramp(0.0, 0.0, t_spin)
-    t, w = t_spin, target
+    first_shot = len(ts) - 1  # the burst plot starts at the end of the spin-up (not found by time:
+    t, w = t_spin, target       # the last sample's reach·24/24 can round below t_spin)
     slowest = math.inf
     for k in range(v["shots"]):
         one = shots(sc, w, m0)
@@ -428,7 +435,7 @@ def burst(sc: Scene, v, shots: Shots):
             t = t_end + wait
         else:
             ramp(t_end, w, recovery(sc, w, target) + 0.25 * T)
-    return (ts, ws), slowest, t_spin
+    return (ts, ws), slowest, t_spin, first_shot
 
 
 def simulate(v, rtol: float) -> SimRun:
@@ -456,13 +463,21 @@ def simulate(v, rtol: float) -> SimRun:
     }
     if sc.motor_on:
         values["contact_time"] = first.contact_time
+        # the grip is constant, so the ball accelerates uniformly from rest: it slips over V·t_c/2
+        slip_length = first.V / math.sqrt(1 - sc.f) * first.contact_time / 2
+        if slip_length > SLIP_LENGTH_WARN:
+            warnings.append(f"The ball slips {slip_length:.3g} m before it rolls, longer than a shooter's "
+                            f"contact path: it would leave while still slipping. Raise the grip force.")
+    if sc.model == "momentum":
+        warnings.append("The 'seed linear' range errors are the seed's energy model; the momentum model's "
+                        "exact range errors are about twice them (R ∝ 1/(1 + β)² instead of 1/(1 + β)).")
     if v["mode"] == "radius_of_gyration":
         values["mass_ratio_coefficient"] = (1 + sc.sigma * sc.k_b) * sc.s ** 2 / v["gyration_fraction"] ** 2  # (6)
     for n in TABLE_WHEELS:  # the seed's table; the free speed ω̃f/G does not depend on n
         sc_n = sc if n == v["wheel_count"] else dataclasses.replace(sc, I=n * inertia_each(v))
         values[f"range_error_{n}"] = range_change(sc_n, v, shots, m0 * e_m)
         values[f"range_error_linear_{n}"] = range_error_linear(sc_n, m0, e_m)
-    trace, slowest, t_spin = burst(sc, v, shots)
+    trace, slowest, t_spin, first_shot = burst(sc, v, shots)
     values.update({
         "free_speed": sc.free_speed,
         "time_constant": sc.T,
@@ -473,7 +488,6 @@ def simulate(v, rtol: float) -> SimRun:
     if slowest < first.V * (1 - 1e-9):
         warnings.append(f"The wheel does not recover between shots: the slowest ball leaves at "
                         f"{slowest:.3g} m/s instead of {first.V:.3g} m/s.")
-    first_shot = next(i for i, t in enumerate(trace[0]) if t >= t_spin)
     series = {"wheel speed": trace, "burst": (trace[0][first_shot:], trace[1][first_shot:])}
     key = {"ball_speed": first.V, "wheel_speed_after": first.omega_after, "slowest_ball_speed": slowest}
     return SimRun(values, key, shots.nfev, warnings, series)
