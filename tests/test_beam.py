@@ -369,3 +369,15 @@ def test_material_figures_reach_the_outputs(material, E, G, rho):
     assert sol.outputs["mass"].value == pytest.approx(rho * math.pi / 4 * IN**2 * 0.254, rel=1e-12)
     assert sol.outputs["buckling_load"].value == pytest.approx(
         math.pi**2 * E * J / 2 / 0.254**2, rel=1e-12)  # K = 1 (pinned, recommended 1.0), I = J/2
+
+
+def test_short_steel_column_without_a_yield_says_which_yield_euler_needs():
+    """Steel 1 in square, 10 in pinned: KL/r = 34.641 (see the Johnson test), σ_E = π²·200e9/1200
+    = 1644.9 MPa, so Euler needs a yield ≥ 3290 MPa: no steel in FRC has that. At 100 in,
+    σ_E = 16.45 MPa < 125 MPa: no warning."""
+    base = {"section": "square", "outer_size": "1 in", "material": "steel", "load_position": "0 in",
+            "end_condition": "pinned_pinned", "k_values": "theoretical"}
+    (warning,) = [w for w in solve("beam", {**base, "length": "10 in"}).warnings if "Short column" in w]
+    needed = float(warning.split("at least ")[1].split(" MPa")[0])
+    assert needed == pytest.approx(2 * math.pi**2 * 200e3 / 1200, rel=1e-4)  # 3289.9 MPa
+    assert not any("Short column" in w for w in solve("beam", {**base, "length": "100 in"}).warnings)
