@@ -44,10 +44,10 @@ MATERIALS = {
 END_CONDITIONS = {
     "fixed_fixed": ("Both ends fixed", 0.5, 0.65),
     "fixed_pinned": ("Fixed, other end pinned", 0.7, 0.80),
-    "fixed_guided": ("Fixed, other end guided (turns fixed, slides)", 1.0, 1.2),
+    "fixed_guided": ("Fixed, other end guided (cannot turn, slides sideways)", 1.0, 1.2),
     "pinned_pinned": ("Both ends pinned", 1.0, 1.0),
     "fixed_free": ("Fixed, other end free", 2.0, 2.10),
-    "pinned_guided": ("Pinned, other end guided (turns fixed, slides)", 2.0, 2.0),
+    "pinned_guided": ("Pinned, other end guided (cannot turn, slides sideways)", 2.0, 2.0),
 }
 
 FIELDS = (
