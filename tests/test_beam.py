@@ -316,3 +316,68 @@ def test_short_column_warns_with_johnson_load():
     long_column = solve("beam", {"section": "square", "outer_size": "1 in", "length": "100 in",
                                  "load_position": "5 in"})
     assert not any("Johnson" in w for w in long_column.warnings)
+
+
+# --- review additions: lines no earlier test pinned down ------------------------------------
+
+def test_k_table_is_the_seeds():
+    """Seed table under (59), columns in order: theoretical 0.5 0.7 1.0 1.0 2.0 2.0,
+    recommended 0.65 0.80 1.2 1.0 2.10 2.0."""
+    table = {"fixed_fixed": (0.5, 0.65), "fixed_pinned": (0.7, 0.80), "fixed_guided": (1.0, 1.2),
+             "pinned_pinned": (1.0, 1.0), "fixed_free": (2.0, 2.10), "pinned_guided": (2.0, 2.0)}
+    assert {k: v[1:] for k, v in calc.END_CONDITIONS.items()} == table
+
+
+def test_fixed_fixed_off_centre_moment_is_at_the_nearer_support():
+    """a = l/4, b = 3l/4 (Shigley A-9-14): M_left = F·a·b²/l² = F·l·0.25·0.5625 = 0.140625·F·l,
+    M_right = F·a²·b/l² = 0.046875·F·l, under the load 2F·a²b²/l³ = 0.0703125·F·l."""
+    for a in (0.25, 0.75):
+        assert beams.max_moment("fixed", 10.0, a, 1.0) == pytest.approx(1.40625, rel=1e-14)
+    assert beams.max_moment("simple", 10.0, 0.25, 1.0) == pytest.approx(10 * 0.25 * 0.75, rel=1e-14)
+    assert beams.max_moment("cantilever", 10.0, 0.25, 1.0) == pytest.approx(2.5, rel=1e-14)
+
+
+def test_hex_bending_stress_uses_the_corner_fibre():
+    """1/2 in hex, 10 in cantilever, 10 lbf at the tip: M = 44.4822·0.254 = 11.29848 N·m;
+    I = 5√3/144·0.0127⁴ = 0.0601407·2.60145e-8 = 1.564530e-9 m⁴; c = 0.0127/√3 = 7.33235e-3 m;
+    σ = 11.29848·7.33235e-3/1.564530e-9 = 52.952 MPa."""
+    sol = solve("beam", {"section": "hex", "outer_size": "0.5 in", "support": "cantilever",
+                         "length": "10 in", "load_position": "10 in", "force": "10 lbf"})
+    assert sol.outputs["max_bending_stress"].value == pytest.approx(52.952e6, rel=1e-4)
+
+
+def test_johnson_branch_starts_where_euler_stress_is_half_the_yield():
+    """Solid 1 in square 6061, pinned, K = 1: r = 0.0254/√12 = 7.33235e-3 m. Euler σ = Sy/2 at
+    KL/r = √(2π²E/Sy) = √(2·9.8696·68.9e9/276e6) = 70.197 → L = 0.51471 m = 20.264 in.
+    At 18 in (KL/r = 62.35, σ_E = 174.9 MPa, between Sy/2 and Sy) Johnson applies; at 22 in not."""
+    base = {"section": "square", "outer_size": "1 in", "load_position": "0 in",
+            "end_condition": "pinned_pinned", "k_values": "theoretical"}
+    assert any("Johnson" in w for w in solve("beam", {**base, "length": "18 in"}).warnings)
+    assert not any("Johnson" in w for w in solve("beam", {**base, "length": "22 in"}).warnings)
+
+
+@pytest.mark.parametrize("material,E,G,rho", [
+    ("6061_t6", 68.9e9, 26.0e9, 2700.0), ("steel", 200e9, 79.3e9, 7850.0),
+    ("polycarbonate", 2.34e9, 2.34e9 / (2 * (1 + 0.37)), 1200.0)])
+def test_material_figures_reach_the_outputs(material, E, G, rho):
+    """REFERENCE_DATA.md; polycarbonate G = E/(2(1 + ν)) = 2.34/2.74 = 0.85401 GPa with ν = 0.37.
+    1 in round bar, 10 in, 1 N·m of torque: θ = T·L/(G·J), J = π·0.0254⁴/32 = 4.08620e-8 m⁴."""
+    sol = solve("beam", {"section": "round", "outer_size": "1 in", "length": "10 in",
+                         "load_position": "0 in", "torque": "1 N*m", "material": material})
+    J = math.pi * IN**4 / 32
+    assert sol.outputs["twist_angle"].value == pytest.approx(0.254 / (G * J), rel=1e-12)
+    assert sol.outputs["mass"].value == pytest.approx(rho * math.pi / 4 * IN**2 * 0.254, rel=1e-12)
+    assert sol.outputs["buckling_load"].value == pytest.approx(
+        math.pi**2 * E * J / 2 / 0.254**2, rel=1e-12)  # K = 1 (pinned, recommended 1.0), I = J/2
+
+
+def test_short_steel_column_without_a_yield_says_which_yield_euler_needs():
+    """Steel 1 in square, 10 in pinned: KL/r = 34.641 (see the Johnson test), σ_E = π²·200e9/1200
+    = 1644.9 MPa, so Euler needs a yield ≥ 3290 MPa: no steel in FRC has that. At 100 in,
+    σ_E = 16.45 MPa < 125 MPa: no warning."""
+    base = {"section": "square", "outer_size": "1 in", "material": "steel", "load_position": "0 in",
+            "end_condition": "pinned_pinned", "k_values": "theoretical"}
+    (warning,) = [w for w in solve("beam", {**base, "length": "10 in"}).warnings if "Short column" in w]
+    needed = float(warning.split("at least ")[1].split(" MPa")[0])
+    assert needed == pytest.approx(2 * math.pi**2 * 200e3 / 1200, rel=1e-4)  # 3289.9 MPa
+    assert not any("Short column" in w for w in solve("beam", {**base, "length": "100 in"}).warnings)

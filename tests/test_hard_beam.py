@@ -131,9 +131,23 @@ def test_rectangular_tube_fem_against_grids_four_times_finer(W, H):
 
 
 def test_rectangular_tube_fem_long_tube_extrapolation():
-    """A 1000:4 tube (wall 1) is not meshed: J is linear in the long side; check against a mesh."""
-    reference = beams.extrapolated_torsion(1000.0, 4.0, (8, 16, 32))
-    assert beams.tube_torsion_fem(1000.0, 4.0, 1.0) == pytest.approx(reference, rel=2e-4)
+    """A 25000:4 tube (wall 1) is not meshed: J is linear in the long side L up to an O(1/L) term
+    (Bredt-like 2tA²/p, not exponentially small), so the extrapolation from 2048:1 and 4096:1 is
+    low by ~2/4096² ≈ 1e-7; check against a direct (graded, so still small) mesh."""
+    reference = beams.extrapolated_torsion(1e5, 4.0, (8, 16, 32))
+    assert beams.tube_torsion_fem(1e5, 4.0, 1.0) == pytest.approx(reference, rel=1e-6)
+
+
+def test_long_thin_walled_tube_is_meshed_and_stays_above_bredt():
+    """50 × 10001 (wall 1, ratio 200:1): delicate because J exceeds Bredt's by only ~2e-4, less
+    than the 2.5e-4 a linear extrapolation in the long side from 32:1 and 64:1 loses (the O(1/L)
+    term); the exact J must stay above Bredt's and agree with a finer direct mesh to 1e-6."""
+    W, H = 50.0, 10001.0
+    reference = beams.extrapolated_torsion(W, H, (8, 16, 32))
+    J = beams.tube_torsion_fem(W, H, 1.0)
+    assert J == pytest.approx(reference, rel=1e-6)
+    bredt = 2 * (W - 1) ** 2 * (H - 1) ** 2 / (W + H - 2)
+    assert J > bredt
 
 
 def test_rectangular_tube_fem_and_bredt_agree_for_a_thin_wall():

@@ -13,7 +13,8 @@ Other choices:
   mode field; each section checks the ones it uses and names the field when one cannot close.
 - The hex's extreme fibre is taken at a corner (s/√3), the conservative orientation.
 - Buckling uses the weakest axis of the section; the Euler load is a warning-backed upper bound
-  for short columns (Johnson's parabola is given when σ_Euler > yield/2).
+  for short columns (Johnson's parabola is given when σ_Euler > yield/2; with the yield unknown,
+  e.g. steel, the yield Euler needs is given once σ_Euler passes half a mild steel's 250 MPa).
 - The torque twists the whole length (one end held, the torque at the other): θ = TL/(GJ) (60).
 - Polycarbonate's shear modulus is not in REFERENCE_DATA: G = E/(2(1+ν)) with ν = 0.37
   (typical datasheet value, e.g. the Wikipedia polycarbonate infobox).
@@ -29,6 +30,7 @@ from ..model import Calculator, Field, Output, Plot, Result
 from ..units import format_number
 
 LBF = 4.4482216152605  # N per lbf
+MILD_STEEL_YIELD = 250e6  # Pa, ASTM A36 (the low end of common steels), for the short-column warning
 
 # name: (label, E Pa, G Pa, yield Pa or None, density kg/m³ or None); REFERENCE_DATA.md
 MATERIALS = {
@@ -42,10 +44,10 @@ MATERIALS = {
 END_CONDITIONS = {
     "fixed_fixed": ("Both ends fixed", 0.5, 0.65),
     "fixed_pinned": ("Fixed, other end pinned", 0.7, 0.80),
-    "fixed_guided": ("Fixed, other end guided (turns fixed, slides)", 1.0, 1.2),
+    "fixed_guided": ("Fixed, other end guided (cannot turn, slides sideways)", 1.0, 1.2),
     "pinned_pinned": ("Both ends pinned", 1.0, 1.0),
     "fixed_free": ("Fixed, other end free", 2.0, 2.10),
-    "pinned_guided": ("Pinned, other end guided (turns fixed, slides)", 2.0, 2.0),
+    "pinned_guided": ("Pinned, other end guided (cannot turn, slides sideways)", 2.0, 2.0),
 }
 
 FIELDS = (
@@ -204,6 +206,12 @@ def compute(v) -> Result:
         warnings.append(f"Short column (KL/r = {slenderness:.3g}): Euler's load overestimates; "
                         f"Johnson's parabola gives {format_number(max(johnson, 0.0))} N "
                         f"({format_number(max(johnson, 0.0) / LBF)} lbf).")
+    elif Sy is None and P_cr / sec.area > MILD_STEEL_YIELD / 2:
+        # Johnson's parabola takes over below σ_Euler = Sy/2: without Sy, say which yield Euler needs
+        needed = 2 * P_cr / sec.area
+        warnings.append(f"Short column: Euler's load holds only if the yield strength is at least "
+                        f"{format_number(needed / 1e6)} MPa (twice the Euler stress); below that Johnson's "
+                        "parabola gives less. Choose Custom with the yield strength to check.")
     if y_max > 0.1 * l:
         warnings.append(f"The deflection is {y_max / l:.0%} of the length: beyond small-deflection "
                         "beam theory, treat the numbers as rough.")
