@@ -173,6 +173,20 @@ def test_plot_series_runs_from_theta1_to_theta2():
     assert all(b > a for a, b in zip(xs, xs[1:]))
 
 
+
+def test_plot_series_clockwise_swing_has_clockwise_torque():
+    # The clockwise case above, pivot (A, B) = (-1, 1), i.e. C = (1, 1): the cylinder line through
+    # P1 = (1, 0) is x = 1, 1 m from the arm pivot -> -10 N·m at θ1; at θ2 = -90°, P2 = (0, -1), the
+    # line from (1, 1) along (-1, -2) is |1·(-2) - 1·(-1)|/√5 = 1/√5 m away -> -10/√5 N·m.
+    # The plot runs 0° -> -90° and every torque is clockwise (< 0).
+    sol = solve("pneumatic_linkage", {"mode": "reverse", "retracted_angle": "0 deg", "extended_angle": "-90 deg",
+                                      "arm_x": "1 m", "arm_y": "0 m", "retracted_length": "1 m",
+                                      "stroke": f"{math.sqrt(5) - 1} m", "cylinder_force": "10 N"})
+    xs, ys = sol.series["torque"]
+    assert xs[0] == pytest.approx(0, abs=1e-14) and xs[-1] == pytest.approx(-math.pi / 2, rel=1e-12)
+    assert ys[0] == pytest.approx(-10.0, rel=1e-12) and ys[-1] == pytest.approx(-10 / math.sqrt(5), rel=1e-12)
+    assert all(y < 0 for y in ys)
+
 sides = st.floats(0.2, 1.0)
 unit = st.floats(0.0, 1.0)
 
