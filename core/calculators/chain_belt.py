@@ -17,7 +17,7 @@ Corrections to the seed (derived again; checked against mpmath in tests/test_cha
   (D → Δ) dL/dD = 2X/D → 0 and Newton fails. Here L is rewritten with u = X/Δ as
       L = 2π r_2 + 2Δ·(u − tan⁻¹ u),
   (u − tan⁻¹ u by its series for small u, no cancellation) and u is bracketed for brentq:
-  (3s)^(1/3) ≥ u ≥ s and u ≤ s + π/2 where s = (L − 2π r_2)/(2Δ). Equal sprockets (Δ = 0)
+  max(s, (3s)^(1/3)) ≤ u ≤ s + π/2 where s = (L − 2π r_2)/(2Δ). Equal sprockets (Δ = 0)
   have the closed form D = (L − π d)/2.
 - The seed takes the pitch diameter as n·p/π (65): exact for belts, while a chain sprocket's
   pitch circle through the roller centres is p / sin(180°/n) (slightly larger). That larger
@@ -26,7 +26,7 @@ Corrections to the seed (derived again; checked against mpmath in tests/test_cha
   this is exact (D = (l − n)·p/2: the taut chain round two equal polygons is 2D + n·p), and for
   unequal ones the taut convex hull round the two roller polygons brackets l·p over the sprockets'
   phases (tests/test_chain_belt.py). p/sin(180°/n) in (68) would put D short by about
-  π²p/(12n) per sprocket (16T-16T #25, 64 links: 5.987 in instead of exactly 6 in). So the
+  (π²p/24)·(1/n_1 + 1/n_2) (16T-16T #25, 64 links: 5.987 in instead of exactly 6 in). So the
   pitch-diameter choice sets only the pitch diameters shown and the clearance (67).
 """
 
