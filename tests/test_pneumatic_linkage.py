@@ -90,6 +90,18 @@ def test_reverse_clockwise_swing_gives_negative_torque():
     assert o["retracted_torque"] == pytest.approx(-10.0, rel=1e-14)
 
 
+
+def test_reverse_warns_when_the_pivot_found_ends_at_dead_centre():
+    # Rod end (1, 0), θ 0° -> 90°, C = (0, -2): ℓ1 = |(1, 2)| = √5, ℓ2 = |(0, 3)| = 3 = d + r: extended,
+    # the rod end (0, 1) is in line with both pivots (lever arm 0), as forward mode would warn.
+    sol = solve("pneumatic_linkage", {"mode": "reverse", "retracted_angle": "0 deg", "extended_angle": "90 deg",
+                                      "arm_x": "1 m", "arm_y": "0 m", "retracted_length": f"{math.sqrt(5)!r} m",
+                                      "stroke": f"{3 - math.sqrt(5)!r} m"})
+    assert (sol.outputs["pivot_x"].value, sol.outputs["pivot_y"].value) == pytest.approx((0, -2), abs=1e-14)
+    assert sol.outputs["extended_lever_arm"].value == pytest.approx(0, abs=1e-7)
+    assert any("When extended the arm is at dead centre" in w for w in sol.warnings)
+    assert not any("When retracted" in w for w in sol.warnings)  # lever arm there 2/√5 m, γ = 63.4°
+
 def test_reverse_rejects_a_pivot_that_passes_dead_centre():
     # P1 = (1, 0), P2 = (0, 1), L = 0.5, L + ΔL = 1.5. Both circles meet at C = P1 ± (√2/4)(1, 1):
     #   C+ = (1 + √2/4, √2/4): |C+ − P1| = 0.5, |C+ − P2|² = (1.35355)² + (0.64645)² = 2.25 ✓
