@@ -99,7 +99,9 @@ OUTPUTS = (
     Output("wrap_angle_small", "Wrap on the smaller sprocket", "angle", "deg",
            help="Angle of contact on the smaller sprocket: π − 2·sin⁻¹(|r_2 − r_1|/D)."),
     Output("minimum_links", "Fewest links that wrap both",
-           help="Shortest usable count whose length reaches around both (D ≥ |r_2 − r_1|)."),
+           help="Shortest count that reaches round both (D ≥ |r_2 − r_1|, even for chain without half "
+                "links). At that length the small sprocket sits inside the large one: a workable "
+                "length is longer, with a positive clearance."),
 )
 
 
