@@ -1,5 +1,5 @@
 """Chain/belt length solver: time per solve in three regimes, accuracy against mpmath, and how
-far the seed's forms and the n·p/π pitch diameter are from the exact ones."""
+far the seed's forms (and p/sin(180°/n) radii in (68), which the code does not use) move D."""
 
 from __future__ import annotations
 
@@ -86,9 +86,8 @@ def main() -> None:
                                        cb.pitch_radius(n2, p, "circumference"))
         D_chord = cb.center_from_length(links * p, cb.pitch_radius(n1, p, "chordal"),
                                         cb.pitch_radius(n2, p, "chordal"))
-        print(f"  {label:22s} n·p/π {D_seed / IN:.4f} in, p/sin(180°/n) {D_chord / IN:.4f} in "
-              f"({(D_chord - D_seed) / IN:+.4f} in)")
-
+        print(f"  {label:22s} n·p/π (used) {D_seed / IN:.4f} in; p/sin(180°/n) in (68) would give "
+              f"{D_chord / IN:.4f} in ({(D_chord - D_seed) / IN:+.4f} in, chain slack)")
 
 if __name__ == "__main__":
     main()

@@ -82,15 +82,59 @@ def test_overlapping_sprockets_warn():
 
 
 def test_chordal_pitch_diameter_option():
-    # #25 chain 16T: exact p/sin(180°/16) = 0.25/0.19509032 = 1.281457 in; seed 16·0.25/π = 1.273240 in
+    # #25 chain 16T: true pitch circle p/sin(180°/16) = 0.25/0.19509032 = 1.281457 in; seed 16·0.25/π = 1.273240 in
     o = out(kind="chain", pitch_standard="chain_25", teeth_1=16, teeth_2=32, links=80, pitch_diameter="chordal")
     assert o["pitch_diameter_1"] / IN == pytest.approx(1.281457, abs=2e-6)
     s = out(kind="chain", pitch_standard="chain_25", teeth_1=16, teeth_2=32, links=80)
     assert s["pitch_diameter_1"] / IN == pytest.approx(4 / math.pi, rel=1e-15)
-    # the reported difference is exactly the other method's center distance minus this one
-    assert s["center_difference_other_method"] == pytest.approx(o["center_distance"] - s["center_distance"], rel=1e-9)
-    assert o["center_difference_other_method"] == pytest.approx(-s["center_difference_other_method"], rel=1e-9)
-    assert s["center_difference_other_method"] < 0  # larger sprockets take up more chain
+    # the chain path is n·p per turn either way: the center distance does not change, the clearance
+    # (67) does, by the difference of the pitch radii: 0.25/(2 sin 11.25°) + 0.25/(2 sin 5.625°) − 6/π
+    # = 0.640729 + 1.275288 − 1.909859 = 0.006158 in
+    assert o["center_distance"] == s["center_distance"]
+    shift = 0.125 / math.sin(math.pi / 16) + 0.125 / math.sin(math.pi / 32) - 6 / math.pi
+    assert (s["clearance"] - o["clearance"]) / IN == pytest.approx(shift, rel=1e-9)
+
+
+@pytest.mark.parametrize("method", ["circumference", "chordal"])
+def test_equal_chain_sprockets_exact_link_count(method):
+    # 16T-16T #25, 6 in: the taut chain round two equal sprocket polygons is 2D + n·p (n links round
+    # the two half-wraps), whatever the pitch circle: 2·6 + 16·0.25 = 16 in = 64 links exactly.
+    # (p/sin(180°/n) in (68) would say 64.103 links and 64 links -> 5.987 in.)
+    o = out(kind="chain", pitch_standard="chain_25", teeth_1=16, teeth_2=16, mode="links_from_center",
+            target_center="6 in", pitch_diameter=method)
+    assert o["links_exact"] == pytest.approx(64, rel=1e-14)
+    assert o["links_below"] == o["links_above"] == 64
+    assert o["center_below"] / IN == pytest.approx(6, rel=1e-14)
+
+
+def hull_links(D, n1, n2, p, phases=8):
+    """Independent polygon model: rollers on the vertices of the sprockets' true pitch polygons
+    (circumradius p/(2 sin(π/n))), sprocket 2 at (D, 0); the taut chain is the convex hull's
+    perimeter. Returns (min, max) over the two sprockets' phases, in links."""
+    import numpy as np
+    from scipy.spatial import ConvexHull
+
+    def ring(n, cx, f):
+        a = f + 2 * np.pi * np.arange(n) / n
+        R = p / (2 * math.sin(math.pi / n))
+        return np.c_[cx + R * np.cos(a), R * np.sin(a)]
+
+    per = [ConvexHull(np.vstack([ring(n1, 0, 2 * math.pi * i / (phases * n1)),
+                                 ring(n2, D, 2 * math.pi * j / (phases * n2))])).area / p
+           for i in range(phases) for j in range(phases)]  # 2-D hull: .area is the perimeter
+    return min(per), max(per)
+
+
+@pytest.mark.parametrize("n1, n2, links, standard, p", [(12, 36, 74, "chain_25", 0.25 * IN),
+                                                        (12, 60, 92, "chain_35", 0.375 * IN)])
+def test_chain_center_against_sprocket_polygons(n1, n2, links, standard, p):
+    # At the calculator's D the taut hull round the roller polygons brackets the chain (74.0 ± 0.005
+    # links); (68) with p/sin(180°/n) radii gives a D where every phase leaves ~0.08 link of slack.
+    o = out(kind="chain", pitch_standard=standard, teeth_1=n1, teeth_2=n2, links=links, pitch_diameter="chordal")
+    lo, hi = hull_links(o["center_distance"], n1, n2, p)
+    assert lo <= links <= hi and hi - lo < 0.01
+    R1, R2 = cb.pitch_radius(n1, p, "chordal"), cb.pitch_radius(n2, p, "chordal")
+    assert hull_links(cb.center_from_length(links * p, R1, R2), n1, n2, p)[1] < links - 0.05
 
 
 def test_reverse_even_links_for_chain_and_half_links():
@@ -140,8 +184,8 @@ def test_target_inside_radius_difference_is_an_input_error():
 @given(n1=st.integers(3, 120), n2=st.integers(3, 120), extra=st.integers(1, 400),
        p=st.floats(1e-3, 0.03), chordal=st.booleans())
 def test_links_to_center_to_links(n1, n2, extra, p, chordal):
-    method = "chordal" if chordal else "circumference"
-    r1, r2 = cb.pitch_radius(n1, p, method), cb.pitch_radius(n2, p, method)
+    method = "chordal" if chordal else "circumference"  # only what is shown; the path is n·p/π
+    r1, r2 = cb.pitch_radius(n1, p, "circumference"), cb.pitch_radius(n2, p, "circumference")
     links = math.ceil(cb.minimum_length(r1, r2) / p) + extra
     raw = dict(pitch_standard="custom", pitch=f"{p} m", teeth_1=n1, teeth_2=n2, pitch_diameter=method)
     D = out(**raw, links=links)["center_distance"]
@@ -168,18 +212,17 @@ def test_presets_load_and_solve():
         assert sol.outputs
 
 
-def test_minimum_links_chordal_chain():
-    # #25 chain 12T/36T, p/sin(180°/n): L_min = 2π r_2 = π p / sin(5°) = 36.0458 p -> 37 links,
-    # even for chain -> 38 (with half links 37)
-    o = out(kind="chain", pitch_standard="chain_25", teeth_1=12, teeth_2=36, links=38, pitch_diameter="chordal")
-    assert math.pi / math.sin(math.radians(5)) == pytest.approx(36.0458, abs=1e-4)
+@pytest.mark.parametrize("method", ["circumference", "chordal"])
+def test_minimum_links_chain(method):
+    # #25 chain 13T/37T: L_min = 2π r_2 = 37 p (65) -> 37 links, even for chain -> 38 (half links 37)
+    o = out(kind="chain", pitch_standard="chain_25", teeth_1=13, teeth_2=37, links=38, pitch_diameter=method)
     assert o["minimum_links"] == 38
-    h = out(kind="chain", pitch_standard="chain_25", teeth_1=12, teeth_2=36, links=38, pitch_diameter="chordal",
+    h = out(kind="chain", pitch_standard="chain_25", teeth_1=13, teeth_2=37, links=38, pitch_diameter=method,
             half_links=True)
     assert h["minimum_links"] == 37
     with pytest.raises(InputError):
-        solve("chain_belt", {"kind": "chain", "pitch_standard": "chain_25", "teeth_1": 12, "teeth_2": 36,
-                             "links": 36, "pitch_diameter": "chordal"})
+        solve("chain_belt", {"kind": "chain", "pitch_standard": "chain_25", "teeth_1": 13, "teeth_2": 37,
+                             "links": 36, "pitch_diameter": method})
 
 
 @pytest.mark.parametrize("method", ["circumference", "chordal"])
@@ -187,7 +230,7 @@ def test_minimum_links_chordal_chain():
 def test_reverse_at_the_wrap_minimum(method, factor):
     # D = Δ (the small sprocket inside the large one): the length is the minimum, 2π r_2
     p = 0.375 * IN
-    r1, r2 = cb.pitch_radius(15, p, method), cb.pitch_radius(40, p, method)
+    r1, r2 = cb.pitch_radius(15, p, "circumference"), cb.pitch_radius(40, p, "circumference")
     sol = solve("chain_belt", {"kind": "chain", "pitch_standard": "chain_35", "teeth_1": 15, "teeth_2": 40,
                                "pitch_diameter": method, "mode": "links_from_center",
                                "target_center": f"{(r2 - r1) * factor!r} m"})

@@ -90,6 +90,18 @@ def test_reverse_clockwise_swing_gives_negative_torque():
     assert o["retracted_torque"] == pytest.approx(-10.0, rel=1e-14)
 
 
+
+def test_reverse_warns_when_the_pivot_found_ends_at_dead_centre():
+    # Rod end (1, 0), θ 0° -> 90°, C = (0, -2): ℓ1 = |(1, 2)| = √5, ℓ2 = |(0, 3)| = 3 = d + r: extended,
+    # the rod end (0, 1) is in line with both pivots (lever arm 0), as forward mode would warn.
+    sol = solve("pneumatic_linkage", {"mode": "reverse", "retracted_angle": "0 deg", "extended_angle": "90 deg",
+                                      "arm_x": "1 m", "arm_y": "0 m", "retracted_length": f"{math.sqrt(5)!r} m",
+                                      "stroke": f"{3 - math.sqrt(5)!r} m"})
+    assert (sol.outputs["pivot_x"].value, sol.outputs["pivot_y"].value) == pytest.approx((0, -2), abs=1e-14)
+    assert sol.outputs["extended_lever_arm"].value == pytest.approx(0, abs=1e-7)
+    assert any("When extended the arm is at dead centre" in w for w in sol.warnings)
+    assert not any("When retracted" in w for w in sol.warnings)  # lever arm there 2/√5 m, γ = 63.4°
+
 def test_reverse_rejects_a_pivot_that_passes_dead_centre():
     # P1 = (1, 0), P2 = (0, 1), L = 0.5, L + ΔL = 1.5. Both circles meet at C = P1 ± (√2/4)(1, 1):
     #   C+ = (1 + √2/4, √2/4): |C+ − P1| = 0.5, |C+ − P2|² = (1.35355)² + (0.64645)² = 2.25 ✓
@@ -172,6 +184,20 @@ def test_plot_series_runs_from_theta1_to_theta2():
     assert ys[0] == pytest.approx(sol.outputs["retracted_torque"].value, rel=1e-12)
     assert all(b > a for a, b in zip(xs, xs[1:]))
 
+
+
+def test_plot_series_clockwise_swing_has_clockwise_torque():
+    # The clockwise case above, pivot (A, B) = (-1, 1), i.e. C = (1, 1): the cylinder line through
+    # P1 = (1, 0) is x = 1, 1 m from the arm pivot -> -10 N·m at θ1; at θ2 = -90°, P2 = (0, -1), the
+    # line from (1, 1) along (-1, -2) is |1·(-2) - 1·(-1)|/√5 = 1/√5 m away -> -10/√5 N·m.
+    # The plot runs 0° -> -90° and every torque is clockwise (< 0).
+    sol = solve("pneumatic_linkage", {"mode": "reverse", "retracted_angle": "0 deg", "extended_angle": "-90 deg",
+                                      "arm_x": "1 m", "arm_y": "0 m", "retracted_length": "1 m",
+                                      "stroke": f"{math.sqrt(5) - 1} m", "cylinder_force": "10 N"})
+    xs, ys = sol.series["torque"]
+    assert xs[0] == pytest.approx(0, abs=1e-14) and xs[-1] == pytest.approx(-math.pi / 2, rel=1e-12)
+    assert ys[0] == pytest.approx(-10.0, rel=1e-12) and ys[-1] == pytest.approx(-10 / math.sqrt(5), rel=1e-12)
+    assert all(y < 0 for y in ys)
 
 sides = st.floats(0.2, 1.0)
 unit = st.floats(0.0, 1.0)

@@ -83,6 +83,17 @@ def test_nearest_pair_is_best_split_of_its_total(G, d, dp):
     assert abs(math.log(o["nearest_ratio"]) - math.log(G)) == pytest.approx(best, abs=1e-12)
 
 
+def test_ratio_typed_short_lands_just_above_a_whole_pinion():
+    # G = 3.3333333333 (10/3 to 10 digits), 1.3 in at 20 DP: total 52, n = 52/4.3333333333 =
+    # 12.00000000009 (7.7e-12 above 12, a typing slip, not a 13th tooth): 12/40 on both sides, not
+    # 13/39 (ratio 3.0) "below". The mirror case of test_ratio_typed_as_rounded_fraction.
+    o = out(ratio="3.3333333333", center_distance="1.3 in", diametral_pitch=20)
+    assert o["small_teeth"] == pytest.approx(12 + 12 * 7.7e-12, rel=1e-12)
+    assert (o["below_small_teeth"], o["below_large_teeth"]) == (12, 40)
+    assert (o["above_small_teeth"], o["above_large_teeth"]) == (12, 40)
+    assert (o["nearest_small_teeth"], o["nearest_large_teeth"]) == (12, 40)
+
+
 def test_presets_load_and_solve():
     found = [p for p in presets.listing("ratio_distance") if p.builtin]
     assert len(found) >= 2

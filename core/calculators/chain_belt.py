@@ -17,11 +17,17 @@ Corrections to the seed (derived again; checked against mpmath in tests/test_cha
   (D → Δ) dL/dD = 2X/D → 0 and Newton fails. Here L is rewritten with u = X/Δ as
       L = 2π r_2 + 2Δ·(u − tan⁻¹ u),
   (u − tan⁻¹ u by its series for small u, no cancellation) and u is bracketed for brentq:
-  (3s)^(1/3) ≥ u ≥ s and u ≤ s + π/2 where s = (L − 2π r_2)/(2Δ). Equal sprockets (Δ = 0)
+  max(s, (3s)^(1/3)) ≤ u ≤ s + π/2 where s = (L − 2π r_2)/(2Δ). Equal sprockets (Δ = 0)
   have the closed form D = (L − π d)/2.
-- The seed takes the pitch diameter as n·p/π (65): exact for belts, but a chain sprocket's pitch
-  circle passes through the roller centres, d = p / sin(180°/n) (slightly larger). Both are
-  offered; the forward result reports how far the other choice moves the center distance.
+- The seed takes the pitch diameter as n·p/π (65): exact for belts, while a chain sprocket's
+  pitch circle through the roller centres is p / sin(180°/n) (slightly larger). That larger
+  circle must NOT go into the length equation: the chain wraps the sprocket as a polygon of n
+  links, n·p per turn, so the path length is (68) with n·p/π for chains too. For equal sprockets
+  this is exact (D = (l − n)·p/2: the taut chain round two equal polygons is 2D + n·p), and for
+  unequal ones the taut convex hull round the two roller polygons brackets l·p over the sprockets'
+  phases (tests/test_chain_belt.py). p/sin(180°/n) in (68) would put D short by about
+  (π²p/24)·(1/n_1 + 1/n_2) (16T-16T #25, 64 links: 5.987 in instead of exactly 6 in). So the
+  pitch-diameter choice sets only the pitch diameters shown and the clearance (67).
 """
 
 from __future__ import annotations
@@ -68,11 +74,12 @@ FIELDS = (
     Field("half_links", "Allow half links", boolean=True, default=False,
           help="Chain only: a half (offset) link allows an odd number of links.",
           when=(("kind", ("chain",)),)),
-    Field("pitch_diameter", "Pitch diameter", choices=("circumference", "chordal"),
-          choice_labels=("n·p/π (seed; exact for belts)", "p/sin(180°/n) (exact chain sprocket)"),
+    Field("pitch_diameter", "Pitch diameter shown", choices=("circumference", "chordal"),
+          choice_labels=("n·p/π (seed; exact for belts)", "p/sin(180°/n) (true sprocket circle)"),
           default="circumference",
-          help="How the pitch diameter follows from the teeth: n·p/π as the seed (65), or the "
-               "sprocket's true pitch circle through the roller centres, p/sin(180°/n)."),
+          help="Pitch diameters and clearance shown: n·p/π as the seed (65), or a chain sprocket's "
+               "true pitch circle through the roller centres, p/sin(180°/n). The center distance "
+               "does not depend on it: a chain wraps a sprocket as n links, n·p per turn."),
 )
 
 OUTPUTS = (
@@ -92,9 +99,9 @@ OUTPUTS = (
     Output("wrap_angle_small", "Wrap on the smaller sprocket", "angle", "deg",
            help="Angle of contact on the smaller sprocket: π − 2·sin⁻¹(|r_2 − r_1|/D)."),
     Output("minimum_links", "Fewest links that wrap both",
-           help="Shortest usable count whose length reaches around both (D ≥ |r_2 − r_1|)."),
-    Output("center_difference_other_method", "Center shift, other pitch dia.", "length", "mm",
-           help="Center distance with the other pitch-diameter formula minus this one."),
+           help="Shortest count that reaches round both (D ≥ |r_2 − r_1|, even for chain without half "
+                "links). At that length the small sprocket sits inside the large one: a workable "
+                "length is longer, with a positive clearance."),
 )
 
 
@@ -201,26 +208,22 @@ def compute(v) -> Result:
         p = STANDARD_PITCH[standard]  # the custom pitch field is not used
     n1, n2 = v["teeth_1"], v["teeth_2"]
     method = v["pitch_diameter"]
-    other = "chordal" if method == "circumference" else "circumference"
     if kind == "belt" and method == "chordal":
         warnings.append("Belts: n·p/π is the exact pulley pitch diameter; p/sin(180°/n) is for "
                         "chain sprockets.")
-    r1, r2 = pitch_radius(n1, p, method), pitch_radius(n2, p, method)
+    # the chain/belt path: n·p per turn of either, so r = n·p/(2π) (65) for chain as for belt
+    r1, r2 = pitch_radius(n1, p, "circumference"), pitch_radius(n2, p, "circumference")
+    shown_1, shown_2 = pitch_radius(n1, p, method), pitch_radius(n2, p, method)  # diameters, (67)
     step = step_of(kind, v["half_links"])
     unit = "links" if kind == "chain" else "belt teeth"
 
-    def spare(l: int, how: str = method) -> float:
-        """S = (l·p − 2π r_large)/2, the length beyond the wrap minimum, halved; exact for n·p/π
-        diameters, where 2π r = n p (65). Rounding-size negatives count as exactly zero."""
-        if how == "circumference":
-            return (l - max(n1, n2)) * p / 2
-        S = (l * p - 2 * math.pi * pitch_radius(max(n1, n2), p, how)) / 2
-        return 0.0 if -1e-13 * l * p <= S < 0 else S
+    def spare(l: int) -> float:
+        """S = (l·p − 2π r_large)/2 = (l − n_large)·p/2, the length beyond the wrap minimum,
+        halved; exact in whole teeth since 2π r = n p (65)."""
+        return (l - max(n1, n2)) * p / 2
 
-    l_min = max(step, step * (math.ceil(minimum_length(r1, r2) / p / step) - 1))
-    while spare(l_min) < 0:
-        l_min += step
-    values = {"pitch_diameter_1": 2 * r1, "pitch_diameter_2": 2 * r2, "minimum_links": l_min}
+    l_min = step * math.ceil(max(n1, n2) / step)  # L ≥ 2π r_large = n_large·p
+    values = {"pitch_diameter_1": 2 * shown_1, "pitch_diameter_2": 2 * shown_2, "minimum_links": l_min}
 
     if v["mode"] == "center_from_links":
         l = v["links"]
@@ -232,12 +235,9 @@ def compute(v) -> Result:
             warnings.append("An odd number of links needs a half (offset) link: allow half links "
                             "or use an even count.")
         D, X = span_from_length(L, r1, r2, spare(l))
-        values.update(center_distance=D, length=L, clearance=D - (r1 + r2))  # (67)
+        values.update(center_distance=D, length=L, clearance=D - (shown_1 + shown_2))  # (67)
         values["wrap_angle_small"] = wrap_angle(X, r1, r2)
-        o1, o2 = pitch_radius(n1, p, other), pitch_radius(n2, p, other)
-        if spare(l, other) >= 0:
-            values["center_difference_other_method"] = center_from_length(L, o1, o2, spare(l, other)) - D
-        if D - (r1 + r2) < 0:
+        if D - (shown_1 + shown_2) < 0:
             warnings.append("The pitch circles overlap (negative clearance): this length is too "
                             "short for these sprockets.")
         return Result(values, warnings)
@@ -251,7 +251,7 @@ def compute(v) -> Result:
     L = length_from_center(D, r1, r2)
     l_exact = L / p
     values["links_exact"] = l_exact
-    if D - (r1 + r2) < 0:
+    if D - (shown_1 + shown_2) < 0:
         warnings.append("The pitch circles overlap at this center distance (negative clearance).")
     nearest = step * round(l_exact / step)
     if abs(nearest - l_exact) <= 1e-9 * l_exact:

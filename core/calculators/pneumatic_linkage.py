@@ -231,12 +231,7 @@ def compute(v) -> Result:
         r, d, theta1, theta2, turn = f["r"], f["d"], f["theta1"], f["theta2"], 1.0
         values.update(retracted_angle=theta1, extended_angle=theta2, retracted_angle_alt=f["theta1_alt"],
                       extended_angle_alt=f["theta2_alt"])
-        for name, g in (("retracted", f["g1"]), ("extended", f["g2"])):
-            off = min(g, math.pi - g)  # the arm's angle from the line through both pivots
-            if off < NEAR_DEAD_CENTRE:
-                where = "at dead centre" if off < 1e-9 else f"{math.degrees(off):.2g}° from dead centre"
-                warnings.append(f"When {name} the arm is {where} (rod end in line with both pivots): "
-                                f"the cylinder has little torque there and the arm may lock.")
+        g1, g2 = f["g1"], f["g2"]
     else:
         theta1, theta2 = v["retracted_angle"], v["extended_angle"]
         rv = reverse(theta1, theta2, X, Y, L, dL)
@@ -255,6 +250,13 @@ def compute(v) -> Result:
             warnings.append(f"The other intersection, {where_text(p)}, is not a working linkage: the arm would "
                             f"pass dead centre between θ1 and θ2.")
         f = {"lo": abs(d - r), "hi": d + r}
+        g1, g2 = pivot_angle(r, d, L), pivot_angle(r, d, L + dL)
+    for name, g in (("retracted", g1), ("extended", g2)):
+        off = min(g, math.pi - g)  # the arm's angle from the line through both pivots
+        if off < NEAR_DEAD_CENTRE:
+            where = "at dead centre" if off < 1e-9 else f"{math.degrees(off):.2g}° from dead centre"
+            warnings.append(f"When {name} the arm is {where} (rod end in line with both pivots): "
+                            f"the cylinder has little torque there and the arm may lock.")
     values["sweep"] = theta2 - theta1
     values["retracted_cylinder_angle"] = cylinder_angle(A, B, X, Y, theta1)
     values["extended_cylinder_angle"] = cylinder_angle(A, B, X, Y, theta2)
