@@ -284,6 +284,18 @@ def test_optimise_evaluates_over_a_thousand_throws_and_beats_the_defaults():
         assert other <= best * 1.001
 
 
+def test_optimise_reports_the_best_throws_own_warnings():
+    """Without ground contact the longest range (seed machine) is at the 12 m sling, where the
+    projectile dips deeper below the ground (2.7 m) than at the entered 5 m sling (1.06 m):
+    the user must be told about the throw recommended, not only the one entered."""
+    sol = solve("trebuchet", {"effects": "sling, optimise"})
+    best = [w for w in sol.warnings if w.startswith("optimise, best throw")]
+    assert any("below the ground" in w for w in best)
+    p = seed_machine(l=sol.outputs["best_sling_length"].value)
+    depth = -tb.swing(p, sol.outputs["best_release_angle"].value, False, 1e-8).min_projectile_height
+    assert depth > 2 and f"{depth:.3g} m below" in best[0]
+
+
 @pytest.mark.parametrize("kw", [dict(rigid=False, d=0.2), dict(rigid=False), dict(l=2.0)])
 @pytest.mark.parametrize("contact", [False, True])
 def test_batch_throws_agree_with_the_accurate_scene(kw, contact):

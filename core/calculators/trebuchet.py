@@ -289,6 +289,11 @@ def compute(v) -> Result:
             beta, l, reach = refine(v, beta, l, lo, hi)
             if reach > -1e29:
                 run.values.update(best_release_angle=beta, best_sling_length=l, best_range=reach, candidates=n)
+                # the best throw's own validity (sling pushing, projectile through the ground, ...):
+                # the warnings above are about the throw at the entered angle and sling length
+                effects = v["effects"] - {"optimise"} | {"sling"}
+                best_run = simulate(dict(v, release_angle=beta, sling_length=l, effects=effects), 1e-8)
+                run.warnings += [f"optimise, best throw: {w}" for w in best_run.warnings if w not in run.warnings]
     return Result(run.values, run.warnings, run.series)
 
 
