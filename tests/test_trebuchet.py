@@ -296,6 +296,20 @@ def test_optimise_reports_the_best_throws_own_warnings():
     assert depth > 2 and f"{depth:.3g} m below" in best[0]
 
 
+def test_optimise_a_machine_that_cannot_lift_the_projectile_in_a_cup_but_can_with_a_sling():
+    """M = 60 kg: M·r = 225 < m·s + m_p·R = 187.5 + 56.25 kg·m, so the arm cannot lift the projectile
+    in a cup; but at rest the sling lies flat and takes none of its weight, ω̇(0) ∝ M·r − m·s > 0:
+    by hand ω̇(0) = g·(225 − 187.5)·cos φ0 / (I_φ + m_p·R²·sin²φ0)
+                 = 9.81·37.5·0.934655 / (2724.375 + 632.8125·0.126420) = 343.836 / 2804.375 = 0.122607.
+    The sling scene releases, so the optimiser must search it (it used to say no candidate released)."""
+    p = seed_machine(M=60)
+    wd0 = tb.accelerations(p, *tb.unpack(p, tb.initial_state(p)), True, math.sin, math.cos)[0]
+    assert wd0 == pytest.approx(0.122607, rel=1e-5)
+    sol = solve("trebuchet", {"effects": "sling, ground_contact, optimise", "counterweight_mass": "60 kg"})
+    assert "range" in sol.outputs and "best_range" in sol.outputs
+    assert sol.outputs["best_range"].value >= sol.outputs["range"].value
+
+
 @pytest.mark.parametrize("kw", [dict(rigid=False, d=0.2), dict(rigid=False), dict(l=2.0)])
 @pytest.mark.parametrize("contact", [False, True])
 def test_batch_throws_agree_with_the_accurate_scene(kw, contact):
