@@ -28,7 +28,8 @@ the throw; the path plot shows x toward the throw (the projectile starts behind 
 
 Departures from the seed:
 - The seed's moment and energy lines, M_m = C·sin φ and V = C·cos φ with C = M·g·aL −
-  m·g·(L/2 − aL), measure φ from the vertical, not from the horizontal as it states. With φ from
+  m·g·(L/2 − aL), measure φ from the downward vertical (long arm hanging straight down, where
+  both are consistent: −d(C·cos φ)/dφ = C·sin φ), not from the horizontal as it states. With φ from
   the horizontal (and the projectile in the cup) V = −(C − m_p·g·R)·sin φ and the moment is
   −dV/dφ = (C − m_p·g·R)·cos φ.
 - The seed's pivot-force lines F_n = (mL/2)·ω² − ..., F_s = (mL/2)·ω̇ − ... put the arm's centre
