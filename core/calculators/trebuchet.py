@@ -56,7 +56,8 @@ FIELDS = (
     Field("counterweight_mass", "Counterweight mass M", "mass", "kg", default=500, min=1e-3, max=1e7,
           help="Counterweight mass."),
     Field("counterweight_gyration", "Counterweight gyration k", "length", "m", default=2, min=0, max=1e3,
-          help="Radius of gyration of the counterweight about its centre (its inertia is M·k²)."),
+          help="Radius of gyration of the counterweight about its centre (its inertia is M·k²); "
+               "unused when it is hinged at its centre (hinged_counterweight, hanger 0), since it then does not turn."),
     Field("arm_mass", "Arm mass m", "mass", "kg", default=50, min=0, max=1e7,
           help="Mass of the throwing arm (a uniform bar)."),
     Field("arm_length", "Arm length L", "length", "m", default=15, min=1e-2, max=1e3,
