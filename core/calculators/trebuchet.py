@@ -28,7 +28,8 @@ the throw; the path plot shows x toward the throw (the projectile starts behind 
 
 Departures from the seed:
 - The seed's moment and energy lines, M_m = C·sin φ and V = C·cos φ with C = M·g·aL −
-  m·g·(L/2 − aL), measure φ from the vertical, not from the horizontal as it states. With φ from
+  m·g·(L/2 − aL), measure φ from the downward vertical (long arm hanging straight down, where
+  both are consistent: −d(C·cos φ)/dφ = C·sin φ), not from the horizontal as it states. With φ from
   the horizontal (and the projectile in the cup) V = −(C − m_p·g·R)·sin φ and the moment is
   −dV/dφ = (C − m_p·g·R)·cos φ.
 - The seed's pivot-force lines F_n = (mL/2)·ω² − ..., F_s = (mL/2)·ω̇ − ... put the arm's centre
@@ -55,7 +56,8 @@ FIELDS = (
     Field("counterweight_mass", "Counterweight mass M", "mass", "kg", default=500, min=1e-3, max=1e7,
           help="Counterweight mass."),
     Field("counterweight_gyration", "Counterweight gyration k", "length", "m", default=2, min=0, max=1e3,
-          help="Radius of gyration of the counterweight about its centre (its inertia is M·k²)."),
+          help="Radius of gyration of the counterweight about its centre (its inertia is M·k²); "
+               "unused when it is hinged at its centre (hinged_counterweight, hanger 0), since it then does not turn."),
     Field("arm_mass", "Arm mass m", "mass", "kg", default=50, min=0, max=1e7,
           help="Mass of the throwing arm (a uniform bar)."),
     Field("arm_length", "Arm length L", "length", "m", default=15, min=1e-2, max=1e3,
@@ -289,6 +291,11 @@ def compute(v) -> Result:
             beta, l, reach = refine(v, beta, l, lo, hi)
             if reach > -1e29:
                 run.values.update(best_release_angle=beta, best_sling_length=l, best_range=reach, candidates=n)
+                # the best throw's own validity (sling pushing, projectile through the ground, ...):
+                # the warnings above are about the throw at the entered angle and sling length
+                effects = v["effects"] - {"optimise"} | {"sling"}
+                best_run = simulate(dict(v, release_angle=beta, sling_length=l, effects=effects), 1e-8)
+                run.warnings += [f"optimise, best throw: {w}" for w in best_run.warnings if w not in run.warnings]
     return Result(run.values, run.warnings, run.series)
 
 

@@ -485,7 +485,7 @@ def batch_swing(p: Machine, lengths, betas, ground_contact: bool):
 
     q = replace(p, l=np.asarray(lengths, float), sling=True)
     nl, nb = len(lengths), len(betas)
-    torque = abs(p.g * (p.m * p.s - p.M * p.r + p.m_p * p.R))
+    torque = abs(p.g * (p.m * p.s - p.M * p.r))  # at rest the sling lies flat: m_p's weight is not on the arm
     tau = math.sqrt((p.I_phi + p.m_p * p.R**2) / torque)
     dt = tau / STEPS_PER_TAU
     sin, cos = np.sin, np.cos
@@ -598,7 +598,9 @@ def optimise(p: Machine, v, lo: float, hi: float):
     """(best release angle, best sling length, candidates) over the grid, or None."""
     import numpy as np
 
-    torque = p.g * (p.m * p.s - p.M * p.r + p.m_p * p.R)
+    # At rest the sling lies flat (γ = π): the sling takes none of the projectile's weight and the
+    # ground's push does not reach the arm, so ω̇(0) ∝ M·r − m·s whatever m_p (not M·r − m·s − m_p·R)
+    torque = p.g * (p.m * p.s - p.M * p.r)
     if torque >= 0:  # the arm cannot lift (see swing's "stuck"): nothing to optimise
         return None
     lengths = np.linspace(lo, hi, BATCH_SLINGS) if hi > lo else np.array([lo])
