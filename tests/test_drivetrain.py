@@ -155,3 +155,17 @@ def test_builtin_presets_load_and_solve():
     # swerve: 6000 rpm · π · 4 in / 6.75 = 628.3185·0.0508/6.75 = 4.72867 m/s = 15.514 ft/s
     swerve = next(p for p in found if "Swerve" in p.name)
     assert solve("drivetrain", swerve.inputs).outputs["free_speed"].value == pytest.approx(4.72867, rel=1e-5)
+
+
+def test_speed_loss_constant_scales_the_adjusted_speed():
+    # (38) with k_SL = 0.7: 17.1111 ft/s · 0.7 = 11.9778 ft/s
+    o = out(speed_loss=0.7)
+    assert o["adjusted_speed"] == pytest.approx(11.9778 * FT, rel=1e-5)
+
+
+def test_reverse_budget_just_above_stall_current_gives_the_stall_ratio():
+    # R = 0.0038 Ω: i_tot = 5.7/0.0038 = 1500 A, just above ĩs = 1464 A. (42) would give
+    # 74.5703/(2·0.0194780·1492) = 1.28299; the stall ratio μ·W̃·r/τ̃s = 1.31470 is reported.
+    o = out(mode="reverse", battery_resistance="0.0038 ohm", main_resistance=0, branch_resistance=0)
+    assert o["total_current"] == pytest.approx(1500, rel=1e-12)
+    assert o["max_ratio"] == pytest.approx(1.31470, rel=1e-5)

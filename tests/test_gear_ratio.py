@@ -136,3 +136,14 @@ def test_inverse_modes_reproduce_their_targets(motor, n, V, eta, F, r, frac):
     assert o["stall_load"] == pytest.approx(F * V / Vs, rel=1e-9)  # F_s/F = V/V_s
     o = out(**base, mode="max_power")
     assert o["output_power"] == pytest.approx(m.peak_power, rel=1e-9)
+
+
+def test_max_power_linear_speed_and_efficiency_at_10_volts_by_hand():
+    # Kraken X60 at 10 V: ω̃f = 523.599 rad/s, τ̃s = 7.09·10/12 = 5.90833 N*m,
+    # ĩs = 305 A, ĩf = 1.66667 A; F = 150 lbf = 667.233 N.
+    # (19) G = 2rF/τ̃s, so (14) v_free = ω̃f·r/G = ω̃f·τ̃s/(2F) = 3093.58/1334.47 = 2.31823 m/s
+    # at Fs = 2F the input torque is τ̃s/2: i = (ĩs − ĩf)/2 + ĩf = 153.333 A in all;
+    # P = ω̃f·τ̃s/4 = 773.399 W;  η = P/(V·i) = 773.399/(10·153.333) = 0.504391
+    o = out(voltage="10 V", mode="max_power")
+    assert o["linear_free_speed"] == pytest.approx(2.31823, rel=1e-5)
+    assert o["system_efficiency"] == pytest.approx(0.504391, rel=1e-5)

@@ -89,3 +89,12 @@ def test_vex_393_uses_its_own_specification_voltage():
     out = solve("motor", {"motor": "VEX 393", "voltage": "7.2 V"}).outputs
     assert out["free_speed"].value == pytest.approx(100 * RPM)
     assert out["stall_torque"].value == pytest.approx(1.67)
+
+
+def test_operating_point_power_and_efficiency_by_hand():
+    # Kraken X60 (WPILib), 12 V, τ = 0.2 N*m:
+    # (8)  ω = 628.3185·(1 − 0.2/7.09) = 610.594 rad/s;  P = 0.2·610.594 = 122.119 W
+    # (9)  i = 364·0.2/7.09 + 2 = 12.2680 A;  (10) η = 122.119/(12·12.2680) = 0.82952
+    out = solve("motor", {"motor": "Kraken X60", "torque": "0.2 N*m"}).outputs
+    assert out["output_power"].value == pytest.approx(122.119, rel=1e-5)
+    assert out["efficiency_at_torque"].value == pytest.approx(0.82952, rel=1e-5)
