@@ -194,4 +194,8 @@ def system_from(values) -> tuple[MotorSystem, list[str]]:
     """The motor system described by the motor fields of a parsed input dict."""
     motor, note = lookup(values["motor"], values["source"])
     warnings = [note] if note else []
+    if values["voltage"] > 1.25 * motor.v_spec:  # e.g. a VEX 393 left at the 12 V default
+        warnings.append(f"{motor.name} is specified at {motor.v_spec:.3g} V: at {values['voltage']:.3g} V "
+                        f"its data are scaled up {values['voltage'] / motor.v_spec:.3g}× (eqs. 1-4), "
+                        f"beyond its rating; enter {motor.v_spec:.3g} V for its published figures.")
     return system(motor, values["motor_count"], values["voltage"], values["efficiency"]), warnings

@@ -98,3 +98,12 @@ def test_operating_point_power_and_efficiency_by_hand():
     out = solve("motor", {"motor": "Kraken X60", "torque": "0.2 N*m"}).outputs
     assert out["output_power"].value == pytest.approx(122.119, rel=1e-5)
     assert out["efficiency_at_torque"].value == pytest.approx(0.82952, rel=1e-5)
+
+
+def test_vex_393_at_the_frc_default_voltage_is_warned():
+    # 12 V / 7.2 V = 1.67: the 393's figures would be scaled up 67 % past its rating
+    sol = solve("motor", {"motor": "VEX 393"})
+    assert sol.outputs["free_speed"].value == pytest.approx(100 * RPM * 12 / 7.2)
+    assert any("specified at 7.2 V" in w for w in sol.warnings)
+    assert not solve("motor", {"motor": "VEX 393", "voltage": "7.2 V"}).warnings
+    assert not solve("motor", {"motor": "Kraken X60", "voltage": "13 V"}).warnings
