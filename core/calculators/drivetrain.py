@@ -54,7 +54,7 @@ FIELDS = _drive_motor_fields() + (
     Field("wheel_diameter", "Wheel diameter", "length", "in", default=4, min=0, min_exclusive=True,
           help="Drive wheel diameter d (worn tread is smaller)."),
     Field("speed_loss", "Speed loss constant", "dimensionless", "", default=0.81, min=0,
-          min_exclusive=True, max=1,
+          min_exclusive=True, max=1, modes=("forward", "reverse"),
           help="k_SL: real top speed over free speed (JVN uses 0.81 for friction, voltage sag, turning)."),
     Field("ratio", "Gear ratio", "dimensionless", "", default=6.12, min=0, min_exclusive=True,
           modes=("forward",), help="Total reduction G, motor turns per wheel turn."),
