@@ -31,6 +31,7 @@ import dataclasses
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
 from ..motors import MotorSystem, motor_fields, system_from
+from ..units import format_quantity
 
 MODES = ("forward", "reverse", "shifting")
 MODE_LABELS = ("Forward: given ratio", "Reverse: fastest ratio that slips", "Two-speed shifting")
@@ -193,8 +194,9 @@ def compute(v) -> Result:
         pushing_force=min(traction, stall_force),
     )
     if stall_force < traction * (1 - 1e-12):  # (not when equal but for rounding: reverse mode's limit)
-        warnings.append(f"The motors stall before the wheels slip: they push {stall_force:.4g} N "
-                        f"but traction allows {traction:.4g} N (the slip current is not reached).")
+        warnings.append(f"The motors stall before the wheels slip: they push "
+                        f"{format_quantity(stall_force, 'lbf', 'force')} but traction allows "
+                        f"{format_quantity(traction, 'lbf', 'force')} (the slip current is not reached).")
     series["motor force"] = force_curve(m, d, G)
     series["traction limit"] = ([0.0, v_free], [traction, traction])
     return Result(values, warnings, series)
