@@ -60,7 +60,8 @@ OUTPUTS = (
     Output("stall_voltage", "Stall voltage", "voltage", "V"),
     Output("motor_torque", "Torque at gearbox input", "torque", "N*m"),
     Output("output_power", "Output power", "power", "W"),
-    Output("system_efficiency", "Motor efficiency at load", "dimensionless", "%"),
+    Output("system_efficiency", "Efficiency at load", "dimensionless", "%",
+           help="Output power over electrical input power, motors and gearbox together (10)."),
 )
 
 

@@ -18,14 +18,16 @@ OUTPUTS = (
     Output("free_current", "Free current", "current", "A", help="All motors together."),
     Output("peak_power", "Peak power", "power", "W"),
     Output("kt", "Torque constant Kt", "torque_constant", "N*m/A"),
-    Output("max_efficiency", "Max efficiency", "dimensionless", "%"),
+    Output("max_efficiency", "Max efficiency", "dimensionless", "%",
+           help="Highest output power over electrical power, motors and gearbox together (Appendix A)."),
     Output("max_efficiency_torque", "Torque at max efficiency", "torque", "N*m"),
     Output("max_efficiency_speed", "Speed at max efficiency", "angular_speed", "rpm"),
     Output("max_efficiency_current", "Current at max efficiency", "current", "A"),
     Output("speed", "Speed at torque", "angular_speed", "rpm"),
     Output("current", "Current at torque", "current", "A"),
     Output("output_power", "Output power at torque", "power", "W"),
-    Output("efficiency_at_torque", "Efficiency at torque", "dimensionless", "%"),
+    Output("efficiency_at_torque", "Efficiency at torque", "dimensionless", "%",
+           help="Output power over electrical power at the operating torque, gearbox included (10)."),
 )
 
 
