@@ -18,10 +18,16 @@ sympy (see tests/test_drivetrain.py for hand values):
 Corrections to the seed:
 - (37) is written for ω in rev/s; in SI (rad/s) v_free = ω̃f·(d/2)/G.
 - The symbol list after (40) reads "v_2 = Gear 1 Free Speed": that is v_1.
-- (42) assumes the motors can reach the slip current. When the allowed current is at or above
-  the stall current ĩs, (42) gives a ratio at which the motors stall before the wheels slip; the
-  fastest ratio that still slips them is then G = μ·W̃·r/τ̃s (stall force equal to traction), which
-  is reported instead, with a warning. (The two agree exactly when i_tot = ĩs.)
+- (42) assumes the motors can draw the allowed current i_tot while the controllers see V_min. By
+  (4) the motors are a resistance R_m = V/ĩs = V_spec/(n·i_s), and a motor turning forwards draws
+  less than its stall current V_min/R_m, so (42) holds only while i_tot·R_m ≤ V_min, i.e. while
+  i_tot ≤ i_c = V_batt/(R_batt + R_main + R_br/n + R_m), the current of the stalled motors through
+  the wiring of (41). Beyond that the battery never sags to V_min, the ratio (42) gives stalls the
+  motors before the wheels slip, and the fastest ratio that slips them is (42) with i_c in place of
+  i_tot (stall torque through the wiring equal to traction); it is reported, with a warning. (The
+  two agree exactly when i_tot = i_c.) This matters for real drives: four NEOs with the default
+  wiring allow i_tot = 308 A but stalled draw only 270 A, and (42) as printed gives 4.92 where
+  5.64 is the fastest ratio that slips.
 """
 
 from __future__ import annotations
@@ -115,9 +121,9 @@ def max_ratio(m: MotorSystem, W, mu, d, i_tot):
     return mu * d * W / (2 * m.kt * (i_tot - m.free_current))  # (42)
 
 
-def stall_ratio(m: MotorSystem, W, mu, d):
-    """Reduction at which the motors' stall force τ̃s·G/r equals the traction μ·W̃ ((12) at the wheel)."""
-    return mu * W * (d / 2) / m.stall_torque
+def circuit_stall_current(m: MotorSystem, V_batt, R):
+    """Current of the stalled motors through the wiring: they are a resistance R_m = V/ĩs by (4)."""
+    return V_batt / (R + m.voltage / m.stall_current)
 
 
 def total_current(V_batt, V_min, R_batt, R_main, R_br, n):
@@ -170,15 +176,22 @@ def compute(v) -> Result:
             raise InputError("min_voltage", f"the allowed current {i_tot:.4g} A is not above the motors' "
                                             f"free current {m.free_current:.4g} A: lower the minimum "
                                             f"voltage or the resistances")
-        if i_tot < m.stall_current:
+        i_c = circuit_stall_current(m, V_batt, R)
+        if i_tot <= i_c:
             G = max_ratio(m, W, mu, d, i_tot)  # (42)
         else:
-            # (42) would give a ratio at which the slip current exceeds the stall current: the
-            # motors stall first. The fastest ratio that slips at all has stall force = traction.
-            G = stall_ratio(m, W, mu, d)
-            warnings.append(f"The allowed current ({i_tot:.4g} A) is at or above the motors' stall "
-                            f"current ({m.stall_current:.4g} A): the battery never sags to the minimum "
-                            f"voltage, and the fastest ratio is where the stall force equals traction.")
+            # At V_min the motors cannot draw i_tot (they would have to turn backwards): (42)'s
+            # ratio stalls them before the wheels slip. The fastest ratio that slips at all has
+            # the stall current through the wiring, i_c, producing the traction torque.
+            if i_c <= m.free_current:
+                raise InputError("battery_voltage", f"stalled through this wiring the motors draw only "
+                                                    f"{i_c:.4g} A, not above their free current "
+                                                    f"{m.free_current:.4g} A: they cannot push")
+            G = max_ratio(m, W, mu, d, i_c)  # (42) with i_c
+            warnings.append(f"The motors cannot draw the allowed {i_tot:.4g} A at the minimum voltage: "
+                            f"stalled through this wiring they draw at most {i_c:.4g} A and the voltage "
+                            f"stays above {V_batt - i_c * R:.3g} V. The ratio shown is the fastest at "
+                            f"which that current still slips the wheels.")
         values.update(total_current=i_tot, max_ratio=G)
     else:
         G = v["ratio"]
