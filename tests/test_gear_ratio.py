@@ -147,3 +147,14 @@ def test_max_power_linear_speed_and_efficiency_at_10_volts_by_hand():
     o = out(voltage="10 V", mode="max_power")
     assert o["linear_free_speed"] == pytest.approx(2.31823, rel=1e-5)
     assert o["system_efficiency"] == pytest.approx(0.504391, rel=1e-5)
+
+
+@pytest.mark.parametrize("motor", ["CIM", "NEO", "V5 100 rpm (red)"])
+def test_max_efficiency_mode_lands_on_the_motor_max_efficiency_point(motor):
+    # (20) is (91) seen from the output: the gearbox input torque rF/G must be τ_ηmax and the
+    # efficiency there the Appendix A maximum, at any n, V, η
+    system = dict(motor=motor, motor_count=3, voltage="11 V", efficiency=0.8)
+    g = out(**system, mode="max_efficiency")
+    m = motors.system(motors.lookup(motor, "wpilib")[0], 3, 11.0, 0.8)
+    assert g["motor_torque"] == pytest.approx(m.max_efficiency_torque, rel=1e-12)
+    assert g["system_efficiency"] == pytest.approx(m.max_efficiency, rel=1e-12)
