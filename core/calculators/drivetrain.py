@@ -90,7 +90,8 @@ FIELDS = _drive_motor_fields() + (
 
 OUTPUTS = (
     Output("max_ratio", "Fastest ratio that slips", "dimensionless", "",
-           help="Smallest reduction G_slip whose slip current keeps the voltage above V_min (42)."),
+           help="Smallest reduction G_slip whose slip current keeps the voltage above V_min (42), "
+                "or, if the motors cannot draw that much, the fastest that slips the wheels at all."),
     Output("total_current", "Allowed total current", "current", "A",
            help="Total current at which the motors see the minimum voltage (41)."),
     Output("free_speed", "Free speed", "speed", "ft/s", help="Top speed with no losses (37)."),
