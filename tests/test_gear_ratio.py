@@ -158,3 +158,16 @@ def test_max_efficiency_mode_lands_on_the_motor_max_efficiency_point(motor):
     m = motors.system(motors.lookup(motor, "wpilib")[0], 3, 11.0, 0.8)
     assert g["motor_torque"] == pytest.approx(m.max_efficiency_torque, rel=1e-12)
     assert g["system_efficiency"] == pytest.approx(m.max_efficiency, rel=1e-12)
+
+
+@settings(max_examples=200, deadline=None)
+@given(motor=motor_names, n=st.integers(1, 6), V=st.floats(3, 13), eta=st.floats(0.3, 1),
+       F=st.floats(1, 1000), r=st.floats(0.001, 1))
+def test_stall_mode_is_exactly_stalled_and_not_back_driven(motor, n, V, eta, F, r):
+    # G = rF/τ̃s (22) makes F_s = F exactly; F/F_s rounding to 1 + 1 ulp used to show a loaded
+    # speed of −3e-17 rpm and the "back-driven" warning beside "holds the load" (10 % of inputs)
+    s = solve("gear_ratio", dict(motor=motor, motor_count=n, voltage=f"{V!r} V", efficiency=eta,
+                                 load=f"{F!r} N", radius=f"{r!r} m", mode="stall"))
+    assert s.outputs["loaded_speed"].value == 0 and s.outputs["output_power"].value == 0
+    assert not any("back-driven" in w for w in s.warnings)
+    assert s.outputs["stall_load"].value == pytest.approx(F, rel=1e-14)
