@@ -205,3 +205,13 @@ def test_reverse_budget_just_above_circuit_stall_current():
     sides = [out(mode="reverse", battery_resistance=f"{R_eq * k!r} ohm", main_resistance=0,
                  branch_resistance=0)["max_ratio"] for k in (1 - 1e-9, 1 + 1e-9)]
     assert sides[0] == pytest.approx(sides[1], rel=1e-7)
+
+
+def test_reverse_mode_never_says_the_motors_stall_first():
+    # Voltage field 1 V (ĩs = 122 A at 1 V) but the battery feeds the motors in reverse mode:
+    # i_tot = 308.108 A ≤ i_c = 12.7/(0.0185 + 0.0081967) = 475.75 A, so (42) holds and the
+    # wiring's stall force K_T·(i_c − ĩf)·G/r exceeds traction. The stall check at the 1 V
+    # field voltage (τ̃s = 2.363 N·m) used to warn "stall before the wheels slip".
+    s = sol(mode="reverse", voltage="1 V")
+    assert not any("stall before the wheels slip" in w for w in s.warnings)
+    assert s.outputs["pushing_force"].value == pytest.approx(165 * LBF, rel=1e-12)

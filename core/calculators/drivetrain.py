@@ -162,6 +162,7 @@ def compute(v) -> Result:
 
     W, mu = v["weight"], v["friction"]
     traction = mu * W
+    stall_torque = m.stall_torque  # at the applied voltage; in reverse mode through the wiring
     if mode == "reverse":
         n = m.count
         V_batt, V_min = v["battery_voltage"], v["min_voltage"]
@@ -194,12 +195,14 @@ def compute(v) -> Result:
                             f"stays above {V_batt - i_c * R:.3g} V. The ratio shown is the fastest at "
                             f"which that current still slips the wheels.")
         values.update(total_current=i_tot, max_ratio=G)
+        # the battery, not the "Voltage" field, feeds the motors here: stalled they draw i_c
+        stall_torque = m.kt * (i_c - m.free_current)
     else:
         G = v["ratio"]
 
     i_slip = slip_current_total(m, W, mu, d, G)
     v_free = free_speed(m, d, G)
-    stall_force = m.stall_torque * G / (d / 2)  # (98) at stall
+    stall_force = stall_torque * G / (d / 2)  # (98) at stall
     values.update(
         free_speed=v_free,
         adjusted_speed=v_free * k_SL,  # (38)
