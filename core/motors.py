@@ -107,7 +107,8 @@ def lookup(name: str, source: str = "wpilib") -> tuple[Motor, str | None]:
     m = matches[0]
     if m.source == "vex":
         return m, None
-    return m, f"{source} has no data for {name}; using {m.source}"
+    label = dict(zip(SOURCES, SOURCE_LABELS))
+    return m, f"{label.get(source, source)} has no data for {name}; using {label.get(m.source, m.source)}"
 
 
 @dataclass(frozen=True)

@@ -66,7 +66,7 @@ def test_both_data_sources_are_selectable_and_differ_where_sources_differ():
 def test_motor_missing_from_a_source_falls_back_with_a_warning():
     sol = solve("motor", {"motor": "BaneBots RS550", "source": "recalc"})
     assert sol.outputs["stall_torque"].value == pytest.approx(0.38)
-    assert any("recalc has no data" in w for w in sol.warnings)
+    assert any("ReCalc (dyno) has no data for BaneBots RS550; using WPILib DCMotor" in w for w in sol.warnings)
 
 
 def test_every_reference_motor_is_present():
