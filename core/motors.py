@@ -107,7 +107,8 @@ def lookup(name: str, source: str = "wpilib") -> tuple[Motor, str | None]:
     m = matches[0]
     if m.source == "vex":
         return m, None
-    return m, f"{source} has no data for {name}; using {m.source}"
+    label = dict(zip(SOURCES, SOURCE_LABELS))
+    return m, f"{label.get(source, source)} has no data for {name}; using {label.get(m.source, m.source)}"
 
 
 @dataclass(frozen=True)
@@ -194,4 +195,8 @@ def system_from(values) -> tuple[MotorSystem, list[str]]:
     """The motor system described by the motor fields of a parsed input dict."""
     motor, note = lookup(values["motor"], values["source"])
     warnings = [note] if note else []
+    if values["voltage"] > 1.25 * motor.v_spec:  # e.g. a VEX 393 left at the 12 V default
+        warnings.append(f"{motor.name} is specified at {motor.v_spec:.3g} V: at {values['voltage']:.3g} V "
+                        f"its data are scaled up {values['voltage'] / motor.v_spec:.3g}× (eqs. 1-4), "
+                        f"beyond its rating; enter {motor.v_spec:.3g} V for its published figures.")
     return system(motor, values["motor_count"], values["voltage"], values["efficiency"]), warnings

@@ -72,19 +72,47 @@ def test_motors_stall_before_the_wheels_slip():
     assert any("stall before the wheels slip" in w for w in s.warnings)
 
 
-def test_reverse_budget_above_stall_current_gives_the_stall_ratio():
-    # R = 0.001 + 0 + 0: i_tot = 5.7 V/0.001 Ω = 5700 A > ĩs = 4·366 = 1464 A.
-    # (42) would give G = 74.5703/(2·0.0194780·(5700 − 8)) = 0.33630, where the stall force
-    # 28.36·0.33630/0.0508 = 187.7 N is far below traction 733.96 N: the motors stall first.
-    # Fastest ratio that slips: G = μ·W̃·r/τ̃s = 733.957·0.0508/28.36 = 1.31470
+def test_reverse_budget_the_motors_cannot_draw_gives_the_circuit_stall_ratio():
+    # R = 0.001 + 0 + 0: i_tot = 5.7 V/0.001 Ω = 5700 A. The four motors are R_m = 12 V/1464 A
+    # = 0.0081967 Ω (eq. 4), so stalled through the wiring they draw only
+    # i_c = 12.7/(0.001 + 0.0081967) = 1380.93 A and the voltage stays at 12.7 − 1.381 = 11.32 V.
+    # (42) with i_tot would give G = 37.2850/(0.0194780·(5700 − 8)) = 0.33630, where the motors
+    # stall (force 28.36·0.33630/0.0508 = 187.7 N ≪ traction 733.96 N).
+    # Fastest ratio that slips: (42) with i_c: 37.2850/(0.0194780·(1380.93 − 8)) = 1.39425
     s = sol(mode="reverse", battery_resistance="0.001 ohm", main_resistance=0, branch_resistance=0)
     o = {k: v.value for k, v in s.outputs.items()}
     assert o["total_current"] == pytest.approx(5700, rel=1e-12)
-    assert o["max_ratio"] == pytest.approx(1.31470, rel=1e-5)
+    assert o["max_ratio"] == pytest.approx(1.39425, rel=1e-5)
     assert o["pushing_force"] == pytest.approx(165 * LBF, rel=1e-12)
-    assert o["slip_current_total"] == pytest.approx(4 * 366, rel=1e-12)  # slips exactly at stall
-    assert any("stall current" in w for w in s.warnings)
+    assert o["slip_current_total"] == pytest.approx(1380.93, rel=1e-5)  # slips exactly at i_c
+    assert any("cannot draw the allowed" in w and "11.3 V" in w for w in s.warnings)
     assert not any("stall before the wheels slip" in w for w in s.warnings)
+
+
+def test_four_neo_default_wiring_cannot_reach_the_allowed_current():
+    # 4 NEO (WPILib 2.6 N·m, 105 A, 1.8 A): τ̃s = 10.4 N·m, ĩs = 420 A, ĩf = 7.2 A,
+    # K_T = 10.4/412.8 = 0.0251938 N·m/A, R_m = 12/420 = 0.0285714 Ω.
+    # (41) i_tot = 5.7/0.0185 = 308.108 A, but at 7 V the stalled motors draw 7/0.0285714 = 245 A:
+    # they cannot. Through the wiring i_c = 12.7/(0.0185 + 0.0285714) = 269.803 A.
+    # (42) as printed: 37.2850/(0.0251938·300.908) = 4.91820 (motors stall before slipping there);
+    # with i_c: 37.2850/(0.0251938·262.603) = 5.63561
+    s = sol(mode="reverse", motor="NEO")
+    o = {k: v.value for k, v in s.outputs.items()}
+    assert o["total_current"] == pytest.approx(308.108, rel=1e-5)
+    assert o["max_ratio"] == pytest.approx(5.63561, rel=1e-5)
+    assert o["slip_current_total"] == pytest.approx(269.803, rel=1e-5)
+    assert any("cannot draw the allowed" in w for w in s.warnings)
+    # and at 4.92 (what (42) gives) the stalled motors' torque through the wiring, K_T·(i_c − ĩf),
+    # is below the traction torque / G: the wheels would not slip
+    assert 0.0251938 * (269.803 - 7.2) * 4.91820 < 37.2850
+
+
+def test_reverse_battery_too_weak_to_push_names_a_field():
+    # V_batt = 0.185 V, V_min = 0: i_tot = 10 A > ĩf = 8 A, but stalled the motors draw only
+    # 0.185/(0.0185 + 0.0081967) = 6.93 A < ĩf
+    with pytest.raises(InputError) as e:
+        out(mode="reverse", battery_voltage="0.185 V", min_voltage=0)
+    assert e.value.field == "battery_voltage"
 
 
 @pytest.mark.parametrize("raw,field", [
@@ -112,7 +140,8 @@ def test_reverse_of_forward_returns_the_ratio(motor, n, V, eta, d, W, mu, G, V_m
     fwd = out(**base, ratio=G)
     i_tot = fwd["slip_current_total"]
     m = motors.system(motors.lookup(motor, "wpilib")[0], n, V, eta)
-    assume(i_tot < m.stall_current * (1 - 1e-9))  # else the motors stall first (next test)
+    R_m = V / m.stall_current  # (4): the motors' resistance
+    assume(i_tot * R_m < V_min * (1 - 1e-9))  # else they cannot draw i_tot at V_min (tests above)
     assert i_tot == pytest.approx(fwd["slip_current"] * n, rel=1e-12)
     R_batt, R_main = 0.015, 0.002
     V_batt = V_min + i_tot * (R_batt + R_main + R_br / n)  # (41) solved for V_batt
@@ -155,3 +184,34 @@ def test_builtin_presets_load_and_solve():
     # swerve: 6000 rpm · π · 4 in / 6.75 = 628.3185·0.0508/6.75 = 4.72867 m/s = 15.514 ft/s
     swerve = next(p for p in found if "Swerve" in p.name)
     assert solve("drivetrain", swerve.inputs).outputs["free_speed"].value == pytest.approx(4.72867, rel=1e-5)
+
+
+def test_speed_loss_constant_scales_the_adjusted_speed():
+    # (38) with k_SL = 0.7: 17.1111 ft/s · 0.7 = 11.9778 ft/s
+    o = out(speed_loss=0.7)
+    assert o["adjusted_speed"] == pytest.approx(11.9778 * FT, rel=1e-5)
+
+
+def test_reverse_budget_just_above_circuit_stall_current():
+    # R = 0.0038 Ω: i_tot = 5.7/0.0038 = 1500 A; i_c = 12.7/(0.0038 + 0.0081967) = 1058.62 A.
+    # (42) would give 37.2850/(0.0194780·1492) = 1.28299; with i_c: 37.2850/(0.0194780·1050.62)
+    # = 1.82198. Just below, at i_tot = i_c exactly, both agree.
+    o = out(mode="reverse", battery_resistance="0.0038 ohm", main_resistance=0, branch_resistance=0)
+    assert o["total_current"] == pytest.approx(1500, rel=1e-12)
+    assert o["max_ratio"] == pytest.approx(1.82198, rel=1e-5)
+    # i_tot = i_c when (V_batt − V_min)·(R + R_m) = V_batt·R: R = 5.7·(12/1464)/7 = 0.00667465 Ω;
+    # either side of it the two branches give the same ratio
+    R_eq = 5.7 * (12 / 1464) / 7
+    sides = [out(mode="reverse", battery_resistance=f"{R_eq * k!r} ohm", main_resistance=0,
+                 branch_resistance=0)["max_ratio"] for k in (1 - 1e-9, 1 + 1e-9)]
+    assert sides[0] == pytest.approx(sides[1], rel=1e-7)
+
+
+def test_reverse_mode_never_says_the_motors_stall_first():
+    # Voltage field 1 V (ĩs = 122 A at 1 V) but the battery feeds the motors in reverse mode:
+    # i_tot = 308.108 A ≤ i_c = 12.7/(0.0185 + 0.0081967) = 475.75 A, so (42) holds and the
+    # wiring's stall force K_T·(i_c − ĩf)·G/r exceeds traction. The stall check at the 1 V
+    # field voltage (τ̃s = 2.363 N·m) used to warn "stall before the wheels slip".
+    s = sol(mode="reverse", voltage="1 V")
+    assert not any("stall before the wheels slip" in w for w in s.warnings)
+    assert s.outputs["pushing_force"].value == pytest.approx(165 * LBF, rel=1e-12)

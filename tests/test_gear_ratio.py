@@ -136,3 +136,38 @@ def test_inverse_modes_reproduce_their_targets(motor, n, V, eta, F, r, frac):
     assert o["stall_load"] == pytest.approx(F * V / Vs, rel=1e-9)  # F_s/F = V/V_s
     o = out(**base, mode="max_power")
     assert o["output_power"] == pytest.approx(m.peak_power, rel=1e-9)
+
+
+def test_max_power_linear_speed_and_efficiency_at_10_volts_by_hand():
+    # Kraken X60 at 10 V: ω̃f = 523.599 rad/s, τ̃s = 7.09·10/12 = 5.90833 N*m,
+    # ĩs = 305 A, ĩf = 1.66667 A; F = 150 lbf = 667.233 N.
+    # (19) G = 2rF/τ̃s, so (14) v_free = ω̃f·r/G = ω̃f·τ̃s/(2F) = 3093.58/1334.47 = 2.31823 m/s
+    # at Fs = 2F the input torque is τ̃s/2: i = (ĩs − ĩf)/2 + ĩf = 153.333 A in all;
+    # P = ω̃f·τ̃s/4 = 773.399 W;  η = P/(V·i) = 773.399/(10·153.333) = 0.504391
+    o = out(voltage="10 V", mode="max_power")
+    assert o["linear_free_speed"] == pytest.approx(2.31823, rel=1e-5)
+    assert o["system_efficiency"] == pytest.approx(0.504391, rel=1e-5)
+
+
+@pytest.mark.parametrize("motor", ["CIM", "NEO", "V5 100 rpm (red)"])
+def test_max_efficiency_mode_lands_on_the_motor_max_efficiency_point(motor):
+    # (20) is (91) seen from the output: the gearbox input torque rF/G must be τ_ηmax and the
+    # efficiency there the Appendix A maximum, at any n, V, η
+    system = dict(motor=motor, motor_count=3, voltage="11 V", efficiency=0.8)
+    g = out(**system, mode="max_efficiency")
+    m = motors.system(motors.lookup(motor, "wpilib")[0], 3, 11.0, 0.8)
+    assert g["motor_torque"] == pytest.approx(m.max_efficiency_torque, rel=1e-12)
+    assert g["system_efficiency"] == pytest.approx(m.max_efficiency, rel=1e-12)
+
+
+@settings(max_examples=200, deadline=None)
+@given(motor=motor_names, n=st.integers(1, 6), V=st.floats(3, 13), eta=st.floats(0.3, 1),
+       F=st.floats(1, 1000), r=st.floats(0.001, 1))
+def test_stall_mode_is_exactly_stalled_and_not_back_driven(motor, n, V, eta, F, r):
+    # G = rF/τ̃s (22) makes F_s = F exactly; F/F_s rounding to 1 + 1 ulp used to show a loaded
+    # speed of −3e-17 rpm and the "back-driven" warning beside "holds the load" (10 % of inputs)
+    s = solve("gear_ratio", dict(motor=motor, motor_count=n, voltage=f"{V!r} V", efficiency=eta,
+                                 load=f"{F!r} N", radius=f"{r!r} m", mode="stall"))
+    assert s.outputs["loaded_speed"].value == 0 and s.outputs["output_power"].value == 0
+    assert not any("back-driven" in w for w in s.warnings)
+    assert s.outputs["stall_load"].value == pytest.approx(F, rel=1e-14)

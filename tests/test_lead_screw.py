@@ -220,3 +220,11 @@ def test_friction_sweep_plot_series():
     steep = solve("lead_screw", {"starts": 16, "friction": 0.8}).series["raise torque"]
     assert steep[0][-1] == pytest.approx(0.95 * math.pi * 0.45 * math.cos(math.radians(14.5)) / 1.6)
     assert all(math.isfinite(t) and t > 0 for t in steep[1])
+
+
+def test_raise_power_is_load_power_over_efficiency():
+    # default 1/2-10 Acme at 300 rpm: F·v = 444.822 N · 0.0127 m/s = 5.64924 W; η = 0.31001,
+    # so the screw needs 5.64924/0.31001 = 18.223 W = T_R·ω (0.58003 N*m · 31.4159 rad/s)
+    o = out()
+    assert o["raise_power"] == pytest.approx(18.223, rel=1e-4)
+    assert o["raise_power"] * o["efficiency"] == pytest.approx(100 * LBF * 0.5 * IN, rel=1e-12)

@@ -66,7 +66,7 @@ def test_both_data_sources_are_selectable_and_differ_where_sources_differ():
 def test_motor_missing_from_a_source_falls_back_with_a_warning():
     sol = solve("motor", {"motor": "BaneBots RS550", "source": "recalc"})
     assert sol.outputs["stall_torque"].value == pytest.approx(0.38)
-    assert any("recalc has no data" in w for w in sol.warnings)
+    assert any("ReCalc (dyno) has no data for BaneBots RS550; using WPILib DCMotor" in w for w in sol.warnings)
 
 
 def test_every_reference_motor_is_present():
@@ -89,3 +89,21 @@ def test_vex_393_uses_its_own_specification_voltage():
     out = solve("motor", {"motor": "VEX 393", "voltage": "7.2 V"}).outputs
     assert out["free_speed"].value == pytest.approx(100 * RPM)
     assert out["stall_torque"].value == pytest.approx(1.67)
+
+
+def test_operating_point_power_and_efficiency_by_hand():
+    # Kraken X60 (WPILib), 12 V, τ = 0.2 N*m:
+    # (8)  ω = 628.3185·(1 − 0.2/7.09) = 610.594 rad/s;  P = 0.2·610.594 = 122.119 W
+    # (9)  i = 364·0.2/7.09 + 2 = 12.2680 A;  (10) η = 122.119/(12·12.2680) = 0.82952
+    out = solve("motor", {"motor": "Kraken X60", "torque": "0.2 N*m"}).outputs
+    assert out["output_power"].value == pytest.approx(122.119, rel=1e-5)
+    assert out["efficiency_at_torque"].value == pytest.approx(0.82952, rel=1e-5)
+
+
+def test_vex_393_at_the_frc_default_voltage_is_warned():
+    # 12 V / 7.2 V = 1.67: the 393's figures would be scaled up 67 % past its rating
+    sol = solve("motor", {"motor": "VEX 393"})
+    assert sol.outputs["free_speed"].value == pytest.approx(100 * RPM * 12 / 7.2)
+    assert any("specified at 7.2 V" in w for w in sol.warnings)
+    assert not solve("motor", {"motor": "VEX 393", "voltage": "7.2 V"}).warnings
+    assert not solve("motor", {"motor": "Kraken X60", "voltage": "13 V"}).warnings

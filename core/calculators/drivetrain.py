@@ -18,10 +18,16 @@ sympy (see tests/test_drivetrain.py for hand values):
 Corrections to the seed:
 - (37) is written for ω in rev/s; in SI (rad/s) v_free = ω̃f·(d/2)/G.
 - The symbol list after (40) reads "v_2 = Gear 1 Free Speed": that is v_1.
-- (42) assumes the motors can reach the slip current. When the allowed current is at or above
-  the stall current ĩs, (42) gives a ratio at which the motors stall before the wheels slip; the
-  fastest ratio that still slips them is then G = μ·W̃·r/τ̃s (stall force equal to traction), which
-  is reported instead, with a warning. (The two agree exactly when i_tot = ĩs.)
+- (42) assumes the motors can draw the allowed current i_tot while the controllers see V_min. By
+  (4) the motors are a resistance R_m = V/ĩs = V_spec/(n·i_s), and a motor turning forwards draws
+  less than its stall current V_min/R_m, so (42) holds only while i_tot·R_m ≤ V_min, i.e. while
+  i_tot ≤ i_c = V_batt/(R_batt + R_main + R_br/n + R_m), the current of the stalled motors through
+  the wiring of (41). Beyond that the battery never sags to V_min, the ratio (42) gives stalls the
+  motors before the wheels slip, and the fastest ratio that slips them is (42) with i_c in place of
+  i_tot (stall torque through the wiring equal to traction); it is reported, with a warning. (The
+  two agree exactly when i_tot = i_c.) This matters for real drives: four NEOs with the default
+  wiring allow i_tot = 308 A but stalled draw only 270 A, and (42) as printed gives 4.92 where
+  5.64 is the fastest ratio that slips.
 """
 
 from __future__ import annotations
@@ -31,6 +37,7 @@ import dataclasses
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
 from ..motors import MotorSystem, motor_fields, system_from
+from ..units import format_quantity
 
 MODES = ("forward", "reverse", "shifting")
 MODE_LABELS = ("Forward: given ratio", "Reverse: fastest ratio that slips", "Two-speed shifting")
@@ -54,7 +61,7 @@ FIELDS = _drive_motor_fields() + (
     Field("wheel_diameter", "Wheel diameter", "length", "in", default=4, min=0, min_exclusive=True,
           help="Drive wheel diameter d (worn tread is smaller)."),
     Field("speed_loss", "Speed loss constant", "dimensionless", "", default=0.81, min=0,
-          min_exclusive=True, max=1,
+          min_exclusive=True, max=1, modes=("forward", "reverse"),
           help="k_SL: real top speed over free speed (JVN uses 0.81 for friction, voltage sag, turning)."),
     Field("ratio", "Gear ratio", "dimensionless", "", default=6.12, min=0, min_exclusive=True,
           modes=("forward",), help="Total reduction G, motor turns per wheel turn."),
@@ -83,7 +90,8 @@ FIELDS = _drive_motor_fields() + (
 
 OUTPUTS = (
     Output("max_ratio", "Fastest ratio that slips", "dimensionless", "",
-           help="Smallest reduction G_slip whose slip current keeps the voltage above V_min (42)."),
+           help="Smallest reduction G_slip whose slip current keeps the voltage above V_min (42), "
+                "or, if the motors cannot draw that much, the fastest that slips the wheels at all."),
     Output("total_current", "Allowed total current", "current", "A",
            help="Total current at which the motors see the minimum voltage (41)."),
     Output("free_speed", "Free speed", "speed", "ft/s", help="Top speed with no losses (37)."),
@@ -114,9 +122,9 @@ def max_ratio(m: MotorSystem, W, mu, d, i_tot):
     return mu * d * W / (2 * m.kt * (i_tot - m.free_current))  # (42)
 
 
-def stall_ratio(m: MotorSystem, W, mu, d):
-    """Reduction at which the motors' stall force τ̃s·G/r equals the traction μ·W̃ ((12) at the wheel)."""
-    return mu * W * (d / 2) / m.stall_torque
+def circuit_stall_current(m: MotorSystem, V_batt, R):
+    """Current of the stalled motors through the wiring: they are a resistance R_m = V/ĩs by (4)."""
+    return V_batt / (R + m.voltage / m.stall_current)
 
 
 def total_current(V_batt, V_min, R_batt, R_main, R_br, n):
@@ -154,6 +162,7 @@ def compute(v) -> Result:
 
     W, mu = v["weight"], v["friction"]
     traction = mu * W
+    stall_torque = m.stall_torque  # at the applied voltage; in reverse mode through the wiring
     if mode == "reverse":
         n = m.count
         V_batt, V_min = v["battery_voltage"], v["min_voltage"]
@@ -169,22 +178,31 @@ def compute(v) -> Result:
             raise InputError("min_voltage", f"the allowed current {i_tot:.4g} A is not above the motors' "
                                             f"free current {m.free_current:.4g} A: lower the minimum "
                                             f"voltage or the resistances")
-        if i_tot < m.stall_current:
+        i_c = circuit_stall_current(m, V_batt, R)
+        if i_tot <= i_c:
             G = max_ratio(m, W, mu, d, i_tot)  # (42)
         else:
-            # (42) would give a ratio at which the slip current exceeds the stall current: the
-            # motors stall first. The fastest ratio that slips at all has stall force = traction.
-            G = stall_ratio(m, W, mu, d)
-            warnings.append(f"The allowed current ({i_tot:.4g} A) is at or above the motors' stall "
-                            f"current ({m.stall_current:.4g} A): the battery never sags to the minimum "
-                            f"voltage, and the fastest ratio is where the stall force equals traction.")
+            # At V_min the motors cannot draw i_tot (they would have to turn backwards): (42)'s
+            # ratio stalls them before the wheels slip. The fastest ratio that slips at all has
+            # the stall current through the wiring, i_c, producing the traction torque.
+            if i_c <= m.free_current:
+                raise InputError("battery_voltage", f"stalled through this wiring the motors draw only "
+                                                    f"{i_c:.4g} A, not above their free current "
+                                                    f"{m.free_current:.4g} A: they cannot push")
+            G = max_ratio(m, W, mu, d, i_c)  # (42) with i_c
+            warnings.append(f"The motors cannot draw the allowed {i_tot:.4g} A at the minimum voltage: "
+                            f"stalled through this wiring they draw at most {i_c:.4g} A and the voltage "
+                            f"stays above {V_batt - i_c * R:.3g} V. The ratio shown is the fastest at "
+                            f"which that current still slips the wheels.")
         values.update(total_current=i_tot, max_ratio=G)
+        # the battery, not the "Voltage" field, feeds the motors here: stalled they draw i_c
+        stall_torque = m.kt * (i_c - m.free_current)
     else:
         G = v["ratio"]
 
     i_slip = slip_current_total(m, W, mu, d, G)
     v_free = free_speed(m, d, G)
-    stall_force = m.stall_torque * G / (d / 2)  # (98) at stall
+    stall_force = stall_torque * G / (d / 2)  # (98) at stall
     values.update(
         free_speed=v_free,
         adjusted_speed=v_free * k_SL,  # (38)
@@ -193,8 +211,9 @@ def compute(v) -> Result:
         pushing_force=min(traction, stall_force),
     )
     if stall_force < traction * (1 - 1e-12):  # (not when equal but for rounding: reverse mode's limit)
-        warnings.append(f"The motors stall before the wheels slip: they push {stall_force:.4g} N "
-                        f"but traction allows {traction:.4g} N (the slip current is not reached).")
+        warnings.append(f"The motors stall before the wheels slip: they push "
+                        f"{format_quantity(stall_force, 'lbf', 'force')} but traction allows "
+                        f"{format_quantity(traction, 'lbf', 'force')} (the slip current is not reached).")
     series["motor force"] = force_curve(m, d, G)
     series["traction limit"] = ([0.0, v_free], [traction, traction])
     return Result(values, warnings, series)

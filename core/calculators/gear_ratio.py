@@ -60,7 +60,8 @@ OUTPUTS = (
     Output("stall_voltage", "Stall voltage", "voltage", "V"),
     Output("motor_torque", "Torque at gearbox input", "torque", "N*m"),
     Output("output_power", "Output power", "power", "W"),
-    Output("system_efficiency", "Motor efficiency at load", "dimensionless", "%"),
+    Output("system_efficiency", "Efficiency at load", "dimensionless", "%",
+           help="Output power over electrical input power, motors and gearbox together (10)."),
 )
 
 
@@ -126,6 +127,8 @@ def compute(v) -> Result:
         G = v["ratio"]
 
     values = forward(m, G, r, F)
+    if mode == "stall":  # F_s = F by construction: F/F_s may round to 1 + 1 ulp, never "−3e-17 rpm"
+        values.update(loaded_speed=0.0, linear_loaded_speed=0.0, output_power=0.0, system_efficiency=0.0)
     if values["loaded_speed"] < 0:
         warnings.append("The load exceeds the stall load at this ratio: the motors are back-driven.")
     if alternative is not None:

@@ -13,19 +13,23 @@ FIELDS = motor_fields() + (
 
 OUTPUTS = (
     Output("free_speed", "Free speed", "angular_speed", "rpm"),
-    Output("stall_torque", "Stall torque", "torque", "N*m"),
+    Output("stall_torque", "Stall torque", "torque", "N*m",
+           help="All motors together at the gearbox output, after its efficiency η (eq. 2)."),
     Output("stall_current", "Stall current", "current", "A", help="All motors together."),
     Output("free_current", "Free current", "current", "A", help="All motors together."),
-    Output("peak_power", "Peak power", "power", "W"),
-    Output("kt", "Torque constant Kt", "torque_constant", "N*m/A"),
-    Output("max_efficiency", "Max efficiency", "dimensionless", "%"),
+    Output("peak_power", "Peak power", "power", "W", help="At half stall torque, gearbox included (eq. 6)."),
+    Output("kt", "Torque constant Kt", "torque_constant", "N*m/A",
+           help="Output torque per amp of total current above the free current (eq. 7)."),
+    Output("max_efficiency", "Max efficiency", "dimensionless", "%",
+           help="Highest output power over electrical power, motors and gearbox together (Appendix A)."),
     Output("max_efficiency_torque", "Torque at max efficiency", "torque", "N*m"),
     Output("max_efficiency_speed", "Speed at max efficiency", "angular_speed", "rpm"),
     Output("max_efficiency_current", "Current at max efficiency", "current", "A"),
     Output("speed", "Speed at torque", "angular_speed", "rpm"),
     Output("current", "Current at torque", "current", "A"),
     Output("output_power", "Output power at torque", "power", "W"),
-    Output("efficiency_at_torque", "Efficiency at torque", "dimensionless", "%"),
+    Output("efficiency_at_torque", "Efficiency at torque", "dimensionless", "%",
+           help="Output power over electrical power at the operating torque, gearbox included (10)."),
 )
 
 
