@@ -115,3 +115,32 @@ def test_bad_switch_settings_and_rods_name_fields():
     with pytest.raises(InputError) as e:
         solve("pneumatics", {"c1_rod": "2 in"})
     assert e.value.field == "c1_rod"
+
+
+def test_relief_pressure_as_typed_is_accepted():
+    """'125 psi' parsed by core.units may differ from 125·PSI in the last bit: the field must accept it."""
+    for name in ("start_pressure", "switch_off"):
+        sol = solve("pneumatics", {name: "125 psi"})
+        assert math.isfinite(sol.outputs["final_pressure"].value)
+
+
+def test_seed_step_matches_an_independent_loop():
+    """The seed's scheme written out again: 1 s explicit steps of (79)-(80) from the numpy fit, firing (81)
+    at 5, 15, ... s (2 cylinders, regulator: each stroke at min(60 psi, tank)), switch 95/120 psi."""
+    import numpy as np
+
+    c = np.polyfit(np.array(pn.CURVE_PSI) * PSI, np.array(pn.COMPRESSORS["VIAIR 90C 13.8 V"]) * 0.028316846592 / 60, 4)
+    V, L = 1148e-6, 6 * IN
+    A_push, A_pull = math.pi * (1.5 * IN) ** 2 / 4, math.pi * ((1.5 * IN) ** 2 - (0.4375 * IN) ** 2) / 4
+    P, on, low = 120 * PSI, False, 120 * PSI
+    for n in range(150):
+        if on:
+            P = min(P + max(np.polyval(c, P), 0.0) * 101325.0 / V, 120 * PSI)
+        if n >= 5 and (n - 5) % 10 == 0:
+            for A in (A_push, A_pull):
+                P -= min(60 * PSI, P) * A * L * 2 / V
+        low = min(low, P)
+        on = (on and P < 120 * PSI) or P <= 95 * PSI
+    out = solve("pneumatics", {}).outputs
+    assert out["seed_min_pressure"].value == pytest.approx(low, rel=1e-12)  # 38.8496 psi
+    assert out["seed_final_pressure"].value == pytest.approx(P, rel=1e-12)  # 52.5829 psi

@@ -32,6 +32,7 @@ P_ATM = 101325.0  # Pa
 CFM = 0.028316846592 / 60  # m^3/s per ft^3/min
 INCH = 0.0254
 RELIEF = 125 * PSI  # FRC relief valve
+PRESSURE_MAX = RELIEF * (1 + 1e-12)  # bound of the pressure fields: "125 psi" as typed (its last bit may differ) is in
 GROUPS = 3
 MIN_PERIOD = 0.1  # s; a valve cannot cycle faster, and it bounds the work of a match
 
@@ -91,11 +92,11 @@ FIELDS = (
           help="Compressor flow curve (vendor data, 4th-degree fit as in the seed)."),
     Field("tank_volume", "Storage volume", "volume", "cc", default=1148, min=1e-6, max=1.0,
           help="Total storage: tanks plus tubing (two Clippard tanks: 1148 cc)."),
-    Field("start_pressure", "Start pressure", "pressure", "psi", default=120, min=0, max=RELIEF,
+    Field("start_pressure", "Start pressure", "pressure", "psi", default=120, min=0, max=PRESSURE_MAX,
           help="Storage pressure (gauge) when the match starts."),
-    Field("switch_on", "Switch on at", "pressure", "psi", default=95, min=0, max=RELIEF,
+    Field("switch_on", "Switch on at", "pressure", "psi", default=95, min=0, max=PRESSURE_MAX,
           help="Pressure switch closes (compressor on) at or below this."),
-    Field("switch_off", "Switch off at", "pressure", "psi", default=120, min=0, max=RELIEF,
+    Field("switch_off", "Switch off at", "pressure", "psi", default=120, min=0, max=PRESSURE_MAX,
           help="Pressure switch opens (compressor off) at this."),
     Field("match_length", "Match length", "time", "s", default=150, min=0, min_exclusive=True, max=3600,
           help="Simulated time."),
