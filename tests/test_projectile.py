@@ -254,3 +254,21 @@ def test_drag_preset_reverse_needs_more_speed_than_vacuum():
     vac = solve("projectile", {**p.inputs, "effects": ""}).outputs
     key = "release_speed" if "release_speed" in drag else "target_height"
     assert drag[key].value > vac[key].value if key == "release_speed" else drag[key].value < vac[key].value
+
+
+@pytest.mark.parametrize("effects, spin, h_i, th, v, d", [
+    ("air_drag, magnus", -2000, 0.97, 68.4, 23.7, 14.79),  # topspin + drag: far from the parabola
+    ("magnus", 500, 1.96, 60.9, 17.57, 12.95),  # backspin lift ≈ 0.6 g at release
+    ("magnus", 5000, 1.92, 33.8, 22.37, 1.12),  # arrives above the line of sight: no vacuum answer
+    ("air_drag, magnus", 5000, 1.52, 1.7, 25.66, 0.78),  # the same, nearly flat
+])
+def test_reverse_finds_throws_hybrid_powell_misses_from_the_vacuum_guess(effects, spin, h_i, th, v, d):
+    """Found by a random reverse(forward(x)) sweep: straight hybrid Powell from the vacuum answer (or
+    the above-the-line guess) fails on these; continuation (effects grown from 0, or θ_f moved up
+    from below the line) must return the throw that was flown forward."""
+    common = {"effects": effects, "spin": spin, "accuracy": "tight", "release_height": h_i, "distance": d}
+    fwd = out({**common, "release_angle": th, "release_speed": v})
+    back = out({**common, "mode": "reverse", "target_height": fwd["target_height"],
+                "target_angle": f"{fwd['target_angle']!r} rad"})
+    assert math.degrees(back["release_angle"]) == pytest.approx(th, abs=1e-6)
+    assert back["release_speed"] == pytest.approx(v, rel=1e-7)
