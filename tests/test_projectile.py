@@ -272,3 +272,13 @@ def test_reverse_finds_throws_hybrid_powell_misses_from_the_vacuum_guess(effects
                 "target_angle": f"{fwd['target_angle']!r} rad"})
     assert math.degrees(back["release_angle"]) == pytest.approx(th, abs=1e-6)
     assert back["release_speed"] == pytest.approx(v, rel=1e-7)
+
+
+def test_apex_with_effects_is_the_located_top_of_the_flight():
+    """With effects the apex comes from the located vy = 0 crossing (a falling event), not the ends.
+    C_d = 1e-12 is vacuum to 1e-12: apex = h_i + (v·sin θ)²/(2g) = 0.6 + (7.5·sin 60°)²/(2·9.80665)
+    = 0.6 + 42.1875/19.6133 = 2.750963887 m, above both ends (0.6 m and 2.658 m)."""
+    o = out({"effects": "air_drag", "drag_coefficient": 1e-12, "accuracy": "tight"})
+    assert o["apex_height"] == pytest.approx(0.6 + (7.5 * math.sin(60 * DEG)) ** 2 / (2 * G), rel=1e-9)
+    drag = out({"effects": "air_drag", "accuracy": "tight"})
+    assert drag["target_height"] < drag["apex_height"] < o["apex_height"]
