@@ -144,3 +144,42 @@ def test_seed_step_matches_an_independent_loop():
     out = solve("pneumatics", {}).outputs
     assert out["seed_min_pressure"].value == pytest.approx(low, rel=1e-12)  # 38.8496 psi
     assert out["seed_final_pressure"].value == pytest.approx(P, rel=1e-12)  # 52.5829 psi
+
+
+def test_absolute_regulated_stroke_by_hand():
+    """Absolute bookkeeping, regulated at 60 psi, one actuation from 120 psi: each stroke takes
+    (60 psi + 1 atm)·A·L·2 of P·V. By hand: push 347.50 cc, pull 317.94 cc of 1148 cc, 74.696 psi abs:
+    120 − 74.696·(347.50 + 317.94)/1148 = 76.70 psi."""
+    v = values(effects="regulator, absolute_pressure", c1_period=0, c1_start=0)
+    V, L = 1148e-6, 6 * IN
+    A_push, A_pull = math.pi * (1.5 * IN) ** 2 / 4, math.pi * ((1.5 * IN) ** 2 - (0.4375 * IN) ** 2) / 4
+    expected = 120 * PSI - (60 * PSI + 101325.0) * (A_push + A_pull) * L * 2 / V
+    assert expected == pytest.approx(76.70 * PSI, rel=1e-4)
+    assert pn.simulate(v, 1e-6).values["final_pressure"] == pytest.approx(expected, rel=1e-13)
+
+
+@pytest.mark.parametrize("switch_on, runs", [(95, False), (105, True)])
+def test_switch_closes_only_at_or_below_its_setting(switch_on, runs):
+    """One regulated actuation of one 1.5 in x 6 in cylinder from 120 psi leaves
+    120 − 60·(173.75 + 158.97)/1148 = 102.6 psi (by hand): above 95 psi the switch stays open (the
+    pressure stays at 102.6 psi all match), below 105 psi it closes and the compressor refills to 120."""
+    raw = {"c1_count": 1, "c1_period": 0, "c1_start": 10, "switch_on": f"{switch_on} psi"}
+    A_push, A_pull = math.pi * (1.5 * IN) ** 2 / 4, math.pi * ((1.5 * IN) ** 2 - (0.4375 * IN) ** 2) / 4
+    after = 120 * PSI - 60 * PSI * (A_push + A_pull) * 6 * IN / 1148e-6
+    assert after == pytest.approx(102.6 * PSI, rel=1e-3)
+    out = solve("pneumatics", raw).outputs
+    if runs:
+        assert out["final_pressure"].value == pytest.approx(120 * PSI, rel=1e-12)
+        assert 0 < out["compressor_duty"].value < 1
+    else:
+        assert out["final_pressure"].value == pytest.approx(after, rel=1e-12)
+        assert out["compressor_duty"].value == 0
+
+
+def test_without_switch_the_compressor_runs_all_match_against_the_relief_valve():
+    """No pressure switch: the motor never stops; the 125 psi relief valve holds the top. The seed's
+    1 s scheme clamps at the same 125 psi."""
+    out = solve("pneumatics", {**NO_CYL, "effects": "compressor", "start_pressure": "60 psi"}).outputs
+    assert out["compressor_duty"].value == 1.0
+    assert out["final_pressure"].value == pytest.approx(125 * PSI, rel=1e-12)
+    assert out["seed_final_pressure"].value == pytest.approx(125 * PSI, rel=1e-12)
