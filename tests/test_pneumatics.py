@@ -183,3 +183,17 @@ def test_without_switch_the_compressor_runs_all_match_against_the_relief_valve()
     assert out["compressor_duty"].value == 1.0
     assert out["final_pressure"].value == pytest.approx(125 * PSI, rel=1e-12)
     assert out["seed_final_pressure"].value == pytest.approx(125 * PSI, rel=1e-12)
+
+
+def test_no_switch_at_the_relief_pressure_holds_it_and_stays_finite():
+    """No switch, cylinders that use no air (0 psi): after the tank reaches 125 psi each segment starts
+    exactly at the relief pressure, where the rising 'full' event cannot fire. The pressure once climbed
+    past the relief valve into the polynomial's rising tail and stopped with 'step size underflow'."""
+    raw = {"effects": "compressor, regulator", "c1_push_pressure": 0, "c1_pull_pressure": 0,
+           "start_pressure": "60 psi"}
+    out = solve("pneumatics", raw).outputs
+    assert out["final_pressure"].value == pytest.approx(125 * PSI, rel=1e-12)
+    assert out["compressor_duty"].value == 1.0
+    # and starting at the relief pressure the motor still runs (no switch to stop it)
+    out = solve("pneumatics", {**NO_CYL, "effects": "compressor", "start_pressure": "125 psi"}).outputs
+    assert out["compressor_duty"].value == 1.0

@@ -193,7 +193,7 @@ def simulate(v, rtol: float) -> SimRun:
     top = v["switch_off"] if switch else RELIEF
     stop = [Event("full", lambda t, y: y[0] - top, +1)]
     P = v["start_pressure"]
-    on = has_comp and P < top
+    on = has_comp and (P < top or not switch)  # with no switch the motor runs from the start
     t = 0.0
     ts, Ps = [0.0], [P]
     run_time = 0.0
@@ -203,7 +203,11 @@ def simulate(v, rtol: float) -> SimRun:
     warnings = []
     schedule = firing_times(gs, T) + [(T, None)]
     for tf, g in schedule:
-        if on and tf > t:
+        if on and tf > t and P >= top:  # no switch, at the relief pressure: the valve vents the flow
+            run_time += tf - t
+            ts.append(tf)
+            Ps.append(P)
+        elif on and tf > t:
             run = integrate(rhs, t, tf, [P], rtol=rtol, atol=rtol * PSI, events=stop, first_step=h)
             nfev += run.nfev
             h = (run.t[-1] - run.t[-2]) if len(run.t) > 1 else None
