@@ -72,3 +72,11 @@ def test_locate_when_interpolant_rounds_to_the_other_side_at_the_step_end():
     rc = ([0.0], [1.0], [0.0], [0.0], [0.0])  # y(θ) = θ, so g(θ = 1) = 0 while g_new > 0
     ev = Event("x", lambda t, y: y[0] - 1.0 - 1e-300, +1)  # -1e-300 rounds away: g(θ = 1) = 0, not > 0
     assert _locate(ev, rc, 0.0, 0.5, -1.0, 1e-300) == 0.5
+
+
+def test_huge_trial_step_error_is_a_rejection_not_an_overflow():
+    """A wild trial step (seen in a projectile flight from 1000 m with drag and Magnus) gives an
+    error ratio ~1e200: `r ** 2` raised OverflowError; the norm must be inf (and the step rejected)."""
+    from core.sim.integrate import _norm
+
+    assert _norm([1e200, 0.0], [1.0, 1.0], [1.0, 1.0], 1e-6, 1e-9) == math.inf

@@ -282,3 +282,16 @@ def test_apex_with_effects_is_the_located_top_of_the_flight():
     assert o["apex_height"] == pytest.approx(0.6 + (7.5 * math.sin(60 * DEG)) ** 2 / (2 * G), rel=1e-9)
     drag = out({"effects": "air_drag", "accuracy": "tight"})
     assert drag["target_height"] < drag["apex_height"] < o["apex_height"]
+
+
+def test_reverse_from_1000_m_straight_down_is_an_input_error_not_an_overflow():
+    """Released 1000 m up, 3 m away, arriving at −89.999° with drag and Magnus: a trial step of the
+    root finder's flights overflowed the integrator's error norm (OverflowError traceback)."""
+    raw = {"mode": "reverse", "release_height": 1000, "target_height": 0, "distance": 3,
+           "target_angle": -89.999, "effects": "air_drag, magnus", "spin": 3000}
+    try:
+        o = out(raw)
+    except InputError as e:
+        assert e.field in {"target_angle", "spin", "distance"}
+    else:
+        assert all(math.isfinite(x) for x in o.values() if isinstance(x, float))

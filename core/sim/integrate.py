@@ -83,8 +83,8 @@ def integrate(rhs: RHS, t0: float, t1: float, y0: Sequence[float], rtol: float =
 def _norm(v, y0, y1, rtol, atol) -> float:
     s = 0.0
     for e, a, b in zip(v, y0, y1):
-        sc = atol + rtol * max(abs(a), abs(b))
-        s += (e / sc) ** 2
+        r = e / sc if (sc := atol + rtol * max(abs(a), abs(b))) else math.inf
+        s += r * r  # not r ** 2: that raises OverflowError where r·r gives inf (a rejected step)
     return math.sqrt(s / len(v))
 
 
