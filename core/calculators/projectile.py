@@ -294,10 +294,12 @@ def simulate(v, rtol: float) -> SimRun:
             try:
                 theta_i, v_i, used = _reverse_with_effects(a, h_i, h_f, d, theta_f, rtol, series)
             except (ValueError, RuntimeError):
-                raise InputError("target_angle", f"no release reaches the target arriving at "
-                                 f"{math.degrees(theta_f):.4g}° with these flight effects (drag and "
-                                 f"topspin steepen the descent): try a steeper target angle, less drag or "
-                                 f"a shorter distance") from None
+                line = math.degrees(line_angle(h_i, h_f, d))
+                raise InputError("target_angle", f"no release found that reaches the target arriving at "
+                                 f"{math.degrees(theta_f):.6g}° with these flight effects (drag and topspin "
+                                 f"steepen the descent, backspin flattens it; the line from release to target "
+                                 f"is at {line:.4g}°): try another target angle, less drag or a shorter "
+                                 f"distance") from None
             if not v_i <= 10_000:
                 raise InputError("target_angle", f"needs a release speed of {v_i:.3g} m/s")
             f = _fly(a, h_i, theta_i, v_i, d, rtol, samples=PATH_POINTS)
