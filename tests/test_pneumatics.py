@@ -197,3 +197,17 @@ def test_no_switch_at_the_relief_pressure_holds_it_and_stays_finite():
     # and starting at the relief pressure the motor still runs (no switch to stop it)
     out = solve("pneumatics", {**NO_CYL, "effects": "compressor", "start_pressure": "125 psi"}).outputs
     assert out["compressor_duty"].value == 1.0
+
+
+def test_error_estimate_is_not_zero_when_the_check_run_agrees_to_the_last_bit():
+    """Here the runs at rtol 1e-3 and 1e-5 give bit-identical minimum and final pressures (the tank
+    refills to the switch-off pressure, which resets the state, and the later segments take the same
+    steps), so the 100x check reported an error of exactly 0 while the true error is ~1e-7."""
+    raw = {"compressor_model": "AndyMark 1.1 12 V", "c1_count": 4, "c1_period": 7, "c2_count": 1,
+           "c2_period": 2.5, "c2_start": 1, "accuracy": "coarse"}
+    v = values(**raw)
+    rough, tight = pn.simulate(v, 1e-3).key, pn.simulate(v, 1e-13).key
+    true = max(abs(rough[k] - tight[k]) / abs(tight[k]) for k in rough)
+    assert true > 1e-8
+    est = solve("pneumatics", raw).outputs["error_estimate"].value
+    assert true / 10 <= est <= true * 10
