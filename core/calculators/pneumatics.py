@@ -274,12 +274,13 @@ def seed_step(v) -> tuple[float, float, tuple[list[float], list[float]]]:
     schedule = firing_times(gs, T)
     low = P
     ts, Ps = [0.0], [P]
+    k = 0  # next firing in the (sorted) schedule: one pass, not a scan of it per step
     for n in range(int(math.ceil(T))):
         W_comp = flow(coeffs, P) * 1.0 * P_ATM if on else 0.0  # (80), dt = 1 s
         P = min(P + W_comp / V, top) if on else P  # (79)
-        for tf, g in schedule:
-            if n <= tf < n + 1:
-                P = fire(P, g, V, effects - {"absolute_pressure"})  # (81): the seed is gauge only
+        while k < len(schedule) and schedule[k][0] < n + 1:  # firings in [n, n + 1)
+            P = fire(P, schedule[k][1], V, effects - {"absolute_pressure"})  # (81): the seed is gauge only
+            k += 1
         low = min(low, P)
         ts.append(float(n + 1))
         Ps.append(P)
