@@ -117,10 +117,12 @@ def test_bad_switch_settings_and_rods_name_fields():
     assert e.value.field == "c1_rod"
 
 
-def test_relief_pressure_as_typed_is_accepted():
-    """'125 psi' parsed by core.units may differ from 125·PSI in the last bit: the field must accept it."""
-    for name in ("start_pressure", "switch_off"):
-        sol = solve("pneumatics", {name: "125 psi"})
+def test_values_typed_at_the_bounds_are_accepted():
+    """'125 psi' parses to 125·PSI·(1 + 1 ulp), '1000000 cc' to 1.0000000000000002 m³: a value typed
+    exactly at a bound the error message names must be accepted."""
+    for name, typed in (("start_pressure", "125 psi"), ("switch_off", "125 psi"), ("c1_push_pressure", "200 psi"),
+                        ("tank_volume", "1000000 cc"), ("tank_volume", "1 cc")):
+        sol = solve("pneumatics", {name: typed})  # the bounds shown in the field's own error message
         assert math.isfinite(sol.outputs["final_pressure"].value)
 
 

@@ -32,7 +32,9 @@ P_ATM = 101325.0  # Pa
 CFM = 0.028316846592 / 60  # m^3/s per ft^3/min
 INCH = 0.0254
 RELIEF = 125 * PSI  # FRC relief valve
-PRESSURE_MAX = RELIEF * (1 + 1e-12)  # bound of the pressure fields: "125 psi" as typed (its last bit may differ) is in
+SLACK = 1 + 1e-12  # field bounds: a value typed exactly at a bound parses a bit off it (unit factors)
+PRESSURE_MAX = RELIEF * SLACK  # "125 psi" is in
+CYLINDER_PRESSURE_MAX = 200 * PSI * SLACK
 GROUPS = 3
 MIN_PERIOD = 0.1  # s; a valve cannot cycle faster, and it bounds the work of a match
 
@@ -77,9 +79,9 @@ def _group_fields(i: int):
         Field(f"c{i}_stroke", f"Cyl {i}: stroke", "length", "in", default=6 if on else 4, min=0,
               min_exclusive=True, max=5, help=g + "stroke L."),
         Field(f"c{i}_push_pressure", f"Cyl {i}: push pressure", "pressure", "psi", default=60, min=0,
-              max=200 * PSI, help=g + "pressure on the extend stroke (its regulator setting)."),
+              max=CYLINDER_PRESSURE_MAX, help=g + "pressure on the extend stroke (its regulator setting)."),
         Field(f"c{i}_pull_pressure", f"Cyl {i}: pull pressure", "pressure", "psi", default=60, min=0,
-              max=200 * PSI, help=g + "pressure on the retract stroke."),
+              max=CYLINDER_PRESSURE_MAX, help=g + "pressure on the retract stroke."),
         Field(f"c{i}_period", f"Cyl {i}: firing period", "time", "s", default=10 if on else 5, min=0,
               max=1000, help=g + "time between actuations (extend + retract); 0 fires once."),
         Field(f"c{i}_start", f"Cyl {i}: first firing", "time", "s", default=5 if on else 0, min=0,
@@ -90,7 +92,7 @@ def _group_fields(i: int):
 FIELDS = (
     Field("compressor_model", "Compressor", choices=tuple(COMPRESSORS), default="VIAIR 90C 13.8 V",
           help="Compressor flow curve (vendor data, 4th-degree fit as in the seed)."),
-    Field("tank_volume", "Storage volume", "volume", "cc", default=1148, min=1e-6, max=1.0,
+    Field("tank_volume", "Storage volume", "volume", "cc", default=1148, min=1e-6 / SLACK, max=1.0 * SLACK,
           help="Total storage: tanks plus tubing (two Clippard tanks: 1148 cc)."),
     Field("start_pressure", "Start pressure", "pressure", "psi", default=120, min=0, max=PRESSURE_MAX,
           help="Storage pressure (gauge) when the match starts."),
