@@ -213,3 +213,9 @@ def test_error_estimate_is_not_zero_when_the_check_run_agrees_to_the_last_bit():
     assert true > 1e-8
     est = solve("pneumatics", raw).outputs["error_estimate"].value
     assert true / 10 <= est <= true * 10
+
+
+def test_no_regulator_warns_that_forces_are_at_the_entered_pressures():
+    sol = solve("pneumatics", {"effects": "compressor, pressure_switch"})
+    assert any("No regulator" in w for w in sol.warnings)
+    assert not any("No regulator" in w for w in solve("pneumatics", {}).warnings)

@@ -259,6 +259,9 @@ def simulate(v, rtol: float) -> SimRun:
         values[f"pull_force_{g['index']}"] = g["A_pull"] * g["P_pull"]  # (83)
     if not has_comp:
         warnings.append("No compressor: pressure only falls; answered in closed form (no integration).")
+    if gs and "regulator" not in effects:
+        warnings.append("No regulator: cylinders get storage pressure, so the air used follows the tank; "
+                        "the forces shown are at the push/pull pressures entered.")
     return SimRun(values, {"min_pressure": Ps[i_min] + P_ATM, "final_pressure": P + P_ATM}, nfev, warnings,
                   {"pressure": (ts, Ps)})
 
