@@ -80,3 +80,10 @@ def test_huge_trial_step_error_is_a_rejection_not_an_overflow():
     from core.sim.integrate import _norm
 
     assert _norm([1e200, 0.0], [1.0, 1.0], [1.0, 1.0], 1e-6, 1e-9) == math.inf
+
+
+def test_zero_first_step_falls_back_to_the_heuristic():
+    """pneumatics hands on the last step of a segment as first_step; an event located at a step's
+    start makes it 0, which used to spin 100 000 zero-length steps and raise."""
+    run = integrate(oscillator, 0.0, 10.0, [1.0, 0.0], rtol=1e-8, atol=1e-10, first_step=0.0)
+    assert abs(run.y[-1][0] - math.cos(10)) < 1e-6 and run.steps < 1000

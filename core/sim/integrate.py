@@ -99,7 +99,7 @@ def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense)
     k1 = rhs(t0, y)
     nfev = 1
     # initial step (Hairer's heuristic, one extra evaluation)
-    if first_step is None:
+    if not first_step:  # None, or a zero step handed on (an event located at a step's start)
         d0 = _norm(y, y, y, rtol, atol) or 1e-5
         d1 = _norm(k1, y, y, rtol, atol) or 1e-5
         h0 = 0.01 * d0 / d1 if d0 > 1e-5 and d1 > 1e-5 else 1e-6
