@@ -54,3 +54,36 @@ def test_dense_output_is_fourth_order_accurate():
     run = integrate(oscillator, 0.0, 10.0, [1.0, 0.0], rtol=1e-10, atol=1e-12, dense=True)
     for t in [0.123, 3.3, 7.77, 9.99]:
         assert run.at(t)[0] == pytest.approx(math.cos(t), abs=1e-8)
+
+
+def test_tiny_first_step_far_from_zero_is_not_an_underflow():
+    """A segment that starts with the tiny last step of the previous one (1e-16 s at t = 100 s) must
+    grow its step, not stop with "step size underflow": 1e-16 < 1e-14·100 is accepted, not rejected."""
+    run = integrate(oscillator, 100.0, 110.0, [math.cos(100), -math.sin(100)], rtol=1e-8, atol=1e-10,
+                    first_step=1e-16)
+    assert abs(run.y[-1][0] - math.cos(110)) < 1e-6
+
+
+def test_locate_when_interpolant_rounds_to_the_other_side_at_the_step_end():
+    """g_new is a tiny positive number but the dense output at θ = 1 gives g < 0 (rounding): the
+    root bracket [0, 1] has no sign change and brentq would raise; the crossing is at the step end."""
+    from core.sim.integrate import _locate
+
+    rc = ([0.0], [1.0], [0.0], [0.0], [0.0])  # y(θ) = θ, so g(θ = 1) = 0 while g_new > 0
+    ev = Event("x", lambda t, y: y[0] - 1.0 - 1e-300, +1)  # -1e-300 rounds away: g(θ = 1) = 0, not > 0
+    assert _locate(ev, rc, 0.0, 0.5, -1.0, 1e-300) == 0.5
+
+
+def test_huge_trial_step_error_is_a_rejection_not_an_overflow():
+    """A wild trial step (seen in a projectile flight from 1000 m with drag and Magnus) gives an
+    error ratio ~1e200: `r ** 2` raised OverflowError; the norm must be inf (and the step rejected)."""
+    from core.sim.integrate import _norm
+
+    assert _norm([1e200, 0.0], [1.0, 1.0], [1.0, 1.0], 1e-6, 1e-9) == math.inf
+
+
+def test_zero_first_step_falls_back_to_the_heuristic():
+    """pneumatics hands on the last step of a segment as first_step; an event located at a step's
+    start makes it 0, which used to spin 100 000 zero-length steps and raise."""
+    run = integrate(oscillator, 0.0, 10.0, [1.0, 0.0], rtol=1e-8, atol=1e-10, first_step=0.0)
+    assert abs(run.y[-1][0] - math.cos(10)) < 1e-6 and run.steps < 1000

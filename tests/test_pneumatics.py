@@ -115,3 +115,107 @@ def test_bad_switch_settings_and_rods_name_fields():
     with pytest.raises(InputError) as e:
         solve("pneumatics", {"c1_rod": "2 in"})
     assert e.value.field == "c1_rod"
+
+
+def test_values_typed_at_the_bounds_are_accepted():
+    """'125 psi' parses to 125·PSI·(1 + 1 ulp), '1000000 cc' to 1.0000000000000002 m³: a value typed
+    exactly at a bound the error message names must be accepted."""
+    for name, typed in (("start_pressure", "125 psi"), ("switch_off", "125 psi"), ("c1_push_pressure", "200 psi"),
+                        ("tank_volume", "1000000 cc"), ("tank_volume", "1 cc")):
+        sol = solve("pneumatics", {name: typed})  # the bounds shown in the field's own error message
+        assert math.isfinite(sol.outputs["final_pressure"].value)
+
+
+def test_seed_step_matches_an_independent_loop():
+    """The seed's scheme written out again: 1 s explicit steps of (79)-(80) from the numpy fit, firing (81)
+    at 5, 15, ... s (2 cylinders, regulator: each stroke at min(60 psi, tank)), switch 95/120 psi."""
+    import numpy as np
+
+    c = np.polyfit(np.array(pn.CURVE_PSI) * PSI, np.array(pn.COMPRESSORS["VIAIR 90C 13.8 V"]) * 0.028316846592 / 60, 4)
+    V, L = 1148e-6, 6 * IN
+    A_push, A_pull = math.pi * (1.5 * IN) ** 2 / 4, math.pi * ((1.5 * IN) ** 2 - (0.4375 * IN) ** 2) / 4
+    P, on, low = 120 * PSI, False, 120 * PSI
+    for n in range(150):
+        if on:
+            P = min(P + max(np.polyval(c, P), 0.0) * 101325.0 / V, 120 * PSI)
+        if n >= 5 and (n - 5) % 10 == 0:
+            for A in (A_push, A_pull):
+                P -= min(60 * PSI, P) * A * L * 2 / V
+        low = min(low, P)
+        on = (on and P < 120 * PSI) or P <= 95 * PSI
+    out = solve("pneumatics", {}).outputs
+    assert out["seed_min_pressure"].value == pytest.approx(low, rel=1e-12)  # 38.8496 psi
+    assert out["seed_final_pressure"].value == pytest.approx(P, rel=1e-12)  # 52.5829 psi
+
+
+def test_absolute_regulated_stroke_by_hand():
+    """Absolute bookkeeping, regulated at 60 psi, one actuation from 120 psi: each stroke takes
+    (60 psi + 1 atm)·A·L·2 of P·V. By hand: push 347.50 cc, pull 317.94 cc of 1148 cc, 74.696 psi abs:
+    120 − 74.696·(347.50 + 317.94)/1148 = 76.70 psi."""
+    v = values(effects="regulator, absolute_pressure", c1_period=0, c1_start=0)
+    V, L = 1148e-6, 6 * IN
+    A_push, A_pull = math.pi * (1.5 * IN) ** 2 / 4, math.pi * ((1.5 * IN) ** 2 - (0.4375 * IN) ** 2) / 4
+    expected = 120 * PSI - (60 * PSI + 101325.0) * (A_push + A_pull) * L * 2 / V
+    assert expected == pytest.approx(76.70 * PSI, rel=1e-4)
+    assert pn.simulate(v, 1e-6).values["final_pressure"] == pytest.approx(expected, rel=1e-13)
+
+
+@pytest.mark.parametrize("switch_on, runs", [(95, False), (105, True)])
+def test_switch_closes_only_at_or_below_its_setting(switch_on, runs):
+    """One regulated actuation of one 1.5 in x 6 in cylinder from 120 psi leaves
+    120 − 60·(173.75 + 158.97)/1148 = 102.6 psi (by hand): above 95 psi the switch stays open (the
+    pressure stays at 102.6 psi all match), below 105 psi it closes and the compressor refills to 120."""
+    raw = {"c1_count": 1, "c1_period": 0, "c1_start": 10, "switch_on": f"{switch_on} psi"}
+    A_push, A_pull = math.pi * (1.5 * IN) ** 2 / 4, math.pi * ((1.5 * IN) ** 2 - (0.4375 * IN) ** 2) / 4
+    after = 120 * PSI - 60 * PSI * (A_push + A_pull) * 6 * IN / 1148e-6
+    assert after == pytest.approx(102.6 * PSI, rel=1e-3)
+    out = solve("pneumatics", raw).outputs
+    if runs:
+        assert out["final_pressure"].value == pytest.approx(120 * PSI, rel=1e-12)
+        assert 0 < out["compressor_duty"].value < 1
+    else:
+        assert out["final_pressure"].value == pytest.approx(after, rel=1e-12)
+        assert out["compressor_duty"].value == 0
+
+
+def test_without_switch_the_compressor_runs_all_match_against_the_relief_valve():
+    """No pressure switch: the motor never stops; the 125 psi relief valve holds the top. The seed's
+    1 s scheme clamps at the same 125 psi."""
+    out = solve("pneumatics", {**NO_CYL, "effects": "compressor", "start_pressure": "60 psi"}).outputs
+    assert out["compressor_duty"].value == 1.0
+    assert out["final_pressure"].value == pytest.approx(125 * PSI, rel=1e-12)
+    assert out["seed_final_pressure"].value == pytest.approx(125 * PSI, rel=1e-12)
+
+
+def test_no_switch_at_the_relief_pressure_holds_it_and_stays_finite():
+    """No switch, cylinders that use no air (0 psi): after the tank reaches 125 psi each segment starts
+    exactly at the relief pressure, where the rising 'full' event cannot fire. The pressure once climbed
+    past the relief valve into the polynomial's rising tail and stopped with 'step size underflow'."""
+    raw = {"effects": "compressor, regulator", "c1_push_pressure": 0, "c1_pull_pressure": 0,
+           "start_pressure": "60 psi"}
+    out = solve("pneumatics", raw).outputs
+    assert out["final_pressure"].value == pytest.approx(125 * PSI, rel=1e-12)
+    assert out["compressor_duty"].value == 1.0
+    # and starting at the relief pressure the motor still runs (no switch to stop it)
+    out = solve("pneumatics", {**NO_CYL, "effects": "compressor", "start_pressure": "125 psi"}).outputs
+    assert out["compressor_duty"].value == 1.0
+
+
+def test_error_estimate_is_not_zero_when_the_check_run_agrees_to_the_last_bit():
+    """Here the runs at rtol 1e-3 and 1e-5 give bit-identical minimum and final pressures (the tank
+    refills to the switch-off pressure, which resets the state, and the later segments take the same
+    steps), so the 100x check reported an error of exactly 0 while the true error is ~1e-7."""
+    raw = {"compressor_model": "AndyMark 1.1 12 V", "c1_count": 4, "c1_period": 7, "c2_count": 1,
+           "c2_period": 2.5, "c2_start": 1, "accuracy": "coarse"}
+    v = values(**raw)
+    rough, tight = pn.simulate(v, 1e-3).key, pn.simulate(v, 1e-13).key
+    true = max(abs(rough[k] - tight[k]) / abs(tight[k]) for k in rough)
+    assert true > 1e-8
+    est = solve("pneumatics", raw).outputs["error_estimate"].value
+    assert true / 10 <= est <= true * 10
+
+
+def test_no_regulator_warns_that_forces_are_at_the_entered_pressures():
+    sol = solve("pneumatics", {"effects": "compressor, pressure_switch"})
+    assert any("No regulator" in w for w in sol.warnings)
+    assert not any("No regulator" in w for w in solve("pneumatics", {}).warnings)

@@ -254,3 +254,44 @@ def test_drag_preset_reverse_needs_more_speed_than_vacuum():
     vac = solve("projectile", {**p.inputs, "effects": ""}).outputs
     key = "release_speed" if "release_speed" in drag else "target_height"
     assert drag[key].value > vac[key].value if key == "release_speed" else drag[key].value < vac[key].value
+
+
+@pytest.mark.parametrize("effects, spin, h_i, th, v, d", [
+    ("air_drag, magnus", -2000, 0.97, 68.4, 23.7, 14.79),  # topspin + drag: far from the parabola
+    ("magnus", 500, 1.96, 60.9, 17.57, 12.95),  # backspin lift ≈ 0.6 g at release
+    ("magnus", 5000, 1.92, 33.8, 22.37, 1.12),  # arrives above the line of sight: no vacuum answer
+    ("air_drag, magnus", 5000, 1.52, 1.7, 25.66, 0.78),  # the same, nearly flat
+])
+def test_reverse_finds_throws_hybrid_powell_misses_from_the_vacuum_guess(effects, spin, h_i, th, v, d):
+    """Found by a random reverse(forward(x)) sweep: straight hybrid Powell from the vacuum answer (or
+    the above-the-line guess) fails on these; continuation (effects grown from 0, or θ_f moved up
+    from below the line) must return the throw that was flown forward."""
+    common = {"effects": effects, "spin": spin, "accuracy": "tight", "release_height": h_i, "distance": d}
+    fwd = out({**common, "release_angle": th, "release_speed": v})
+    back = out({**common, "mode": "reverse", "target_height": fwd["target_height"],
+                "target_angle": f"{fwd['target_angle']!r} rad"})
+    assert math.degrees(back["release_angle"]) == pytest.approx(th, abs=1e-6)
+    assert back["release_speed"] == pytest.approx(v, rel=1e-7)
+
+
+def test_apex_with_effects_is_the_located_top_of_the_flight():
+    """With effects the apex comes from the located vy = 0 crossing (a falling event), not the ends.
+    C_d = 1e-12 is vacuum to 1e-12: apex = h_i + (v·sin θ)²/(2g) = 0.6 + (7.5·sin 60°)²/(2·9.80665)
+    = 0.6 + 42.1875/19.6133 = 2.750963887 m, above both ends (0.6 m and 2.658 m)."""
+    o = out({"effects": "air_drag", "drag_coefficient": 1e-12, "accuracy": "tight"})
+    assert o["apex_height"] == pytest.approx(0.6 + (7.5 * math.sin(60 * DEG)) ** 2 / (2 * G), rel=1e-9)
+    drag = out({"effects": "air_drag", "accuracy": "tight"})
+    assert drag["target_height"] < drag["apex_height"] < o["apex_height"]
+
+
+def test_reverse_from_1000_m_straight_down_is_an_input_error_not_an_overflow():
+    """Released 1000 m up, 3 m away, arriving at −89.999° with drag and Magnus: a trial step of the
+    root finder's flights overflowed the integrator's error norm (OverflowError traceback)."""
+    raw = {"mode": "reverse", "release_height": 1000, "target_height": 0, "distance": 3,
+           "target_angle": -89.999, "effects": "air_drag, magnus", "spin": 3000}
+    try:
+        o = out(raw)
+    except InputError as e:
+        assert e.field in {"target_angle", "spin", "distance"}
+    else:
+        assert all(math.isfinite(x) for x in o.values() if isinstance(x, float))

@@ -32,6 +32,9 @@ P_ATM = 101325.0  # Pa
 CFM = 0.028316846592 / 60  # m^3/s per ft^3/min
 INCH = 0.0254
 RELIEF = 125 * PSI  # FRC relief valve
+SLACK = 1 + 1e-12  # field bounds: a value typed exactly at a bound parses a bit off it (unit factors)
+PRESSURE_MAX = RELIEF * SLACK  # "125 psi" is in
+CYLINDER_PRESSURE_MAX = 200 * PSI * SLACK
 GROUPS = 3
 MIN_PERIOD = 0.1  # s; a valve cannot cycle faster, and it bounds the work of a match
 
@@ -76,9 +79,9 @@ def _group_fields(i: int):
         Field(f"c{i}_stroke", f"Cyl {i}: stroke", "length", "in", default=6 if on else 4, min=0,
               min_exclusive=True, max=5, help=g + "stroke L."),
         Field(f"c{i}_push_pressure", f"Cyl {i}: push pressure", "pressure", "psi", default=60, min=0,
-              max=200 * PSI, help=g + "pressure on the extend stroke (its regulator setting)."),
+              max=CYLINDER_PRESSURE_MAX, help=g + "pressure on the extend stroke (its regulator setting)."),
         Field(f"c{i}_pull_pressure", f"Cyl {i}: pull pressure", "pressure", "psi", default=60, min=0,
-              max=200 * PSI, help=g + "pressure on the retract stroke."),
+              max=CYLINDER_PRESSURE_MAX, help=g + "pressure on the retract stroke."),
         Field(f"c{i}_period", f"Cyl {i}: firing period", "time", "s", default=10 if on else 5, min=0,
               max=1000, help=g + "time between actuations (extend + retract); 0 fires once."),
         Field(f"c{i}_start", f"Cyl {i}: first firing", "time", "s", default=5 if on else 0, min=0,
@@ -89,13 +92,13 @@ def _group_fields(i: int):
 FIELDS = (
     Field("compressor_model", "Compressor", choices=tuple(COMPRESSORS), default="VIAIR 90C 13.8 V",
           help="Compressor flow curve (vendor data, 4th-degree fit as in the seed)."),
-    Field("tank_volume", "Storage volume", "volume", "cc", default=1148, min=1e-6, max=1.0,
+    Field("tank_volume", "Storage volume", "volume", "cc", default=1148, min=1e-6 / SLACK, max=1.0 * SLACK,
           help="Total storage: tanks plus tubing (two Clippard tanks: 1148 cc)."),
-    Field("start_pressure", "Start pressure", "pressure", "psi", default=120, min=0, max=RELIEF,
+    Field("start_pressure", "Start pressure", "pressure", "psi", default=120, min=0, max=PRESSURE_MAX,
           help="Storage pressure (gauge) when the match starts."),
-    Field("switch_on", "Switch on at", "pressure", "psi", default=95, min=0, max=RELIEF,
+    Field("switch_on", "Switch on at", "pressure", "psi", default=95, min=0, max=PRESSURE_MAX,
           help="Pressure switch closes (compressor on) at or below this."),
-    Field("switch_off", "Switch off at", "pressure", "psi", default=120, min=0, max=RELIEF,
+    Field("switch_off", "Switch off at", "pressure", "psi", default=120, min=0, max=PRESSURE_MAX,
           help="Pressure switch opens (compressor off) at this."),
     Field("match_length", "Match length", "time", "s", default=150, min=0, min_exclusive=True, max=3600,
           help="Simulated time."),
@@ -192,7 +195,7 @@ def simulate(v, rtol: float) -> SimRun:
     top = v["switch_off"] if switch else RELIEF
     stop = [Event("full", lambda t, y: y[0] - top, +1)]
     P = v["start_pressure"]
-    on = has_comp and P < top
+    on = has_comp and (P < top or not switch)  # with no switch the motor runs from the start
     t = 0.0
     ts, Ps = [0.0], [P]
     run_time = 0.0
@@ -202,7 +205,11 @@ def simulate(v, rtol: float) -> SimRun:
     warnings = []
     schedule = firing_times(gs, T) + [(T, None)]
     for tf, g in schedule:
-        if on and tf > t:
+        if on and tf > t and P >= top:  # no switch, at the relief pressure: the valve vents the flow
+            run_time += tf - t
+            ts.append(tf)
+            Ps.append(P)
+        elif on and tf > t:
             run = integrate(rhs, t, tf, [P], rtol=rtol, atol=rtol * PSI, events=stop, first_step=h)
             nfev += run.nfev
             h = (run.t[-1] - run.t[-2]) if len(run.t) > 1 else None
@@ -252,6 +259,9 @@ def simulate(v, rtol: float) -> SimRun:
         values[f"pull_force_{g['index']}"] = g["A_pull"] * g["P_pull"]  # (83)
     if not has_comp:
         warnings.append("No compressor: pressure only falls; answered in closed form (no integration).")
+    if gs and "regulator" not in effects:
+        warnings.append("No regulator: cylinders get storage pressure, so the air used follows the tank; "
+                        "the forces shown are at the push/pull pressures entered.")
     return SimRun(values, {"min_pressure": Ps[i_min] + P_ATM, "final_pressure": P + P_ATM}, nfev, warnings,
                   {"pressure": (ts, Ps)})
 
@@ -269,12 +279,13 @@ def seed_step(v) -> tuple[float, float, tuple[list[float], list[float]]]:
     schedule = firing_times(gs, T)
     low = P
     ts, Ps = [0.0], [P]
+    k = 0  # next firing in the (sorted) schedule: one pass, not a scan of it per step
     for n in range(int(math.ceil(T))):
         W_comp = flow(coeffs, P) * 1.0 * P_ATM if on else 0.0  # (80), dt = 1 s
         P = min(P + W_comp / V, top) if on else P  # (79)
-        for tf, g in schedule:
-            if n <= tf < n + 1:
-                P = fire(P, g, V, effects - {"absolute_pressure"})  # (81): the seed is gauge only
+        while k < len(schedule) and schedule[k][0] < n + 1:  # firings in [n, n + 1)
+            P = fire(P, schedule[k][1], V, effects - {"absolute_pressure"})  # (81): the seed is gauge only
+            k += 1
         low = min(low, P)
         ts.append(float(n + 1))
         Ps.append(P)

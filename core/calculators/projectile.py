@@ -28,6 +28,9 @@ Effects (core.sim.flight): `air_drag` (quadratic, C_d, frontal area, air density
 closed form above, with no integration. With effects, forward integrates to the target distance;
 reverse finds θ_i and v_i by root finding (hybrid Powell) from the vacuum answer (or, when Magnus lift
 from backspin bends the path upward so that no vacuum answer exists, from a throw above the line).
+Where that misses (strong effects bend the path far from the parabola), continuation: the effects are
+grown from 0 to full (or θ_f is moved up from below the line) in steps, each solve starting from the
+last root; the path is followed with flights at rtol ≤ 1e-6 and the root polished at the chosen rtol.
 """
 
 from __future__ import annotations
@@ -36,7 +39,7 @@ import math
 
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
-from ..sim.flight import Air, air, aim, fly
+from ..sim.flight import Air, aim, aim_along, air, fly
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats
 
 G = 9.80665  # m/s², standard gravity
@@ -45,7 +48,8 @@ EFFECTS = ("air_drag", "magnus")
 PATH_POINTS = 80
 MAX_STEPS = 5_000  # per flight (a real throw takes < 100): a path curled up by extreme Magnus lift is
 MAX_FLIGHTS = 150  # refused, not crawled along; the reverse root finder may try this many flights
-MAX_NFEV = 100_000  # and this much work in all (about 0.5 s)
+MAX_NFEV = 50_000  # and this much work in all, continuation included (about 0.3 s; a found root takes < 10 000)
+CONTINUATION_RTOL = 1e-6  # the reverse root is found with flights at most this tight, then polished at rtol
 FLOOR_SLACK = 1e-9  # relative: a target on the floor (h_f = 0) is reached, not "hit the floor first"
 
 MODES = ("forward", "reverse")
@@ -211,6 +215,48 @@ def _fly(a: Air, h_i, theta_i, v_i, d, rtol, samples=0):
     return f
 
 
+def _reverse_with_effects(a: Air, h_i, h_f, d, theta_f, rtol, series) -> tuple[float, float, int]:
+    """(θ_i, v_i, nfev) with flight effects. First hybrid Powell straight from the vacuum answer; if
+    that misses (the effects bend the path far from the parabola), continuation: the effects grown
+    from 0 to full in steps, each solve starting from the last root. A target above the line of sight
+    (backspin only) has no vacuum answer: solve for an angle below the line, then move θ_f up to it."""
+    spent = [0]
+    limits = dict(max_flights=MAX_FLIGHTS, max_steps=MAX_STEPS, max_nfev=MAX_NFEV)
+    rtol_path = max(rtol, CONTINUATION_RTOL)  # the path is followed cheaply, the end polished at rtol
+
+    def polish(guess):
+        if rtol >= rtol_path:
+            return guess
+        return aim(a, h_i, h_f, d, theta_f, rtol, guess, spent=spent, **limits)[:2]
+
+    def from_vacuum(theta_target):
+        vac = reverse_vacuum(h_i, h_f, d, theta_target)
+        try:
+            return aim(a, h_i, h_f, d, theta_target, rtol_path, vac[:2], spent=spent, **limits)[:2]
+        except (ValueError, RuntimeError):
+            grow = lambda s: (Air(a.g, a.k_drag * s, a.k_magnus * s), theta_target)  # noqa: E731
+            return aim_along(grow, h_i, h_f, d, rtol_path, vac[:2], spent, **limits)
+
+    try:
+        vac = reverse_vacuum(h_i, h_f, d, theta_f)
+    except InputError:
+        if a.k_magnus <= 0:  # drag and topspin only bend the path further down
+            raise
+        line = line_angle(h_i, h_f, d)  # backspin may lift it: start just above the line
+        guess = (min(line + 0.2, 1.4), math.sqrt(G / a.k_magnus) * 2)
+        try:
+            theta_i, v_i = polish(aim(a, h_i, h_f, d, theta_f, rtol_path, guess, spent=spent, **limits)[:2])
+        except (ValueError, RuntimeError):
+            below = max(line - 0.1, -HALF_PI + 0.05)  # reachable in vacuum: start there
+            start = from_vacuum(below)
+            move = lambda s: (a, below + s * (theta_f - below))  # noqa: E731
+            theta_i, v_i = polish(aim_along(move, h_i, h_f, d, rtol_path, start, spent, **limits))
+        return theta_i, v_i, spent[0]
+    series["vacuum"] = _parabola(h_i, vac[0], vac[1], vac[2])
+    theta_i, v_i = polish(from_vacuum(theta_f))
+    return theta_i, v_i, spent[0]
+
+
 def simulate(v, rtol: float) -> SimRun:
     a = scene_air(v)
     h_i, d = v["release_height"], v["distance"]
@@ -246,21 +292,14 @@ def simulate(v, rtol: float) -> SimRun:
                 series["vacuum"] = _parabola(h_i, theta_i, v_i, vac[2])
         else:
             try:
-                guess = reverse_vacuum(h_i, h_f, d, theta_f)
-                series["vacuum"] = _parabola(h_i, guess[0], guess[1], guess[2])
-            except InputError:
-                if a.k_magnus <= 0:  # drag and topspin only bend the path further down
-                    raise
-                line = line_angle(h_i, h_f, d)  # backspin may lift it: start just above the line
-                guess = (min(line + 0.2, 1.4), math.sqrt(G / a.k_magnus) * 2, 0.0)
-            try:
-                theta_i, v_i, used = aim(a, h_i, h_f, d, theta_f, rtol, guess[:2],
-                                         max_flights=MAX_FLIGHTS, max_steps=MAX_STEPS, max_nfev=MAX_NFEV)
+                theta_i, v_i, used = _reverse_with_effects(a, h_i, h_f, d, theta_f, rtol, series)
             except (ValueError, RuntimeError):
-                raise InputError("target_angle", f"no release reaches the target arriving at "
-                                 f"{math.degrees(theta_f):.4g}° with these flight effects (drag and "
-                                 f"topspin steepen the descent): try a steeper target angle, less drag or "
-                                 f"a shorter distance") from None
+                line = math.degrees(line_angle(h_i, h_f, d))
+                raise InputError("target_angle", f"no release found that reaches the target arriving at "
+                                 f"{math.degrees(theta_f):.6g}° with these flight effects (drag and topspin "
+                                 f"steepen the descent, backspin flattens it; the line from release to target "
+                                 f"is at {line:.4g}°): try another target angle, less drag or a shorter "
+                                 f"distance") from None
             if not v_i <= 10_000:
                 raise InputError("target_angle", f"needs a release speed of {v_i:.3g} m/s")
             f = _fly(a, h_i, theta_i, v_i, d, rtol, samples=PATH_POINTS)

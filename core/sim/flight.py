@@ -103,13 +103,14 @@ def fly(a: Air, h_i: float, theta_i: float, v_i: float, d: float, rtol: float,
 
 def aim(a: Air, h_i: float, h_f: float, d: float, theta_f: float, rtol: float,
         guess: tuple[float, float], max_flights: int = 400, max_steps: int = 100_000,
-        max_nfev: int | None = None) -> tuple[float, float, int]:
+        max_nfev: int | None = None, spent: list[int] | None = None) -> tuple[float, float, int]:
     """Release angle and speed that reach (d, h_f) arriving at angle theta_f, by root finding
     (scipy.optimize.root, hybrid Powell) from the vacuum solution. Returns (θ_i, v_i, nfev).
-    ValueError when there is none, or when the flights tried exceed max_nfev evaluations."""
+    ValueError when there is none, or when the flights tried exceed max_nfev evaluations.
+    `spent` ([n]) shares the evaluation count (and so the max_nfev budget) between several calls."""
     from scipy.optimize import root
 
-    count = [0]
+    count = spent if spent is not None else [0]
 
     def residual(p):
         theta, log_v = p
@@ -124,8 +125,29 @@ def aim(a: Air, h_i: float, h_f: float, d: float, theta_f: float, rtol: float,
         return [(f.height - h_f) / max(d, 1.0), f.angle - theta_f]
 
     sol = root(residual, [guess[0], math.log(guess[1])], method="hybr",
-               options={"xtol": 1e-11, "maxfev": max_flights})
+               options={"xtol": 1e-11, "maxfev": max_flights, "eps": rtol})  # FD step above the flight noise
     res = residual(sol.x)
     if not sol.success or max(abs(r) for r in res) > 1e-6:  # includes a root outside any throw
         raise ValueError("no release reaches that target with these flight effects")
     return float(sol.x[0]), float(math.exp(sol.x[1])), count[0]
+
+
+def aim_along(path, h_i: float, h_f: float, d: float, rtol: float, guess: tuple[float, float],
+              spent: list[int], max_halvings: int = 6, **limits) -> tuple[float, float]:
+    """Continuation: follow the root of `aim` from path(0), where `guess` is (nearly) the answer, to
+    path(1). path(s) -> (Air, θ_f). Hybrid Powell from the vacuum answer can miss when the effects
+    bend the path far from the parabola; small steps in s keep each start close to its root.
+    ValueError when a step cannot be made after max_halvings halvings (or the budget is spent)."""
+    s, ds, g = 0.0, 0.25, guess
+    while s < 1.0:
+        s1 = min(1.0, s + ds)
+        a, theta_f = path(s1)
+        try:
+            theta, v, _ = aim(a, h_i, h_f, d, theta_f, rtol, g, spent=spent, **limits)
+        except (ValueError, RuntimeError):
+            ds /= 2
+            if ds < 0.25 / 2**max_halvings:
+                raise ValueError("the continuation lost the root") from None
+            continue
+        g, s, ds = (theta, v), s1, min(2 * ds, 0.5)
+    return g

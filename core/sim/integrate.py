@@ -83,8 +83,8 @@ def integrate(rhs: RHS, t0: float, t1: float, y0: Sequence[float], rtol: float =
 def _norm(v, y0, y1, rtol, atol) -> float:
     s = 0.0
     for e, a, b in zip(v, y0, y1):
-        sc = atol + rtol * max(abs(a), abs(b))
-        s += (e / sc) ** 2
+        r = e / sc if (sc := atol + rtol * max(abs(a), abs(b))) else math.inf
+        s += r * r  # not r ** 2: that raises OverflowError where r·r gives inf (a rejected step)
     return math.sqrt(s / len(v))
 
 
@@ -99,7 +99,7 @@ def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense)
     k1 = rhs(t0, y)
     nfev = 1
     # initial step (Hairer's heuristic, one extra evaluation)
-    if first_step is None:
+    if not first_step:  # None, or a zero step handed on (an event located at a step's start)
         d0 = _norm(y, y, y, rtol, atol) or 1e-5
         d1 = _norm(k1, y, y, rtol, atol) or 1e-5
         h0 = 0.01 * d0 / d1 if d0 > 1e-5 and d1 > 1e-5 else 1e-6
@@ -181,8 +181,10 @@ def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense)
         else:
             rejected += 1
             h = h * max(0.1, 0.9 * err ** -0.2)
-        if h < 1e-14 * max(1.0, abs(t)):
-            raise RuntimeError(f"step size underflow at t = {t:.6g}")
+            # only a rejected step can underflow: an accepted tiny step (a tiny first_step handed on
+            # from a previous segment) grows by up to 10x per step and is not a failure
+            if h < 1e-14 * max(1.0, abs(t)):
+                raise RuntimeError(f"step size underflow at t = {t:.6g}")
 
 
 def _locate(ev: Event, rc, t: float, hs: float, g_old: float, g_new: float) -> float:
@@ -191,6 +193,9 @@ def _locate(ev: Event, rc, t: float, hs: float, g_old: float, g_new: float) -> f
     if g_new == 0:
         return t + hs
     f = lambda theta: ev.g(t + theta * hs, _interp(rc, theta))  # noqa: E731
+    g_end = f(1.0)  # the interpolant at θ = 1 can round to the other side of a tiny g_new
+    if g_end == 0 or (g_end > 0) == (g_old > 0):
+        return t + hs
     theta = brentq(f, 0.0, 1.0, xtol=1e-15, rtol=1e-15, maxiter=200)
     return t + theta * hs
 
