@@ -18,6 +18,7 @@ from .errors import InputError
 # or underflow; rejecting them keeps every formula finite without per-field guesswork.
 MAGNITUDE_FLOOR = 1e-15
 MAGNITUDE_CEILING = 1e15
+BOUND_SLACK = 1e-12  # relative: unit conversion may land a typed bound one rounding step outside
 
 
 @dataclass(frozen=True)
@@ -138,10 +139,11 @@ class Field:
             self._check_bounds(value, str(value))
             return value
         value = units.parse(raw, self.unit, self.quantity, self.name)
-        self._check_bounds(value, str(raw))
-        return value
+        return self._check_bounds(value, str(raw))
 
-    def _check_bounds(self, value: float, typed: str) -> None:
+    def _check_bounds(self, value: float, typed: str) -> float:
+        """The value, or an InputError; a value within rounding of an inclusive bound (e.g. 125 psi
+        typed against a bound set in Pa) is that bound, so formulas never see it a hair outside."""
         if self.type == "quantity" and value != 0 and not (MAGNITUDE_FLOOR <= abs(value) <= MAGNITUDE_CEILING):
             raise InputError(self.name, f"{typed} is out of range for a mechanism "
                                         f"(magnitude {abs(value):.3g} in SI units)")
@@ -151,13 +153,18 @@ class Field:
             return units.format_quantity(si, self.unit, self.quantity)
 
         if self.min is not None:
+            if not self.min_exclusive and value < self.min and value >= self.min - BOUND_SLACK * abs(self.min):
+                value = self.min
             if value < self.min or (self.min_exclusive and value == self.min):
                 word = "greater than" if self.min_exclusive else "at least"
                 raise InputError(self.name, f"{typed} is too small: must be {word} {shown(self.min)}")
         if self.max is not None:
+            if not self.max_exclusive and value > self.max and value <= self.max + BOUND_SLACK * abs(self.max):
+                value = self.max
             if value > self.max or (self.max_exclusive and value == self.max):
                 word = "less than" if self.max_exclusive else "at most"
                 raise InputError(self.name, f"{typed} is too large: must be {word} {shown(self.max)}")
+        return value
 
 
 @dataclass(frozen=True)

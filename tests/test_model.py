@@ -31,3 +31,17 @@ def test_field_shown_when_any_named_effect_is_on():
     with pytest.raises(InputError) as err:
         solve("projectile", {"effects": "air_drag", "drag_coefficient": "-3"})
     assert err.value.field == "drag_coefficient"
+
+
+@pytest.mark.parametrize("typed", ["125", "125 psi", "861844.6616460452 Pa"])
+def test_a_bound_typed_in_another_unit_is_accepted_as_the_bound(typed):
+    """125 psi against a bound of 125·6894.757… Pa: conversion may land one rounding step
+    outside; it is the bound, not an error, and formulas see exactly the bound."""
+    from core.model import Field
+
+    relief = 125 * 6894.757293168361
+    f = Field("p", "Pressure", "pressure", "psi", max=relief)
+    value = f.parse(typed)
+    assert value <= relief and value == pytest.approx(relief, rel=1e-9)
+    with pytest.raises(InputError):
+        f.parse("125.001 psi")  # a real excess is still refused
