@@ -3,22 +3,13 @@ the rectangular-tube torsion constant (finite elements, core/beams.py) against f
 
 from __future__ import annotations
 
-import statistics
 import sys
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-
-def _median_us(fn, runs: int = 50) -> float:
-    fn()
-    samples = []
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        fn()
-        samples.append(time.perf_counter() - t0)
-    return statistics.median(samples) * 1e6
+from timing import median_seconds  # noqa: E402  (bench/ is on sys.path when run)
 
 
 def main() -> None:
@@ -27,7 +18,7 @@ def main() -> None:
 
     print("  warm solve per section (median of 50; tube torsion cached by its side/wall ratios):")
     for section in beams.SECTIONS:
-        print(f"    {section:<18} {_median_us(lambda: solve('beam', {'section': section})):9.1f} µs")
+        print(f"    {section:<18} {median_seconds(lambda: solve('beam', {'section': section})) * 1e6:9.1f} µs")
     print("  rectangular-tube torsion constant, uncached (3 grids, 4/8/16 cells across the wall):")
     for W, H in [(32.0, 16.0), (16.0, 16.0), (4.0, 4.0), (2.5, 2.2), (1000.0, 1000.0), (3000.0, 4.0), (1e5, 4.0)]:
         t0 = time.perf_counter()

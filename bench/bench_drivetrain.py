@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-import statistics
-import time
+from timing import median_seconds
 
 
 def main() -> None:
@@ -11,10 +10,5 @@ def main() -> None:
 
     for mode in ("forward", "reverse", "shifting"):
         raw = {"mode": mode}
-        solve("drivetrain", raw)
-        samples = []
-        for _ in range(300):
-            t0 = time.perf_counter()
-            solve("drivetrain", raw)
-            samples.append(time.perf_counter() - t0)
-        print(f"  drivetrain {mode:<17} {statistics.median(samples) * 1e6:8.1f} µs")
+        seconds = median_seconds(lambda: solve("drivetrain", raw), 300)
+        print(f"  drivetrain {mode:<17} {seconds * 1e6:8.1f} µs")

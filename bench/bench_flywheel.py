@@ -9,29 +9,19 @@ Run:  .venv/bin/python bench/bench_flywheel.py
 
 from __future__ import annotations
 
-import statistics
 import sys
-import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+
+from timing import median_seconds  # noqa: E402  (bench/ is on sys.path when run)
 
 SCENES = {
     "energy (seed)": {"effects": "energy"},
     "momentum": {"effects": "momentum"},
     "momentum + motor_during_shot": {"effects": "momentum, motor_during_shot"},
 }
-
-
-def median_ms(fn, runs: int = 200) -> float:
-    fn()
-    samples = []
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        fn()
-        samples.append(time.perf_counter() - t0)
-    return statistics.median(samples) * 1e3
 
 
 def main() -> None:
@@ -44,8 +34,8 @@ def main() -> None:
     for label, raw in SCENES.items():
         values, _ = parse_inputs(calc, raw)
         run = fw.simulate(values, LEVELS["default"])
-        scene = median_ms(lambda: fw.simulate(values, LEVELS["default"]))
-        full = median_ms(lambda: solve("flywheel", raw))
+        scene = median_seconds(lambda: fw.simulate(values, LEVELS["default"]), 200) * 1e3
+        full = median_seconds(lambda: solve("flywheel", raw), 200) * 1e3
         print(f"  {label:<30} scene {scene:7.3f} ms  solve {full:7.3f} ms  rhs evaluations {run.nfev}")
     values, _ = parse_inputs(calc, SCENES["momentum + motor_during_shot"])
     rungs, _ = ladder(fw.simulate, values)

@@ -4,20 +4,8 @@ the accuracy of the near-locking raise torque against a 40-digit reference."""
 from __future__ import annotations
 
 import math
-import statistics
-import time
 
-
-def _median_us(calc_id: str, raw: dict, runs: int = 300) -> float:
-    from core.model import solve
-
-    solve(calc_id, raw)
-    samples = []
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        solve(calc_id, raw)
-        samples.append(time.perf_counter() - t0)
-    return statistics.median(samples) * 1e6
+from timing import median_seconds  # noqa: E402  (bench/ is on sys.path when run)
 
 
 def main() -> None:
@@ -26,8 +14,8 @@ def main() -> None:
     from core.model import parse_inputs, solve
     from core.registry import get
 
-    print(f"  lead_screw default           {_median_us('lead_screw', {}):8.1f} µs")
-    print(f"  lead_screw locked            {_median_us('lead_screw', {'starts': 16, 'friction': 1}):8.1f} µs")
+    print(f"  lead_screw default           {median_seconds(lambda: solve('lead_screw', {}), 300) * 1e6:8.1f} µs")
+    print(f"  lead_screw locked            {median_seconds(lambda: solve('lead_screw', {'starts': 16, 'friction': 1}), 300) * 1e6:8.1f} µs")
     # near-locking: the denominator of (31) is 10^-k of its terms; error grows like 10^k·ulp
     mp.mp.dps = 40
     mu_lock = math.pi * (0.0127 - 0.00127) / (16 * 0.00254)

@@ -7,22 +7,12 @@ Run from the repository root:  .venv/bin/python bench/bench_pneumatic_linkage.py
 from __future__ import annotations
 
 import math
-import statistics
 import sys
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-
-def median_time(fn, n: int = 300) -> float:
-    fn()
-    samples = []
-    for _ in range(n):
-        t0 = time.perf_counter()
-        fn()
-        samples.append(time.perf_counter() - t0)
-    return statistics.median(samples)
+from timing import median_seconds  # noqa: E402  (bench/ is on sys.path when run)
 
 
 def main() -> None:
@@ -31,10 +21,10 @@ def main() -> None:
     from core.calculators import pneumatic_linkage as pl
     from core.model import solve
 
-    print(f"  solve forward (defaults, with the 61-point torque curve) {median_time(lambda: solve('pneumatic_linkage', {})) * 1e6:8.1f} µs")
-    print(f"  solve reverse (defaults)                                {median_time(lambda: solve('pneumatic_linkage', {'mode': 'reverse'})) * 1e6:8.1f} µs")
-    print(f"  forward() geometry alone                                {median_time(lambda: pl.forward(6.0, -14.0, 5.0, 0.0, 11.0, 6.0)) * 1e6:8.2f} µs")
-    print(f"  reverse() geometry alone                                {median_time(lambda: pl.reverse(-0.8, 0.8, 5.0, 0.0, 11.0, 6.0)) * 1e6:8.2f} µs")
+    print(f"  solve forward (defaults, with the 61-point torque curve) {median_seconds(lambda: solve('pneumatic_linkage', {}), 300) * 1e6:8.1f} µs")
+    print(f"  solve reverse (defaults)                                {median_seconds(lambda: solve('pneumatic_linkage', {'mode': 'reverse'}), 300) * 1e6:8.1f} µs")
+    print(f"  forward() geometry alone                                {median_seconds(lambda: pl.forward(6.0, -14.0, 5.0, 0.0, 11.0, 6.0), 300) * 1e6:8.2f} µs")
+    print(f"  reverse() geometry alone                                {median_seconds(lambda: pl.reverse(-0.8, 0.8, 5.0, 0.0, 11.0, 6.0), 300) * 1e6:8.2f} µs")
 
     mp.mp.dps = 50
     print("  γ error near dead centre, ℓ = d + r − δ (d = 5, r = 2): closed form vs plain acos, rad")

@@ -8,7 +8,6 @@ Run:  .venv/bin/python bench/bench_projectile.py
 
 from __future__ import annotations
 
-import statistics
 import sys
 import time
 from pathlib import Path
@@ -16,6 +15,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
+
+from timing import median_seconds  # noqa: E402  (bench/ is on sys.path when run)
 
 CASES = {
     "vacuum forward (closed form)": {},
@@ -27,16 +28,6 @@ CASES = {
 }
 
 
-def median_ms(fn, n: int) -> float:
-    fn()
-    samples = []
-    for _ in range(n):
-        t0 = time.perf_counter()
-        fn()
-        samples.append(time.perf_counter() - t0)
-    return statistics.median(samples) * 1e3
-
-
 def main() -> None:
     from core.model import parse_inputs, solve
     from core.registry import get
@@ -46,8 +37,8 @@ def main() -> None:
     print("  default accuracy (rtol 1e-6), median of 50; nfev of the scene alone:")
     for name, raw in CASES.items():
         values, _ = parse_inputs(calc, raw)
-        scene = median_ms(lambda: calc.simulate(values, LEVELS["default"]), 50)
-        full = median_ms(lambda: solve("projectile", raw), 50)
+        scene = median_seconds(lambda: calc.simulate(values, LEVELS["default"]), 50) * 1e3
+        full = median_seconds(lambda: solve("projectile", raw), 50) * 1e3
         nfev = calc.simulate(values, LEVELS["default"]).nfev
         print(f"    {name:<30} scene {scene:7.3f} ms   solve {full:7.3f} ms   nfev {nfev:6d}")
     for name in ("drag forward", "drag reverse (root finding)"):

@@ -5,22 +5,12 @@ Run:  .venv/bin/python bench/bench_trebuchet.py   (benchmark.py also calls main(
 
 from __future__ import annotations
 
-import statistics
 import sys
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-
-def median_time(fn, repeats: int = 50) -> float:
-    fn()
-    samples = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        samples.append(time.perf_counter() - t0)
-    return statistics.median(samples)
+from timing import median_seconds  # noqa: E402  (bench/ is on sys.path when run)
 
 
 def main() -> None:
@@ -36,21 +26,21 @@ def main() -> None:
                     "sling, ground_contact, air_drag"):
         v = parse_inputs(c, {"effects": effects, "hanger_length": "0.2 m"})[0]
         run = calc.simulate(v, LEVELS["default"])
-        t = median_time(lambda: calc.simulate(v, LEVELS["default"]))
+        t = median_seconds(lambda: calc.simulate(v, LEVELS["default"]))
         label = effects or "(arm alone)"
         print(f"    {label:<46} {t * 1e3:7.3f} ms  {run.nfev:5d} RHS evaluations")
     seed = parse_inputs(c, {"effects": "sling"})[0]
     print(f"  seed scene (sling, release 45°), full solve with error estimate: "
-          f"{median_time(lambda: solve('trebuchet', {'effects': 'sling'})) * 1e3:.3f} ms")
+          f"{median_seconds(lambda: solve('trebuchet', {'effects': 'sling'})) * 1e3:.3f} ms")
     v = parse_inputs(c, {"effects": "sling, ground_contact, optimise"})[0]
     p = calc.machine(v)
-    t = median_time(lambda: tb.optimise(p, v, v["sling_min"], v["sling_max"]), repeats=5)
+    t = median_seconds(lambda: tb.optimise(p, v, v["sling_min"], v["sling_max"]), 5)
     n = tb.optimise(p, v, v["sling_min"], v["sling_max"])[2]
     print(f"  optimiser batch: {n} candidate throws in {t * 1e3:.1f} ms (median of 5)")
     vd = parse_inputs(c, {"effects": "sling, ground_contact, air_drag, optimise"})[0]
-    t = median_time(lambda: tb.optimise(p, vd, vd["sling_min"], vd["sling_max"]), repeats=5)
+    t = median_seconds(lambda: tb.optimise(p, vd, vd["sling_min"], vd["sling_max"]), 5)
     print(f"  optimiser batch with air drag: {n} candidate throws in {t * 1e3:.1f} ms (median of 5)")
-    t = median_time(lambda: solve("trebuchet", {"effects": "sling, ground_contact, optimise"}), repeats=5)
+    t = median_seconds(lambda: solve("trebuchet", {"effects": "sling, ground_contact, optimise"}), 5)
     print(f"  optimise, whole solve (batch + Nelder–Mead polish on accurate throws): {t * 1e3:.1f} ms (median of 5)")
     print("  accuracy view of the seed scene (error vs the rtol 1e-13 reference):")
     rungs, _ = ladder(calc.simulate, seed)

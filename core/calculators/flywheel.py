@@ -51,10 +51,10 @@ import dataclasses
 import math
 
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot, Result
+from ..model import Calculator, Field, Output, Plot
 from ..motors import motor_fields, system_from
 from ..sim.integrate import Event, integrate
-from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats
+from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, compute_with_stats
 
 G_ACC = 9.80665  # m/s²
 RPM = 2 * math.pi / 60
@@ -493,9 +493,7 @@ def simulate(v, rtol: float) -> SimRun:
     return SimRun(values, key, shots.nfev, warnings, series)
 
 
-def compute(v) -> Result:
-    run = run_with_stats(simulate, v)
-    return Result(run.values, run.warnings, run.series)
+compute = compute_with_stats(simulate)
 
 
 CALCULATOR = Calculator(

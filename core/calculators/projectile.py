@@ -38,9 +38,9 @@ from __future__ import annotations
 import math
 
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot, Result
+from ..model import Calculator, Field, Output, Plot
 from ..sim.flight import Air, aim, aim_along, air, fly
-from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats
+from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, compute_with_stats
 
 G = 9.80665  # m/s², standard gravity
 HALF_PI = math.pi / 2
@@ -325,9 +325,7 @@ def simulate(v, rtol: float) -> SimRun:
     return SimRun(values, key, nfev, warnings, series)
 
 
-def compute(v) -> Result:
-    run = run_with_stats(simulate, v)
-    return Result(run.values, run.warnings, run.series)
+compute = compute_with_stats(simulate)
 
 
 CALCULATOR = Calculator(

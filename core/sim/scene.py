@@ -93,6 +93,17 @@ def run_with_stats(simulate: Simulate, values: Mapping[str, Any]) -> SimRun:
     return run
 
 
+def compute_with_stats(simulate: Simulate):
+    """A calculator's compute function that is just its scene run with the cost figures added."""
+    from ..model import Result
+
+    def compute(values: Mapping[str, Any]) -> Result:
+        run = run_with_stats(simulate, values)
+        return Result(run.values, run.warnings, run.series)
+
+    return compute
+
+
 @dataclass
 class Rung:
     level: str

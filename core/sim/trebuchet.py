@@ -322,7 +322,7 @@ def onto_ground(p: Machine, y: list) -> list:
     The contact phase integrates the constraint's second derivative, so y_P and ẏ_P drift by the
     solver's tolerance; at lift-off they are set back exactly (a change of the order of that drift).
     """
-    phi, w, gam, gd = y[0], y[1], y[2], y[3]
+    phi, w, gam = y[0], y[1], y[2]
     c = -(p.h + p.R * math.sin(phi)) / p.l
     if abs(c) > 1 or abs(math.cos(gam)) < 1e-9:
         return y
