@@ -343,7 +343,15 @@ def solve(calc_id: str, raw: Mapping[str, Any] | None = None,
 
     calc = get(calc_id)
     values, texts = parse_inputs(calc, raw or {})
-    result = calc.compute(values)
+    try:
+        result = calc.compute(values)
+    except InputError:
+        raise
+    except (ArithmeticError, ValueError, RuntimeError) as exc:
+        # Last-resort guard, like the NaN one below: the user gets a message, never a traceback.
+        # The robustness tests fail if it ever fires, since "(result)" names no field.
+        raise InputError("(result)", f"could not be computed from these inputs "
+                                     f"({type(exc).__name__}: {exc})") from exc
     display_units = dict(display_units or {})
     for name, unit in display_units.items():
         try:

@@ -45,3 +45,17 @@ def test_a_bound_typed_in_another_unit_is_accepted_as_the_bound(typed):
     assert value <= relief and value == pytest.approx(relief, rel=1e-9)
     with pytest.raises(InputError):
         f.parse("125.001 psi")  # a real excess is still refused
+
+
+def test_a_failing_formula_is_a_message_not_a_traceback(monkeypatch):
+    """The last-resort guard: an arithmetic failure inside a calculator reaches the user as an
+    InputError (the robustness tests make sure no real input ever gets here)."""
+    import dataclasses
+
+    from core import registry
+
+    broken = dataclasses.replace(get("ratio_distance"), compute=lambda v: 1 / 0)
+    monkeypatch.setitem(registry.calculators(), "ratio_distance", broken)
+    with pytest.raises(InputError) as err:
+        solve("ratio_distance", {})
+    assert err.value.field == "(result)" and "ZeroDivisionError" in err.value.message

@@ -247,6 +247,8 @@ class CalculatorTab(Widget):
             error = None
         except InputError as exc:
             solution, error = None, exc
+        except Exception as exc:  # a bug must not take the app (and what was typed) down with it
+            solution, error = None, InputError("(result)", f"internal error: {type(exc).__name__}: {exc}")
         if not worker.is_cancelled:
             self.app.call_from_thread(self._show, solution, error)
 
