@@ -34,6 +34,8 @@ class GearheadApp(App):
     CSS_PATH = Path(__file__).with_name("gearhead.tcss")  # absolute: subclasses live elsewhere
     TITLE = "Gearhead"
     SUB_TITLE = "mechanism design card"
+    # below 120 columns inputs and results cannot sit side by side: gearhead.tcss stacks them
+    HORIZONTAL_BREAKPOINTS = [(0, "-narrow"), (120, "-wide")]
     BINDINGS = [
         Binding("ctrl+s", "save_preset", "Save preset"),
         Binding("ctrl+o", "load_preset", "Load preset"),

@@ -1,0 +1,40 @@
+"""Pilot tests from the acceptance pass: small terminals, preset loading, dialogs that must fit."""
+
+import pytest
+from textual.widgets import DataTable
+
+from tui.app import GearheadApp
+from tui.components.calculator_tab import CalculatorTab
+
+
+async def settle(pilot):
+    await pilot.pause()
+    await pilot.app.workers.wait_for_complete()
+    await pilot.pause()
+
+
+@pytest.mark.parametrize("calc_id", ["flywheel", "ratio_distance"])
+async def test_results_are_reachable_on_an_80x24_terminal(calc_id):
+    """At 80 columns the panes stack (they used to sit side by side and push the results off
+    screen entirely); focusing the results table scrolls it into view, columns not clipped."""
+    app = GearheadApp(blink=False, initial=calc_id, hide_timings=True)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await settle(pilot)
+        tab = app.query_one(f"#calc-{calc_id}", CalculatorTab)
+        table = tab.query_one(".results", DataTable)
+        table.focus()
+        await settle(pilot)
+        region = table.region
+        assert region.height > 0 and region.right <= 80
+        assert table.virtual_size.width <= table.size.width  # no sideways scrolling of values
+        assert tab.query_one(".inputs-pane").region.right <= 80
+
+
+async def test_results_columns_fit_side_by_side_at_120_columns():
+    """The widest result labels (ratio & distance) with full values, without sideways scrolling."""
+    app = GearheadApp(blink=False, initial="ratio_distance", hide_timings=True)
+    async with app.run_test(size=(120, 35)) as pilot:
+        await settle(pilot)
+        table = app.query_one("#calc-ratio_distance .results", DataTable)
+        assert table.region.y == app.query_one("#calc-ratio_distance .inputs-pane").region.y + 1  # side by side
+        assert table.virtual_size.width <= table.size.width
