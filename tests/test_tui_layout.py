@@ -38,3 +38,31 @@ async def test_results_columns_fit_side_by_side_at_120_columns():
         table = app.query_one("#calc-ratio_distance .results", DataTable)
         assert table.region.y == app.query_one("#calc-ratio_distance .inputs-pane").region.y + 1  # side by side
         assert table.virtual_size.width <= table.size.width
+
+
+async def test_loading_a_preset_resets_the_fields_it_omits():
+    """'Pumpkin chunker' omits gravity: after typing moon gravity, loading it must solve exactly
+    what the CLI solves for that preset (it used to keep 1.62 and show a different range)."""
+    from textual.widgets import Input, OptionList
+
+    from core import presets
+    from core.model import solve
+
+    preset = next(p for p in presets.listing("trebuchet") if p.name == "Pumpkin chunker")
+    assert "gravity" not in preset.inputs
+    app = GearheadApp(blink=False, initial="trebuchet", hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-trebuchet", CalculatorTab)
+        tab.query_one("#in-gravity", Input).value = "1.62"
+        await settle(pilot)
+        await pilot.press("ctrl+o")
+        await pilot.pause()
+        options = app.screen.query_one(OptionList)
+        options.highlighted = next(i for i in range(options.option_count)
+                                   if "Pumpkin chunker" in str(options.get_option_at_index(i).prompt))
+        await pilot.press("enter")
+        await settle(pilot)
+        assert tab.query_one("#in-gravity", Input).value == "9.81"
+        expected = solve("trebuchet", preset.inputs).outputs["range"].value
+        assert tab.solution.outputs["range"].value == pytest.approx(expected, rel=1e-12)

@@ -101,7 +101,10 @@ class GearheadApp(App):
 
         def loaded(preset) -> None:
             if preset is not None:
-                tab.set_entries(preset.inputs)
+                # a preset is a whole design: fields it omits take their defaults (DESIGN.md),
+                # not whatever was typed before, so the tab solves what the CLI solves
+                defaults = {f.name: CalculatorTab.initial_entry(f) for f in tab.calculator.fields}
+                tab.set_entries({**defaults, **preset.inputs})
                 self.notify(Text(f"Loaded {preset.name}"), title="Preset loaded")
 
         self.push_screen(LoadPresetScreen(tab.calculator.id, self.blink), loaded)

@@ -84,10 +84,11 @@ class CalculatorTab(Widget):
         self.solution: Solution | None = None
         self.error: InputError | None = None
         self.display_units: dict[str, str] = {}  # output -> unit the user chose (Enter on a result)
-        self.set_reactive(CalculatorTab.entries, {f.name: self._initial(f) for f in calculator.fields})
+        self.set_reactive(CalculatorTab.entries, {f.name: self.initial_entry(f) for f in calculator.fields})
 
     @staticmethod
-    def _initial(f: Field) -> Any:
+    def initial_entry(f: Field) -> Any:
+        """A field's default as its widget holds it."""
         if f.type == "bool":
             return bool(f.default)
         if f.type == "choice":
