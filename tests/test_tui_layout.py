@@ -66,3 +66,34 @@ async def test_loading_a_preset_resets_the_fields_it_omits():
         assert tab.query_one("#in-gravity", Input).value == "9.81"
         expected = solve("trebuchet", preset.inputs).outputs["range"].value
         assert tab.solution.outputs["range"].value == pytest.approx(expected, rel=1e-12)
+
+
+async def test_accuracy_view_fits_a_small_terminal_and_closes():
+    from textual_plot import PlotWidget
+
+    app = GearheadApp(blink=False, initial="trebuchet", hide_timings=True)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await settle(pilot)
+        await pilot.press("ctrl+r")
+        await settle(pilot)
+        await settle(pilot)
+        dialog = app.screen.query_one(".accuracy-dialog")
+        assert dialog.region.right <= 80 and dialog.region.bottom <= 24
+        assert app.screen.query_one(PlotWidget).region.height >= 6
+        await pilot.press("escape")
+        await pilot.pause()
+        assert not app.screen.query(".accuracy-dialog")
+
+
+async def test_accuracy_view_of_a_closed_form_scene_says_so_instead_of_a_flat_plot():
+    """Projectile without effects is the seed's closed form: nothing to integrate at any level."""
+    from textual.widgets import Static
+
+    app = GearheadApp(blink=False, initial="projectile", hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        await pilot.press("ctrl+r")
+        await settle(pilot)
+        await settle(pilot)
+        assert "closed form" in str(app.screen.query_one("#ladder-status", Static).render())
+        assert not app.screen.query("PlotWidget")

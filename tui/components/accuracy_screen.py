@@ -31,9 +31,11 @@ class AccuracyScreen(ModalScreen[None]):
         with Vertical(classes="dialog accuracy-dialog"):
             yield Label(Text(f"{self.calculator.title}: accuracy vs time"), classes="dialog-title")
             table = DataTable(cursor_type="none", id="ladder")
-            for key, label in (("level", "Level"), ("rtol", "rtol"), ("error", "Error vs reference"),
-                               ("time", "Wall time"), ("nfev", "RHS evaluations")):
-                table.add_column(label, key=key)
+            # fixed widths: columns sized from the header alone clipped "coarse" and "1e-03"
+            for key, label, width in (("level", "Level", 8), ("rtol", "rtol", 6),
+                                      ("error", "Error vs reference", 18), ("time", "Wall time", 10),
+                                      ("nfev", "RHS evaluations", 15)):
+                table.add_column(label, key=key, width=width)
             yield table
             yield Static(Text("running…", style="dim"), id="ladder-status")
             yield Vertical(id="ladder-plot")
@@ -54,7 +56,13 @@ class AccuracyScreen(ModalScreen[None]):
         for r in rungs:
             wall = "(hidden)" if self.hide_timings else f"{r.wall_time * 1e3:.3f} ms"
             table.add_row(r.level, f"{r.rtol:.0e}", f"{r.error:.2e}", wall, str(r.nfev), key=r.level)
-        self.query_one("#ladder-status", Static).update(Text(
+        status = self.query_one("#ladder-status", Static)
+        if all(r.nfev == 0 for r in rungs) and ref_nfev == 0:
+            # a plot of identical points on a log axis would only show rounding noise
+            status.update(Text("Nothing is integrated: with these effects the scene has a closed form, "
+                               "so every accuracy level gives the same exact result.", style="yellow"))
+            return
+        status.update(Text(
             f"reference: rtol {ref_rtol:.0e}, {ref_nfev} RHS evaluations; wall time is the best of 3 runs",
             style="dim"))
         from textual_plot import PlotWidget
