@@ -97,3 +97,26 @@ async def test_accuracy_view_of_a_closed_form_scene_says_so_instead_of_a_flat_pl
         await settle(pilot)
         assert "closed form" in str(app.screen.query_one("#ladder-status", Static).render())
         assert not app.screen.query("PlotWidget")
+
+
+async def test_long_field_help_and_labels_are_shown_whole():
+    """Projectile's target angle help is ~270 characters; the help line had room for two lines.
+    Flywheel's 'Grip force μ·N (motor during shot)' is longer than the label column."""
+    from textual.widgets import Input, Label, Static
+
+    app = GearheadApp(blink=False, initial="projectile", hide_timings=True)
+    async with app.run_test(size=(120, 35)) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-projectile", CalculatorTab)
+        tab.query_one("#in-target_angle", Input).focus()
+        await settle(pilot)
+        help_line = tab.query_one(".help-line", Static)
+        text = str(help_line.render())
+        lines_needed = -(-len(text) // help_line.content_size.width)
+        assert help_line.content_size.height >= lines_needed
+        app.show_calculator("flywheel")
+        await settle(pilot)
+        app.query_one("#calc-flywheel #flag-effects--motor_during_shot").value = True
+        await settle(pilot)
+        label = app.query_one("#calc-flywheel #row-grip_force .field-label", Label)
+        assert label.size.height * label.size.width >= len("Grip force μ·N (motor during shot)")
