@@ -120,3 +120,34 @@ async def test_long_field_help_and_labels_are_shown_whole():
         await settle(pilot)
         label = app.query_one("#calc-flywheel #row-grip_force .field-label", Label)
         assert label.size.height * label.size.width >= len("Grip force μ·N (motor during shot)")
+
+
+async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_series():
+    """A title like 'Force [N]' lost '[N]' to markup in the plot selector; a plot without data
+    showed an empty frame and legend; one point or all-equal values must not crash."""
+    from textual.app import App
+    from textual.widgets import Select, Static
+
+    from core.model import Plot, Solution
+    from tui.components.plot_panel import PlotPanel
+
+    plots = (Plot("Force [N]", ("a", "b"), "x", "length", "mm", "F", "force", "lbf"),
+             Plot("Other", ("c",), "x", "length", "m", "y", "length", "m"))
+
+    class Harness(App):
+        def compose(self):
+            yield PlotPanel(plots)
+
+    app = Harness()
+    async with app.run_test(size=(80, 24)) as pilot:
+        panel = app.query_one(PlotPanel)
+        assert str(panel.query_one(Select).query_one("SelectCurrent #label").render()) == "Force [N]"
+        empty = panel.query_one("#plot-empty", Static)
+        await panel.show(Solution("x", {}, {}, [], {}))
+        await pilot.pause()
+        assert empty.display
+        for series in ({"a": ([1.0], [2.0])}, {"a": ([1.0, 2.0, 3.0], [5.0, 5.0, 5.0])},
+                       {"a": ([], [])}, {"a": ([0.0, 1.0], [0.0, 1.0]), "b": ([0.0, 1.0], [1.0, 0.0])}):
+            await panel.show(Solution("x", {}, {}, [], series))
+            await pilot.pause()
+        assert not empty.display

@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 from rich.markup import escape
+from rich.text import Text
 from textual import on
 from textual.app import ComposeResult
 from textual.containers import Vertical
-from textual.widgets import Select
+from textual.widgets import Select, Static
 
 from core import units
 from core.model import Plot, Solution
@@ -26,8 +27,10 @@ class PlotPanel(Vertical):
 
     def compose(self) -> ComposeResult:
         if len(self.plots) > 1:
-            yield Select([(p.title, i) for i, p in enumerate(self.plots)], value=0, allow_blank=False,
+            # Text, not str: a Select prompt is markup, and a title like "Force [N]" would lose "[N]"
+            yield Select([(Text(p.title), i) for i, p in enumerate(self.plots)], value=0, allow_blank=False,
                          compact=True, id="plot-choice")
+        yield Static(Text("No data to plot for these inputs.", style="dim"), id="plot-empty")
         # the PlotWidget itself is mounted on first use: textual-plot and numpy load after the first frame
 
     @on(Select.Changed, "#plot-choice")
@@ -51,15 +54,20 @@ class PlotPanel(Vertical):
             plot = PlotWidget(allow_pan_and_zoom=False)
             await self.mount(plot)
         plot.clear()
+        drawn = 0
         for colour, name in zip(COLOURS, spec.series):
-            if name not in solution.series:
+            if name not in solution.series or not solution.series[name][0]:
                 continue
+            drawn += 1
             xs, ys = solution.series[name]
             fx = units.factor(spec.x_unit, spec.x_quantity)
             fy = units.factor(spec.y_unit, spec.y_quantity)
             plot.plot([x / fx for x in xs], [y / fy for y in ys], line_style=colour,
                       hires_mode=HiResMode.BRAILLE, label=escape(name) if len(spec.series) > 1 else None)
-        if len(spec.series) > 1:
+        # an empty frame with an empty legend box looks like a drawing bug: say there is no data
+        self.query_one("#plot-empty", Static).display = drawn == 0
+        plot.display = drawn > 0
+        if len(spec.series) > 1 and drawn:
             plot.show_legend()
         # Textual markup would swallow "[psi]": escape every label (DESIGN.md pitfall)
         plot.set_xlabel(escape(axis_label(spec.x_label, spec.x_unit)))
