@@ -1,6 +1,7 @@
 """Pilot tests from the acceptance pass: small terminals, preset loading, dialogs that must fit."""
 
 import pytest
+from rich.text import Text
 from textual.widgets import DataTable
 
 from tui.app import GearheadApp
@@ -151,3 +152,29 @@ async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_ser
             await panel.show(Solution("x", {}, {}, [], series))
             await pilot.pause()
         assert not empty.display
+
+
+async def test_field_help_tooltips_keep_brackets():
+    """Tooltips are markup when given a str: help mentioning "[psi]" must keep it."""
+    from textual.app import App
+
+    from core.model import Field
+    from tui.components.calculator_tab import FieldRow
+
+    fields = [Field("p", "Pressure", "pressure", "psi", default=60, help="gauge pressure [psi]"),
+              Field("n", "Count", integer=True, default=1, help="how many [each]"),
+              Field("c", "Kind", choices=("a", "b"), default="a", help="pick one [a/b]"),
+              Field("e", "Effects", choices=("x", "y"), flags=True, default=(), help="switch [on]")]
+
+    class Harness(App):
+        def compose(self):
+            for f in fields:
+                yield FieldRow(f, f.default_text() if f.type != "choice" else f.default, blink=False)
+
+    app = Harness()
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.pause()
+        for f in fields:
+            widgets = app.query(f"#flag-{f.name}--x") if f.type == "flags" else app.query(f"#in-{f.name}")
+            tooltip = widgets.first().tooltip
+            assert isinstance(tooltip, Text) and str(tooltip) == f.help

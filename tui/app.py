@@ -92,7 +92,7 @@ class GearheadApp(App):
 
         def saved(path) -> None:
             if path is not None:
-                self.notify(f"Saved {path}", title="Preset saved")
+                self.notify(Text(f"Saved {path}"), title="Preset saved")  # a path may hold "["
 
         self.push_screen(SavePresetScreen(tab.calculator.id, tab.current_inputs(), self.blink), saved)
 

@@ -42,23 +42,24 @@ class FieldRow(Horizontal):
 
     def compose(self) -> ComposeResult:
         f = self.field
+        tip = Text(f.help) if f.help else None  # a str tooltip is markup: "[psi]" would vanish
         yield Label(Text(f.label), classes="field-label")
         if f.type == "choice":
             options = [(Text(f.label_of(c)), c) for c in f.choices]
             yield Select(options, value=self.initial, allow_blank=False, id=f"in-{f.name}",
-                         classes="field-input", tooltip=f.help or None, compact=True)
+                         classes="field-input", tooltip=tip, compact=True)
         elif f.type == "flags":
             chosen = set(x for x in str(self.initial).replace(",", " ").split() if x)
             with Vertical(classes="field-input flags", id=f"in-{f.name}"):
                 for c in f.choices:
                     yield Checkbox(Content(f.label_of(c)), value=c in chosen, id=f"flag-{f.name}--{c}",
-                                   compact=True, tooltip=f.help or None)
+                                   compact=True, tooltip=tip)
         elif f.type == "bool":
             yield Checkbox(value=bool(self.initial), id=f"in-{f.name}", classes="field-input",
-                           tooltip=f.help or None, compact=True)
+                           tooltip=tip, compact=True)
         else:
             entry = Input(value=str(self.initial), id=f"in-{f.name}", classes="field-input",
-                          tooltip=f.help or None, select_on_focus=False, compact=True)
+                          tooltip=tip, select_on_focus=False, compact=True)
             entry.cursor_blink = self.blink
             yield entry
         yield Label(Text(f.unit), classes="field-unit")
