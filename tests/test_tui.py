@@ -65,6 +65,8 @@ async def test_invalid_entry_names_the_field_and_keeps_the_text():
         assert "is not a length" in str(error.render())
         assert tab.error.field == "radius"
         assert tab.query_one("#in-radius", Input).value == "3 kg"  # nothing typed is lost
+        # the status line names the field as the form does ("Load radius"), not "radius"
+        assert str(tab.query_one(".status", Static).render()).startswith("✗ Load radius: ")
         assert tab.solution is good  # last valid results stay, marked stale
         assert tab.has_class("stale")
         await replace_text(pilot, "#calc-gear_ratio #in-radius", "2 in")

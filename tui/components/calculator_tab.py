@@ -265,7 +265,11 @@ class CalculatorTab(Widget):
         if error is not None:
             self.error = error
             self.add_class("stale")
-            status.update(Text(f"✗ {error.field}: {error.message} (results show the last valid inputs)",
+            try:  # the label the user sees on the form, not the internal field name
+                where = self.calculator.field(error.field).label
+            except KeyError:
+                where = error.field
+            status.update(Text(f"✗ {where}: {error.message} (results show the last valid inputs)",
                                style="red"))
             self.post_message(self.Solved(self, None))
             return
