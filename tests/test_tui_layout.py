@@ -178,3 +178,30 @@ async def test_field_help_tooltips_keep_brackets():
             widgets = app.query(f"#flag-{f.name}--x") if f.type == "flags" else app.query(f"#in-{f.name}")
             tooltip = widgets.first().tooltip
             assert isinstance(tooltip, Text) and str(tooltip) == f.help
+
+
+async def test_long_warnings_scroll_and_keep_the_status_line_in_the_pane(monkeypatch):
+    """Three long warnings used to push the status line below the results pane at 120x35."""
+    import dataclasses
+
+    from core.registry import calculators
+
+    calc = calculators()["flywheel"]
+    original = calc.compute
+
+    def compute(values):
+        result = original(values)
+        result.warnings += ["a long warning the mentor must be able to read in full " * 4] * 3
+        return result
+
+    monkeypatch.setitem(calculators(), "flywheel", dataclasses.replace(calc, compute=compute))
+    app = GearheadApp(blink=False, initial="flywheel", hide_timings=True)
+    async with app.run_test(size=(120, 35)) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-flywheel", CalculatorTab)
+        pane = tab.query_one(".results-pane").region
+        status = tab.query_one(".status").region
+        box = tab.query_one(".warnings-box")
+        assert box.display and box.region.bottom <= status.y
+        assert status.height and status.bottom <= pane.bottom - 1  # inside the border
+        assert box.max_scroll_y > 0  # the rest is a scroll away, not cut off

@@ -119,7 +119,10 @@ class CalculatorTab(Widget):
                 yield table
                 if calc.plots:
                     yield PlotPanel(calc.plots)
-                yield Static("", classes="warnings")
+                # long or many warnings scroll in a box of their own instead of pushing the
+                # status line out of the pane
+                with VerticalScroll(classes="warnings-box"):
+                    yield Static("", classes="warnings")
                 yield Static("", classes="status")
 
     def on_mount(self) -> None:
@@ -289,6 +292,6 @@ class CalculatorTab(Widget):
             self.call_later(self.query_one(PlotPanel).show, solution)
         warnings = self.query_one(".warnings", Static)
         warnings.update(Text("\n".join("! " + w for w in solution.warnings), style="yellow"))
-        warnings.display = bool(solution.warnings)
+        self.query_one(".warnings-box").display = bool(solution.warnings)
         status.update(Text("✓ solved", style="green"))
         self.post_message(self.Solved(self, solution))
