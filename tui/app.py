@@ -40,7 +40,7 @@ class GearheadApp(App):
         Binding("ctrl+s", "save_preset", "Save preset"),
         Binding("ctrl+o", "load_preset", "Load preset"),
         Binding("ctrl+g", "send", "Send to…", show=True),
-        Binding("ctrl+r", "accuracy", "Accuracy vs time"),
+        Binding("ctrl+r", "accuracy", "Accuracy"),
         Binding("ctrl+q", "quit", "Quit"),
     ]
 
