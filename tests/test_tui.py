@@ -192,3 +192,25 @@ async def test_fields_follow_the_choices_they_depend_on():
         assert proj.query_one("#row-drag_coefficient").display
         assert not proj.query_one("#row-spin").display
         assert proj.solution.inputs["effects"].value == ["air_drag"]
+
+
+async def test_notices_render_without_crashing():
+    """The 'Preset saved' and 'Sent to' notices can be drawn: a rich Text handed to notify() with
+    markup on crashed the app when its toast rendered (headless runs draw no toasts, so each
+    message is turned into content here the way Textual's Toast.render does it)."""
+    from textual.content import Content
+
+    app = GearheadApp(blink=False, initial="lead_screw")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        await pilot.press("ctrl+s")
+        await pilot.pause()
+        await pilot.press(*"Odd [name]")
+        await pilot.press("enter")
+        await settle(pilot)
+        await pilot.press("ctrl+g")
+        await settle(pilot)
+        shown = [str(Content.from_markup(n.message) if n.markup else Content(n.message))
+                 for n in app._notifications]
+        assert any(s.startswith("Saved ") and s.endswith("odd_name.toml") for s in shown), shown
+        assert any("load = " in s and "radius = " in s for s in shown), shown

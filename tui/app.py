@@ -5,7 +5,6 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Iterable
 
-from rich.text import Text
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.content import Content
@@ -92,7 +91,7 @@ class GearheadApp(App):
 
         def saved(path) -> None:
             if path is not None:
-                self.notify(Text(f"Saved {path}"), title="Preset saved")  # a path may hold "["
+                self.notify(f"Saved {path}", title="Preset saved", markup=False)  # a path may hold "["
 
         self.push_screen(SavePresetScreen(tab.calculator.id, tab.current_inputs(), self.blink), saved)
 
@@ -105,7 +104,7 @@ class GearheadApp(App):
                 # not whatever was typed before, so the tab solves what the CLI solves
                 defaults = {f.name: CalculatorTab.initial_entry(f) for f in tab.calculator.fields}
                 tab.set_entries({**defaults, **preset.inputs})
-                self.notify(Text(f"Loaded {preset.name}"), title="Preset loaded")
+                self.notify(f"Loaded {preset.name}", title="Preset loaded", markup=False)
 
         self.push_screen(LoadPresetScreen(tab.calculator.id, self.blink), loaded)
 
@@ -125,7 +124,7 @@ class GearheadApp(App):
                       for field, out in mapping.items() if out in tab.solution.outputs}
             target.set_entries(values)
             self.show_calculator(target_id)
-            self.notify(Text(", ".join(f"{k} = {v}" for k, v in values.items())),
+            self.notify(", ".join(f"{k} = {v}" for k, v in values.items()), markup=False,
                         title=f"Sent to {target.calculator.title}")
 
     def action_accuracy(self) -> None:
