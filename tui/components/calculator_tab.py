@@ -24,6 +24,7 @@ from core.errors import InputError
 from core.model import Calculator, Field, Solution
 from core.sim.scene import VOLATILE
 
+from .field_input import FieldInput
 from .plot_panel import PlotPanel
 
 DEBOUNCE_S = 0.15
@@ -58,7 +59,7 @@ class FieldRow(Horizontal):
             yield Checkbox(value=bool(self.initial), id=f"in-{f.name}", classes="field-input",
                            tooltip=tip, compact=True)
         else:
-            entry = Input(value=str(self.initial), id=f"in-{f.name}", classes="field-input",
+            entry = FieldInput(value=str(self.initial), id=f"in-{f.name}", classes="field-input",
                           tooltip=tip, select_on_focus=False, compact=True)
             entry.cursor_blink = self.blink
             yield entry

@@ -16,6 +16,8 @@ from textual.widgets.option_list import Option
 from core import presets
 from core.errors import InputError
 
+from .field_input import FieldInput
+
 
 class SavePresetScreen(ModalScreen[Path | None]):
     """Ask for a name and description; write to the user preset folder (never silently overwrite)."""
@@ -31,8 +33,8 @@ class SavePresetScreen(ModalScreen[Path | None]):
     def compose(self) -> ComposeResult:
         with Vertical(classes="dialog"):
             yield Label(Text(f"Save {self.calc_id} preset"), classes="dialog-title")
-            name = Input(placeholder="Name, e.g. Elevator 2 NEO", id="preset-name")
-            desc = Input(placeholder="Description (optional)", id="preset-description")
+            name = FieldInput(placeholder="Name, e.g. Elevator 2 NEO", id="preset-name")
+            desc = FieldInput(placeholder="Description (optional)", id="preset-description")
             name.cursor_blink = desc.cursor_blink = self.blink
             yield name
             yield desc
@@ -84,7 +86,7 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
             options = [Option(Text(f"{p.name}  ({'built-in' if p.builtin else 'user'})  {p.description}"),
                               id=str(i)) for i, p in enumerate(self.found)]
             yield OptionList(*options, id="preset-list")
-            path = Input(placeholder="…or a preset file path, then Enter", id="preset-path")
+            path = FieldInput(placeholder="…or a preset file path, then Enter", id="preset-path")
             path.cursor_blink = self.blink
             yield path
             yield Static("", id="load-error", classes="field-error")

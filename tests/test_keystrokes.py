@@ -1,0 +1,155 @@
+"""Every keystroke is kept, in order, however fast it comes and whatever the app is doing.
+
+In a real terminal a burst of keys arrives in one read. Textual's Input used to insert printable
+keys at once while its bound keys (backspace, ctrl+u…) bubbled to the app first, so they were
+applied late: Backspace, Backspace, 3 on `12` gave `1`. The pilot test posts keys the way the
+terminal driver does (no waiting between them); the tmux test types into the real app.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+import uuid
+from pathlib import Path
+
+import pytest
+from textual import events
+from textual.widgets import Input
+
+from tui.app import GearheadApp
+
+ROOT = Path(__file__).resolve().parents[1]
+
+BURSTS = [
+    # (start text, keys as (key, character), expected text)
+    ("12", [("backspace", "\x7f"), ("backspace", "\x7f"), ("3", "3")], "3"),
+    ("12", [("ctrl+u", "\x15"), ("1", "1"), ("2", "2")], "12"),
+    ("12", [("left", None), ("left", None), ("9", "9")], "912"),
+    ("19.05", [("home", None), ("delete", None), ("8", "8"), ("end", None), ("backspace", "\x7f")], "89.0"),
+]
+
+
+@pytest.mark.parametrize("start,keys,expected", BURSTS)
+async def test_key_burst_applied_in_order(start, keys, expected):
+    app = GearheadApp(blink=False, hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        entry = app.query_one("#in-voltage", Input)
+        entry.focus()
+        entry.value = start
+        entry.cursor_position = len(start)
+        await pilot.pause()
+        for key, char in keys:  # posted back to back, as the driver does for one read
+            app.post_message(events.Key(key, char))
+        for _ in range(5):
+            await pilot.pause()
+        assert entry.value == expected
+
+
+# ---- the real terminal ---------------------------------------------------------------------
+
+TMUX = shutil.which("tmux")
+
+
+class Terminal:
+    """The app running in a tmux pane of its own server (never the user's tmux)."""
+
+    def __init__(self, tmp: Path) -> None:
+        self.socket = f"gearhead-test-{uuid.uuid4().hex[:8]}"
+        env = {k: v for k, v in os.environ.items() if k not in ("NO_COLOR", "TEXTUAL_THEME", "TMUX")}
+        env["XDG_CONFIG_HOME"] = str(tmp / "config")
+        self.env = env
+        self.tmux("new-session", "-d", "-s", "app", "-x", "140", "-y", "45",
+                  f"cd {ROOT} && {sys.executable} -m tui")
+        self.wait_for(lambda screen: "Free speed" in screen, "the first frame")
+
+    def tmux(self, *args: str) -> str:
+        out = subprocess.run([TMUX, "-L", self.socket, *args], capture_output=True, text=True,
+                             env=self.env, timeout=20)
+        return out.stdout
+
+    def keys(self, *keys: str) -> None:
+        self.tmux("send-keys", "-t", "app", *keys)
+
+    def screen(self) -> str:
+        return self.tmux("capture-pane", "-p", "-t", "app")
+
+    def wait_for(self, ready, what: str, timeout: float = 20.0) -> str:
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            screen = self.screen()
+            if ready(screen):
+                return screen
+            time.sleep(0.1)
+        raise AssertionError(f"timed out waiting for {what}; screen:\n{self.screen()}")
+
+    def field(self, label: str) -> str:
+        """The text in the entry after `label` on the form."""
+        for line in self.screen().splitlines():
+            if line.startswith(f"│ {label} "):
+                # the entry, then a wide gap before the unit label
+                return re.split(r"\s{3,}", line[len(label) + 2:].split("│")[0].strip())[0]
+        raise AssertionError(f"no field {label!r} on screen")
+
+    def close(self) -> None:
+        self.tmux("kill-server")
+
+
+@pytest.fixture
+def terminal(tmp_path):
+    if TMUX is None:
+        pytest.skip("tmux is not installed (.ci/run installs it)")
+    term = Terminal(tmp_path)
+    try:
+        yield term
+    finally:
+        term.close()
+
+
+def _settle(term: Terminal, label: str, expected: str) -> str:
+    try:
+        term.wait_for(lambda _: term.field(label) == expected, f"{label} = {expected!r}", timeout=3)
+    except AssertionError:
+        pass
+    return term.field(label)
+
+
+def test_keys_kept_in_a_real_terminal(terminal):
+    # Tab from the tab strip to the Motors entry (motor, motor data, motors); prove we are there.
+    for _ in range(4):
+        terminal.keys("Tab")
+        time.sleep(0.2)
+    terminal.keys("C-u")
+    terminal.keys("7")
+    assert _settle(terminal, "Motors", "7") == "7", "focus is not on the Motors field"
+
+    failures = []
+    for trial in range(4):
+        # Backspace, Backspace, 3 in one burst on "12" (was "1" or "" every time)
+        terminal.keys("C-u")
+        time.sleep(0.3)
+        terminal.keys("1", "2")
+        _settle(terminal, "Motors", "12")
+        terminal.keys("BSpace", "BSpace", "3")
+        if (got := _settle(terminal, "Motors", "3")) != "3":
+            failures.append(f"burst {trial}: {got!r}")
+        # ctrl+u then 2 4 in one burst (the field used to be left empty)
+        terminal.keys("C-u", "2", "4")
+        if (got := _settle(terminal, "Motors", "24")) != "24":
+            failures.append(f"ctrl+u burst {trial}: {got!r}")
+
+    # human speed, 100 ms a key, while each key starts a solve: the Voltage entry on the next row
+    terminal.keys("Tab")
+    time.sleep(0.3)
+    for text in ("11 V", "-3 V", "9.05 V"):
+        terminal.keys("C-u")
+        for ch in text:
+            terminal.keys("-l", ch)
+            time.sleep(0.1)
+        if (got := _settle(terminal, "Voltage", text)) != text:
+            failures.append(f"typed {text!r}: {got!r}")
+    assert not failures, failures

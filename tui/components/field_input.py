@@ -1,0 +1,42 @@
+"""An Input that applies every key in the order it was typed.
+
+Textual's Input inserts printable characters in its own key handler, but its editing keys
+(backspace, ctrl+u, arrows, delete…) are bindings: their event first bubbles up through every
+ancestor's message queue to the app, which then runs the action. In a real terminal a burst such
+as Backspace, Backspace, 3 arrives in one read, so the 3 is inserted while the backspaces are still
+bubbling, and they then delete it: `12` became `1`, and ctrl+u then `12` left the field empty.
+(Textual issue #6605, fix proposed in PR #6631, not released in the version we pin.)
+
+FieldInput runs its own non-priority bindings inline, in its key handler, so a bound key takes
+effect before the next key is read. Priority bindings (the app's ctrl+q, ctrl+s…) are still
+checked by the app before the key reaches the widget, exactly as before.
+"""
+
+from __future__ import annotations
+
+from textual import events
+from textual.widgets import Input
+
+
+class FieldInput(Input):
+    async def _on_key(self, event: events.Key) -> None:
+        if not event.is_printable and await self._run_own_binding(event.key):
+            event.stop()
+            event.prevent_default()
+            self._restart_blink()
+            return
+        await super()._on_key(event)
+
+    async def _run_own_binding(self, key: str) -> bool:
+        """Run the action this widget binds to `key` now; False if it binds none (the key
+        then bubbles as usual, e.g. ctrl+g to the app)."""
+        bindings = self._bindings.copy()
+        keymap = self.app._keymap
+        if keymap:
+            bindings.apply_keymap(keymap)
+        for binding in bindings.key_to_bindings.get(key, ()):
+            if binding.priority:
+                continue
+            if await self.app.run_action(binding.action, self):
+                return True
+        return False
