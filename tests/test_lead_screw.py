@@ -184,17 +184,14 @@ async def test_ctrl_g_sends_equivalent_load_and_radius_to_gear_ratio():
     """The TUI path: ctrl+g on the lead screw tab fills the gear-ratio tab's load and radius."""
     from tui.app import GearheadApp
     from tui.components.calculator_tab import CalculatorTab
+    from tests.tui_helpers import settle
 
     app = GearheadApp(blink=False, initial="lead_screw")
     async with app.run_test(size=(140, 45)) as pilot:
-        await pilot.pause()
-        await app.workers.wait_for_complete()
-        await pilot.pause()
+        await settle(pilot)
         screw_out = app.query_one("#calc-lead_screw", CalculatorTab).solution.outputs
         await pilot.press("ctrl+g")
-        await pilot.pause()
-        await app.workers.wait_for_complete()
-        await pilot.pause()
+        await settle(pilot)
         gear = app.query_one("#calc-gear_ratio", CalculatorTab)
         # every digit is sent (in the display unit), not the 5-figure display text
         assert gear.solution.inputs["load"].value == pytest.approx(

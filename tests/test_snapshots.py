@@ -1,27 +1,13 @@
 """One snapshot per tab (pytest-textual-snapshot), deterministic: fixed size, no blink, no clock."""
 
 import pytest
-from textual.widgets import DataTable
 
 from core.registry import calculators
 from tui.app import GearheadApp
+from tests.tui_helpers import settle
 
 SIZE = (140, 45)
 
-
-async def settle(pilot):
-    """Wait until results, tables and plots are drawn: workers done and no widget with work
-    deferred to idle (DataTable sizes its columns on idle; under load that can come late)."""
-    await pilot.pause()
-    await pilot.app.workers.wait_for_complete()
-    for _ in range(50):
-        await pilot.pause()
-        await pilot.wait_for_scheduled_animations()
-        if not any(t._require_update_dimensions or t._updated_cells or t._new_rows
-                   for t in pilot.app.query(DataTable)):
-            break
-    await pilot.pause()  # plots draw after the results land
-    await pilot.pause()
 
 
 @pytest.mark.parametrize("calc_id", list(calculators()))

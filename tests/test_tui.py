@@ -1,5 +1,7 @@
 """Pilot tests: typing, mode switching, an invalid entry, and a preset round trip in the app."""
 
+import asyncio
+
 import pytest
 from textual.widgets import Input, OptionList, Select, Static
 
@@ -7,14 +9,10 @@ from core import presets
 from core.model import solve
 from tui.app import GearheadApp
 from tui.components.calculator_tab import CalculatorTab
+from tests.tui_helpers import settle
 
 SIZE = (140, 45)
 
-
-async def settle(pilot):
-    await pilot.pause()
-    await pilot.app.workers.wait_for_complete()
-    await pilot.pause()
 
 
 async def replace_text(pilot, selector, text):
@@ -68,7 +66,7 @@ async def test_invalid_entry_names_the_field_and_keeps_the_text():
         # the status line names the field as the form does ("Load radius"), not "radius"
         assert str(tab.query_one(".status", Static).render()).startswith("✗ Load radius: ")
         assert tab.solution is good  # last valid results stay, marked stale
-        assert tab.has_class("stale")
+        assert tab.stale and tab.query_one(".results").has_class("stale")
         await replace_text(pilot, "#calc-gear_ratio #in-radius", "2 in")
         assert not error.display and tab.error is None
         assert tab.solution.inputs["radius"].value == pytest.approx(0.0508)
@@ -214,3 +212,43 @@ async def test_notices_render_without_crashing():
                  for n in app._notifications]
         assert any(s.startswith("Saved ") and s.endswith("odd_name.toml") for s in shown), shown
         assert any("load = " in s and "radius = " in s for s in shown), shown
+
+
+async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatch):
+    """Keys typed while a (slow) solve runs do not queue a solve each: the running one finishes,
+    its now-stale result is dropped, and the latest entries are solved once."""
+    import time as _time
+
+    import core.model
+
+    real_solve = core.model.solve
+    solved: list[str] = []
+
+    def slow_solve(calc_id, raw=None, display_units=None):
+        solved.append((raw or {}).get("voltage"))
+        _time.sleep(0.15)
+        return real_solve(calc_id, raw, display_units)
+
+    app = GearheadApp(blink=False, initial="motor")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        monkeypatch.setattr(core.model, "solve", slow_solve)
+        tab = app.query_one("#calc-motor", CalculatorTab)
+        shown = []
+        show = tab._show
+        tab._show = lambda solution, error: (shown.append(solution), show(solution, error))
+        entry = app.query_one("#in-voltage", Input)
+        entry.focus()
+        entry.cursor_position = len(entry.value)
+        from textual import events
+
+        for key, char in [("backspace", "\x7f"), ("backspace", "\x7f"), ("1", "1"), ("1", "1"),
+                          ("full_stop", "."), ("5", "5")]:
+            app.post_message(events.Key(key, char))  # as the driver delivers a fast typist's keys
+            await asyncio.sleep(0.02)
+        await settle(pilot)
+        assert entry.value == "11.5"
+        assert len(solved) <= 3, solved  # not one per key
+        assert solved[-1] == "11.5"
+        assert len(shown) == 1 and shown[0].inputs["voltage"].value == 11.5  # no stale result shown
+        assert "solved" in str(tab.query_one(".status", Static).render())

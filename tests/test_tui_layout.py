@@ -6,12 +6,8 @@ from textual.widgets import DataTable
 
 from tui.app import GearheadApp
 from tui.components.calculator_tab import CalculatorTab
+from tests.tui_helpers import settle
 
-
-async def settle(pilot):
-    await pilot.pause()
-    await pilot.app.workers.wait_for_complete()
-    await pilot.pause()
 
 
 @pytest.mark.parametrize("calc_id", ["flywheel", "ratio_distance"])
