@@ -246,6 +246,8 @@ async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatc
                           ("full_stop", "."), ("5", "5")]:
             app.post_message(events.Key(key, char))  # as the driver delivers a fast typist's keys
             await asyncio.sleep(0.02)
+        await asyncio.sleep(0.05)  # > 0.1 s into a 0.15 s solve: the busy marker is up
+        assert "solving" in str(tab.query_one(".status", Static).render())
         await settle(pilot)
         assert entry.value == "11.5"
         assert len(solved) <= 3, solved  # not one per key
