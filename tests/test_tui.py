@@ -254,3 +254,35 @@ async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatc
         assert solved[-1] == "11.5"
         assert len(shown) == 1 and shown[0].inputs["voltage"].value == 11.5  # no stale result shown
         assert "solved" in str(tab.query_one(".status", Static).render())
+
+
+@pytest.mark.parametrize("focused", ["#calc-trebuchet Checkbox", "#calc-trebuchet #in-accuracy",
+                                     "#calc-trebuchet #plot-choice", "#calc-trebuchet DataTable"])
+async def test_palette_open_switches_tab_wherever_focus_is(focused):
+    """'Open Motor' from the palette used to do nothing with focus on a checkbox or the chart
+    selector: the focused widget in the old pane pulled its tab back."""
+    from textual.widgets import TabbedContent
+
+    app = GearheadApp(blink=False, initial="trebuchet")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        app.query(focused).first().focus()
+        await pilot.pause()
+        await pilot.press("ctrl+p")
+        await pilot.press(*"Open Motor")
+        await pilot.pause(0.3)
+        await pilot.press("enter")
+        await settle(pilot)
+        assert app.query_one(TabbedContent).active == "tab-motor"
+
+
+async def test_footer_shows_send_and_accuracy_only_where_they_act():
+    app = GearheadApp(blink=False, initial="lead_screw")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        shown = {b.binding.action for b in app.active_bindings.values() if b.enabled}
+        assert "send" in shown and "accuracy" not in shown  # lead screw sends to gear ratio
+        app.show_calculator("trebuchet")
+        await settle(pilot)
+        shown = {b.binding.action for b in app.active_bindings.values() if b.enabled}
+        assert "accuracy" in shown and "send" not in shown

@@ -9,7 +9,7 @@ from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.content import Content
 from textual.screen import Screen
-from textual.widgets import Footer, Header, TabbedContent, TabPane
+from textual.widgets import Footer, Header, TabbedContent, TabPane, Tabs
 
 from core.registry import calculators
 
@@ -75,6 +75,16 @@ class GearheadApp(App):
 
     async def on_tabbed_content_tab_activated(self, event: TabbedContent.TabActivated) -> None:
         await self.card(event.pane.id.removeprefix("tab-"))
+        self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r only where they do something
+
+    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        if action in ("send", "accuracy"):
+            pane = self.query(TabbedContent)
+            calc_id = pane.first().active.removeprefix("tab-") if pane else ""
+            calc = calculators().get(calc_id)
+            if calc is not None:
+                return bool(calc.exports) if action == "send" else calc.simulate is not None
+        return True
 
     # ---- helpers ------------------------------------------------------------------------
     @property
@@ -83,7 +93,16 @@ class GearheadApp(App):
         return self.query_one(f"#calc-{pane_id.removeprefix('tab-')}", CalculatorTab)
 
     def show_calculator(self, calc_id: str) -> None:
-        self.query_one(TabbedContent).active = f"tab-{calc_id}"
+        """Switch to a calculator's tab and put focus on the tab strip. Focus must leave the old
+        pane: a checkbox or chart selector left focused there pulled the old tab back (Textual's
+        TabbedContent activates the pane of a focused widget), so "Open …" did nothing."""
+        tabbed = self.query_one(TabbedContent)
+        self.screen.set_focus(None)
+        tabbed.active = f"tab-{calc_id}"
+        self.call_after_refresh(self._focus_tab_strip)
+
+    def _focus_tab_strip(self) -> None:
+        self.screen.set_focus(self.query_one(TabbedContent).query_one(Tabs))
 
     # ---- actions ------------------------------------------------------------------------
     def action_save_preset(self) -> None:
