@@ -159,11 +159,14 @@ COMMON_UNITS: dict[str, tuple[str, ...]] = {
 }
 
 
-def cycle_units(current: str, kind: str) -> tuple[str, ...]:
-    """The display units to cycle through, starting after `current`."""
-    units = COMMON_UNITS.get(kind, ())
-    ring = (current,) + tuple(u for u in units if u != current)
-    return ring[1:] + ring[:1]
+def next_unit(current: str, kind: str, home: str) -> str:
+    """The unit after `current` in the ring of a kind's common units, which starts at the output's
+    own unit `home`: Enter on a result walks the whole ring (mm → cm → m → in → ft → mm) instead of
+    bouncing between the first two."""
+    ring = (home,) + tuple(u for u in COMMON_UNITS.get(kind, ()) if u != home)
+    if current not in ring:
+        return ring[0]
+    return ring[(ring.index(current) + 1) % len(ring)]
 
 
 def check_unit(unit: str, kind: str, name: str) -> str:

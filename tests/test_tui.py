@@ -286,3 +286,25 @@ async def test_footer_shows_send_and_accuracy_only_where_they_act():
         await settle(pilot)
         shown = {b.binding.action for b in app.active_bindings.values() if b.enabled}
         assert "accuracy" in shown and "send" not in shown
+
+
+async def test_enter_on_a_result_walks_every_unit_of_its_kind():
+    """Enter used to bounce between two units (762 mm <-> 76.2 cm)."""
+    from textual.widgets import DataTable
+
+    from core.units import COMMON_UNITS
+
+    app = GearheadApp(blink=False, initial="motor")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-motor", CalculatorTab)
+        table = tab.query_one(".results", DataTable)
+        table.focus()
+        row = list(tab.solution.outputs).index("free_speed")
+        table.move_cursor(row=row)
+        shown = []
+        for _ in range(len(COMMON_UNITS["angular_speed"])):
+            await pilot.press("enter")
+            await settle(pilot)
+            shown.append(tab.solution.outputs["free_speed"].text.split()[-1])
+        assert shown == ["rad/s", "deg/s", "rpm"]

@@ -40,3 +40,19 @@ def test_format_quantity_uses_display_unit():
     assert units.format_quantity(556.0619, "rpm", "angular_speed") == "5310 rpm"
     assert units.format_number(1.23456789e-7) == "1.2346e-07"
     assert units.format_number(0.0) == "0"
+
+
+def test_next_unit_walks_the_whole_ring_and_returns_home():
+    from core.units import COMMON_UNITS, next_unit
+
+    seen, unit = [], "in"
+    for _ in range(6):
+        unit = next_unit(unit, "length", "in")
+        seen.append(unit)
+    assert seen == ["mm", "cm", "m", "ft", "in", "mm"]
+    for kind, ring in COMMON_UNITS.items():  # every unit of every kind is reached
+        home, unit, reached = ring[0], ring[0], set()
+        for _ in range(len(ring)):
+            unit = next_unit(unit, kind, home)
+            reached.add(unit)
+        assert reached == set(ring), kind

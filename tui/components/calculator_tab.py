@@ -228,9 +228,9 @@ class CalculatorTab(Widget):
         value = self.solution.outputs.get(name)
         if value is None or isinstance(value.value, (bool, str, int)):
             return
-        ring = units.cycle_units(self.display_units.get(name, out.unit), out.quantity)
-        if ring:
-            self.display_units = {**self.display_units, name: ring[0]}
+        unit = units.next_unit(self.display_units.get(name, out.unit), out.quantity, out.unit)
+        if unit != self.display_units.get(name, out.unit):
+            self.display_units = {**self.display_units, name: unit}
             self.solve()
 
     # ---- solving -----------------------------------------------------------------------
