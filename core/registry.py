@@ -9,10 +9,21 @@ from functools import lru_cache
 from .errors import InputError
 from .model import Calculator
 
-# Tab and listing order (DESIGN.md's list); a calculator not named here sorts last.
-ORDER = ("motor", "gear_ratio", "lead_screw", "drivetrain", "beam", "projectile", "chain_belt",
-         "gear_clearance", "ratio_distance", "pneumatics", "pneumatic_linkage", "flywheel",
-         "trebuchet")
+# Where each calculator lives in the app: areas in the order of the top tab strip, each with its
+# calculators in tab order. Every calculator must be in exactly one area (checked at load), so a
+# new calculator changes only its own area's strip, never another area's.
+AREAS: dict[str, tuple[str, tuple[str, ...]]] = {
+    "gearing": ("Motors", ("motor", "gear_ratio", "ratio_distance")),
+    "mechanisms": ("Mechanisms", ("lead_screw", "drivetrain")),
+    "structure": ("Structure", ("beam", "chain_belt", "gear_clearance")),
+    "pneumatics": ("Pneumatics", ("pneumatics", "pneumatic_linkage")),
+    "shooters": ("Shooters", ("projectile", "flywheel", "trebuchet")),
+}
+ORDER = tuple(cid for _, ids in AREAS.values() for cid in ids)
+
+
+def area_of(calc_id: str) -> str:
+    return next(area for area, (_, ids) in AREAS.items() if calc_id in ids)
 
 
 @lru_cache(maxsize=1)
@@ -25,8 +36,11 @@ def calculators() -> dict[str, Calculator]:
         calc = getattr(module, "CALCULATOR", None)
         if isinstance(calc, Calculator):
             found[calc.id] = calc
-    rank = {cid: i for i, cid in enumerate(ORDER)}
-    return dict(sorted(found.items(), key=lambda kv: (rank.get(kv[0], len(ORDER)), kv[0])))
+    unplaced = sorted(set(found) - set(ORDER))
+    if unplaced or len(set(ORDER)) != len(ORDER):
+        raise RuntimeError(f"core/registry.py AREAS must name every calculator exactly once "
+                           f"(not placed: {', '.join(unplaced) or 'none'})")
+    return {cid: found[cid] for cid in ORDER if cid in found}
 
 
 def get(calc_id: str) -> Calculator:

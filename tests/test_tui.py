@@ -261,8 +261,6 @@ async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatc
 async def test_palette_open_switches_tab_wherever_focus_is(focused):
     """'Open Motor' from the palette used to do nothing with focus on a checkbox or the chart
     selector: the focused widget in the old pane pulled its tab back."""
-    from textual.widgets import TabbedContent
-
     app = GearheadApp(blink=False, initial="trebuchet")
     async with app.run_test(size=SIZE) as pilot:
         await settle(pilot)
@@ -273,7 +271,7 @@ async def test_palette_open_switches_tab_wherever_focus_is(focused):
         await pilot.pause(0.3)
         await pilot.press("enter")
         await settle(pilot)
-        assert app.query_one(TabbedContent).active == "tab-motor"
+        assert app.current_calculator == "motor"
 
 
 async def test_footer_shows_send_and_accuracy_only_where_they_act():
@@ -308,3 +306,34 @@ async def test_enter_on_a_result_walks_every_unit_of_its_kind():
             await settle(pilot)
             shown.append(tab.solution.outputs["free_speed"].text.split()[-1])
         assert shown == ["rad/s", "deg/s", "rpm"]
+
+
+async def test_any_calculator_in_two_keys_from_anywhere():
+    """F1-F5 pick an area (even from inside an entry), then a digit picks the calculator."""
+    from core.registry import AREAS
+
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        for n, (area, (_, ids)) in enumerate(AREAS.items(), 1):
+            for i, calc_id in enumerate(ids, 1):
+                app.query_one("#calc-gear_ratio #in-load", Input).focus()  # typing in a field
+                await pilot.pause()
+                await pilot.press(f"f{n}", str(i))
+                await settle(pilot)
+                assert app.current_calculator == calc_id
+                assert app.current_tab.solution is not None  # built and solved on first visit
+        entry = app.query_one("#calc-gear_ratio #in-load", Input)
+        app.show_calculator("gear_ratio")
+        await settle(pilot)
+        entry.focus()
+        entry.value = ""
+        await pilot.press("1", "2")  # digits typed into a field stay in the field
+        assert entry.value == "12" and app.current_calculator == "gear_ratio"
+
+
+def test_every_calculator_is_in_exactly_one_area():
+    from core.registry import AREAS, calculators
+
+    placed = [cid for _, ids in AREAS.values() for cid in ids]
+    assert sorted(placed) == sorted(calculators())

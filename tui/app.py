@@ -9,9 +9,10 @@ from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.content import Content
 from textual.screen import Screen
-from textual.widgets import Footer, Header, TabbedContent, TabPane, Tabs
+from textual import events
+from textual.widgets import Footer, Tab, TabbedContent, TabPane, Tabs
 
-from core.registry import calculators
+from core.registry import AREAS, area_of, calculators
 
 from .components.accuracy_screen import AccuracyScreen
 from .components.calculator_tab import CalculatorTab
@@ -41,6 +42,8 @@ class GearheadApp(App):
         Binding("ctrl+g", "send", "Send to…", show=True),
         Binding("ctrl+r", "accuracy", "Accuracy"),
         Binding("ctrl+q", "quit", "Quit"),
+        *(Binding(f"f{n}", f"area('{area}')", title, show=False, priority=True)
+          for n, (area, (title, _)) in enumerate(AREAS.items(), 1)),
     ]
 
     def __init__(self, blink: bool = True, initial: str | None = None, hide_timings: bool = False) -> None:
@@ -50,14 +53,20 @@ class GearheadApp(App):
         self.initial = initial
 
     def compose(self) -> ComposeResult:
-        yield Header()
+        # Two strips: areas (F1-F5), then the calculators of the active area (digits 1-9 on the
+        # focused strip). A calculator added to one area never moves another area's strip.
         first = self.initial or next(iter(calculators()))
-        with TabbedContent(initial=f"tab-{first}"):
-            for calc in calculators().values():
-                with TabPane(Content(calc.title), id=f"tab-{calc.id}"):
-                    # only the first tab is built now; the others on first visit (fast first frame)
-                    if calc.id == first:
-                        yield self._card(calc.id)
+        with TabbedContent(initial=f"area-{area_of(first)}", id="areas"):
+            for n, (area, (title, ids)) in enumerate(AREAS.items(), 1):
+                with TabPane(Content(f"F{n} {title}"), id=f"area-{area}"):
+                    present = [cid for cid in ids if cid in calculators()]
+                    start = first if first in present else present[0]
+                    with TabbedContent(initial=f"tab-{start}", id=f"calcs-{area}", classes="calculators"):
+                        for i, cid in enumerate(present, 1):
+                            with TabPane(Content(f"{i} {calculators()[cid].title}"), id=f"tab-{cid}"):
+                                # only the first card is built now; the others on first visit
+                                if cid == first:
+                                    yield self._card(cid)
         yield Footer()
 
     def _card(self, calc_id: str) -> CalculatorTab:
@@ -74,35 +83,57 @@ class GearheadApp(App):
         return tab
 
     async def on_tabbed_content_tab_activated(self, event: TabbedContent.TabActivated) -> None:
-        await self.card(event.pane.id.removeprefix("tab-"))
+        await self.card(self.current_calculator)
         self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r only where they do something
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
-        if action in ("send", "accuracy"):
-            pane = self.query(TabbedContent)
-            calc_id = pane.first().active.removeprefix("tab-") if pane else ""
-            calc = calculators().get(calc_id)
+        if action in ("send", "accuracy") and self.query("#areas"):
+            calc = calculators().get(self.current_calculator)
             if calc is not None:
                 return bool(calc.exports) if action == "send" else calc.simulate is not None
         return True
 
-    # ---- helpers ------------------------------------------------------------------------
+    # ---- navigation ---------------------------------------------------------------------
+    @property
+    def current_calculator(self) -> str:
+        """Id of the calculator on screen: the active tab of the active area."""
+        area = self.query_one("#areas", TabbedContent).active.removeprefix("area-")
+        return self.query_one(f"#calcs-{area}", TabbedContent).active.removeprefix("tab-")
+
     @property
     def current_tab(self) -> CalculatorTab:
-        pane_id = self.query_one(TabbedContent).active
-        return self.query_one(f"#calc-{pane_id.removeprefix('tab-')}", CalculatorTab)
+        return self.query_one(f"#calc-{self.current_calculator}", CalculatorTab)
 
     def show_calculator(self, calc_id: str) -> None:
-        """Switch to a calculator's tab and put focus on the tab strip. Focus must leave the old
-        pane: a checkbox or chart selector left focused there pulled the old tab back (Textual's
-        TabbedContent activates the pane of a focused widget), so "Open …" did nothing."""
-        tabbed = self.query_one(TabbedContent)
+        """Switch to a calculator's tab and put focus on its area's tab strip. Focus must leave
+        the old pane: a checkbox or chart selector left focused there pulled the old tab back
+        (Textual's TabbedContent activates the pane of a focused widget), so "Open …" did nothing."""
+        area = area_of(calc_id)
         self.screen.set_focus(None)
-        tabbed.active = f"tab-{calc_id}"
-        self.call_after_refresh(self._focus_tab_strip)
+        self.query_one(f"#calcs-{area}", TabbedContent).active = f"tab-{calc_id}"
+        self.query_one("#areas", TabbedContent).active = f"area-{area}"
+        self.call_after_refresh(self._focus_strip, area)
 
-    def _focus_tab_strip(self) -> None:
-        self.screen.set_focus(self.query_one(TabbedContent).query_one(Tabs))
+    def action_area(self, area: str) -> None:
+        """F1-F5: show an area at the calculator last used there; its strip takes focus, so a
+        digit then picks a calculator (two keys to any calculator)."""
+        inner = self.query_one(f"#calcs-{area}", TabbedContent).active
+        self.show_calculator(inner.removeprefix("tab-"))
+
+    def _focus_strip(self, area: str) -> None:
+        self.screen.set_focus(self.query_one(f"#calcs-{area}", TabbedContent).query_one(Tabs))
+
+    def on_key(self, event: events.Key) -> None:
+        """A digit on a focused tab strip picks its n-th tab (fields never see it: a strip is
+        focused, not an entry)."""
+        strip = self.focused
+        if not isinstance(strip, Tabs) or not (event.character or "").isdigit() or event.character == "0":
+            return
+        tabs = list(strip.query(Tab))
+        n = int(event.character)
+        if n <= len(tabs) and tabs[n - 1].id:
+            event.stop()
+            strip.active = tabs[n - 1].id
 
     # ---- actions ------------------------------------------------------------------------
     def action_save_preset(self) -> None:

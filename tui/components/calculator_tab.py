@@ -23,6 +23,11 @@ from core.model import Calculator, Field, Solution
 from core.sim.scene import VOLATILE
 
 from .field_input import FieldInput
+
+
+class Form(VerticalScroll, can_focus=False):
+    """The field list: scrolls, but is not a Tab stop of its own (Tab goes field to field;
+    the form scrolls to the focused field)."""
 from .plot_panel import PlotPanel
 
 BUSY_AFTER_S = 0.1  # a solve running longer than this shows '… solving'
@@ -98,11 +103,11 @@ class CalculatorTab(Widget):
         with Horizontal(classes="card"):
             with Vertical(classes="inputs-pane"):
                 yield Static(Text(calc.summary), classes="summary")
-                with VerticalScroll(classes="form"):
+                with Form(classes="form"):
                     for f in calc.fields:
                         yield FieldRow(f, self.entries[f.name], self.blink)
                         yield Static("", classes="field-error", id=f"err-{f.name}")
-                yield Static(Text("Tab moves between fields; type any unit (3.5 in, 60 psi); Enter on a result changes its unit; "
+                yield Static(Text("F1–F5 then a digit opens any calculator; Tab moves between fields; type any unit (3.5 in, 60 psi); Enter on a result changes its unit; "
                                   "ctrl+s saves, ctrl+o loads a preset.", style="dim"), classes="help-line")
             with Vertical(classes="results-pane"):
                 table = DataTable(classes="results", cursor_type="row", zebra_stripes=True)
