@@ -337,3 +337,101 @@ def test_every_calculator_is_in_exactly_one_area():
 
     placed = [cid for _, ids in AREAS.values() for cid in ids]
     assert sorted(placed) == sorted(calculators())
+
+
+async def test_ctrl_y_copies_the_tab_as_a_preset_that_loads_back():
+    import tomllib
+
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        await replace_text(pilot, "#calc-gear_ratio #in-load", "31 lbf")
+        await pilot.press("ctrl+y")
+        await pilot.pause()
+        preset = presets.from_dict(tomllib.loads(app.clipboard))
+        assert preset.calculator == "gear_ratio" and preset.inputs["load"] == "31 lbf"
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        assert solve("gear_ratio", preset.inputs).outputs == tab.solution.outputs
+
+
+async def test_ctrl_e_exports_results_and_plot_data(tmp_path, monkeypatch):
+    import csv
+    import io
+
+    from textual.widgets import Button, OptionList
+
+    monkeypatch.chdir(tmp_path)
+    app = GearheadApp(blink=False, initial="motor")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-motor", CalculatorTab)
+        await pilot.press("ctrl+e")
+        await settle(pilot)
+        await pilot.click("#copy")  # first choice: Markdown to the clipboard
+        await settle(pilot)
+        assert app.clipboard.splitlines()[2] == "| Result | Value |"
+        for _ in range(2):  # the results CSV saved twice: the second time it refuses to overwrite
+            await pilot.press("ctrl+e")
+            await settle(pilot)
+            app.screen.query_one(OptionList).highlighted = 1
+            await settle(pilot)
+            app.screen.query_one("#save", Button).press()
+            await settle(pilot)
+        assert "exists" in str(app.screen.query_one("#export-error").render())
+        await pilot.press("escape")
+        rows = list(csv.DictReader(io.StringIO((tmp_path / "motor_results.csv").read_text())))
+        assert {r["output"] for r in rows} == set(tab.solution.outputs)
+        await pilot.press("ctrl+e")
+        await settle(pilot)
+        app.screen.query_one(OptionList).highlighted = 2
+        await settle(pilot)
+        app.screen.query_one("#save", Button).press()
+        await settle(pilot)
+        assert (tmp_path / "motor_plot.csv").read_text().startswith("series,")
+
+
+async def test_save_dialog_offers_the_loaded_presets_name_and_description():
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        builtin = next(p for p in presets.listing("gear_ratio") if p.builtin)
+        await pilot.press("ctrl+o")
+        await settle(pilot)
+        app.screen.dismiss(builtin)
+        await settle(pilot)
+        await pilot.press("ctrl+s")
+        await settle(pilot)
+        assert app.screen.query_one("#preset-name", Input).value == builtin.name
+        assert app.screen.query_one("#preset-description", Input).value == builtin.description
+
+
+@pytest.mark.parametrize("text,loads", [
+    (None, True),  # what ctrl+y copied on another tab of the same calculator
+    ('calculator = "gear_ratio"\nname = "x"\n[inputs]\nload = "3 kg"\n', False),  # wrong unit
+    ('calculator = "gear_ratio"\n' + "x = " + "[" * 5000 + "]" * 5000 + "\n", False),  # too deep
+    ('calculator = "beam"\nname = "x"\n', False),  # another calculator
+])
+async def test_pasting_a_preset_into_the_load_dialog(text, loads):
+    from textual import events
+
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        if text is None:
+            await replace_text(pilot, "#calc-gear_ratio #in-load", "33 lbf")
+            await pilot.press("ctrl+y")
+            text = app.clipboard
+            await replace_text(pilot, "#calc-gear_ratio #in-load", "10 lbf")
+        await pilot.press("ctrl+o")
+        await settle(pilot)
+        dialog = app.screen
+        dialog.query_one("#preset-path").post_message(events.Paste(text))
+        await settle(pilot)
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        if loads:
+            assert app.screen is not dialog and tab.entries["load"] == "33 lbf"
+        else:
+            assert app.screen is dialog
+            message = str(dialog.query_one("#load-error").render())
+            assert message.strip() and "\n" not in message.strip()
+            assert tab.entries["load"] != "3 kg"

@@ -16,6 +16,8 @@ from core.registry import AREAS, area_of, calculators
 
 from .components.accuracy_screen import AccuracyScreen
 from .components.calculator_tab import CalculatorTab
+from .components.export_screen import ExportScreen
+from .components.plot_panel import PlotPanel
 from .components.preset_screens import LoadPresetScreen, SavePresetScreen
 
 
@@ -37,10 +39,12 @@ class GearheadApp(App):
     # below 120 columns inputs and results cannot sit side by side: gearhead.tcss stacks them
     HORIZONTAL_BREAKPOINTS = [(0, "-narrow"), (120, "-wide")]
     BINDINGS = [
-        Binding("ctrl+s", "save_preset", "Save preset"),
-        Binding("ctrl+o", "load_preset", "Load preset"),
-        Binding("ctrl+g", "send", "Send to…", show=True),
-        Binding("ctrl+r", "accuracy", "Accuracy"),
+        Binding("ctrl+s", "save_preset", "Save", tooltip="Save this tab as a TOML preset"),
+        Binding("ctrl+o", "load_preset", "Load", tooltip="Load a preset into this tab"),
+        Binding("ctrl+g", "send", "Send to…", tooltip="Send results to the calculator they feed"),
+        Binding("ctrl+r", "accuracy", "Accuracy", tooltip="Accuracy vs time of this simulation"),
+        Binding("ctrl+y", "copy_preset", "Copy", tooltip="Copy this tab as preset TOML (to share)"),
+        Binding("ctrl+e", "export", "Export", tooltip="Results or plot data as CSV or Markdown"),
         Binding("ctrl+q", "quit", "Quit"),
         *(Binding(f"f{n}", f"area('{area}')", title, show=False, priority=True)
           for n, (area, (title, _)) in enumerate(AREAS.items(), 1)),
@@ -143,7 +147,9 @@ class GearheadApp(App):
             if path is not None:
                 self.notify(f"Saved {path}", title="Preset saved", markup=False)  # a path may hold "["
 
-        self.push_screen(SavePresetScreen(tab.calculator.id, tab.current_inputs(), self.blink), saved)
+        name, description = tab.preset_meta
+        self.push_screen(SavePresetScreen(tab.calculator.id, tab.current_inputs(), self.blink,
+                                          name=name, description=description), saved)
 
     def action_load_preset(self) -> None:
         tab = self.current_tab
@@ -154,9 +160,33 @@ class GearheadApp(App):
                 # not whatever was typed before, so the tab solves what the CLI solves
                 defaults = {f.name: CalculatorTab.initial_entry(f) for f in tab.calculator.fields}
                 tab.set_entries({**defaults, **preset.inputs})
+                tab.preset_meta = (preset.name, preset.description)  # the save dialog offers them
                 self.notify(f"Loaded {preset.name}", title="Preset loaded", markup=False)
 
         self.push_screen(LoadPresetScreen(tab.calculator.id, self.blink), loaded)
+
+    def action_copy_preset(self) -> None:
+        """ctrl+y: the tab as preset TOML on the clipboard (OSC 52), to paste in a chat or file."""
+        from core.export import preset_toml
+
+        tab = self.current_tab
+        name, description = tab.preset_meta
+        self.copy_to_clipboard(preset_toml(tab.calculator.id, tab.current_inputs(), name, description))
+        self.notify(f"{tab.calculator.title} copied as preset TOML; paste it into ctrl+o of any "
+                    f"Gearhead or save it as a .toml file", title="Copied", markup=False)
+
+    def action_export(self) -> None:
+        tab = self.current_tab
+        if tab.solution is None:
+            self.notify("Fix the highlighted input first.", severity="error")
+            return
+        plot = tab.query_one(PlotPanel).current if tab.calculator.plots else None
+
+        def done(message) -> None:
+            if message:
+                self.notify(message, title="Exported", markup=False)
+
+        self.push_screen(ExportScreen(tab.calculator, tab.solution, plot, self.blink), done)
 
     async def action_send(self) -> None:
         """Send this tab's results into the calculator it feeds (e.g. lead screw → gear ratio)."""
@@ -197,6 +227,10 @@ class GearheadApp(App):
                             self.action_save_preset)
         yield SystemCommand("Load preset", "Load a built-in or user preset into the current tab",
                             self.action_load_preset)
+        yield SystemCommand("Copy as preset TOML", "Copy the current tab as preset text, to share",
+                            self.action_copy_preset)
+        yield SystemCommand("Export results", "The results table or the plot's data as CSV or Markdown",
+                            self.action_export)
         yield SystemCommand("Accuracy vs time", "Run the current simulation at every accuracy level",
                             self.action_accuracy)
         for calc in calculators().values():

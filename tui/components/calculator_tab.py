@@ -83,6 +83,7 @@ class CalculatorTab(Widget):
         self.solution: Solution | None = None
         self.error: InputError | None = None
         self.display_units: dict[str, str] = {}  # output -> unit the user chose (Enter on a result)
+        self.preset_meta = ("", "")  # name and description of the preset last loaded here
         self.stale = False  # the results shown are from earlier entries (one is bad now)
         self._solving = False  # a solve thread is running
         self._dirty = False  # entries changed since the running solve started

@@ -39,12 +39,16 @@ class PlotPanel(Vertical):
         if self.solution is not None:
             self.call_later(self.show, self.solution)
 
+    @property
+    def current(self) -> Plot:
+        """The plot on screen (the one the selector shows)."""
+        if len(self.plots) > 1:
+            return self.plots[self.query_one("#plot-choice", Select).value]
+        return self.plots[0]
+
     async def show(self, solution: Solution) -> None:
         self.solution = solution
-        index = 0
-        if len(self.plots) > 1:
-            index = self.query_one("#plot-choice", Select).value
-        spec = self.plots[index]
+        spec = self.current
         from textual_plot import HiResMode, PlotWidget
 
         plots = self.query(PlotWidget)

@@ -5,9 +5,10 @@ from __future__ import annotations
 from pathlib import Path
 
 from rich.text import Text
-from textual import on
+from textual import events, on
 from textual.app import ComposeResult
 from textual.binding import Binding
+from textual.message import Message
 from textual.containers import Horizontal, Vertical
 from textual.screen import ModalScreen
 from textual.widgets import Button, Checkbox, Input, Label, OptionList, Static
@@ -24,17 +25,19 @@ class SavePresetScreen(ModalScreen[Path | None]):
 
     BINDINGS = [Binding("escape", "dismiss(None)", "Cancel")]
 
-    def __init__(self, calc_id: str, inputs: dict, blink: bool = True) -> None:
+    def __init__(self, calc_id: str, inputs: dict, blink: bool = True, name: str = "",
+                 description: str = "") -> None:
         super().__init__()
         self.calc_id = calc_id
         self.inputs = inputs
         self.blink = blink
+        self.name_, self.description = name, description  # of the preset loaded, if any
 
     def compose(self) -> ComposeResult:
         with Vertical(classes="dialog"):
             yield Label(Text(f"Save {self.calc_id} preset"), classes="dialog-title")
-            name = FieldInput(placeholder="Name, e.g. Elevator 2 NEO", id="preset-name")
-            desc = FieldInput(placeholder="Description (optional)", id="preset-description")
+            name = FieldInput(self.name_, placeholder="Name, e.g. Elevator 2 NEO", id="preset-name")
+            desc = FieldInput(self.description, placeholder="Description (optional)", id="preset-description")
             name.cursor_blink = desc.cursor_blink = self.blink
             yield name
             yield desc
@@ -69,6 +72,25 @@ class SavePresetScreen(ModalScreen[Path | None]):
         self.dismiss(path)
 
 
+MAX_PASTE = 100_000  # characters: a preset is a few hundred; more is a paste gone wrong
+
+
+class PresetPathInput(FieldInput):
+    """The load dialog's path entry; a multi-line paste is a preset's text (ctrl+y elsewhere)."""
+
+    class PresetPasted(Message):
+        def __init__(self, text: str) -> None:
+            super().__init__()
+            self.text = text
+
+    def _on_paste(self, event: events.Paste) -> None:
+        if "\n" in event.text.strip():
+            event.stop()
+            self.post_message(self.PresetPasted(event.text))
+            return
+        super()._on_paste(event)
+
+
 class LoadPresetScreen(ModalScreen[presets.Preset | None]):
     """Pick a built-in or user preset for this calculator, or type a file path."""
 
@@ -86,7 +108,8 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
             options = [Option(Text(f"{p.name}  ({'built-in' if p.builtin else 'user'})  {p.description}"),
                               id=str(i)) for i, p in enumerate(self.found)]
             yield OptionList(*options, id="preset-list")
-            path = FieldInput(placeholder="…or a preset file path, then Enter", id="preset-path")
+            path = PresetPathInput(placeholder="…or a preset file path, then Enter (or paste a preset's text)",
+                                   id="preset-path")
             path.cursor_blink = self.blink
             yield path
             yield Static("", id="load-error", classes="field-error")
@@ -94,6 +117,27 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
     @on(OptionList.OptionSelected)
     def _picked(self, event: OptionList.OptionSelected) -> None:
         self.dismiss(self.found[int(event.option.id)])
+
+    @on(PresetPathInput.PresetPasted)
+    def _from_text(self, event: PresetPathInput.PresetPasted) -> None:
+        import tomllib
+
+        try:
+            if len(event.text) > MAX_PASTE:
+                raise InputError("preset", f"pasted text is too long ({len(event.text)} characters)")
+            try:
+                data = tomllib.loads(event.text.lstrip("\ufeff"))
+            except (tomllib.TOMLDecodeError, RecursionError) as exc:
+                raise InputError("preset", f"pasted text is not a preset (malformed TOML: "
+                                           f"{str(exc).splitlines()[0][:80] if str(exc) else 'too deeply nested'})") from None
+            preset = presets.from_dict(data, "<pasted preset>")
+            if preset.calculator != self.calc_id:
+                raise InputError("calculator", f"preset is for {preset.calculator!r}, not {self.calc_id!r}",
+                                 "<pasted preset>")
+        except InputError as exc:
+            self.query_one("#load-error", Static).update(Text(str(exc), style="bold red"))
+            return
+        self.dismiss(preset)
 
     @on(Input.Submitted, "#preset-path")
     def _from_path(self, event: Input.Submitted) -> None:

@@ -1,0 +1,104 @@
+"""Take results away: the results table (Markdown or CSV) or the plot's data (CSV), copied to the
+clipboard or written to a new file (never over an existing one)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from rich.text import Text
+from textual import on
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Horizontal, Vertical
+from textual.screen import ModalScreen
+from textual.widgets import Button, Input, Label, OptionList, Static
+from textual.widgets.option_list import Option
+
+from core import export
+from core.model import Calculator, Plot, Solution
+
+from .field_input import FieldInput
+
+
+class ExportScreen(ModalScreen[str | None]):
+    """Dismisses with a message for the notice ("Copied …", "Saved …"), or None if cancelled."""
+
+    BINDINGS = [Binding("escape", "dismiss(None)", "Cancel")]
+
+    def __init__(self, calculator: Calculator, solution: Solution, plot: Plot | None,
+                 blink: bool = True) -> None:
+        super().__init__()
+        self.calculator = calculator
+        self.solution = solution
+        self.blink = blink
+        # (label, file suffix, text builder)
+        self.formats = [
+            ("Results table as Markdown", "md", lambda: export.results_markdown(calculator, solution)),
+            ("Results table as CSV (shown and full-precision SI values)", "csv",
+             lambda: export.results_csv(calculator, solution)),
+        ]
+        if plot is not None and any(solution.series.get(s, ([], []))[0] for s in plot.series):
+            self.formats.append((f"Plot data as CSV: {plot.title}", "csv",
+                                 lambda: export.plot_csv(plot, solution)))
+
+    def compose(self) -> ComposeResult:
+        with Vertical(classes="dialog"):
+            yield Label(Text(f"Export {self.calculator.title}"), classes="dialog-title")
+            yield OptionList(*(Option(Text(label), id=str(i)) for i, (label, _, _) in enumerate(self.formats)),
+                             id="export-format")
+            path = FieldInput(value=self._default_name(0), id="export-path")
+            path.cursor_blink = self.blink
+            yield path
+            yield Static("", id="export-error", classes="field-error")
+            with Horizontal(classes="dialog-buttons"):
+                yield Button("Copy to clipboard", variant="primary", id="copy")
+                yield Button("Save to file", id="save")
+                yield Button("Cancel", id="cancel")
+
+    def _default_name(self, index: int) -> str:
+        kind = "plot" if index >= 2 else "results"
+        return f"{self.calculator.id}_{kind}.{self.formats[index][1]}"
+
+    @property
+    def _index(self) -> int:
+        highlighted = self.query_one("#export-format", OptionList).highlighted
+        return highlighted if highlighted is not None else 0
+
+    @on(OptionList.OptionHighlighted, "#export-format")
+    def _format_changed(self, event: OptionList.OptionHighlighted) -> None:
+        path = self.query_one("#export-path", Input)
+        old = {self._default_name(i) for i in range(len(self.formats))}
+        if path.value in old:  # keep a name the user typed
+            path.value = self._default_name(event.option_index)
+
+    @on(OptionList.OptionSelected, "#export-format")
+    @on(Button.Pressed, "#copy")
+    def _copy(self) -> None:
+        label, _, build = self.formats[self._index]
+        self.app.copy_to_clipboard(build())
+        self.dismiss(f"Copied to the clipboard: {label.lower()}")
+
+    @on(Input.Submitted, "#export-path")
+    @on(Button.Pressed, "#save")
+    def _save(self) -> None:
+        label, _, build = self.formats[self._index]
+        raw = self.query_one("#export-path", Input).value.strip()
+        error = self.query_one("#export-error", Static)
+        if not raw or "\0" in raw:
+            error.update(Text("file: enter a file name", style="bold red"))
+            return
+        path = Path(raw).expanduser()
+        try:
+            with path.open("x", encoding="utf-8", newline="") as fh:  # "x": never overwrite
+                fh.write(build())
+        except FileExistsError:
+            error.update(Text(f"file: {raw[:60]} exists; choose another name", style="bold red"))
+            return
+        except OSError as exc:
+            error.update(Text(f"file: cannot write ({exc.strerror or type(exc).__name__})", style="bold red"))
+            return
+        self.dismiss(f"Saved {label.lower()} to {path}")
+
+    @on(Button.Pressed, "#cancel")
+    def _cancel(self) -> None:
+        self.dismiss(None)
