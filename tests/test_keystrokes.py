@@ -162,3 +162,27 @@ def test_keys_kept_in_a_real_terminal(terminal):
         if (got := _settle(terminal, "Voltage", text)) != text:
             failures.append(f"typed {text!r}: {got!r}")
     assert not failures, failures
+
+
+@pytest.mark.parametrize("calc_id", sorted(__import__("core.registry", fromlist=["x"]).calculators()))
+async def test_key_bursts_kept_in_every_tab(calc_id):
+    """Every entry of every tab is a FieldInput: a burst typed while the tab solves is kept."""
+    from core.registry import get
+    from tui.components.field_input import FieldInput
+
+    app = GearheadApp(blink=False, initial=calc_id, hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        tab = app.query_one(f"#calc-{calc_id}")
+        entries = list(tab.query(Input))
+        assert entries and all(isinstance(e, FieldInput) for e in entries)
+        field = next(f for f in get(calc_id).fields if f.type in ("quantity", "int"))
+        entry = tab.query_one(f"#in-{field.name}", Input)
+        entry.focus()
+        await pilot.pause()
+        # ctrl+u, "12", backspace, backspace, "7", "8" in one burst, while the tab is solving
+        for key, char in [("ctrl+u", "\x15"), ("1", "1"), ("2", "2"), ("backspace", "\x7f"),
+                          ("backspace", "\x7f"), ("7", "7"), ("8", "8")]:
+            app.post_message(events.Key(key, char))
+        for _ in range(5):
+            await pilot.pause()
+        assert entry.value == "78"
