@@ -435,3 +435,19 @@ async def test_pasting_a_preset_into_the_load_dialog(text, loads):
             message = str(dialog.query_one("#load-error").render())
             assert message.strip() and "\n" not in message.strip()
             assert tab.entries["load"] != "3 kg"
+
+
+async def test_result_under_the_cursor_is_explained():
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        from textual.widgets import DataTable
+        table = tab.query_one(".results", DataTable)
+        table.focus()
+        await pilot.pause()
+        table.move_cursor(row=list(tab.solution.outputs).index("ratio"))
+        await settle(pilot)
+        line = str(tab.query_one(".help-line", Static).render())
+        assert line.startswith(tab.calculator.output("ratio").label)
+        assert tab.calculator.output("ratio").help in line

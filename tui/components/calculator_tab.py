@@ -163,6 +163,11 @@ class CalculatorTab(Widget):
         self.solve()
 
     def on_descendant_focus(self, event) -> None:
+        if isinstance(event.widget, DataTable) and event.widget.has_class("results"):
+            table = event.widget
+            if table.row_count:
+                self._explain_output(str(table.coordinate_to_cell_key((table.cursor_row, 0)).row_key.value))
+            return
         name = self._name_of(event.widget) if event.widget else None
         if name:
             f = self.calculator.field(name)
@@ -172,6 +177,20 @@ class CalculatorTab(Widget):
                 line.append(f"  (bare number = {f.unit or 'plain number'}; any compatible unit may be typed)",
                             style="dim")
             self.query_one(".help-line", Static).update(line)
+
+    @on(DataTable.RowHighlighted, ".results")
+    def _explain_result(self, event: DataTable.RowHighlighted) -> None:
+        """The line under the form explains the result under the cursor, as it does a field."""
+        event.stop()
+        if event.data_table.has_focus and event.row_key.value is not None:
+            self._explain_output(str(event.row_key.value))
+
+    def _explain_output(self, name: str) -> None:
+        out = self.calculator.output(name)
+        line = Text(out.label + ": ", style="bold")
+        line.append(out.help or "see the help of the fields it comes from")
+        line.append("  (Enter: next unit)", style="dim")
+        self.query_one(".help-line", Static).update(line)
 
     def _apply_mode(self) -> None:
         from core.model import choice_values
