@@ -13,6 +13,7 @@ from textual import events
 from textual.widgets import Footer, Tab, TabbedContent, TabPane, Tabs
 
 from core.registry import AREAS, area_of, calculators
+from core.unit_systems import SYSTEM_LABELS, SYSTEMS
 
 from .components.accuracy_screen import AccuracyScreen
 from .components.calculator_tab import CalculatorTab
@@ -50,11 +51,13 @@ class GearheadApp(App):
           for n, (area, (title, _)) in enumerate(AREAS.items(), 1)),
     ]
 
-    def __init__(self, blink: bool = True, initial: str | None = None, hide_timings: bool = False) -> None:
+    def __init__(self, blink: bool = True, initial: str | None = None, hide_timings: bool = False,
+                 settings_file: dict | None = None) -> None:
         super().__init__()
         self.blink = blink  # tests switch the cursor blink off for deterministic snapshots
         self.hide_timings = hide_timings  # and hide wall-clock figures
         self.initial = initial
+        self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def compose(self) -> ComposeResult:
         # Two strips: areas (F1-F5), then the calculators of the active area (digits 1-9 on the
@@ -74,8 +77,25 @@ class GearheadApp(App):
         yield Footer()
 
     def _card(self, calc_id: str) -> CalculatorTab:
-        return CalculatorTab(calculators()[calc_id], blink=self.blink, hide_timings=self.hide_timings,
-                             id=f"calc-{calc_id}")
+        tab = CalculatorTab(calculators()[calc_id], blink=self.blink, hide_timings=self.hide_timings,
+                            id=f"calc-{calc_id}")
+        tab.unit_system = self.unit_system
+        return tab
+
+    def set_unit_system(self, system: str, remember: bool = True) -> None:
+        """The units preference for every tab, kept in the user's config.toml."""
+        self.unit_system = system
+        for tab in self.query(CalculatorTab):
+            tab.set_unit_system(system)
+        if remember:
+            from . import settings
+
+            try:
+                where = settings.save({**settings.load(), "units": system})
+                self.notify(f"Results in {SYSTEM_LABELS[system]} (saved in {where})", markup=False)
+            except OSError as exc:
+                self.notify(f"Results in {SYSTEM_LABELS[system]}; could not save the setting "
+                            f"({exc.strerror or type(exc).__name__})", severity="warning", markup=False)
 
     async def card(self, calc_id: str) -> CalculatorTab:
         """The tab of a calculator, built if it has not been visited yet."""
@@ -231,6 +251,9 @@ class GearheadApp(App):
                             self.action_copy_preset)
         yield SystemCommand("Export results", "The results table or the plot's data as CSV or Markdown",
                             self.action_export)
+        for system in SYSTEMS:
+            yield SystemCommand(f"Units: {SYSTEM_LABELS[system]}", "Show every result in these units "
+                                "(remembered)", lambda s=system: self.set_unit_system(s))
         yield SystemCommand("Accuracy vs time", "Run the current simulation at every accuracy level",
                             self.action_accuracy)
         for calc in calculators().values():
@@ -249,4 +272,6 @@ class GearheadApp(App):
         await self.action_send()
 
 def run() -> None:
-    GearheadApp().run()
+    from . import settings
+
+    GearheadApp(settings_file=settings.load()).run()

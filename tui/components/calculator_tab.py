@@ -83,6 +83,8 @@ class CalculatorTab(Widget):
         self.solution: Solution | None = None
         self.error: InputError | None = None
         self.display_units: dict[str, str] = {}  # output -> unit the user chose (Enter on a result)
+        self.unit_system = "calculator"  # the units preference (core.unit_systems), set by the app
+        self._preferred_units: dict[str, str] = {}  # output -> unit the preference gave last solve
         self.preset_meta = ("", "")  # name and description of the preset last loaded here
         self.stale = False  # the results shown are from earlier entries (one is bad now)
         self._solving = False  # a solve thread is running
@@ -120,7 +122,9 @@ class CalculatorTab(Widget):
                 table.add_column("Value", key="value", width=VALUE_WIDTH)
                 yield table
                 if calc.plots:
-                    yield PlotPanel(calc.plots)
+                    panel = PlotPanel(calc.plots)
+                    panel.unit_system = self.unit_system
+                    yield panel
                 # long or many warnings scroll in a box of their own instead of pushing the
                 # status line out of the pane
                 with VerticalScroll(classes="warnings-box"):
@@ -253,8 +257,9 @@ class CalculatorTab(Widget):
         value = self.solution.outputs.get(name)
         if value is None or isinstance(value.value, (bool, str, int)):
             return
-        unit = units.next_unit(self.display_units.get(name, out.unit), out.quantity, out.unit)
-        if unit != self.display_units.get(name, out.unit):
+        shown = self.display_units.get(name) or self._preferred_units.get(name, out.unit)
+        unit = units.next_unit(shown, out.quantity, out.unit)
+        if unit != shown:
             self.display_units = {**self.display_units, name: unit}
             self.solve()
 
@@ -278,14 +283,26 @@ class CalculatorTab(Widget):
         self._dirty = False
         self._solving = True
         self.set_timer(BUSY_AFTER_S, self._mark_busy)
-        self._solve_in_thread(dict(self.entries), dict(self.display_units))
+        self._solve_in_thread(dict(self.entries), dict(self.display_units), self.unit_system)
+
+    def set_unit_system(self, system: str) -> None:
+        """Show results in a units preference; units chosen with Enter give way to it."""
+        self.unit_system = system
+        self.display_units = {}
+        if self.calculator.plots:
+            self.query_one(PlotPanel).unit_system = system
+        self.solve()
 
     @work(thread=True, group="solve")
-    def _solve_in_thread(self, entries: dict[str, Any], display_units: dict[str, str]) -> None:
+    def _solve_in_thread(self, entries: dict[str, Any], display_units: dict[str, str], system: str) -> None:
+        from core import unit_systems
         from core.model import solve
 
         try:
-            solution = solve(self.calculator.id, entries, display_units)
+            # in the thread: "as entered" reads units with pint, which must not load on the UI thread
+            preferred = unit_systems.display_units(self.calculator, system, entries)
+            self._preferred_units = preferred
+            solution = solve(self.calculator.id, entries, {**preferred, **display_units})
             error = None
         except InputError as exc:
             solution, error = None, exc

@@ -24,6 +24,7 @@ class PlotPanel(Vertical):
         super().__init__(classes="plot-panel")
         self.plots = plots
         self.solution: Solution | None = None
+        self.unit_system = "calculator"  # imperial / metric map the axes' units too
 
     def compose(self) -> ComposeResult:
         if len(self.plots) > 1:
@@ -47,8 +48,14 @@ class PlotPanel(Vertical):
         return self.plots[0]
 
     async def show(self, solution: Solution) -> None:
+        from dataclasses import replace
+
+        from core.unit_systems import system_unit
+
         self.solution = solution
         spec = self.current
+        spec = replace(spec, x_unit=system_unit(spec.x_unit, self.unit_system),
+                       y_unit=system_unit(spec.y_unit, self.unit_system))
         from textual_plot import HiResMode, PlotWidget
 
         plots = self.query(PlotWidget)
