@@ -56,3 +56,17 @@ def test_next_unit_walks_the_whole_ring_and_returns_home():
             unit = next_unit(unit, kind, home)
             reached.add(unit)
         assert reached == set(ring), kind
+
+
+def test_units_shown_on_screen_read_back_as_typed():
+    """The app shows mm⁴, m/s², N·m; typing what is shown must give the same value."""
+    from core.units import parse
+    from tui.components.unit_text import pretty_quantity, pretty_unit
+
+    assert pretty_unit("mm**4") == "mm⁴" and pretty_unit("m/s**2") == "m/s²"
+    assert pretty_unit("N*m/A") == "N·m/A" and pretty_unit("1/m**-1") == "1/m⁻¹"
+    assert pretty_quantity("77425 mm**4") == "77425 mm⁴" and pretty_quantity("12") == "12"
+    for plain, kind in [("3 mm**4", "area_moment"), ("9.8 m/s**2", "acceleration"),
+                        ("5 in*lbf", "torque"), ("2 kg*m**2", "inertia")]:
+        number, unit = plain.split(" ", 1)
+        assert parse(f"{number} {pretty_unit(unit)}", unit, kind, "x") == parse(plain, unit, kind, "x")

@@ -29,6 +29,7 @@ class Form(VerticalScroll, can_focus=False):
     """The field list: scrolls, but is not a Tab stop of its own (Tab goes field to field;
     the form scrolls to the focused field)."""
 from .plot_panel import PlotPanel
+from .unit_text import pretty_quantity, pretty_unit
 
 BUSY_AFTER_S = 0.1  # a solve running longer than this shows '… solving'
 VALUE_WIDTH = 18  # "-1.2346e-05 N*m/A" fits
@@ -66,7 +67,7 @@ class FieldRow(Horizontal):
                           tooltip=tip, select_on_focus=False, compact=True)
             entry.cursor_blink = self.blink
             yield entry
-        yield Label(Text(f.unit), classes="field-unit")
+        yield Label(Text(pretty_unit(f.unit)), classes="field-unit")
 
 
 class CalculatorTab(Widget):
@@ -357,7 +358,7 @@ class CalculatorTab(Widget):
         table.clear()
         for name, value in solution.outputs.items():
             label = self.calculator.output(name).label
-            text = "(hidden)" if self.hide_timings and name in VOLATILE else value.text
+            text = "(hidden)" if self.hide_timings and name in VOLATILE else pretty_quantity(value.text)
             table.add_row(Text(label), Text(text), key=name)
         if 0 < cursor < table.row_count:
             table.move_cursor(row=cursor, animate=False)

@@ -12,11 +12,13 @@ from textual.widgets import Select, Static
 from core import units
 from core.model import Plot, Solution
 
+from .unit_text import pretty_unit
+
 COLOURS = ("cyan", "magenta", "yellow", "green", "red")
 
 
 def axis_label(label: str, unit: str) -> str:
-    return f"{label} [{unit}]" if unit else label
+    return f"{label} [{pretty_unit(unit)}]" if unit else label
 
 
 class PlotPanel(Vertical):
