@@ -60,6 +60,11 @@ def factor(unit: str, kind: str) -> float:
         if kind != "dimensionless":
             raise ValueError(f"a {kind.replace('_', ' ')} needs a unit")
         return 1.0
+    from .unit_factors import lookup
+
+    known = lookup(unit, kind)  # every declared unit, generated from pint: no registry to build
+    if known is not None:
+        return known
     ureg = registry()
     q = ureg.Quantity(1.0, unit)
     return float(q.to(SI_UNITS[kind] or "dimensionless").magnitude)

@@ -1,0 +1,69 @@
+"""SI factors of the units Gearhead declares, generated from pint and stored as JSON, so that a
+solve with bare numbers (the CLI in a script's loop) never pays for pint's registry (~150 ms).
+
+pint stays the source of truth: tests/test_unit_factors.py checks every stored factor against pint
+and that every unit a calculator declares is stored. Regenerate after adding a unit:
+
+    .venv/bin/python -m core.unit_factors
+"""
+
+from __future__ import annotations
+
+import json
+from functools import lru_cache
+from pathlib import Path
+
+TABLE = Path(__file__).with_name("unit_factors.json")
+
+
+@lru_cache(maxsize=1)
+def _table() -> dict[str, float]:
+    try:
+        return json.loads(TABLE.read_text(encoding="utf-8"))
+    except (OSError, ValueError):  # no table: every lookup falls back to pint
+        return {}
+
+
+def lookup(unit: str, kind: str) -> float | None:
+    """The stored factor of `unit` as a `kind`, or None (then ask pint)."""
+    return _table().get(f"{kind}|{unit}")
+
+
+def declared_units() -> set[tuple[str, str]]:
+    """(unit, kind) of every field, output and plot axis, every unit of the result-unit ring and of
+    the units preference."""
+    from .registry import calculators
+    from .unit_systems import TO_IMPERIAL, TO_METRIC
+    from .units import COMMON_UNITS
+
+    found = set()
+    for calc in calculators().values():
+        for f in calc.fields:
+            if f.type == "quantity" and f.unit:
+                found.add((f.unit, f.quantity))
+        for o in calc.outputs:
+            if o.unit:
+                found.add((o.unit, o.quantity))
+        for p in calc.plots:
+            found.update({(p.x_unit, p.x_quantity), (p.y_unit, p.y_quantity)} - {("", p.x_quantity), ("", p.y_quantity)})
+    for kind, ring in COMMON_UNITS.items():
+        found.update((u, kind) for u in ring if u)
+    for table in (TO_METRIC, TO_IMPERIAL):
+        found |= {(table[unit], kind) for unit, kind in found if unit in table}
+    return found
+
+
+def generate() -> dict[str, float]:
+    """Every declared unit's factor, from pint (the same computation as core.units.factor)."""
+    from .units import SI_UNITS, registry
+
+    ureg = registry()
+    out = {}
+    for unit, kind in sorted(declared_units()):
+        out[f"{kind}|{unit}"] = float(ureg.Quantity(1.0, unit).to(SI_UNITS[kind] or "dimensionless").magnitude)
+    return out
+
+
+if __name__ == "__main__":
+    TABLE.write_text(json.dumps(generate(), indent=0, sort_keys=True) + "\n", encoding="utf-8")
+    print(f"wrote {len(_table.__wrapped__())} factors to {TABLE}")
