@@ -60,7 +60,9 @@ class Terminal:
 
     def __init__(self, tmp: Path) -> None:
         self.socket = f"gearhead-test-{uuid.uuid4().hex[:8]}"
-        env = {k: v for k, v in os.environ.items() if k not in ("NO_COLOR", "TEXTUAL_THEME", "TMUX")}
+        # COLUMNS/LINES (set under pytest-xdist) would override the pane's size in Textual
+        env = {k: v for k, v in os.environ.items()
+               if k not in ("NO_COLOR", "TEXTUAL_THEME", "TMUX", "COLUMNS", "LINES")}
         env["XDG_CONFIG_HOME"] = str(tmp / "config")
         self.env = env
         self.tmux("new-session", "-d", "-s", "app", "-x", "140", "-y", "45",

@@ -1,0 +1,92 @@
+"""Start-up as a user meets it, each figure beside its baseline, run alternately in fresh
+processes (medians; the machine is shared, so read the ratios):
+
+- CLI: `gearhead solve gear_ratio --json` (bare numbers) vs `python -c "import numpy"`;
+- first frame: the app's first screen vs a minimal Textual app with 13 empty tab panes.
+
+Run alone:  .venv/bin/python bench/bench_startup.py
+"""
+
+from __future__ import annotations
+
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+RUNS = 7
+
+FIRST_FRAME = r"""
+import time, asyncio
+t0 = time.perf_counter()
+from tui.app import GearheadApp
+class Timed(GearheadApp):
+    def on_ready(self):  # Textual sends Ready once the first frame is on screen
+        self.first_frame = time.perf_counter() - t0
+async def main():
+    app = Timed(blink=False)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await pilot.pause()
+    print(app.first_frame)
+asyncio.run(main())
+"""
+
+MINIMAL_APP = r"""
+import time, asyncio
+t0 = time.perf_counter()
+from textual.app import App
+from textual.widgets import Footer, Header, TabbedContent, TabPane
+class Minimal(App):
+    def compose(self):
+        yield Header()
+        with TabbedContent():
+            for i in range(13):
+                yield TabPane(f"Tab {i}")
+        yield Footer()
+    def on_ready(self):
+        self.first_frame = time.perf_counter() - t0
+async def main():
+    app = Minimal()
+    async with app.run_test(size=(140, 45)) as pilot:
+        await pilot.pause()
+    print(app.first_frame)
+asyncio.run(main())
+"""
+
+
+def wall(cmd: list[str]) -> float:
+    t0 = time.perf_counter()
+    subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True)
+    return time.perf_counter() - t0
+
+
+def reported(code: str) -> float:
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, check=True, capture_output=True, text=True)
+    return float(out.stdout.strip().splitlines()[-1])
+
+
+def pair(name: str, ours, baseline, base_name: str) -> None:
+    a, b = [], []
+    for _ in range(RUNS):  # alternate, so load on the machine hits both alike
+        a.append(ours())
+        b.append(baseline())
+    ma, mb = statistics.median(a), statistics.median(b)
+    print(f"  {name:<38} {ma * 1e3:7.1f} ms   {base_name:<34} {mb * 1e3:7.1f} ms   ratio {ma / mb:4.2f}")
+
+
+def main() -> None:
+    print(f"start-up (median of {RUNS} fresh processes, alternating with the baseline):")
+    gearhead = str(Path(sys.executable).with_name("gearhead"))
+    pair("gearhead solve gear_ratio --json", lambda: wall([gearhead, "solve", "gear_ratio", "--json"]),
+         lambda: wall([sys.executable, "-c", "import numpy"]), "python -c 'import numpy'")
+    pair("gearhead solve beam --set length='20 in'",
+         lambda: wall([gearhead, "solve", "beam", "--set", "length=20 in"]),
+         lambda: wall([sys.executable, "-c", "import numpy"]), "python -c 'import numpy' (typed unit)")
+    pair("app first frame (headless, 140x45)", lambda: reported(FIRST_FRAME),
+         lambda: reported(MINIMAL_APP), "minimal app, 13 empty tab panes")
+
+
+if __name__ == "__main__":
+    main()
