@@ -6,6 +6,7 @@ import importlib
 import pkgutil
 from functools import lru_cache
 
+from .declarations import check, check_links
 from .errors import InputError
 from .model import Calculator
 
@@ -40,6 +41,9 @@ def calculators() -> dict[str, Calculator]:
     if unplaced or len(set(ORDER)) != len(ORDER):
         raise RuntimeError(f"core/registry.py AREAS must name every calculator exactly once "
                            f"(not placed: {', '.join(unplaced) or 'none'})")
+    for calc in found.values():
+        check(calc)
+    check_links(found)
     return {cid: found[cid] for cid in ORDER if cid in found}
 
 

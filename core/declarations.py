@@ -1,0 +1,115 @@
+"""Checks a calculator's declaration when the registry loads it, so a slip in a description
+(a misspelled quantity kind, a unit of the wrong dimension, a default outside its bounds, a `when`
+naming a field that does not exist) fails at once with the calculator and the field named, instead
+of as a KeyError or a pint traceback the first time someone solves it.
+
+Conventions checked here (the Field docstring states them too): `default` is what a user would type
+(a bare number in the display unit, or a string with a unit); `min`/`max` are SI. Cheap enough to
+run on every load: units are looked up in the generated factor table, pint only for a unit missing
+from it.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from . import units
+from .errors import InputError
+
+if TYPE_CHECKING:
+    from .model import Calculator
+
+
+class DeclarationError(RuntimeError):
+    """A calculator's description is inconsistent: a developer's mistake, named precisely."""
+
+    def __init__(self, calc_id: str, part: str, message: str):
+        self.calc_id, self.part, self.message = calc_id, part, message
+        super().__init__(f"calculator {calc_id!r}, {part}: {message}")
+
+
+def _check_unit(calc_id: str, part: str, unit: str, kind: str) -> None:
+    if kind not in units.SI_UNITS:
+        raise DeclarationError(calc_id, part, f"unknown quantity kind {kind!r} "
+                                              f"(known: {', '.join(sorted(units.SI_UNITS))})")
+    if not unit:
+        if kind != "dimensionless":
+            raise DeclarationError(calc_id, part, f"a {kind} needs a display unit")
+        return
+    try:
+        units.factor(unit, kind)
+    except Exception as exc:  # unknown unit, wrong dimension: pint raises several types
+        raise DeclarationError(calc_id, part, f"unit {unit!r} cannot show a {kind} ({type(exc).__name__})") from None
+
+
+def check(calc: Calculator) -> None:
+    """Raise DeclarationError at the first inconsistency in `calc`'s description."""
+    cid = calc.id
+    names = [f.name for f in calc.fields]
+    duplicates = sorted({n for n in names if names.count(n) > 1})
+    if duplicates:
+        raise DeclarationError(cid, f"field {duplicates[0]!r}", "declared more than once")
+    out_names = [o.name for o in calc.outputs]
+    duplicates = sorted({n for n in out_names if out_names.count(n) > 1})
+    if duplicates:
+        raise DeclarationError(cid, f"output {duplicates[0]!r}", "declared more than once")
+    by_name = {f.name: f for f in calc.fields}
+    modes = calc.modes
+
+    for f in calc.fields:
+        part = f"field {f.name!r}"
+        kinds = [k for k, on in (("integer", f.integer), ("boolean", f.boolean), ("choices", bool(f.choices)))
+                 if on]
+        if len(kinds) > 1:
+            raise DeclarationError(cid, part, f"is both {' and '.join(kinds)}")
+        if f.flags and not f.choices:
+            raise DeclarationError(cid, part, "a flags field needs its choices")
+        if f.choice_labels and len(f.choice_labels) != len(f.choices):
+            raise DeclarationError(cid, part, f"{len(f.choice_labels)} choice labels for {len(f.choices)} choices")
+        if f.type == "quantity":
+            _check_unit(cid, part, f.unit, f.quantity)
+        if f.min is not None and f.max is not None and f.min > f.max:
+            raise DeclarationError(cid, part, f"min {f.min} is above max {f.max} (both SI)")
+        for mode in f.modes:
+            if mode not in modes:
+                raise DeclarationError(cid, part, f"shown in mode {mode!r}, which is not a mode "
+                                                  f"(modes: {', '.join(modes) or 'none'})")
+        for other, allowed in f.when:
+            target = by_name.get(other)
+            if target is None or not target.choices:
+                raise DeclarationError(cid, part, f"`when` names {other!r}, which is not a choice field")
+            unknown = [a for a in allowed if a not in target.choices]
+            if unknown:
+                raise DeclarationError(cid, part, f"`when` allows {', '.join(map(repr, unknown))}, "
+                                                  f"not a choice of {other!r}")
+        try:
+            f.parse(f.default)
+        except InputError as exc:
+            raise DeclarationError(cid, part, f"default {f.default!r} is refused: {exc.message}") from None
+
+    for o in calc.outputs:
+        _check_unit(cid, f"output {o.name!r}", o.unit, o.quantity)
+    for p in calc.plots:
+        _check_unit(cid, f"plot {p.title!r} x axis", p.x_unit, p.x_quantity)
+        _check_unit(cid, f"plot {p.title!r} y axis", p.y_unit, p.y_quantity)
+    for target, mapping in calc.exports.items():
+        for target_field, output in mapping.items():
+            if output not in out_names:
+                raise DeclarationError(cid, f"export to {target}.{target_field}",
+                                       f"{output!r} is not an output of {cid}")
+
+
+def check_links(found: dict[str, Calculator]) -> None:
+    """What one calculator sends (ctrl+g) must land on a field of the same kind in another."""
+    for calc in found.values():
+        for target, mapping in calc.exports.items():
+            if target not in found:
+                raise DeclarationError(calc.id, f"export to {target!r}", "no such calculator")
+            fields = {f.name: f for f in found[target].fields}
+            for target_field, output in mapping.items():
+                part = f"export to {target}.{target_field}"
+                if target_field not in fields:
+                    raise DeclarationError(calc.id, part, "no such field")
+                sent, into = calc.output(output).quantity, fields[target_field].quantity
+                if sent != into:
+                    raise DeclarationError(calc.id, part, f"sends a {sent} to a {into} field")
