@@ -156,3 +156,52 @@ def test_rectangular_tube_fem_and_bredt_agree_for_a_thin_wall():
     bredt = 2 * 1e-3 * (1 - 1e-3) ** 2 * (2 - 1e-3) ** 2 / (3 - 2e-3)
     assert bredt / exact - 1 == pytest.approx(0, abs=1e-3)
     assert bredt < exact
+
+
+def _beam(**raw):
+    from core.model import solve
+    s = solve("beam", raw)
+    return {k: v.value for k, v in s.outputs.items()}, s.warnings
+
+
+def test_short_column_shows_johnsons_load_not_eulers():
+    """1 in round 6061-T6 bar, 6 in long, pinned-pinned (K = 1). By hand, in mpmath:
+    I = π/64·d⁴, A = π/4·d², r = d/4 = 0.00635 m, KL/r = 0.1524/0.00635 = 24;
+    transition √(2π²·68.9e9/276e6) = 70.197 > 24, so Johnson governs:
+    P = A·(Sy − (Sy·24/2π)²/E) = 131 679 N = 29 602 lbf; Euler's π²EI/L² = 598 206 N = 134 483 lbf.
+    The old code showed Euler's 134 483 lbf as the buckling load."""
+    d, L, E, Sy = mp.mpf("0.0254"), mp.mpf("0.1524"), mp.mpf("68.9e9"), mp.mpf("276e6")
+    A, I = mp.pi / 4 * d**2, mp.pi / 64 * d**4
+    lam = L / mp.sqrt(I / A)
+    johnson = A * (Sy - (Sy * lam / (2 * mp.pi)) ** 2 / E)
+    euler = mp.pi**2 * E * I / L**2
+    assert float(lam) == pytest.approx(24, rel=1e-14)
+    assert float(johnson) / 4.4482216152605 == pytest.approx(29602.5, abs=1)
+    o, _ = _beam(section="round", outer_size=1, length=6, load_position=3, end_condition="pinned_pinned")
+    assert o["buckling_formula"] == "Johnson"
+    assert o["buckling_load"] == pytest.approx(float(johnson), rel=1e-12)
+    assert o["euler_load"] == pytest.approx(float(euler), rel=1e-12)
+    assert o["transition_slenderness"] == pytest.approx(float(mp.sqrt(2 * mp.pi**2 * E / Sy)), rel=1e-14)
+
+
+def test_buckling_load_is_continuous_at_the_transition_slenderness():
+    """Either side of (KL/r)_T = √(2π²E/Sy) the formula switches; both give σ = Sy/2 there."""
+    r = 0.0254 / 4  # 1 in round bar
+    L_T = math.sqrt(2 * math.pi**2 * 68.9e9 / 276e6) * r
+    loads = {}
+    for k in (1 - 1e-9, 1 + 1e-9):
+        o, _ = _beam(section="round", outer_size=1, length=f"{L_T * k!r} m", load_position=0,
+                     end_condition="pinned_pinned")
+        loads[o["buckling_formula"]] = o["buckling_load"]
+    assert set(loads) == {"Johnson", "Euler"}
+    area = math.pi / 4 * 0.0254**2
+    assert loads["Johnson"] == pytest.approx(area * 276e6 / 2, rel=1e-8)
+    assert loads["Euler"] == pytest.approx(area * 276e6 / 2, rel=1e-8)
+
+
+def test_long_column_is_eulers():
+    o, _ = _beam(section="round", outer_size=1, length=120, load_position=0, end_condition="pinned_pinned")
+    # KL/r = 3.048/0.00635 = 480 > 70.2: Euler, π²·68.9e9·π/64·0.0254⁴/3.048²
+    assert o["buckling_formula"] == "Euler"
+    ref = math.pi**2 * 68.9e9 * math.pi / 64 * 0.0254**4 / 3.048**2
+    assert o["buckling_load"] == pytest.approx(ref, rel=1e-12)
