@@ -2,10 +2,12 @@
 
 Sections (seed 5.1) give the exact second moment of area I and torsion constant J:
 - hex (43)/(44): I = 5√3/144·s⁴ exactly (s across flats; the seed's 0.0601 is it rounded).
-  J has no closed form. J = 0.115051·s⁴, from a P1 finite-element solution of Prandtl's
-  stress-function problem on the hexagon (structured equilateral mesh, n = 16…256 divisions per
-  side, Richardson-extrapolated; converged to 6 digits, re-computed in tests/test_hard_beam.py).
-  The seed's 0.1154 is 0.30 % high.
+  J has no closed form. J = 0.11505099441·s⁴, from a P1 finite-element solution of Prandtl's
+  stress-function problem on the hexagon (structured equilateral mesh, n = 16…512 divisions per
+  side, Richardson-extrapolated in h², h³ (the 120° corners' r^{3/2}), h⁴, h⁵, h⁶: every
+  extrapolation over 5 or 6 of those grids gives 0.1150509944058-0.1150509944094, so the figure is
+  good to ~4e-11 relative; re-computed in tests/test_hard_beam.py). The seed's 0.1154 is 0.30 %
+  high; the six-digit 0.115051 was 4.9e-8 high.
 - round tube (47)/(48): the seed's π/8·d³h and π/4·d³h are thin-wall forms; exact
   I = π/64·(D⁴ − d⁴), J = 2I, written as (D² + d²)(D + d)·2t so a thin wall does not cancel.
   With d the mean diameter d_m = D − t, (48) is low by the factor d_m²/(d_m² + t²) (shown as the
@@ -37,7 +39,7 @@ SECTION_LABELS = ("Hex", "Round", "Round tube", "Square", "Rectangular tube")
 SUPPORTS = ("simple", "fixed", "cantilever")
 SUPPORT_LABELS = ("Between simple supports", "Between fixed supports", "Cantilever")
 
-HEX_TORSION = 0.115051  # J/s⁴, s across flats (FEM + Richardson, see module docstring)
+HEX_TORSION = 0.11505099441  # J/s⁴, s across flats (FEM + Richardson, see module docstring)
 HEX_AREA_MOMENT = 5 * math.sqrt(3) / 144  # I/s⁴, exact
 ELONGATION = 4096  # side ratio beyond which a tube's J is extrapolated linearly in its long side
 THIN_WALL_LIMIT = 1e-4  # wall/size below which Bredt is used for J (its error is < 0.01 % there)
