@@ -122,3 +122,42 @@ def test_ratio_typed_as_rounded_fraction():
     assert (o["below_small_teeth"], o["below_large_teeth"]) == (12, 40)
     assert (o["above_small_teeth"], o["above_large_teeth"]) == (12, 40)
     assert o["nearest_center_distance"] / IN == pytest.approx(1.3, rel=1e-15)
+
+
+def _mp_length(D, r1, r2):
+    """Open-drive length 2X + π(r_1 + r_2) + 2Δ·sin⁻¹(Δ/D), in mpmath (independent of core)."""
+    D, r1, r2 = mp.mpf(D), mp.mpf(r1), mp.mpf(r2)
+    delta = abs(r2 - r1)
+    return 2 * mp.sqrt(D**2 - delta**2) + mp.pi * (r1 + r2) + 2 * delta * mp.asin(delta / D)
+
+
+@pytest.mark.parametrize("standard,n1,n2,half", [
+    ("chain_25", 13, 37, False), ("chain_35", 15, 40, True), ("chain_25", 16, 16, False),
+    ("htd_5mm", 20, 30, False), ("gt2_3mm", 12, 72, False), ("rt25", 36, 36, False)])
+def test_fewest_links_is_the_first_count_at_which_the_wheels_clear(standard, n1, n2, half):
+    """The old 'fewest links that wrap both' was the count with the small sprocket inside the large
+    one (D = Δ). Now: the fewest at which D > (OD_1 + OD_2)/2, OD = p(0.6 + cot(180°/n)) for chain
+    sprockets (ANSI B29.1), the pitch diameter n·p/π for belt pulleys. Checked from the touching
+    distance with the length equation in mpmath: the count is the first step past it."""
+    from core.calculators import chain_belt as cb
+    mp.mp.dps = 40
+    p = cb.STANDARD_PITCH[standard]
+    chain = standard.startswith("chain")
+    step = 2 if chain and not half else 1
+    if chain:
+        touch = sum(p * (mp.mpf("0.6") + mp.cot(mp.pi / n)) for n in (n1, n2)) / 2
+    else:
+        touch = (n1 + n2) * mp.mpf(p) / (2 * mp.pi)
+    r1, r2 = n1 * mp.mpf(p) / (2 * mp.pi), n2 * mp.mpf(p) / (2 * mp.pi)
+    exact = _mp_length(touch, r1, r2) / p
+    expected = step * int(mp.floor(exact / step) + 1)
+    sol = solve("chain_belt", {"pitch_standard": standard, "teeth_1": n1, "teeth_2": n2,
+                               "links": expected, "half_links": half})
+    assert sol.outputs["minimum_links"].value == expected
+    assert sol.outputs["center_distance"].value > touch
+    assert not any("overlap" in w for w in sol.warnings)
+    below = expected - step
+    short = solve("chain_belt", {"pitch_standard": standard, "teeth_1": n1, "teeth_2": n2,
+                                 "links": below, "half_links": half})
+    assert short.outputs["center_distance"].value <= touch
+    assert any("overlap" in w for w in short.warnings)
