@@ -161,3 +161,34 @@ def test_fewest_links_is_the_first_count_at_which_the_wheels_clear(standard, n1,
                                  "links": below, "half_links": half})
     assert short.outputs["center_distance"].value <= touch
     assert any("overlap" in w for w in short.warnings)
+
+
+def test_ratio_distance_never_offers_a_pinion_below_ten_teeth():
+    """Ratio 39 at 1 in, 20 DP (40 teeth in all) needs n = 40/40 = 1 tooth: the old answer was a
+    1:39 pair with a warning. Now the pinion is at least 10 T: 10:30 (ratio 3) is offered, the
+    highest ratio the distance allows, and the warning says why."""
+    sol = solve("ratio_distance", {"ratio": 39, "center_distance": "1 in", "diametral_pitch": 20})
+    o = {k: v.value for k, v in sol.outputs.items()}
+    assert (o["nearest_small_teeth"], o["nearest_large_teeth"]) == (10, 30)
+    assert "above_small_teeth" not in o
+    assert o["small_teeth"] == pytest.approx(1.0, rel=1e-15)  # (77), fractional, still shown
+    assert any("below the 10-tooth minimum" in w for w in sol.warnings)
+    for ratio, d, dp in [(2.5, 2, 20), (4.3, 2, 32), (1.0, 0.55, 20), (49.9, 10, 64)]:
+        o = {k: v.value for k, v in solve("ratio_distance", {
+            "ratio": ratio, "center_distance": f"{d} in", "diametral_pitch": dp}).outputs.items()}
+        assert min(o.get(f"{w}_small_teeth", 99) for w in ("nearest", "below", "above")) >= 10
+
+
+@pytest.mark.parametrize("raw,field", [
+    ({"ratio": "5.5e14"}, "ratio"),  # used to report an 'above' ratio of 249
+    ({"ratio": 51}, "ratio"),
+    ({"center_distance": "1e6 in"}, "center_distance"),
+    ({"diametral_pitch": "1e9 1/in"}, "diametral_pitch"),
+    ({"diametral_pitch": "0.5 1/in"}, "diametral_pitch"),
+    ({"center_distance": "0.45 in", "diametral_pitch": 20}, "center_distance"),  # 18 teeth < 2·10
+])
+def test_ratio_distance_inputs_are_bounded_to_gear_pairs(raw, field):
+    from core.errors import InputError
+    with pytest.raises(InputError) as e:
+        solve("ratio_distance", raw)
+    assert e.value.field == field
