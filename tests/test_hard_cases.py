@@ -86,10 +86,13 @@ def test_pneumatics_start_exactly_at_switch_off():
 
 
 def test_pneumatics_fill_time_against_mpmath_quadrature():
-    """The switch-off event located to the solver's tolerance: t(P) = ∫ V dP / (P_atm V̇(P))."""
-    c = [mp.mpf(x) for x in pn.flow_fit("Thomas 215 12 V")]
-    q = lambda p: sum(ci * p ** (len(c) - 1 - i) for i, ci in enumerate(c))  # noqa: E731
-    exact = mp.quad(lambda p: mp.mpf("1148e-6") / (pn.P_ATM * q(p)), [mp.mpf(0), 120 * mp.mpf(PSI)])
+    """The switch-off event located to the solver's tolerance: t(P) = ∫ V dP / (P_atm V̇(P)), V̇ the
+    vendor table through scipy's PchipInterpolator, integrated piece by piece."""
+    from scipy.interpolate import PchipInterpolator
+
+    knots = [k * PSI for k in pn.CURVE_PSI]
+    q = PchipInterpolator(knots, [c * pn.CFM for c in pn.COMPRESSORS["Thomas 215 12 V"]])
+    exact = mp.quad(lambda p: mp.mpf("1148e-6") / (pn.P_ATM * float(q(float(p)))), knots)
     v = parse_inputs(get("pneumatics"), {"c1_count": 0, "start_pressure": 0,
                                          "compressor_model": "Thomas 215 12 V"})[0]
     run = pn.simulate(v, 1e-11)
