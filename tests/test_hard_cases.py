@@ -126,3 +126,21 @@ def test_integrator_event_at_the_very_first_step_end():
     run = integrate(lambda t, y: [1.0], 0.0, 1.0, [0.0], rtol=1e-9, atol=1e-12,
                     events=[Event("reach", lambda t, y: y[0] - 1.0, +1)])
     assert run.t[-1] == pytest.approx(1.0, abs=1e-12)
+
+
+def test_motor_side_torque_and_kt_say_they_include_the_gearbox_efficiency():
+    """Gear ratio's motor-side torque is r·F/G (η already taken off, as the motor tab's operating
+    torque), and the motor tab's Kt is τ̃s/(ĩs − ĩf) with η in it. The labels used to read 'Torque
+    at gearbox input' (which would be r·F/(G·η)) and 'Torque constant Kt' (the motor's own is Kt/η).
+    Fed across, the two tabs agree: same current and speed at η = 0.7, 3 NEOs."""
+    system = dict(motor="NEO", motor_count=3, voltage="12 V", efficiency=0.7)
+    g = solve("gear_ratio", {**system, "mode": "ratio", "ratio": 12, "load": "90 lbf", "radius": "1.5 in"})
+    tau = g.outputs["motor_torque"].value
+    assert tau == pytest.approx(90 * 4.4482216152605 * 1.5 * 0.0254 / 12, rel=1e-12)  # r·F/G
+    m = solve("motor", {**system, "torque": f"{tau!r} N*m"})
+    assert 3 * g.outputs["current_per_motor"].value == pytest.approx(m.outputs["current"].value, rel=1e-12)
+    assert 12 * g.outputs["loaded_speed"].value == pytest.approx(m.outputs["speed"].value, rel=1e-12)
+    kt = get("motor").output("kt")
+    torque = get("gear_ratio").output("motor_torque")
+    assert "η" in kt.label and "K_T/η" in kt.help
+    assert "η" in torque.label and "r·F/(G·η)" in torque.help
