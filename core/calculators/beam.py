@@ -5,7 +5,8 @@ A straight beam of one cross section and material: bending deflection under a po
 stress and its safety factor against yield, Euler column buckling (59) with the seed's K table,
 and twist under a torque (60). Section properties and load cases live in core/beams.py, whose
 docstring lists where the seed is corrected: (44) hex J, (47)/(48) thin-wall round tube,
-(50) rounded square J, (51) wrong rectangular-tube I, (52) typo in Bredt's denominator, and
+(50) rounded square J, (51) wrong rectangular-tube I, (52) typo in Bredt's denominator (the tube's J
+itself is bracketed by two finite-element bounds and shown with its accuracy), and
 (53)-(57) being the fixed-fixed case with a the distance to the FARTHER support.
 
 Other choices:
@@ -107,11 +108,16 @@ OUTPUTS = (
     Output("area_moment", "Area moment of inertia I", "area_moment", "in**4",
            help="Exact second moment of area about the bending axis."),
     Output("torsion_constant", "Torsion constant J", "area_moment", "in**4",
-           help="Exact (hex and rectangular tube: converged finite-element value)."),
+           help="Exact for round, round tube and square; hex to 4e-11; rectangular tube: finite-element "
+                "value between proven lower and upper bounds (see J accuracy)."),
+    Output("torsion_constant_error", "J accuracy (±)", "dimensionless", "%",
+           help="Rectangular tube: half the gap between the lower (stress-function) and upper "
+                "(warping-function) finite-element bounds on J, relative; the true J is within it. "
+                "Walls under 1e-4 of the size use Bredt's J, good to about wall/size."),
     Output("thin_wall_torsion_constant", "Thin-wall J (seed)", "area_moment", "in**4",
            help="Tubes: the seed's thin-wall formula (48) or Bredt's (52), for comparison."),
     Output("thin_wall_error", "Thin-wall J error", "dimensionless", "%",
-           help="How far the thin-wall J is from the exact J."),
+           help="How far the thin-wall J is from the finite-element (or exact) J."),
     Output("max_deflection", "Max deflection", "length", "in"),
     Output("max_deflection_position", "Max deflection at", "length", "in",
            help="Distance from the left support (cantilever: from the fixed end)."),
@@ -213,9 +219,11 @@ def compute(v) -> Result:
         error = sec.thin_wall_torsion_constant / sec.torsion_constant - 1
         values["thin_wall_torsion_constant"] = sec.thin_wall_torsion_constant
         values["thin_wall_error"] = error
+    if sec.torsion_constant_error is not None:
+        values["torsion_constant_error"] = sec.torsion_constant_error
         if abs(error) > 0.05:
             warnings.append(f"The seed's thin-wall torsion constant is {abs(error):.0%} "
-                            f"{'low' if error < 0 else 'high'} for this wall; the exact J is used.")
+                            f"{'low' if error < 0 else 'high'} for this wall; the finite-element J is used.")
     if transition is not None:
         values["transition_slenderness"] = transition
     if rho is not None:
