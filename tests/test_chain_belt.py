@@ -248,3 +248,24 @@ def test_reverse_at_the_wrap_minimum(method, factor):
     assert o["links_above"] == 40 and o["links_above"] < o["minimum_links"]  # wraps, but overlaps
     assert any("overlap" in w for w in sol.warnings)
     assert o["center_above"] >= r2 - r1
+
+
+async def test_switching_to_a_chain_standard_in_the_app_solves_as_a_chain():
+    """Picking #25 chain used to leave 'Chain or belt' at belt and show an error until changed by
+    hand; the kind now follows the standard and half links appear for a chain."""
+    from textual.widgets import Select
+
+    from tests.tui_helpers import settle
+    from tui.app import GearheadApp
+    from tui.components.calculator_tab import CalculatorTab
+
+    app = GearheadApp(blink=False, initial="chain_belt")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-chain_belt", CalculatorTab)
+        assert not tab.query_one("#row-kind").display and not tab.query_one("#row-half_links").display
+        tab.query_one("#in-pitch_standard", Select).value = "chain_25"
+        await settle(pilot)
+        assert tab.solution is not None and tab.solution.inputs["pitch_standard"].value == "chain_25"
+        assert tab.query_one("#row-half_links").display and not tab.query_one("#row-kind").display
+        assert tab.solution.outputs["minimum_links"].value % 2 == 0
