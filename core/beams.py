@@ -2,10 +2,12 @@
 
 Sections (seed 5.1) give the exact second moment of area I and torsion constant J:
 - hex (43)/(44): I = 5√3/144·s⁴ exactly (s across flats; the seed's 0.0601 is it rounded).
-  J has no closed form. J = 0.115051·s⁴, from a P1 finite-element solution of Prandtl's
-  stress-function problem on the hexagon (structured equilateral mesh, n = 16…256 divisions per
-  side, Richardson-extrapolated; converged to 6 digits, re-computed in tests/test_hard_beam.py).
-  The seed's 0.1154 is 0.30 % high.
+  J has no closed form. J = 0.11505099441·s⁴, from a P1 finite-element solution of Prandtl's
+  stress-function problem on the hexagon (structured equilateral mesh, n = 16…512 divisions per
+  side, Richardson-extrapolated in h², h³ (the 120° corners' r^{3/2}), h⁴, h⁵, h⁶: every
+  extrapolation over 5 or 6 of those grids gives 0.1150509944058-0.1150509944094, so the figure is
+  good to ~4e-11 relative; re-computed in tests/test_hard_beam.py). The seed's 0.1154 is 0.30 %
+  high; the six-digit 0.115051 was 4.9e-8 high.
 - round tube (47)/(48): the seed's π/8·d³h and π/4·d³h are thin-wall forms; exact
   I = π/64·(D⁴ − d⁴), J = 2I, written as (D² + d²)(D + d)·2t so a thin wall does not cancel.
   With d the mean diameter d_m = D − t, (48) is low by the factor d_m²/(d_m² + t²) (shown as the
@@ -15,7 +17,12 @@ Sections (seed 5.1) give the exact second moment of area I and torsion constant 
 - rectangular tube (51): the seed's I = x²yh/3 is wrong (a thin square tube has 2/3·a³t, twice
   that); exact I = (x³y − (x−2h)³(y−2h))/12. (52) has a typo: Bredt's thin-wall formula for a
   uniform wall is J = 2h(x−h)²(y−h)²/(x + y − 2h) (the seed's denominator h(x+y−h) should be
-  h(x+y−2h)). The exact J comes from a finite-element solution (below); Bredt is shown beside it.
+  h(x+y−2h)). J has no closed form: it is bracketed between a lower and an upper finite-element
+  bound (stress function and warping function, _tube_torsion_bounds) and shown as their midpoint
+  with half the gap as its accuracy: 1e-9 to 1e-7 relative for FRC tubes (1×1 to 2×1 in, 1/16
+  to 1/8 in wall); up to ~2e-4 for a tube thousands of walls long (the warping bound loses digits
+  to the polar moment there). The old P1 grids with Richardson extrapolation were low by up to
+  1.6e-4, below the lower bound. Bredt is shown beside it.
 
 Load cases (seed 5.2, Shigley table A-9), a measured from the left support (or the fixed end):
 - (53) is the fixed-fixed beam (Shigley A-9-14), for 0 ≤ x ≤ a. Its maximum (56)/(57) lies in
@@ -37,9 +44,8 @@ SECTION_LABELS = ("Hex", "Round", "Round tube", "Square", "Rectangular tube")
 SUPPORTS = ("simple", "fixed", "cantilever")
 SUPPORT_LABELS = ("Between simple supports", "Between fixed supports", "Cantilever")
 
-HEX_TORSION = 0.115051  # J/s⁴, s across flats (FEM + Richardson, see module docstring)
+HEX_TORSION = 0.11505099441  # J/s⁴, s across flats (FEM + Richardson, see module docstring)
 HEX_AREA_MOMENT = 5 * math.sqrt(3) / 144  # I/s⁴, exact
-ELONGATION = 4096  # side ratio beyond which a tube's J is extrapolated linearly in its long side
 THIN_WALL_LIMIT = 1e-4  # wall/size below which Bredt is used for J (its error is < 0.01 % there)
 
 
@@ -51,6 +57,7 @@ class Section:
     torsion_constant: float  # J, exact or numerically converged, m⁴
     extreme_fiber: float  # c: farthest fibre from the bending axis, m
     thin_wall_torsion_constant: float | None = None  # the seed's thin-wall J, for tubes
+    torsion_constant_error: float | None = None  # relative bound on J's error where not exact
 
 
 def hex_section(s: float) -> Section:
@@ -104,107 +111,140 @@ def rectangular_tube_section(x: float, y: float, h: float) -> Section:
     area = 2 * h * (x + y) - 4 * h * h
     bredt = 2 * h * (x - h) ** 2 * (y - h) ** 2 / (x + y - 2 * h)  # (52), denominator corrected
     if h / min(x, y) < THIN_WALL_LIMIT:
-        J = bredt
+        J, error = bredt, h / min(x, y)  # Bredt's error is O(t/a): ~1e-3 at t/a = 1e-3 (tests)
     else:
-        J = tube_torsion_fem(x, y, h)
-    return Section(area, Ix, min(Ix, Iy), J, x / 2, bredt)
+        J, error = tube_torsion_fem(x, y, h), tube_torsion_error(x, y, h)
+    return Section(area, Ix, min(Ix, Iy), J, x / 2, bredt, error)
 
 
 def tube_torsion_fem(W: float, H: float, t: float) -> float:
-    """Torsion constant of a W×H rectangular tube (wall t) from Prandtl's stress function φ.
+    """Torsion constant of a W×H rectangular tube (wall t): the midpoint of the two bounds of
+    tube_torsion_bounds, within tube_torsion_error(W, H, t) (relative) of the true J."""
+    lower, upper = _tube_torsion_bounds(W / t, H / t)  # J ∝ length⁴: solve for t = 1, scale
+    return (lower + upper) / 2 * t**4
 
-    ∇²φ = −2 in the wall, φ = 0 on the outside, φ = const on the hole boundary (the constant set
-    by minimising the energy, which is Bredt's circulation condition), J = 2∫φ dA with φ = const
-    over the hole. Bilinear elements on a tensor grid, graded towards the walls; the hole's nodes
-    share one unknown. Three grids (4, 8, 16 elements across the wall) are Richardson-extrapolated
-    (see extrapolated_torsion). Agrees with grids four times finer to ~1e-4 (tests/test_hard_beam.py).
-    """
-    return _tube_torsion_unit_wall(W / t, H / t) * t**4  # J ∝ length⁴: solve for t = 1, scale
+
+def tube_torsion_error(W: float, H: float, t: float) -> float:
+    """Half the gap between the bounds, relative: the true J is within this of tube_torsion_fem."""
+    lower, upper = _tube_torsion_bounds(W / t, H / t)
+    return (upper - lower) / (upper + lower)
 
 
 @lru_cache(maxsize=64)
-def _tube_torsion_unit_wall(W: float, H: float) -> float:
-    """J of a W×H tube with wall 1 (depends on the two ratios only, so it caches well).
+def _tube_torsion_bounds(W: float, H: float) -> tuple[float, float]:
+    """Lower and upper bounds on J of a W×H tube of wall 1 from two finite-element solutions on one
+    mesh of a quarter of the section (both problems are symmetric about the two mid-planes).
 
-    The graded grid meshes a long tube cheaply (its cells grow geometrically along the sides), but
-    beyond ~1e15:1 its cells round to zero width, so beyond ELONGATION × the short side J is
-    extrapolated linearly from two grids. J is then linear in the long side L only up to an
-    O(1/L) term (the hole's stress-function constant is set by the whole perimeter, as in Bredt's
-    2t·A²/p), so the extrapolation is low by about 2/ELONGATION² relative: ~1e-7 at 4096 (a
-    threshold of 64 gave 2.5e-4, enough to put a thin wall's J below Bredt's).
+    Lower: Prandtl's stress function φ, ∇²φ = −2 in the wall, φ = 0 outside, φ = C over the hole
+    (C one unknown, set by the energy: Bredt's circulation condition); J = max 4∫φ − ∫|∇φ|², so any
+    conforming φ gives J from below. Upper: the warping function ψ (antisymmetric, 0 on the
+    mid-planes, free on every edge); J = min ∫(ψ_x − y)² + (ψ_y + x)² over the wall, so any ψ
+    gives J from above. Elements: tensor Lagrange polynomials of degree TUBE_DEGREE on
+    Gauss-Lobatto points (spectral elements), graded geometrically (ratio TUBE_GRADING, TUBE_LAYERS
+    layers) toward the inner corner, where both fields have an r^{2/3} singularity, and growing
+    ×2 along the sides, where the field is one-dimensional but for terms like e^{−πs/t}. More
+    layers would make the smallest cells so thin that rounding (≈ 1e-16/h²) spoils the bounds.
     """
-    short, long_ = min(W, H), max(W, H)
-    if long_ > ELONGATION * short:
-        near = _tube_torsion_unit_wall(short, ELONGATION / 2 * short)
-        far = _tube_torsion_unit_wall(short, ELONGATION * short)
-        return far + (long_ - ELONGATION * short) * (far - near) / (ELONGATION / 2 * short)
-    return extrapolated_torsion(W, H, (4, 8, 16))
-
-
-def extrapolated_torsion(W: float, H: float, cells: tuple[int, int, int]) -> float:
-    """Richardson extrapolation over three grids, halving the cell size each time, at the observed
-    order p, kept between 4/3 (the inner corners' r^{2/3} singularity, the asymptotic rate) and 2
-    (a small hole, where the singularity is weak and the smooth rate shows first)."""
-    coarse, middle, fine = (_tube_torsion_grid(W, H, m) for m in cells)
-    step1, step2 = middle - coarse, fine - middle
-    p = math.log2(step1 / step2) if step1 * step2 > 0 else 4 / 3
-    p = min(max(p, 4 / 3), 2.0)
-    return fine + step2 / (2**p - 1)
-
-
-def _graded(length: float, h0: float, ratio: float = 1.3):
-    """Points on [0, length], spacing h0 at both ends growing geometrically to the middle."""
-    half = length / 2
-    points = [0.0]
-    h = h0
-    while points[-1] + h < half - 0.5 * h:
-        points.append(points[-1] + h)
-        h *= ratio
-    points.append(half)
-    return points + [length - p for p in reversed(points[:-1])]
-
-
-def _axis(size: float, m: int):
-    """Grid along one side of a tube of wall 1: m cells across each wall, graded in the hole."""
-    wall = [i / m for i in range(m + 1)]
-    middle = [1 + p for p in _graded(size - 2, 1 / m)]
-    return wall + middle[1:] + [size - p for p in reversed(wall[:-1])]
-
-
-def _tube_torsion_grid(W: float, H: float, m: int) -> float:
     import numpy as np
     from scipy.sparse import coo_matrix
     from scipy.sparse.linalg import spsolve
 
-    xu, xv = np.array(_axis(W, m)), np.array(_axis(H, m))
-    nu, nv = len(xu), len(xv)
-    iu, iv = np.meshgrid(np.arange(nu), np.arange(nv), indexing="ij")
-    outside = (iu == 0) | (iu == nu - 1) | (iv == 0) | (iv == nv - 1)
-    hole = (iu >= m) & (iu <= nu - 1 - m) & (iv >= m) & (iv <= nv - 1 - m)
-    dof = -np.ones((nu, nv), dtype=int)
-    free = ~outside & ~hole
-    count = int(free.sum())
-    dof[free] = np.arange(count)
-    dof[hole] = count  # one shared unknown: φ is constant over the hole
-    count += 1
-    a = np.repeat(np.diff(xu), nv - 1)  # element widths (u), row-major over (iu, iv)
-    b = np.tile(np.diff(xv), nu - 1)  # element heights (v)
-    eu, ev = np.meshgrid(np.arange(nu - 1), np.arange(nv - 1), indexing="ij")
-    eu, ev = eu.ravel(), ev.ravel()
-    nodes = np.stack([dof[eu, ev], dof[eu + 1, ev], dof[eu + 1, ev + 1], dof[eu, ev + 1]], axis=1)
-    kx = np.array([[2, -2, -1, 1], [-2, 2, 1, -1], [-1, 1, 2, -2], [1, -1, -2, 2]]) / 6
-    ky = np.array([[2, 1, -1, -2], [1, 2, -2, -1], [-1, -2, 2, 1], [-2, -1, 1, 2]]) / 6
-    k_el = (b / a)[:, None, None] * kx + (a / b)[:, None, None] * ky  # bilinear element stiffness
-    rows = np.repeat(nodes, 4, axis=1).ravel()
-    cols = np.tile(nodes, (1, 4)).ravel()
-    keep = (rows >= 0) & (cols >= 0)
-    K = coo_matrix((k_el.reshape(-1)[keep], (rows[keep], cols[keep])), shape=(count, count)).tocsc()
-    load = np.zeros(count)
-    flat = nodes.ravel()
-    per_node = np.repeat(2 * a * b / 4, 4)  # ∫2·N_i over the element
-    np.add.at(load, flat[flat >= 0], per_node[flat >= 0])
-    phi = spsolve(K, load)
-    return float(load @ phi)  # J = 2∫φ dA = load·φ
+    p, L = TUBE_DEGREE, TUBE_LAYERS
+    x01, K1, M1, w1, m1 = _spectral_reference(p)
+    a, b = W / 2, H / 2  # the quarter, from the outer corner: u across the side of width W, v of H
+    bu, bv = np.array(_tube_axis(a, L)), np.array(_tube_axis(b, L))
+    Eu, Ev = len(bu) - 1, len(bv) - 1
+    Nu, Nv = Eu * p + 1, Ev * p + 1
+    iu, iv = np.arange(Nu)[:, None], np.arange(Nv)[None, :]
+    corner = L * p  # node index of the inner wall face (u = 1, v = 1)
+    EU, EV = np.meshgrid(np.arange(Eu), np.arange(Ev), indexing="ij")
+    wall = ~((EU >= L) & (EV >= L))  # elements of the hole are not in the wall
+    EU, EV = EU[wall], EV[wall]
+    hu, hv = np.diff(bu)[EU], np.diff(bv)[EV]
+    local = np.arange(p + 1)
+    gu, gv = EU[:, None] * p + local, EV[:, None] * p + local
+    k_el = np.outer(hv / hu, np.kron(K1, M1).ravel()) + np.outer(hu / hv, np.kron(M1, K1).ravel())
+
+    def solve(dof, count, rhs_el, extra):
+        """K·x = f over the wall elements with this node → unknown map (−1: held at 0); f·x."""
+        ld = dof[gu[:, :, None], gv[:, None, :]].reshape(len(EU), -1)
+        rows, cols = np.repeat(ld, ld.shape[1], axis=1), np.tile(ld, (1, ld.shape[1]))
+        keep = (rows >= 0) & (cols >= 0)
+        K = coo_matrix((k_el[keep], (rows[keep], cols[keep])), shape=(count, count)).tocsc()
+        f = np.zeros(count)
+        np.add.at(f, ld[ld >= 0], rhs_el[ld >= 0])
+        f += extra
+        return float(f @ spsolve(K, f))
+
+    # Prandtl: φ = 0 on the outer faces (u = 0, v = 0); one unknown C for the hole and its faces
+    hole = (iu >= corner) & (iv >= corner)
+    free = ~hole & (iu > 0) & (iv > 0)
+    dof = np.full((Nu, Nv), -1)
+    n_free = int(free.sum())
+    dof[free] = np.arange(n_free)
+    dof[hole] = n_free
+    load = 2 * np.outer(hu * hv, np.kron(w1, w1))  # ∫2·N_i over each element
+    extra = np.zeros(n_free + 1)
+    extra[n_free] = 2 * (a - 1) * (b - 1)  # ∫2·C over the hole
+    lower = 4 * solve(dof, n_free + 1, load, extra)  # J = 2∫φ = f·φ at the optimum
+
+    # warping: ψ = 0 on the mid-planes (u = a, v = b), free elsewhere; x = a − u, y = b − v
+    free = ~((iu > corner) & (iv > corner)) & (iu < Nu - 1) & (iv < Nv - 1)
+    dof = np.full((Nu, Nv), -1)
+    n_free = int(free.sum())
+    dof[free] = np.arange(n_free)
+    jump = np.zeros(p + 1)
+    jump[0], jump[-1] = -1.0, 1.0  # ∫ℓ_i' over an element
+    u0, v0 = bu[EU], bv[EV]
+    y_int = np.outer(hv * (b - v0), w1) - np.outer(hv * hv, m1)  # ∫ℓ_j(v)·y dv
+    x_int = np.outer(hu * (a - u0), w1) - np.outer(hu * hu, m1)  # ∫ℓ_i(u)·x du
+    # the cross term 2∫(ψ_u·y − ψ_v·x): ψ_x = −ψ_u, ψ_y = −ψ_v in (ψ_x − y)² + (ψ_y + x)²
+    cross = (jump[None, :, None] * y_int[:, None, :] - x_int[:, :, None] * jump[None, None, :])
+    polar = (W * H * (W * W + H * H) - (W - 2) * (H - 2) * ((W - 2) ** 2 + (H - 2) ** 2)) / 12
+    upper = polar - 4 * solve(dof, n_free, cross.reshape(len(EU), -1), 0.0)
+    return lower, max(upper, lower)
+
+
+TUBE_DEGREE = 8
+TUBE_LAYERS = 6
+TUBE_GRADING = 0.15
+
+
+def _tube_axis(half: float, layers: int):
+    """Element edges on [0, half] (wall 1): geometric toward 1 from both sides, then doubling."""
+    sigma = TUBE_GRADING
+    edges = [0.0] + [1 - sigma**k for k in range(1, layers)] + [1.0]
+    above = [1 + sigma**k for k in range(layers - 1, 0, -1) if 1 + sigma**k < half]
+    step = (above[-1] - (above[-2] if len(above) > 1 else 1.0)) * 2 if above else half - 1
+    edge = above[-1] if above else 1.0
+    while edge + step < half - step / 2:
+        edge += step
+        above.append(edge)
+        step *= 2
+    return edges + above + ([half] if half > 1 else [])
+
+
+@lru_cache(maxsize=4)
+def _spectral_reference(p: int):
+    """Lagrange basis of degree p on the Gauss-Lobatto points of [0, 1]: nodes, stiffness ∫ℓ_i'ℓ_j',
+    mass ∫ℓ_iℓ_j (Gauss-Legendre, exact), ∫ℓ_i and ∫ℓ_i·s (Lobatto, exact to degree 2p − 1)."""
+    import numpy as np
+    from numpy.polynomial import legendre
+
+    c = np.zeros(p + 1)
+    c[-1] = 1
+    x = np.concatenate([[-1.0], legendre.legroots(legendre.legder(c)), [1.0]])
+    w = 2 / (p * (p + 1) * legendre.legval(x, c) ** 2)
+    q, qw = legendre.leggauss(p + 2)
+    value, slope = np.zeros((len(q), p + 1)), np.zeros((len(q), p + 1))
+    for i in range(p + 1):
+        basis = np.polynomial.Polynomial.fromroots(np.delete(x, i))
+        basis = basis / basis(x[i])
+        value[:, i], slope[:, i] = basis(q), basis.deriv()(q)
+    mass = (value * qw[:, None]).T @ value / 2  # [−1, 1] → [0, 1]
+    stiffness = (slope * qw[:, None]).T @ slope * 2
+    nodes = (x + 1) / 2
+    return nodes, stiffness, mass, w / 2, w / 2 * nodes
 
 
 # Load cases ------------------------------------------------------------------------------------

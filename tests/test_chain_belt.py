@@ -11,6 +11,7 @@ from core import presets
 from core.calculators import chain_belt as cb
 from core.errors import InputError
 from core.model import solve
+from core.registry import get
 
 IN = 0.0254
 MM = 1e-3
@@ -68,7 +69,7 @@ def test_shortest_belt_that_wraps_both():
     # 20T/30T HTD 5 mm: L_min = 2π r2 = 30 teeth * 5 mm; there D = Δ = (30 - 20)·5 mm/(2π).
     o = out(teeth_1=20, teeth_2=30, links=30)
     assert o["center_distance"] == pytest.approx(10 * 5 * MM / (2 * math.pi), rel=1e-14)
-    assert o["minimum_links"] == 30
+    assert o["minimum_links"] == 42  # the fewest that clear: test_hard_transmission.py
     assert o["wrap_angle_small"] == pytest.approx(0, abs=1e-7)
     with pytest.raises(InputError) as e:
         solve("chain_belt", {"teeth_1": 20, "teeth_2": 30, "links": 29})
@@ -160,10 +161,15 @@ def test_odd_chain_links_warn():
     assert any("half" in w for w in sol.warnings)
 
 
-def test_standard_of_the_other_kind_is_an_input_error():
-    with pytest.raises(InputError) as e:
-        solve("chain_belt", {"kind": "belt", "pitch_standard": "chain_25"})
-    assert e.value.field == "pitch_standard" and "chain" in e.value.message
+def test_a_standard_sets_the_kind():
+    """Switching to #25 chain with 'Chain or belt' left at belt used to be an error; the field is
+    asked only for a custom pitch now, so a chain standard is a chain (even links)."""
+    o = out(kind="belt", pitch_standard="chain_25", teeth_1=16, teeth_2=16, mode="links_from_center",
+            target_center="6.1 in")
+    assert o["links_above"] % 2 == 0 and o["links_below"] % 2 == 0
+    f = next(f for f in get("chain_belt").fields if f.name == "kind")
+    assert not f.active("center_from_links", {"pitch_standard": "chain_25"})
+    assert f.active("center_from_links", {"pitch_standard": "custom"})
 
 
 def test_custom_pitch_is_used_only_for_custom():
@@ -214,12 +220,15 @@ def test_presets_load_and_solve():
 
 @pytest.mark.parametrize("method", ["circumference", "chordal"])
 def test_minimum_links_chain(method):
-    # #25 chain 13T/37T: L_min = 2π r_2 = 37 p (65) -> 37 links, even for chain -> 38 (half links 37)
+    # #25 chain 13T/37T: the sprockets' outside diameters p(0.6 + cot(180°/n)) = 1.16430 and
+    # 3.08660 in touch at D = 2.12545 in; Δ = 24·0.25/(2π) = 0.954930 in, X = 1.89888 in,
+    # L = 2X + π(r_1 + r_2) + 2Δ·sin⁻¹(Δ/D) = 3.79776 + 6.25 + 0.88977 = 10.9375 in = 43.75 links:
+    # 44 with or without half links. (Wrapping alone needs 37 p: 38 even, 37 with a half link.)
     o = out(kind="chain", pitch_standard="chain_25", teeth_1=13, teeth_2=37, links=38, pitch_diameter=method)
-    assert o["minimum_links"] == 38
+    assert o["minimum_links"] == 44
     h = out(kind="chain", pitch_standard="chain_25", teeth_1=13, teeth_2=37, links=38, pitch_diameter=method,
             half_links=True)
-    assert h["minimum_links"] == 37
+    assert h["minimum_links"] == 44
     with pytest.raises(InputError):
         solve("chain_belt", {"kind": "chain", "pitch_standard": "chain_25", "teeth_1": 13, "teeth_2": 37,
                              "links": 36, "pitch_diameter": method})
@@ -236,5 +245,27 @@ def test_reverse_at_the_wrap_minimum(method, factor):
                                "target_center": f"{(r2 - r1) * factor!r} m"})
     o = {k: v.value for k, v in sol.outputs.items()}
     assert o["links_exact"] == pytest.approx(cb.minimum_length(r1, r2) / p, rel=1e-6)
-    assert o["links_above"] == o["minimum_links"] and o["links_above"] % 2 == 0
+    assert o["links_above"] == 40 and o["links_above"] < o["minimum_links"]  # wraps, but overlaps
+    assert any("overlap" in w for w in sol.warnings)
     assert o["center_above"] >= r2 - r1
+
+
+async def test_switching_to_a_chain_standard_in_the_app_solves_as_a_chain():
+    """Picking #25 chain used to leave 'Chain or belt' at belt and show an error until changed by
+    hand; the kind now follows the standard and half links appear for a chain."""
+    from textual.widgets import Select
+
+    from tests.tui_helpers import settle
+    from tui.app import GearheadApp
+    from tui.components.calculator_tab import CalculatorTab
+
+    app = GearheadApp(blink=False, initial="chain_belt")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-chain_belt", CalculatorTab)
+        assert not tab.query_one("#row-kind").display and not tab.query_one("#row-half_links").display
+        tab.query_one("#in-pitch_standard", Select).value = "chain_25"
+        await settle(pilot)
+        assert tab.solution is not None and tab.solution.inputs["pitch_standard"].value == "chain_25"
+        assert tab.query_one("#row-half_links").display and not tab.query_one("#row-kind").display
+        assert tab.solution.outputs["minimum_links"].value % 2 == 0

@@ -142,6 +142,7 @@ def test_reverse_of_forward_returns_the_ratio(motor, n, V, eta, d, W, mu, G, V_m
     m = motors.system(motors.lookup(motor, "wpilib")[0], n, V, eta)
     R_m = V / m.stall_current  # (4): the motors' resistance
     assume(i_tot * R_m < V_min * (1 - 1e-9))  # else they cannot draw i_tot at V_min (tests above)
+    assume(i_tot * R_m < V * (1 - 1e-9))  # nor at the applied voltage (test_hard_drivetrain.py)
     assert i_tot == pytest.approx(fwd["slip_current"] * n, rel=1e-12)
     R_batt, R_main = 0.015, 0.002
     V_batt = V_min + i_tot * (R_batt + R_main + R_br / n)  # (41) solved for V_batt
@@ -208,10 +209,12 @@ def test_reverse_budget_just_above_circuit_stall_current():
 
 
 def test_reverse_mode_never_says_the_motors_stall_first():
-    # Voltage field 1 V (ĩs = 122 A at 1 V) but the battery feeds the motors in reverse mode:
-    # i_tot = 308.108 A ≤ i_c = 12.7/(0.0185 + 0.0081967) = 475.75 A, so (42) holds and the
-    # wiring's stall force K_T·(i_c − ĩf)·G/r exceeds traction. The stall check at the 1 V
-    # field voltage (τ̃s = 2.363 N·m) used to warn "stall before the wheels slip".
+    # Voltage field 1 V: stalled at 1 V the four Krakens draw ĩs = 4·366/12 = 122 A, below the
+    # allowed i_tot = 308.108 A, so the fastest ratio that slips is (42) with 122 A:
+    # G = 37.2850/(0.0194780·(122 − 8/12)) = 15.7765, where the stall force τ̃s(1 V)·G/r equals
+    # traction. (The old model fed the motors the battery's 12.7 V here, against the field.)
     s = sol(mode="reverse", voltage="1 V")
     assert not any("stall before the wheels slip" in w for w in s.warnings)
+    assert any("at 1 V (the Voltage field)" in w for w in s.warnings)
     assert s.outputs["pushing_force"].value == pytest.approx(165 * LBF, rel=1e-12)
+    assert s.outputs["max_ratio"].value == pytest.approx(15.7765, rel=1e-5)

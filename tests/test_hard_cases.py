@@ -86,10 +86,13 @@ def test_pneumatics_start_exactly_at_switch_off():
 
 
 def test_pneumatics_fill_time_against_mpmath_quadrature():
-    """The switch-off event located to the solver's tolerance: t(P) = ∫ V dP / (P_atm V̇(P))."""
-    c = [mp.mpf(x) for x in pn.flow_fit("Thomas 215 12 V")]
-    q = lambda p: sum(ci * p ** (len(c) - 1 - i) for i, ci in enumerate(c))  # noqa: E731
-    exact = mp.quad(lambda p: mp.mpf("1148e-6") / (pn.P_ATM * q(p)), [mp.mpf(0), 120 * mp.mpf(PSI)])
+    """The switch-off event located to the solver's tolerance: t(P) = ∫ V dP / (P_atm V̇(P)), V̇ the
+    vendor table through scipy's PchipInterpolator, integrated piece by piece."""
+    from scipy.interpolate import PchipInterpolator
+
+    knots = [k * PSI for k in pn.CURVE_PSI]
+    q = PchipInterpolator(knots, [c * pn.CFM for c in pn.COMPRESSORS["Thomas 215 12 V"]])
+    exact = mp.quad(lambda p: mp.mpf("1148e-6") / (pn.P_ATM * float(q(float(p)))), knots)
     v = parse_inputs(get("pneumatics"), {"c1_count": 0, "start_pressure": 0,
                                          "compressor_model": "Thomas 215 12 V"})[0]
     run = pn.simulate(v, 1e-11)
@@ -123,3 +126,21 @@ def test_integrator_event_at_the_very_first_step_end():
     run = integrate(lambda t, y: [1.0], 0.0, 1.0, [0.0], rtol=1e-9, atol=1e-12,
                     events=[Event("reach", lambda t, y: y[0] - 1.0, +1)])
     assert run.t[-1] == pytest.approx(1.0, abs=1e-12)
+
+
+def test_motor_side_torque_and_kt_say_they_include_the_gearbox_efficiency():
+    """Gear ratio's motor-side torque is r·F/G (η already taken off, as the motor tab's operating
+    torque), and the motor tab's Kt is τ̃s/(ĩs − ĩf) with η in it. The labels used to read 'Torque
+    at gearbox input' (which would be r·F/(G·η)) and 'Torque constant Kt' (the motor's own is Kt/η).
+    Fed across, the two tabs agree: same current and speed at η = 0.7, 3 NEOs."""
+    system = dict(motor="NEO", motor_count=3, voltage="12 V", efficiency=0.7)
+    g = solve("gear_ratio", {**system, "mode": "ratio", "ratio": 12, "load": "90 lbf", "radius": "1.5 in"})
+    tau = g.outputs["motor_torque"].value
+    assert tau == pytest.approx(90 * 4.4482216152605 * 1.5 * 0.0254 / 12, rel=1e-12)  # r·F/G
+    m = solve("motor", {**system, "torque": f"{tau!r} N*m"})
+    assert 3 * g.outputs["current_per_motor"].value == pytest.approx(m.outputs["current"].value, rel=1e-12)
+    assert 12 * g.outputs["loaded_speed"].value == pytest.approx(m.outputs["speed"].value, rel=1e-12)
+    kt = get("motor").output("kt")
+    torque = get("gear_ratio").output("motor_torque")
+    assert "η" in kt.label and "K_T/η" in kt.help
+    assert "η" in torque.label and "r·F/(G·η)" in torque.help

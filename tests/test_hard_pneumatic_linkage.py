@@ -97,3 +97,40 @@ def test_reverse_tiny_swing():
     assert len(rv["found"]) == 2
     for (A, B), (cx, cy) in zip(rv["found"], ref):
         assert abs(A + cx) < 1e-15 and abs(B - cy) < 1e-15
+
+
+def test_dead_centre_warning_follows_the_lever_arm_not_the_arm_angle():
+    """Cylinder pivot 0.3 in from the arm pivot (A = 0.3, B = 0), rod end 8.3 in out on the arm.
+    The triangle's angle at the arm pivot is 45° retracted and 90° extended (far from 0/180°, so
+    the old angle test stayed quiet), but the cylinder pushes almost through the arm pivot:
+    h = r·d·sin γ/ℓ = 8.3·0.3·sin 45°/8.09065 = 0.217619 in (2.62 % of r) retracted and
+    8.3·0.3/8.30542 = 0.299804 in (3.61 %) extended, both under 10 %: both warn."""
+    r, d = 8.3, 0.3
+    L = math.sqrt(r * r + d * d - 2 * r * d * math.cos(math.radians(45)))
+    L2 = math.hypot(r, d)
+    sol = solve("pneumatic_linkage", dict(mode="forward", pivot_x=0.3, pivot_y=0, arm_x=8.3, arm_y=0,
+                                          retracted_length=repr(L), stroke=repr(L2 - L)))
+    IN = 0.0254
+    assert sol.outputs["retracted_lever_arm"].value == pytest.approx(r * d * math.sin(math.pi / 4) / L * IN, rel=1e-12)
+    assert sol.outputs["extended_lever_arm"].value == pytest.approx(r * d / L2 * IN, rel=1e-12)
+    warned = [w for w in sol.warnings if "dead centre" in w]
+    assert len(warned) == 2 and "2.62%" in warned[0] and "3.61%" in warned[1]
+
+
+def test_no_dead_centre_warning_for_a_lever_arm_above_a_tenth_of_the_arm():
+    """Defaults moved off dead centre: A = 6, B = −14, X = 5, L = 11, ΔL = 5: lever arms are
+    4.2 and 1.9 in, over 10 % of the 5 in arm: no warning. Just under 10 % warns."""
+    sol = solve("pneumatic_linkage", dict(mode="forward", stroke=5))
+    h1, h2 = (sol.outputs[k].value / 0.0254 for k in ("retracted_lever_arm", "extended_lever_arm"))
+    assert min(h1, h2) > 0.5
+    assert not any("dead centre" in w for w in sol.warnings)
+
+
+@pytest.mark.parametrize("field", ["retracted_angle", "extended_angle"])
+@pytest.mark.parametrize("value", ["1e15 rad", "361 deg", "-6.3 rad"])
+def test_arm_angles_are_bounded_to_a_turn(field, value):
+    """1e15 rad used to be accepted (sin/cos of it keep no digits); angles are −360° to 360°."""
+    from core.errors import InputError
+    with pytest.raises(InputError) as e:
+        solve("pneumatic_linkage", {"mode": "reverse", field: value})
+    assert e.value.field == field

@@ -122,3 +122,73 @@ def test_ratio_typed_as_rounded_fraction():
     assert (o["below_small_teeth"], o["below_large_teeth"]) == (12, 40)
     assert (o["above_small_teeth"], o["above_large_teeth"]) == (12, 40)
     assert o["nearest_center_distance"] / IN == pytest.approx(1.3, rel=1e-15)
+
+
+def _mp_length(D, r1, r2):
+    """Open-drive length 2X + π(r_1 + r_2) + 2Δ·sin⁻¹(Δ/D), in mpmath (independent of core)."""
+    D, r1, r2 = mp.mpf(D), mp.mpf(r1), mp.mpf(r2)
+    delta = abs(r2 - r1)
+    return 2 * mp.sqrt(D**2 - delta**2) + mp.pi * (r1 + r2) + 2 * delta * mp.asin(delta / D)
+
+
+@pytest.mark.parametrize("standard,n1,n2,half", [
+    ("chain_25", 13, 37, False), ("chain_35", 15, 40, True), ("chain_25", 16, 16, False),
+    ("htd_5mm", 20, 30, False), ("gt2_3mm", 12, 72, False), ("rt25", 36, 36, False)])
+def test_fewest_links_is_the_first_count_at_which_the_wheels_clear(standard, n1, n2, half):
+    """The old 'fewest links that wrap both' was the count with the small sprocket inside the large
+    one (D = Δ). Now: the fewest at which D > (OD_1 + OD_2)/2, OD = p(0.6 + cot(180°/n)) for chain
+    sprockets (ANSI B29.1), the pitch diameter n·p/π for belt pulleys. Checked from the touching
+    distance with the length equation in mpmath: the count is the first step past it."""
+    from core.calculators import chain_belt as cb
+    mp.mp.dps = 40
+    p = cb.STANDARD_PITCH[standard]
+    chain = standard.startswith("chain")
+    step = 2 if chain and not half else 1
+    if chain:
+        touch = sum(p * (mp.mpf("0.6") + mp.cot(mp.pi / n)) for n in (n1, n2)) / 2
+    else:
+        touch = (n1 + n2) * mp.mpf(p) / (2 * mp.pi)
+    r1, r2 = n1 * mp.mpf(p) / (2 * mp.pi), n2 * mp.mpf(p) / (2 * mp.pi)
+    exact = _mp_length(touch, r1, r2) / p
+    expected = step * int(mp.floor(exact / step) + 1)
+    sol = solve("chain_belt", {"pitch_standard": standard, "teeth_1": n1, "teeth_2": n2,
+                               "links": expected, "half_links": half})
+    assert sol.outputs["minimum_links"].value == expected
+    assert sol.outputs["center_distance"].value > touch
+    assert not any("overlap" in w for w in sol.warnings)
+    below = expected - step
+    short = solve("chain_belt", {"pitch_standard": standard, "teeth_1": n1, "teeth_2": n2,
+                                 "links": below, "half_links": half})
+    assert short.outputs["center_distance"].value <= touch
+    assert any("overlap" in w for w in short.warnings)
+
+
+def test_ratio_distance_never_offers_a_pinion_below_ten_teeth():
+    """Ratio 39 at 1 in, 20 DP (40 teeth in all) needs n = 40/40 = 1 tooth: the old answer was a
+    1:39 pair with a warning. Now the pinion is at least 10 T: 10:30 (ratio 3) is offered, the
+    highest ratio the distance allows, and the warning says why."""
+    sol = solve("ratio_distance", {"ratio": 39, "center_distance": "1 in", "diametral_pitch": 20})
+    o = {k: v.value for k, v in sol.outputs.items()}
+    assert (o["nearest_small_teeth"], o["nearest_large_teeth"]) == (10, 30)
+    assert "above_small_teeth" not in o
+    assert o["small_teeth"] == pytest.approx(1.0, rel=1e-15)  # (77), fractional, still shown
+    assert any("below the 10-tooth minimum" in w for w in sol.warnings)
+    for ratio, d, dp in [(2.5, 2, 20), (4.3, 2, 32), (1.0, 0.55, 20), (49.9, 10, 64)]:
+        o = {k: v.value for k, v in solve("ratio_distance", {
+            "ratio": ratio, "center_distance": f"{d} in", "diametral_pitch": dp}).outputs.items()}
+        assert min(o.get(f"{w}_small_teeth", 99) for w in ("nearest", "below", "above")) >= 10
+
+
+@pytest.mark.parametrize("raw,field", [
+    ({"ratio": "5.5e14"}, "ratio"),  # used to report an 'above' ratio of 249
+    ({"ratio": 51}, "ratio"),
+    ({"center_distance": "1e6 in"}, "center_distance"),
+    ({"diametral_pitch": "1e9 1/in"}, "diametral_pitch"),
+    ({"diametral_pitch": "0.5 1/in"}, "diametral_pitch"),
+    ({"center_distance": "0.45 in", "diametral_pitch": 20}, "center_distance"),  # 18 teeth < 2·10
+])
+def test_ratio_distance_inputs_are_bounded_to_gear_pairs(raw, field):
+    from core.errors import InputError
+    with pytest.raises(InputError) as e:
+        solve("ratio_distance", raw)
+    assert e.value.field == field

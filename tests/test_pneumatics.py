@@ -47,10 +47,14 @@ def test_no_compressor_is_closed_form_with_no_integration():
 
 
 def exact_fill_time(name, p0, p1, V):
-    """∫ dP / (P_atm·V̇(P)/V) from p0 to p1, with mpmath (the inverse of the scene's ODE)."""
-    c = pn.flow_fit(name)
-    q = lambda p: sum(ci * p ** (len(c) - 1 - i) for i, ci in enumerate(c))  # noqa: E731
-    return float(mp.quad(lambda p: V / (pn.P_ATM * q(p)), [p0, p1]))
+    """∫ dP / (P_atm·V̇(P)/V) from p0 to p1, with mpmath (the inverse of the scene's ODE); V̇ is
+    scipy's PchipInterpolator through the vendor table, split at its knots."""
+    from scipy.interpolate import PchipInterpolator
+
+    knots = [k * PSI for k in pn.CURVE_PSI]
+    q = PchipInterpolator(knots, [c * pn.CFM for c in pn.COMPRESSORS[name]])
+    pts = [p0] + [k for k in knots if p0 < k < p1] + [p1]
+    return float(mp.quad(lambda p: V / (pn.P_ATM * float(q(float(p)))), pts))
 
 
 @pytest.mark.parametrize("compressor", list(pn.COMPRESSORS))

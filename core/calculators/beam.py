@@ -5,16 +5,20 @@ A straight beam of one cross section and material: bending deflection under a po
 stress and its safety factor against yield, Euler column buckling (59) with the seed's K table,
 and twist under a torque (60). Section properties and load cases live in core/beams.py, whose
 docstring lists where the seed is corrected: (44) hex J, (47)/(48) thin-wall round tube,
-(50) rounded square J, (51) wrong rectangular-tube I, (52) typo in Bredt's denominator, and
+(50) rounded square J, (51) wrong rectangular-tube I, (52) typo in Bredt's denominator (the tube's J
+itself is bracketed by two finite-element bounds and shown with its accuracy), and
 (53)-(57) being the fixed-fixed case with a the distance to the FARTHER support.
 
 Other choices:
 - Dimension fields are generic (outer_size, height, width, wall) because `section` is not the
   mode field; each section checks the ones it uses and names the field when one cannot close.
 - The hex's extreme fibre is taken at a corner (s/√3), the conservative orientation.
-- Buckling uses the weakest axis of the section; the Euler load is a warning-backed upper bound
-  for short columns (Johnson's parabola is given when σ_Euler > yield/2; with the yield unknown,
-  e.g. steel, the yield Euler needs is given once σ_Euler passes half a mild steel's 250 MPa).
+- Buckling uses the weakest axis of the section, slenderness KL/r with r = √(I_min/A). The load
+  shown is the governing one: Euler's P = π²EI/(KL)² (59) above the transition slenderness
+  (KL/r)_T = √(2π²E/S_y), Johnson's parabola P = A·(S_y − (S_y·KL/(2πr))²/E) below it (Shigley,
+  'intermediate-length columns'); the two meet at (KL/r)_T, where both give σ = S_y/2, so the load is continuous.
+  With the yield unknown (e.g. steel) only Euler's load can be given; a warning gives the yield
+  it needs once σ_Euler passes half a mild steel's 250 MPa.
 - The torque twists the whole length (one end held, the torque at the other): θ = TL/(GJ) (60).
 - Polycarbonate's shear modulus is not in REFERENCE_DATA: G = E/(2(1+ν)) with ν = 0.37
   (typical datasheet value, e.g. the Wikipedia polycarbonate infobox).
@@ -104,18 +108,31 @@ OUTPUTS = (
     Output("area_moment", "Area moment of inertia I", "area_moment", "in**4",
            help="Exact second moment of area about the bending axis."),
     Output("torsion_constant", "Torsion constant J", "area_moment", "in**4",
-           help="Exact (hex and rectangular tube: converged finite-element value)."),
+           help="Exact for round, round tube and square; hex to 4e-11; rectangular tube: finite-element "
+                "value between proven lower and upper bounds (see J accuracy)."),
+    Output("torsion_constant_error", "J accuracy (±)", "dimensionless", "%",
+           help="Rectangular tube: half the gap between the lower (stress-function) and upper "
+                "(warping-function) finite-element bounds on J, relative; the true J is within it. "
+                "Walls under 1e-4 of the size use Bredt's J, good to about wall/size."),
     Output("thin_wall_torsion_constant", "Thin-wall J (seed)", "area_moment", "in**4",
            help="Tubes: the seed's thin-wall formula (48) or Bredt's (52), for comparison."),
     Output("thin_wall_error", "Thin-wall J error", "dimensionless", "%",
-           help="How far the thin-wall J is from the exact J."),
+           help="How far the thin-wall J is from the finite-element (or exact) J."),
     Output("max_deflection", "Max deflection", "length", "in"),
     Output("max_deflection_position", "Max deflection at", "length", "in",
            help="Distance from the left support (cantilever: from the fixed end)."),
     Output("max_bending_moment", "Max bending moment", "torque", "in*lbf"),
     Output("max_bending_stress", "Max bending stress", "pressure", "MPa", help="M·c/I at the extreme fibre."),
     Output("safety_factor", "Safety factor (bending yield)", help="Yield strength / max bending stress."),
-    Output("buckling_load", "Buckling load", "force", "lbf", help="Euler's critical load (59), weakest axis."),
+    Output("buckling_load", "Buckling load", "force", "lbf",
+           help="Critical load of the column, weakest axis: Euler's (59) for slender columns, "
+                "Johnson's parabola for short ones (see 'Buckling governed by')."),
+    Output("buckling_formula", "Buckling governed by",
+           help="Euler above the transition slenderness √(2π²E/Sy), Johnson below it."),
+    Output("euler_load", "Euler load", "force", "lbf",
+           help="Euler's critical load π²EI/(KL)² (59); an overestimate for short columns."),
+    Output("slenderness_ratio", "Slenderness KL/r", help="K·L over the radius of gyration √(I/A)."),
+    Output("transition_slenderness", "Transition slenderness", help="√(2π²E/Sy): Euler above, Johnson below."),
     Output("twist_angle", "Twist angle", "angle", "deg", help="θ = T·L/(G·J) (60)."),
     Output("cross_section_area", "Cross-section area", "area", "in**2"),
     Output("mass", "Beam mass", "mass", "lb", help="Density × area × length."),
@@ -171,7 +188,17 @@ def compute(v) -> Result:
     sigma = M * sec.extreme_fiber / sec.area_moment
     label, K_theory, K_design = END_CONDITIONS[v["end_condition"]]
     K = K_design if v["k_values"] == "recommended" else K_theory
-    P_cr = math.pi**2 * E * sec.min_area_moment / (K * l) ** 2  # (59)
+    P_euler = math.pi**2 * E * sec.min_area_moment / (K * l) ** 2  # (59)
+    slenderness = K * l / math.sqrt(sec.min_area_moment / sec.area)  # KL/r
+    if Sy is None:
+        P_cr, formula, transition = P_euler, "Euler (yield unknown)", None
+    else:
+        transition = math.sqrt(2 * math.pi**2 * E / Sy)  # where σ_Euler = π²E/(KL/r)² = Sy/2
+        if slenderness >= transition:
+            P_cr, formula = P_euler, "Euler"
+        else:
+            P_cr = sec.area * (Sy - (Sy * slenderness / (2 * math.pi)) ** 2 / E)  # Johnson's parabola
+            formula = "Johnson"
     theta = T * l / (G * sec.torsion_constant)  # (60)
 
     values = {
@@ -182,6 +209,9 @@ def compute(v) -> Result:
         "max_bending_moment": M,
         "max_bending_stress": sigma,
         "buckling_load": P_cr,
+        "buckling_formula": formula,
+        "euler_load": P_euler,
+        "slenderness_ratio": slenderness,
         "twist_angle": theta,
         "cross_section_area": sec.area,
     }
@@ -189,9 +219,13 @@ def compute(v) -> Result:
         error = sec.thin_wall_torsion_constant / sec.torsion_constant - 1
         values["thin_wall_torsion_constant"] = sec.thin_wall_torsion_constant
         values["thin_wall_error"] = error
+    if sec.torsion_constant_error is not None:
+        values["torsion_constant_error"] = sec.torsion_constant_error
         if abs(error) > 0.05:
             warnings.append(f"The seed's thin-wall torsion constant is {abs(error):.0%} "
-                            f"{'low' if error < 0 else 'high'} for this wall; the exact J is used.")
+                            f"{'low' if error < 0 else 'high'} for this wall; the finite-element J is used.")
+    if transition is not None:
+        values["transition_slenderness"] = transition
     if rho is not None:
         values["mass"] = rho * sec.area * l
     if Sy is not None and sigma > 0:
@@ -200,13 +234,7 @@ def compute(v) -> Result:
             warnings.append("The bending stress exceeds the yield strength: the beam bends permanently.")
     elif Sy is None and v["material"] == "steel":
         warnings.append("Steel's yield strength depends on the grade: choose Custom to get a safety factor.")
-    if Sy is not None and P_cr / sec.area > Sy / 2:
-        slenderness = K * l / math.sqrt(sec.min_area_moment / sec.area)
-        johnson = sec.area * (Sy - (Sy * slenderness / (2 * math.pi)) ** 2 / E)
-        warnings.append(f"Short column (KL/r = {slenderness:.3g}): Euler's load overestimates; "
-                        f"Johnson's parabola gives {format_number(max(johnson, 0.0))} N "
-                        f"({format_number(max(johnson, 0.0) / LBF)} lbf).")
-    elif Sy is None and P_cr / sec.area > MILD_STEEL_YIELD / 2:
+    if Sy is None and P_cr / sec.area > MILD_STEEL_YIELD / 2:
         # Johnson's parabola takes over below σ_Euler = Sy/2: without Sy, say which yield Euler needs
         needed = 2 * P_cr / sec.area
         warnings.append(f"Short column: Euler's load holds only if the yield strength is at least "

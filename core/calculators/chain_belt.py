@@ -28,6 +28,13 @@ Corrections to the seed (derived again; checked against mpmath in tests/test_cha
   phases (tests/test_chain_belt.py). p/sin(180°/n) in (68) would put D short by about
   (π²p/24)·(1/n_1 + 1/n_2) (16T-16T #25, 64 links: 5.987 in instead of exactly 6 in). So the
   pitch-diameter choice sets only the pitch diameters shown and the clearance (67).
+- The seed's shortest length (D = |r_2 − r_1|) puts the small sprocket inside the large one. The
+  fewest links reported here are the fewest at which the two wheels clear each other: for chain
+  the sprockets' outside circles, OD = p·(0.6 + cot(180°/n)) (ANSI B29.1, the tooth tips reach
+  past the roller circle), for belts the pitch circles n·p/π (a pulley's outside diameter lies
+  inside its pitch circle by the pitch-line differential). Clear means D > (OD_1 + OD_2)/2.
+- A standard pitch says whether it is a chain or a belt; the "Chain or belt" field is asked only
+  for a custom pitch (picking #25 chain with the field left at belt used to be an error).
 """
 
 from __future__ import annotations
@@ -54,11 +61,13 @@ FIELDS = (
           default="center_from_links",
           help="Forward: a chain/belt length gives the center distance. Reverse: a wanted center "
                "distance gives the nearest usable lengths below and above it."),
-    Field("kind", "Chain or belt", choices=("chain", "belt"), default="belt",
-          help="Chains use an even number of links unless a half (offset) link is allowed; "
-               "belts may have any number of teeth."),
     Field("pitch_standard", "Pitch standard", choices=STANDARDS, choice_labels=STANDARD_LABELS,
-          default="htd_5mm", help="A standard sets the pitch; choose Custom to type it below."),
+          default="htd_5mm", help="A standard sets the pitch and whether it is a chain or a belt; "
+                                  "choose Custom to type the pitch below."),
+    Field("kind", "Chain or belt", choices=("chain", "belt"), default="belt",
+          help="Custom pitch only (a standard sets it): chains use an even number of links unless "
+               "a half (offset) link is allowed; belts may have any number of teeth.",
+          when=(("pitch_standard", ("custom",)),)),
     Field("pitch", "Custom pitch", "length", "mm", default=5, min=0, min_exclusive=True,
           help="Chain pitch or belt tooth pitch p, used when the standard is Custom.",
           when=(("pitch_standard", ("custom",)),)),
@@ -72,8 +81,8 @@ FIELDS = (
           min_exclusive=True, modes=("links_from_center",),
           help="Center distance D you would like; the nearest usable lengths are found."),
     Field("half_links", "Allow half links", boolean=True, default=False,
-          help="Chain only: a half (offset) link allows an odd number of links.",
-          when=(("kind", ("chain",)),)),
+          help="Chain only (ignored for a belt): a half (offset) link allows an odd number of links.",
+          when=(("pitch_standard", ("chain_25", "chain_35", "chain_40", "custom")),)),
     Field("pitch_diameter", "Pitch diameter shown", choices=("circumference", "chordal"),
           choice_labels=("n·p/π (seed; exact for belts)", "p/sin(180°/n) (true sprocket circle)"),
           default="circumference",
@@ -98,10 +107,10 @@ OUTPUTS = (
     Output("pitch_diameter_2", "Pitch diameter 2", "length", "in"),
     Output("wrap_angle_small", "Wrap on the smaller sprocket", "angle", "deg",
            help="Angle of contact on the smaller sprocket: π − 2·sin⁻¹(|r_2 − r_1|/D)."),
-    Output("minimum_links", "Fewest links that wrap both",
-           help="Shortest count that reaches round both (D ≥ |r_2 − r_1|, even for chain without half "
-                "links). At that length the small sprocket sits inside the large one: a workable "
-                "length is longer, with a positive clearance."),
+    Output("minimum_links", "Fewest links with both clear",
+           help="Fewest links (belt teeth) at which the two wheels clear each other, D > (OD_1 + OD_2)/2: "
+                "chain sprockets' outside diameters p·(0.6 + cot(180°/n)), belt pulleys' pitch "
+                "diameters n·p/π. Even for chain without half links."),
 )
 
 
@@ -139,6 +148,13 @@ def length_from_center(D: float, r1: float, r2: float) -> float:
     # (110)-(113) with (112) corrected: L = 2X + π(r_1 + r_2) + 2Δ·sin⁻¹(Δ/D), rewritten
     # with sin⁻¹(Δ/D) = π/2 − tan⁻¹(X/Δ) so that it stays accurate as X → 0
     return 2 * math.pi * r_large + 2 * delta * u_minus_atan(X / delta)
+
+
+def clear_radius_sum(n1: int, n2: int, p: float, kind: str) -> float:
+    """(OD_1 + OD_2)/2: the center distance at which the two wheels touch."""
+    if kind == "chain":  # ANSI B29.1 sprocket outside diameter p·(0.6 + cot(180°/n))
+        return sum(p * (0.6 + 1 / math.tan(math.pi / n)) for n in (n1, n2)) / 2
+    return (n1 + n2) * p / (2 * math.pi)  # belt: pitch circles (65)
 
 
 def minimum_length(r1: float, r2: float) -> float:
@@ -197,15 +213,11 @@ def step_of(kind: str, half_links: bool) -> int:
 
 def compute(v) -> Result:
     warnings: list[str] = []
-    kind, standard = v["kind"], v["pitch_standard"]
+    standard = v["pitch_standard"]
     if standard == "custom":
-        p = v["pitch"]
-    else:
-        if STANDARD_KIND[standard] != kind:
-            label = STANDARD_LABELS[STANDARDS.index(standard)]
-            raise InputError("pitch_standard", f"{label} is a {STANDARD_KIND[standard]} pitch; "
-                                               f"choose a {kind} standard or Custom")
-        p = STANDARD_PITCH[standard]  # the custom pitch field is not used
+        p, kind = v["pitch"], v["kind"]
+    else:  # the custom pitch and kind fields are not used
+        p, kind = STANDARD_PITCH[standard], STANDARD_KIND[standard]
     n1, n2 = v["teeth_1"], v["teeth_2"]
     method = v["pitch_diameter"]
     if kind == "belt" and method == "chordal":
@@ -223,7 +235,12 @@ def compute(v) -> Result:
         return (l - max(n1, n2)) * p / 2
 
     l_min = step * math.ceil(max(n1, n2) / step)  # L ≥ 2π r_large = n_large·p
-    values = {"pitch_diameter_1": 2 * shown_1, "pitch_diameter_2": 2 * shown_2, "minimum_links": l_min}
+    touch = clear_radius_sum(n1, n2, p, kind)  # D at which the wheels touch
+    l_clear = max(l_min, step * math.ceil(length_from_center(touch, r1, r2) / p / step))
+    while center_from_length(l_clear * p, r1, r2, spare(l_clear)) <= touch:  # rounding at the edge
+        l_clear += step
+    values = {"pitch_diameter_1": 2 * shown_1, "pitch_diameter_2": 2 * shown_2, "minimum_links": l_clear}
+    wheels = "sprockets' outside circles" if kind == "chain" else "pulleys' pitch circles"
 
     if v["mode"] == "center_from_links":
         l = v["links"]
@@ -237,9 +254,9 @@ def compute(v) -> Result:
         D, X = span_from_length(L, r1, r2, spare(l))
         values.update(center_distance=D, length=L, clearance=D - (shown_1 + shown_2))  # (67)
         values["wrap_angle_small"] = wrap_angle(X, r1, r2)
-        if D - (shown_1 + shown_2) < 0:
-            warnings.append("The pitch circles overlap (negative clearance): this length is too "
-                            "short for these sprockets.")
+        if D <= touch:
+            warnings.append(f"The {wheels} overlap at this length: the wheels would collide; "
+                            f"{l_clear} {unit} is the fewest at which they clear.")
         return Result(values, warnings)
 
     # links_from_center: the reverse calculation
@@ -251,8 +268,9 @@ def compute(v) -> Result:
     L = length_from_center(D, r1, r2)
     l_exact = L / p
     values["links_exact"] = l_exact
-    if D - (shown_1 + shown_2) < 0:
-        warnings.append("The pitch circles overlap at this center distance (negative clearance).")
+    if D <= touch:
+        warnings.append(f"The {wheels} overlap at this center distance: the wheels would collide; "
+                        f"{l_clear} {unit} is the fewest at which they clear.")
     nearest = step * round(l_exact / step)
     if abs(nearest - l_exact) <= 1e-9 * l_exact:
         below = above = nearest

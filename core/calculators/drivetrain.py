@@ -18,16 +18,22 @@ sympy (see tests/test_drivetrain.py for hand values):
 Corrections to the seed:
 - (37) is written for ω in rev/s; in SI (rad/s) v_free = ω̃f·(d/2)/G.
 - The symbol list after (40) reads "v_2 = Gear 1 Free Speed": that is v_1.
-- (42) assumes the motors can draw the allowed current i_tot while the controllers see V_min. By
-  (4) the motors are a resistance R_m = V/ĩs = V_spec/(n·i_s), and a motor turning forwards draws
-  less than its stall current V_min/R_m, so (42) holds only while i_tot·R_m ≤ V_min, i.e. while
-  i_tot ≤ i_c = V_batt/(R_batt + R_main + R_br/n + R_m), the current of the stalled motors through
-  the wiring of (41). Beyond that the battery never sags to V_min, the ratio (42) gives stalls the
-  motors before the wheels slip, and the fastest ratio that slips them is (42) with i_c in place of
-  i_tot (stall torque through the wiring equal to traction); it is reported, with a warning. (The
-  two agree exactly when i_tot = i_c.) This matters for real drives: four NEOs with the default
-  wiring allow i_tot = 308 A but stalled draw only 270 A, and (42) as printed gives 4.92 where
-  5.64 is the fastest ratio that slips.
+- (42) assumes the motors can draw the allowed current i_tot. One model serves forward and
+  reverse mode alike: the "Voltage" field V is the most the controllers apply to the motors (as in
+  forward mode, where the stall force is τ̃s(V)·G/r), and a controller cannot put out more than
+  reaches it through the wiring. By (4) the motors are a resistance R_m = V/ĩs = V_spec/(n·i_s),
+  the same at every voltage, so stalled they draw at most
+      i_max = min(ĩs(V), i_c),  ĩs(V) = V/R_m,  i_c = V_batt/(R_batt + R_main + R_br/n + R_m),
+  ĩs(V) being the stall current at the applied voltage and i_c that of the stalled motors fed the
+  full battery through the wiring of (41). (42) holds while i_tot ≤ i_max. Beyond that the battery
+  never sags to V_min: the ratio (42) gives would stall the motors before the wheels slip, and
+  the fastest ratio that slips them is (42) with i_max in place of i_tot (stall torque equal to
+  traction); it is reported, with a warning naming the limit. (The two agree when i_tot = i_max.)
+  So the ratio reverse mode returns, fed to forward mode, pushes the same force (traction) at the
+  same slip current. This matters for real drives: four NEOs with the default wiring allow
+  i_tot = 308 A but stalled draw only 270 A, and (42) as printed gives 4.92 where 5.64 is the
+  fastest ratio that slips; two CIMs at 8 V draw at most 177 A stalled, so 11.56, not the 10.49
+  a battery-fed stall current of 195 A would give.
 """
 
 from __future__ import annotations
@@ -50,6 +56,11 @@ def _drive_motor_fields():
             fields[i] = dataclasses.replace(
                 f, label="Drive motors (total)",
                 help="All motors driving the wheels, both sides together (n in eqs. 39, 41).")
+        elif f.name == "voltage":
+            fields[i] = dataclasses.replace(
+                f, help="Voltage V the controllers apply to the motors; motor data is scaled by V/V_spec "
+                        "(eqs. 1-4). Reverse mode: the stalled motors draw at most ĩs at V, and no more "
+                        "than the battery can push through the wiring.")
     return tuple(fields)
 
 
@@ -123,7 +134,8 @@ def max_ratio(m: MotorSystem, W, mu, d, i_tot):
 
 
 def circuit_stall_current(m: MotorSystem, V_batt, R):
-    """Current of the stalled motors through the wiring: they are a resistance R_m = V/ĩs by (4)."""
+    """Current of the stalled motors fed the full battery through the wiring: they are a
+    resistance R_m = V/ĩs by (4)."""
     return V_batt / (R + m.voltage / m.stall_current)
 
 
@@ -162,7 +174,7 @@ def compute(v) -> Result:
 
     W, mu = v["weight"], v["friction"]
     traction = mu * W
-    stall_torque = m.stall_torque  # at the applied voltage; in reverse mode through the wiring
+    stall_torque = m.stall_torque  # at the applied voltage; in reverse mode also capped by the wiring
     if mode == "reverse":
         n = m.count
         V_batt, V_min = v["battery_voltage"], v["min_voltage"]
@@ -179,24 +191,32 @@ def compute(v) -> Result:
                                             f"free current {m.free_current:.4g} A: lower the minimum "
                                             f"voltage or the resistances")
         i_c = circuit_stall_current(m, V_batt, R)
-        if i_tot <= i_c:
+        i_max = min(m.stall_current, i_c)  # most the stalled motors draw (module docstring)
+        if i_max <= m.free_current:
+            raise InputError("battery_voltage", f"stalled through this wiring the motors draw only "
+                                                f"{i_c:.4g} A, not above their free current "
+                                                f"{m.free_current:.4g} A: they cannot push")
+        if i_tot <= i_max:
             G = max_ratio(m, W, mu, d, i_tot)  # (42)
         else:
-            # At V_min the motors cannot draw i_tot (they would have to turn backwards): (42)'s
-            # ratio stalls them before the wheels slip. The fastest ratio that slips at all has
-            # the stall current through the wiring, i_c, producing the traction torque.
-            if i_c <= m.free_current:
-                raise InputError("battery_voltage", f"stalled through this wiring the motors draw only "
-                                                    f"{i_c:.4g} A, not above their free current "
-                                                    f"{m.free_current:.4g} A: they cannot push")
-            G = max_ratio(m, W, mu, d, i_c)  # (42) with i_c
+            # The motors cannot draw i_tot: (42)'s ratio stalls them before the wheels slip. The
+            # fastest ratio that slips at all has the most they draw stalled producing the traction.
+            G = max_ratio(m, W, mu, d, i_max)  # (42) with i_max
+            if m.stall_current <= i_c:
+                limit = (f"at {m.voltage:.3g} V (the Voltage field) the stalled motors draw at most "
+                         f"{m.stall_current:.4g} A")
+            else:
+                limit = (f"stalled through this wiring they draw at most {i_c:.4g} A and the voltage "
+                         f"at the controllers stays above {V_batt - i_c * R:.3g} V")
             warnings.append(f"The motors cannot draw the allowed {i_tot:.4g} A at the minimum voltage: "
-                            f"stalled through this wiring they draw at most {i_c:.4g} A and the voltage "
-                            f"stays above {V_batt - i_c * R:.3g} V. The ratio shown is the fastest at "
-                            f"which that current still slips the wheels.")
+                            f"{limit}. The ratio shown is the fastest at which that current still "
+                            f"slips the wheels.")
+        if m.voltage > V_batt:
+            warnings.append(f"The Voltage field ({m.voltage:.3g} V) is above the battery's "
+                            f"{V_batt:.3g} V: the controllers cannot apply it, so the free speed "
+                            f"shown is not reached.")
         values.update(total_current=i_tot, max_ratio=G)
-        # the battery, not the "Voltage" field, feeds the motors here: stalled they draw i_c
-        stall_torque = m.kt * (i_c - m.free_current)
+        stall_torque = m.kt * (i_max - m.free_current)  # (9) inverted, at the stall current reached
     else:
         G = v["ratio"]
 

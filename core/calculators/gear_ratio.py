@@ -58,7 +58,10 @@ OUTPUTS = (
     Output("current_per_motor", "Current per motor", "current", "A"),
     Output("stall_load", "Stall load", "force", "lbf"),
     Output("stall_voltage", "Stall voltage", "voltage", "V"),
-    Output("motor_torque", "Torque at gearbox input", "torque", "N*m"),
+    Output("motor_torque", "Load torque ÷ ratio (after η)", "torque", "N*m",
+           help="r·F/G: the load torque referred to the motor side, efficiency already taken off, as "
+                "the motor tab's operating torque (enter it there for the same speed and current). "
+                "The motors themselves give r·F/(G·η) in all, each 1/n of that."),
     Output("output_power", "Output power", "power", "W"),
     Output("system_efficiency", "Efficiency at load", "dimensionless", "%",
            help="Output power over electrical input power, motors and gearbox together (10)."),
@@ -144,7 +147,7 @@ def forward(m: MotorSystem, G: float, r: float, F: float) -> dict:
     omega_free = m.free_speed / G  # (11)
     Fs = m.stall_torque * G / r  # (12)
     omega_load = omega_free * (1 - F / Fs)  # (13)
-    tau = r * F / G  # torque at the gearbox input (all motors, after η)
+    tau = r * F / G  # the load torque referred through the ratio; K_T (7) holds η, so (9) takes it
     current_total = tau / m.kt + m.free_current
     values = {
         "ratio": G,

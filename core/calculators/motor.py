@@ -18,8 +18,9 @@ OUTPUTS = (
     Output("stall_current", "Stall current", "current", "A", help="All motors together."),
     Output("free_current", "Free current", "current", "A", help="All motors together."),
     Output("peak_power", "Peak power", "power", "W", help="At half stall torque, gearbox included (eq. 6)."),
-    Output("kt", "Torque constant Kt", "torque_constant", "N*m/A",
-           help="Output torque per amp of total current above the free current (eq. 7)."),
+    Output("kt", "Kt at gearbox output (after η)", "torque_constant", "N*m/A",
+           help="K_T of eq. (7), τ̃s/(ĩs − ĩf): gearbox-output torque per amp of total current above "
+                "the free current. It includes the gearbox efficiency η; the motor's own constant is K_T/η."),
     Output("max_efficiency", "Max efficiency", "dimensionless", "%",
            help="Highest output power over electrical power, motors and gearbox together (Appendix A)."),
     Output("max_efficiency_torque", "Torque at max efficiency", "torque", "N*m"),

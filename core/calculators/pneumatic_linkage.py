@@ -42,7 +42,12 @@ from ..units import format_quantity
 MODES = ("forward", "reverse")
 MODE_LABELS = ("Arm angles from pivot", "Pivot from arm angles")
 TOUCH = 1e-10  # relative slack: inputs meant to be exactly at dead centre still solve (as touching)
-NEAR_DEAD_CENTRE = math.radians(5)
+# Dead centre is where the cylinder's line passes through the arm pivot: the lever arm h = dℓ/dθ
+# is 0 and the cylinder gives no torque. Warn while h < 10 % of the arm length r (the rod end's
+# distance from the arm pivot), i.e. while the cylinder pushes within asin(0.1) = 5.7° of along
+# the arm, so the torque is under a tenth of F·r.
+NEAR_DEAD_CENTRE = 0.10
+ANGLE_LIMIT = 2 * math.pi  # arm angles beyond ±360° describe no further pose and lose digits in sin
 SIDE_SLACK = 1e-9  # sin of the angle by which a rod end may sit past the line through both pivots (rounding)
 CURVE_POINTS = 61
 
@@ -55,10 +60,12 @@ FIELDS = (
     Field("pivot_y", "Cylinder pivot B (vertical)", "length", "in", default=-14, modes=("forward",),
           help="B: how far the cylinder's fixed pivot lies above the arm pivot (negative: below)."),
     Field("retracted_angle", "Arm angle retracted θ1", "angle", "deg", default=-45, modes=("reverse",),
+          min=-ANGLE_LIMIT, max=ANGLE_LIMIT,
           help="Arm rotation θ1 with the cylinder retracted, counter-clockwise from the pose in "
-               "which the rod end is at (X, Y)."),
+               "which the rod end is at (X, Y); −360° to 360°."),
     Field("extended_angle", "Arm angle extended θ2", "angle", "deg", default=45, modes=("reverse",),
-          help="Arm rotation θ2 with the cylinder extended; |θ2 − θ1| must be under 180°."),
+          min=-ANGLE_LIMIT, max=ANGLE_LIMIT,
+          help="Arm rotation θ2 with the cylinder extended, −360° to 360°; |θ2 − θ1| must be under 180°."),
     Field("arm_x", "Rod end on arm X", "length", "in", default=5,
           help="X: rod-end attachment along the arm, from the arm pivot, at θ = 0."),
     Field("arm_y", "Rod end on arm Y", "length", "in", default=0,
@@ -86,7 +93,8 @@ OUTPUTS = (
     Output("retracted_cylinder_angle", "Cylinder angle α1 (below horiz.)", "angle", "deg"),
     Output("extended_cylinder_angle", "Cylinder angle α2 (below horiz.)", "angle", "deg"),
     Output("retracted_lever_arm", "Lever arm retracted", "length", "in",
-           help="Distance from the arm pivot to the cylinder's line (= dℓ/dθ)."),
+           help="Distance h from the arm pivot to the cylinder's line (= dℓ/dθ); a warning below "
+                "10 % of the arm length (near dead centre)."),
     Output("extended_lever_arm", "Lever arm extended", "length", "in"),
     Output("retracted_torque", "Arm torque retracted", "torque", "N*m",
            help="Torque of the push force on the arm, counter-clockwise positive."),
@@ -231,7 +239,6 @@ def compute(v) -> Result:
         r, d, theta1, theta2, turn = f["r"], f["d"], f["theta1"], f["theta2"], 1.0
         values.update(retracted_angle=theta1, extended_angle=theta2, retracted_angle_alt=f["theta1_alt"],
                       extended_angle_alt=f["theta2_alt"])
-        g1, g2 = f["g1"], f["g2"]
     else:
         theta1, theta2 = v["retracted_angle"], v["extended_angle"]
         rv = reverse(theta1, theta2, X, Y, L, dL)
@@ -250,17 +257,17 @@ def compute(v) -> Result:
             warnings.append(f"The other intersection, {where_text(p)}, is not a working linkage: the arm would "
                             f"pass dead centre between θ1 and θ2.")
         f = {"lo": abs(d - r), "hi": d + r}
-        g1, g2 = pivot_angle(r, d, L), pivot_angle(r, d, L + dL)
-    for name, g in (("retracted", g1), ("extended", g2)):
-        off = min(g, math.pi - g)  # the arm's angle from the line through both pivots
-        if off < NEAR_DEAD_CENTRE:
-            where = "at dead centre" if off < 1e-9 else f"{math.degrees(off):.2g}° from dead centre"
-            warnings.append(f"When {name} the arm is {where} (rod end in line with both pivots): "
-                            f"the cylinder has little torque there and the arm may lock.")
     values["sweep"] = theta2 - theta1
     values["retracted_cylinder_angle"] = cylinder_angle(A, B, X, Y, theta1)
     values["extended_cylinder_angle"] = cylinder_angle(A, B, X, Y, theta2)
     h1, h2 = lever_arm(r, d, L), lever_arm(r, d, L + dL)
+    for name, h in (("retracted", h1), ("extended", h2)):
+        if h < NEAR_DEAD_CENTRE * r:
+            where = ("at dead centre (the cylinder's line passes through the arm pivot)" if h < 1e-9 * r
+                     else f"near dead centre: the lever arm is {format_quantity(h, 'in', 'length')}, "
+                          f"{h / r:.2%} of the arm length {format_quantity(r, 'in', 'length')}")
+            warnings.append(f"When {name} the arm is {where}; the cylinder gives little torque "
+                            f"there and the arm may lock (warned below 10 % of the arm length).")
     values.update(retracted_lever_arm=h1, extended_lever_arm=h2,
                   retracted_torque=turn * F * h1, extended_torque=turn * F * h2,
                   min_length=f["lo"], max_length=f["hi"])

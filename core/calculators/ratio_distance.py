@@ -6,6 +6,13 @@ N + n is rounded to the nearest whole number T = round(2dp) (the center distance
 one asked for) and split as close to the ratio as possible (compared on log G, so 2:1 missed by
 one tooth counts the same either way). The whole-tooth pairs just below and just above the
 ratio at that total are reported too. Diameters: pitch N/p (69), outside (N + 2)/p (70).
+
+Whole-tooth pairs have at least MIN_TEETH = 10 teeth on the pinion: about the smallest spur
+pinion sold for FRC and VEX motors (FRC pinions are mostly 10-14 T, VEX's smallest gear is 12 T);
+a 20° full-depth involute undercuts below 17 T already. A ratio that would need a smaller pinion
+at this center distance is refused: the nearest feasible pair (10 T pinion, the highest ratio the
+distance allows) is offered instead, with a warning. Inputs are bounded to what a gear pair can
+be: ratio 1-50 (50:1 needs a 500 T gear on a 10 T pinion), center distance up to 100 in, 1-200 DP.
 """
 
 from __future__ import annotations
@@ -16,14 +23,17 @@ from ..errors import InputError
 from ..model import Calculator, Field, Output, Result
 
 IN = 0.0254
+MIN_TEETH = 10  # smallest pinion counted (module docstring)
+MAX_RATIO = 50.0
 
 FIELDS = (
-    Field("ratio", "Gear ratio", default=2.5, min=1,
-          help="G = N/n (75): large gear teeth over small gear teeth (at least 1)."),
+    Field("ratio", "Gear ratio", default=2.5, min=1, max=MAX_RATIO,
+          help="G = N/n (75): large gear teeth over small gear teeth, 1 to 50. Pairs have a pinion "
+               f"of at least {MIN_TEETH} teeth (about the smallest sold for FRC/VEX motors)."),
     Field("center_distance", "Center distance", "length", "in", default=2, min=0, min_exclusive=True,
-          help="Distance d between the two gear centers (76)."),
-    Field("diametral_pitch", "Diametral pitch", "reciprocal_length", "1/in", default=20, min=0,
-          min_exclusive=True, help="p: teeth per inch of pitch diameter (e.g. 20 DP, 32 DP)."),
+          max=100 * IN, help="Distance d between the two gear centers (76), up to 100 in."),
+    Field("diametral_pitch", "Diametral pitch", "reciprocal_length", "1/in", default=20, min=1 / IN,
+          max=200 / IN, help="p: teeth per inch of pitch diameter (e.g. 20 DP, 32 DP), 1 to 200."),
 )
 
 OUTPUTS = (
@@ -68,17 +78,16 @@ def snapped_ceil(x: float) -> int:
 
 
 def split(total: int, G: float):
-    """Whole-tooth splits of `total` with ratio just below (or equal) and just above G."""
+    """Whole-tooth splits of `total` with ratio just below (or equal) and just above G, pinion at
+    least MIN_TEETH and ratio at least 1; None where no such split exists."""
     n_exact = total / (G + 1)
     below = above = None
-    n_hi = snapped_ceil(n_exact)  # more small teeth: ratio at or below G
-    if 1 <= n_hi <= total - n_hi:
+    n_hi = max(snapped_ceil(n_exact), MIN_TEETH)  # more small teeth: ratio at or below G
+    if n_hi <= total - n_hi:
         below = (n_hi, total - n_hi)
     n_lo = snapped_floor(n_exact)  # fewer small teeth: ratio at or above G
-    if 1 <= n_lo <= total - n_lo:
+    if MIN_TEETH <= n_lo <= total - n_lo:
         above = (n_lo, total - n_lo)
-    if below is None and above is None:  # only possible when n_exact < 1: the 1-tooth pinion
-        above = (1, total - 1)
     return below, above
 
 
@@ -87,9 +96,10 @@ def compute(v) -> Result:
     n, N = teeth_exact(G, d, p)
     total_exact = 2 * d * p  # N + n from (76)
     total = round(total_exact)
-    if total < 2:
+    if total < 2 * MIN_TEETH:
         raise InputError("center_distance", f"too small for this pitch: it holds {total_exact:.3g} "
-                                            "teeth in total, a pair needs at least 2")
+                                            f"teeth in total, a pair needs at least {2 * MIN_TEETH} "
+                                            f"({MIN_TEETH} on each gear)")
     warnings = []
     below, above = split(total, G)
     candidates = [pair for pair in (below, above) if pair]
@@ -107,13 +117,16 @@ def compute(v) -> Result:
     if abs(total - total_exact) > SNAP * total_exact:
         warnings.append(f"Whole teeth need the center distance {total / (2 * p) / IN:.4g} in "
                         f"instead of {d / IN:.4g} in (N + n = {total}).")
-    if below is None:
+    if above is None and total / (G + 1) < MIN_TEETH * (1 - SNAP):
+        warnings.append(f"The ratio needs a {n:.3g}-tooth pinion at this center distance, below the "
+                        f"{MIN_TEETH}-tooth minimum: the nearest feasible pair is {n_best}:{N_best} "
+                        f"(ratio {N_best / n_best:.4g}); a larger center distance or finer pitch "
+                        f"reaches the ratio.")
+    elif below is None:
         warnings.append("No whole-tooth pair reaches down to this ratio at this center distance.")
-    if n < 1:
-        warnings.append("The ratio is too high for this center distance: the pinion would have "
-                        "fewer than one tooth.")
-    elif n_best < 8:
-        warnings.append(f"A {n_best}-tooth pinion is very small (heavily undercut, rarely sold).")
+    elif n_best < 12:
+        warnings.append(f"A {n_best}-tooth pinion is small (undercut unless profile-shifted; check "
+                        f"it is sold in this pitch).")
     return Result(values, warnings)
 
 
