@@ -6,7 +6,7 @@ import importlib
 import pkgutil
 from functools import lru_cache
 
-from .errors import InputError
+from .errors import InputError, shown
 from .model import Calculator
 
 # Where each calculator lives in the app: areas in the order of the top tab strip, each with its
@@ -47,4 +47,4 @@ def get(calc_id: str) -> Calculator:
     try:
         return calculators()[calc_id]
     except KeyError:
-        raise InputError("calculator", f"unknown calculator {calc_id!r} (known: {', '.join(calculators())})") from None
+        raise InputError("calculator", f"unknown calculator {shown(calc_id)} (known: {', '.join(calculators())})") from None

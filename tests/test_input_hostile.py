@@ -340,3 +340,15 @@ def teardown_module():
         print(f"\nhostile inputs: {STATS['cases']} entries parsed, {STATS['rejected']} refused, "
               f"{STATS['equivalences']} equivalent spellings checked; slowest parse "
               f"{STATS['slowest'] * 1e3:.2f} ms CPU ({STATS['slowest_entry']})")
+
+
+@pytest.mark.parametrize("args", [["solve", "q" * 5000], ["solve", "gear_ratio", "--set", "q" * 5000 + "=1"],
+                                  ["solve", "gear_ratio", "--set", "mode=" + "q" * 5000],
+                                  ["solve", "gear_ratio", "--unit", "free_speed=" + "q" * 5000]])
+def test_cli_messages_quote_only_the_start_of_what_was_typed(capsys, args):
+    """Messages echoed the whole input (5 000+ characters)."""
+    from tui.cli import main
+
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and len(err) < 400 and "q" * 41 not in err, err[:500]
