@@ -352,3 +352,33 @@ def test_cli_messages_quote_only_the_start_of_what_was_typed(capsys, args):
     assert main(args) == 2
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1 and len(err) < 400 and "q" * 41 not in err, err[:500]
+
+
+async def test_the_app_answers_a_power_tower_and_opens_presets_past_hostile_files(tmp_path):
+    """9**9**9 froze the app; a deeply nested user preset crashed ctrl+o, a FIFO hung it."""
+    from textual.widgets import Input, OptionList
+
+    from core import presets
+    from tests.tui_helpers import settle
+    from tui.app import GearheadApp
+    from tui.components.calculator_tab import CalculatorTab
+
+    d = presets.user_dir() / "gear_ratio"
+    d.mkdir(parents=True)
+    os.mkfifo(d / "fifo.toml")
+    (d / "deep.toml").write_text('calculator = "gear_ratio"\nx = ' + "[" * 5000 + "]" * 5000 + "\n")
+    (d / "mine.toml").write_text('calculator = "gear_ratio"\nname = "Mine"\n')
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        field = tab.query_one("#in-load", Input)
+        field.focus()
+        field.value = "9**9**9"
+        await settle(pilot)
+        assert tab.error is not None and tab.error.field == "load" and "exponent" in tab.error.message
+        await pilot.press("ctrl+o")
+        await settle(pilot)
+        options = app.screen.query_one(OptionList)
+        names = [str(options.get_option_at_index(i).prompt) for i in range(options.option_count)]
+        assert any("Mine" in n for n in names) and any("Elevator" in n for n in names)
