@@ -11,7 +11,7 @@ from dataclasses import dataclass, field as dc_field
 from typing import Any, Callable, Mapping
 
 from . import units
-from .errors import InputError
+from .errors import InputError, shown
 
 
 # Beyond these magnitudes (in SI) no robot part exists, and products of such values overflow
@@ -88,8 +88,11 @@ class Field:
         return str(self.default)
 
     def parse(self, raw: Any) -> Any:
-        """SI value (float), int, bool or choice string from what a user entered."""
+        """SI value (float), int, bool or choice string from what a user entered; or an InputError
+        naming this field, in one line, quoting at most the start of what was typed."""
         kind = self.type
+        if isinstance(raw, str) and len(raw) > self._max_chars():
+            raise InputError(self.name, f"is too long ({len(raw)} characters; at most {self._max_chars()})")
         if kind == "flags":
             if isinstance(raw, str):
                 items = [x for x in raw.replace(",", " ").split() if x]
@@ -99,7 +102,8 @@ class Field:
                 raise InputError(self.name, f"expected names from: {', '.join(self.choices)}")
             unknown = [x for x in items if x not in self.choices]
             if unknown:
-                raise InputError(self.name, f"unknown {', '.join(map(repr, unknown))}; "
+                more = f" and {len(unknown) - 3} more" if len(unknown) > 3 else ""
+                raise InputError(self.name, f"unknown {', '.join(map(shown, unknown[:3]))}{more}; "
                                             f"choose from: {', '.join(self.choices)}")
             return frozenset(items)
         if kind == "choice":
@@ -110,8 +114,8 @@ class Field:
                 lowered.update({self.label_of(c).lower(): c for c in self.choices})
                 if text is not None and text.lower() in lowered:
                     return lowered[text.lower()]
-                shown = ", ".join(self.choices[:12]) + (", ..." if len(self.choices) > 12 else "")
-                raise InputError(self.name, f"{raw!r} is not one of: {shown}")
+                shown_choices = ", ".join(self.choices[:12]) + (", ..." if len(self.choices) > 12 else "")
+                raise InputError(self.name, f"{shown(raw)} is not one of: {shown_choices}")
             return text
         if kind == "bool":
             if isinstance(raw, bool):
@@ -121,33 +125,39 @@ class Field:
                 return True
             if text in ("false", "no", "off", "0"):
                 return False
-            raise InputError(self.name, f"{raw!r} is not true or false")
+            raise InputError(self.name, f"{shown(raw)} is not true or false")
         if kind == "int":
             if isinstance(raw, bool):
                 raise InputError(self.name, f"expected a whole number, got {raw!r}")
             if isinstance(raw, numbers.Integral):
                 value = int(raw)
             else:
-                text = str(raw).strip()
+                text = units.normalise(raw, self.name)  # the same screening as a quantity: "−2", "３"
                 try:
                     as_float = float(text)
                 except ValueError:
-                    raise InputError(self.name, f"{raw!r} is not a whole number") from None
+                    raise InputError(self.name, f"{shown(text)} is not a whole number") from None
                 if not math.isfinite(as_float) or as_float != int(as_float):
-                    raise InputError(self.name, f"{raw!r} is not a whole number")
+                    raise InputError(self.name, f"{shown(text)} is not a whole number")
                 value = int(as_float)
             self._check_bounds(value, str(value))
             return value
         value = units.parse(raw, self.unit, self.quantity, self.name)
         return self._check_bounds(value, str(raw))
 
+    def _max_chars(self) -> int:
+        """Longest entry read: a value, or every flag name listed (they may exceed a value's)."""
+        return max(units.MAX_INPUT_CHARS, sum(len(c) + 2 for c in self.choices))
+
     def _check_bounds(self, value: float, typed: str) -> float:
         """The value, or an InputError; a value within rounding of an inclusive bound (e.g. 125 psi
         typed against a bound set in Pa) is that bound, so formulas never see it a hair outside."""
+        typed = typed.strip()
+        typed = typed if len(typed) <= 40 and typed.isprintable() else shown(typed)
         if self.type == "quantity" and value != 0 and not (MAGNITUDE_FLOOR <= abs(value) <= MAGNITUDE_CEILING):
             raise InputError(self.name, f"{typed} is out of range for a mechanism "
                                         f"(magnitude {abs(value):.3g} in SI units)")
-        def shown(si: float) -> str:
+        def in_unit(si: float) -> str:
             if self.type == "int":
                 return str(int(si))
             return units.format_quantity(si, self.unit, self.quantity)
@@ -157,13 +167,13 @@ class Field:
                 value = self.min
             if value < self.min or (self.min_exclusive and value == self.min):
                 word = "greater than" if self.min_exclusive else "at least"
-                raise InputError(self.name, f"{typed} is too small: must be {word} {shown(self.min)}")
+                raise InputError(self.name, f"{typed} is too small: must be {word} {in_unit(self.min)}")
         if self.max is not None:
             if not self.max_exclusive and value > self.max and value <= self.max + BOUND_SLACK * abs(self.max):
                 value = self.max
             if value > self.max or (self.max_exclusive and value == self.max):
                 word = "less than" if self.max_exclusive else "at most"
-                raise InputError(self.name, f"{typed} is too large: must be {word} {shown(self.max)}")
+                raise InputError(self.name, f"{typed} is too large: must be {word} {in_unit(self.max)}")
         return value
 
 

@@ -7,13 +7,12 @@ from __future__ import annotations
 
 import os
 import re
-import tempfile
 import tomllib
 from dataclasses import dataclass, field as dc_field
 from pathlib import Path
 from typing import Any
 
-from .errors import InputError
+from .errors import InputError, shown
 
 FORMAT = 1
 
@@ -26,6 +25,8 @@ class Preset:
     inputs: dict[str, Any] = dc_field(default_factory=dict)
     path: Path | None = None
     builtin: bool = False
+    # one line per problem that does not stop loading (a junk value in a field the mode ignores)
+    warnings: list[str] = dc_field(default_factory=list, compare=False)
 
     def as_toml(self) -> dict[str, Any]:
         return {"calculator": self.calculator, "name": self.name,
@@ -43,19 +44,78 @@ def user_dir() -> Path:
     return Path(base) / "gearhead" / "presets"
 
 
+MAX_PRESET_BYTES = 1_000_000  # a preset is a few hundred bytes; more is not a preset
+MAX_NAME_BYTES = 120  # of a file name's stem in UTF-8: well under the 255 of every common file system
+
+
 def load(path: str | Path, builtin: bool = False) -> Preset:
     """Read and validate one preset. Any problem is an InputError naming the file and field."""
-    path = Path(path)
     src = str(path)
+    return from_dict(parse_text(read_text(path), src), src, path=Path(path), builtin=builtin)
+
+
+def read_text(path: str | Path) -> str:
+    """The text of a preset file. Only a regular file is read (a FIFO would block, /dev/zero never
+    end), at most MAX_PRESET_BYTES, as UTF-8 with or without a byte-order mark."""
+    import stat
+
+    src = str(path)
+    if "\0" in src:
+        raise InputError("preset", "the file name contains a NUL character", repr(src))
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        # O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0))
     except FileNotFoundError:
         raise InputError("preset", "file not found", src) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError("preset", f"cannot read file ({exc.__class__.__name__})", src) from None
+    except IsADirectoryError:
+        raise InputError("preset", "is a folder, not a preset file", src) from None
+    except (OSError, ValueError) as exc:
+        raise InputError("preset", f"cannot open the file ({_os_reason(exc)})", src) from None
+    try:
+        info = os.fstat(fd)
+        if stat.S_ISDIR(info.st_mode):
+            raise InputError("preset", "is a folder, not a preset file", src)
+        if not stat.S_ISREG(info.st_mode):
+            raise InputError("preset", "is not a regular file (a device, pipe or socket)", src)
+        if info.st_size > MAX_PRESET_BYTES:
+            raise InputError("preset", f"is too large for a preset ({info.st_size} bytes; "
+                                       f"at most {MAX_PRESET_BYTES})", src)
+        chunks, size = [], 0
+        while size <= MAX_PRESET_BYTES:  # the size may change while reading: never read past the cap
+            chunk = os.read(fd, MAX_PRESET_BYTES + 1 - size)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+        if size > MAX_PRESET_BYTES:
+            raise InputError("preset", f"is too large for a preset (over {MAX_PRESET_BYTES} bytes)", src)
+    except OSError as exc:
+        raise InputError("preset", f"cannot read the file ({_os_reason(exc)})", src) from None
+    finally:
+        os.close(fd)
+    try:
+        return b"".join(chunks).decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError("preset", f"is not UTF-8 text (byte {exc.start})", src) from None
+
+
+def parse_text(text: str, src: str = "<preset>") -> dict[str, Any]:
+    """The TOML table of a preset's text, or an InputError naming `src`."""
+    try:
+        return tomllib.loads(text.lstrip("\ufeff"))
     except tomllib.TOMLDecodeError as exc:
-        raise InputError("preset", f"malformed TOML: {exc}", src) from None
-    return from_dict(data, src, path=path, builtin=builtin)
+        raise InputError("preset", f"malformed TOML: {_first_line(exc)}", src) from None
+    except RecursionError:  # tomllib recurses once per level of nested arrays and tables
+        raise InputError("preset", "malformed TOML: arrays or tables nested too deeply", src) from None
+
+
+def _first_line(exc: Exception) -> str:
+    text = str(exc).strip()
+    return text.splitlines()[0][:120] if text else type(exc).__name__
+
+
+def _os_reason(exc: BaseException) -> str:
+    return getattr(exc, "strerror", None) or _first_line(exc)  # "Permission denied", not "[Errno 13] …"
 
 
 def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = None,
@@ -64,15 +124,16 @@ def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = N
     from .registry import calculators
 
     fmt = data.get("format", FORMAT)
-    if not isinstance(fmt, int) or isinstance(fmt, bool):
-        raise InputError("format", f"must be a whole number, got {fmt!r}", src)
+    if not isinstance(fmt, int) or isinstance(fmt, bool) or fmt < 1:
+        raise InputError("format", f"must be a whole number from 1 (this Gearhead writes {FORMAT}), "
+                                   f"got {shown(fmt)}", src)
     if fmt > FORMAT:
         raise InputError("format", f"version {fmt} is newer than this Gearhead reads ({FORMAT}); upgrade Gearhead", src)
     calc_id = data.get("calculator")
     if not isinstance(calc_id, str):
         raise InputError("calculator", "missing or not a string", src)
     if calc_id not in calculators():
-        raise InputError("calculator", f"unknown calculator {calc_id!r}", src)
+        raise InputError("calculator", f"unknown calculator {shown(calc_id)}", src)
     for key in data:
         if key not in ("calculator", "name", "description", "format", "inputs"):
             raise InputError(key, "unknown top-level key", src)
@@ -88,20 +149,62 @@ def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = N
             continue  # a set of flags, e.g. effects = ["compressor", "regulator"]
         if not isinstance(value, (str, int, float, bool)):
             raise InputError(key, f"wrong type ({type(value).__name__}); use a string, number or boolean", src)
+    calc = calculators()[calc_id]
     try:
-        parse_inputs(calculators()[calc_id], inputs)  # unknown field, bad unit, out of bounds
+        parse_inputs(calc, inputs)  # unknown field, bad unit, out of bounds
     except InputError as exc:
         raise InputError(exc.field, exc.message, src) from None
-    return Preset(calc_id, name, description, dict(inputs), path, builtin)
+    preset = Preset(calc_id, name, description, dict(inputs), path, builtin)
+    preset.warnings = unused_entry_warnings(calc, inputs, src)
+    return preset
+
+
+def unused_entry_warnings(calc, inputs: dict[str, Any], src: str) -> list[str]:
+    """One line per field the chosen mode or choices do not use whose value is not valid either:
+    it is ignored (the field's default is used), which must not pass silently."""
+    from .model import choice_values
+
+    mode = inputs.get("mode")
+    choices = choice_values(calc, inputs)
+    out = []
+    for f in calc.fields:
+        if f.name not in inputs or f.active(mode, choices):
+            continue
+        try:
+            f.parse(inputs[f.name])
+        except InputError as exc:
+            out.append(f"{src}: {f.name}: not used here, and not valid either ({exc.message}); ignored")
+    return out
+
+
+_WINDOWS_RESERVED = {"con", "prn", "aux", "nul", *(f"com{i}" for i in range(10)), *(f"lpt{i}" for i in range(10))}
 
 
 def slug(name: str) -> str:
-    s = re.sub(r"[^A-Za-z0-9]+", "_", name.strip()).strip("_").lower()
-    return s or "preset"
+    """A file-name stem for a preset name: letters of any script (NFC, lower case), digits and
+    "_"; safe on Linux, macOS and Windows (no reserved names, at most MAX_NAME_BYTES in UTF-8; a
+    shortened name ends in a hash of the whole so two long names stay two files)."""
+    import hashlib
+    import unicodedata
+
+    text = unicodedata.normalize("NFC", name.strip())
+    s = re.sub(r"[\W_]+", "_", text).strip("_").lower()
+    s = unicodedata.normalize("NFC", s) or "preset"
+    if len(s.encode("utf-8")) > MAX_NAME_BYTES:
+        digest = hashlib.sha256(text.encode("utf-8")).hexdigest()[:10]
+        cut = s.encode("utf-8")[:MAX_NAME_BYTES - 11].decode("utf-8", "ignore").rstrip("_")
+        s = f"{cut}_{digest}"
+    if s.split(".")[0] in _WINDOWS_RESERVED:
+        s += "_preset"
+    return s
 
 
 def save(preset: Preset, path: str | Path | None = None, overwrite: bool = False) -> Path:
-    """Write atomically. Refuses to replace an existing file unless overwrite=True."""
+    """Write atomically. Refuses to replace an existing file unless overwrite=True; of two saves of
+    the same new name at once exactly one succeeds (the file is linked into place, which fails if
+    the name exists). A new file gets the mode the umask gives; a replaced one keeps its mode."""
+    import secrets
+
     import tomli_w
 
     from_dict(preset.as_toml(), "<unsaved preset>")  # never write a preset we could not load
@@ -109,22 +212,56 @@ def save(preset: Preset, path: str | Path | None = None, overwrite: bool = False
         path = user_dir() / preset.calculator / f"{slug(preset.name)}.toml"
     path = Path(path)
     if path.exists() and not overwrite:
-        raise InputError("preset", "file exists; choose another name or overwrite explicitly", str(path))
+        raise _exists(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    text = tomli_w.dumps(preset.as_toml())
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    data = tomli_w.dumps(preset.as_toml()).encode("utf-8")
+    while True:  # our own temporary name: mkstemp would create it 0600 whatever the umask says
+        tmp = path.parent / f".{path.name[:60]}.{secrets.token_hex(6)}.tmp"
+        try:
+            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o666)
+            break
+        except FileExistsError:
+            continue
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
+        if overwrite:
+            try:
+                os.chmod(tmp, os.stat(path).st_mode & 0o7777)  # keep the replaced file's mode
+            except FileNotFoundError:
+                pass
+            os.replace(tmp, path)
+        else:
+            _place_new(tmp, path)
+    finally:
+        if os.path.lexists(tmp):
             os.unlink(tmp)
-        raise
     preset.path = path
     return path
+
+
+def _place_new(tmp: Path, path: Path) -> None:
+    """Move the written `tmp` to `path`, which must not exist: a hard link fails if it does, and
+    the whole file appears at once. Where hard links are not supported, an exclusively created
+    empty file claims the name and the temporary file then replaces it."""
+    try:
+        os.link(tmp, path)
+        return
+    except FileExistsError:
+        raise _exists(path) from None
+    except (OSError, NotImplementedError, AttributeError):
+        pass  # e.g. FAT or some network file systems: no hard links
+    try:
+        os.close(os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+    except FileExistsError:
+        raise _exists(path) from None
+    os.replace(tmp, path)
+
+
+def _exists(path: Path) -> InputError:
+    return InputError("preset", "file exists; choose another name or overwrite explicitly", str(path))
 
 
 def listing(calc_id: str | None = None) -> list[Preset]:

@@ -7,7 +7,7 @@ import pkgutil
 from functools import lru_cache
 
 from .declarations import check, check_links
-from .errors import InputError
+from .errors import InputError, shown
 from .model import Calculator
 
 # Where each calculator lives in the app: areas in the order of the top tab strip, each with its
@@ -51,4 +51,4 @@ def get(calc_id: str) -> Calculator:
     try:
         return calculators()[calc_id]
     except KeyError:
-        raise InputError("calculator", f"unknown calculator {calc_id!r} (known: {', '.join(calculators())})") from None
+        raise InputError("calculator", f"unknown calculator {shown(calc_id)} (known: {', '.join(calculators())})") from None

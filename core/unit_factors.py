@@ -57,7 +57,9 @@ def generate() -> dict[str, float]:
     """Every declared unit's factor, from pint (the same computation as core.units.factor)."""
     from .units import SI_UNITS, registry
 
-    ureg = registry()
+    # a fresh registry: the shared one, once it has converted other units, can give a factor one
+    # rounding step apart (in*lbf: ...167 vs ...1671), which made the equality test order-dependent
+    ureg = registry.__wrapped__()
     out = {}
     for unit, kind in sorted(declared_units()):
         out[f"{kind}|{unit}"] = float(ureg.Quantity(1.0, unit).to(SI_UNITS[kind] or "dimensionless").magnitude)

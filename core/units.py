@@ -9,7 +9,7 @@ import math
 import re
 from functools import lru_cache
 
-from .errors import InputError
+from .errors import InputError, shown
 
 # Quantity kind -> the SI unit core works in (written as DESIGN.md's JSON shows them).
 SI_UNITS: dict[str, str] = {
@@ -40,7 +40,14 @@ SI_UNITS: dict[str, str] = {
     "reciprocal_length": "1/m",
 }
 
-_NUMBER = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
+# A bare decimal number (ASCII digits only: other scripts' digits are refused by `normalise`).
+_NUMBER = re.compile(r"^\s*[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?\s*$")
+
+# Limits that bound the work one entry can cause (9**9**9 once froze the app computing a
+# 370-million-digit integer, and a 100 000-character paste took over a minute).
+MAX_INPUT_CHARS = 200  # longer is a paste gone wrong; refused before any other work
+MAX_EXPONENT = 100  # |n| in x**n: units need 4 at most, and 10**100 is far beyond any part
+PARSE_BUDGET_S = 0.5  # CPU seconds of this thread to evaluate one entry (typically 0.1 ms)
 
 
 @lru_cache(maxsize=1)
@@ -58,74 +65,288 @@ def factor(unit: str, kind: str) -> float:
     """Multiply a value in `unit` by this to get SI for `kind` (cached: pint is slow)."""
     if unit in ("", "1"):
         if kind != "dimensionless":
-            raise ValueError(f"a {kind.replace('_', ' ')} needs a unit")
+            raise ValueError(f"{_a(kind)} needs a unit")
         return 1.0
     from .unit_factors import lookup
 
     known = lookup(unit, kind)  # every declared unit, generated from pint: no registry to build
     if known is not None:
         return known
-    ureg = registry()
-    q = ureg.Quantity(1.0, unit)
-    return float(q.to(SI_UNITS[kind] or "dimensionless").magnitude)
+    import pint
+
+    # a unit typed by a user (--unit, "as entered"): read by the same bounded parser as values
+    q = _evaluate(normalise(unit, "unit"), "unit", kind)
+    if not isinstance(q, registry().Quantity) or q.magnitude != 1:
+        raise ValueError(f"{shown(unit)} is a number, not a unit")
+    try:
+        return float(q.to(SI_UNITS[kind] or "dimensionless").magnitude)
+    except pint.errors.DimensionalityError:
+        raise ValueError(f"{shown(unit)} is not a unit of {_a(kind)}") from None
 
 
 def parse(text: str | float | int, unit: str, kind: str, field: str) -> float:
-    """SI value of what the user typed for `field`; a bare number is in `unit`.
+    """SI value of what the user typed for `field`.
 
-    Raises InputError naming the field, what was typed and the quantity expected.
+    A bare number, and any expression of plain numbers ("2+0", "(0.5)", "3*4"), is in the display
+    `unit`; an expression with units ("3.5 in", "2 ft + 3 in", "pi rad") is converted by pint, so
+    "2", "2+0" and "2 deg" in a deg field are the same angle. Raises InputError naming the field,
+    in one line, quoting at most the start of what was typed.
     """
     if isinstance(text, bool):
-        raise InputError(field, f"expected a {_kind_words(kind)}, got {text!r}")
+        raise InputError(field, f"expected {_a(kind)}, got {text!r}")
     if isinstance(text, (int, float)):
-        value = float(text) * factor(unit, kind)
+        try:
+            value = float(text) * factor(unit, kind)
+        except OverflowError:  # an int beyond float range
+            raise InputError(field, f"{shown(text)} is not a finite number") from None
     else:
-        s = str(text).strip()
-        if not s:
-            raise InputError(field, f"is empty; enter a {_kind_words(kind)}")
+        s = normalise(text, field, kind)
         if _NUMBER.match(s):
             value = float(s) * factor(unit, kind)
         else:
-            value = _parse_with_unit(s, kind, field)
+            q = _evaluate(s, field, kind)
+            if isinstance(q, float):  # plain numbers only: in the display unit, like a bare number
+                value = q * factor(unit, kind)
+            else:
+                value = _to_si(q, s, field, kind)
     if not math.isfinite(value):
-        raise InputError(field, f"{text!r} is not a finite number")
+        raise InputError(field, f"{shown(text)} is not a finite number")
     return value
 
 
-def _parse_with_unit(s: str, kind: str, field: str) -> float:
+# ---- reading what was typed ------------------------------------------------------------------
+# Characters are screened first (one pass, refusing whatever could be misread), then pint's own
+# string preprocessing ("per", "squared", "%", "^", a space as a product) and its tree builder
+# (pint.pint_eval) run on tokens from the small tokenizer below, and the tree is evaluated with
+# checked operations. The tokenizer is ours because Python's, which pint uses, reads Python:
+# "012" is two numbers (0*12 = 0), "1.2.3" is 1.2*.3, and quotes, "#" comments and line breaks
+# have meanings there that a unit expression must not have.
+
+_SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺", "0123456789-+")
+_SUPERSCRIPT_RUN = re.compile(r"[⁻⁺]?[⁰¹²³⁴⁵⁶⁷⁸⁹]+")
+# Operators as typeset: the minus sign U+2212 is a minus; dot and cross are products.
+_TYPESET = str.maketrans({"\u2212": "-", "·": "*", "⋅": "*", "×": "*", "÷": "/", "⁄": "/", "∕": "/"})
+# Dashes are refused, not read as a minus: "3–5" is as often a range as a negative number.
+_DASHES = set("\u2010\u2011\u2012\u2013\u2014\u2015")
+_ALLOWED_MARKS = set(" .+-*/()^%_°")
+# "3 4" (12 to pint) and "1 1/2" (0.5 to pint, 1.5 to a person) are refused; "20 1/in" is a number
+# and a unit
+_TWO_NUMBERS = re.compile(r"[0-9.]\s+(?!1\s*/\s*[^\W\d])[0-9.]")
+_UNDERSCORED_NUMBER = re.compile(r"[0-9]_|_[0-9]")
+
+
+def normalise(text: object, field: str, kind: str = "dimensionless") -> str:
+    """What was typed, stripped, NFKC-normalised (a fullwidth "６ ㎜" is "6 mm"), typeset
+    operators made ASCII; or an InputError for anything that could be misread: an over-long entry,
+    control characters and line breaks, commas, brackets, dashes, quote marks, other scripts'
+    digits, vulgar fractions."""
+    import unicodedata
+
+    s = str(text)
+    if len(s) > MAX_INPUT_CHARS:
+        raise InputError(field, f"is too long ({len(s)} characters; at most {MAX_INPUT_CHARS})")
+    s = s.strip()
+    if not s:
+        raise InputError(field, f"is empty; enter {_a(kind)}")
+    for ch in s:  # before NFKC, which turns "½" into "1⁄2" and then "1½" would read as 11/2
+        if unicodedata.category(ch) == "No" and ch not in "⁰¹²³⁴⁵⁶⁷⁸⁹":
+            raise InputError(field, f"{shown(s)}: write {ch!r} with the digits 0-9 (e.g. 1/2 for ½)")
+    s = _SUPERSCRIPT_RUN.sub(lambda m: "**(" + m.group().translate(_SUPERSCRIPTS) + ")", s)
+    s = unicodedata.normalize("NFKC", s).translate(_TYPESET)
+    if len(s) > MAX_INPUT_CHARS:
+        raise InputError(field, f"is too long ({len(s)} characters; at most {MAX_INPUT_CHARS})")
+    for ch in s:
+        if ch.isascii() and (ch.isalnum() or ch in _ALLOWED_MARKS):
+            continue
+        problem = _character_problem(ch)
+        if problem:
+            raise InputError(field, f"{shown(s)} {problem}")
+    if _TWO_NUMBERS.search(s):
+        raise InputError(field, f"{shown(s)} has two numbers in a row; write one number (1.5, not "
+                                f"1 1/2), or an operator between them (3*4)")
+    if _UNDERSCORED_NUMBER.search(s):
+        raise InputError(field, f"{shown(s)}: write numbers without '_' (1000, not 1_000)")
+    return s
+
+
+def _character_problem(ch: str) -> str | None:
+    """Why a non-ASCII or unusual character is refused, or None if it may stay (a letter)."""
+    import unicodedata
+
+    category = unicodedata.category(ch)
+    if ch in "\n\r\v\f\u2028\u2029\x85":
+        return "contains a line break; enter one line"
+    if ch == "\t":
+        return "contains a tab"
+    if category[0] == "C":  # control, format (zero-width, direction marks), unassigned
+        return f"contains an invisible character (U+{ord(ch):04X})"
+    if ch == ",":
+        return "contains a comma: use a point for decimals (3.5) and no thousands separators"
+    if ch in "[]{}":
+        return "contains brackets: enter one value, grouped with ( ) if needed"
+    if ch in _DASHES:
+        return f"contains a dash (U+{ord(ch):04X}): type - for a minus sign"
+    if ch in "'\"′″":
+        return "contains a quote mark: write feet and inches as ft and in (5 ft + 3 in)"
+    if category == "Nd":
+        return f"contains the digit {ch!r}: use the digits 0-9"
+    if ch.isalpha() or ch == "°":
+        return None  # unit names such as µm, Ω, Å
+    return f"contains {ch!r}, which is not part of a number or unit"
+
+
+_TOKEN = re.compile(r"\s*(?:(?P<number>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?)"
+                    r"|(?P<name>[^\W\d]\w*)|(?P<op>\*\*|[-+*/()]))")
+
+
+def _tokens(s: str, field: str, kind: str) -> list:
+    """pint-style tokens (tokenize.TokenInfo) of a screened, preprocessed expression."""
+    import token as tokenlib
+    from tokenize import TokenInfo
+
+    out, pos = [], 0
+    types = {"number": tokenlib.NUMBER, "name": tokenlib.NAME, "op": tokenlib.OP}
+    while pos < len(s):
+        m = _TOKEN.match(s, pos)
+        if not m:
+            if s[pos:].isspace():
+                break
+            raise InputError(field, f"cannot read {shown(s)} as {_a(kind)}: unexpected {s[pos]!r}")
+        kind_of = m.lastgroup
+        if kind_of == "number" and out and out[-1].type == tokenlib.NUMBER:
+            raise InputError(field, f"{shown(s)} is not a number (two numbers run together)")
+        out.append(TokenInfo(types[kind_of], m.group(kind_of), (1, m.start(kind_of)), (1, m.end()), s))
+        pos = m.end()
+    out.append(TokenInfo(tokenlib.ENDMARKER, "", (1, len(s)), (1, len(s)), s))
+    return out
+
+
+def _evaluate(s: str, field: str, kind: str):
+    """A float (only plain numbers were typed) or a pint Quantity, from a screened entry; every
+    operation checked, and the whole bounded by MAX_EXPONENT and PARSE_BUDGET_S."""
+    import time
+
     import pint
+    from pint.pint_eval import build_eval_tree
+    from pint.util import string_preprocessor
 
     ureg = registry()
+    Quantity = ureg.Quantity
+    deadline = time.thread_time() + PARSE_BUDGET_S
+    typed = shown(s)
+
+    def fail(why: str):
+        raise InputError(field, f"{typed} {why}")
+
+    def tick():
+        if time.thread_time() > deadline:
+            fail("takes too long to work out; simplify it")
+
+    def magnitude(x):
+        return x.magnitude if isinstance(x, Quantity) else x
+
+    def checked(x):
+        m = magnitude(x)
+        if isinstance(m, complex) or not math.isfinite(m):
+            fail("is not a finite number")
+        return x
+
+    def define(token):
+        tick()
+        if token.type == tokenize_number:
+            return checked(float(token.string))
+        name = token.string
+        if name.lower() in ("inf", "infinity", "nan"):
+            fail("is not a finite number")
+        try:
+            return Quantity(1.0, ureg.get_name(name))
+        except Exception:  # pint raises several types for names it does not know
+            power_hint = re.fullmatch(r"([^\W\d_]+)([0-9]+)", name)
+            hint = f"; for a power write {power_hint[1]}**{power_hint[2]}" if power_hint else ""
+            raise InputError(field, f"{shown(name)} is not a unit I know "
+                                    f"(units of {_a(kind)}: {example_unit(kind)}){hint}") from None
+
+    def power(base, exponent):
+        tick()
+        if isinstance(exponent, Quantity):
+            if not exponent.unitless:
+                fail("has a unit in an exponent")
+            exponent = float(exponent.to("dimensionless").magnitude)
+        if abs(exponent) > MAX_EXPONENT:
+            fail(f"has an exponent of {exponent:.3g}; at most {MAX_EXPONENT} in size")
+        b = magnitude(base)
+        if b < 0 and exponent != int(exponent):
+            fail("takes a fractional power of a negative number")
+        if b == 0 and exponent < 0:
+            fail("divides by zero")
+        try:
+            return checked(base ** exponent)
+        except (OverflowError, ZeroDivisionError):
+            fail("is not a finite number")
+
+    def divide(a, b):
+        tick()
+        if magnitude(b) == 0:
+            fail("divides by zero")
+        return checked(a / b)
+
+    def multiply(a, b):
+        tick()
+        return checked(a * b)
+
+    def add(sign):
+        def op(a, b):
+            tick()
+            try:
+                return checked(a + b if sign > 0 else a - b)
+            except pint.errors.DimensionalityError:
+                fail("adds quantities of different kinds (give every term a unit)")
+        return op
+
+    import token as tokenlib
+
+    tokenize_number = tokenlib.NUMBER
+    if s.count("(") != s.count(")"):
+        fail("has unbalanced parentheses")
+    for pre in ureg.preprocessors:  # "%" -> " percent "
+        s = pre(s)
+    tokens = _tokens(string_preprocessor(s), field, kind)
     try:
-        q = ureg.Quantity(s.replace("·", "*").replace("°", " deg"))
-    except Exception as exc:  # pint's parser raises many types on junk text; all mean "unreadable"
-        raise InputError(field, f"cannot read {s!r} as a {_kind_words(kind)} ({_short(exc)})") from None
-    if not isinstance(q, ureg.Quantity):  # e.g. a bare expression like "2*3"
-        q = ureg.Quantity(q)
+        tree = build_eval_tree(tokens)
+    except Exception:  # pint's tree builder raises several types on an incomplete expression
+        fail(f"is not a complete expression of {_a(kind)}")
+    binary = {"**": power, "*": multiply, "": multiply, "/": divide, "+": add(1), "-": add(-1)}
+    unary = {"+": lambda x: x, "-": lambda x: x * -1}
     try:
-        finite = math.isfinite(float(q.magnitude))
-    except (TypeError, ValueError, OverflowError):
-        finite = False
-    if not finite:
-        raise InputError(field, f"{s!r} is not a finite number")
+        result = tree.evaluate(define, binary, unary)
+    except InputError:
+        raise
+    except Exception:  # an operator pint's tree allows but an entry may not use (a unary "*"),
+        fail(f"cannot be read as {_a(kind)}")  # or arithmetic on a temperature scale
+    return float(result) if isinstance(result, (int, float)) else result
+
+
+def _to_si(q, s: str, field: str, kind: str) -> float:
+    import pint
+
     target = SI_UNITS[kind] or "dimensionless"
     try:
-        return float(q.to(target).magnitude)
+        value = float(q.to(target).magnitude)
     except pint.errors.DimensionalityError:
-        raise InputError(
-            field, f"{s!r} is not a {_kind_words(kind)} (expected units like {example_unit(kind)})"
-        ) from None
-    except (TypeError, ValueError, OverflowError) as exc:
-        raise InputError(field, f"cannot read {s!r}: {_short(exc)}") from None
-
-
-def _short(exc: Exception) -> str:
-    msg = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-    return msg[:80]
+        raise InputError(field, f"{shown(s)} is not {_a(kind)} (units like {example_unit(kind)})") from None
+    except (ArithmeticError, TypeError, ValueError):
+        raise InputError(field, f"{shown(s)} is not a finite number") from None
+    return value
 
 
 def _kind_words(kind: str) -> str:
     return "number" if kind == "dimensionless" else kind.replace("_", " ")
+
+
+def _a(kind: str) -> str:
+    """The kind with its article: "a length", "an angular speed", "a number"."""
+    words = _kind_words(kind)
+    return ("an " if words[0] in "aeiou" else "a ") + words
 
 
 _EXAMPLES = {
@@ -179,7 +400,7 @@ def check_unit(unit: str, kind: str, name: str) -> str:
     try:
         factor(unit, kind)
     except Exception:  # unknown unit or wrong dimension: both mean "cannot show it in that"
-        raise InputError(name, f"cannot show a {_kind_words(kind)} in {unit!r} "
+        raise InputError(name, f"cannot show {_a(kind)} in {shown(unit)} "
                                f"(units like {example_unit(kind)})") from None
     return unit
 

@@ -25,8 +25,8 @@ def test_parse_to_si(text, unit, kind, si):
 
 
 @pytest.mark.parametrize("text,expect", [
-    ("3 kg", "is not a length"), ("abc", "cannot read"), ("", "is empty"), ("1e999", "not a finite"),
-    ("inf", "not a finite"), ("nan", "not a finite"), ("5 parsecs/", "cannot read"),
+    ("3 kg", "is not a length"), ("abc", "not a unit I know"), ("", "is empty"), ("1e999", "not a finite"),
+    ("inf", "not a finite"), ("nan", "not a finite"), ("5 parsecs/", "not a complete expression"),
 ])
 def test_bad_entries_name_field_and_text(text, expect):
     with pytest.raises(InputError) as e:

@@ -182,6 +182,8 @@ class GearheadApp(App):
                 tab.set_entries({**defaults, **preset.inputs})
                 tab.preset_meta = (preset.name, preset.description)  # the save dialog offers them
                 self.notify(f"Loaded {preset.name}", title="Preset loaded", markup=False)
+                for warning in preset.warnings:  # e.g. a junk value in a field this mode ignores
+                    self.notify(warning, title="Preset warning", severity="warning", markup=False)
 
         self.push_screen(LoadPresetScreen(tab.calculator.id, self.blink), loaded)
 

@@ -7,7 +7,7 @@ import json
 import sys
 from typing import Sequence
 
-from core.errors import InputError
+from core.errors import InputError, shown
 
 EXIT_BAD_INPUT = 2
 
@@ -51,25 +51,36 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _accuracy(args)
         return _calculators(args)
     except InputError as exc:
-        print(f"gearhead: {exc}", file=sys.stderr)
+        _complain(str(exc))
         return EXIT_BAD_INPUT
 
 
+def _complain(message: str, kind: str = "") -> None:
+    """One line on stderr, whatever the message holds (an InputError is one line already; this
+    keeps it so for any text that reaches here)."""
+    line = " ".join(message.split()) if not message.isprintable() else message
+    print(f"gearhead: {kind}{line}", file=sys.stderr)
+
+
 def _raw_inputs(args, calc) -> dict:
-    """Inputs from --preset then --set, as typed."""
+    """Inputs from --preset then --set, as typed; a preset's warnings go to stderr, one line each."""
     from core import presets
 
     raw: dict = {}
     if args.preset:
         preset = presets.load(args.preset)
         if preset.calculator != calc.id:
-            raise InputError("calculator", f"preset is for {preset.calculator!r}, not {calc.id!r}", args.preset)
+            raise InputError("calculator", f"preset is for {shown(preset.calculator)}, not {calc.id!r}",
+                             args.preset)
+        for warning in preset.warnings:
+            _complain(warning, "warning: ")
         raw.update(preset.inputs)
     for item in args.sets:
         name, sep, value = item.partition("=")
         name = name.strip()
         if not sep or not name:
-            raise InputError(name or "--set", f"expected NAME=VALUE, got {item!r}")
+            raise InputError(name or "--set", f"--set takes NAME=VALUE (e.g. --set load='25 lbf'), "
+                                              f"got {shown(item)}")
         raw[name] = value
     return raw
 
@@ -83,7 +94,8 @@ def _solve(args) -> int:
     for item in args.units:
         name, sep, unit = item.partition("=")
         if not sep or not name.strip():
-            raise InputError(name.strip() or "--unit", f"expected OUTPUT=UNIT, got {item!r}")
+            raise InputError(name.strip() or "--unit", f"--unit takes OUTPUT=UNIT (e.g. --unit "
+                                                       f"free_speed=rad/s), got {shown(item)}")
         display_units[name.strip()] = unit.strip()
     solution = solve(calc.id, _raw_inputs(args, calc), display_units)
     if args.json:
@@ -134,7 +146,7 @@ def _presets(args) -> int:
         kind = "built-in" if p.builtin else "user"
         print(f"{p.calculator:<18} {kind:<8} {p.name:<28} {p.path}")
     for problem in presets.problems(args.calculator):
-        print(f"gearhead: skipped {problem}", file=sys.stderr)
+        _complain(str(problem), "skipped ")
     return 0
 
 
