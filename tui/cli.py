@@ -10,6 +10,7 @@ from typing import Sequence
 from core.errors import InputError
 
 EXIT_BAD_INPUT = 2
+EXIT_INTERRUPTED = 130  # 128 + SIGINT, as a shell reports a command stopped by Ctrl+C
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -53,6 +54,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except InputError as exc:
         print(f"gearhead: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print("gearhead: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
 
 
 def _raw_inputs(args, calc) -> dict:
@@ -108,7 +112,13 @@ def _accuracy(args) -> int:
         sims = ", ".join(c.id for c in calculators().values() if c.simulate is not None)
         raise InputError("calculator", f"{calc.id} is not a simulation (simulations: {sims})")
     values, _ = parse_inputs(calc, _raw_inputs(args, calc))
-    rungs, reference = ladder(calc.simulate, values)
+    try:
+        rungs, reference = ladder(calc.simulate, values)
+    except InputError:
+        raise
+    except (ArithmeticError, ValueError, RuntimeError) as exc:
+        # the same last-resort guard as core.model.solve: a message, never a traceback
+        raise InputError("(result)", f"could not be computed from these inputs ({type(exc).__name__}: {exc})") from exc
     if args.json:
         print(json.dumps({
             "calculator": calc.id,
