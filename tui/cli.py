@@ -105,15 +105,17 @@ def _solve(args) -> int:
 def _accuracy(args) -> int:
     from core.model import parse_inputs
     from core.registry import get, calculators
-    from core.sim.scene import REFERENCE_RTOL, ladder
+    from core.sim.scene import DEFAULT_ADVICE, REFERENCE_RTOL, ladder
 
     calc = get(args.calculator)
     if calc.simulate is None:
         sims = ", ".join(c.id for c in calculators().values() if c.simulate is not None)
         raise InputError("calculator", f"{calc.id} is not a simulation (simulations: {sims})")
     values, _ = parse_inputs(calc, _raw_inputs(args, calc))
+    # what to change when a run needs more than one solve's budget: the calculator module's ADVICE
+    advice = getattr(sys.modules.get(calc.simulate.__module__), "ADVICE", DEFAULT_ADVICE)
     try:
-        rungs, reference = ladder(calc.simulate, values)
+        rungs, reference = ladder(calc.simulate, values, advice=advice)
     except InputError:
         raise
     except (ArithmeticError, ValueError, RuntimeError) as exc:
