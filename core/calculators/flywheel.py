@@ -488,8 +488,9 @@ def simulate(v, rtol: float) -> SimRun:
         "slowest_ball_speed": slowest,
     })
     if slowest == 0.0:
-        warnings.append("A shot stops the wheel: the next ball meets a wheel at rest and is not thrown "
-                        "(slowest ball 0 m/s). Lengthen the shot interval or use a heavier wheel.")
+        warnings.append("The shots stop the wheel and the motor cannot spin it up again between them: a later "
+                        "ball meets a wheel at rest and is not thrown (slowest ball 0 m/s). Use a heavier wheel, "
+                        "a stronger drive (motor, ratio) or a longer shot interval.")
     elif slowest < first.V * (1 - 1e-9):
         warnings.append(f"The wheel does not recover between shots: the slowest ball leaves at "
                         f"{slowest:.3g} m/s instead of {first.V:.3g} m/s.")
