@@ -282,3 +282,52 @@ def test_projectile_reverse_at_the_minimum_distance_round_trips_through_forward(
     fwd = solve("projectile", {"mode": "forward", "distance": "1 mm", "release_angle": f"{theta!r} rad",
                                "release_speed": f"{v!r} m/s"}).outputs
     assert fwd["target_height"].value == pytest.approx(2.64, rel=1e-6)
+
+
+async def test_typing_cancels_a_running_simulation_in_the_app(monkeypatch):
+    """The app's worker polls `cancel` (the entries changed) between integration steps: a running
+    simulation is dropped at once, not run to its end, and the latest entries are solved."""
+    import asyncio
+
+    import core.model
+    from textual import events
+    from textual.widgets import Input
+
+    from tests.tui_helpers import settle
+    from tui.app import GearheadApp
+    from tui.components.calculator_tab import CalculatorTab
+
+    real_solve = core.model.solve
+    outcomes: list[str] = []
+
+    def slow_then_real(calc_id, raw=None, display_units=None):
+        if not outcomes:  # the first solve after the key: an integration of minutes unless cancelled
+            try:
+                with ig.budget(max_seconds=20):  # (a bound for this test, should the cancel not come)
+                    ig.integrate(lambda t, y: [math.cos(t)], 0.0, 1e9, [0.0], rtol=1e-12, max_steps=10**9)
+                outcomes.append("finished")
+            except ig.Cancelled:
+                outcomes.append("cancelled")
+                raise
+        else:
+            outcomes.append("solved")
+        return real_solve(calc_id, raw, display_units)
+
+    app = GearheadApp(blink=False, initial="pneumatics")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        monkeypatch.setattr(core.model, "solve", slow_then_real)
+        tab = app.query_one("#calc-pneumatics", CalculatorTab)
+        entry = app.query_one("#in-match_length", Input)
+        entry.focus()
+        entry.cursor_position = len(entry.value)
+        app.post_message(events.Key("backspace", "\x7f"))  # 150 -> 15: starts the slow solve
+        await asyncio.sleep(0.3)
+        app.post_message(events.Key("0", "0"))  # 15 -> 150 while it runs
+        for _ in range(100):
+            await asyncio.sleep(0.05)
+            if not tab.busy:
+                break
+        await settle(pilot)
+        assert outcomes[0] == "cancelled" and outcomes[-1] == "solved", outcomes
+        assert tab.solution is not None and tab.solution.inputs["match_length"].value == 150
