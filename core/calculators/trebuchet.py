@@ -36,6 +36,10 @@ Departures from the seed:
   of mass at L/2 from the pivot; it is at L/2 − aL (they are not used here).
 - The seed's section-1 model has no projectile; here the arm alone carries it in a cup at C
   (the seed's model is the limit m_p → 0).
+- Efficiency: the projectile's energy at release over the potential energy released by the
+  counterweight AND the arm (each by its centre of mass): T + V is conserved, so this is at most 1.
+  Counting the counterweight's drop alone gave more than 100 % when the arm's centre of mass lies
+  on the counterweight's side (a > 1/2) and falls with it.
 """
 
 from __future__ import annotations
