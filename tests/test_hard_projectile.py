@@ -79,10 +79,10 @@ def test_target_angle_equal_to_release_angle_is_refused():
 
 
 def test_nearly_vertical_reverse_throw():
-    """d = 1 µm, 2 m up: tan θ_i ≈ 4e6, θ_i within 2.5e-7 rad of 90°. The seed's sec θ_i·sqrt(g·d/(tan θ_i
-    − tan θ_f)) takes the secant of an angle rounded next to 90° (measured: 1.1e-10 relative error in v_i,
-    1.7e-7 at d = 1 nm); hypot(d, Δh + m)/sqrt(2m/g) never forms θ_i on the way (error 6e-17)."""
-    h_i, h_f, d, th_f = 0.0, 2.0, 1e-6, math.radians(-80)
+    """d = 1 mm (the least distance), 2 m up, arriving at −89.99999°: tan θ_i ≈ 5.7e6, θ_i within
+    1.8e-7 rad of 90°. The seed's sec θ_i·sqrt(g·d/(tan θ_i − tan θ_f)) takes the secant of an angle
+    rounded next to 90°; hypot(d, Δh + m)/sqrt(2m/g) never forms θ_i on the way."""
+    h_i, h_f, d, th_f = 0.0, 2.0, 1e-3, math.radians(-89.99999)
     run = pj.simulate(values(mode="reverse", release_height=h_i, target_height=h_f, distance=f"{d!r} m",
                              target_angle=f"{th_f!r} rad"), 1e-6)
     th_i, v_i = mp_reverse(h_i, h_f, d, th_f)
@@ -92,12 +92,12 @@ def test_nearly_vertical_reverse_throw():
 
 
 def test_nearly_vertical_forward_throw():
-    """θ_i = 90° − 1e-9 rad: cos θ_i ≈ 1e-9 must come from the angle itself (π/2 − θ is resolved only to
-    1e-16 absolute, so any route through 90° − θ in degrees or through tan θ_i ≈ 1e9 squared loses
-    digits); d = 0.1 µm, t = d/(v cos θ_i) = 3.3 s and (61) balances 100 m against 54.5 m.
-    Compared with (61)-(62) in 40 digits from the same double inputs."""
-    th = math.pi / 2 - 1e-9
-    d, v = 1e-7, 30.0
+    """θ_i = 90° − 1e-6 rad: cos θ_i ≈ 1e-6 must come from the angle itself (π/2 − θ is resolved only to
+    1e-16 absolute, so any route through 90° − θ in degrees or through tan θ_i ≈ 1e6 squared loses
+    digits); d = 1 mm (the least distance), t = d/(v cos θ_i) = 3.3 s and (61) balances 1000 m against
+    54.5 m. Compared with (61)-(62) in 40 digits from the same double inputs."""
+    th = math.pi / 2 - 1e-6
+    d, v = 1e-3, 300.0
     run = pj.simulate(values(release_height=1.0, release_angle=f"{th!r} rad", release_speed=v,
                              distance=f"{d!r} m"), 1e-6)
     h_f, th_f = mp_forward(1.0, th, v, d)

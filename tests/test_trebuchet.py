@@ -188,12 +188,17 @@ def test_air_drag_shortens_the_throw():
     assert 0 < drag < vac
 
 
-def test_efficiency_is_projectile_energy_over_counterweight_drop():
+def test_efficiency_is_projectile_energy_over_counterweight_and_arm_drop():
     run = tb.swing(seed_machine(), 45 * DEG, True, 1e-10)
     t, x, z, vx, vy = run.release
     E_p = 0.5 * 5 * (vx * vx + vy * vy) + 5 * 9.81 * z
+    s = 15 / 2 - 0.25 * 15  # the arm's centre of mass from the pivot, on the long side: it rises
+    assert run.arm_drop < 0
     out = solve("trebuchet", {"accuracy": "fine"}).outputs
-    assert out["efficiency"].value == pytest.approx(E_p / (500 * 9.81 * run.cw_drop), rel=1e-7)
+    supplied = 500 * 9.81 * run.cw_drop + 50 * 9.81 * run.arm_drop
+    assert out["efficiency"].value == pytest.approx(E_p / supplied, rel=1e-7)
+    # the two drops are the same rotation seen at radii r = aL and −s: cw_drop·s = −arm_drop·r (rigid)
+    assert run.cw_drop * s == pytest.approx(-run.arm_drop * 0.25 * 15, rel=1e-12)
     assert 0 < out["efficiency"].value < 1
 
 

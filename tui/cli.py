@@ -10,6 +10,7 @@ from typing import Sequence
 from core.errors import InputError, shown
 
 EXIT_BAD_INPUT = 2
+EXIT_INTERRUPTED = 130  # 128 + SIGINT, as a shell reports a command stopped by Ctrl+C
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -53,6 +54,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except InputError as exc:
         _complain(str(exc))
         return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print("gearhead: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
 
 
 def _complain(message: str, kind: str = "") -> None:
@@ -113,14 +117,22 @@ def _solve(args) -> int:
 def _accuracy(args) -> int:
     from core.model import parse_inputs
     from core.registry import get, calculators
-    from core.sim.scene import REFERENCE_RTOL, ladder
+    from core.sim.scene import DEFAULT_ADVICE, REFERENCE_RTOL, ladder
 
     calc = get(args.calculator)
     if calc.simulate is None:
         sims = ", ".join(c.id for c in calculators().values() if c.simulate is not None)
         raise InputError("calculator", f"{calc.id} is not a simulation (simulations: {sims})")
     values, _ = parse_inputs(calc, _raw_inputs(args, calc))
-    rungs, reference = ladder(calc.simulate, values)
+    # what to change when a run needs more than one solve's budget: the calculator module's ADVICE
+    advice = getattr(sys.modules.get(calc.simulate.__module__), "ADVICE", DEFAULT_ADVICE)
+    try:
+        rungs, reference = ladder(calc.simulate, values, advice=advice)
+    except InputError:
+        raise
+    except (ArithmeticError, ValueError, RuntimeError) as exc:
+        # the same last-resort guard as core.model.solve: a message, never a traceback
+        raise InputError("(result)", f"could not be computed from these inputs ({type(exc).__name__}: {exc})") from exc
     if args.json:
         print(json.dumps({
             "calculator": calc.id,

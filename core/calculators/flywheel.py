@@ -243,7 +243,9 @@ def shot(sc: Scene, omega0: float, m: float, target: float, rtol: float) -> Shot
         omega1 = omega0 / root  # (5) with losses: E_b = (1−f)·ΔE_w
         drop = omega0 * x / (root * (1 + root))  # ω₀·(1 − 1/√(1+x)), rationalised
         V = sc.s * sc.r_w * omega1  # (2)
-    elif not sc.motor_on or m_e == 0:
+    elif not sc.motor_on or m_e == 0 or omega0 <= 0:
+        # (ω₀ = 0: a wheel stopped by the previous shot meets the ball at rest: no impulse, the ball is
+        # not thrown, V = 0; the slip phase's scaling t₀ ∝ ω₀ has no meaning there)
         omega1 = omega0 / (1 + b)  # angular impulse: I·(ω₀ − ω₁) = r_w·J, J = s·m_e·V, V = s·r_w·ω₁
         drop = omega0 * b / (1 + b)
         V = sc.s * sc.r_w * omega1 * math.sqrt(1 - sc.f)
@@ -485,7 +487,11 @@ def simulate(v, rtol: float) -> SimRun:
         "recovery_time": recovery(sc, first.omega_after, target, first.drop),
         "slowest_ball_speed": slowest,
     })
-    if slowest < first.V * (1 - 1e-9):
+    if slowest == 0.0:
+        warnings.append("The shots stop the wheel and the motor cannot spin it up again between them: a later "
+                        "ball meets a wheel at rest and is not thrown (slowest ball 0 m/s). Use a heavier wheel, "
+                        "a stronger drive (motor, ratio) or a longer shot interval.")
+    elif slowest < first.V * (1 - 1e-9):
         warnings.append(f"The wheel does not recover between shots: the slowest ball leaves at "
                         f"{slowest:.3g} m/s instead of {first.V:.3g} m/s.")
     series = {"wheel speed": trace, "burst": (trace[0][first_shot:], trace[1][first_shot:])}

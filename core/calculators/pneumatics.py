@@ -42,6 +42,8 @@ PRESSURE_MAX = RELIEF * SLACK  # "125 psi" is in
 CYLINDER_PRESSURE_MAX = 200 * PSI * SLACK
 GROUPS = 3
 MIN_PERIOD = 0.1  # s; a valve cannot cycle faster, and it bounds the work of a match
+ADVICE = ("match_length", "the match is too long for this accuracy and firing rate (every firing restarts "
+                          "the integration): try a shorter match, longer firing periods, or a coarser accuracy")
 
 # Free-air flow (CFM) at 0, 20, ..., 120 psi (ReCalc compressor data, REFERENCE_DATA.md).
 COMPRESSORS: dict[str, tuple[float, ...]] = {
@@ -343,7 +345,7 @@ def seed_step(v) -> tuple[float, float, tuple[list[float], list[float]]]:
 
 
 def compute(v) -> Result:
-    run = run_with_stats(simulate, v)
+    run = run_with_stats(simulate, v, ADVICE)
     seed_min, seed_final, seed_trace = seed_step(v)
     run.series["seed 1 s step"] = seed_trace
     run.values["seed_min_pressure"] = seed_min

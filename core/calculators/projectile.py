@@ -50,6 +50,7 @@ MAX_STEPS = 5_000  # per flight (a real throw takes < 100): a path curled up by 
 MAX_FLIGHTS = 150  # refused, not crawled along; the reverse root finder may try this many flights
 MAX_NFEV = 50_000  # and this much work in all, continuation included (about 0.3 s; a found root takes < 10 000)
 CONTINUATION_RTOL = 1e-6  # the reverse root is found with flights at most this tight, then polished at rtol
+MIN_DISTANCE = 1e-3  # m, both modes: below it a reverse answer's θ_i rounds to 90° (forward then refuses it)
 FLOOR_SLACK = 1e-9  # relative: a target on the floor (h_f = 0) is reached, not "hit the floor first"
 
 MODES = ("forward", "reverse")
@@ -66,8 +67,9 @@ FIELDS = (
           help="Angle θ_i of the release velocity above the horizontal."),
     Field("release_speed", "Release speed", "speed", "m/s", default=7.5, min=0, min_exclusive=True,
           max=10_000, modes=("forward",), help="Speed v_i of the ball as it leaves the mechanism."),
-    Field("distance", "Distance to target", "length", "m", default=3, min=0, min_exclusive=True,
-          max=10_000, help="Horizontal distance d from the release point to the target."),
+    Field("distance", "Distance to target", "length", "m", default=3, min=MIN_DISTANCE,
+          max=10_000, help="Horizontal distance d from the release point to the target (at least 1 mm: "
+                           "closer, the release angle of a reverse solve rounds to 90°, which no throw has)."),
     Field("target_height", "Target height", "length", "m", default=2.64, min=0, max=1000,
           modes=("reverse",), help="Height h_f above the floor where the ball must pass."),
     Field("target_angle", "Target angle", "angle", "deg", default=-45, min=-HALF_PI, max=HALF_PI,
@@ -216,6 +218,20 @@ def _fly(a: Air, h_i, theta_i, v_i, d, rtol, samples=0):
 
 
 def _reverse_with_effects(a: Air, h_i, h_f, d, theta_f, rtol, series) -> tuple[float, float, int]:
+    """_search within MAX_NFEV evaluations, every flight counted (those that fail too): past it,
+    ValueError (no release found)."""
+    from ..sim.integrate import BudgetExceeded, budget
+
+    try:
+        with budget(MAX_NFEV) as spent:
+            return _search(a, h_i, h_f, d, theta_f, rtol, series)
+    except BudgetExceeded as exc:
+        if exc.budget is not spent:
+            raise
+        raise ValueError(f"no release found within {MAX_NFEV} right-hand-side evaluations") from None
+
+
+def _search(a: Air, h_i, h_f, d, theta_f, rtol, series) -> tuple[float, float, int]:
     """(θ_i, v_i, nfev) with flight effects. First hybrid Powell straight from the vacuum answer; if
     that misses (the effects bend the path far from the parabola), continuation: the effects grown
     from 0 to full in steps, each solve starting from the last root. A target above the line of sight

@@ -36,6 +36,10 @@ Departures from the seed:
   of mass at L/2 from the pivot; it is at L/2 − aL (they are not used here).
 - The seed's section-1 model has no projectile; here the arm alone carries it in a cup at C
   (the seed's model is the limit m_p → 0).
+- Efficiency: the projectile's energy at release over the potential energy released by the
+  counterweight AND the arm (each by its centre of mass): T + V is conserved, so this is at most 1.
+  Counting the counterweight's drop alone gave more than 100 % when the arm's centre of mass lies
+  on the counterweight's side (a > 1/2) and falls with it.
 """
 
 from __future__ import annotations
@@ -46,11 +50,19 @@ from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
 from ..sim import flight
 from ..sim import trebuchet as tb
-from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats
+from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats, solve_budget
 
 EFFECTS = ("sling", "ground_contact", "hinged_counterweight", "air_drag", "optimise")
 DEG = math.pi / 180
 PLOT_POINTS = 240
+ADVICE = ("accuracy", "the swing is too long or too stiff for this accuracy (a short hanger or a nearly "
+                      "balanced arm): try accuracy=coarse, a longer hanger_length or a heavier counterweight")
+# optimise: the batch (1640 throws) and up to 200 accurate throws; the built-in preset takes ~400 000
+OPTIMISE_NFEV = 3_000_000
+REFINE_NFEV = 60_000  # the polish; the built-in preset takes ~23 000
+OPTIMISE_ADVICE = ("effects", "optimise needs too much work for this machine (a short hanger or a nearly "
+                              "balanced arm makes every throw long or stiff): switch optimise off, or "
+                              "lengthen hanger_length")
 
 FIELDS = (
     Field("counterweight_mass", "Counterweight mass M", "mass", "kg", default=500, min=1e-3, max=1e7,
@@ -106,7 +118,8 @@ OUTPUTS = (
     Output("range", "Range", "length", "m", help="Pivot to landing point, toward the throw."),
     Output("max_height", "Max height", "length", "m", help="Highest point of the projectile's path."),
     Output("efficiency", "Efficiency", "dimensionless", "%",
-           help="Projectile energy at release (kinetic + potential gained) over the counterweight's potential-energy drop."),
+           help="Projectile energy at release (kinetic + potential gained) over the potential energy released by "
+                "the counterweight and the arm (each by its centre of mass) from rest to release."),
     Output("liftoff_time", "Lift-off time", "time", "s", help="ground_contact: when the sling lifts the projectile."),
     Output("arm_speed_at_vertical", "Arm speed at vertical", "angular_speed", "rad/s",
            help="The arm's angular speed when the long arm first points straight up."),
@@ -127,6 +140,12 @@ def machine(v, sling: bool | None = None, l: float | None = None) -> tb.Machine:
         raise InputError("pivot_height", f"must be below the long arm (1−a)·L = {(1 - a) * L:.4g} m, "
                                          "so that the long end C can rest on the ground")
     hinged = "hinged_counterweight" in effects
+    if hinged and v["hanger_length"] > 0 and v["arm_mass"] == 0 and v["counterweight_gyration"] == 0:
+        # After release the arm's own inertia about the pivot is I_arm + M·r²·k²/(d² + k²) (the
+        # pendulum's block eliminated): 0 for a massless arm and a point counterweight, whenever the
+        # hanger is square to the arm; the equations of motion are singular there (no unique motion).
+        raise InputError("arm_mass", "must be above 0 when the counterweight is a point mass (gyration 0) on a "
+                                     "hanger: a massless arm then has no inertia of its own after release")
     return tb.Machine(M=v["counterweight_mass"], k=v["counterweight_gyration"], m=v["arm_mass"], L=L, a=a, h=h,
                       m_p=v["projectile_mass"], l=v["sling_length"] if l is None else l, g=v["gravity"],
                       rigid=not hinged, d=v["hanger_length"] if hinged else 0.0,
@@ -230,9 +249,14 @@ def simulate(v, rtol: float) -> SimRun:
     angle = math.atan2(vy, -vx)  # toward the throw
     values.update(release_time=t_r, release_speed=speed, release_angle=angle, release_height=z_r)
     key.update(release_time=t_r, release_speed=speed)
+    # Energy balance from rest to release (T + V conserved; the ground's push does no work, a plastic
+    # touchdown only takes energy): E_p + T_machine = M·g·Δz_cw + m·g·Δz_arm, so the potential energy
+    # released by the counterweight AND the arm (each by its centre of mass) is what the throw is
+    # paid from, and E_p over it is at most 1 (the rest is the machine's own motion at release).
     E_p = 0.5 * p.m_p * speed**2 + p.m_p * p.g * (z_r - s.path[1][0])
-    if s.cw_drop > 0:
-        values["efficiency"] = max(E_p, 0.0) / (p.M * p.g * s.cw_drop)
+    supplied = p.g * (p.M * s.cw_drop + p.m * s.arm_drop)
+    if supplied > 0:
+        values["efficiency"] = max(E_p, 0.0) / supplied
     if z_r > 0:
         X, apex, fx, fz, n_fly = fly(v, p.g, z_r, speed, angle, rtol)
         nfev += n_fly
@@ -248,12 +272,17 @@ def simulate(v, rtol: float) -> SimRun:
     return SimRun(values, key, nfev, warnings, series)
 
 
-def refine(v, beta: float, l: float, lo: float, hi: float) -> tuple[float, float, float]:
-    """Polish the grid's best throw with accurate single throws (Nelder–Mead inside the search box)."""
+def refine(v, beta: float, l: float, lo: float, hi: float) -> tuple[float, float, float, bool]:
+    """Polish the grid's best throw with accurate single throws (Nelder–Mead inside the search box).
+    Within REFINE_NFEV evaluations: past them the polish stops at the best throw found so far
+    (the last value is False then; a stiff machine makes every accurate throw costly)."""
     from scipy.optimize import minimize
+
+    from ..sim.integrate import BudgetExceeded, budget
 
     effects = v["effects"] - {"optimise"} | {"sling"}
     scale = max(abs(l), 1.0)
+    best = [math.inf, None]
 
     def miss(x):
         b, length = x[0], x[1] * scale
@@ -263,40 +292,61 @@ def refine(v, beta: float, l: float, lo: float, hi: float) -> tuple[float, float
             run = simulate(dict(v, release_angle=b, sling_length=length, effects=effects), 1e-8)
         except InputError:
             return 1e30
-        return -run.values.get("range", -1e30)
+        f = -run.values.get("range", -1e30)
+        if f < best[0]:
+            best[:] = [f, (float(b), float(length))]
+        return f
 
-    res = minimize(miss, [beta, l / scale], method="Nelder-Mead",
-                   options={"xatol": 1e-5, "fatol": 1e-9 * scale, "maxfev": 200,
-                            "initial_simplex": [[beta, l / scale], [beta + 2 * DEG, l / scale],
-                                                [beta, l / scale * 1.05]]})
-    start = -miss([beta, l / scale])
+    try:
+        with budget(REFINE_NFEV) as spent:
+            start = -miss([beta, l / scale])
+            res = minimize(miss, [beta, l / scale], method="Nelder-Mead",
+                           options={"xatol": 1e-5, "fatol": 1e-9 * scale, "maxfev": 200,
+                                    "initial_simplex": [[beta, l / scale], [beta + 2 * DEG, l / scale],
+                                                        [beta, l / scale * 1.05]]})
+    except BudgetExceeded as exc:
+        if exc.budget is not spent:
+            raise
+        if best[1] is None:
+            return beta, l, -1e30, False
+        return best[1][0], best[1][1], -best[0], False
     if -res.fun >= start:
-        return float(res.x[0]), float(res.x[1] * scale), float(-res.fun)
-    return beta, l, start
+        return float(res.x[0]), float(res.x[1] * scale), float(-res.fun), True
+    return beta, l, start, True
 
 
 def compute(v) -> Result:
-    run = run_with_stats(simulate, v)
+    run = run_with_stats(simulate, v, ADVICE)
     if "optimise" in v["effects"]:
-        from ..sim.trebuchet import optimise
-
-        lo, hi = v["sling_min"], v["sling_max"]
-        if lo > hi:
-            raise InputError("sling_min", "must not exceed the longest sling searched")
-        best = optimise(machine(v, sling=True), v, lo, hi)
-        if best is None:
-            run.warnings.append("optimise: no candidate throw released.")
-        else:
-            beta, l, n = best
-            beta, l, reach = refine(v, beta, l, lo, hi)
-            if reach > -1e29:
-                run.values.update(best_release_angle=beta, best_sling_length=l, best_range=reach, candidates=n)
-                # the best throw's own validity (sling pushing, projectile through the ground, ...):
-                # the warnings above are about the throw at the entered angle and sling length
-                effects = v["effects"] - {"optimise"} | {"sling"}
-                best_run = simulate(dict(v, release_angle=beta, sling_length=l, effects=effects), 1e-8)
-                run.warnings += [f"optimise, best throw: {w}" for w in best_run.warnings if w not in run.warnings]
+        with solve_budget(OPTIMISE_ADVICE, max_nfev=OPTIMISE_NFEV):
+            _optimise(v, run)
     return Result(run.values, run.warnings, run.series)
+
+
+def _optimise(v, run: SimRun) -> None:
+    """The best release angle and sling length, into run (values and warnings)."""
+    from ..sim.trebuchet import optimise
+
+    lo, hi = v["sling_min"], v["sling_max"]
+    if lo > hi:
+        raise InputError("sling_min", "must not exceed the longest sling searched")
+    best = optimise(machine(v, sling=True), v, lo, hi)
+    if best is None:
+        run.warnings.append("optimise: no candidate throw released.")
+    else:
+        beta, l, n = best
+        beta, l, reach, polished = refine(v, beta, l, lo, hi)
+        if not polished:
+            run.warnings.append(f"optimise: the polish of the best throw stopped after {REFINE_NFEV} evaluations "
+                                "(every accurate throw of this machine is costly): the best shown is the best "
+                                "found so far, not the optimum to the last digit.")
+        if reach > -1e29:
+            run.values.update(best_release_angle=beta, best_sling_length=l, best_range=reach, candidates=n)
+            # the best throw's own validity (sling pushing, projectile through the ground, ...):
+            # the warnings above are about the throw at the entered angle and sling length
+            effects = v["effects"] - {"optimise"} | {"sling"}
+            best_run = simulate(dict(v, release_angle=beta, sling_length=l, effects=effects), 1e-8)
+            run.warnings += [f"optimise, best throw: {w}" for w in best_run.warnings if w not in run.warnings]
 
 
 CALCULATOR = Calculator(

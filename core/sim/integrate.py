@@ -13,8 +13,11 @@ a step boundary.
 from __future__ import annotations
 
 import math
+import time
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
-from typing import Callable, Sequence
+from typing import Callable, Iterator, Sequence
 
 Vector = list[float]
 RHS = Callable[[float, Vector], Vector]
@@ -35,6 +38,68 @@ _D = (-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799, -10690763975 /
       701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423)
 
 METHODS = ("DP54", "RK45", "DOP853", "Radau", "LSODA")
+
+
+# ---- the per-solve guard: a budget of work and wall time, and a way to cancel ------------------
+
+class Stopped(Exception):
+    """Integration stopped from outside the equations (not a RuntimeError, so the fallbacks that
+    catch a solver failure, e.g. "step size underflow", do not swallow it)."""
+
+
+class BudgetExceeded(Stopped):
+    def __init__(self, budget: "Budget", what: str):
+        self.budget = budget
+        super().__init__(what)
+
+
+class Cancelled(Stopped):
+    pass
+
+
+@dataclass
+class Budget:
+    """Work allowed to everything integrated inside `with budget(...)`: right-hand-side evaluations
+    (deterministic: the same inputs fail the same way on any machine), wall time (a backstop), and a
+    `cancel` callable polled between steps (the app: "the entries changed, drop this solve")."""
+
+    max_nfev: int | None = None
+    max_seconds: float | None = None
+    cancel: Callable[[], bool] | None = None
+    nfev: int = 0
+    started: float = field(default_factory=time.perf_counter)
+
+    def charge(self, n: int) -> None:
+        self.nfev += n
+        if self.max_nfev is not None and self.nfev > self.max_nfev:
+            raise BudgetExceeded(self, f"more than {self.max_nfev} right-hand-side evaluations")
+        if self.cancel is not None and self.cancel():
+            raise Cancelled("cancelled")
+        if self.max_seconds is not None and time.perf_counter() - self.started > self.max_seconds:
+            raise BudgetExceeded(self, f"more than {self.max_seconds:g} s")
+
+
+_budgets: ContextVar[tuple[Budget, ...]] = ContextVar("gearhead_budgets", default=())
+
+
+@contextmanager
+def budget(max_nfev: int | None = None, max_seconds: float | None = None,
+           cancel: Callable[[], bool] | None = None) -> Iterator[Budget]:
+    """Everything integrated inside is charged to this budget (and to any enclosing one).
+    Context variables are per thread: a solve in the app's worker thread has its own."""
+    b = Budget(max_nfev, max_seconds, cancel)
+    token = _budgets.set(_budgets.get() + (b,))
+    try:
+        yield b
+    finally:
+        _budgets.reset(token)
+
+
+def charge(n: int) -> None:
+    """Charge n evaluations to every active budget (for work done outside `integrate`, e.g. a
+    numpy batch); raises BudgetExceeded or Cancelled."""
+    for b in _budgets.get():
+        b.charge(n)
 
 
 @dataclass
@@ -74,10 +139,15 @@ def _interp(rc, theta: float) -> Vector:
 
 def integrate(rhs: RHS, t0: float, t1: float, y0: Sequence[float], rtol: float = 1e-6,
               atol: float = 1e-9, events: Sequence[Event] = (), method: str = "DP54",
-              max_steps: int = 100_000, first_step: float | None = None, dense: bool = False) -> Run:
+              max_steps: int = 100_000, first_step: float | None = None, dense: bool = False,
+              restart: Sequence[str] = ()) -> Run:
+    """`restart`: names of events that were located at t0 and handled by the caller (a restart at an
+    event). A crossing of one of them found again at t0 itself (within 1e-10 of the first step) is
+    that same event, not a new one: it is not reported, so a caller that restarts cannot loop."""
     if method != "DP54":
         return _scipy(rhs, t0, t1, y0, rtol, atol, events, method)
-    return _dp54(rhs, t0, t1, list(map(float, y0)), rtol, atol, events, max_steps, first_step, dense)
+    return _dp54(rhs, t0, t1, list(map(float, y0)), rtol, atol, events, max_steps, first_step, dense,
+                 frozenset(restart))
 
 
 def _norm(v, y0, y1, rtol, atol) -> float:
@@ -88,7 +158,8 @@ def _norm(v, y0, y1, rtol, atol) -> float:
     return math.sqrt(s / len(v))
 
 
-def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense) -> Run:
+def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense, restart=frozenset()) -> Run:
+    budgets = _budgets.get()
     n = len(y)
     direction = 1.0 if t1 >= t0 else -1.0
     span = abs(t1 - t0)
@@ -96,6 +167,8 @@ def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense)
     dense = []
     if span == 0:
         return Run(ts, ys, 0, 0, 0)
+    for b in budgets:
+        b.charge(8)  # the call's own overhead (setup, initial step), about one step's worth
     k1 = rhs(t0, y)
     nfev = 1
     # initial step (Hairer's heuristic, one extra evaluation)
@@ -119,6 +192,8 @@ def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense)
     while True:
         if steps + rejected >= max_steps:
             raise RuntimeError(f"integration did not finish in {max_steps} steps (t = {t:.6g})")
+        for b in budgets:
+            b.charge(6)
         if abs(t1 - t) <= h * (1 + 1e-12):
             h = abs(t1 - t)
             last = True
@@ -156,7 +231,9 @@ def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense)
                 crossed = (g_old < 0 <= g_new and ev.direction >= 0) or (g_old > 0 >= g_new and ev.direction <= 0)
                 if crossed:
                     te = _locate(ev, rc, t, hs, g_old, g_new)
-                    if ev.terminal:
+                    if steps == 0 and ev.name in restart and abs(te - t0) <= 1e-10 * abs(hs):
+                        pass  # the event the caller restarted at, found again at the same instant
+                    elif ev.terminal:
                         if hit is None or (te - hit[0]) * direction < 0:
                             hit = (te, ev)
                     else:
@@ -204,13 +281,19 @@ def _scipy(rhs, t0, t1, y0, rtol, atol, events, method) -> Run:
     import numpy as np
     from scipy.integrate import solve_ivp
 
+    budgets = _budgets.get()
     fns = []
     for ev in events:
         fn = (lambda e: (lambda t, y: e.g(t, list(y))))(ev)
         fn.terminal = ev.terminal
         fn.direction = ev.direction
         fns.append(fn)
-    sol = solve_ivp(lambda t, y: np.asarray(rhs(t, list(y)), dtype=float), (t0, t1), np.asarray(y0, float),
+    def f(t, y):
+        for b in budgets:
+            b.charge(1)
+        return np.asarray(rhs(t, list(y)), dtype=float)
+
+    sol = solve_ivp(f, (t0, t1), np.asarray(y0, float),
                     method=method, rtol=rtol, atol=atol, events=fns or None)
     if sol.status == -1:
         raise RuntimeError(sol.message)

@@ -9,16 +9,39 @@ last bit), and builds the accuracy ladder.
 from __future__ import annotations
 
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Iterator, Mapping
 
+from ..errors import InputError
 from ..model import Field, Output
+from .integrate import BudgetExceeded, budget
 
 # Named accuracy levels -> relative tolerance. "default" sits where the error-vs-time curve bends
 # (measured with bench/benchmark.py: tighter than this costs time for digits no design needs).
 LEVELS: dict[str, float] = {"coarse": 1e-3, "default": 1e-6, "fine": 1e-9, "tight": 1e-11}
 REFERENCE_RTOL = 1e-13
 ESTIMATE_FACTOR = 100.0  # the error estimate compares with a run at rtol / 100
+# The per-solve guard (core.sim.integrate.budget): the work one solve may do, error estimate
+# included. The built-in presets take < 2 000 evaluations; 400 000 is about 1 s of the integrator.
+SOLVE_NFEV = 400_000
+SOLVE_SECONDS = 30.0  # backstop for work the evaluation count does not see (root finders, numpy)
+DEFAULT_ADVICE = ("accuracy", "try accuracy=coarse, or inputs that make the simulated motion shorter")
+
+
+@contextmanager
+def solve_budget(advice: tuple[str, str] = DEFAULT_ADVICE, max_nfev: int = SOLVE_NFEV,
+                 max_seconds: float = SOLVE_SECONDS) -> Iterator[None]:
+    """Run one solve within the budget; past it, an InputError naming the field to change and how
+    (never a hang). `advice` = (field, what to change), from the calculator: it knows what is long."""
+    try:
+        with budget(max_nfev, max_seconds) as b:
+            yield
+    except BudgetExceeded as exc:
+        if exc.budget is not b:
+            raise
+        name, hint = advice
+        raise InputError(name, f"the simulation needs {exc} (the limit of one solve): {hint}") from None
 
 
 def accuracy_field(default: str = "default") -> Field:
@@ -70,8 +93,15 @@ def relative_difference(a: Mapping[str, float], b: Mapping[str, float]) -> float
     return worst
 
 
-def run_with_stats(simulate: Simulate, values: Mapping[str, Any]) -> SimRun:
-    """The run at the chosen accuracy, with error estimate, evaluations and wall time added."""
+def run_with_stats(simulate: Simulate, values: Mapping[str, Any],
+                   advice: tuple[str, str] = DEFAULT_ADVICE) -> SimRun:
+    """The run at the chosen accuracy, with error estimate, evaluations and wall time added, all
+    within one solve's budget (`advice` says what to change when it is not enough)."""
+    with solve_budget(advice):
+        return _run_with_stats(simulate, values)
+
+
+def _run_with_stats(simulate: Simulate, values: Mapping[str, Any]) -> SimRun:
     rtol = LEVELS[values["accuracy"]]
     # The check runs first: it pays the one-off costs (lazy imports of scipy and numpy, caches),
     # so the wall time shown is what the chosen accuracy costs, not what starting up costs.
@@ -93,12 +123,12 @@ def run_with_stats(simulate: Simulate, values: Mapping[str, Any]) -> SimRun:
     return run
 
 
-def compute_with_stats(simulate: Simulate):
+def compute_with_stats(simulate: Simulate, advice: tuple[str, str] = DEFAULT_ADVICE):
     """A calculator's compute function that is just its scene run with the cost figures added."""
     from ..model import Result
 
     def compute(values: Mapping[str, Any]) -> Result:
-        run = run_with_stats(simulate, values)
+        run = run_with_stats(simulate, values, advice)
         return Result(run.values, run.warnings, run.series)
 
     return compute
@@ -113,14 +143,18 @@ class Rung:
     nfev: int
 
 
-def ladder(simulate: Simulate, values: Mapping[str, Any], repeats: int = 3) -> tuple[list[Rung], SimRun]:
-    """Each accuracy level against a reference at REFERENCE_RTOL: error, wall time, evaluations."""
-    reference = simulate(values, REFERENCE_RTOL)
+def ladder(simulate: Simulate, values: Mapping[str, Any], repeats: int = 3,
+           advice: tuple[str, str] = DEFAULT_ADVICE) -> tuple[list[Rung], SimRun]:
+    """Each accuracy level against a reference at REFERENCE_RTOL: error, wall time, evaluations.
+    Each run has one solve's budget (the reference, 25x the default's work, is the one that needs it)."""
+    with solve_budget(advice, max_nfev=4 * SOLVE_NFEV, max_seconds=4 * SOLVE_SECONDS):
+        reference = simulate(values, REFERENCE_RTOL)
     rungs = []
     for level, rtol in LEVELS.items():
         best = None
         for _ in range(repeats):  # best of a few: wall time is noisy, the work is not
-            run, wall = timed(simulate, values, rtol)
+            with solve_budget(advice):
+                run, wall = timed(simulate, values, rtol)
             best = wall if best is None else min(best, wall)
         rungs.append(Rung(level, rtol, relative_difference(run.key, reference.key), best, run.nfev))
     return rungs, reference

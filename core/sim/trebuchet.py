@@ -225,12 +225,12 @@ def sling_tension(p: Machine, y, contact: bool) -> float:
 
 
 def release_gauge(beta: float):
-    """g(v) for the release event: the signed angle from the release direction to the velocity.
+    """g(v) for the batch's release event: the signed angle from the release direction to the velocity.
 
     The release direction points up at β over the horizontal toward the throw (−x): angle π − β
     from +x. The velocity turns counter-clockwise as the sling whips, so the event is a rising zero.
     The branch cut sits in the direction the projectile never moves before release (backwards
-    and down, between π − β and straight down), so the gauge is continuous along the swing.
+    and down, between π − β and straight down). The accurate run uses `release_cross` instead.
     """
     target = math.pi - beta
     cut = math.pi / 4 + beta / 2
@@ -245,6 +245,22 @@ def release_gauge(beta: float):
         return alpha
 
     return gauge
+
+
+def release_cross(beta: float):
+    """g(v) = u × v = |v|·sin α for the accurate run's release event, u = (−cos β, sin β) the release
+    direction and α the angle from u to the velocity. It is smooth in the state (no branch cut, so
+    no false crossing where an angle wraps, and no window a long step can jump over short of a half
+    turn past u). It rises through zero when the velocity turns counter-clockwise through u (α = 0:
+    the release) and also where it turns through −u or passes through zero speed (a reversal):
+    those have u·v ≤ 0 and are not releases (the caller checks, and goes on).
+    """
+    ux, uy = -math.cos(beta), math.sin(beta)
+
+    def cross(vx: float, vy: float) -> float:
+        return ux * vy - uy * vx
+
+    return cross
 
 
 SUBSTEPS = (0.25, 0.5, 0.75)  # dense-output points drawn inside each step (plots, lowest heights)
@@ -264,6 +280,7 @@ class Swing:
     path: tuple  # projectile (x, height) until release, seed frame
     release: tuple | None  # (t, x, z, vx, vy) of the projectile
     cw_drop: float  # counterweight centre's fall from rest to release
+    arm_drop: float  # the arm's centre of mass's fall from rest to release (negative: it rose)
     drift: float  # max |ΔE| / max kinetic energy over the conservative phases
     vertical: tuple | None  # (t, ω) when the long arm first points straight up
     min_tension: float  # most negative sling pull before release (inf without sling)
@@ -286,6 +303,7 @@ def initial_state(p: Machine) -> list:
 
 
 MAX_TOUCHDOWNS = 20
+MAX_RESTARTS = 200  # guard: lift-offs, touchdowns and rejected releases together (a real swing has < 25)
 MAX_STEPS = 20_000  # a real swing takes < 1000 steps even at rtol 1e-11; more means a degenerate machine
 
 
@@ -381,9 +399,9 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
     cw0 = counterweight_height(p, y)
     if wd0 <= 0:  # the counterweight cannot lift the arm off the ground
         record(p, Run([0.0], [y], 0, 0, 0), False, True, contact)
-        return Swing(False, "stuck", t_, phi_, w_, th_, (xs, zs), None, 0.0, 0.0, None,
+        return Swing(False, "stuck", t_, phi_, w_, th_, (xs, zs), None, 0.0, 0.0, 0.0, None,
                      min_T, 0.0, cw0, 0)
-    gauge = release_gauge(beta)
+    gauge = release_cross(beta)
 
     def release_g(t, s):
         _, _, vx, vy = projectile(p, s)
@@ -403,10 +421,12 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
     ending = "time"
     cw_min = cw0
     first = True
+    restart: tuple = ()  # the event the last run ended at, when the swing goes on from it
+    restarts = 0
     while True:
         evs = events + ([lift] if contact else [touch] if ground_contact and p.sling else [])
         run = integrate(rhs_for(p, contact), t, T_SWING, y, rtol=rtol, atol=atol, events=evs, dense=True,
-                        max_steps=MAX_STEPS)
+                        max_steps=MAX_STEPS, restart=restart)
         nfev += run.nfev
         n_E = len(E_)
         record(p, run, not first, True, contact)
@@ -417,6 +437,11 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
             if name == "vertical" and vertical is None:
                 vertical = (tc, yc[1])
         t, y = run.t[-1], run.y[-1]
+        restart = (run.event,) if run.event else ()
+        if run.event in ("liftoff", "touchdown", "release"):
+            restarts += 1
+            if restarts > MAX_RESTARTS:
+                raise RuntimeError(f"the swing restarted {MAX_RESTARTS} times at t = {t:.6g} s")
         if run.event == "liftoff":
             contact = False
             liftoff = t
@@ -434,13 +459,17 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
             continue
         if run.event == "release":
             _, _, vx, vy = projectile(p, y)
-            if vx * -math.cos(beta) + vy * math.sin(beta) <= 0:  # the gauge's branch cut, not a release
+            if vx * -math.cos(beta) + vy * math.sin(beta) <= 0:  # through −u or zero speed: not a release
+                if y[1] <= 0:  # the velocity reversed because the arm stopped (ω = 0) here
+                    ending = "stopped"
+                    break
                 continue
         ending = run.event or "time"
         break
     released = ending == "release"
     release = (t, *projectile(p, y)) if released else None
     cw_drop = cw0 - counterweight_height(p, y)
+    arm_drop = p.s * (math.sin(p.phi0) - math.sin(y[0]))  # its centre at height h + s·sin φ
     KE_max = max((e[0] for e in E_), default=0.0)
     drift = max(abs(e[1] - E_[0][1]) for e in E_) / KE_max if KE_max > 0 else 0.0
     if released and vertical is None and y[1] > 0:
@@ -460,7 +489,7 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float) -> Swing:
             vertical = (run.t[-1], run.y[-1][1])
         if T0 > 0:
             drift = max(drift, max(abs(sum(energy(q, s)) - E0) for s in run.y) / max(T0, KE_max))
-    return Swing(released, ending, t_, phi_, w_, th_, (xs, zs), release, cw_drop, drift, vertical,
+    return Swing(released, ending, t_, phi_, w_, th_, (xs, zs), release, cw_drop, arm_drop, drift, vertical,
                  min_T, min(min_z, 0.0), cw_min, nfev, liftoff, touchdowns)
 
 
@@ -525,7 +554,10 @@ def batch_swing(p: Machine, lengths, betas, ground_contact: bool):
     released = np.zeros((nl, nb), bool)
     out = [np.zeros((nl, nb)) for _ in range(4)]
     alive = np.ones(nl, bool)
+    from .integrate import charge
+
     for _ in range(int(40 * STEPS_PER_TAU)):
+        charge(4 * nl)  # RK4: four evaluations per sling length (the per-solve budget, and cancel)
         k1 = f(state)
         k2 = f(tuple(s + 0.5 * dt * k for s, k in zip(state, k1)))
         k3 = f(tuple(s + 0.5 * dt * k for s, k in zip(state, k2)))
@@ -572,7 +604,10 @@ def batch_ranges(released, x, z, vx, vy, g: float, k_drag: float):
             speed = np.sqrt(qx * qx + qz * qz)
             return -k_drag * speed * qx, -g - k_drag * speed * qz
 
+        from .integrate import charge
+
         for _ in range(2 * n):  # drag only shortens the flight: 2·T is ample
+            charge(4)  # (one vectorised evaluation over the candidates counts as one: cancel is polled)
             s = (px, pz, qx, qz)
             d1 = (qx, qz, *acc(qx, qz))
             s2 = tuple(a + 0.5 * dt * b for a, b in zip(s, d1))

@@ -298,13 +298,18 @@ class CalculatorTab(Widget):
     def _solve_in_thread(self, entries: dict[str, Any], display_units: dict[str, str], system: str) -> None:
         from core import unit_systems
         from core.model import solve
+        from core.sim.integrate import Cancelled, budget
 
         try:
             # in the thread: "as entered" reads units with pint, which must not load on the UI thread
             preferred = unit_systems.display_units(self.calculator, system, entries)
             self._preferred_units = preferred
-            solution = solve(self.calculator.id, entries, {**preferred, **display_units})
+            # a simulation polls this between steps: keys typed meanwhile drop it (latest wins at once)
+            with budget(cancel=lambda: self._dirty):
+                solution = solve(self.calculator.id, entries, {**preferred, **display_units})
             error = None
+        except Cancelled:  # only when _dirty: _solve_done starts the solve of the latest entries
+            solution, error = None, None
         except InputError as exc:
             solution, error = None, exc
         except Exception as exc:  # a bug must not take the app (and what was typed) down with it
