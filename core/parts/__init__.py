@@ -43,20 +43,25 @@ FAMILIES: dict[str, Family] = {
 class Bore:
     label: str
     motor: bool  # a motor's own shaft: such a part can only sit on the motor
+    fits: str = ""  # the motors with that shaft, for the motor-shaft choice
+
+    @property
+    def choice_label(self) -> str:
+        return f"{self.label} ({self.fits})" if self.fits else self.label
 
 
 BORES: dict[str, Bore] = {
     "hex_half_in": Bore("1/2 in hex", False),
     "hex_3_8_in": Bore("3/8 in hex", False),
-    "round_1125_in": Bore("1.125 in round (bearing bore)", False),
+    "round_1125_in": Bore("1.125 in round", False, "bearing bore"),
     "maxspline": Bore("MAXSpline", False),
     "splinexl": Bore("SplineXL", False),
     "hex_5mm": Bore("5 mm hex", False),
     "round_quarter_in": Bore("1/4 in round", False),
-    "keyed_8mm": Bore("8 mm keyed (NEO, CIM)", True),
-    "falcon": Bore("Falcon/Kraken spline (Falcon 500, Kraken X60)", True),
-    "splinexs": Bore("SplineXS (Kraken X44, Minion)", True),
-    "vortex": Bore("NEO Vortex shaft", True),
+    "keyed_8mm": Bore("8 mm keyed", True, "NEO, CIM"),
+    "falcon": Bore("Falcon spline", True, "Falcon 500, Kraken X60"),
+    "splinexs": Bore("SplineXS", True, "Kraken X44, Minion"),
+    "vortex": Bore("Vortex shaft", True, "NEO Vortex"),
     "shaft_775": Bore("775 motor shaft", True),
     "shaft_550": Bore("550 motor shaft", True),
     "shaft_bag": Bore("BAG motor shaft", True),
