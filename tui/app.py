@@ -227,6 +227,9 @@ class GearheadApp(App):
             target = await self.card(target_id)
             values = {field: exact_text(tab.solution.outputs[out], tab.calculator.output(out))
                       for field, out in mapping.items() if out in tab.solution.outputs}
+            if not values:  # e.g. drivetrain's forward mode has no ratio to send
+                self.notify("Nothing to send in this mode.", severity="warning")
+                continue
             target.set_entries(values)
             self.show_calculator(target_id)
             self.notify(", ".join(f"{k} = {v}" for k, v in values.items()), markup=False,

@@ -414,10 +414,17 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
         bound = nth_key()
         if bound is not None and bound[0] == 0:
             break  # k stages cannot beat N exact (or in-range) combinations with fewer stages
-        nearest, worst = _nearest_errors(tables, lo_t, hi_t, n_best, np)
+        # start from the (4N)-th best nearest error: orders of the same stages and infeasible bores
+        # make fewer combinations than value tuples, and every regrowth repeats the pass
+        spare = 4 * n_best
+        nearest, _ = _nearest_errors(tables, lo_t, hi_t, spare, np)
         if nearest.size == 0:
             continue
-        m = min(n_best, nearest.size) - 1
+        # the largest error any k-stage tuple can have: past it, every tuple has been enumerated
+        lowest = math.prod(float(v[0]) for v in tables)
+        highest = math.prod(float(v[-1]) for v in tables)
+        worst = max(lo_t - lowest, highest - hi_t, 0.0)
+        m = min(spare, nearest.size) - 1
         eps = float(np.partition(nearest, m)[m])
         if bound is not None:
             eps = min(eps, bound[0])
