@@ -187,6 +187,10 @@ def problems(cat: Catalogue) -> list[str]:
             found.append(f"{where}: unknown vendor")
         if item.family not in FAMILIES:
             found.append(f"{where}: unknown family {item.family!r}")
+        elif isinstance(item, Belt) and FAMILIES[item.family].kind != "belt":
+            found.append(f"{where}: a belt in the {FAMILIES[item.family].kind} family {item.family}")
+        elif isinstance(item, Part) and FAMILIES[item.family].kind == "planetary":
+            found.append(f"{where}: a toothed part in the planetary family")
         if not (isinstance(item.teeth, int) and 6 <= item.teeth <= 400):
             found.append(f"{where}: implausible tooth count {item.teeth!r}")
         if isinstance(item, Part) and item.bore not in BORES:
