@@ -327,3 +327,47 @@ def test_cli_json(capsys):
 
 def test_other_calculators_json_has_no_tables_key():
     assert "tables" not in solve("gear_ratio", {}).as_json()
+
+
+# --- the tab ------------------------------------------------------------------------------------
+
+async def test_ctrl_g_sends_the_belt_row_under_the_cursor_to_chain_belt():
+    from textual.widgets import DataTable
+
+    from tests.tui_helpers import settle
+    from tui.app import GearheadApp
+
+    app = GearheadApp(blink=False, initial="ratio_finder", hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.current_tab
+        tab.set_entries({"families": "htd_5mm", "max_stages": "1", "target_ratio": "2.5", "output_bore": "any"})
+        await settle(pilot)
+        rows = tab.solution.tables["combinations"]
+        n = next(i for i, r in enumerate(rows) if "links" in r)
+        grid = tab.query_one("#table-combinations", DataTable)
+        assert grid.row_count == len(rows)
+        grid.focus()
+        grid.move_cursor(row=n)
+        await pilot.press("ctrl+g")
+        await settle(pilot)
+        assert app.current_calculator == "chain_belt"
+        belt = app.current_tab
+        assert belt.solution.outputs["center_distance"].value == pytest.approx(rows[n]["center_distance"].value,
+                                                                               rel=1e-12)
+        assert belt.entries["teeth_1"] == str(rows[n]["teeth_1"].value)
+
+
+async def test_gear_ratio_sends_its_ratio_to_the_finder():
+    from tests.tui_helpers import settle
+    from tui.app import GearheadApp
+
+    app = GearheadApp(blink=False, initial="gear_ratio", hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        ratio = app.current_tab.solution.outputs["ratio"].value
+        await pilot.press("ctrl+g")
+        await settle(pilot)
+        assert app.current_calculator == "ratio_finder"
+        assert float(app.current_tab.entries["target_ratio"]) == pytest.approx(ratio, rel=1e-15)
+        assert app.current_tab.solution is not None

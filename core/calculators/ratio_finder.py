@@ -76,7 +76,8 @@ OUTPUTS = (
     Output("part_count", "Parts to buy",
            help="Two per gear stage, two plus the belt or chain per belt/chain stage, the gearbox "
                 "plus each cartridge for a planetary stage."),
-    *(Output(f"stage_{i}", f"Stage {i}", help=f"Stage {i} of the best combination, motor side first.")
+    *(Output(f"stage_{i}", f"Stage {i}", help=f"Stage {i} of the best combination, motor side first "
+                                               "(driving:driven teeth); its parts are in the table.")
       for i in STAGES),
     Output("combinations", "Combinations found",
            help="Distinct feasible combinations the search assembled (not all of them listed)."),
@@ -235,18 +236,10 @@ def relative_error(combo, q) -> float:
     return 0.0
 
 
-def describe(row_group) -> str:
-    """One line for a stage of the best combination."""
-    parts = []
-    for row in row_group:
-        text = f"{row['kind']} {row['teeth']}"
-        if "center_distance" in row:
-            text += f", C-C {row['center_distance'] / IN:.3f} in"
-        if "loop" in row:
-            text += f", {row['loop']}"
-        text += f"; {row['parts']}"
-        parts.append(text)
-    return parts
+def describe(row) -> str:
+    """A stage of the best combination in a few words (its parts are in the table)."""
+    kind = row["kind"].split(" (")[0]  # "MAXPlanetary (REV)" -> "MAXPlanetary"
+    return f"{kind} {row['teeth']}"
 
 
 def why_not(q, combos, stats) -> list[str]:
@@ -301,8 +294,8 @@ def compute(v) -> Result:
     values = {"ratio": float(best.ratio), "ratio_error": relative_error(best, q),
               "stage_count": len(best.stages), "part_count": best.parts,
               "combinations": stats["feasible"]}
-    for i, line in enumerate(describe(rows[:len(best.stages)]), 1):
-        values[f"stage_{i}"] = line
+    for i, row in enumerate(rows[:len(best.stages)], 1):
+        values[f"stage_{i}"] = describe(row)
     return Result(values, warnings, tables={"combinations": rows})
 
 
