@@ -38,7 +38,7 @@ import itertools
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from typing import Iterable, Sequence
 
 from . import BORES, FAMILIES, Catalogue, Part, PlanetarySystem, catalogue, pitch_si
@@ -83,7 +83,10 @@ class Stage:
     system: PlanetarySystem | None = None
     alternatives: list = field(default_factory=list)  # (teeth_in, teeth_out) of the other members
 
-    @property
+    def __post_init__(self) -> None:
+        self.ratio_f = float(self.ratio)
+
+    @cached_property
     def identity(self) -> tuple:
         """What makes two stages the same to a designer: a gearbox and its cartridges, or a
         family and ratio (16:36 and 20:45 are one 2.25:1 gear stage; "Also" lists the others)."""
@@ -127,17 +130,18 @@ def gear_center(family: str, n: int, N: int) -> float:
     return (n + N) / (2 * pitch_si(FAMILIES[family].pitch))
 
 
-@lru_cache(maxsize=4096)
-def loop_choice(family: str, n1: int, n2: int, lo: float | None, hi: float | None,
-                belt_teeth: tuple[int, ...]) -> tuple[int, float] | None:
+@lru_cache(maxsize=65536)
+def loop_links(family: str, n1: int, n2: int, lo: float | None, hi: float | None,
+               belt_teeth: tuple[int, ...]) -> int | None:
     """The shortest belt (stocked lengths) or chain (even links) whose center distance is at
-    least lo and at least the touching-pitch-circles distance r_1 + r_2, and at most hi:
-    (links or belt teeth, center distance in m), or None if there is none.
+    least lo and at least the touching-pitch-circles distance r_1 + r_2, and at most hi: its
+    links or belt teeth, or None if there is none. Only the forward length equation is needed
+    (the length grows with the center distance), so the search never loads scipy.
 
-    Length from center is the exact open-drive length of chain_belt (68, corrected), the center
-    from a length its inverse; pitch radii n·p/(2π) (65) for belt and chain alike (chain_belt.py).
+    Length from center: the exact open-drive length of chain_belt (68, corrected); pitch radii
+    n·p/(2π) (65) for belt and chain alike (chain_belt.py).
     """
-    from ..calculators.chain_belt import center_from_length, length_from_center, pitch_radius
+    from ..calculators.chain_belt import length_from_center, pitch_radius
 
     p = pitch_si(FAMILIES[family].pitch)
     r1, r2 = pitch_radius(n1, p, "circumference"), pitch_radius(n2, p, "circumference")
@@ -148,12 +152,23 @@ def loop_choice(family: str, n1: int, n2: int, lo: float | None, hi: float | Non
     top = math.inf if hi is None else length_from_center(hi, r1, r2) / p
     if FAMILIES[family].kind == "chain":
         links = 2 * math.ceil(need / 2 - 1e-9)  # whole chain, no half (offset) link
-        if links > top + 1e-9:
-            return None
     else:
         links = next((t for t in belt_teeth if t >= need - 1e-9), None)
-        if links is None or links > top + 1e-9:
-            return None
+    if links is None or links > top + 1e-9:
+        return None
+    return links
+
+
+def loop_choice(family: str, n1: int, n2: int, lo: float | None, hi: float | None,
+                belt_teeth: tuple[int, ...]) -> tuple[int, float] | None:
+    """loop_links and the center distance it gives (chain_belt's inverse of (68)), or None."""
+    from ..calculators.chain_belt import center_from_length, pitch_radius
+
+    links = loop_links(family, n1, n2, lo, hi, belt_teeth)
+    if links is None:
+        return None
+    p = pitch_si(FAMILIES[family].pitch)
+    r1, r2 = pitch_radius(n1, p, "circumference"), pitch_radius(n2, p, "circumference")
     excess = (links - max(n1, n2)) * p / 2  # exact (chain_belt.compute)
     return links, center_from_length(links * p, r1, r2, excess)
 
@@ -199,7 +214,8 @@ def stage_classes(q: Query, cat: Catalogue | None = None) -> list[Stage]:
                           positions,
                           tuple(p for p in table[n_in] if BIT[p.bore] & (allowed_shaft | motor_bit)),
                           tuple(p for p in table[n_out] if BIT[p.bore] & allowed_shaft))
-            key = (family, stage.ratio, parts, stage.drive_mask, stage.out_mask, positions)
+            g = math.gcd(n_in, n_out)  # the reduced ratio as ints: hashing Fractions was slow
+            key = (family, n_out // g, n_in // g, parts, stage.drive_mask, stage.out_mask, positions)
             members.setdefault(key, []).append(stage)
 
     if "planetary" in q.families and reducing:
@@ -249,7 +265,7 @@ def stage_fits(family: str, kind: str, n_in: int, n_out: int, limits, belt_teeth
         c = gear_center(family, n_in, n_out)
         return (lo is None or c >= lo * (1 - 1e-12)) and (hi is None or c <= hi * (1 + 1e-12))
     small, large = sorted((n_in, n_out))
-    return loop_choice(family, small, large, lo, hi, belt_teeth.get(family, ())) is not None
+    return loop_links(family, small, large, lo, hi, belt_teeth.get(family, ())) is not None
 
 
 # --- searching ---------------------------------------------------------------------------------
@@ -343,7 +359,7 @@ def table(prep: Prepared, q: Query, position: int, first: bool, last: bool) -> T
                 continue
             if (first and not s.drive_mask & motor) or (last and not s.out_mask & output):
                 continue
-            by_value.setdefault(float(s.ratio), []).append(s)
+            by_value.setdefault(s.ratio_f, []).append(s)
         ordered = sorted(by_value)
         prep.tables[key] = Table(np.array(ordered, dtype=float), [by_value[v] for v in ordered],
                                  np.array([min(s.parts for s in by_value[v]) for v in ordered], dtype=np.int64))
@@ -417,7 +433,8 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
         # start from the (4N)-th best nearest error: orders of the same stages and infeasible bores
         # make fewer combinations than value tuples, and every regrowth repeats the pass
         spare = 4 * n_best
-        nearest, _ = _nearest_errors(tables, lo_t, hi_t, spare, np)
+        tail = tail_table(prep, q, k, np)
+        nearest = _nearest_errors(tables[0], tail, lo_t, hi_t, np)
         if nearest.size == 0:
             continue
         # the largest error any k-stage tuple can have: past it, every tuple has been enumerated
@@ -430,7 +447,7 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
             eps = min(eps, bound[0])
         for _ in range(60):
             window = eps + tie
-            index, errors = _tuples_within(tables, lo_t - window, hi_t + window, lo_t, hi_t, np)
+            index, errors = _tuples_within(tables[0], tail, lo_t - window, hi_t + window, lo_t, hi_t, np)
             parts = sum(chosen[i].fewest_parts[index[i]] for i in range(k))
             grid = np.round(errors / tie)  # ties in exact error compare equal
             order = np.lexsort((parts, grid))
@@ -453,58 +470,45 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
     return ranked[:n_best], stats
 
 
-def _rows(tables):
-    """The tuples of the first k−2 positions (looped over in Python) as (values, product): at
-    most one table's size, so each row below is one vectorised pass over a sorted table."""
-    rows = [((), 1.0)]
-    for values in tables[:-2]:
-        rows = [(head + (i,), p * float(v)) for head, p in rows for i, v in enumerate(values)]
-    return rows
+def tail_table(prep: Prepared, q: Query, k: int, np):
+    """The positions after the first, as one sorted array of products and the index of each
+    factor: for two stages the last table itself; for three, every product of the middle and
+    last tables, sorted once per filter setting (meet in the middle: a new ratio then costs a
+    bisection per first-stage value)."""
+    key = ("tail", k)
+    if key not in prep.tables:
+        last = table(prep, q, k - 1, False, True).values
+        if k == 2:
+            prep.tables[key] = (last, [np.arange(last.size)])
+        else:
+            middle = table(prep, q, 1, False, False).values
+            products = np.multiply.outer(middle, last).ravel()
+            order = np.argsort(products)  # introsort: 4x faster than the stable sorts here
+            prep.tables[key] = (products[order], [order // last.size, order % last.size])
+    return prep.tables[key]
 
 
-def _nearest_errors(tables, lo: float, hi: float, n_best: int, np):
-    """The n_best smallest errors of (first k−1 values, nearest last value) tuples, and the largest."""
-    middle, last = tables[-2], tables[-1]
-    mid = (lo + hi) / 2
-    kept, worst = [], 0.0
-    for _, p in _rows(tables):
-        prefix = p * middle  # sorted, since middle is
-        idx = np.searchsorted(last, (mid / prefix)[::-1])[::-1]
-        best = None
-        for j in (np.clip(idx - 1, 0, last.size - 1), np.clip(idx, 0, last.size - 1)):
-            r = prefix * last[j]
-            err = np.maximum(np.maximum(lo - r, r - hi), 0.0)
-            best = err if best is None else np.minimum(best, err)
-        worst = max(worst, float(best.max()))
-        if best.size > n_best:
-            best = np.partition(best, n_best - 1)[:n_best]
-        kept.append(best)
-    return np.concatenate(kept), worst
+def _nearest_errors(first, tail, lo: float, hi: float, np):
+    """For each first-stage value, the error of the nearest tail product."""
+    products = tail[0]
+    idx = np.searchsorted(products, (lo + hi) / 2 / first)
+    best = None
+    for j in (np.clip(idx - 1, 0, products.size - 1), np.clip(idx, 0, products.size - 1)):
+        r = first * products[j]
+        err = np.maximum(np.maximum(lo - r, r - hi), 0.0)
+        best = err if best is None else np.minimum(best, err)
+    return best
 
 
-def _tuples_within(tables, lo: float, hi: float, r_lo: float, r_hi: float, np):
+def _tuples_within(first, tail, lo: float, hi: float, r_lo: float, r_hi: float, np):
     """Every tuple of values (one per position) whose product lies in [lo, hi]: index arrays (one
     per position) and each tuple's error."""
-    middle, last = tables[-2], tables[-1]
-    k = len(tables)
-    columns: list[list] = [[] for _ in range(k)]
-    errors = []
-    for head, p in _rows(tables):
-        prefix = p * middle
-        start = np.searchsorted(last, (lo / prefix)[::-1], side="left")[::-1]
-        stop = np.searchsorted(last, (hi / prefix)[::-1], side="right")[::-1]
-        counts = np.maximum(stop - start, 0)
-        if not counts.any():
-            continue
-        rows = np.repeat(np.arange(prefix.size), counts)
-        lasts = start[rows] + np.arange(rows.size) - np.repeat(np.cumsum(counts) - counts, counts)
-        for i, h in enumerate(head):
-            columns[i].append(np.full(rows.size, h))
-        columns[k - 2].append(rows)
-        columns[k - 1].append(lasts)
-        r = prefix[rows] * last[lasts]
-        errors.append(np.maximum(np.maximum(r_lo - r, r - r_hi), 0.0))
-    if not errors:
-        empty = np.zeros(0, dtype=np.int64)
-        return [empty] * k, np.zeros(0)
-    return [np.concatenate(c) for c in columns], np.concatenate(errors)
+    products, factors = tail
+    start = np.searchsorted(products, lo / first, side="left")
+    stop = np.searchsorted(products, hi / first, side="right")
+    counts = np.maximum(stop - start, 0)
+    rows = np.repeat(np.arange(first.size), counts)
+    at = start[rows] + np.arange(rows.size) - np.repeat(np.cumsum(counts) - counts, counts)
+    r = first[rows] * products[at]
+    errors = np.maximum(np.maximum(r_lo - r, r - r_hi), 0.0)
+    return [rows] + [f[at] for f in factors], errors
