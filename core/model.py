@@ -200,6 +200,36 @@ class Plot:
     y_unit: str
 
 
+@dataclass(frozen=True)
+class Column:
+    """One column of a Table: a value per row, in SI like an Output."""
+
+    name: str
+    label: str
+    quantity: str = "dimensionless"
+    unit: str = ""
+    hidden: bool = False  # carried for sending a row (exports), not shown
+
+
+@dataclass(frozen=True)
+class Table:
+    """A list of alternatives a compute function returns (e.g. the ratio finder's combinations),
+    shown under the results; each row is a dict of column values, a missing key an empty cell."""
+
+    name: str  # key of Result.tables
+    title: str
+    columns: tuple[Column, ...]
+    # a row sent to another calculator: {target_id: {target_field: column}}; a row is sent to the
+    # targets whose columns it all has
+    exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
+
+    def column(self, name: str) -> Column:
+        for c in self.columns:
+            if c.name == name:
+                return c
+        raise KeyError(name)
+
+
 @dataclass
 class Result:
     """What a compute function returns: output values in SI, and warnings for the user."""
@@ -207,6 +237,7 @@ class Result:
     values: dict[str, Any]
     warnings: list[str] = dc_field(default_factory=list)
     series: dict[str, tuple[list[float], list[float]]] = dc_field(default_factory=dict)  # for plots
+    tables: dict[str, list[dict[str, Any]]] = dc_field(default_factory=dict)  # rows of each Table
 
 
 @dataclass(frozen=True)
@@ -221,6 +252,7 @@ class Calculator:
     # Outputs that feed another calculator: {target_id: {target_field: output_name}}
     exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
     plots: tuple[Plot, ...] = ()
+    tables: tuple[Table, ...] = ()
     # Simulated calculators: simulate(values, rtol) -> core.sim.scene.SimRun (for the accuracy ladder)
     simulate: Callable[[Mapping[str, Any], float], Any] | None = None
 
@@ -266,14 +298,19 @@ class Solution:
     outputs: dict[str, Value]
     warnings: list[str]
     series: dict[str, tuple[list[float], list[float]]] = dc_field(default_factory=dict)
+    tables: dict[str, list[dict[str, Value]]] = dc_field(default_factory=dict)
 
     def as_json(self) -> dict[str, Any]:
-        return {
+        out = {
             "calculator": self.calculator,
             "inputs": {k: v.as_json() for k, v in self.inputs.items()},
             "outputs": {k: v.as_json() for k, v in self.outputs.items()},
             "warnings": list(self.warnings),
         }
+        if self.tables:  # only calculators that declare tables have the key
+            out["tables"] = {name: [{k: v.as_json() for k, v in row.items()} for row in rows]
+                             for name, rows in self.tables.items()}
+        return out
 
 
 def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, str]]:
@@ -388,4 +425,18 @@ def solve(calc_id: str, raw: Mapping[str, Any] | None = None,
             raise InputError("(result)", f"{o.name} could not be computed from these inputs")
         unit = display_units.get(o.name, o.unit)
         outputs[o.name] = format_value(v, o.quantity, unit)
-    return Solution(calc.id, inputs, outputs, list(result.warnings), dict(result.series))
+    tables = {}
+    for t in calc.tables:
+        rows = []
+        for row in result.tables.get(t.name, []):
+            cells = {}
+            for c in t.columns:
+                if c.name not in row:
+                    continue
+                v = row[c.name]
+                if isinstance(v, float) and not math.isfinite(v):  # the same last-resort guard
+                    raise InputError("(result)", f"{t.name}.{c.name} could not be computed from these inputs")
+                cells[c.name] = format_value(v, c.quantity, c.unit)
+            rows.append(cells)
+        tables[t.name] = rows
+    return Solution(calc.id, inputs, outputs, list(result.warnings), dict(result.series), tables)

@@ -14,7 +14,7 @@ from .model import Calculator
 # calculators in tab order. Every calculator must be in exactly one area (checked at load), so a
 # new calculator changes only its own area's strip, never another area's.
 AREAS: dict[str, tuple[str, tuple[str, ...]]] = {
-    "gearing": ("Motors", ("motor", "gear_ratio", "ratio_distance")),
+    "gearing": ("Motors", ("motor", "gear_ratio", "ratio_distance", "ratio_finder")),
     "mechanisms": ("Mechanisms", ("lead_screw", "drivetrain")),
     "structure": ("Structure", ("beam", "chain_belt", "gear_clearance")),
     "pneumatics": ("Pneumatics", ("pneumatics", "pneumatic_linkage")),

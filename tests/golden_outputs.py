@@ -26,7 +26,11 @@ def current() -> dict[str, dict[str, dict]]:
             continue
         sol = solve(p.calculator, p.inputs)
         values = {k: v.value for k, v in sol.outputs.items() if k not in VOLATILE}
-        out.setdefault(p.calculator, {})[p.path.name] = {"outputs": values, "warnings": sol.warnings}
+        record = {"outputs": values, "warnings": sol.warnings}
+        if sol.tables:  # e.g. the ratio finder's combinations, cell by cell (SI values)
+            record["tables"] = {name: [{k: v.value for k, v in row.items()} for row in rows]
+                                for name, rows in sol.tables.items()}
+        out.setdefault(p.calculator, {})[p.path.name] = record
     return out
 
 

@@ -33,3 +33,9 @@ def test_preset_outputs_unchanged(calc, name):
                if not _same(v, want["outputs"][k])}
     assert not changed, f"outputs changed (golden, now): {changed}"
     assert got["warnings"] == want["warnings"]
+    assert sorted(got.get("tables", {})) == sorted(want.get("tables", {}))
+    for name, rows in got.get("tables", {}).items():
+        assert len(rows) == len(want["tables"][name]), f"{name}: rows added or removed"
+        for n, (row, was) in enumerate(zip(rows, want["tables"][name])):
+            assert sorted(row) == sorted(was) and all(_same(row[k], was[k]) for k in row), \
+                f"{name} row {n} changed (golden, now): {was}, {row}"

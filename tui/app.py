@@ -114,7 +114,9 @@ class GearheadApp(App):
         if action in ("send", "accuracy") and self.query("#areas"):
             calc = calculators().get(self.current_calculator)
             if calc is not None:
-                return bool(calc.exports) if action == "send" else calc.simulate is not None
+                if action == "send":
+                    return bool(calc.exports) or any(t.exports for t in calc.tables)
+                return calc.simulate is not None
         return True
 
     # ---- navigation ---------------------------------------------------------------------
@@ -213,6 +215,9 @@ class GearheadApp(App):
     async def action_send(self) -> None:
         """Send this tab's results into the calculator it feeds (e.g. lead screw → gear ratio)."""
         tab = self.current_tab
+        if tab.calculator.tables and tab.error is None and tab.selected_row() is not None:
+            await self._send_row(tab)
+            return
         exports = tab.calculator.exports
         if not exports:
             self.notify("This calculator has nothing to send.", severity="warning")
@@ -224,10 +229,30 @@ class GearheadApp(App):
             target = await self.card(target_id)
             values = {field: exact_text(tab.solution.outputs[out], tab.calculator.output(out))
                       for field, out in mapping.items() if out in tab.solution.outputs}
+            if not values:  # e.g. drivetrain's forward mode has no ratio to send
+                self.notify("Nothing to send in this mode.", severity="warning")
+                continue
             target.set_entries(values)
             self.show_calculator(target_id)
             self.notify(", ".join(f"{k} = {v}" for k, v in values.items()), markup=False,
                         title=f"Sent to {target.calculator.title}")
+
+    async def _send_row(self, tab: CalculatorTab) -> None:
+        """Send the table row under the cursor (e.g. one ratio-finder stage) to the calculator
+        whose fields it fills: the first target all of whose columns the row has."""
+        table, row = tab.selected_row()
+        for target_id, mapping in table.exports.items():
+            if all(column in row for column in mapping.values()):
+                target = await self.card(target_id)
+                values = {field: exact_text(row[column], table.column(column))
+                          for field, column in mapping.items()}
+                target.set_entries(values)
+                self.show_calculator(target_id)
+                self.notify(", ".join(f"{k} = {v}" for k, v in values.items()), markup=False,
+                            title=f"Sent to {target.calculator.title}")
+                return
+        self.notify("This row has nothing another calculator takes (a planetary stage, or no belt "
+                    "long enough).", severity="warning", markup=False)
 
     def action_accuracy(self) -> None:
         """Run the current simulation at every accuracy level (the accuracy-vs-time view)."""

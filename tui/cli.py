@@ -111,7 +111,21 @@ def _solve(args) -> int:
         print(f"  {calc.output(name).label:<{width}}  {value.text}")
     for w in solution.warnings:
         print(f"  warning: {w}")
+    for table in calc.tables:
+        _print_table(table, solution.tables.get(table.name, []))
     return 0
+
+
+def _print_table(table, rows) -> None:
+    """A declared table (e.g. the ratio finder's combinations) as aligned text columns."""
+    columns = [c for c in table.columns if not c.hidden]
+    heads = [f"{c.label} [{c.unit}]" if c.unit else c.label for c in columns]
+    cells = [[row[c.name].text if c.name in row else "" for c in columns] for row in rows]
+    widths = [max([len(h)] + [len(r[i]) for r in cells]) for i, h in enumerate(heads)]
+    print(f"{table.title}:")
+    print("  " + "  ".join(h.ljust(w) for h, w in zip(heads, widths)).rstrip())
+    for r in cells:
+        print("  " + "  ".join(x.ljust(w) for x, w in zip(r, widths)).rstrip())
 
 
 def _accuracy(args) -> int:

@@ -247,6 +247,7 @@ CALCULATOR = Calculator(
     outputs=OUTPUTS,
     compute=compute,
     section="4",
+    exports={"ratio_finder": {"target_ratio": "max_ratio"}},  # parts for the fastest slipping ratio
     plots=(
         Plot("Force at the wheels vs speed", ("motor force", "traction limit", "low gear", "high gear"),
              "speed", "speed", "ft/s", "force", "force", "lbf"),

@@ -173,4 +173,5 @@ CALCULATOR = Calculator(
     outputs=OUTPUTS,
     compute=compute,
     section="2",
+    exports={"ratio_finder": {"target_ratio": "ratio"}},  # which parts give that reduction
 )

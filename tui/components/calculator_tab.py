@@ -126,6 +126,7 @@ class CalculatorTab(Widget):
                     panel = PlotPanel(calc.plots)
                     panel.unit_system = self.unit_system
                     yield panel
+                yield from self._compose_tables()
                 # long or many warnings scroll in a box of their own instead of pushing the
                 # status line out of the pane
                 with VerticalScroll(classes="warnings-box"):
@@ -330,7 +331,7 @@ class CalculatorTab(Widget):
         """Dim the last valid results while an entry is bad. The class goes on the results and
         the plot only: on the whole tab it restyled every field row (40 ms on the beam tab)."""
         self.stale = stale
-        for widget in self.query(".results, .plot-panel"):
+        for widget in self.query(".results, .plot-panel, .result-table"):
             widget.set_class(stale, "stale")
 
     def _mark_busy(self) -> None:
@@ -369,7 +370,44 @@ class CalculatorTab(Widget):
             table.move_cursor(row=cursor, animate=False)
         if self.calculator.plots:
             self.call_later(self.query_one(PlotPanel).show, solution)
+        self._show_tables(solution)
         warnings = self.query_one(".warnings", Static)
         warnings.update(Text("\n".join("! " + w for w in solution.warnings), style="yellow"))
         self.query_one(".warnings-box").display = bool(solution.warnings)
         status.update(Text("✓ solved", style="green"))
+
+    # ---- tables of alternatives (core.model.Table) -------------------------------------
+    def _compose_tables(self) -> ComposeResult:
+        """A scrollable table per declared Table, its header holding each column's unit."""
+        for t in self.calculator.tables:
+            yield Static(Text(t.title, style="bold"), classes="result-table-title")
+            grid = DataTable(classes="result-table", id=f"table-{t.name}", cursor_type="row",
+                             zebra_stripes=True)
+            grid.tooltip = "ctrl+g sends the row under the cursor to the calculator it feeds" if t.exports else None
+            for c in t.columns:
+                if not c.hidden:
+                    grid.add_column(Text(f"{c.label} [{pretty_unit(c.unit)}]" if c.unit else c.label), key=c.name)
+            yield grid
+
+    def _show_tables(self, solution: Solution) -> None:
+        for t in self.calculator.tables:
+            grid = self.query_one(f"#table-{t.name}", DataTable)
+            cursor = grid.cursor_row
+            grid.clear()
+            for n, row in enumerate(solution.tables.get(t.name, [])):
+                grid.add_row(*(Text(pretty_quantity(row[c.name].text)) if c.name in row else Text("")
+                               for c in t.columns if not c.hidden), key=str(n))
+            if 0 < cursor < grid.row_count:
+                grid.move_cursor(row=cursor, animate=False)
+
+    def selected_row(self):
+        """(Table, row of Values) under the cursor of the table last focused, or None."""
+        if self.solution is None:
+            return None
+        for t in self.calculator.tables:
+            grid = self.query_one(f"#table-{t.name}", DataTable)
+            rows = self.solution.tables.get(t.name, [])
+            if t.exports and 0 <= grid.cursor_row < len(rows):
+                return t, rows[grid.cursor_row]
+        return None
+

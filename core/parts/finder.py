@@ -1,0 +1,514 @@
+"""Ratio finder: which purchasable stages (gear pairs, pulley pairs, sprocket pairs, planetary
+gearboxes) give a wanted reduction, and fit the motor, the shafts and the output.
+
+A *stage* is one pair of toothed parts (or one stacked planetary gearbox); its ratio is driven
+teeth over driving teeth (or the product of the cartridges' ratios), exactly, as a Fraction.
+A *combination* is 1-3 stages in series, from the motor shaft to the output shaft; its ratio is
+the product of the stage ratios.
+
+Shafts. The motor shaft holds the first driving part (or a planetary's input): its bore must be
+the motor's. Every other shaft is one the team makes, so it carries one profile: the driven part
+of stage k and the driving part of stage k+1 share that shaft's bore (unless `same_shaft_bore` is
+off). Parts bored for a motor shaft never sit on the other shafts. The last driven part (or the
+planetary output) must have the output bore. Bore feasibility is propagated as bit masks: after
+a toothed stage the shaft may have any bore its driven parts come in, since the driving and driven
+parts are bought separately.
+
+Ranking (as ReCalc's finder): ratio error |G − G*| (the distance to the range in range mode),
+then the number of stages, then the number of parts to buy (two per gear stage, two plus the belt
+or chain per belt/chain stage, the gearbox plus each cartridge for a planetary). Stages alike in
+family, ratio, part count and bores are one *class*; a class is shown by one member (the pair
+sold by the most vendors, then the smaller) with the others listed as alternatives. Orders of
+the same stages (a·b·c, b·a·c, ...), and stages of one family and ratio, are one combination:
+the best-ranked feasible one is kept.
+
+Search. One stage: every class is tried (exhaustive). k stages: the candidate ratio values of
+each position are sorted once; for every choice of the first k−1 values the last is found by
+bisection within a window |G − G*| ≤ ε (numpy searchsorted, a row of the first positions at a
+time). ε starts as the N-th best error found with fewer stages (a k-stage combination must be
+strictly better to rank above them) and as the N-th best of the nearest last values; the
+windows' value tuples are expanded into classes and checked for bores; if fewer than N feasible
+combinations result, ε grows and the search repeats. tests/test_ratio_finder.py checks it
+against brute-force enumeration; bench/bench_ratio_finder.py times it.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+from functools import cached_property, lru_cache
+from typing import Iterable, Sequence
+
+from . import BORES, FAMILIES, Catalogue, Part, PlanetarySystem, catalogue, pitch_si
+
+PLANETARY_PARTS_BASE = 1  # the gearbox (housing, input and output) besides its cartridges
+
+
+@dataclass(frozen=True)
+class Query:
+    target: float  # wanted ratio G* (motor turns per output turn); in range mode the geometric middle
+    ratio_min: float  # the range (both equal to target when a single ratio is wanted)
+    ratio_max: float
+    input_bore: str
+    output_bore: str  # a bore key, or "any"
+    vendors: frozenset[str]
+    families: frozenset[str]
+    shaft_bores: frozenset[str]  # bores allowed on the shafts the team makes
+    min_teeth: int = 1
+    max_teeth: int = 1000
+    max_stages: int = 3
+    same_shaft_bore: bool = True
+    # per stage position (0, 1, 2): (min, max) center distance in m, or None for no limit
+    center_limits: tuple = (None, None, None)
+    results: int = 20
+
+
+@dataclass
+class Stage:
+    """One class of stages: a representative member and the alternatives."""
+
+    family: str
+    teeth_in: int  # driving teeth (planetary: 0)
+    teeth_out: int  # driven teeth (planetary: 0)
+    ratio: Fraction
+    parts: int
+    drive_mask: int  # bores a driving part (or planetary input) comes in
+    out_mask: int  # bores the driven part (or planetary output) comes in, on a made shaft
+    positions: int  # bit i: allowed as stage i (center distance limits)
+    driving: tuple = ()  # Part objects of the representative (planetary: the system)
+    driven: tuple = ()
+    cartridges: tuple = ()  # planetary: Cartridge objects, largest reduction first
+    system: PlanetarySystem | None = None
+    alternatives: list = field(default_factory=list)  # (teeth_in, teeth_out) of the other members
+
+    def __post_init__(self) -> None:
+        self.ratio_f = float(self.ratio)
+
+    @cached_property
+    def identity(self) -> tuple:
+        """What makes two stages the same to a designer: a gearbox and its cartridges, or a
+        family and ratio (16:36 and 20:45 are one 2.25:1 gear stage; "Also" lists the others)."""
+        if self.system is not None:
+            return ("planetary", self.system.system, tuple(c.name for c in self.cartridges))
+        return (self.family, self.ratio)
+
+
+@dataclass
+class Combination:
+    stages: tuple[Stage, ...]
+    num: int  # the ratio as num/den (not reduced): products of the stages' teeth
+    den: int
+    error: float  # |G − G*| (0 inside the range), from exact integers: equal ratios, equal errors
+    parts: int
+    shaft_bores: tuple[int, ...]  # the bore mask left on each shaft after each stage
+
+    @property
+    def ratio(self) -> Fraction:
+        return Fraction(self.num, self.den)
+
+
+# --- building the stage classes --------------------------------------------------------------
+
+BIT = {name: 1 << i for i, name in enumerate(BORES)}
+
+
+def mask_of(bores: Iterable[str]) -> int:
+    m = 0
+    for b in bores:
+        m |= BIT[b]
+    return m
+
+
+def bores_in(mask: int) -> list[str]:
+    return [b for b in BORES if mask & BIT[b]]
+
+
+def gear_center(family: str, n: int, N: int) -> float:
+    """Center distance of a gear pair: d = (N + n)/(2p), p the diametral pitch (ratio_distance (76))."""
+    return (n + N) / (2 * pitch_si(FAMILIES[family].pitch))
+
+
+@lru_cache(maxsize=65536)
+def loop_links(family: str, n1: int, n2: int, lo: float | None, hi: float | None,
+               belt_teeth: tuple[int, ...]) -> int | None:
+    """The shortest belt (stocked lengths) or chain (even links) whose center distance is at
+    least lo and at least the touching-pitch-circles distance r_1 + r_2, and at most hi: its
+    links or belt teeth, or None if there is none. Only the forward length equation is needed
+    (the length grows with the center distance), so the search never loads scipy.
+
+    Length from center: the exact open-drive length of chain_belt (68, corrected); pitch radii
+    n·p/(2π) (65) for belt and chain alike (chain_belt.py).
+    """
+    from ..calculators.chain_belt import length_from_center, pitch_radius
+
+    p = pitch_si(FAMILIES[family].pitch)
+    r1, r2 = pitch_radius(n1, p, "circumference"), pitch_radius(n2, p, "circumference")
+    d_low = max(lo or 0.0, r1 + r2)  # pitch circles must not overlap (clearance (67) ≥ 0)
+    if hi is not None and hi < d_low:
+        return None
+    need = length_from_center(d_low, r1, r2) / p  # links or belt teeth at the lowest distance
+    top = math.inf if hi is None else length_from_center(hi, r1, r2) / p
+    if FAMILIES[family].kind == "chain":
+        links = 2 * math.ceil(need / 2 - 1e-9)  # whole chain, no half (offset) link
+    else:
+        links = next((t for t in belt_teeth if t >= need - 1e-9), None)
+    if links is None or links > top + 1e-9:
+        return None
+    return links
+
+
+def loop_choice(family: str, n1: int, n2: int, lo: float | None, hi: float | None,
+                belt_teeth: tuple[int, ...]) -> tuple[int, float] | None:
+    """loop_links and the center distance it gives (chain_belt's inverse of (68)), or None."""
+    from ..calculators.chain_belt import center_from_length, pitch_radius
+
+    links = loop_links(family, n1, n2, lo, hi, belt_teeth)
+    if links is None:
+        return None
+    p = pitch_si(FAMILIES[family].pitch)
+    r1, r2 = pitch_radius(n1, p, "circumference"), pitch_radius(n2, p, "circumference")
+    excess = (links - max(n1, n2)) * p / 2  # exact (chain_belt.compute)
+    return links, center_from_length(links * p, r1, r2, excess)
+
+
+def stage_classes(q: Query, cat: Catalogue | None = None) -> list[Stage]:
+    """Every stage the filters allow, grouped into classes."""
+    cat = cat or catalogue()
+    allowed_shaft = mask_of(q.shaft_bores)
+    motor_bit = BIT[q.input_bore]
+    reducing = q.target >= 1  # every stage turns the same way as the whole: no up-then-down trains
+    belt_teeth = belt_lengths(q, cat)
+
+    # teeth -> {bore mask, parts} per family, for driving (any allowed bore, and the motor's) and
+    # driven (made shafts only)
+    by_family: dict[str, dict[int, list[Part]]] = {}
+    for part in cat.parts:
+        if part.vendor not in q.vendors or part.family not in q.families:
+            continue
+        if not q.min_teeth <= part.teeth <= q.max_teeth:
+            continue
+        bit = BIT[part.bore]
+        if not (bit & allowed_shaft or part.bore == q.input_bore):
+            continue
+        by_family.setdefault(part.family, {}).setdefault(part.teeth, []).append(part)
+
+    members: dict[tuple, list[Stage]] = {}
+    for family, table in by_family.items():
+        kind = FAMILIES[family].kind
+        drive = {t: mask_of(p.bore for p in ps) & (allowed_shaft | motor_bit) for t, ps in table.items()}
+        driven = {t: mask_of(p.bore for p in ps) & allowed_shaft for t, ps in table.items()}
+        for n_in, n_out in itertools.permutations(table, 2):
+            if (n_out > n_in) != reducing or not drive[n_in] or not driven[n_out]:
+                continue
+            positions = 0
+            for i in range(q.max_stages):
+                limits = q.center_limits[i] if i < len(q.center_limits) else None
+                if stage_fits(family, kind, n_in, n_out, limits, belt_teeth):
+                    positions |= 1 << i
+            if not positions:
+                continue
+            parts = 2 if kind == "gear" else 3  # two gears; or two pulleys/sprockets and the loop
+            stage = Stage(family, n_in, n_out, Fraction(n_out, n_in), parts, drive[n_in], driven[n_out],
+                          positions,
+                          tuple(p for p in table[n_in] if BIT[p.bore] & (allowed_shaft | motor_bit)),
+                          tuple(p for p in table[n_out] if BIT[p.bore] & allowed_shaft))
+            g = math.gcd(n_in, n_out)  # the reduced ratio as ints: hashing Fractions was slow
+            key = (family, n_out // g, n_in // g, parts, stage.drive_mask, stage.out_mask, positions)
+            members.setdefault(key, []).append(stage)
+
+    if "planetary" in q.families and reducing:
+        for system in cat.planetaries:
+            if system.vendor not in q.vendors:
+                continue
+            inputs = mask_of(system.input_bores) & (allowed_shaft | motor_bit)
+            outputs = mask_of(system.output_bores) & allowed_shaft
+            if not inputs or not outputs:
+                continue
+            ordered = sorted(system.cartridges, key=lambda c: c.ratio, reverse=True)
+            for count in range(1, system.max_cartridges + 1):
+                # largest reduction nearest the motor, as REV advises for its stacks
+                for stack in itertools.combinations_with_replacement(ordered, count):
+                    ratio = math.prod((c.ratio for c in stack), start=Fraction(1))
+                    stage = Stage("planetary", 0, 0, ratio, PLANETARY_PARTS_BASE + count, inputs, outputs,
+                                  (1 << q.max_stages) - 1, cartridges=stack, system=system)
+                    members.setdefault(("planetary", system.system, stack), []).append(stage)
+
+    classes = []
+    for group in members.values():
+        # the member sold by the most vendors' parts, then the smaller pair
+        group.sort(key=lambda s: (-(len(s.driving) + len(s.driven)), s.teeth_in + s.teeth_out, s.teeth_in))
+        best = group[0]
+        best.alternatives = [(s.teeth_in, s.teeth_out) for s in group[1:]]
+        classes.append(best)
+    return classes
+
+
+def belt_lengths(q: Query, cat: Catalogue) -> dict[str, tuple[int, ...]]:
+    """Stocked belt lengths (teeth) per belt family, from the allowed vendors (all vendors if
+    those sell none of that family)."""
+    out = {}
+    for family, fam in FAMILIES.items():
+        if fam.kind != "belt":
+            continue
+        mine = sorted({b.teeth for b in cat.belts if b.family == family and b.vendor in q.vendors})
+        out[family] = tuple(mine or sorted({b.teeth for b in cat.belts if b.family == family}))
+    return out
+
+
+def stage_fits(family: str, kind: str, n_in: int, n_out: int, limits, belt_teeth) -> bool:
+    lo, hi = limits if limits else (None, None)
+    if kind == "gear":
+        if limits is None:
+            return True
+        c = gear_center(family, n_in, n_out)
+        return (lo is None or c >= lo * (1 - 1e-12)) and (hi is None or c <= hi * (1 + 1e-12))
+    small, large = sorted((n_in, n_out))
+    return loop_links(family, small, large, lo, hi, belt_teeth.get(family, ())) is not None
+
+
+# --- searching ---------------------------------------------------------------------------------
+
+def exact(x: float) -> Fraction:
+    """A typed number as the decimal it was written as (0.37 is 37/100, not the binary float)."""
+    return Fraction(repr(x))
+
+
+def ratio_error(num: int, den: int, lo: Fraction, hi: Fraction) -> float:
+    """Distance of num/den from [lo, hi], in exact integers, rounded once (plain ints: Fraction
+    arithmetic made the search five times slower)."""
+    a, b = lo.numerator, lo.denominator
+    if num * b < a * den:
+        return (a * den - num * b) / (den * b)
+    a, b = hi.numerator, hi.denominator
+    if num * b > a * den:
+        return (num * b - a * den) / (den * b)
+    return 0.0
+
+
+def rank_key(c: Combination, q: Query) -> tuple:
+    # within equal error, stages and parts: nearer the middle of a range, then a fixed order
+    middle = abs(math.log(c.num / c.den / q.target))
+    return (c.error, len(c.stages), c.parts, middle,
+            tuple((-s.ratio, s.family, s.teeth_in) for s in c.stages))
+
+
+def chain_feasible(stages: Sequence[Stage], q: Query) -> tuple[int, ...] | None:
+    """The bore masks on each shaft after each stage, or None if the parts cannot be assembled."""
+    shaft = BIT[q.input_bore]
+    out_mask = BIT[q.output_bore] if q.output_bore != "any" else mask_of(q.shaft_bores)
+    masks = []
+    for i, s in enumerate(stages):
+        if not s.positions >> i & 1:
+            return None
+        if i > 0 and not q.same_shaft_bore:
+            shaft = mask_of(q.shaft_bores)  # any made shaft can be adapted to the next part
+        if not s.drive_mask & shaft:
+            return None
+        shaft = s.out_mask
+        masks.append(shaft)
+    if not shaft & out_mask:
+        return None
+    return tuple(masks)
+
+
+@dataclass
+class Table:
+    """Stage classes usable at one position, by ratio value: sorted distinct values, the classes
+    of each, and the fewest parts among them (a lower bound used to stop expanding early)."""
+
+    values: object  # numpy array
+    members: list[list[Stage]]
+    fewest_parts: object  # numpy array
+
+
+@dataclass
+class Prepared:
+    classes: list[Stage]
+    tables: dict  # (position, fits the motor, fits the output) -> Table
+
+
+_PREPARED: dict = {}
+
+
+def prepare(q: Query, cat: Catalogue | None = None) -> Prepared:
+    """Stage classes and value tables; they do not depend on the wanted ratio (only on whether
+    it is a reduction), so typing a new ratio reuses them."""
+    key = (q.target >= 1, q.input_bore, q.output_bore, q.vendors, q.families, q.shaft_bores,
+           q.min_teeth, q.max_teeth, q.max_stages, q.center_limits, id(cat))
+    if key not in _PREPARED:
+        if len(_PREPARED) > 16:
+            _PREPARED.clear()
+        _PREPARED[key] = Prepared(stage_classes(q, cat), {})
+    return _PREPARED[key]
+
+
+def table(prep: Prepared, q: Query, position: int, first: bool, last: bool) -> Table:
+    """The classes allowed at a position; on the motor shaft only those that fit the motor, and
+    as the last stage only those that fit the output."""
+    import numpy as np
+
+    key = (position, first, last)
+    if key not in prep.tables:
+        motor = BIT[q.input_bore]
+        output = BIT[q.output_bore] if q.output_bore != "any" else mask_of(q.shaft_bores)
+        by_value: dict[float, list[Stage]] = {}
+        for s in prep.classes:
+            if not s.positions >> position & 1:
+                continue
+            if (first and not s.drive_mask & motor) or (last and not s.out_mask & output):
+                continue
+            by_value.setdefault(s.ratio_f, []).append(s)
+        ordered = sorted(by_value)
+        prep.tables[key] = Table(np.array(ordered, dtype=float), [by_value[v] for v in ordered],
+                                 np.array([min(s.parts for s in by_value[v]) for v in ordered], dtype=np.int64))
+    return prep.tables[key]
+
+
+def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], dict]:
+    """The best q.results combinations, ranked; and counts for the user (how much was searched)."""
+    import numpy as np
+
+    prep = prepare(q, cat)
+    stats = {"stage_classes": len(prep.classes), "checked": 0}
+    keys: dict[tuple, tuple] = {}  # identity -> (float error, stages, parts) of what found holds
+    n_best = q.results
+    found: dict[tuple, Combination] = {}  # order-free identity -> its best order
+    all_shafts = mask_of(q.shaft_bores)
+    out_mask = BIT[q.output_bore] if q.output_bore != "any" else all_shafts
+
+    lo_x, hi_x = exact(q.ratio_min), exact(q.ratio_max)
+
+    def consider(stages: tuple[Stage, ...], masks: tuple[int, ...]) -> None:
+        stats["checked"] += 1
+        num = den = 1
+        for s in stages:
+            num *= s.ratio.numerator
+            den *= s.ratio.denominator
+        combo = Combination(stages, num, den, ratio_error(num, den, lo_x, hi_x),
+                            sum(s.parts for s in stages), masks)
+        ident = tuple(sorted(s.identity for s in stages))
+        old = found.get(ident)
+        if old is None or rank_key(combo, q) < rank_key(old, q):
+            found[ident] = combo
+            keys[ident] = (combo.error, len(stages), combo.parts)
+
+    def expand(lists: list[list[Stage]]) -> None:
+        """Every assembly of one class per position whose bores chain (depth first, pruned)."""
+        k = len(lists)
+
+        def down(i: int, shaft: int, acc: tuple, masks: tuple) -> None:
+            if i == k:
+                if shaft & out_mask:
+                    consider(acc, masks)
+                return
+            fits = shaft if (i == 0 or q.same_shaft_bore) else all_shafts
+            for s in lists[i]:
+                if s.drive_mask & fits:
+                    down(i + 1, s.out_mask, acc + (s,), masks + (s.out_mask,))
+
+        down(0, BIT[q.input_bore], (), ())
+
+    def nth_key() -> tuple | None:
+        if len(found) < n_best:
+            return None
+        e, stages, parts = sorted(keys.values())[n_best - 1]
+        return (e, stages, parts, round(e / tie))
+
+    # one stage: exhaustive
+    for members in table(prep, q, 0, True, True).members:
+        expand([members])
+
+    lo_t, hi_t = q.ratio_min, q.ratio_max
+    tie = 1e-12 * max(1.0, hi_t)  # float products of equal exact ratios differ by rounding only
+    for k in range(2, q.max_stages + 1):
+        chosen = [table(prep, q, i, i == 0, i == k - 1) for i in range(k)]
+        tables = [t.values for t in chosen]
+        if any(len(v) == 0 for v in tables):
+            break
+        bound = nth_key()
+        if bound is not None and bound[0] == 0:
+            break  # k stages cannot beat N exact (or in-range) combinations with fewer stages
+        # start from the (4N)-th best nearest error: orders of the same stages and infeasible bores
+        # make fewer combinations than value tuples, and every regrowth repeats the pass
+        spare = 4 * n_best
+        tail = tail_table(prep, q, k, np)
+        nearest = _nearest_errors(tables[0], tail, lo_t, hi_t, np)
+        if nearest.size == 0:
+            continue
+        # the largest error any k-stage tuple can have: past it, every tuple has been enumerated
+        lowest = math.prod(float(v[0]) for v in tables)
+        highest = math.prod(float(v[-1]) for v in tables)
+        worst = max(lo_t - lowest, highest - hi_t, 0.0)
+        m = min(spare, nearest.size) - 1
+        eps = float(np.partition(nearest, m)[m])
+        if bound is not None:
+            eps = min(eps, bound[0])
+        for _ in range(60):
+            window = eps + tie
+            index, errors = _tuples_within(tables[0], tail, lo_t - window, hi_t + window, lo_t, hi_t, np)
+            parts = sum(chosen[i].fewest_parts[index[i]] for i in range(k))
+            grid = np.round(errors / tie)  # ties in exact error compare equal
+            order = np.lexsort((parts, grid))
+            for n, j in enumerate(order):
+                if n % 32 == 0 and n:
+                    limit = nth_key()
+                    # sorted by (error, fewest parts): once past the N-th best, nothing better follows
+                    if limit is not None and (int(grid[j]), k, int(parts[j])) > (limit[3], limit[1], limit[2]):
+                        break
+                lists = [chosen[i].members[index[i][j]] for i in range(k)]
+                expand(lists)
+            now = nth_key()
+            # every k-stage combination within eps is found; the N best are final once the N-th
+            # best error is within eps (anything not yet found is worse)
+            if (now is not None and now[0] <= eps) or eps > worst:
+                break
+            eps = eps * 4 + 1e-6 * max(1.0, hi_t)
+    ranked = sorted(found.values(), key=lambda c: rank_key(c, q))
+    stats["feasible"] = len(found)
+    return ranked[:n_best], stats
+
+
+def tail_table(prep: Prepared, q: Query, k: int, np):
+    """The positions after the first, as one sorted array of products and the index of each
+    factor: for two stages the last table itself; for three, every product of the middle and
+    last tables, sorted once per filter setting (meet in the middle: a new ratio then costs a
+    bisection per first-stage value)."""
+    key = ("tail", k)
+    if key not in prep.tables:
+        last = table(prep, q, k - 1, False, True).values
+        if k == 2:
+            prep.tables[key] = (last, [np.arange(last.size)])
+        else:
+            middle = table(prep, q, 1, False, False).values
+            products = np.multiply.outer(middle, last).ravel()
+            order = np.argsort(products)  # introsort: 4x faster than the stable sorts here
+            prep.tables[key] = (products[order], [order // last.size, order % last.size])
+    return prep.tables[key]
+
+
+def _nearest_errors(first, tail, lo: float, hi: float, np):
+    """For each first-stage value, the error of the nearest tail product."""
+    products = tail[0]
+    idx = np.searchsorted(products, (lo + hi) / 2 / first)
+    best = None
+    for j in (np.clip(idx - 1, 0, products.size - 1), np.clip(idx, 0, products.size - 1)):
+        r = first * products[j]
+        err = np.maximum(np.maximum(lo - r, r - hi), 0.0)
+        best = err if best is None else np.minimum(best, err)
+    return best
+
+
+def _tuples_within(first, tail, lo: float, hi: float, r_lo: float, r_hi: float, np):
+    """Every tuple of values (one per position) whose product lies in [lo, hi]: index arrays (one
+    per position) and each tuple's error."""
+    products, factors = tail
+    start = np.searchsorted(products, lo / first, side="left")
+    stop = np.searchsorted(products, hi / first, side="right")
+    counts = np.maximum(stop - start, 0)
+    rows = np.repeat(np.arange(first.size), counts)
+    at = start[rows] + np.arange(rows.size) - np.repeat(np.cumsum(counts) - counts, counts)
+    r = first[rows] * products[at]
+    errors = np.maximum(np.maximum(r_lo - r, r - r_hi), 0.0)
+    return [rows] + [f[at] for f in factors], errors
