@@ -49,7 +49,7 @@ from .scene import SimRun
 
 G_STD = 9.80665  # m/s²
 T_MAX = 3600.0  # s: a move longer than an hour is not a mechanism, it is an error
-MAX_STEPS = 50_000
+DP54_STEPS = 2_000  # beyond this the move is stiff: LSODA takes over
 SAMPLES = 120  # points per plotted curve
 
 SLOTS = (
@@ -265,7 +265,9 @@ def build_rhs(setup: Setup):
     m = setup.mech
     s, d, q0 = m.s, m.distance, m.q0
     v_ref = m.free_speed
-    e_ref = m.count * m.battery_voltage ** 2 / m.R * d / v_ref
+    # energy: a quadrature that may cross zero (regeneration moving down); scaled small so that
+    # the relative tolerance, not the absolute one, governs it
+    e_ref = 1e-3 * m.count * m.battery_voltage ** 2 / m.R * d / v_ref
     k_emf = v_ref * m.n / m.Kv  # E per unit of scaled speed
     k_force = m.force_per_amp
     M = m.inertia
@@ -369,6 +371,16 @@ def time_constant(m: Mechanism) -> float:
     return m.inertia * m.R * m.Kv / (m.force_per_amp * m.n)
 
 
+def estimated_time(setup: Setup) -> float:
+    """A rough move time: travel at free speed, plus settling, plus accelerating from rest with
+    the net force at the start."""
+    m = setup.mech
+    _, I0 = electrical(m, setup.asm.slots["duty"])(0.0)
+    F0 = m.force_per_amp * I0 + m.s * field_force(setup)(m.q0) - friction_of(setup)
+    accel_time = math.sqrt(2 * m.distance * m.inertia / F0) if F0 > 0 else math.inf
+    return m.distance / m.free_speed + time_constant(m) + accel_time
+
+
 def move(setup: Setup, rtol: float, dense: bool = False, method: str | None = None) -> Move:
     """Integrate from rest to the goal (terminal event: the first arrival).
 
@@ -384,15 +396,13 @@ def move(setup: Setup, rtol: float, dense: bool = False, method: str | None = No
     y0 = [0.0, 0.0, 0.0] + list(setup.asm.y0_extra)
     m = setup.mech
     if method is None:
-        T_est = d / v_ref + time_constant(m)
-        method = "DP54" if T_est / time_constant(m) < STIFF else "LSODA"
+        method = "DP54" if estimated_time(setup) / time_constant(m) < STIFF else "LSODA"
     if method == "DP54":
         try:
-            run = integrate(rhs, 0.0, T_MAX, y0, rtol=rtol, atol=rtol, events=events, max_steps=MAX_STEPS,
+            run = integrate(rhs, 0.0, T_MAX, y0, rtol=rtol, atol=rtol, events=events, max_steps=DP54_STEPS,
                             dense=dense)
-        except RuntimeError:
-            raise InputError("ratio", "the move could not be integrated in a bounded number of steps: "
-                                      "check the ratio and the load") from None
+        except RuntimeError:  # stiffer than estimated (explicit steps held at ≈ 3τ): hand it on
+            run = _lsoda(rhs, y0, rtol, events)
     else:
         run = _lsoda(rhs, y0, rtol, events)
     if run.event != "goal":
@@ -710,7 +720,18 @@ def optimise(make_setup, ratio_hint: float, rtol: float, length_scale: float,
 
     probe = make_setup(ratio_hint)
     G_char = characteristic_n(probe.mech) * length_scale
-    ratios = G_char * np.logspace(-2.5, 2.5, CANDIDATES)
+    lo_G, hi_G = G_char * 10**-2.5, G_char * 10**2.5
+    # below G_hold the stall force (∝ G; the current at rest does not depend on G) loses to the load
+    pm = probe.mech
+    lo_q, hi_q = sorted((pm.q0, pm.q1))
+    points = [pm.q0, pm.q1] + [q for q in probe.critical if lo_q < q < hi_q]
+    load = max(-pm.s * field_force(probe)(q) for q in points) + friction_of(probe)
+    _, I0 = electrical(pm, probe.asm.slots["duty"])(0.0)
+    if load > 0 and I0 > 0:
+        G_hold = ratio_hint * load / (pm.force_per_amp * I0)
+        lo_G = max(lo_G, 1.001 * G_hold)
+        hi_G = max(hi_G, 100 * lo_G)
+    ratios = np.geomspace(lo_G, hi_G, CANDIDATES)
     batch = make_setup(ratios, _Array())
     times = batch_times(batch)
     ok = np.isfinite(times)
