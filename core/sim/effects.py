@@ -23,6 +23,17 @@ A model choice (e.g. a transfer model) is a choice field of the calculator, not 
 action (optimise) is a mode. `Effects` is the catalogue a scene offers: it makes the `effects`
 flags field, the effect-owned fields and outputs, and `assemble`s the parts that are on.
 
+How the older scenes map onto it (for their migration):
+- projectile: slot "accel" (combine "vsum", args (vx, vy)); `air_drag` and `magnus` each add
+  a term returning [ax, ay]; with neither on the slot is None and the closed form answers.
+- pneumatics: slot "inflow" (dP/dt); `compressor` adds the flow term, `pressure_switch` adds a
+  discrete state through its events; `absolute_pressure` is a model choice (a choice field).
+- flywheel: energy/momentum transfer is a choice field; `motor_during_shot` adds the slip phase's
+  state (wheel speed, ball speed) with its derivative and its end-of-slip event.
+- trebuchet: `sling` and `hinged_counterweight` add states (γ, γ̇ / ψ, ψ̇) and terms of the mass
+  matrix (slots "M12", "f2", ...); `ground_contact` adds an event and a constraint term.
+- motor scenes (core.sim.motion): slots "force" (sum), "friction" (sum), "duty" (min).
+
 Why hand-written: no library composes ODE right-hand sides from declared parts at the cost of
 plain closures (our DP54 in core.sim.integrate runs on plain floats for speed).
 """
@@ -44,7 +55,7 @@ class Slot:
     """A quantity the scene's right-hand side reads, assembled from the terms of the effects on."""
 
     name: str
-    combine: str = "sum"  # "sum": terms add; "min": the smallest term wins (a bound)
+    combine: str = "sum"  # "sum": terms add; "vsum": vectors add component-wise; "min": the smallest wins
     help: str = ""
 
 
@@ -78,6 +89,17 @@ def _sum(fns: Sequence[Term]) -> Term:
         return lambda *a: f(*a) + g(*a)
     head, rest = fns[0], _sum(fns[1:])
     return lambda *a: head(*a) + rest(*a)
+
+
+def _vsum(fns: Sequence[Term]) -> Term:
+    """Component-wise sum of terms that return vectors (e.g. accelerations (ax, ay))."""
+    if len(fns) == 1:
+        return fns[0]
+    if len(fns) == 2:
+        f, g = fns
+        return lambda *a: [x + y for x, y in zip(f(*a), g(*a))]
+    head, rest = fns[0], _vsum(fns[1:])
+    return lambda *a: [x + y for x, y in zip(head(*a), rest(*a))]
 
 
 def _min(fns: Sequence[Term], minimum: Callable) -> Term:
@@ -192,8 +214,12 @@ class Effects:
                 composed[s.name] = None
             elif s.combine == "min":
                 composed[s.name] = _min([f for _, f in fns], minimum)
-            else:
+            elif s.combine == "vsum":
+                composed[s.name] = _vsum([f for _, f in fns])
+            elif s.combine == "sum":
                 composed[s.name] = _sum([f for _, f in fns])
+            else:
+                raise ValueError(f"slot {s.name}: unknown combine {s.combine!r}")
         for n, p in parts.items():
             stray = set(p.terms) - set(declared)
             if stray:
