@@ -66,6 +66,25 @@ def test_both_integrators_agree_with_the_closed_form(method):
     assert mv.time == pytest.approx(elevator_closed_form_time(4.0, m, r, d, 0.0), rel=1e-8)
 
 
+@pytest.mark.parametrize("effects", ["", "gravity", "gravity, battery_sag, friction, counterbalance"])
+@pytest.mark.parametrize("travel", ["40 in", "-40 in", "0.01 mm"])
+def test_elevator_closed_form_equals_the_integrated_move(effects, travel):
+    """With no current limit the elevator is answered in closed form (no integration): it must
+    agree with the integrated scene (both integrators) in every output the move gives."""
+    v = values("elevator", effects=effects, travel=travel, battery_resistance=0.05)
+    s = elevator.setup(v)
+    exact = motion.closed_form(s)
+    assert exact is not None and exact.nfev == 0
+    for method in ("DP54", "LSODA"):
+        mv = motion.move(s, 1e-11, method=method)
+        assert mv.time == pytest.approx(exact.time, rel=1e-8)
+        assert mv.max_speed == pytest.approx(exact.max_speed, rel=1e-8)
+        assert mv.energy == pytest.approx(exact.energy, rel=1e-7)
+    out = elevator.simulate(v, 1e-6)
+    assert out.nfev == 0 and any("closed form" in w for w in out.warnings)
+    assert motion.closed_form(elevator.setup(values("elevator", effects="gravity, stator_limit"))) is None
+
+
 def test_stator_limit_constant_current_phase_then_exponential():
     """No gravity, no sag: at the limit I_st the force is constant, a = N·Kt·n·I_st/m, until the
     full-voltage current falls to I_st at E₁ = V − R·I_st; then the first-order approach."""

@@ -449,7 +449,8 @@ def _lsoda(rhs, y0, rtol, events, peak_from_steps: bool = False) -> _Stiff:
 def extremes(setup: Setup, w_max: float) -> dict[str, float]:
     """Peak stator and supply current per motor and the lowest bus voltage over speeds 0..w_max
     (every speed in between is visited: the motion starts at rest). The stator current never
-    rises with speed; the supply current peaks where the stator limit lets go (E = V_b −
+    rises with speed (its largest magnitude is at rest, or at top speed when a load moving down
+    drives the motor past free speed and it brakes); the supply current peaks where the stator limit lets go (E = V_b −
     I_st·(R + R_bus) toward full duty, or u = I_sup/I_st toward the supply limit)."""
     m = setup.mech
     elec = electrical(m, setup.asm.slots["duty"])
@@ -469,8 +470,9 @@ def extremes(setup: Setup, w_max: float) -> dict[str, float]:
         u, I = elec(E)
         sup.append(u * I)
     u0, I0 = elec(0.0)
+    _, I_end = elec(E_max)  # negative when the load drives the motor past free speed (regeneration)
     peak_sup = max(sup)
-    return {"peak_stator_current": I0, "peak_supply_current": peak_sup,
+    return {"peak_stator_current": max(I0, -I_end), "peak_supply_current": peak_sup,
             "min_bus_voltage": m.battery_voltage - m.bus_resistance * peak_sup}
 
 
@@ -534,11 +536,63 @@ def lqr(kV: float, kA: float, q_position: float, q_velocity: float, r_volts: flo
 
 # --- one move, as a scene run --------------------------------------------------------------------
 
+class _ClosedRun:
+    """The closed-form move, answering `at(t)` and `y[-1]` in the scaled state like a solver run."""
+
+    def __init__(self, w_f, tau, T, scales, energy_of):
+        self.w_f, self.tau, self.scales, self.energy_of = w_f, tau, scales, energy_of
+        self.y = [self.at(T)]
+
+    def at(self, t: float) -> list:
+        d, v_ref, e_ref, _ = self.scales
+        x = -t / self.tau
+        p = self.w_f * (t + self.tau * math.expm1(x))  # (C1): w_f·(t − τ(1 − e^{−t/τ}))
+        w = -self.w_f * math.expm1(x)  # w_f·(1 − e^{−t/τ})
+        return [p / d, w / v_ref, self.energy_of(t, p) / e_ref]
+
+
+def closed_form(setup: Setup) -> Move | None:
+    """The move in closed form when nothing in it needs integrating: a force independent of
+    position (elevator: gravity, friction, counterbalance) and no current limit (the motor force
+    is then affine in speed, with or without battery sag: R_eff = R + R_bus):
+        M·ẇ = η·N·Kt·n·(V_b − n·w/Kv)/R_eff + F_c,   F_c = s·F_field − F_friction
+        w_f = (V_b + F_c·R_eff/(η·N·Kt·n))·Kv/n,   τ = M·R_eff·Kv/(η·N·Kt·n²)
+        w = w_f·(1 − e^{−t/τ}),  p = w_f·(t − τ·(1 − e^{−t/τ}))                              (C1)
+        p(T) = d ⇔ T/τ − 1 + e^{−T/τ} = D = d/(w_f·τ) ⇔ T/τ = D + 1 + W₀(−e^{−(D+1)})           (C2)
+        energy = N·V_b·∫I dt = N·V_b·(V_b·t − n·p/Kv)/R_eff                                     (C3)
+    (C2) is polished by one Newton step on T/τ + expm1(−T/τ) − D (exact for tiny D, where W₀ cancels).
+    None when the scene must be integrated."""
+    if setup.varying or setup.asm.slots["duty"] is not None:
+        return None
+    from scipy.special import lambertw
+
+    m = setup.mech
+    R_eff = m.R + m.bus_resistance
+    fpa = m.force_per_amp
+    F_c = m.s * field_force(setup)(m.q0) - friction_of(setup)
+    w_f = (m.battery_voltage + F_c * R_eff / fpa) * m.Kv / m.n
+    tau = m.inertia * R_eff * m.Kv / (fpa * m.n)
+    D = m.distance / (w_f * tau)
+    u = D + 1 + float(lambertw(-math.exp(-(D + 1))).real)  # (C2)
+    u -= (u + math.expm1(-u) - D) / -math.expm1(-u)  # Newton on (C2)
+    T = u * tau
+    _, _, scales = build_rhs(setup)
+    n_kv = m.n / m.Kv
+
+    def energy(t, p):
+        return m.count * m.battery_voltage * (m.battery_voltage * t - n_kv * p) / R_eff  # (C3)
+
+    run = _ClosedRun(w_f, tau, T, scales, energy)
+    w_T = -w_f * math.expm1(-u)
+    return Move(T, w_T, energy(T, m.distance), 0, run, scales, "closed form")
+
+
 def run_move(setup: Setup, rtol: float, hold_q: float | None = None) -> SimRun:
-    """Every output of one move; kG is quoted at hold_q (None: the goal)."""
+    """Every output of one move; kG is quoted at hold_q (None: the goal). Closed form when nothing
+    needs integrating (closed_form), else integrated (move)."""
     check_can_move(setup)
     m = setup.mech
-    mv = move(setup, rtol, dense=True)
+    mv = closed_form(setup) or move(setup, rtol, dense=True)
     values: dict[str, Any] = {"time_to_goal": mv.time, "max_speed": mv.max_speed, "energy": mv.energy}
     values.update(extremes(setup, mv.max_speed))
     values["peak_battery_current"] = values["peak_supply_current"] * m.count
@@ -560,6 +614,9 @@ def run_move(setup: Setup, rtol: float, hold_q: float | None = None) -> SimRun:
         raise InputError("q_position", "the LQR gains are not finite for these tolerances")
     values.update(kP=kP, kD=kD)
     warnings: list[str] = []
+    if mv.method == "closed form":
+        warnings.append("Nothing in this move needs integrating (a constant load, no current limit): "
+                        "closed form, no integration.")
     if "stator_limit" in setup.asm.on and values["hold_current"] > v["stator_current_limit"]:
         warnings.append("The stator current limit is below the current needed to hold at the goal: "
                         "it arrives, but cannot stay there.")
