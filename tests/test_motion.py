@@ -372,3 +372,28 @@ def test_cli_solve_json(cid, capsys):
     assert out["calculator"] == cid
     assert out["outputs"]["time_to_goal"]["unit"] == "s" and out["outputs"]["time_to_goal"]["value"] > 0
     assert out["outputs"]["kV"]["unit"] == ("V*s/m" if cid == "elevator" else "V*s/rad")
+
+
+def test_feedforward_against_recalcs_formulas():
+    """ReCalc (wpilib/patches/wpilibc/wasm/feedforward_gains.h): kA = kA_ideal/η, kV = kV_ideal/η,
+    linear kG = kA·g·sin(angle above horizontal), arm kG = kA·g·L·m/I, with kA_ideal = 1/B and
+    kV_ideal = −A11/B of WPILib's ideal plant. Ours scales the output torque by η (back-EMF
+    torque included), so kA and kG agree and kV differs by exactly 1/η (equal at η = 1)."""
+    R, Kv, Kt = neo()
+    eta, m, r, G, incline = 0.8, 15 * LB, 0.75 * INCH, 10.0, math.radians(30)
+    n = G / r
+    B = 2 * Kt * n / (R * m)  # ElevatorFromPhysicalConstants with 2 NEOs (R/2 combined)
+    A11 = -2 * Kt * n * n / (R * Kv * m)
+    kA_rc, kV_rc = 1 / B / eta, -A11 / B / eta
+    kG_rc = kA_rc * G0 * math.sin(math.pi / 2 - incline)
+    out = elevator.simulate(values("elevator", efficiency=eta, incline="30 deg"), 1e-6).values
+    assert out["kA"] == pytest.approx(kA_rc, rel=1e-12)
+    assert out["kG"] == pytest.approx(kG_rc, rel=1e-12)
+    assert out["kV"] == pytest.approx(kV_rc * eta, rel=1e-12)
+    Rk, Kvk, Ktk = 12 / 366, 6000 * RPM / (12 - 12 / 366 * 2), 7.09 / 366
+    ma, L, Ga = 8 * LB, 12 * INCH, 75.0
+    I = 4 / 3 * ma * L * L
+    kA_arm = I * Rk / (Ktk * Ga) / eta
+    o = arm.simulate(values("arm", efficiency=eta), 1e-6).values
+    assert o["kA"] == pytest.approx(kA_arm, rel=1e-12)
+    assert o["kG"] == pytest.approx(kA_arm * G0 * L * ma / I, rel=1e-12)
