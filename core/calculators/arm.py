@@ -99,7 +99,9 @@ FIELDS = (
 )
 
 OUTPUTS = (
-    Output("best_ratio", "Fastest ratio", help="Optimise mode: the reduction G that arrives first."),
+    Output("best_ratio", "Fastest ratio", help="Optimise mode: the reduction G that arrives first. "
+           "Near it the time changes only to second order, so the ratio is known less sharply than "
+           "the time (the error estimate includes it); ratios a few % either side are as good."),
     Output("moment_of_inertia", "Moment of inertia used", "inertia", "lb*in**2"),
     *motion.common_outputs("angle", "deg", "angular_speed", "deg/s", "V*s/rad", "V*s**2/rad", "V/rad",
                            "Volts to hold the arm horizontal against gravity (minus the counterbalance); "

@@ -93,7 +93,9 @@ FIELDS = (
 )
 
 OUTPUTS = (
-    Output("best_ratio", "Fastest ratio", help="Optimise mode: the reduction G that arrives first."),
+    Output("best_ratio", "Fastest ratio", help="Optimise mode: the reduction G that arrives first. "
+           "Near it the time changes only to second order, so the ratio is known less sharply than "
+           "the time (the error estimate includes it); ratios a few % either side are as good."),
     *motion.common_outputs("length", "in", "speed", "ft/s", "V*s/m", "V*s**2/m", "V/m",
                            "Volts to hold the load against gravity (minus the counterbalance)."),
     *EFFECTS.outputs(),
