@@ -2,7 +2,9 @@
 
 Figures from ../shared/REFERENCE_DATA.md:
 - WPILib `DCMotor` (wpimath, 2026), specification voltage 12 V.
-- ReCalc `app/lib/models/Motor.ts` (tervay/recalc, dyno-based), 12 V.
+- ReCalc `app/lib/models/Motor.ts` (tervay/recalc, dyno-based), 12 V; also the motors WPILib lacks
+  (NEO 2.0, 775 RedLine, NeveRest, REV HD Hex, REV Core Hex): choosing WPILib data for them says
+  so and uses ReCalc's.
 - VEX: V5 Smart Motor cartridges and VEX 393 (7.2 V), from VEX's published specifications.
 SI inside: speeds in rad/s, torques in N*m.
 """
@@ -69,6 +71,15 @@ _RECALC = [
     ("CIM", 5330, 2.41, 131, 2.7, 2.82),
     ("MiniCIM", 5840, 1.41, 89, 3, 2.16),
     ("BAG", 13180, 0.43, 53, 1.8, 0.71),
+    # Motors teams use today that WPILib's DCMotor lacks (ReCalc app/lib/models/Motor.ts, tervay/recalc
+    # commit 03511cb4): NEO 2.0 (ReCalc lists the NEO's dyno figures for it), AndyMark 775 RedLine,
+    # AndyMark NeveRest (bare motor), REV HD Hex (bare motor, before its UltraPlanetary or gearbox)
+    # and REV Core Hex (at its output shaft: the 72:1 gearbox is built in).
+    ("NEO 2.0", 5906, 4.201, 216.269, 1.782, 0.8),
+    ("775 RedLine", 19500, 0.64, 122, 2.6, 1.0),
+    ("NeveRest", 5480, 0.173, 9.8, 0.355, 1.0),
+    ("REV HD Hex", 6000, 0.105, 8.5, 0.4, 1.0),
+    ("REV Core Hex", 125, 3.2, 4.4, 0.5, 1.0),
 ]
 
 MOTORS: list[Motor] = (

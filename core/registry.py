@@ -15,7 +15,7 @@ from .model import Calculator
 # new calculator changes only its own area's strip, never another area's.
 AREAS: dict[str, tuple[str, tuple[str, ...]]] = {
     "gearing": ("Motors", ("motor", "gear_ratio", "ratio_distance", "ratio_finder")),
-    "mechanisms": ("Mechanisms", ("lead_screw", "drivetrain")),
+    "mechanisms": ("Mechanisms", ("lead_screw", "drivetrain", "elevator", "arm")),
     "structure": ("Structure", ("beam", "chain_belt", "gear_clearance")),
     "pneumatics": ("Pneumatics", ("pneumatics", "pneumatic_linkage")),
     "shooters": ("Shooters", ("projectile", "flywheel", "trebuchet")),

@@ -38,6 +38,13 @@ SI_UNITS: dict[str, str] = {
     "density": "kg/m**3",
     "acceleration": "m/s**2",
     "reciprocal_length": "1/m",
+    # WPILib feedforward and feedback gains (elevator: per metre; arm: per radian)
+    "voltage_per_speed": "V*s/m",
+    "voltage_per_angular_speed": "V*s/rad",
+    "voltage_per_acceleration": "V*s**2/m",
+    "voltage_per_angular_acceleration": "V*s**2/rad",
+    "voltage_per_length": "V/m",
+    "voltage_per_angle": "V/rad",
 }
 
 # A bare decimal number (ASCII digits only: other scripts' digits are refused by `normalise`).

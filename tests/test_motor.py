@@ -74,9 +74,20 @@ def test_every_reference_motor_is_present():
     for n in ["CIM", "MiniCIM", "BAG", "775pro", "AndyMark RS775-125", "BaneBots RS775", "AndyMark 9015",
               "BaneBots RS550", "NEO", "NEO 550", "Falcon 500", "Falcon 500 FOC", "Kraken X60",
               "Kraken X60 FOC", "Kraken X44", "Kraken X44 FOC", "Minion", "NEO Vortex", "VEX 393",
-              "V5 100 rpm (red)", "V5 200 rpm (green)", "V5 600 rpm (blue)"]:
+              "V5 100 rpm (red)", "V5 200 rpm (green)", "V5 600 rpm (blue)",
+              "NEO 2.0", "775 RedLine", "NeveRest", "REV HD Hex", "REV Core Hex"]:
         assert n in names
-    assert len([m for m in motors.MOTORS if m.source == "recalc"]) == 13
+    assert len([m for m in motors.MOTORS if m.source == "recalc"]) == 18
+
+
+def test_motors_only_recalc_has_say_so_when_wpilib_is_asked():
+    # ReCalc Motor.ts: Core Hex 125 rpm, 3.2 N·m, 4.4 A stall, 0.5 A free (at its output shaft)
+    sol = solve("motor", {"motor": "REV Core Hex", "source": "wpilib"})
+    assert any("WPILib DCMotor has no data for REV Core Hex; using ReCalc (dyno)" in w for w in sol.warnings)
+    assert sol.outputs["stall_torque"].value == pytest.approx(3.2)
+    assert sol.outputs["free_speed"].value == pytest.approx(125 * RPM)
+    sol = solve("elevator", {"motor": "NEO 2.0", "source": "wpilib"})
+    assert any("has no data for NEO 2.0" in w for w in sol.warnings)
 
 
 def test_torque_above_stall_names_the_field():

@@ -1,0 +1,178 @@
+"""Single-jointed arm: N motors through a reduction G swing the arm from rest at the start angle to
+the goal angle at full voltage, as a scene with effects (core.sim.motion, core.sim.effects).
+
+Coordinate θ: the arm's angle from the horizontal, up positive (θ = 90°: straight up).
+    I·θ̈ = η·N·Kt·G·I_m − m·g·L·cos θ (gravity) + τ_cb·cos θ (counterbalance) − τ_f·sgn(θ̇) (friction)
+with L the pivot-to-centre-of-mass distance and I the moment of inertia about the pivot
+(default: a uniform bar whose centre of mass is at L, so its length is 2L and I = m·(2L)²/3 =
+4/3·m·L²), and the motor current I_m from core.sim.motion (E1)-(E3).
+Counterbalance (our choice, documented): an ideal zero-length spring (a spring and cable over a
+pulley, or a spring whose pre-load equals its stiffness times its free length) from a point a
+above the pivot to a point b along the arm stores U = ½k·(a² + b² − 2ab·sin θ), so it gives the
+torque −dU/dθ = k·a·b·cos θ: the counterbalance_torque is k·a·b, its value at horizontal, and
+it cancels gravity at every angle when it equals m·g·L. (A gas strut's torque varies less
+simply; enter its torque at horizontal as an approximation.)
+kG is quoted at horizontal (WPILib ArmFeedforward: V = kS·sgn(ω) + kG·cos θ + kV·ω + kA·α),
+net of the counterbalance; kV = G/Kv, kA = I·R/(η·N·Kt·G).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from ..errors import InputError
+from ..model import Calculator, Field, Output, Plot
+from ..motors import lookup, motor_fields
+from ..sim import motion
+from ..sim.effects import Effect, Effects, Part
+from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
+
+G = motion.G_STD
+INERTIA_MODELS = ("uniform_bar", "entered")
+INERTIA_LABELS = ("Uniform bar: I = 4/3·m·L² (bar of length 2L)", "Entered moment of inertia")
+
+
+def _gravity(values, mech) -> Part:
+    mgL = values["arm_mass"] * G * values["com_distance"]
+    cos = mech.xp.cos
+    return Part(terms={"force": lambda q: -mgL * cos(q)})
+
+
+def _counterbalance(values, mech) -> Part:
+    t_cb = values["counterbalance_torque"]
+    cos = mech.xp.cos
+    return Part(terms={"force": lambda q: t_cb * cos(q)})
+
+
+EFFECTS = Effects(
+    Effect("gravity", "the arm's weight, torque m·g·L·cos θ", _gravity, default_on=True),
+    *motion.electrical_effects(),
+    motion.friction_effect("torque", "N*m", "friction_torque",
+                           "a constant torque against the motion (reported as kS)", 0.5),
+    Effect("counterbalance", "a zero-length spring above the pivot: torque τ_cb·cos θ", _counterbalance,
+           fields=(Field("counterbalance_torque", "Counterbalance torque at horizontal", "torque", "N*m",
+                         default=5, min=0, max=1e6,
+                         help="k·a·b of a zero-length spring (or spring and cable) anchored a above the "
+                              "pivot and b along the arm: it lifts with τ_cb·cos θ, cancelling gravity "
+                              "at every angle when τ_cb = m·g·L."),)),
+)
+
+
+def _motor_fields():
+    out = []
+    for f in motor_fields(default_motor="Kraken X60", default_count=1):
+        if f.name == "voltage":
+            f = dataclasses.replace(f, label="Battery voltage", default=12,
+                                    help="Battery voltage at rest (open circuit); full voltage toward the goal.")
+        out.append(f)
+    return tuple(out)
+
+
+FIELDS = (
+    motion.mode_field(),
+    *_motor_fields(),
+    Field("ratio", "Reduction G", "dimensionless", "", default=75, min=0, min_exclusive=True, max=1e5,
+          modes=("move",), help="Motor turns per arm turn."),
+    Field("arm_mass", "Arm mass", "mass", "lb", default=8, min=0, min_exclusive=True, max=1e5,
+          help="Everything that swings: arm, end effector, game piece."),
+    Field("com_distance", "Pivot to centre of mass", "length", "in", default=12, min=0, min_exclusive=True,
+          max=1000, help="L: distance from the pivot to the centre of mass of everything that swings."),
+    Field("inertia_model", "Moment of inertia", choices=INERTIA_MODELS, choice_labels=INERTIA_LABELS,
+          default="uniform_bar",
+          help="Uniform bar: I = 4/3·m·L², a bar of length 2L pivoted at its end. Otherwise enter I: "
+               "from CAD (mass properties about the pivot axis), or add m_i·r_i² for each lump "
+               "(end effector, game piece) to m·l²/3 for the bare tube of length l."),
+    Field("moment_of_inertia", "Moment of inertia about pivot", "inertia", "lb*in**2", default=1500,
+          min=0, min_exclusive=True, max=1e9, when=(("inertia_model", ("entered",)),),
+          help="About the pivot axis; must be at least m·L² (all mass at the centre of mass)."),
+    Field("start_angle", "Start angle", "angle", "deg", default=-30, min=-2 * math.pi, max=2 * math.pi,
+          help="From the horizontal, up positive (−90°: hanging straight down)."),
+    Field("goal_angle", "Goal angle", "angle", "deg", default=90, min=-2 * math.pi, max=2 * math.pi,
+          help="From the horizontal, up positive; below the start the arm swings down."),
+    EFFECTS.field("gravity (m·g·L·cos θ); stator_limit, supply_limit (per motor current limits); "
+                  "battery_sag (bus = battery − R × total supply current); friction (kS); "
+                  "counterbalance (zero-length spring, τ_cb·cos θ)."),
+    *EFFECTS.fields(),
+    *motion.feedback_fields("angle", "deg", 2, "angular_speed", "deg/s", 20),
+    accuracy_field(),
+)
+
+OUTPUTS = (
+    Output("best_ratio", "Fastest ratio", help="Optimise mode: the reduction G that arrives first. "
+           "Near it the time changes only to second order, so the ratio is known less sharply than "
+           "the time (the error estimate includes it); ratios a few % either side are as good."),
+    Output("moment_of_inertia", "Moment of inertia used", "inertia", "lb*in**2"),
+    *motion.common_outputs("angle", "deg", "angular_speed", "deg/s", "V*s/rad", "V*s**2/rad", "V/rad",
+                           "Volts to hold the arm horizontal against gravity (minus the counterbalance); "
+                           "WPILib ArmFeedforward multiplies it by cos θ."),
+    *EFFECTS.outputs(),
+    *STATS_OUTPUTS,
+)
+
+
+def inertia(v) -> float:
+    m, L = v["arm_mass"], v["com_distance"]
+    if v["inertia_model"] == "uniform_bar":
+        return 4.0 / 3.0 * m * L * L
+    I = v["moment_of_inertia"]
+    if I < m * L * L * (1 - 1e-12):
+        raise InputError("moment_of_inertia", f"is below m·L² = {m * L * L:.4g} kg·m², the least an arm of "
+                                              f"this mass and centre of mass can have")
+    return I
+
+
+def critical_angles(a: float, b: float) -> tuple[float, ...]:
+    """Multiples of π between a and b: where cos θ (gravity and counterbalance) is extreme."""
+    lo, hi = sorted((a, b))
+    return tuple(k * math.pi for k in range(math.ceil(lo / math.pi), math.floor(hi / math.pi) + 1))
+
+
+def setup(v, ratio=None, xp=motion.SCALAR) -> motion.Setup:
+    on = v["effects"]
+    if v["goal_angle"] == v["start_angle"]:
+        raise InputError("goal_angle", "equals the start angle: nothing to move")
+    motor, _ = lookup(v["motor"], v["source"])
+    G_ = v["ratio"] if ratio is None else ratio
+    mech = motion.Mechanism(motor, v["motor_count"], v["voltage"], v["efficiency"], G_, inertia(v),
+                            v["start_angle"], v["goal_angle"], motion.bus_resistance_of(v, on), xp)
+    asm = EFFECTS.assemble(on, v, mech, motion.SLOTS, ("angle", "speed", "energy"), minimum=xp.minimum)
+    varying = asm.slots["force"] is not None
+    return motion.Setup(mech, EFFECTS, asm, varying=varying, values=v,
+                        critical=critical_angles(v["start_angle"], v["goal_angle"]),
+                        names={"force_unit": "N·m", "friction": "friction_torque",
+                               "where": lambda q: f" at {math.degrees(q):.4g}°"})
+
+
+def simulate(v, rtol: float):
+    _, note = lookup(v["motor"], v["source"])
+    if v["mode"] == "optimise":
+        run = motion.optimise(lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, 1.0, hold_q=0.0)
+    else:
+        run = motion.run_move(setup(v), rtol, hold_q=0.0)
+    run.values["moment_of_inertia"] = inertia(v)
+    if note:
+        run.warnings.insert(0, note)
+    return run
+
+
+compute = compute_with_stats(simulate)
+
+CALCULATOR = Calculator(
+    id="arm",
+    title="Arm",
+    summary="Time for a single-jointed arm to swing to its goal, currents, kG/kV/kA and LQR gains.",
+    fields=FIELDS,
+    outputs=OUTPUTS,
+    compute=compute,
+    simulate=simulate,
+    plots=(
+        Plot("Angle", ("position",), "time", "time", "s", "angle", "angle", "deg"),
+        Plot("Speed", ("speed",), "time", "time", "s", "speed", "angular_speed", "deg/s"),
+        Plot("Current (per motor)", ("stator_current", "supply_current"), "time", "time", "s", "current",
+             "current", "A"),
+        Plot("Bus voltage", ("bus_voltage",), "time", "time", "s", "voltage", "voltage", "V"),
+        Plot("Time vs ratio (optimise)", ("time_vs_ratio",), "ratio", "dimensionless", "", "time to goal",
+             "time", "s"),
+    ),
+)

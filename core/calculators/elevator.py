@@ -1,0 +1,157 @@
+"""Elevator (or linear slide): N motors through a reduction G on a spool lift the carriage from rest
+to the goal at full voltage, as a scene with effects (core.sim.motion, core.sim.effects).
+
+Coordinate x: carriage travel along the rail, up positive; the rail leans `incline` from vertical.
+    r = spool_diameter/2;  k = 1 (continuous rigging) or the stage count (cascade: the carriage
+    moves k times the first stage, which the spool pulls)
+    n = G/(r·k)                        motor radians per metre of carriage travel
+    m·ẍ = η·N·Kt·n·I − m·g·cos(incline) (gravity) + F_cb (counterbalance) − F_f·sgn(ẋ) (friction)
+with the motor current I from core.sim.motion (E1)-(E3). The rigging's own stage masses are not
+modelled (add them to load_mass, scaled by their speed ratio squared, if they matter).
+Closed form with no limits, no sag and a constant load F (the check in tests/test_motion.py):
+    τ = m·R/(η·N·Kt·n²/Kv),  v_f = (V·Kv/n)·(1 − F/F_stall),
+    v(t) = v_f·(1 − e^{−t/τ}),  x(t) = v_f·(t − τ·(1 − e^{−t/τ})).
+Effects: gravity (on by default), stator_limit, supply_limit, battery_sag, friction (a constant
+force against the motion, reported as kS), counterbalance (a constant-force spring pulling up).
+Feedforward in WPILib's convention: kG (volts to hold against gravity minus the counterbalance),
+kV = n/Kv, kA = m·R/(η·N·Kt·n); note: ReCalc scales only the voltage input by η, so its kV is
+this kV/η (they agree at η = 1). Feedback: WPILib's LQR on the plant (x, ẋ).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from ..errors import InputError
+from ..model import Calculator, Field, Output, Plot
+from ..motors import lookup, motor_fields
+from ..sim import motion
+from ..sim.effects import Effect, Effects, Part
+from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
+
+G = motion.G_STD
+RIGGINGS = ("continuous", "cascade")
+RIGGING_LABELS = ("Continuous (carriage moves with the rope)", "Cascade (carriage moves stages × the first stage)")
+
+
+def _gravity(values, mech) -> Part:
+    F = -values["load_mass"] * G * math.cos(values["incline"])
+    return Part(terms={"force": lambda q: F + 0 * q})
+
+
+def _counterbalance(values, mech) -> Part:
+    F = values["counterbalance_force"]
+    return Part(terms={"force": lambda q: F + 0 * q})
+
+
+EFFECTS = Effects(
+    Effect("gravity", "the load's weight along the rail", _gravity, default_on=True),
+    *motion.electrical_effects(),
+    motion.friction_effect("force", "lbf", "friction_force",
+                           "a constant force against the motion (reported as kS)", 2.0),
+    Effect("counterbalance", "a constant-force spring pulling the carriage up", _counterbalance,
+           fields=(Field("counterbalance_force", "Counterbalance force", "force", "lbf", default=10, min=0,
+                         max=1e6, help="Upward pull of constant-force springs on the carriage."),)),
+)
+
+
+def _motor_fields():
+    out = []
+    for f in motor_fields(default_motor="NEO", default_count=2):
+        if f.name == "voltage":
+            f = dataclasses.replace(f, label="Battery voltage", default=12,
+                                    help="Battery voltage at rest (open circuit); full voltage toward the goal.")
+        out.append(f)
+    return tuple(out)
+
+
+FIELDS = (
+    motion.mode_field(),
+    *_motor_fields(),
+    Field("ratio", "Reduction G", "dimensionless", "", default=10, min=0, min_exclusive=True, max=1e5,
+          modes=("move",), help="Motor turns per spool turn."),
+    Field("load_mass", "Load mass", "mass", "lb", default=15, min=0, min_exclusive=True, max=1e5,
+          help="Carriage plus game piece (plus moving stages, scaled by their speed ratio squared)."),
+    Field("spool_diameter", "Spool diameter", "length", "in", default=1.5, min=0, min_exclusive=True, max=100,
+          help="Pitch diameter of the spool, drum or sprocket that pulls the first stage."),
+    Field("travel", "Travel", "length", "in", default=40, min=-1e4, max=1e4,
+          help="From start to goal along the rail; up is positive, negative moves down."),
+    Field("incline", "Incline from vertical", "angle", "deg", default=0, min=0, max=math.pi,
+          help="0: vertical; 90°: horizontal slide (no gravity along it); beyond 90° the rail points down."),
+    Field("rigging", "Rigging", choices=RIGGINGS, choice_labels=RIGGING_LABELS, default="continuous",
+          help="Continuous: the carriage moves with the rope. Cascade: each stage doubles up, the carriage "
+               "moves `stages` times the first stage."),
+    Field("stages", "Moving stages", integer=True, default=2, min=1, max=10, when=(("rigging", ("cascade",)),),
+          help="Cascade: the carriage moves this many times the first stage's travel."),
+    EFFECTS.field("gravity (on: vertical or inclined lift); stator_limit, supply_limit (per motor current "
+                  "limits); battery_sag (bus = battery − R × total supply current); friction (kS); "
+                  "counterbalance (constant-force spring)."),
+    *EFFECTS.fields(),
+    *motion.feedback_fields("length", "in", 0.5, "speed", "in/s", 10),
+    accuracy_field(),
+)
+
+OUTPUTS = (
+    Output("best_ratio", "Fastest ratio", help="Optimise mode: the reduction G that arrives first. "
+           "Near it the time changes only to second order, so the ratio is known less sharply than "
+           "the time (the error estimate includes it); ratios a few % either side are as good."),
+    *motion.common_outputs("length", "in", "speed", "ft/s", "V*s/m", "V*s**2/m", "V/m",
+                           "Volts to hold the load against gravity (minus the counterbalance)."),
+    *EFFECTS.outputs(),
+    *STATS_OUTPUTS,
+)
+
+
+def spool_factor(v) -> float:
+    """r·k: metres of carriage travel per spool radian."""
+    k = v["stages"] if v["rigging"] == "cascade" else 1
+    return v["spool_diameter"] / 2 * k
+
+
+def setup(v, ratio=None, xp=motion.SCALAR) -> motion.Setup:
+    on = v["effects"]
+    if v["travel"] == 0:
+        raise InputError("travel", "is zero: enter the distance from start to goal (negative moves down)")
+    motor, _ = lookup(v["motor"], v["source"])
+    G_ = v["ratio"] if ratio is None else ratio
+    mech = motion.Mechanism(motor, v["motor_count"], v["voltage"], v["efficiency"], G_ / spool_factor(v),
+                            v["load_mass"], 0.0, v["travel"], motion.bus_resistance_of(v, on), xp)
+    asm = EFFECTS.assemble(on, v, mech, motion.SLOTS, ("position", "speed", "energy"), minimum=xp.minimum)
+    return motion.Setup(mech, EFFECTS, asm, varying=False, values=v,
+                        names={"force_unit": "N", "friction": "friction_force"})
+
+
+def simulate(v, rtol: float):
+    from ..motors import lookup as _lookup
+
+    _, note = _lookup(v["motor"], v["source"])
+    if v["mode"] == "optimise":
+        run = motion.optimise(lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, spool_factor(v))
+    else:
+        run = motion.run_move(setup(v), rtol)
+    if note:
+        run.warnings.insert(0, note)
+    return run
+
+
+compute = compute_with_stats(simulate)
+
+CALCULATOR = Calculator(
+    id="elevator",
+    title="Elevator",
+    summary="Time for an elevator or linear slide to reach its goal, currents, kG/kV/kA and LQR gains.",
+    fields=FIELDS,
+    outputs=OUTPUTS,
+    compute=compute,
+    simulate=simulate,
+    plots=(
+        Plot("Position", ("position",), "time", "time", "s", "position", "length", "in"),
+        Plot("Speed", ("speed",), "time", "time", "s", "speed", "speed", "ft/s"),
+        Plot("Current (per motor)", ("stator_current", "supply_current"), "time", "time", "s", "current",
+             "current", "A"),
+        Plot("Bus voltage", ("bus_voltage",), "time", "time", "s", "voltage", "voltage", "V"),
+        Plot("Time vs ratio (optimise)", ("time_vs_ratio",), "ratio", "dimensionless", "", "time to goal",
+             "time", "s"),
+    ),
+)
