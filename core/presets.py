@@ -60,7 +60,7 @@ def load(path: str | Path, builtin: bool = False) -> Preset:
 
 def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = None,
               builtin: bool = False) -> Preset:
-    from .model import parse_inputs
+    from . import tolerance  # reads "60 g ± 6 g" (the nominal through parse_inputs, as before)
     from .registry import calculators
 
     fmt = data.get("format", FORMAT)
@@ -89,7 +89,7 @@ def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = N
         if not isinstance(value, (str, int, float, bool)):
             raise InputError(key, f"wrong type ({type(value).__name__}); use a string, number or boolean", src)
     try:
-        parse_inputs(calculators()[calc_id], inputs)  # unknown field, bad unit, out of bounds
+        tolerance.parse(calculators()[calc_id], inputs)  # unknown field, bad unit, out of bounds, bad ± tolerance
     except InputError as exc:
         raise InputError(exc.field, exc.message, src) from None
     return Preset(calc_id, name, description, dict(inputs), path, builtin)

@@ -304,7 +304,8 @@ def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Toleran
                 break
             predicted = y0[n] + sum(sens[n][t.name] * (x - t.nominal) for t, x in zip(tolerances, c))
             residual = max(residual, abs(y - predicted))
-        linear_ok[n] = not bends[n] and residual <= LINEAR_ENOUGH * worst + 1e-300
+        noise = 1e-12 * max(abs(span_lo), abs(span_hi))  # an output that only moves by rounding is constant
+        linear_ok[n] = not bends[n] and residual <= LINEAR_ENOUGH * worst + noise
         if method == "auto" and not linear_ok[n]:
             need_mc = True
 
@@ -346,7 +347,8 @@ def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Toleran
                      (math.sqrt(max(var - half, 0.0)), math.sqrt(var + half)))
 
     for n in names:
-        lo, hi = _extremes(seen, n)
+        # worst case over the nominal and the corners (the optimiser's finds added where it ran)
+        lo, hi = _extremes([(nominal_x, center)] + list(zip(corners, corner_outcomes)), n)
         how = corner_note
         if n in optimised:
             lo, hi = min(lo, optimised[n][0]), max(hi, optimised[n][1])
