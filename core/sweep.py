@@ -401,7 +401,7 @@ def text_table(sweep: Sweep, max_outputs: int | None = 6) -> str:
             cells = []
             row = dict(zip([c[0] for c in sweep.columns()], sweep.display_row(p)))
             for n, _, _ in cols:
-                cells.append(_cell(row[n]) if p.error is None or n in p.inputs else "")
+                cells.append(cell_text(row[n]) if p.error is None or n in p.inputs else "")
             if p.error is not None:
                 cells = cells[:len(sweep.varies)] + [f"infeasible: {p.error}"]
             elif p.warnings:
@@ -425,7 +425,7 @@ def text_table(sweep: Sweep, max_outputs: int | None = 6) -> str:
     return "\n".join(lines)
 
 
-def _cell(x: Any) -> str:
+def cell_text(x: Any) -> str:
     if x is None:
         return "-"
     if isinstance(x, bool):
@@ -461,7 +461,7 @@ def _matrix(sweep: Sweep, name: str) -> list[str]:
             current = [x, []]
             rows.append(current)
         v = p.outputs.get(name)
-        current[1].append("infeasible" if p.error else _cell(_display(v, calc.output(name).quantity, unit)))
+        current[1].append("infeasible" if p.error else cell_text(_display(v, calc.output(name).quantity, unit)))
     table = [head] + [[show_in(fx, vx, x)] + cells for x, cells in rows]
     widths = [max(len(r[i]) for r in table if i < len(r)) for i in range(len(head))]
     out = [f"{name}{f' [{unit}]' if unit else ''}; rows {vx.name}{f' [{vx.unit}]' if vx.unit else ''}, "
