@@ -450,11 +450,21 @@ def as_json(solution, result: Spread | None) -> dict[str, Any]:
     return data
 
 
+def short_method(s: OutputSpread) -> tuple[str, str]:
+    """('corners' or 'optimiser', 'first-order' or 'Monte Carlo') for a compact line."""
+    return ("optimiser" if "optimiser" in s.worst_case_method else "corners",
+            "Monte Carlo" if s.statistical_method.startswith("Monte Carlo") else "first-order")
+
+
 def spread_lines(calc: Calculator, solution, result: Spread, width: int) -> list[str]:
     """Plain-text lines for `gearhead solve` when tolerances are present."""
-    lines = [f"  tolerances: {', '.join(t.entry for t in result.tolerances)}"]
+    lines = [f"  tolerances: {', '.join(t.entry for t in result.tolerances)} (each uniform over its range)"]
+    unaffected = []
     for name, s in result.outputs.items():
         o = calc.output(name)
+        if s.low == s.high:
+            unaffected.append(name)
+            continue
         unit = solution.outputs[name].text.split(" ", 1)[1] if " " in solution.outputs[name].text else o.unit
         try:
             units.factor(unit, o.quantity)
@@ -465,12 +475,15 @@ def spread_lines(calc: Calculator, solution, result: Spread, width: int) -> list
             return units.format_number(units.to_unit(v, unit, o.quantity))
 
         u = f" {unit}" if unit else ""
-        main = f", mostly {s.main_input} ({s.shares[s.main_input] * 100:.0f} %)" if s.main_input else ""
-        lines.append(f"  {o.label:<{width}}  worst {q(s.low)} .. {q(s.high)}{u}; σ {q(s.std)}{u}{main}")
+        worst, stat = short_method(s)
+        main = f"; mostly {s.main_input} ({s.shares[s.main_input] * 100:.0f} %)" if s.main_input else ""
+        lines.append(f"  {o.label:<{width}}  {q(s.low)} .. {q(s.high)}{u} ({worst}); σ {q(s.std)}{u} ({stat}){main}")
+    if unaffected:
+        lines.append(f"  unaffected: {', '.join(unaffected)}")
     methods = sorted({s.worst_case_method for s in result.outputs.values()})
-    stats = sorted({s.statistical_method for s in result.outputs.values()})
-    lines.append(f"  worst case: {'; '.join(methods)}")
-    lines.append(f"  statistical: {'; '.join(stats)}")
+    lines.append(f"  worst case over the box: {'; '.join(methods)}")
+    if result.samples:
+        lines.append(f"  Monte Carlo where first order is not exact enough: {result.samples} samples, seed {result.seed}")
     lines.append(f"  cost: {result.cost.text()}")
     lines += [f"  note: {n}" for n in result.notes]
     return lines
