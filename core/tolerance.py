@@ -435,6 +435,43 @@ def solve(calc_id: str, raw: Mapping[str, Any], display_units: Mapping[str, str]
     return solution, result, result.notes
 
 
+def solve_entries(calc_id: str, entries: Mapping[str, Any], display_units: Mapping[str, str] | None = None):
+    """What a card solves: (Solution, Spread or None). Entries without ± go straight to
+    core.model.solve, so a card without tolerances costs what it did."""
+    from .model import solve as solve_nominal
+
+    if not any(isinstance(v, str) and _PLUS_MINUS.search(v) for v in entries.values()):
+        return solve_nominal(calc_id, entries, display_units), None
+    solution, result, _ = solve(calc_id, entries, display_units)
+    return solution, result
+
+
+def shown_unit(calc: Calculator, solution, name: str) -> str:
+    """The unit an output is shown in (its text's unit when that is a plain unit, else its own)."""
+    o = calc.output(name)
+    text = solution.outputs[name].text
+    unit = text.split(" ", 1)[1] if " " in text else o.unit
+    try:
+        units.factor(unit, o.quantity)
+    except Exception:  # the shown text carries no plain unit
+        unit = o.unit
+    return unit
+
+
+def spread_text(calc: Calculator, solution, s: OutputSpread) -> str:
+    """'3.8151 .. 3.925 m  σ 0.0317' for a results table."""
+    o = calc.output(s.name)
+    unit = shown_unit(calc, solution, s.name)
+
+    def q(v: float) -> str:
+        return units.format_number(units.to_unit(v, unit, o.quantity))
+
+    if s.low == s.high:
+        return "unaffected"
+    worst, stat = short_method(s)
+    return f"{q(s.low)} .. {q(s.high)}  σ{'*' if stat == 'Monte Carlo' else ''} {q(s.std)}"
+
+
 def as_json(solution, result: Spread | None) -> dict[str, Any]:
     """solve --json's object, with each output's spread and each tolerance when there are any."""
     data = solution.as_json()
@@ -465,11 +502,7 @@ def spread_lines(calc: Calculator, solution, result: Spread, width: int) -> list
         if s.low == s.high:
             unaffected.append(name)
             continue
-        unit = solution.outputs[name].text.split(" ", 1)[1] if " " in solution.outputs[name].text else o.unit
-        try:
-            units.factor(unit, o.quantity)
-        except Exception:  # the shown text carries no plain unit (e.g. a dimensionless count)
-            unit = o.unit
+        unit = shown_unit(calc, solution, name)
 
         def q(v: float) -> str:
             return units.format_number(units.to_unit(v, unit, o.quantity))

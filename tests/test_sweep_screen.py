@@ -125,3 +125,35 @@ def test_sweep_view_snapshot(snap_compare):
 
     assert snap_compare(GearheadApp(blink=False, initial="gear_ratio", hide_timings=True), terminal_size=SIZE,
                         run_before=sweep_radius)
+
+
+@pytest.mark.asyncio
+async def test_tolerance_in_a_field_shows_spreads_and_goes_away():
+    from core import tolerance
+
+    app = GearheadApp(blink=False, initial="lead_screw", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-lead_screw")
+        app.query_one("#calc-lead_screw #in-force").value = "50 N +- 10 %"
+        await settle(pilot)
+        table = tab.query_one(".results")
+        assert tab.error is None and tab.spread is not None
+        cells = [str(c) for c in table.get_row("raise_torque")]
+        _, want, _ = tolerance.solve("lead_screw", tab.entries)
+        s = want.outputs["raise_torque"]
+        assert cells[2] == tolerance.spread_text(tab.calculator, tab.solution, s)
+        assert str(table.get_row("lead")[2]) == "unaffected"
+        assert "tolerances: worst case by corners" in str(tab.query_one(".status").render())
+        table.focus()
+        await pilot.pause()
+        table.move_cursor(row=list(table.rows).index(next(k for k in table.rows if k.value == "raise_torque")))
+        await settle(pilot)
+        help_line = str(tab.query_one(".help-line").render())
+        assert "Worst case" in help_line and "mostly force" in help_line, help_line
+        app.query_one("#calc-lead_screw #in-force").value = "50 N"
+        await settle(pilot)
+        assert tab.spread is None and len(table.columns) == 2
+        app.query_one("#calc-lead_screw #in-force").value = "50 N ± 5 lbf*in"
+        await settle(pilot)
+        assert tab.error is not None and tab.error.field == "force"
