@@ -42,6 +42,8 @@ MAX_CORNER_INPUTS = 10  # 2^10 = 1024 corners; beyond, the corners the sensitivi
 LINEAR_ENOUGH = 0.01  # first-order σ is used when the linear model misses no corner by more than 1 % of the span
 DEFAULT_SAMPLES = 1000
 DEFAULT_SEED = 0
+MIN_SAMPLES = 100  # a time budget never cuts Monte Carlo below this
+APP_BUDGET_S = 2.0  # a card's solve: Monte Carlo stops here (a slow scene would keep the card busy)
 Z95 = 1.959963984540054  # two-sided 95 % normal quantile
 
 
@@ -220,11 +222,13 @@ def _number(v: Any) -> float | None:
 
 def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Tolerance],
            outputs: list[str] | None = None, method: str = "auto", samples: int = DEFAULT_SAMPLES,
-           seed: int = DEFAULT_SEED, cancelled: Callable[[], bool] | None = None) -> Spread:
+           seed: int = DEFAULT_SEED, cancelled: Callable[[], bool] | None = None,
+           budget_s: float | None = None) -> Spread:
     """Worst case and statistical spread of `outputs` (default: every numeric output) over the box.
 
     method: 'auto' (first-order where it is exact enough, else Monte Carlo), 'first-order', or
-    'monte-carlo'. Raises Cancelled if `cancelled()` turns true.
+    'monte-carlo'. Raises Cancelled if `cancelled()` turns true. With `budget_s`, Monte Carlo stops
+    once the run has taken that long (after at least MIN_SAMPLES samples) and says so.
     """
     if method not in ("auto", "first-order", "monte-carlo"):
         raise InputError("method", f"{method!r} is not auto, first-order or monte-carlo")
@@ -317,6 +321,7 @@ def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Toleran
 
     mc: dict[str, Any] = {}
     mc_bad: list[str] = []
+    stopped_at = samples
     if need_mc:
         import numpy as np
 
@@ -325,7 +330,10 @@ def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Toleran
         highs = np.array([t.high for t in tolerances])
         xs = lows + (highs - lows) * rng.random((samples, k))
         ys = {n: [] for n in names}
-        for row in xs:
+        for i, row in enumerate(xs):
+            if budget_s is not None and i >= MIN_SAMPLES and time.perf_counter() - t0 > budget_s:
+                stopped_at = i  # the first i samples of the seeded sequence: still reproducible
+                break
             o = probe(tuple(float(x) for x in row))
             if o.error is not None:
                 mc_bad.append(o.error)
@@ -360,7 +368,7 @@ def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Toleran
         use_mc = n in mc and (method == "monte-carlo" or not linear_ok[n])
         if use_mc:
             mean, std, interval, std_ci = mc[n]
-            stat = f"Monte Carlo ({samples} samples, seed {seed}, inputs uniform)"
+            stat = f"Monte Carlo ({stopped_at} samples, seed {seed}, inputs uniform)"
         else:
             mean = y0[n] + sum(sens[n][t.name] * ((t.low + t.high) / 2 - t.nominal) for t in tolerances)
             std, interval, std_ci = math.sqrt(total), None, None
@@ -370,9 +378,11 @@ def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Toleran
     cost.wall_time = time.perf_counter() - t0
     notes = []
     if mc_bad:
-        notes.append(f"{len(mc_bad)} of {samples} Monte Carlo samples could not be solved "
+        notes.append(f"{len(mc_bad)} of {stopped_at} Monte Carlo samples could not be solved "
                      f"(left out), e.g. {mc_bad[0]}")
-    return Spread(list(tolerances), result, cost, notes, samples if need_mc else 0, seed if need_mc else None)
+    if stopped_at < samples:
+        notes.append(f"Monte Carlo stopped at {stopped_at} of {samples} samples (time budget {budget_s:g} s)")
+    return Spread(list(tolerances), result, cost, notes, stopped_at if need_mc else 0, seed if need_mc else None)
 
 
 def _is_monotone(ys: list[float]) -> bool:
@@ -417,7 +427,7 @@ def _optimise(at, tolerances: list[Tolerance], seen, name: str) -> tuple[float, 
 
 def solve(calc_id: str, raw: Mapping[str, Any], display_units: Mapping[str, str] | None = None,
           method: str = "auto", samples: int = DEFAULT_SAMPLES, seed: int = DEFAULT_SEED,
-          cancelled: Callable[[], bool] | None = None):
+          cancelled: Callable[[], bool] | None = None, budget_s: float | None = None):
     """(Solution at the nominal values, exactly core.model.solve's; Spread or None; notes)."""
     from .model import solve as solve_nominal
     from .registry import get
@@ -430,7 +440,7 @@ def solve(calc_id: str, raw: Mapping[str, Any], display_units: Mapping[str, str]
         solution.inputs[t.name] = type(entered)(entered.value, entered.unit, t.entry)
     if not tols:
         return solution, None, notes
-    result = spread(calc, values, tols, [n for n in solution.outputs], method, samples, seed, cancelled)
+    result = spread(calc, values, tols, [n for n in solution.outputs], method, samples, seed, cancelled, budget_s)
     result.notes = notes + result.notes
     return solution, result, result.notes
 
@@ -442,7 +452,7 @@ def solve_entries(calc_id: str, entries: Mapping[str, Any], display_units: Mappi
 
     if not any(isinstance(v, str) and _PLUS_MINUS.search(v) for v in entries.values()):
         return solve_nominal(calc_id, entries, display_units), None
-    solution, result, _ = solve(calc_id, entries, display_units)
+    solution, result, _ = solve(calc_id, entries, display_units, budget_s=APP_BUDGET_S)
     return solution, result
 
 

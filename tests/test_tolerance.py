@@ -206,3 +206,12 @@ def test_cli_solve_text_and_bad_tolerance(capsys):
     assert main(["solve", "motor", "--set", "voltage=12 V ± 5 in"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("gearhead: voltage:") and err.count("\n") == 1
+
+
+def test_time_budget_cuts_monte_carlo_reproducibly():
+    raw = {"motor": "NEO", "voltage": "12 V ± 1.5 V", "torque": "1 N*m ± 0.2 N*m"}
+    full = tolerance.solve("motor", raw, method="monte-carlo", samples=400, seed=1)[1]
+    cut = tolerance.solve("motor", raw, method="monte-carlo", samples=400, seed=1, budget_s=0.0)[1]
+    assert cut.samples == tolerance.MIN_SAMPLES and full.samples == 400
+    assert any("stopped at 100 of 400" in n for n in cut.notes)
+    assert cut.outputs["speed"].statistical_method.startswith("Monte Carlo (100 samples, seed 1")
