@@ -180,9 +180,11 @@ class SweepScreen(ModalScreen[None]):
                 self.app.call_from_thread(self._progress, done, total)
 
         try:
-            raw, _ = tolerance.split_inputs(self.calculator, self.entries)
+            raw, tolerances = tolerance.split_inputs(self.calculator, self.entries)
             result = sweep.run(self.calculator.id, raw, [spec], progress=progress,
                                cancelled=lambda: worker.is_cancelled)
+            if tolerances:
+                result.notes.append(f"tolerances on {', '.join(tolerances)} not swept: nominal values used")
             error = None
         except InputError as exc:
             result, error = None, exc
@@ -308,6 +310,8 @@ class SweepScreen(ModalScreen[None]):
             line.append(f"   {bad} infeasible (reason in the row)", style="yellow")
         if result.cancelled:
             line.append("   cancelled", style="yellow")
+        for note in result.notes:
+            line.append(f"   {note}", style="yellow")
         self.query_one("#sweep-status", Static).update(line)
 
     def csv_text(self) -> str:
