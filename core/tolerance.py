@@ -377,6 +377,15 @@ def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Toleran
                                  interval, std_ci, infeasible)
     cost.wall_time = time.perf_counter() - t0
     notes = []
+    # a yes/no or named result (e.g. 'backdrivable') that flips inside the box matters as much as a spread
+    for n, v in center.outputs.items():
+        if (outputs and n not in outputs) or not isinstance(v, (bool, str)):
+            continue
+        seen_values = {o.outputs.get(n) for _, o in seen if o.error is None and n in o.outputs}
+        if len(seen_values) > 1:
+            shown = sorted(("yes" if x else "no") if isinstance(x, bool) else str(x) for x in seen_values)
+            notes.append(f"{n} changes within the tolerances: {' / '.join(shown)} (nominal: "
+                         f"{('yes' if v else 'no') if isinstance(v, bool) else v})")
     if mc_bad:
         notes.append(f"{len(mc_bad)} of {stopped_at} Monte Carlo samples could not be solved "
                      f"(left out), e.g. {mc_bad[0]}")

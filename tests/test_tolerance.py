@@ -215,3 +215,13 @@ def test_time_budget_cuts_monte_carlo_reproducibly():
     assert cut.samples == tolerance.MIN_SAMPLES and full.samples == 400
     assert any("stopped at 100 of 400" in n for n in cut.notes)
     assert cut.outputs["speed"].statistical_method.startswith("Monte Carlo (100 samples, seed 1")
+
+
+def test_a_yes_no_result_that_flips_inside_the_box_is_noted():
+    # T8 lead screw (2 mm pitch, 4 starts: lead 8 mm on 8 mm): backdrivable while μ < tan λ·cos α_n
+    # (tan λ = 8/(π·7), α_n ≈ 14.5°: about 0.352); μ = 0.2 ± 0.19 holds both answers, ± 0.05 only yes
+    raw = preset_inputs("lead_screw", "t8_lift")
+    _, wide, _ = tolerance.solve("lead_screw", {**raw, "friction": "0.2 ± 0.19"})
+    _, narrow, _ = tolerance.solve("lead_screw", {**raw, "friction": "0.2 ± 0.05"})
+    assert any(n.startswith("backdrivable changes within the tolerances: no / yes") for n in wide.notes)
+    assert not any("backdrivable" in n for n in narrow.notes)
