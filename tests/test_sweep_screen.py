@@ -154,6 +154,12 @@ async def test_tolerance_in_a_field_shows_spreads_and_goes_away():
         app.query_one("#calc-lead_screw #in-force").value = "50 N"
         await settle(pilot)
         assert tab.spread is None and len(table.columns) == 2
+        app.query_one("#calc-lead_screw #in-friction").value = "0.2 ± 0.19"
+        await settle(pilot)
+        notes = tolerance.solve("lead_screw", tab.entries)[1].notes
+        assert any("backdrivable changes" in n for n in notes)
+        shown = str(tab.query_one(".warnings").render())
+        assert all(f"± {n}" in shown for n in notes) and tab.query_one(".warnings-box").display
         app.query_one("#calc-lead_screw #in-force").value = "50 N ± 5 lbf*in"
         await settle(pilot)
         assert tab.error is not None and tab.error.field == "force"

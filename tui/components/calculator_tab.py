@@ -399,6 +399,10 @@ class CalculatorTab(Widget):
         line.append(f"; {result.cost.solves} solves, {result.cost.rhs_evaluations} RHS evaluations, {wall}",
                     style="dim")
         status.update(line)
+        if result.notes:  # e.g. 'backdrivable changes within the tolerances', samples left out
+            lines = [f"! {w}" for w in solution.warnings] + [f"± {n}" for n in result.notes]
+            self.query_one(".warnings", Static).update(Text("\n".join(lines), style="yellow"))
+            self.query_one(".warnings-box").display = True
 
     def _append_spread(self, name: str, line: Text) -> None:
         """With tolerances, the help line of a result also gives its spread in full: worst case and
