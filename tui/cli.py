@@ -83,7 +83,6 @@ def _raw_inputs(args, calc) -> dict:
 
 
 def _solve(args) -> int:
-    from core import tolerance
     from core.model import solve
     from core.registry import get
 
@@ -96,12 +95,15 @@ def _solve(args) -> int:
         display_units[name.strip()] = unit.strip()
     raw = _raw_inputs(args, calc)
     spread = None
-    if any(isinstance(v, str) and tolerance.split(v, k)[1] is not None for k, v in raw.items()):
+    if any(isinstance(v, str) and ("±" in v or "+-" in v or "+/-" in v) for v in raw.values()):
+        from core import tolerance  # only then: a plain solve starts as fast as before
+
         solution, spread, _ = tolerance.solve(calc.id, raw, display_units, args.spread, args.samples, args.seed)
     else:
         solution = solve(calc.id, raw, display_units)
     if args.json:
-        print(json.dumps(tolerance.as_json(solution, spread), allow_nan=False))
+        data = solution.as_json() if spread is None else tolerance.as_json(solution, spread)
+        print(json.dumps(data, allow_nan=False))
         return 0
     width = max(len(calc.output(k).label) for k in solution.outputs)
     print(f"{calc.title} ({calc.id})")
