@@ -68,16 +68,17 @@ class SweepScreen(ModalScreen[None]):
                     border: thick $primary; background: $surface; }
     .sweep-title { text-style: bold; padding-bottom: 1; }
     .sweep-form { height: 1; margin-bottom: 1; }
-    .sweep-form Select { width: 34; }
-    .sweep-form Input { width: 14; margin-left: 1; }
+    .sweep-form Select { width: 1fr; max-width: 34; }
+    .sweep-form Input { width: 12; margin-left: 1; }
     #sweep-unit { width: auto; margin-left: 1; }
-    #sweep-log { margin-left: 2; }
-    .sweep-body { height: 18; }
-    #sweep-outputs { width: 34; height: 100%; }
-    #sweep-plot { width: 1fr; height: 100%; }
+    #sweep-log { width: auto; margin-left: 2; }
+    /* plot over table, 3:2, down to an 80x24 terminal */
+    .sweep-body { height: 3fr; min-height: 6; }
+    #sweep-outputs { width: 1fr; max-width: 32; height: 100%; }
+    #sweep-plot { width: 3fr; height: 100%; }
     #sweep-plot PlotWidget { height: 1fr; }
     #sweep-progress { height: 1; }
-    #sweep-table { height: 1fr; }
+    #sweep-table { height: 2fr; min-height: 3; }
     #sweep-status { height: auto; }
     """
     BINDINGS = [
