@@ -120,7 +120,7 @@ def _os_reason(exc: BaseException) -> str:
 
 def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = None,
               builtin: bool = False) -> Preset:
-    from .model import parse_inputs
+    from . import tolerance  # reads "60 g ± 6 g" (the nominal through parse_inputs, as before)
     from .registry import calculators
 
     fmt = data.get("format", FORMAT)
@@ -151,7 +151,7 @@ def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = N
             raise InputError(key, f"wrong type ({type(value).__name__}); use a string, number or boolean", src)
     calc = calculators()[calc_id]
     try:
-        parse_inputs(calc, inputs)  # unknown field, bad unit, out of bounds
+        tolerance.parse(calc, inputs)  # unknown field, bad unit, out of bounds, bad ± tolerance
     except InputError as exc:
         raise InputError(exc.field, exc.message, src) from None
     preset = Preset(calc_id, name, description, dict(inputs), path, builtin)

@@ -46,6 +46,8 @@ class GearheadApp(App):
         Binding("ctrl+r", "accuracy", "Accuracy", tooltip="Accuracy vs time of this simulation"),
         Binding("ctrl+y", "copy_preset", "Copy", tooltip="Copy this tab as preset TOML (to share)"),
         Binding("ctrl+e", "export", "Export", tooltip="Results or plot data as CSV or Markdown"),
+        # priority: from inside a field too (where Input binds ctrl+w to delete a word); not on the footer
+        Binding("ctrl+w", "sweep", "Sweep", show=False, priority=True),
         Binding("ctrl+q", "quit", "Quit"),
         *(Binding(f"f{n}", f"area('{area}')", title, show=False, priority=True)
           for n, (area, (title, _)) in enumerate(AREAS.items(), 1)),
@@ -111,6 +113,8 @@ class GearheadApp(App):
         self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r only where they do something
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        if action == "sweep":  # on the card only: in a dialog's entry ctrl+w deletes a word as usual
+            return self.screen is self.screen_stack[0]
         if action in ("send", "accuracy") and self.query("#areas"):
             calc = calculators().get(self.current_calculator)
             if calc is not None:
@@ -268,6 +272,14 @@ class GearheadApp(App):
         values, _ = parse_inputs(tab.calculator, tab.entries)
         self.push_screen(AccuracyScreen(tab.calculator, values, self.hide_timings))
 
+    def action_sweep(self) -> None:
+        """The sweep view over the focused input (or the first numeric one): core.sweep in a thread."""
+        from .components.sweep_screen import SweepScreen
+
+        tab, focused = self.current_tab, self.focused
+        name = focused.id[3:] if focused is not None and (focused.id or "").startswith("in-") else None
+        self.push_screen(SweepScreen(tab.calculator, dict(tab.entries), name, self.blink, self.hide_timings))
+
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         yield from super().get_system_commands(screen)
         yield SystemCommand("Save preset", "Save the current tab's inputs as a TOML preset",
@@ -283,6 +295,7 @@ class GearheadApp(App):
                                 "(remembered)", lambda s=system: self.set_unit_system(s))
         yield SystemCommand("Accuracy vs time", "Run the current simulation at every accuracy level",
                             self.action_accuracy)
+        yield SystemCommand("Sweep…", "Vary the focused input over a range: plot, table, CSV", self.action_sweep)
         for calc in calculators().values():
             yield SystemCommand(f"Open {calc.title}", calc.summary,
                                 lambda cid=calc.id: self.show_calculator(cid))

@@ -24,11 +24,17 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument("--unit", dest="units", action="append", default=[], metavar="OUTPUT=UNIT",
                    help="show an output in another unit, e.g. --unit center_distance=in (repeatable)")
     s.add_argument("--json", action="store_true", help="print one JSON object (values in SI)")
+    # tolerances ('--set "load=25 lbf ± 5 %"'): how each output's statistical spread is found
+    s.add_argument("--spread", choices=("auto", "first-order", "monte-carlo"), default="auto",
+                   help="statistical spread when inputs carry ± tolerances (default: first-order where exact enough)")
+    s.add_argument("--samples", type=int, default=1000, help="Monte Carlo samples (default 1000)")
+    s.add_argument("--seed", type=int, default=0, help="Monte Carlo seed (default 0)")
     a = sub.add_parser("accuracy", help="run a simulation at every accuracy level: error, time, evaluations")
     a.add_argument("calculator", help="a simulated calculator (e.g. pneumatics)")
     a.add_argument("--preset", metavar="FILE")
     a.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE")
     a.add_argument("--json", action="store_true")
+    _sweep_parser(sub)
     pr = sub.add_parser("presets", help="list built-in and user presets")
     pr.add_argument("calculator", nargs="?", help="only this calculator's presets")
     c = sub.add_parser("calculators", help="list calculator ids, modes and fields")
@@ -50,6 +56,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _presets(args)
         if args.command == "accuracy":
             return _accuracy(args)
+        if args.command == "sweep":
+            return _sweep(args)
         return _calculators(args)
     except InputError as exc:
         _complain(str(exc))
@@ -89,21 +97,35 @@ def _raw_inputs(args, calc) -> dict:
     return raw
 
 
-def _solve(args) -> int:
-    from core.model import solve
-    from core.registry import get
-
-    calc = get(args.calculator)
-    display_units = {}
+def _display_units(args) -> dict[str, str]:
+    """--unit OUTPUT=UNIT options as {output: unit}."""
+    display_units: dict[str, str] = {}
     for item in args.units:
         name, sep, unit = item.partition("=")
         if not sep or not name.strip():
             raise InputError(name.strip() or "--unit", f"--unit takes OUTPUT=UNIT (e.g. --unit "
                                                        f"free_speed=rad/s), got {shown(item)}")
         display_units[name.strip()] = unit.strip()
-    solution = solve(calc.id, _raw_inputs(args, calc), display_units)
+    return display_units
+
+
+def _solve(args) -> int:
+    from core.model import solve
+    from core.registry import get
+
+    calc = get(args.calculator)
+    display_units = _display_units(args)
+    raw = _raw_inputs(args, calc)
+    spread = None
+    if any(isinstance(v, str) and ("±" in v or "+-" in v or "+/-" in v) for v in raw.values()):
+        from core import tolerance  # only then: a plain solve starts as fast as before
+
+        solution, spread, _ = tolerance.solve(calc.id, raw, display_units, args.spread, args.samples, args.seed)
+    else:
+        solution = solve(calc.id, raw, display_units)
     if args.json:
-        print(json.dumps(solution.as_json(), allow_nan=False))
+        data = solution.as_json() if spread is None else tolerance.as_json(solution, spread)
+        print(json.dumps(data, allow_nan=False))
         return 0
     width = max(len(calc.output(k).label) for k in solution.outputs)
     print(f"{calc.title} ({calc.id})")
@@ -113,6 +135,49 @@ def _solve(args) -> int:
         print(f"  warning: {w}")
     for table in calc.tables:
         _print_table(table, solution.tables.get(table.name, []))
+    if spread is not None:
+        print("\n".join(tolerance.spread_lines(calc, solution, spread, width)))
+    return 0
+
+
+# --- sweep (core.sweep) -----------------------------------------------------------------------
+
+def _sweep_parser(sub) -> None:
+    w = sub.add_parser("sweep", help="solve over a range of one input (a table) or two (a grid)")
+    w.add_argument("calculator", help="calculator id (see `gearhead calculators`)")
+    w.add_argument("--vary", dest="varies", action="append", default=[], required=True,
+                   metavar="NAME=START..STOP[:N][:log]",
+                   help="the input to vary, e.g. --vary ratio=3..12:50 or --vary 'spool_diameter=1 in..2 in:21' "
+                        "(give two for a grid)")
+    w.add_argument("--preset", metavar="FILE", help="start from this preset file")
+    w.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE")
+    w.add_argument("--output", dest="outputs", action="append", default=[], metavar="NAME",
+                   help="an output to tabulate (repeatable; default: every numeric output)")
+    w.add_argument("--unit", dest="units", action="append", default=[], metavar="OUTPUT=UNIT")
+    form = w.add_mutually_exclusive_group()
+    form.add_argument("--csv", action="store_true", help="CSV in display units, a status column per row")
+    form.add_argument("--json", action="store_true", help="one JSON object, values in SI")
+
+
+def _sweep(args) -> int:
+    from core import sweep, tolerance
+    from core.registry import get
+
+    calc = get(args.calculator)
+    display_units = _display_units(args)
+    raw, tolerances = tolerance.split_inputs(calc, _raw_inputs(args, calc))
+    result = sweep.run(calc.id, raw, args.varies, args.outputs, display_units)
+    if tolerances:
+        result.notes.append(f"tolerances on {', '.join(tolerances)} are not swept: the nominal values are used")
+    if args.json:
+        print(json.dumps(result.as_json(), allow_nan=False))
+    elif args.csv:
+        sys.stdout.write(result.csv_text())
+    else:
+        print(sweep.text_table(result, None if args.outputs else 6))
+    for note in result.notes:
+        if not args.json:
+            print(f"gearhead: note: {note}", file=sys.stderr)
     return 0
 
 

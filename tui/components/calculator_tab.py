@@ -196,6 +196,7 @@ class CalculatorTab(Widget):
         line = Text(out.label + ": ", style="bold")
         line.append(out.help or "see the help of the fields it comes from")
         line.append("  (Enter: next unit)", style="dim")
+        self._append_spread(name, line)
         self.query_one(".help-line", Static).update(line)
 
     def _apply_mode(self) -> None:
@@ -298,8 +299,8 @@ class CalculatorTab(Widget):
     @work(thread=True, group="solve")
     def _solve_in_thread(self, entries: dict[str, Any], display_units: dict[str, str], system: str) -> None:
         from core import unit_systems
-        from core.model import solve
         from core.sim.integrate import Cancelled, budget
+        from core.tolerance import solve_entries  # entries may carry '± tolerance' (core/tolerance.py)
 
         try:
             # in the thread: "as entered" reads units with pint, which must not load on the UI thread
@@ -307,7 +308,7 @@ class CalculatorTab(Widget):
             self._preferred_units = preferred
             # a simulation polls this between steps: keys typed meanwhile drop it (latest wins at once)
             with budget(cancel=lambda: self._dirty):
-                solution = solve(self.calculator.id, entries, {**preferred, **display_units})
+                solution, self.spread = solve_entries(self.calculator.id, entries, {**preferred, **display_units})
             error = None
         except Cancelled:  # only when _dirty: _solve_done starts the solve of the latest entries
             solution, error = None, None
@@ -375,6 +376,58 @@ class CalculatorTab(Widget):
         warnings.update(Text("\n".join("! " + w for w in solution.warnings), style="yellow"))
         self.query_one(".warnings-box").display = bool(solution.warnings)
         status.update(Text("✓ solved", style="green"))
+        self._show_spread(solution, table, status)
+
+    # ---- tolerances (core/tolerance.py): a Spread column while any entry carries '±' ------------
+    spread = None  # the last solve's core.tolerance.Spread, or None
+
+    def _show_spread(self, solution: Solution, table: DataTable, status: Static) -> None:
+        from core.tolerance import spread_text
+
+        result = self.spread
+        has_column = "spread" in table.columns
+        if result is None:
+            if has_column:
+                table.remove_column("spread")
+            return
+        if not has_column:
+            table.add_column("Worst case  σ (*: Monte Carlo)", key="spread", width=30)
+        for name in solution.outputs:
+            s = result.outputs.get(name)
+            text = spread_text(self.calculator, solution, s) if s else ""
+            if s and s.main_input and s.low != s.high and len(result.tolerances) > 1:
+                text += f"  {s.main_input}"
+            table.update_cell(name, "spread", Text(text, style="dim" if text == "unaffected" else ""))
+        worst = "optimiser" if any("optimiser" in s.worst_case_method for s in result.outputs.values()) else "corners"
+        line = Text(f"✓ solved; tolerances: worst case by {worst}, σ first-order", style="green")
+        if result.samples:
+            line.append(f" (* Monte Carlo, {result.samples} samples, seed {result.seed})")
+        wall = "(hidden)" if self.hide_timings else f"{result.cost.wall_time * 1e3:.0f} ms"
+        line.append(f"; {result.cost.solves} solves, {result.cost.rhs_evaluations} RHS evaluations, {wall}",
+                    style="dim")
+        status.update(line)
+        if result.notes:  # e.g. 'backdrivable changes within the tolerances', samples left out
+            lines = [f"! {w}" for w in solution.warnings] + [f"± {n}" for n in result.notes]
+            self.query_one(".warnings", Static).update(Text("\n".join(lines), style="yellow"))
+            self.query_one(".warnings-box").display = True
+
+    def _append_spread(self, name: str, line: Text) -> None:
+        """With tolerances, the help line of a result also gives its spread in full: worst case and
+        how it was found, σ and how, and the input that contributes most."""
+        from core.tolerance import shown_unit, short_method
+        from core import units
+
+        s = self.spread.outputs.get(name) if self.spread is not None and self.solution is not None else None
+        if s is None or name not in self.solution.outputs:
+            return
+        o = self.calculator.output(name)
+        unit = shown_unit(self.calculator, self.solution, name)
+        q = lambda v: f"{units.format_number(units.to_unit(v, unit, o.quantity))} {unit}".rstrip()
+        worst, stat = short_method(s)
+        line.append(f"\nWorst case {q(s.low)} .. {q(s.high)} ({s.worst_case_method}); "
+                    f"σ {q(s.std)} ({stat})")
+        if s.main_input and s.low != s.high:
+            line.append(f"; mostly {s.main_input} ({s.shares[s.main_input] * 100:.0f} % of the variance)")
 
     # ---- tables of alternatives (core.model.Table) -------------------------------------
     def _compose_tables(self) -> ComposeResult:
