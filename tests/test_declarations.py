@@ -54,8 +54,9 @@ def test_every_builtin_declaration_passes():
         check(calc)  # raises on the first inconsistency
 
 
-# Outputs no preset happens to reach (the third cylinder group is empty in every built-in preset)
-EXTRA = {"pneumatics": [{"c3_count": 1}]}
+# Outputs no preset happens to reach (the third cylinder group is empty in every built-in preset;
+# no ratio_finder preset needs three stages)
+EXTRA = {"pneumatics": [{"c3_count": 1}], "ratio_finder": [{"target_ratio": 5000, "families": "gear_20dp"}]}
 
 
 def _runs(calc):
