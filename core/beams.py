@@ -147,7 +147,7 @@ def _tube_torsion_bounds(W: float, H: float) -> tuple[float, float]:
     """
     import numpy as np
     from scipy.sparse import coo_matrix
-    from scipy.sparse.linalg import spsolve
+    from scipy.sparse.linalg import splu
 
     p, L = TUBE_DEGREE, TUBE_LAYERS
     x01, K1, M1, w1, m1 = _spectral_reference(p)
@@ -174,7 +174,9 @@ def _tube_torsion_bounds(W: float, H: float) -> tuple[float, float]:
         f = np.zeros(count)
         np.add.at(f, ld[ld >= 0], rhs_el[ld >= 0])
         f += extra
-        return float(f @ spsolve(K, f))
+        # symmetric positive definite: a symmetric ordering and diagonal pivots (2.5× spsolve's time)
+        lu = splu(K, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+        return float(f @ lu.solve(f))
 
     # Prandtl: φ = 0 on the outer faces (u = 0, v = 0); one unknown C for the hole and its faces
     hole = (iu >= corner) & (iv >= corner)
