@@ -2,7 +2,7 @@
 
 Every case states why it is delicate. This file holds the motor, gear-ratio, pneumatics and
 integrator cases; each other calculator keeps its own in tests/test_hard_<calculator>.py
-(`pytest tests/test_hard_*.py` runs the whole catalogue: 48 cases).
+(`pytest tests/test_hard_*.py` runs the whole catalogue: 100 cases).
 """
 
 import math
