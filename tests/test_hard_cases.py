@@ -3,7 +3,7 @@
 Every case states why it is delicate. This file holds the motor, gear-ratio, pneumatics and
 integrator cases; each other calculator keeps its own in tests/test_hard_<calculator>.py, and the
 simulations' robustness cases (hangs, budgets, cancel, energy balance) are in tests/test_hard_sims.py
-(`pytest tests/test_hard_*.py` runs the whole catalogue: 72 cases).
+(`pytest tests/test_hard_*.py` runs the whole catalogue).
 """
 
 import math
