@@ -173,7 +173,7 @@ def unused_entry_warnings(calc, inputs: dict[str, Any], src: str) -> list[str]:
         try:
             f.parse(inputs[f.name])
         except InputError as exc:
-            out.append(f"{src}: {f.name}: not used here, and not valid either ({exc.message}); ignored")
+            out.append(f"{src}: {f.name}: ignored (not used in this mode), and not valid: {exc.message}")
     return out
 
 

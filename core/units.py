@@ -340,7 +340,7 @@ def _to_si(q, s: str, field: str, kind: str) -> float:
     try:
         value = float(q.to(target).magnitude)
     except pint.errors.DimensionalityError:
-        raise InputError(field, f"{shown(s)} is not {_a(kind)} (units like {example_unit(kind)})") from None
+        raise InputError(field, f"{shown(s)} is not {_a(kind)} (expected units like {example_unit(kind)})") from None
     except (ArithmeticError, TypeError, ValueError):
         raise InputError(field, f"{shown(s)} is not a finite number") from None
     return value
