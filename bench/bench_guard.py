@@ -2,6 +2,8 @@
 presets (the guard's polling must not slow the integrator). Prints; asserts nothing.
 
     python bench/bench_guard.py [seconds]      # each slow case in a subprocess, killed after `seconds`
+
+CPU time is printed beside wall time: on a shared machine it is the steadier figure.
 """
 
 from __future__ import annotations
@@ -33,13 +35,13 @@ try:
     solve(calc, dict(raw, accuracy="coarse") if calc == "projectile" else {{}})  # imports, caches
 except InputError:
     pass
-t = time.perf_counter()
+t, c = time.perf_counter(), time.process_time()
 try:
     sol = solve(calc, raw)
     what = "solved"
 except InputError as exc:
     what = "refused: " + exc.field
-print(f"{{time.perf_counter() - t:.2f}} s  {{what}}")
+print(f"{{time.perf_counter() - t:6.2f}} s wall {{time.process_time() - c:6.2f}} s CPU  {{what}}")
 """
 
 

@@ -30,7 +30,7 @@ from functools import lru_cache
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
 from ..sim.integrate import Event, integrate
-from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats
+from ..sim.scene import SOLVE_NFEV, STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats
 
 PSI = 6894.757293168361  # Pa
 P_ATM = 101325.0  # Pa
@@ -42,6 +42,7 @@ PRESSURE_MAX = RELIEF * SLACK  # "125 psi" is in
 CYLINDER_PRESSURE_MAX = 200 * PSI * SLACK
 GROUPS = 3
 MIN_PERIOD = 0.1  # s; a valve cannot cycle faster, and it bounds the work of a match
+MAX_FIRINGS = SOLVE_NFEV // 30  # with the compressor on: 2 runs × ≥ 15 evaluations per firing
 ADVICE = ("match_length", "the match is too long for this accuracy and firing rate (every firing restarts "
                           "the integration): try a shorter match, longer firing periods, or a coarser accuracy")
 
@@ -254,6 +255,12 @@ def simulate(v, rtol: float) -> SimRun:
     empty = False
     warnings = []
     schedule = firing_times(gs, T) + [(T, None)]
+    if has_comp and len(schedule) > MAX_FIRINGS:
+        # each firing restarts the integration (at least one step, ~15 evaluations charged to the
+        # solve's budget, twice with the error estimate): past this the budget cannot hold; say so now
+        raise InputError("match_length", f"{len(schedule) - 1} firings in the match, more than the {MAX_FIRINGS} "
+                                         f"one solve integrates (each restarts the integration): try a shorter "
+                                         f"match or longer firing periods")
     for tf, g in schedule:
         if on and tf > t and P >= top:  # no switch, at the relief pressure: the valve vents the flow
             run_time += tf - t
