@@ -40,6 +40,13 @@ def results_markdown(calc: Calculator, solution: Solution) -> str:
     if solution.warnings:
         lines.append("")
         lines += [f"- {_md_cell(w)}" for w in solution.warnings]
+    for table in calc.tables:  # e.g. the ratio finder's combinations and their part numbers
+        columns = [c for c in table.columns if not c.hidden]
+        lines += ["", f"**{_md_cell(table.title)}**", "",
+                  "| " + " | ".join(_md_cell(f"{c.label} [{c.unit}]" if c.unit else c.label) for c in columns) + " |",
+                  "|" + "---|" * len(columns)]
+        lines += ["| " + " | ".join(_md_cell(row[c.name].text) if c.name in row else "" for c in columns) + " |"
+                  for row in solution.tables.get(table.name, [])]
     return "\n".join(lines) + "\n"
 
 

@@ -209,6 +209,7 @@ class Column:
     quantity: str = "dimensionless"
     unit: str = ""
     hidden: bool = False  # carried for sending a row (exports), not shown
+    width: int = 0  # characters on screen; fixed so the table never re-measures (0: the label's)
 
 
 @dataclass(frozen=True)

@@ -371,3 +371,15 @@ async def test_gear_ratio_sends_its_ratio_to_the_finder():
         assert app.current_calculator == "ratio_finder"
         assert float(app.current_tab.entries["target_ratio"]) == pytest.approx(ratio, rel=1e-15)
         assert app.current_tab.solution is not None
+
+
+def test_markdown_export_lists_the_combinations_and_part_numbers():
+    from core.export import results_markdown
+    from core.registry import get
+
+    sol = solve("ratio_finder", {"target_ratio": 9, "max_stages": 1, "families": "gear_20dp", "results": 5})
+    text = results_markdown(get("ratio_finder"), sol)
+    rows = sol.tables["combinations"]
+    assert "**Combinations, best first**" in text
+    assert all(row["parts"].text in text for row in rows)
+    assert text.count("\n| ") >= len(rows) + 1 + len(sol.outputs)

@@ -84,17 +84,17 @@ OUTPUTS = (
 )
 
 COLUMNS = (
-    Column("rank", "#"),
-    Column("total_ratio", "Ratio"),
-    Column("error", "Error", "dimensionless", "%"),
-    Column("stage", "St"),
-    Column("kind", "Kind"),
-    Column("teeth", "Teeth"),
-    Column("center_distance", "C-C", "length", "in"),
-    Column("loop", "Belt/chain"),
-    Column("parts", "Parts"),
-    Column("bores", "Bores"),
-    Column("alternatives", "Also"),
+    Column("rank", "#", width=3),
+    Column("total_ratio", "Ratio", width=8),
+    Column("error", "Error", "dimensionless", "%", width=9),
+    Column("stage", "St", width=2),
+    Column("kind", "Kind", width=21),
+    Column("teeth", "Teeth", width=11),
+    Column("center_distance", "C-C", "length", "in", width=9),
+    Column("loop", "Belt/chain", width=10),
+    Column("parts", "Parts", width=44),
+    Column("bores", "Bores", width=30),
+    Column("alternatives", "Also", width=22),
     # carried for ctrl+g (send the row under the cursor)
     Column("loop_kind", "chain or belt", hidden=True),
     Column("pitch_standard", "pitch standard", hidden=True),

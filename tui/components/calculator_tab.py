@@ -439,7 +439,8 @@ class CalculatorTab(Widget):
             grid.tooltip = "ctrl+g sends the row under the cursor to the calculator it feeds" if t.exports else None
             for c in t.columns:
                 if not c.hidden:
-                    grid.add_column(Text(f"{c.label} [{pretty_unit(c.unit)}]" if c.unit else c.label), key=c.name)
+                    head = f"{c.label} [{pretty_unit(c.unit)}]" if c.unit else c.label
+                    grid.add_column(Text(head), key=c.name, width=max(c.width, len(head)))
             yield grid
 
     def _show_tables(self, solution: Solution) -> None:
