@@ -33,6 +33,22 @@ async def main():
 asyncio.run(main())
 """
 
+FIRST_RESULT = r"""
+import time, asyncio
+t0 = time.perf_counter()
+from tui.app import GearheadApp
+from tui.components.calculator_tab import CalculatorTab
+async def main():
+    app = GearheadApp(blink=False)
+    async with app.run_test(size=(140, 45)) as pilot:
+        while not any(t.solution is not None for t in app.query(CalculatorTab)):
+            await asyncio.sleep(0.001)
+        shown = time.perf_counter() - t0
+        await pilot.pause()  # let the chart finish mounting before the app closes
+    print(shown)
+asyncio.run(main())
+"""
+
 MINIMAL_APP = r"""
 import time, asyncio
 t0 = time.perf_counter()
@@ -63,7 +79,9 @@ def wall(cmd: list[str]) -> float:
 
 
 def reported(code: str) -> float:
-    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, check=True, capture_output=True, text=True)
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True)
+    if out.returncode:
+        raise RuntimeError(out.stderr[-2000:])
     return float(out.stdout.strip().splitlines()[-1])
 
 
@@ -79,13 +97,17 @@ def pair(name: str, ours, baseline, base_name: str) -> None:
 def main() -> None:
     print(f"start-up (median of {RUNS} fresh processes, alternating with the baseline):")
     gearhead = str(Path(sys.executable).with_name("gearhead"))
-    pair("gearhead solve gear_ratio --json", lambda: wall([gearhead, "solve", "gear_ratio", "--json"]),
-         lambda: wall([sys.executable, "-c", "import numpy"]), "python -c 'import numpy'")
-    pair("gearhead solve beam --set length='20 in'",
-         lambda: wall([gearhead, "solve", "beam", "--set", "length=20 in"]),
-         lambda: wall([sys.executable, "-c", "import numpy"]), "python -c 'import numpy' (typed unit)")
-    pair("app first frame (headless, 140x45)", lambda: reported(FIRST_FRAME),
-         lambda: reported(MINIMAL_APP), "minimal app, 13 empty tab panes")
+    numpy = lambda: wall([sys.executable, "-c", "import numpy"])  # noqa: E731
+    minimal = lambda: reported(MINIMAL_APP)  # noqa: E731
+    if "--app-only" not in sys.argv:
+        pair("gearhead solve gear_ratio --json", lambda: wall([gearhead, "solve", "gear_ratio", "--json"]),
+             numpy, "python -c 'import numpy'")
+        pair("gearhead solve beam --set length='20 in'",
+             lambda: wall([gearhead, "solve", "beam", "--set", "length=20 in"]),
+             numpy, "same (a typed unit loads pint)")
+    pair("app: first frame (headless, 140x45)", lambda: reported(FIRST_FRAME), minimal,
+         "minimal app, 13 empty tab panes")
+    pair("app: first results on screen", lambda: reported(FIRST_RESULT), minimal, "same")
 
 
 if __name__ == "__main__":

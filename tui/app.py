@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Iterable
+from typing import TYPE_CHECKING, Iterable
 
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
@@ -12,14 +12,14 @@ from textual.screen import Screen
 from textual import events
 from textual.widgets import Footer, Tab, TabbedContent, TabPane, Tabs
 
-from core.registry import AREAS, area_of, calculators
+from core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
 from core.unit_systems import SYSTEM_LABELS, SYSTEMS
 
-from .components.accuracy_screen import AccuracyScreen
-from .components.calculator_tab import CalculatorTab
-from .components.export_screen import ExportScreen
-from .components.plot_panel import PlotPanel
-from .components.preset_screens import LoadPresetScreen, SavePresetScreen
+if TYPE_CHECKING:
+    from .components.calculator_tab import CalculatorTab
+
+# The cards, dialogs and their widgets (DataTable, Select, plots …) are imported when first built,
+# after the first frame: the app starts with only the tab strips and the footer.
 
 
 def exact_text(value, output) -> str:
@@ -57,27 +57,52 @@ class GearheadApp(App):
         self.blink = blink  # tests switch the cursor blink off for deterministic snapshots
         self.hide_timings = hide_timings  # and hide wall-clock figures
         self.initial = initial
+        self._cards: dict[str, CalculatorTab] = {}
+        self._mounting: dict[str, object] = {}  # calc_id or area -> its AwaitMount
+        self._started = False  # the first frame is on screen
+        self._area_active: dict[str, str] = {}  # area -> the calculator shown there
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def compose(self) -> ComposeResult:
         # Two strips: areas (F1-F5), then the calculators of the active area (digits 1-9 on the
         # focused strip). A calculator added to one area never moves another area's strip.
-        first = self.initial or next(iter(calculators()))
+        # Only the first area's strip is built before the first frame, and no card: they come
+        # from the registry's tables, without importing any calculator. The rest is built on
+        # first visit.
+        first = self.initial or ORDER[0]
+        self._area_active = {area: first if first in ids else ids[0] for area, (_, ids) in AREAS.items()}
         with TabbedContent(initial=f"area-{area_of(first)}", id="areas"):
-            for n, (area, (title, ids)) in enumerate(AREAS.items(), 1):
+            for n, (area, (title, _)) in enumerate(AREAS.items(), 1):
                 with TabPane(Content(f"F{n} {title}"), id=f"area-{area}"):
-                    present = [cid for cid in ids if cid in calculators()]
-                    start = first if first in present else present[0]
-                    with TabbedContent(initial=f"tab-{start}", id=f"calcs-{area}", classes="calculators"):
-                        for i, cid in enumerate(present, 1):
-                            with TabPane(Content(f"{i} {calculators()[cid].title}"), id=f"tab-{cid}"):
-                                # only the first card is built now; the others on first visit
-                                if cid == first:
-                                    yield self._card(cid)
+                    if area == area_of(first):
+                        yield self._strip(area)
         yield Footer()
 
+    def _strip(self, area: str) -> TabbedContent:
+        strip = TabbedContent(initial=f"tab-{self._area_active[area]}", id=f"calcs-{area}",
+                              classes="calculators")
+        for i, cid in enumerate(AREAS[area][1], 1):
+            strip.compose_add_child(TabPane(Content(f"{i} {TITLES[cid]}"), id=f"tab-{cid}"))
+        return strip
+
+    async def strip(self, area: str) -> TabbedContent:
+        """An area's calculator strip, built on the area's first visit."""
+        found = self.query(f"#calcs-{area}")
+        if found:
+            return found.first(TabbedContent)
+        if area not in self._mounting:
+            self._mounting[area] = self.query_one(f"#area-{area}", TabPane).mount(self._strip(area))
+        await self._mounting[area]
+        return self.query_one(f"#calcs-{area}", TabbedContent)
+
+    async def on_ready(self) -> None:
+        self._started = True
+        await self.card(self.current_calculator)
+
     def _card(self, calc_id: str) -> CalculatorTab:
-        tab = CalculatorTab(calculators()[calc_id], blink=self.blink, hide_timings=self.hide_timings,
+        from .components.calculator_tab import CalculatorTab
+
+        tab = CalculatorTab(get(calc_id), blink=self.blink, hide_timings=self.hide_timings,
                             id=f"calc-{calc_id}")
         tab.unit_system = self.unit_system
         return tab
@@ -85,7 +110,7 @@ class GearheadApp(App):
     def set_unit_system(self, system: str, remember: bool = True) -> None:
         """The units preference for every tab, kept in the user's config.toml."""
         self.unit_system = system
-        for tab in self.query(CalculatorTab):
+        for tab in self._cards.values():
             tab.set_unit_system(system)
         if remember:
             from . import settings
@@ -99,34 +124,48 @@ class GearheadApp(App):
 
     async def card(self, calc_id: str) -> CalculatorTab:
         """The tab of a calculator, built if it has not been visited yet."""
-        found = self.query(f"#calc-{calc_id}")
-        if found:
-            return found.first(CalculatorTab)
-        tab = self._card(calc_id)
-        await self.query_one(f"#tab-{calc_id}", TabPane).mount(tab)
+        tab = self._cards.get(calc_id)
+        if tab is None:
+            # recorded before the await: a second caller meanwhile (tab activation and on_ready
+            # at start-up) waits for this mount instead of mounting a duplicate
+            tab = self._cards[calc_id] = self._card(calc_id)
+            self._mounting[calc_id] = self.query_one(f"#tab-{calc_id}", TabPane).mount(tab)
+        await self._mounting[calc_id]
+        self.refresh_bindings()
         return tab
 
     async def on_tabbed_content_tab_activated(self, event: TabbedContent.TabActivated) -> None:
+        strip_id = event.tabbed_content.id or ""
+        if strip_id.startswith("calcs-"):
+            self._area_active[strip_id.removeprefix("calcs-")] = event.pane.id.removeprefix("tab-")
+        if not self._started:  # start-up: on_ready builds the first card, after the first frame
+            return
+        await self.strip(self.current_area)
         await self.card(self.current_calculator)
         self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r only where they do something
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
-        if action in ("send", "accuracy") and self.query("#areas"):
-            calc = calculators().get(self.current_calculator)
-            if calc is not None:
-                return bool(calc.exports) if action == "send" else calc.simulate is not None
+        if action in ("send", "accuracy"):
+            tab = self._cards.get(self.current_calculator) if self.query("#areas") else None
+            if tab is None:  # not built yet (start-up): shown once the card is there
+                return False
+            calc = tab.calculator
+            return bool(calc.exports) if action == "send" else calc.simulate is not None
         return True
 
     # ---- navigation ---------------------------------------------------------------------
     @property
+    def current_area(self) -> str:
+        return self.query_one("#areas", TabbedContent).active.removeprefix("area-")
+
+    @property
     def current_calculator(self) -> str:
         """Id of the calculator on screen: the active tab of the active area."""
-        area = self.query_one("#areas", TabbedContent).active.removeprefix("area-")
-        return self.query_one(f"#calcs-{area}", TabbedContent).active.removeprefix("tab-")
+        return self._area_active[self.current_area]
 
     @property
     def current_tab(self) -> CalculatorTab:
-        return self.query_one(f"#calc-{self.current_calculator}", CalculatorTab)
+        return self._cards[self.current_calculator]
 
     def show_calculator(self, calc_id: str) -> None:
         """Switch to a calculator's tab and put focus on its area's tab strip. Focus must leave
@@ -134,18 +173,21 @@ class GearheadApp(App):
         (Textual's TabbedContent activates the pane of a focused widget), so "Open …" did nothing."""
         area = area_of(calc_id)
         self.screen.set_focus(None)
-        self.query_one(f"#calcs-{area}", TabbedContent).active = f"tab-{calc_id}"
+        self._area_active[area] = calc_id
+        for strip in self.query(f"#calcs-{area}"):  # not there yet: built with this tab active
+            strip.active = f"tab-{calc_id}"
         self.query_one("#areas", TabbedContent).active = f"area-{area}"
         self.call_after_refresh(self._focus_strip, area)
 
     def action_area(self, area: str) -> None:
         """F1-F5: show an area at the calculator last used there; its strip takes focus, so a
         digit then picks a calculator (two keys to any calculator)."""
-        inner = self.query_one(f"#calcs-{area}", TabbedContent).active
-        self.show_calculator(inner.removeprefix("tab-"))
+        self.show_calculator(self._area_active[area])
 
-    def _focus_strip(self, area: str) -> None:
-        self.screen.set_focus(self.query_one(f"#calcs-{area}", TabbedContent).query_one(Tabs))
+    async def _focus_strip(self, area: str) -> None:
+        strip = await self.strip(area)
+        await self.card(self._area_active[area])
+        self.screen.set_focus(strip.query_one(Tabs))
 
     def on_key(self, event: events.Key) -> None:
         """A digit on a focused tab strip picks its n-th tab (fields never see it: a strip is
@@ -168,6 +210,8 @@ class GearheadApp(App):
                 self.notify(f"Saved {path}", title="Preset saved", markup=False)  # a path may hold "["
 
         name, description = tab.preset_meta
+        from .components.preset_screens import SavePresetScreen
+
         self.push_screen(SavePresetScreen(tab.calculator.id, tab.current_inputs(), self.blink,
                                           name=name, description=description), saved)
 
@@ -178,10 +222,12 @@ class GearheadApp(App):
             if preset is not None:
                 # a preset is a whole design: fields it omits take their defaults (DESIGN.md),
                 # not whatever was typed before, so the tab solves what the CLI solves
-                defaults = {f.name: CalculatorTab.initial_entry(f) for f in tab.calculator.fields}
+                defaults = {f.name: type(tab).initial_entry(f) for f in tab.calculator.fields}
                 tab.set_entries({**defaults, **preset.inputs})
                 tab.preset_meta = (preset.name, preset.description)  # the save dialog offers them
                 self.notify(f"Loaded {preset.name}", title="Preset loaded", markup=False)
+
+        from .components.preset_screens import LoadPresetScreen
 
         self.push_screen(LoadPresetScreen(tab.calculator.id, self.blink), loaded)
 
@@ -200,6 +246,9 @@ class GearheadApp(App):
         if tab.solution is None:
             self.notify("Fix the highlighted input first.", severity="error")
             return
+        from .components.export_screen import ExportScreen
+        from .components.plot_panel import PlotPanel
+
         plot = tab.query_one(PlotPanel).current if tab.calculator.plots else None
 
         def done(message) -> None:
@@ -239,6 +288,8 @@ class GearheadApp(App):
         from core.model import parse_inputs
 
         values, _ = parse_inputs(tab.calculator, tab.entries)
+        from .components.accuracy_screen import AccuracyScreen
+
         self.push_screen(AccuracyScreen(tab.calculator, values, self.hide_timings))
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
