@@ -4,7 +4,10 @@ processes (medians; the machine is shared, so read the ratios):
 - CLI: `gearhead solve gear_ratio --json` (bare numbers) vs `python -c "import numpy"`;
 - first frame: the app's first screen vs a minimal Textual app with 13 empty tab panes.
 
-Run alone:  .venv/bin/python bench/bench_startup.py
+- first visit: a few seconds after start, open the trebuchet (another area) until its results
+  show, vs the first visit of a pane in the minimal app.
+
+Run alone:  .venv/bin/python bench/bench_startup.py [--app-only] [--root DIR]
 """
 
 from __future__ import annotations
@@ -16,6 +19,9 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+# --root DIR: time the app of another checkout (e.g. `git archive cd298d1 | tar -x -C DIR`), with
+# this venv; the scripts run in DIR, so its tui/ and core/ are the ones imported
+APP_ROOT = Path(sys.argv[sys.argv.index("--root") + 1]).resolve() if "--root" in sys.argv else ROOT
 RUNS = 7
 
 FIRST_FRAME = r"""
@@ -49,6 +55,50 @@ async def main():
 asyncio.run(main())
 """
 
+# A first visit as a user makes it: the app has been on screen for a few seconds (the user reads
+# the first card), then they open the trebuchet (another area); timed until its results show.
+FIRST_VISIT = r"""
+import time, asyncio
+from tui.app import GearheadApp
+async def main():
+    app = GearheadApp(blink=False)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await pilot.pause(READ_S)
+        t0 = time.perf_counter()
+        app.show_calculator("trebuchet")
+        while True:
+            await pilot.pause()
+            card = app.query("#calc-trebuchet")
+            if card and card.first().solution is not None and card.first().region.height:
+                break
+        print(time.perf_counter() - t0)
+asyncio.run(main())
+"""
+
+# the same in a minimal app: the first visit of an empty tab pane
+MINIMAL_VISIT = r"""
+import time, asyncio
+from textual.app import App
+from textual.widgets import Footer, Label, TabbedContent, TabPane
+class Minimal(App):
+    def compose(self):
+        with TabbedContent():
+            for i in range(13):
+                yield TabPane(f"Tab {i}", Label(f"pane {i}", id=f"l{i}"), id=f"p{i}")
+        yield Footer()
+async def main():
+    app = Minimal()
+    async with app.run_test(size=(140, 45)) as pilot:
+        await pilot.pause(READ_S)
+        t0 = time.perf_counter()
+        app.query_one(TabbedContent).active = "p12"
+        while not app.query_one("#l12").region.height:
+            await pilot.pause()
+        print(time.perf_counter() - t0)
+asyncio.run(main())
+"""
+READ_S = 4.0  # seconds the user spends on the first card before switching
+
 MINIMAL_APP = r"""
 import time, asyncio
 t0 = time.perf_counter()
@@ -79,7 +129,8 @@ def wall(cmd: list[str]) -> float:
 
 
 def reported(code: str) -> float:
-    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True)
+    code = code.replace("READ_S", repr(READ_S))
+    out = subprocess.run([sys.executable, "-c", code], cwd=APP_ROOT, capture_output=True, text=True)
     if out.returncode:
         raise RuntimeError(out.stderr[-2000:])
     return float(out.stdout.strip().splitlines()[-1])
@@ -108,6 +159,8 @@ def main() -> None:
     pair("app: first frame (headless, 140x45)", lambda: reported(FIRST_FRAME), minimal,
          "minimal app, 13 empty tab panes")
     pair("app: first results on screen", lambda: reported(FIRST_RESULT), minimal, "same")
+    pair("app: first visit of another tab", lambda: reported(FIRST_VISIT),
+         lambda: reported(MINIMAL_VISIT), "minimal app, first visit of a pane")
 
 
 if __name__ == "__main__":

@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 from pathlib import Path
+from time import monotonic
 from typing import TYPE_CHECKING, Iterable
 
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.content import Content
 from textual.screen import Screen
-from textual import events
+from textual import events, work
 from textual.widgets import Footer, Tab, TabbedContent, TabPane, Tabs
 
 from core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
@@ -52,13 +53,16 @@ class GearheadApp(App):
     ]
 
     def __init__(self, blink: bool = True, initial: str | None = None, hide_timings: bool = False,
-                 settings_file: dict | None = None) -> None:
+                 settings_file: dict | None = None, warm_up: bool = True) -> None:
         super().__init__()
+        self.warm_up = warm_up  # build the other cards in idle moments after the first
         self.blink = blink  # tests switch the cursor blink off for deterministic snapshots
         self.hide_timings = hide_timings  # and hide wall-clock figures
         self.initial = initial
         self._cards: dict[str, CalculatorTab] = {}
         self._mounting: dict[str, object] = {}  # calc_id or area -> its AwaitMount
+        self._built: set[str] = set()  # calculators whose card is mounted and composed
+        self._last_key = 0.0  # monotonic time of the last key or click (warm-up waits for a pause)
         self._started = False  # the first frame is on screen
         self._area_active: dict[str, str] = {}  # area -> the calculator shown there
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
@@ -98,6 +102,48 @@ class GearheadApp(App):
     async def on_ready(self) -> None:
         self._started = True
         await self.card(self.current_calculator)
+        if self.warm_up:
+            self._import_the_rest()
+
+    # ---- warming up after the first card ------------------------------------------------
+    # A card is built on the UI thread (Textual widgets must be); importing its calculator
+    # module (and the widget modules) is the larger part of a first visit. So once the first
+    # card is up, a thread imports every calculator, then the other strips and cards are built
+    # one per idle moment (never while keys are arriving): a first visit later finds its card
+    # ready, and the work was done while the user was reading, not while they switched.
+    IDLE_BEFORE_BUILD_S = 0.4  # no key for this long: the user is reading, build one card
+
+    @work(thread=True, group="warm-up", exit_on_error=False)
+    def _import_the_rest(self) -> None:
+        calculators()  # imports every calculator module (numpy, never pint or scipy)
+        from .components import accuracy_screen, export_screen, preset_screens  # noqa: F401
+
+        try:
+            self.call_from_thread(self.set_timer, self.IDLE_BEFORE_BUILD_S, self._build_next)
+        except RuntimeError:  # the app closed meanwhile
+            pass
+
+    async def _build_next(self) -> None:
+        if not self.is_running or not self._screen_stack:  # the app closed
+            return
+        if not self.screen.query("#areas"):  # closing, or a dialog is up: later
+            if self.is_running:
+                self.set_timer(self.IDLE_BEFORE_BUILD_S, self._build_next)
+            return
+        idle = monotonic() - self._last_key
+        if idle < self.IDLE_BEFORE_BUILD_S or any(c.busy for c in self._cards.values()):
+            self.set_timer(self.IDLE_BEFORE_BUILD_S, self._build_next)
+            return
+        todo = [cid for cid in ORDER if cid not in self._cards]
+        if not todo:
+            return
+        await self.card(todo[0])
+        self.set_timer(0.05, self._build_next)
+
+    async def on_event(self, event: events.Event) -> None:
+        if isinstance(event, (events.Key, events.MouseDown)):
+            self._last_key = monotonic()
+        await super().on_event(event)
 
     def _card(self, calc_id: str) -> CalculatorTab:
         from .components.calculator_tab import CalculatorTab
@@ -126,19 +172,29 @@ class GearheadApp(App):
         """The tab of a calculator, built if it has not been visited yet."""
         tab = self._cards.get(calc_id)
         if tab is None:
+            await self.strip(area_of(calc_id))
+            tab = self._cards.get(calc_id)
+        if tab is None:
             # recorded before the await: a second caller meanwhile (tab activation and on_ready
-            # at start-up) waits for this mount instead of mounting a duplicate
+            # at start-up, the warm-up) waits for this mount instead of mounting a duplicate
             tab = self._cards[calc_id] = self._card(calc_id)
             self._mounting[calc_id] = self.query_one(f"#tab-{calc_id}", TabPane).mount(tab)
         await self._mounting[calc_id]
+        self._built.add(calc_id)
         self.refresh_bindings()
         return tab
+
+    def card_ready(self, calc_id: str) -> bool:
+        """The calculator's card is on its pane, its fields and results composed."""
+        return calc_id in self._built
 
     async def on_tabbed_content_tab_activated(self, event: TabbedContent.TabActivated) -> None:
         strip_id = event.tabbed_content.id or ""
         if strip_id.startswith("calcs-"):
             self._area_active[strip_id.removeprefix("calcs-")] = event.pane.id.removeprefix("tab-")
         if not self._started:  # start-up: on_ready builds the first card, after the first frame
+            return
+        if not self.screen.query("#areas"):  # the app is closing
             return
         await self.strip(self.current_area)
         await self.card(self.current_calculator)

@@ -23,13 +23,13 @@ from core.model import Calculator, Field, Solution
 from core.sim.scene import VOLATILE
 
 from .field_input import FieldInput
+from .plot_panel import PlotPanel
+from .unit_text import pretty_quantity, pretty_unit
 
 
 class Form(VerticalScroll, can_focus=False):
     """The field list: scrolls, but is not a Tab stop of its own (Tab goes field to field;
     the form scrolls to the focused field)."""
-from .plot_panel import PlotPanel
-from .unit_text import pretty_quantity, pretty_unit
 
 BUSY_AFTER_S = 0.1  # a solve running longer than this shows '… solving'
 VALUE_WIDTH = 18  # "-1.2346e-05 N*m/A" fits
@@ -90,6 +90,7 @@ class CalculatorTab(Widget):
         self.stale = False  # the results shown are from earlier entries (one is bad now)
         self._solving = False  # a solve thread is running
         self._dirty = False  # entries changed since the running solve started
+        self._solve_seconds = 0.0  # wall time of the last whole solve
         self.set_reactive(CalculatorTab.entries, {f.name: self.initial_entry(f) for f in calculator.fields})
 
     @staticmethod
@@ -104,6 +105,10 @@ class CalculatorTab(Widget):
     # ---- layout -------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
         calc = self.calculator
+        # narrow terminals stack the results under a long form that scrolls: the key results
+        # and the status stay in sight on this line, above the scrolling card, while typing
+        # (shown below 120 columns only)
+        yield Static("", classes="glance")
         with Horizontal(classes="card"):
             with Vertical(classes="inputs-pane"):
                 yield Static(Text(calc.summary), classes="summary")
@@ -299,6 +304,9 @@ class CalculatorTab(Widget):
         from core import unit_systems
         from core.model import solve
 
+        from time import perf_counter
+
+        started = perf_counter()
         try:
             # in the thread: "as entered" reads units with pint, which must not load on the UI thread
             preferred = unit_systems.display_units(self.calculator, system, entries)
@@ -309,6 +317,7 @@ class CalculatorTab(Widget):
             solution, error = None, exc
         except Exception as exc:  # a bug must not take the app (and what was typed) down with it
             solution, error = None, InputError("(result)", f"internal error: {type(exc).__name__}: {exc}")
+        self._solve_seconds = perf_counter() - started  # the whole solve (an optimiser's search too)
         try:
             self.app.call_from_thread(self._solve_done, solution, error)
         except RuntimeError:  # the app closed while this solve ran
@@ -316,6 +325,8 @@ class CalculatorTab(Widget):
 
     def _solve_done(self, solution: Solution | None, error: InputError | None) -> None:
         self._solving = False
+        if not self.is_attached:  # the app closed, or the card was removed, while this solved
+            return
         if self._dirty:  # entries changed while solving: this result is already stale
             self._start_solve()
             return
@@ -349,6 +360,8 @@ class CalculatorTab(Widget):
                 where = error.field
             status.update(Text(f"✗ {where}: {error.message} (results show the last valid inputs)",
                                style="red"))
+            glance = Text(f"✗ {where}: {error.message}", style="red")
+            self.query_one(".glance", Static).update(glance)
             return
         self.error = None
         self._mark_stale(False)
@@ -367,4 +380,21 @@ class CalculatorTab(Widget):
         warnings = self.query_one(".warnings", Static)
         warnings.update(Text("\n".join("! " + w for w in solution.warnings), style="yellow"))
         self.query_one(".warnings-box").display = bool(solution.warnings)
-        status.update(Text("✓ solved", style="green"))
+        status.update(Text("✓ solved" if self.hide_timings else
+                           f"✓ solved in {_duration(self._solve_seconds)}", style="green"))
+        self.query_one(".glance", Static).update(self._glance_text(solution))
+
+    GLANCE_RESULTS = 3  # the first results of a calculator are its headline ones
+
+    def _glance_text(self, solution: Solution) -> Text:
+        line = Text("✓ ", style="green")
+        for i, (name, value) in enumerate(list(solution.outputs.items())[:self.GLANCE_RESULTS]):
+            if i:
+                line.append("  ·  ", style="dim")
+            line.append(self.calculator.output(name).label + " ", style="dim")
+            line.append(pretty_quantity(value.text), style="bold")
+        return line
+
+
+def _duration(seconds: float) -> str:
+    return f"{seconds * 1e3:.1f} ms" if seconds < 1 else f"{seconds:.2f} s"
