@@ -325,8 +325,8 @@ class CalculatorTab(Widget):
 
     def _solve_done(self, solution: Solution | None, error: InputError | None) -> None:
         self._solving = False
-        if not self.is_attached:  # the app closed, or the card was removed, while this solved
-            return
+        if not self.is_attached or not self.query(".status"):
+            return  # the app closed, or the card was removed or is being torn down, meanwhile
         if self._dirty:  # entries changed while solving: this result is already stale
             self._start_solve()
             return
