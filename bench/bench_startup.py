@@ -38,6 +38,10 @@ async def main():
     app = Timed(blink=False)
     async with app.run_test(size=(140, 45)) as pilot:
         await pilot.pause()
+        ready = getattr(app, "card_ready", None)  # closing mid-mount trips Textual: wait
+        while ready is not None and not ready(app.current_calculator):
+            await pilot.pause()
+        await pilot.pause(0.3)
     print(app.first_frame)
 asyncio.run(main())
 """
@@ -64,7 +68,10 @@ FIRST_VISIT = r"""
 import time, asyncio
 from tui.app import GearheadApp
 async def main():
-    app = GearheadApp(blink=False)
+    try:
+        app = GearheadApp(blink=False, warm_up=True)  # as run() starts it
+    except TypeError:  # before the warm-up existed
+        app = GearheadApp(blink=False)
     async with app.run_test(size=(140, 45)) as pilot:
         await pilot.pause(READ_S)
         t0 = time.perf_counter()

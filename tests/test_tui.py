@@ -167,7 +167,7 @@ async def test_idle_builds_every_card_and_a_key_postpones_it():
     from core.registry import ORDER
     from textual import events
 
-    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True, warm_up=True)
     app.IDLE_BEFORE_BUILD_S = 1.0
     async with app.run_test(size=SIZE) as pilot:
         for _ in range(30):  # typing, a key every 0.1 s: nothing is built meanwhile

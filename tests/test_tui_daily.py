@@ -149,3 +149,28 @@ async def test_status_shows_the_whole_solve_time(monkeypatch):
         assert found, status
         seconds = float(found[1]) / (1000 if found[2] == "ms" else 1)
         assert seconds >= 0.6
+
+
+async def test_f_key_then_digit_typed_at_once_opens_the_calculator():
+    """F5 then 3 in one read (a fast typist, a loaded machine): the strip of an area not yet
+    visited has no focus when the digit arrives; the digit still picks the trebuchet."""
+    from textual import events
+
+    app = GearheadApp(blink=False, initial="motor")
+    focus_strip = app._focus_strip
+    held: list[str] = []
+
+    async def late_focus(area):  # the strip gets focus only after the digit has arrived
+        held.append(area)
+
+    app._focus_strip = late_focus
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        app.post_message(events.Key("f5", None))
+        app.post_message(events.Key("3", "3"))
+        await settle(pilot)
+        for area in held:
+            await focus_strip(area)
+        await settle(pilot)
+        assert app.current_calculator == "trebuchet"
+        assert app.query_one("#calc-trebuchet", CalculatorTab).solution is not None

@@ -53,15 +53,18 @@ class GearheadApp(App):
     ]
 
     def __init__(self, blink: bool = True, initial: str | None = None, hide_timings: bool = False,
-                 settings_file: dict | None = None, warm_up: bool = True) -> None:
+                 settings_file: dict | None = None, warm_up: bool = False) -> None:
         super().__init__()
-        self.warm_up = warm_up  # build the other cards in idle moments after the first
+        # build the other cards in idle moments after the first: on in the real app (run());
+        # off by default so a pilot test that ends early never closes the app mid-mount
+        self.warm_up = warm_up
         self.blink = blink  # tests switch the cursor blink off for deterministic snapshots
         self.hide_timings = hide_timings  # and hide wall-clock figures
         self.initial = initial
         self._cards: dict[str, CalculatorTab] = {}
         self._mounting: dict[str, object] = {}  # calc_id or area -> its AwaitMount
         self._built: set[str] = set()  # calculators whose card is mounted and composed
+        self._area_pressed = ("", 0.0)  # the last F-key's area and when: a digit may follow it
         self._last_key = 0.0  # monotonic time of the last key or click (warm-up waits for a pause)
         self._started = False  # the first frame is on screen
         self._area_active: dict[str, str] = {}  # area -> the calculator shown there
@@ -111,6 +114,7 @@ class GearheadApp(App):
     # card is up, a thread imports every calculator, then the other strips and cards are built
     # one per idle moment (never while keys are arriving): a first visit later finds its card
     # ready, and the work was done while the user was reading, not while they switched.
+    AREA_DIGIT_S = 2.0  # a digit this soon after an F-key picks in that area, focused or not
     IDLE_BEFORE_BUILD_S = 0.4  # no key for this long: the user is reading, build one card
 
     @work(thread=True, group="warm-up", exit_on_error=False)
@@ -238,6 +242,7 @@ class GearheadApp(App):
     def action_area(self, area: str) -> None:
         """F1-F5: show an area at the calculator last used there; its strip takes focus, so a
         digit then picks a calculator (two keys to any calculator)."""
+        self._area_pressed = (area, monotonic())
         self.show_calculator(self._area_active[area])
 
     async def _focus_strip(self, area: str) -> None:
@@ -249,13 +254,24 @@ class GearheadApp(App):
         """A digit on a focused tab strip picks its n-th tab (fields never see it: a strip is
         focused, not an entry)."""
         strip = self.focused
-        if not isinstance(strip, Tabs) or not (event.character or "").isdigit() or event.character == "0":
+        if not (event.character or "").isdigit() or event.character == "0":
             return
-        tabs = list(strip.query(Tab))
         n = int(event.character)
-        if n <= len(tabs) and tabs[n - 1].id:
-            event.stop()
-            strip.active = tabs[n - 1].id
+        if isinstance(strip, Tabs):
+            tabs = list(strip.query(Tab))
+            if n <= len(tabs) and tabs[n - 1].id:
+                event.stop()
+                strip.active = tabs[n - 1].id
+            return
+        # F-key then a digit typed at once: the strip may not have focus yet (it is focused after
+        # the next refresh, and built first on the area's first visit); the digit still counts
+        area, pressed = self._area_pressed
+        if strip is None and area and monotonic() - pressed < self.AREA_DIGIT_S:
+            ids = AREAS[area][1]
+            if n <= len(ids):
+                event.stop()
+                self._area_pressed = ("", 0.0)
+                self.show_calculator(ids[n - 1])
 
     # ---- actions ------------------------------------------------------------------------
     def action_save_preset(self) -> None:
@@ -381,4 +397,4 @@ class GearheadApp(App):
 def run() -> None:
     from . import settings
 
-    GearheadApp(settings_file=settings.load()).run()
+    GearheadApp(settings_file=settings.load(), warm_up=True).run()

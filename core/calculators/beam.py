@@ -105,7 +105,7 @@ OUTPUTS = (
            help="Exact second moment of area about the bending axis."),
     Output("torsion_constant", "Torsion constant J", "area_moment", "in**4",
            help="Exact (hex and rectangular tube: converged finite-element value)."),
-    Output("thin_wall_torsion_constant", "Thin-wall J (seed)", "area_moment", "in**4",
+    Output("thin_wall_torsion_constant", "Thin-wall J (estimate)", "area_moment", "in**4",
            help="Tubes: the seed's thin-wall formula (48) or Bredt's (52), for comparison."),
     Output("thin_wall_error", "Thin-wall J error", "dimensionless", "%",
            help="How far the thin-wall J is from the exact J."),
@@ -222,7 +222,7 @@ def compute(v) -> Result:
 CALCULATOR = Calculator(
     id="beam",
     title="Beam",
-    summary="Deflection, stress, buckling and twist of a beam (seed section 5).",
+    summary="Deflection, stress, buckling and twist of a beam.",
     fields=FIELDS,
     outputs=OUTPUTS,
     compute=compute,

@@ -75,7 +75,7 @@ FIELDS = (
           help="Chain only: a half (offset) link allows an odd number of links.",
           when=(("kind", ("chain",)),)),
     Field("pitch_diameter", "Pitch diameter shown", choices=("circumference", "chordal"),
-          choice_labels=("n·p/π (seed; exact for belts)", "p/sin(180°/n) (true sprocket circle)"),
+          choice_labels=("n·p/π (spreadsheet; exact for belts)", "p/sin(180°/n) (true sprocket circle)"),
           default="circumference",
           help="Pitch diameters and clearance shown: n·p/π as the seed (65), or a chain sprocket's "
                "true pitch circle through the roller centres, p/sin(180°/n). The center distance "

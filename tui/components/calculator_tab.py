@@ -39,8 +39,11 @@ class FieldRow(Horizontal):
     """Label, entry widget and unit for one field; an error line appears under it when needed."""
 
     def __init__(self, field: Field, value: Any, blink: bool) -> None:
-        super().__init__(classes="field-row" + (" flags-row" if field.type == "flags" else ""),
-                         id=f"row-{field.name}")
+        # choices, flags and yes/no have no unit: their widget takes the unit's column too, so
+        # "pressure switch" or "Rectangular tube" is not cut at 120 columns
+        wide = field.type in ("flags", "choice", "bool") and not field.unit
+        super().__init__(classes="field-row" + (" flags-row" if field.type == "flags" else "")
+                         + (" unitless" if wide else ""), id=f"row-{field.name}")
         self.field = field
         self.initial = value
         self.blink = blink
@@ -67,7 +70,8 @@ class FieldRow(Horizontal):
                           tooltip=tip, select_on_focus=False, compact=True)
             entry.cursor_blink = self.blink
             yield entry
-        yield Label(Text(pretty_unit(f.unit)), classes="field-unit")
+        if not self.has_class("unitless"):
+            yield Label(Text(pretty_unit(f.unit)), classes="field-unit")
 
 
 class CalculatorTab(Widget):
