@@ -115,7 +115,7 @@ class GearheadApp(App):
     # one per idle moment (never while keys are arriving): a first visit later finds its card
     # ready, and the work was done while the user was reading, not while they switched.
     AREA_DIGIT_S = 2.0  # a digit this soon after an F-key picks in that area, focused or not
-    IDLE_BEFORE_BUILD_S = 0.4  # no key for this long: the user is reading, build one card
+    IDLE_BEFORE_BUILD_S = 1.5  # no key for this long: the user is reading, build one card
 
     @work(thread=True, group="warm-up", exit_on_error=False)
     def _import_the_rest(self) -> None:
@@ -128,7 +128,7 @@ class GearheadApp(App):
             pass
 
     async def _build_next(self) -> None:
-        if not self.is_running or not self._screen_stack:  # the app closed
+        if not self.warm_up or not self.is_running or not self._screen_stack:  # off, or closed
             return
         if not self.screen.query("#areas"):  # closing, or a dialog is up: later
             if self.is_running:
