@@ -198,7 +198,7 @@ class GearheadApp(App):
             self._area_active[strip_id.removeprefix("calcs-")] = event.pane.id.removeprefix("tab-")
         if not self._started:  # start-up: on_ready builds the first card, after the first frame
             return
-        if not self.screen.query("#areas"):  # the app is closing
+        if not self._screen_stack or not self.screen.query("#areas"):  # the app is closing
             return
         await self.strip(self.current_area)
         await self.card(self.current_calculator)
