@@ -92,15 +92,22 @@ class GearheadApp(App):
             strip.compose_add_child(TabPane(Content(f"{i} {TITLES[cid]}"), id=f"tab-{cid}"))
         return strip
 
+    @property
+    def home(self) -> Screen:
+        """The screen with the strips and cards (a dialog or the palette may be on top of it)."""
+        return self.screen_stack[0]
+
     async def strip(self, area: str) -> TabbedContent:
         """An area's calculator strip, built on the area's first visit."""
-        found = self.query(f"#calcs-{area}")
-        if found:
-            return found.first(TabbedContent)
         if area not in self._mounting:
-            self._mounting[area] = self.query_one(f"#area-{area}", TabPane).mount(self._strip(area))
+            found = self.home.query(f"#calcs-{area}")
+            if found:  # composed with the app (the first area)
+                return found.first(TabbedContent)
+            self._mounting[area] = self.home.query_one(f"#area-{area}", TabPane).mount(self._strip(area))
+        # a strip being mounted by another caller (the warm-up, a tab switch) is in the DOM before
+        # its panes are: wait for the whole mount
         await self._mounting[area]
-        return self.query_one(f"#calcs-{area}", TabbedContent)
+        return self.home.query_one(f"#calcs-{area}", TabbedContent)
 
     async def on_ready(self) -> None:
         self._started = True
@@ -182,7 +189,7 @@ class GearheadApp(App):
             # recorded before the await: a second caller meanwhile (tab activation and on_ready
             # at start-up, the warm-up) waits for this mount instead of mounting a duplicate
             tab = self._cards[calc_id] = self._card(calc_id)
-            self._mounting[calc_id] = self.query_one(f"#tab-{calc_id}", TabPane).mount(tab)
+            self._mounting[calc_id] = self.home.query_one(f"#tab-{calc_id}", TabPane).mount(tab)
         await self._mounting[calc_id]
         self._built.add(calc_id)
         self.refresh_bindings()
@@ -198,7 +205,7 @@ class GearheadApp(App):
             self._area_active[strip_id.removeprefix("calcs-")] = event.pane.id.removeprefix("tab-")
         if not self._started:  # start-up: on_ready builds the first card, after the first frame
             return
-        if not self._screen_stack or not self.screen.query("#areas"):  # the app is closing
+        if not self._screen_stack or not self.home.query("#areas"):  # the app is closing
             return
         await self.strip(self.current_area)
         await self.card(self.current_calculator)
@@ -206,7 +213,7 @@ class GearheadApp(App):
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         if action in ("send", "accuracy"):
-            tab = self._cards.get(self.current_calculator) if self.query("#areas") else None
+            tab = self._cards.get(self.current_calculator) if self._screen_stack and self.home.query("#areas") else None
             if tab is None:  # not built yet (start-up): shown once the card is there
                 return False
             calc = tab.calculator
@@ -216,7 +223,7 @@ class GearheadApp(App):
     # ---- navigation ---------------------------------------------------------------------
     @property
     def current_area(self) -> str:
-        return self.query_one("#areas", TabbedContent).active.removeprefix("area-")
+        return self.home.query_one("#areas", TabbedContent).active.removeprefix("area-")
 
     @property
     def current_calculator(self) -> str:
@@ -234,9 +241,9 @@ class GearheadApp(App):
         area = area_of(calc_id)
         self.screen.set_focus(None)
         self._area_active[area] = calc_id
-        for strip in self.query(f"#calcs-{area}"):  # not there yet: built with this tab active
+        for strip in self.home.query(f"#calcs-{area}"):  # not there yet: built with this tab active
             strip.active = f"tab-{calc_id}"
-        self.query_one("#areas", TabbedContent).active = f"area-{area}"
+        self.home.query_one("#areas", TabbedContent).active = f"area-{area}"
         self.call_after_refresh(self._focus_strip, area)
 
     def action_area(self, area: str) -> None:
