@@ -50,6 +50,7 @@ async def _latencies(calc_id: str, field: str) -> list[float]:
     app = GearheadApp(blink=False, initial=calc_id, hide_timings=True)
     shown_at: list[float] = []
     async with app.run_test(size=(140, 45)) as pilot:
+        await app.card(calc_id)  # built right after the first frame
         tab = app.query_one(f"#calc-{calc_id}", CalculatorTab)
         show = tab._show
 

@@ -40,8 +40,10 @@ def builtin_dir() -> Path:
 
 
 def user_dir() -> Path:
-    base = os.environ.get("XDG_CONFIG_HOME") or str(Path.home() / ".config")
-    return Path(base) / "gearhead" / "presets"
+    # beside config.toml, where platformdirs puts config (XDG_CONFIG_HOME on Linux, as before)
+    import platformdirs
+
+    return platformdirs.user_config_path("gearhead") / "presets"
 
 
 MAX_PRESET_BYTES = 1_000_000  # a preset is a few hundred bytes; more is not a preset

@@ -22,6 +22,7 @@ from textual import events
 from textual.widgets import Input
 
 from tui.app import GearheadApp
+from tests.tui_helpers import started
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -38,6 +39,7 @@ BURSTS = [
 async def test_key_burst_applied_in_order(start, keys, expected):
     app = GearheadApp(blink=False, hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:
+        await started(pilot)
         entry = app.query_one("#in-voltage", Input)
         entry.focus()
         entry.value = start
@@ -174,6 +176,7 @@ async def test_key_bursts_kept_in_every_tab(calc_id):
 
     app = GearheadApp(blink=False, initial=calc_id, hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:
+        await started(pilot)
         tab = app.query_one(f"#calc-{calc_id}")
         entries = list(tab.query(Input))
         assert entries and all(isinstance(e, FieldInput) for e in entries)

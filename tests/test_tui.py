@@ -131,8 +131,64 @@ async def test_accuracy_view_tabulates_every_level():
         assert table.get_row("default")[3] == "(hidden)"
 
 
+FIRST_FRAME_PROBE = r"""
+import asyncio, sys
+from tui.app import GearheadApp
+from tui.components.calculator_tab import CalculatorTab
+class Probe(GearheadApp):
+    async def on_ready(self):  # Ready: the first frame is on screen
+        self.seen = (sorted(m for m in sys.modules if m.startswith("core.calculators.")),
+                     len(self.query(CalculatorTab)))
+        await super().on_ready()
+async def main():
+    app = Probe(blink=False, warm_up=False)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await pilot.pause()
+        built = app.card_ready(app.current_calculator)
+    print(app.seen, built)
+asyncio.run(main())
+"""
+
+
+def test_first_frame_imports_no_calculator_and_the_first_card_follows():
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    out = subprocess.run([sys.executable, "-c", FIRST_FRAME_PROBE], capture_output=True, text=True,
+                         cwd=Path(__file__).resolve().parents[1], timeout=120)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.split()[-3:] == ["([],", "0)", "True"]
+
+
+async def test_idle_builds_every_card_and_a_key_postpones_it():
+    """While the user does nothing the other cards are built, so a first visit finds its card
+    ready; keys arriving hold the warm-up back."""
+    from core.registry import ORDER
+    from textual import events
+
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True, warm_up=True)
+    app.IDLE_BEFORE_BUILD_S = 1.0
+    async with app.run_test(size=SIZE) as pilot:
+        for _ in range(30):  # typing, a key every 0.1 s: nothing is built meanwhile
+            app.post_message(events.Key("shift", None))
+            await pilot.pause(0.1)
+        assert [cid for cid in ORDER if app.card_ready(cid)] == ["motor"]
+        app.IDLE_BEFORE_BUILD_S = 0.1
+        for _ in range(600):
+            if all(app.card_ready(cid) for cid in ORDER):
+                break
+            await pilot.pause(0.05)
+        assert [cid for cid in ORDER if not app.card_ready(cid)] == []
+        await settle(pilot)
+        assert app.current_calculator == "motor"  # warming up never switched the tab
+        app.show_calculator("trebuchet")
+        await settle(pilot)
+        assert app.query_one("#calc-trebuchet", CalculatorTab).solution is not None
+
+
 async def test_tabs_are_built_on_first_visit_and_work():
-    app = GearheadApp(blink=False, initial="motor")
+    app = GearheadApp(blink=False, initial="motor", warm_up=False)
     async with app.run_test(size=SIZE) as pilot:
         await settle(pilot)
         assert not app.query("#calc-pneumatics")
@@ -199,6 +255,14 @@ async def test_notices_render_without_crashing():
     from textual.content import Content
 
     app = GearheadApp(blink=False, initial="lead_screw")
+    notified = []  # every notice (app._notifications drops them after their timeout, which a
+    notify = app.notify  # loaded machine can pass before the check)
+
+    def keep(message, *args, **kwargs):
+        notified.append((message, kwargs.get("markup", True)))
+        return notify(message, *args, **kwargs)
+
+    app.notify = keep
     async with app.run_test(size=SIZE) as pilot:
         await settle(pilot)
         await pilot.press("ctrl+s")
@@ -208,8 +272,8 @@ async def test_notices_render_without_crashing():
         await settle(pilot)
         await pilot.press("ctrl+g")
         await settle(pilot)
-        shown = [str(Content.from_markup(n.message) if n.markup else Content(n.message))
-                 for n in app._notifications]
+        shown = [str(Content.from_markup(message) if markup else Content(message))
+                 for message, markup in notified]
         assert any(s.startswith("Saved ") and s.endswith("odd_name.toml") for s in shown), shown
         assert any("load = " in s and "radius = " in s for s in shown), shown
 

@@ -3,23 +3,24 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Iterable
+from time import monotonic
+from typing import TYPE_CHECKING, Iterable
 
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.content import Content
 from textual.screen import Screen
-from textual import events
+from textual import events, work
 from textual.widgets import Footer, Tab, TabbedContent, TabPane, Tabs
 
-from core.registry import AREAS, area_of, calculators
+from core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
 from core.unit_systems import SYSTEM_LABELS, SYSTEMS
 
-from .components.accuracy_screen import AccuracyScreen
-from .components.calculator_tab import CalculatorTab
-from .components.export_screen import ExportScreen
-from .components.plot_panel import PlotPanel
-from .components.preset_screens import LoadPresetScreen, SavePresetScreen
+if TYPE_CHECKING:
+    from .components.calculator_tab import CalculatorTab
+
+# The cards, dialogs and their widgets (DataTable, Select, plots …) are imported when first built,
+# after the first frame: the app starts with only the tab strips and the footer.
 
 
 def exact_text(value, output) -> str:
@@ -54,32 +55,113 @@ class GearheadApp(App):
     ]
 
     def __init__(self, blink: bool = True, initial: str | None = None, hide_timings: bool = False,
-                 settings_file: dict | None = None) -> None:
+                 settings_file: dict | None = None, warm_up: bool = False) -> None:
         super().__init__()
+        # build the other cards in idle moments after the first: on in the real app (run());
+        # off by default so a pilot test that ends early never closes the app mid-mount
+        self.warm_up = warm_up
         self.blink = blink  # tests switch the cursor blink off for deterministic snapshots
         self.hide_timings = hide_timings  # and hide wall-clock figures
         self.initial = initial
+        self._cards: dict[str, CalculatorTab] = {}
+        self._mounting: dict[str, object] = {}  # calc_id or area -> its AwaitMount
+        self._built: set[str] = set()  # calculators whose card is mounted and composed
+        self._area_pressed = ("", 0.0)  # the last F-key's area and when: a digit may follow it
+        self._last_key = 0.0  # monotonic time of the last key or click (warm-up waits for a pause)
+        self._started = False  # the first frame is on screen
+        self._area_active: dict[str, str] = {}  # area -> the calculator shown there
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def compose(self) -> ComposeResult:
         # Two strips: areas (F1-F5), then the calculators of the active area (digits 1-9 on the
         # focused strip). A calculator added to one area never moves another area's strip.
-        first = self.initial or next(iter(calculators()))
+        # Only the first area's strip is built before the first frame, and no card: they come
+        # from the registry's tables, without importing any calculator. The rest is built on
+        # first visit.
+        first = self.initial or ORDER[0]
+        self._area_active = {area: first if first in ids else ids[0] for area, (_, ids) in AREAS.items()}
         with TabbedContent(initial=f"area-{area_of(first)}", id="areas"):
-            for n, (area, (title, ids)) in enumerate(AREAS.items(), 1):
+            for n, (area, (title, _)) in enumerate(AREAS.items(), 1):
                 with TabPane(Content(f"F{n} {title}"), id=f"area-{area}"):
-                    present = [cid for cid in ids if cid in calculators()]
-                    start = first if first in present else present[0]
-                    with TabbedContent(initial=f"tab-{start}", id=f"calcs-{area}", classes="calculators"):
-                        for i, cid in enumerate(present, 1):
-                            with TabPane(Content(f"{i} {calculators()[cid].title}"), id=f"tab-{cid}"):
-                                # only the first card is built now; the others on first visit
-                                if cid == first:
-                                    yield self._card(cid)
+                    if area == area_of(first):
+                        yield self._strip(area)
         yield Footer()
 
+    def _strip(self, area: str) -> TabbedContent:
+        strip = TabbedContent(initial=f"tab-{self._area_active[area]}", id=f"calcs-{area}",
+                              classes="calculators")
+        for i, cid in enumerate(AREAS[area][1], 1):
+            strip.compose_add_child(TabPane(Content(f"{i} {TITLES[cid]}"), id=f"tab-{cid}"))
+        return strip
+
+    @property
+    def home(self) -> Screen:
+        """The screen with the strips and cards (a dialog or the palette may be on top of it)."""
+        return self.screen_stack[0]
+
+    async def strip(self, area: str) -> TabbedContent:
+        """An area's calculator strip, built on the area's first visit."""
+        if area not in self._mounting:
+            found = self.home.query(f"#calcs-{area}")
+            if found:  # composed with the app (the first area)
+                return found.first(TabbedContent)
+            self._mounting[area] = self.home.query_one(f"#area-{area}", TabPane).mount(self._strip(area))
+        # a strip being mounted by another caller (the warm-up, a tab switch) is in the DOM before
+        # its panes are: wait for the whole mount
+        await self._mounting[area]
+        return self.home.query_one(f"#calcs-{area}", TabbedContent)
+
+    async def on_ready(self) -> None:
+        self._started = True
+        await self.card(self.current_calculator)
+        if self.warm_up:
+            self._import_the_rest()
+
+    # ---- warming up after the first card ------------------------------------------------
+    # A card is built on the UI thread (Textual widgets must be); importing its calculator
+    # module (and the widget modules) is the larger part of a first visit. So once the first
+    # card is up, a thread imports every calculator, then the other strips and cards are built
+    # one per idle moment (never while keys are arriving): a first visit later finds its card
+    # ready, and the work was done while the user was reading, not while they switched.
+    AREA_DIGIT_S = 2.0  # a digit this soon after an F-key picks in that area, focused or not
+    IDLE_BEFORE_BUILD_S = 1.5  # no key for this long: the user is reading, build one card
+
+    @work(thread=True, group="warm-up", exit_on_error=False)
+    def _import_the_rest(self) -> None:
+        calculators()  # imports every calculator module (numpy, never pint or scipy)
+        from .components import accuracy_screen, export_screen, preset_screens  # noqa: F401
+
+        try:
+            self.call_from_thread(self.set_timer, self.IDLE_BEFORE_BUILD_S, self._build_next)
+        except RuntimeError:  # the app closed meanwhile
+            pass
+
+    async def _build_next(self) -> None:
+        if not self.warm_up or not self.is_running or not self._screen_stack:  # off, or closed
+            return
+        if not self.screen.query("#areas"):  # closing, or a dialog is up: later
+            if self.is_running:
+                self.set_timer(self.IDLE_BEFORE_BUILD_S, self._build_next)
+            return
+        idle = monotonic() - self._last_key
+        if idle < self.IDLE_BEFORE_BUILD_S or any(c.busy for c in self._cards.values()):
+            self.set_timer(self.IDLE_BEFORE_BUILD_S, self._build_next)
+            return
+        todo = [cid for cid in ORDER if cid not in self._cards]
+        if not todo:
+            return
+        await self.card(todo[0])
+        self.set_timer(0.05, self._build_next)
+
+    async def on_event(self, event: events.Event) -> None:
+        if isinstance(event, (events.Key, events.MouseDown)):
+            self._last_key = monotonic()
+        await super().on_event(event)
+
     def _card(self, calc_id: str) -> CalculatorTab:
-        tab = CalculatorTab(calculators()[calc_id], blink=self.blink, hide_timings=self.hide_timings,
+        from .components.calculator_tab import CalculatorTab
+
+        tab = CalculatorTab(get(calc_id), blink=self.blink, hide_timings=self.hide_timings,
                             id=f"calc-{calc_id}")
         tab.unit_system = self.unit_system
         return tab
@@ -87,7 +169,7 @@ class GearheadApp(App):
     def set_unit_system(self, system: str, remember: bool = True) -> None:
         """The units preference for every tab, kept in the user's config.toml."""
         self.unit_system = system
-        for tab in self.query(CalculatorTab):
+        for tab in self._cards.values():
             tab.set_unit_system(system)
         if remember:
             from . import settings
@@ -101,18 +183,38 @@ class GearheadApp(App):
 
     async def card(self, calc_id: str) -> CalculatorTab:
         """The tab of a calculator, built if it has not been visited yet."""
-        found = self.query(f"#calc-{calc_id}")
-        if found:
-            return found.first(CalculatorTab)
-        tab = self._card(calc_id)
-        await self.query_one(f"#tab-{calc_id}", TabPane).mount(tab)
+        tab = self._cards.get(calc_id)
+        if tab is None:
+            await self.strip(area_of(calc_id))
+            tab = self._cards.get(calc_id)
+        if tab is None:
+            # recorded before the await: a second caller meanwhile (tab activation and on_ready
+            # at start-up, the warm-up) waits for this mount instead of mounting a duplicate
+            tab = self._cards[calc_id] = self._card(calc_id)
+            self._mounting[calc_id] = self.home.query_one(f"#tab-{calc_id}", TabPane).mount(tab)
+        await self._mounting[calc_id]
+        self._built.add(calc_id)
+        self.refresh_bindings()
         return tab
 
+    def card_ready(self, calc_id: str) -> bool:
+        """The calculator's card is on its pane, its fields and results composed."""
+        return calc_id in self._built
+
     async def on_tabbed_content_tab_activated(self, event: TabbedContent.TabActivated) -> None:
+        strip_id = event.tabbed_content.id or ""
+        if strip_id.startswith("calcs-"):
+            self._area_active[strip_id.removeprefix("calcs-")] = event.pane.id.removeprefix("tab-")
+        if not self._started:  # start-up: on_ready builds the first card, after the first frame
+            return
+        if not self._screen_stack or not self.home.query("#areas"):  # the app is closing
+            return
+        await self.strip(self.current_area)
         await self.card(self.current_calculator)
         self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r only where they do something
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+<<<<<<< HEAD
         if action == "sweep":  # on the card only: in a dialog's entry ctrl+w deletes a word as usual
             return self.screen is self.screen_stack[0]
         if action in ("send", "accuracy") and self.query("#areas"):
@@ -121,18 +223,29 @@ class GearheadApp(App):
                 if action == "send":
                     return bool(calc.exports) or any(t.exports for t in calc.tables)
                 return calc.simulate is not None
+=======
+        if action in ("send", "accuracy"):
+            tab = self._cards.get(self.current_calculator) if self._screen_stack and self.home.query("#areas") else None
+            if tab is None:  # not built yet (start-up): shown once the card is there
+                return False
+            calc = tab.calculator
+            return bool(calc.exports) if action == "send" else calc.simulate is not None
+>>>>>>> ui
         return True
 
     # ---- navigation ---------------------------------------------------------------------
     @property
+    def current_area(self) -> str:
+        return self.home.query_one("#areas", TabbedContent).active.removeprefix("area-")
+
+    @property
     def current_calculator(self) -> str:
         """Id of the calculator on screen: the active tab of the active area."""
-        area = self.query_one("#areas", TabbedContent).active.removeprefix("area-")
-        return self.query_one(f"#calcs-{area}", TabbedContent).active.removeprefix("tab-")
+        return self._area_active[self.current_area]
 
     @property
     def current_tab(self) -> CalculatorTab:
-        return self.query_one(f"#calc-{self.current_calculator}", CalculatorTab)
+        return self._cards[self.current_calculator]
 
     def show_calculator(self, calc_id: str) -> None:
         """Switch to a calculator's tab and put focus on its area's tab strip. Focus must leave
@@ -140,30 +253,45 @@ class GearheadApp(App):
         (Textual's TabbedContent activates the pane of a focused widget), so "Open …" did nothing."""
         area = area_of(calc_id)
         self.screen.set_focus(None)
-        self.query_one(f"#calcs-{area}", TabbedContent).active = f"tab-{calc_id}"
-        self.query_one("#areas", TabbedContent).active = f"area-{area}"
+        self._area_active[area] = calc_id
+        for strip in self.home.query(f"#calcs-{area}"):  # not there yet: built with this tab active
+            strip.active = f"tab-{calc_id}"
+        self.home.query_one("#areas", TabbedContent).active = f"area-{area}"
         self.call_after_refresh(self._focus_strip, area)
 
     def action_area(self, area: str) -> None:
         """F1-F5: show an area at the calculator last used there; its strip takes focus, so a
         digit then picks a calculator (two keys to any calculator)."""
-        inner = self.query_one(f"#calcs-{area}", TabbedContent).active
-        self.show_calculator(inner.removeprefix("tab-"))
+        self._area_pressed = (area, monotonic())
+        self.show_calculator(self._area_active[area])
 
-    def _focus_strip(self, area: str) -> None:
-        self.screen.set_focus(self.query_one(f"#calcs-{area}", TabbedContent).query_one(Tabs))
+    async def _focus_strip(self, area: str) -> None:
+        strip = await self.strip(area)
+        await self.card(self._area_active[area])
+        self.screen.set_focus(strip.query_one(Tabs))
 
     def on_key(self, event: events.Key) -> None:
         """A digit on a focused tab strip picks its n-th tab (fields never see it: a strip is
         focused, not an entry)."""
         strip = self.focused
-        if not isinstance(strip, Tabs) or not (event.character or "").isdigit() or event.character == "0":
+        if not (event.character or "").isdigit() or event.character == "0":
             return
-        tabs = list(strip.query(Tab))
         n = int(event.character)
-        if n <= len(tabs) and tabs[n - 1].id:
-            event.stop()
-            strip.active = tabs[n - 1].id
+        if isinstance(strip, Tabs):
+            tabs = list(strip.query(Tab))
+            if n <= len(tabs) and tabs[n - 1].id:
+                event.stop()
+                strip.active = tabs[n - 1].id
+            return
+        # F-key then a digit typed at once: the strip may not have focus yet (it is focused after
+        # the next refresh, and built first on the area's first visit); the digit still counts
+        area, pressed = self._area_pressed
+        if strip is None and area and monotonic() - pressed < self.AREA_DIGIT_S:
+            ids = AREAS[area][1]
+            if n <= len(ids):
+                event.stop()
+                self._area_pressed = ("", 0.0)
+                self.show_calculator(ids[n - 1])
 
     # ---- actions ------------------------------------------------------------------------
     def action_save_preset(self) -> None:
@@ -174,6 +302,8 @@ class GearheadApp(App):
                 self.notify(f"Saved {path}", title="Preset saved", markup=False)  # a path may hold "["
 
         name, description = tab.preset_meta
+        from .components.preset_screens import SavePresetScreen
+
         self.push_screen(SavePresetScreen(tab.calculator.id, tab.current_inputs(), self.blink,
                                           name=name, description=description), saved)
 
@@ -184,12 +314,14 @@ class GearheadApp(App):
             if preset is not None:
                 # a preset is a whole design: fields it omits take their defaults (DESIGN.md),
                 # not whatever was typed before, so the tab solves what the CLI solves
-                defaults = {f.name: CalculatorTab.initial_entry(f) for f in tab.calculator.fields}
+                defaults = {f.name: type(tab).initial_entry(f) for f in tab.calculator.fields}
                 tab.set_entries({**defaults, **preset.inputs})
                 tab.preset_meta = (preset.name, preset.description)  # the save dialog offers them
                 self.notify(f"Loaded {preset.name}", title="Preset loaded", markup=False)
                 for warning in preset.warnings:  # e.g. a junk value in a field this mode ignores
                     self.notify(warning, title="Preset warning", severity="warning", markup=False)
+
+        from .components.preset_screens import LoadPresetScreen
 
         self.push_screen(LoadPresetScreen(tab.calculator.id, self.blink), loaded)
 
@@ -208,6 +340,9 @@ class GearheadApp(App):
         if tab.solution is None:
             self.notify("Fix the highlighted input first.", severity="error")
             return
+        from .components.export_screen import ExportScreen
+        from .components.plot_panel import PlotPanel
+
         plot = tab.query_one(PlotPanel).current if tab.calculator.plots else None
 
         def done(message) -> None:
@@ -270,6 +405,8 @@ class GearheadApp(App):
         from core.model import parse_inputs
 
         values, _ = parse_inputs(tab.calculator, tab.entries)
+        from .components.accuracy_screen import AccuracyScreen
+
         self.push_screen(AccuracyScreen(tab.calculator, values, self.hide_timings))
 
     def action_sweep(self) -> None:
@@ -314,4 +451,4 @@ class GearheadApp(App):
 def run() -> None:
     from . import settings
 
-    GearheadApp(settings_file=settings.load()).run()
+    GearheadApp(settings_file=settings.load(), warm_up=True).run()

@@ -29,6 +29,9 @@ def _parser() -> argparse.ArgumentParser:
                    help="statistical spread when inputs carry ± tolerances (default: first-order where exact enough)")
     s.add_argument("--samples", type=int, default=1000, help="Monte Carlo samples (default 1000)")
     s.add_argument("--seed", type=int, default=0, help="Monte Carlo seed (default 0)")
+    s.add_argument("--preset-out", metavar="FILE",
+                   help="write the inputs solved as a preset: '-' prints it instead of the results "
+                        "(to chain: ... --preset-out - > x.toml); a FILE is never overwritten")
     a = sub.add_parser("accuracy", help="run a simulation at every accuracy level: error, time, evaluations")
     a.add_argument("calculator", help="a simulated calculator (e.g. pneumatics)")
     a.add_argument("--preset", metavar="FILE")
@@ -122,7 +125,9 @@ def _solve(args) -> int:
 
         solution, spread, _ = tolerance.solve(calc.id, raw, display_units, args.spread, args.samples, args.seed)
     else:
-        solution = solve(calc.id, raw, display_units)
+        solution = solve(calc.id, raw, display_units)  # a bad input exits 2 before any preset is written
+    if args.preset_out:
+        return _preset_out(args, calc, raw, solution)
     if args.json:
         data = solution.as_json() if spread is None else tolerance.as_json(solution, spread)
         print(json.dumps(data, allow_nan=False))
@@ -191,6 +196,47 @@ def _print_table(table, rows) -> None:
     print("  " + "  ".join(h.ljust(w) for h, w in zip(heads, widths)).rstrip())
     for r in cells:
         print("  " + "  ".join(x.ljust(w) for x, w in zip(r, widths)).rstrip())
+
+
+def _preset_out(args, calc, raw: dict, solution) -> int:
+    """--preset-out: the solved inputs as a whole preset (every field: defaults for those not
+    given), '-' to stdout alone so it pipes into a file or another tool, else a new file."""
+    from pathlib import Path
+
+    from core import presets
+    from core.export import preset_toml
+
+    inputs = {f.name: f.default_text() if f.type not in ("bool", "choice") else f.default
+              for f in calc.fields}
+    inputs.update(raw)
+    for f in calc.fields:  # whole numbers as TOML integers, as the app saves them
+        if f.type == "int":
+            try:
+                inputs[f.name] = int(str(inputs[f.name]).strip())
+            except ValueError:
+                pass
+    name = presets.load(args.preset).name if args.preset else f"{calc.title} (command line)"
+    text = preset_toml(calc.id, inputs, name)
+    if args.preset_out == "-":
+        sys.stdout.write(text)
+        return 0
+    path = Path(args.preset_out).expanduser()
+    try:
+        with open(path, "x", encoding="utf-8") as fh:  # "x": never overwrite silently
+            fh.write(text)
+    except FileExistsError:
+        raise InputError("--preset-out", "file exists; choose another name", str(path)) from None
+    except (OSError, ValueError) as exc:  # a missing folder, no permission, a NUL in the name
+        raise InputError("--preset-out", f"cannot write ({getattr(exc, 'strerror', None) or exc})",
+                         str(path)) from None
+    width = max(len(calc.output(k).label) for k in solution.outputs)
+    print(f"{calc.title} ({calc.id}): preset written to {path}", file=sys.stderr)
+    if args.json:
+        print(json.dumps(solution.as_json(), allow_nan=False))
+        return 0
+    for name_, value in solution.outputs.items():
+        print(f"  {calc.output(name_).label:<{width}}  {value.text}")
+    return 0
 
 
 def _accuracy(args) -> int:

@@ -114,7 +114,7 @@ OUTPUTS = (
            help="Rectangular tube: half the gap between the lower (stress-function) and upper "
                 "(warping-function) finite-element bounds on J, relative; the true J is within it. "
                 "Walls under 1e-4 of the size use Bredt's J, good to about wall/size."),
-    Output("thin_wall_torsion_constant", "Thin-wall J (seed)", "area_moment", "in**4",
+    Output("thin_wall_torsion_constant", "Thin-wall J (estimate)", "area_moment", "in**4",
            help="Tubes: the seed's thin-wall formula (48) or Bredt's (52), for comparison."),
     Output("thin_wall_error", "Thin-wall J error", "dimensionless", "%",
            help="How far the thin-wall J is from the finite-element (or exact) J."),
@@ -250,7 +250,7 @@ def compute(v) -> Result:
 CALCULATOR = Calculator(
     id="beam",
     title="Beam",
-    summary="Deflection, stress, buckling and twist of a beam (seed section 5).",
+    summary="Deflection, stress, buckling and twist of a beam.",
     fields=FIELDS,
     outputs=OUTPUTS,
     compute=compute,

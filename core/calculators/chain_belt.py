@@ -84,7 +84,7 @@ FIELDS = (
           help="Chain only (ignored for a belt): a half (offset) link allows an odd number of links.",
           when=(("pitch_standard", ("chain_25", "chain_35", "chain_40", "custom")),)),
     Field("pitch_diameter", "Pitch diameter shown", choices=("circumference", "chordal"),
-          choice_labels=("n·p/π (seed; exact for belts)", "p/sin(180°/n) (true sprocket circle)"),
+          choice_labels=("n·p/π (spreadsheet; exact for belts)", "p/sin(180°/n) (true sprocket circle)"),
           default="circumference",
           help="Pitch diameters and clearance shown: n·p/π as the seed (65), or a chain sprocket's "
                "true pitch circle through the roller centres, p/sin(180°/n). The center distance "

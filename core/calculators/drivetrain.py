@@ -242,7 +242,7 @@ def compute(v) -> Result:
 CALCULATOR = Calculator(
     id="drivetrain",
     title="Drivetrain",
-    summary="Top speed, wheel-slip current and shifting for a robot drive (seed section 4).",
+    summary="Top speed, wheel-slip current and shifting for a robot drive.",
     fields=FIELDS,
     outputs=OUTPUTS,
     compute=compute,

@@ -139,19 +139,20 @@ OUTPUTS = (
     Output("wheel_speed_after", "Wheel speed after shot", "angular_speed", "rpm"),
     Output("contact_time", "Slip time of the shot", "time", "ms", help="motor_during_shot only."),
     Output("wheel_inertia_total", "Wheel inertia (all)", "inertia", "lb*in**2"),
-    Output("mass_ratio_coefficient", "β per m/m_w (seed .4954)",
-           help="(1+k_b)·s²/k²: E_b/E_w,final per ball-to-wheel mass ratio (radius-of-gyration mode)."),
+    Output("mass_ratio_coefficient", "β per ball/wheel mass ratio",
+           help="(1+k_b)·s²/k²: E_b/E_w,final per ball-to-wheel mass ratio (radius-of-gyration mode); "
+                "the seed's .4954."),
     Output("range", "Range", "length", "m", help="Vacuum range from the release height."),
     Output("range_error", "Range error (heavy ball)", "dimensionless", "%",
            help="Exact, for m₀·(1+e_m), with the effects and losses chosen."),
-    Output("range_error_linear", "Range error, seed linear", "dimensionless", "%",
+    Output("range_error_linear", "Range error, spreadsheet estimate", "dimensionless", "%",
            help="The seed's −e_m/(m_w/(c·m₀) + 1) with c computed exactly: its lossless energy model at "
                 "h = 0, whatever model is chosen (the momentum model's error is about twice it)."),
     Output("range_spread", "Range spread light to heavy", "length", "m",
            help="R(m₀·(1−e_m)) − R(m₀·(1+e_m))."),
     *[Output(f"range_error_{n}", f"Range error, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%")
       for n in TABLE_WHEELS],
-    *[Output(f"range_error_linear_{n}", f"Seed linear, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%",
+    *[Output(f"range_error_linear_{n}", f"Spreadsheet est., {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%",
              help="The seed's table (9): lossless energy model, h = 0, whatever model is chosen.")
       for n in TABLE_WHEELS],
     Output("free_speed", "Wheel free speed", "angular_speed", "rpm", help="ω̃f/G."),

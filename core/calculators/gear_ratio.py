@@ -168,7 +168,7 @@ def forward(m: MotorSystem, G: float, r: float, F: float) -> dict:
 CALCULATOR = Calculator(
     id="gear_ratio",
     title="Gear ratio",
-    summary="Pick the reduction for a mechanism lifting or pushing a load (seed section 2).",
+    summary="Pick the reduction for a mechanism lifting or pushing a load.",
     fields=FIELDS,
     outputs=OUTPUTS,
     compute=compute,

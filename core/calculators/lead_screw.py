@@ -150,7 +150,7 @@ def compute(v) -> Result:
 CALCULATOR = Calculator(
     id="lead_screw",
     title="Lead screw",
-    summary="Torque, efficiency and backdriving of a power screw (seed section 3).",
+    summary="Torque, efficiency and backdriving of a power screw.",
     fields=FIELDS,
     outputs=OUTPUTS,
     compute=compute,

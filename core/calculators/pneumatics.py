@@ -171,9 +171,9 @@ OUTPUTS = (
         Output(f"push_force_{i}", f"Cyl {i}: push force", "force", "lbf", help="(82) at its push pressure."),
         Output(f"pull_force_{i}", f"Cyl {i}: pull force", "force", "lbf", help="(83) at its pull pressure."),
     )],
-    Output("seed_min_pressure", "Seed 1 s step: minimum", "pressure", "psi"),
-    Output("seed_final_pressure", "Seed 1 s step: final", "pressure", "psi"),
-    Output("seed_difference", "Seed minus accurate (final)", "pressure", "psi"),
+    Output("seed_min_pressure", "Spreadsheet (1 s steps): minimum", "pressure", "psi"),
+    Output("seed_final_pressure", "Spreadsheet (1 s steps): final", "pressure", "psi"),
+    Output("seed_difference", "Spreadsheet minus accurate (final)", "pressure", "psi"),
     *STATS_OUTPUTS,
 )
 
@@ -354,7 +354,7 @@ def seed_step(v) -> tuple[float, float, tuple[list[float], list[float]]]:
 def compute(v) -> Result:
     run = run_with_stats(simulate, v, ADVICE)
     seed_min, seed_final, seed_trace = seed_step(v)
-    run.series["seed 1 s step"] = seed_trace
+    run.series["spreadsheet, 1 s"] = seed_trace
     run.values["seed_min_pressure"] = seed_min
     run.values["seed_final_pressure"] = seed_final
     run.values["seed_difference"] = seed_final - run.values["final_pressure"]
@@ -370,5 +370,5 @@ CALCULATOR = Calculator(
     compute=compute,
     section="10",
     simulate=simulate,
-    plots=(Plot("Storage pressure", ("pressure", "seed 1 s step"), "time", "time", "s", "pressure", "pressure", "psi"),),
+    plots=(Plot("Storage pressure", ("pressure", "spreadsheet, 1 s"), "time", "time", "s", "pressure", "pressure", "psi"),),
 )

@@ -46,7 +46,7 @@ def solve_budget(advice: tuple[str, str] = DEFAULT_ADVICE, max_nfev: int = SOLVE
 
 def accuracy_field(default: str = "default") -> Field:
     return Field("accuracy", "Accuracy", choices=tuple(LEVELS), default=default,
-                 choice_labels=tuple(f"{k} (rtol {v:.0e})" for k, v in LEVELS.items()),
+                 choice_labels=tuple(f"{k} (±{v:.0e})" for k, v in LEVELS.items()),
                  help="Solver tolerance. Each result shows its error estimate, wall time and "
                       "right-hand-side evaluations; ctrl+r runs the accuracy-vs-time ladder.")
 
@@ -58,8 +58,8 @@ def effects_field(choices: tuple[str, ...], default: tuple[str, ...], help: str)
 STATS_OUTPUTS = (
     Output("error_estimate", "Error estimate", help="Largest difference of the key results to a run "
            "at 100x tighter tolerance (10 000x if the two agree exactly), relative."),
-    Output("rhs_evaluations", "RHS evaluations", help="Right-hand-side evaluations of the main run."),
-    Output("wall_time", "Wall time", "time", "ms", help="Wall time of the main run (not the estimate)."),
+    Output("rhs_evaluations", "Solver work (evaluations)", help="Right-hand-side evaluations of the main run."),
+    Output("wall_time", "Time of one run", "time", "ms", help="Wall time of the main run (not the estimate)."),
 )
 VOLATILE = frozenset({"wall_time"})  # differs run to run: hidden from snapshots
 

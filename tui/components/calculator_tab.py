@@ -23,13 +23,13 @@ from core.model import Calculator, Field, Solution
 from core.sim.scene import VOLATILE
 
 from .field_input import FieldInput
+from .plot_panel import PlotPanel
+from .unit_text import pretty_quantity, pretty_unit
 
 
 class Form(VerticalScroll, can_focus=False):
     """The field list: scrolls, but is not a Tab stop of its own (Tab goes field to field;
     the form scrolls to the focused field)."""
-from .plot_panel import PlotPanel
-from .unit_text import pretty_quantity, pretty_unit
 
 BUSY_AFTER_S = 0.1  # a solve running longer than this shows '… solving'
 VALUE_WIDTH = 18  # "-1.2346e-05 N*m/A" fits
@@ -39,8 +39,11 @@ class FieldRow(Horizontal):
     """Label, entry widget and unit for one field; an error line appears under it when needed."""
 
     def __init__(self, field: Field, value: Any, blink: bool) -> None:
-        super().__init__(classes="field-row" + (" flags-row" if field.type == "flags" else ""),
-                         id=f"row-{field.name}")
+        # choices, flags and yes/no have no unit: their widget takes the unit's column too, so
+        # "pressure switch" or "Rectangular tube" is not cut at 120 columns
+        wide = field.type in ("flags", "choice", "bool") and not field.unit
+        super().__init__(classes="field-row" + (" flags-row" if field.type == "flags" else "")
+                         + (" unitless" if wide else ""), id=f"row-{field.name}")
         self.field = field
         self.initial = value
         self.blink = blink
@@ -67,7 +70,8 @@ class FieldRow(Horizontal):
                           tooltip=tip, select_on_focus=False, compact=True)
             entry.cursor_blink = self.blink
             yield entry
-        yield Label(Text(pretty_unit(f.unit)), classes="field-unit")
+        if not self.has_class("unitless"):
+            yield Label(Text(pretty_unit(f.unit)), classes="field-unit")
 
 
 class CalculatorTab(Widget):
@@ -90,6 +94,7 @@ class CalculatorTab(Widget):
         self.stale = False  # the results shown are from earlier entries (one is bad now)
         self._solving = False  # a solve thread is running
         self._dirty = False  # entries changed since the running solve started
+        self._solve_seconds = 0.0  # wall time of the last whole solve
         self.set_reactive(CalculatorTab.entries, {f.name: self.initial_entry(f) for f in calculator.fields})
 
     @staticmethod
@@ -104,6 +109,10 @@ class CalculatorTab(Widget):
     # ---- layout -------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
         calc = self.calculator
+        # narrow terminals stack the results under a long form that scrolls: the key results
+        # and the status stay in sight on this line, above the scrolling card, while typing
+        # (shown below 120 columns only)
+        yield Static("", classes="glance")
         with Horizontal(classes="card"):
             with Vertical(classes="inputs-pane"):
                 yield Static(Text(calc.summary), classes="summary")
@@ -302,6 +311,9 @@ class CalculatorTab(Widget):
         from core.sim.integrate import Cancelled, budget
         from core.tolerance import solve_entries  # entries may carry '± tolerance' (core/tolerance.py)
 
+        from time import perf_counter
+
+        started = perf_counter()
         try:
             # in the thread: "as entered" reads units with pint, which must not load on the UI thread
             preferred = unit_systems.display_units(self.calculator, system, entries)
@@ -316,6 +328,7 @@ class CalculatorTab(Widget):
             solution, error = None, exc
         except Exception as exc:  # a bug must not take the app (and what was typed) down with it
             solution, error = None, InputError("(result)", f"internal error: {type(exc).__name__}: {exc}")
+        self._solve_seconds = perf_counter() - started  # the whole solve (an optimiser's search too)
         try:
             self.app.call_from_thread(self._solve_done, solution, error)
         except RuntimeError:  # the app closed while this solve ran
@@ -323,6 +336,8 @@ class CalculatorTab(Widget):
 
     def _solve_done(self, solution: Solution | None, error: InputError | None) -> None:
         self._solving = False
+        if not self.is_attached or not self.query(".status"):
+            return  # the app closed, or the card was removed or is being torn down, meanwhile
         if self._dirty:  # entries changed while solving: this result is already stale
             self._start_solve()
             return
@@ -356,6 +371,8 @@ class CalculatorTab(Widget):
                 where = error.field
             status.update(Text(f"✗ {where}: {error.message} (results show the last valid inputs)",
                                style="red"))
+            glance = Text(f"✗ {where}: {error.message}", style="red")
+            self.query_one(".glance", Static).update(glance)
             return
         self.error = None
         self._mark_stale(False)
@@ -375,6 +392,7 @@ class CalculatorTab(Widget):
         warnings = self.query_one(".warnings", Static)
         warnings.update(Text("\n".join("! " + w for w in solution.warnings), style="yellow"))
         self.query_one(".warnings-box").display = bool(solution.warnings)
+<<<<<<< HEAD
         status.update(Text("✓ solved", style="green"))
         self._show_spread(solution, table, status)
 
@@ -465,3 +483,23 @@ class CalculatorTab(Widget):
                 return t, rows[grid.cursor_row]
         return None
 
+=======
+        status.update(Text("✓ solved" if self.hide_timings else
+                           f"✓ solved in {_duration(self._solve_seconds)}", style="green"))
+        self.query_one(".glance", Static).update(self._glance_text(solution))
+
+    GLANCE_RESULTS = 3  # the first results of a calculator are its headline ones
+
+    def _glance_text(self, solution: Solution) -> Text:
+        line = Text("✓ ", style="green")
+        for i, (name, value) in enumerate(list(solution.outputs.items())[:self.GLANCE_RESULTS]):
+            if i:
+                line.append("  ·  ", style="dim")
+            line.append(self.calculator.output(name).label + " ", style="dim")
+            line.append(pretty_quantity(value.text), style="bold")
+        return line
+
+
+def _duration(seconds: float) -> str:
+    return f"{seconds * 1e3:.1f} ms" if seconds < 1 else f"{seconds:.2f} s"
+>>>>>>> ui

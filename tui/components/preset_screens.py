@@ -41,6 +41,7 @@ class SavePresetScreen(ModalScreen[Path | None]):
             name.cursor_blink = desc.cursor_blink = self.blink
             yield name
             yield desc
+            yield Static("", id="save-target")  # the file the name gives, and whether it exists
             yield Checkbox("Overwrite an existing preset of that name", id="overwrite")
             yield Static("", id="save-error", classes="field-error")
             with Horizontal(classes="dialog-buttons"):
@@ -50,6 +51,24 @@ class SavePresetScreen(ModalScreen[Path | None]):
     @on(Button.Pressed, "#cancel")
     def _cancel(self) -> None:
         self.dismiss(None)
+
+    def on_mount(self) -> None:
+        self._show_target()
+
+    @on(Input.Changed, "#preset-name")
+    def _show_target(self) -> None:
+        """The file name proposed from the preset name, and a warning when it exists."""
+        name = self.query_one("#preset-name", Input).value.strip()
+        target = self.query_one("#save-target", Static)
+        if not name:
+            target.update(Text("Type a name: the file name is made from it", style="dim"))
+            return
+        path = presets.user_dir() / self.calc_id / f"{presets.slug(name)}.toml"
+        line = Text("Saves as ", style="dim")
+        line.append(str(path))
+        if path.exists():
+            line.append("  exists: tick Overwrite to replace it, or change the name", style="yellow")
+        target.update(line)
 
     @on(Input.Submitted)
     @on(Button.Pressed, "#save")
@@ -70,6 +89,28 @@ class SavePresetScreen(ModalScreen[Path | None]):
             error.update(Text(f"cannot write preset: {exc}", style="bold red"))
             return
         self.dismiss(path)
+
+
+def preview(preset: presets.Preset) -> Text:
+    """A preset's description and the inputs it sets, a few lines, to read before loading."""
+    from core.registry import get
+
+    fields = {f.name: f for f in get(preset.calculator).fields}
+
+    def shown_value(f, v) -> str:
+        if f is not None and f.type == "choice":
+            try:
+                return f.label_of(v)
+            except (KeyError, ValueError):
+                pass
+        return str(v)
+
+    out = Text(preset.description or "(no description)", style="italic")
+    shown = [f"{fields[k].label if k in fields else k} {shown_value(fields.get(k), v)}"
+             for k, v in preset.inputs.items()]
+    line = "  ·  ".join(shown)
+    out.append("\n" + (line if len(line) <= 300 else line[:299] + "…"), style="dim")
+    return out
 
 
 MAX_PASTE = 100_000  # characters: a preset is a few hundred; more is a paste gone wrong
@@ -103,20 +144,52 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
         self.found = presets.listing(calc_id)
 
     def compose(self) -> ComposeResult:
-        with Vertical(classes="dialog"):
+        with Vertical(classes="dialog load-dialog"):
             yield Label(Text(f"Load {self.calc_id} preset"), classes="dialog-title")
-            options = [Option(Text(f"{p.name}  ({'built-in' if p.builtin else 'user'})  {p.description}"),
-                              id=str(i)) for i, p in enumerate(self.found)]
+            options = [Option(Text(f"{p.name}  ({'built-in' if p.builtin else 'yours'})"), id=str(i))
+                       for i, p in enumerate(self.found)]
             yield OptionList(*options, id="preset-list")
+            # what the highlighted preset holds, before loading it
+            yield Static("", id="preset-preview")
             path = PresetPathInput(placeholder="…or a preset file path, then Enter (or paste a preset's text)",
                                    id="preset-path")
             path.cursor_blink = self.blink
             yield path
             yield Static("", id="load-error", classes="field-error")
+            with Horizontal(classes="dialog-buttons"):
+                yield Button("Browse files…", id="browse")
+                yield Button("Cancel", id="cancel")
+
+    @on(OptionList.OptionHighlighted, "#preset-list")
+    def _preview(self, event: OptionList.OptionHighlighted) -> None:
+        self.query_one("#preset-preview", Static).update(preview(self.found[int(event.option.id)]))
 
     @on(OptionList.OptionSelected)
     def _picked(self, event: OptionList.OptionSelected) -> None:
         self.dismiss(self.found[int(event.option.id)])
+
+    @on(Button.Pressed, "#cancel")
+    def _cancel(self) -> None:
+        self.dismiss(None)
+
+    @on(Button.Pressed, "#browse")
+    def _browse(self) -> None:
+        """Browse the file system for a .toml preset (textual-fspicker's open dialog)."""
+        from textual_fspicker import FileOpen, Filters
+
+        start = presets.user_dir() / self.calc_id
+        if not start.is_dir():
+            start = Path.cwd()
+        dialog = FileOpen(start, title=f"Open a {self.calc_id} preset",
+                          filters=Filters(("*.toml", lambda p: p.suffix.lower() == ".toml"),
+                                          ("Any file", lambda _: True)))
+
+        def chosen(path: Path | None) -> None:
+            if path is not None:
+                self.query_one("#preset-path", Input).value = str(path)
+                self._load_path(str(path))
+
+        self.app.push_screen(dialog, chosen)
 
     @on(PresetPathInput.PresetPasted)
     def _from_text(self, event: PresetPathInput.PresetPasted) -> None:
@@ -141,11 +214,19 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
 
     @on(Input.Submitted, "#preset-path")
     def _from_path(self, event: Input.Submitted) -> None:
+        self._load_path(event.value)
+
+    def _load_path(self, text: str) -> None:
         try:
-            preset = presets.load(Path(event.value).expanduser())
+            if "\0" in text:  # the OS refuses such a name (Path raises ValueError deep inside)
+                raise InputError("preset", "a file path cannot contain a NUL character", repr(text)[:80])
+            try:
+                preset = presets.load(Path(text).expanduser())
+            except (ValueError, RuntimeError) as exc:  # an unusable path ('~nosuchuser/x')
+                raise InputError("preset", f"not a usable file path ({exc})", text[:80]) from None
             if preset.calculator != self.calc_id:
                 raise InputError("calculator", f"preset is for {preset.calculator!r}, not {self.calc_id!r}",
-                                 event.value)
+                                 text)
         except InputError as exc:
             self.query_one("#load-error", Static).update(Text(str(exc), style="bold red"))
             return
