@@ -214,23 +214,16 @@ class GearheadApp(App):
         self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r only where they do something
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
-<<<<<<< HEAD
         if action == "sweep":  # on the card only: in a dialog's entry ctrl+w deletes a word as usual
             return self.screen is self.screen_stack[0]
-        if action in ("send", "accuracy") and self.query("#areas"):
-            calc = calculators().get(self.current_calculator)
-            if calc is not None:
-                if action == "send":
-                    return bool(calc.exports) or any(t.exports for t in calc.tables)
-                return calc.simulate is not None
-=======
         if action in ("send", "accuracy"):
             tab = self._cards.get(self.current_calculator) if self._screen_stack and self.home.query("#areas") else None
             if tab is None:  # not built yet (start-up): shown once the card is there
                 return False
             calc = tab.calculator
-            return bool(calc.exports) if action == "send" else calc.simulate is not None
->>>>>>> ui
+            if action == "send":
+                return bool(calc.exports) or any(t.exports for t in calc.tables)
+            return calc.simulate is not None
         return True
 
     # ---- navigation ---------------------------------------------------------------------

@@ -392,8 +392,9 @@ class CalculatorTab(Widget):
         warnings = self.query_one(".warnings", Static)
         warnings.update(Text("\n".join("! " + w for w in solution.warnings), style="yellow"))
         self.query_one(".warnings-box").display = bool(solution.warnings)
-<<<<<<< HEAD
-        status.update(Text("✓ solved", style="green"))
+        status.update(Text("✓ solved" if self.hide_timings else
+                           f"✓ solved in {_duration(self._solve_seconds)}", style="green"))
+        self.query_one(".glance", Static).update(self._glance_text(solution))
         self._show_spread(solution, table, status)
 
     # ---- tolerances (core/tolerance.py): a Spread column while any entry carries '±' ------------
@@ -483,11 +484,6 @@ class CalculatorTab(Widget):
                 return t, rows[grid.cursor_row]
         return None
 
-=======
-        status.update(Text("✓ solved" if self.hide_timings else
-                           f"✓ solved in {_duration(self._solve_seconds)}", style="green"))
-        self.query_one(".glance", Static).update(self._glance_text(solution))
-
     GLANCE_RESULTS = 3  # the first results of a calculator are its headline ones
 
     def _glance_text(self, solution: Solution) -> Text:
@@ -502,4 +498,3 @@ class CalculatorTab(Widget):
 
 def _duration(seconds: float) -> str:
     return f"{seconds * 1e3:.1f} ms" if seconds < 1 else f"{seconds:.2f} s"
->>>>>>> ui
