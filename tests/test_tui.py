@@ -281,7 +281,6 @@ async def test_notices_render_without_crashing():
 async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatch):
     """Keys typed while a (slow) solve runs do not queue a solve each: the running one finishes,
     its now-stale result is dropped, and the latest entries are solved once."""
-    import time as _time
 
     import core.model
 
