@@ -281,16 +281,19 @@ async def test_notices_render_without_crashing():
 async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatch):
     """Keys typed while a (slow) solve runs do not queue a solve each: the running one finishes,
     its now-stale result is dropped, and the latest entries are solved once."""
-    import time as _time
 
     import core.model
 
     real_solve = core.model.solve
     solved: list[str] = []
 
+    import threading
+
+    release = threading.Event()  # the test lets the first slow solve finish (no timing race)
+
     def slow_solve(calc_id, raw=None, display_units=None):
         solved.append((raw or {}).get("voltage"))
-        _time.sleep(0.15)
+        release.wait(10)
         return real_solve(calc_id, raw, display_units)
 
     app = GearheadApp(blink=False, initial="motor")
@@ -310,8 +313,12 @@ async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatc
                           ("full_stop", "."), ("5", "5")]:
             app.post_message(events.Key(key, char))  # as the driver delivers a fast typist's keys
             await asyncio.sleep(0.02)
-        await asyncio.sleep(0.05)  # > 0.1 s into a 0.15 s solve: the busy marker is up
+        for _ in range(200):  # the solve is held: after 0.1 s the busy marker is up
+            if "solving" in str(tab.query_one(".status", Static).render()):
+                break
+            await asyncio.sleep(0.02)
         assert "solving" in str(tab.query_one(".status", Static).render())
+        release.set()
         await settle(pilot)
         assert entry.value == "11.5"
         assert len(solved) <= 3, solved  # not one per key
