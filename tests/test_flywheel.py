@@ -439,3 +439,18 @@ def test_fields_shown_only_where_used():
     assert grip.active("radius_of_gyration", {"effects": frozenset({"momentum", "motor_during_shot"}), "shooter": "hood"})
     assert k_b.active("radius_of_gyration", {"effects": frozenset({"energy"}), "shooter": "hood"})
     assert not k_b.active("radius_of_gyration", {"effects": frozenset({"energy"}), "shooter": "two_wheel"})
+
+
+def test_mass_bounds_are_physical_in_si():
+    """Bounds are SI (kg): a 6 kg game piece or a 60 kg wheel is a typo, refused naming the field;
+    the heaviest real game pieces (a 2023 cone, 0.65 kg) are accepted."""
+    from core.errors import InputError
+    from core.model import solve
+
+    solve("flywheel", {"ball_mass": "650 g"})
+    with pytest.raises(InputError) as info:
+        solve("flywheel", {"ball_mass": "6 kg"})
+    assert info.value.field == "ball_mass"
+    with pytest.raises(InputError) as info:
+        solve("flywheel", {"mode": "radius_of_gyration", "wheel_mass": "60 kg"})
+    assert info.value.field == "wheel_mass"

@@ -383,3 +383,14 @@ def test_markdown_export_lists_the_combinations_and_part_numbers():
     assert "**Combinations, best first**" in text
     assert all(row["parts"].text in text for row in rows)
     assert text.count("\n| ") >= len(rows) + 1 + len(sol.outputs)
+
+
+@pytest.mark.parametrize("calc_id", ["elevator", "arm"])
+def test_elevator_and_arm_send_their_fastest_ratio_to_the_finder(calc_id):
+    from core.registry import calculators
+
+    calc = calculators()[calc_id]
+    assert calc.exports == {"ratio_finder": {"target_ratio": "best_ratio"}}
+    best = solve(calc_id, {"mode": "optimise"}).outputs["best_ratio"].value
+    found = solve("ratio_finder", {"target_ratio": best})
+    assert found.outputs  # the sent ratio is one the finder accepts

@@ -166,6 +166,7 @@ CALCULATOR = Calculator(
     outputs=OUTPUTS,
     compute=compute,
     simulate=simulate,
+    exports={"ratio_finder": {"target_ratio": "best_ratio"}},  # optimise mode: the parts for that ratio
     plots=(
         Plot("Angle", ("position",), "time", "time", "s", "angle", "angle", "deg"),
         Plot("Speed", ("speed",), "time", "time", "s", "speed", "angular_speed", "deg/s"),

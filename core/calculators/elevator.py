@@ -145,6 +145,7 @@ CALCULATOR = Calculator(
     outputs=OUTPUTS,
     compute=compute,
     simulate=simulate,
+    exports={"ratio_finder": {"target_ratio": "best_ratio"}},  # optimise mode: the parts for that ratio
     plots=(
         Plot("Position", ("position",), "time", "time", "s", "position", "length", "in"),
         Plot("Speed", ("speed",), "time", "time", "s", "speed", "speed", "ft/s"),
