@@ -384,6 +384,18 @@ def format_value(value: Any, quantity: str, unit: str) -> Value:
     return Value(value, units.SI_UNITS[quantity], units.format_quantity(value, unit, quantity))
 
 
+def check_display_units(calc: Calculator, display_units: Mapping[str, str] | None) -> dict[str, str]:
+    """{output: unit} the user asked for, each a real output and a unit that can show it."""
+    display_units = dict(display_units or {})
+    for name, unit in display_units.items():
+        try:
+            out = calc.output(name)
+        except KeyError:
+            raise InputError(name, f"is not an output of {calc.id}") from None
+        units.check_unit(unit, out.quantity, name)
+    return display_units
+
+
 def solve(calc_id: str, raw: Mapping[str, Any] | None = None,
           display_units: Mapping[str, str] | None = None) -> Solution:
     """Parse, compute and format one calculator. Raises InputError on any bad entry."""
@@ -400,13 +412,7 @@ def solve(calc_id: str, raw: Mapping[str, Any] | None = None,
         # The robustness tests fail if it ever fires, since "(result)" names no field.
         raise InputError("(result)", f"could not be computed from these inputs "
                                      f"({type(exc).__name__}: {exc})") from exc
-    display_units = dict(display_units or {})
-    for name, unit in display_units.items():
-        try:
-            out = calc.output(name)
-        except KeyError:
-            raise InputError(name, f"is not an output of {calc.id}") from None
-        units.check_unit(unit, out.quantity, name)
+    display_units = check_display_units(calc, display_units)
     inputs = {}
     for f in calc.fields:
         v = values[f.name]

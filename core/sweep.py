@@ -22,7 +22,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 from . import units
 from .errors import InputError
-from .model import Calculator, Field, parse_inputs
+from .model import Calculator, Field, check_display_units, parse_inputs
 
 DEFAULT_POINTS = 21
 MAX_POINTS = 20_000  # a grid larger than this is a typo (a missing ':'), not a study
@@ -336,13 +336,7 @@ def run(calc_id: str, raw: Mapping[str, Any], varies: Sequence[str | Vary], outp
         except KeyError:
             raise InputError(name, f"is not an output of {calc.id} "
                                    f"(outputs: {', '.join(o.name for o in calc.outputs)})") from None
-    display_units = dict(display_units or {})
-    for name, unit in display_units.items():
-        try:
-            out = calc.output(name)
-        except KeyError:
-            raise InputError(name, f"is not an output of {calc.id}") from None
-        units.check_unit(unit, out.quantity, name)
+    display_units = check_display_units(calc, display_units)
 
     fields = [calc.field(v.name) for v in specs]
     axes = [v.values(f) for v, f in zip(specs, fields)]

@@ -22,7 +22,7 @@ import dataclasses
 import math
 
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot
+from ..model import Calculator, Field, Output
 from ..motors import lookup, motor_fields
 from ..sim import motion
 from ..sim.effects import Effect, Effects, Part
@@ -167,13 +167,5 @@ CALCULATOR = Calculator(
     compute=compute,
     simulate=simulate,
     exports={"ratio_finder": {"target_ratio": "best_ratio"}},  # optimise mode: the parts for that ratio
-    plots=(
-        Plot("Angle", ("position",), "time", "time", "s", "angle", "angle", "deg"),
-        Plot("Speed", ("speed",), "time", "time", "s", "speed", "angular_speed", "deg/s"),
-        Plot("Current (per motor)", ("stator_current", "supply_current"), "time", "time", "s", "current",
-             "current", "A"),
-        Plot("Bus voltage", ("bus_voltage",), "time", "time", "s", "voltage", "voltage", "V"),
-        Plot("Time vs ratio (optimise)", ("time_vs_ratio",), "ratio", "dimensionless", "", "time to goal",
-             "time", "s"),
-    ),
+    plots=motion.plots("angle", "angle", "deg", "angular_speed", "deg/s"),
 )

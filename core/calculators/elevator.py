@@ -24,7 +24,7 @@ import dataclasses
 import math
 
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot
+from ..model import Calculator, Field, Output
 from ..motors import lookup, motor_fields
 from ..sim import motion
 from ..sim.effects import Effect, Effects, Part
@@ -146,13 +146,5 @@ CALCULATOR = Calculator(
     compute=compute,
     simulate=simulate,
     exports={"ratio_finder": {"target_ratio": "best_ratio"}},  # optimise mode: the parts for that ratio
-    plots=(
-        Plot("Position", ("position",), "time", "time", "s", "position", "length", "in"),
-        Plot("Speed", ("speed",), "time", "time", "s", "speed", "speed", "ft/s"),
-        Plot("Current (per motor)", ("stator_current", "supply_current"), "time", "time", "s", "current",
-             "current", "A"),
-        Plot("Bus voltage", ("bus_voltage",), "time", "time", "s", "voltage", "voltage", "V"),
-        Plot("Time vs ratio (optimise)", ("time_vs_ratio",), "ratio", "dimensionless", "", "time to goal",
-             "time", "s"),
-    ),
+    plots=motion.plots("position", "length", "in", "speed", "ft/s"),
 )

@@ -41,7 +41,7 @@ from dataclasses import dataclass, field, replace
 from typing import Any, Callable, Mapping
 
 from ..errors import InputError
-from ..model import Field, Output
+from ..model import Field, Output, Plot
 from ..motors import Motor
 from .effects import Effect, Effects, Part, Slot, nothing
 from .integrate import Event, integrate
@@ -685,6 +685,19 @@ def common_outputs(position_q: str, position_u: str, speed_q: str, speed_u: str,
 
 CANDIDATES = 240
 BATCH_STEPS = 150  # steps per candidate over its estimated move time (0.3 % on the time: a screen)
+
+
+def plots(position_label: str, position_q: str, position_u: str, speed_q: str, speed_u: str) -> tuple[Plot, ...]:
+    """The charts of a move (position, speed, currents, bus voltage over time) and of optimise."""
+    return (
+        Plot(position_label.capitalize(), ("position",), "time", "time", "s", position_label, position_q, position_u),
+        Plot("Speed", ("speed",), "time", "time", "s", "speed", speed_q, speed_u),
+        Plot("Current (per motor)", ("stator_current", "supply_current"), "time", "time", "s", "current",
+             "current", "A"),
+        Plot("Bus voltage", ("bus_voltage",), "time", "time", "s", "voltage", "voltage", "V"),
+        Plot("Time vs ratio (optimise)", ("time_vs_ratio",), "ratio", "dimensionless", "", "time to goal",
+             "time", "s"),
+    )
 
 
 def characteristic_n(m: Mechanism) -> float:
