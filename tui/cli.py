@@ -10,6 +10,7 @@ from typing import Sequence
 from core.errors import InputError, shown
 
 EXIT_BAD_INPUT = 2
+EXIT_INTERNAL = 70  # EX_SOFTWARE: a bug, not the user's input
 EXIT_INTERRUPTED = 130  # 128 + SIGINT, as a shell reports a command stopped by Ctrl+C
 
 
@@ -63,11 +64,24 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _sweep(args)
         return _calculators(args)
     except InputError as exc:
-        _complain(str(exc))
+        _complain(str(exc) + _logged(exc, argv))
         return EXIT_BAD_INPUT
     except KeyboardInterrupt:
         print("gearhead: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except Exception as exc:  # a bug: one line for the user, the traceback in the log for us
+        _complain(f"internal error ({type(exc).__name__}: {exc})" + _logged(exc, argv))
+        return EXIT_INTERNAL
+
+
+def _logged(exc: BaseException, argv) -> str:
+    """' (traceback in FILE)' after recording an unexpected failure, else ''."""
+    from . import bug_log
+
+    if not bug_log.is_bug(exc):
+        return ""
+    path = bug_log.record(exc, f"gearhead {' '.join(sys.argv[1:] if argv is None else argv)}")
+    return f" (traceback in {path})" if path else ""
 
 
 def _complain(message: str, kind: str = "") -> None:

@@ -326,8 +326,16 @@ class CalculatorTab(Widget):
             solution, error = None, None
         except InputError as exc:
             solution, error = None, exc
+            if exc.__cause__ is not None:  # the last-resort guard fired: keep the traceback
+                from ..bug_log import record
+
+                record(exc, f"{self.calculator.id} {entries!r}")
         except Exception as exc:  # a bug must not take the app (and what was typed) down with it
-            solution, error = None, InputError("(result)", f"internal error: {type(exc).__name__}: {exc}")
+            from ..bug_log import record
+
+            path = record(exc, f"{self.calculator.id} {entries!r}")
+            solution, error = None, InputError("(result)", f"internal error: {type(exc).__name__}: {exc}"
+                                               + (f" (traceback in {path})" if path else ""))
         self._solve_seconds = perf_counter() - started  # the whole solve (an optimiser's search too)
         try:
             self.app.call_from_thread(self._solve_done, solution, error)
