@@ -13,8 +13,8 @@ from timing import median_seconds  # noqa: E402  (bench/ is on sys.path when run
 
 
 def main() -> None:
-    from core import beams
-    from core.model import solve
+    from gearhead.core import beams
+    from gearhead.core.model import solve
 
     print("  warm solve per section (median of 50; tube torsion cached by its side/wall ratios):")
     for section in beams.SECTIONS:

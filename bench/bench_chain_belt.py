@@ -37,7 +37,7 @@ def mp_center(L, r1, r2, dps=50, same_excess=False):
 
 
 def main() -> None:
-    from core.calculators import chain_belt as cb
+    from gearhead.core.calculators import chain_belt as cb
 
     r1, r2 = 50e-3 / math.pi, 75e-3 / math.pi  # 20T and 30T, 5 mm
     cases = {"typical (100T belt)": 0.5, "1e-10 above minimum": cb.minimum_length(r1, r2) * (1 + 1e-10),

@@ -6,7 +6,7 @@ from timing import median_seconds
 
 
 def main() -> None:
-    from core.model import solve
+    from gearhead.core.model import solve
 
     for mode in ("forward", "reverse", "shifting"):
         raw = {"mode": mode}

@@ -25,10 +25,10 @@ SCENES = {
 
 
 def main() -> None:
-    from core.calculators import flywheel as fw
-    from core.model import parse_inputs, solve
-    from core.registry import get
-    from core.sim.scene import LEVELS, ladder
+    from gearhead.core.calculators import flywheel as fw
+    from gearhead.core.model import parse_inputs, solve
+    from gearhead.core.registry import get
+    from gearhead.core.sim.scene import LEVELS, ladder
 
     calc = get("flywheel")
     for label, raw in SCENES.items():

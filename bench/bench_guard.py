@@ -28,8 +28,8 @@ CASES = {
 
 CHILD = """
 import sys, time
-from core.model import solve
-from core.errors import InputError
+from gearhead.core.model import solve
+from gearhead.core.errors import InputError
 calc, raw = {calc!r}, {raw!r}
 try:
     solve(calc, dict(raw, accuracy="coarse") if calc == "projectile" else {{}})  # imports, caches
@@ -54,8 +54,8 @@ def main() -> None:
         except subprocess.TimeoutExpired:
             out = f"> {limit:.0f} s (killed)"
         print(f"{name:<44} {out}")
-    from core import presets
-    from core.model import solve
+    from gearhead.core import presets
+    from gearhead.core.model import solve
 
     for p in presets.listing():
         if p.builtin and p.calculator in ("trebuchet", "pneumatics", "projectile", "flywheel"):

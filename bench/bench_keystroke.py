@@ -22,9 +22,9 @@ CALCULATORS = ["gear_ratio", "beam", "motor", "drivetrain", "pneumatics", "proje
 def typing_field(calc_id: str) -> str:
     """The first quantity field whose default stays valid with its last digit deleted, so every
     keystroke of the benchmark (delete, retype) is a new valid value, never an error."""
-    from core.errors import InputError
-    from core.model import solve
-    from core.registry import get
+    from gearhead.core.errors import InputError
+    from gearhead.core.model import solve
+    from gearhead.core.registry import get
 
     for f in get(calc_id).fields:
         text = f.default_text()
@@ -44,8 +44,8 @@ KEYS = 30
 async def _latencies(calc_id: str, field: str) -> list[float]:
     from textual.widgets import Input
 
-    from tui.app import GearheadApp
-    from tui.components.calculator_tab import CalculatorTab
+    from gearhead.tui.app import GearheadApp
+    from gearhead.tui.components.calculator_tab import CalculatorTab
 
     app = GearheadApp(blink=False, initial=calc_id, hide_timings=True)
     shown_at: list[float] = []

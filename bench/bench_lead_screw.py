@@ -11,8 +11,8 @@ from timing import median_seconds  # noqa: E402  (bench/ is on sys.path when run
 def main() -> None:
     import mpmath as mp
 
-    from core.model import parse_inputs, solve
-    from core.registry import get
+    from gearhead.core.model import parse_inputs, solve
+    from gearhead.core.registry import get
 
     print(f"  lead_screw default           {median_seconds(lambda: solve('lead_screw', {}), 300) * 1e6:8.1f} µs")
     print(f"  lead_screw locked            {median_seconds(lambda: solve('lead_screw', {'starts': 16, 'friction': 1}), 300) * 1e6:8.1f} µs")

@@ -30,11 +30,11 @@ SCENES = {
 def main() -> None:
     import numpy as np
 
-    from core.calculators import arm, elevator
-    from core.model import parse_inputs
-    from core.registry import get
-    from core.sim import motion
-    from core.sim.scene import LEVELS
+    from gearhead.core.calculators import arm, elevator
+    from gearhead.core.model import parse_inputs
+    from gearhead.core.registry import get
+    from gearhead.core.sim import motion
+    from gearhead.core.sim.scene import LEVELS
 
     mods = {"elevator": elevator, "arm": arm}
     rtol = LEVELS["default"]

@@ -12,9 +12,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from core.errors import InputError  # noqa: E402
-from core.model import Field  # noqa: E402
-from core.units import registry  # noqa: E402
+from gearhead.core.errors import InputError  # noqa: E402
+from gearhead.core.model import Field  # noqa: E402
+from gearhead.core.units import registry  # noqa: E402
 
 FIELD = Field("load", "Load", "force", "lbf", default=25, min=0)
 ENTRIES = ["25", "25 lbf", "110 N", "2*12.5 lbf", "(25)", "25 lbf + 3 N", "9**9**9", "2**9**9 lbf",

@@ -18,8 +18,8 @@ from timing import median_seconds  # noqa: E402  (bench/ is on sys.path when run
 def main() -> None:
     import mpmath as mp
 
-    from core.calculators import pneumatic_linkage as pl
-    from core.model import solve
+    from gearhead.core.calculators import pneumatic_linkage as pl
+    from gearhead.core.model import solve
 
     print(f"  solve forward (defaults, with the 61-point torque curve) {median_seconds(lambda: solve('pneumatic_linkage', {}), 300) * 1e6:8.1f} µs")
     print(f"  solve reverse (defaults)                                {median_seconds(lambda: solve('pneumatic_linkage', {'mode': 'reverse'}), 300) * 1e6:8.1f} µs")

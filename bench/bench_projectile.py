@@ -29,9 +29,9 @@ CASES = {
 
 
 def main() -> None:
-    from core.model import parse_inputs, solve
-    from core.registry import get
-    from core.sim.scene import LEVELS, ladder
+    from gearhead.core.model import parse_inputs, solve
+    from gearhead.core.registry import get
+    from gearhead.core.sim.scene import LEVELS, ladder
 
     calc = get("projectile")
     print("  default accuracy (rtol 1e-6), median of 50; nfev of the scene alone:")

@@ -24,7 +24,7 @@ GOAL_S = 0.200
 
 
 def main() -> None:
-    from core.parts import FAMILIES, SHAFT_BORES, VENDORS, catalogue, finder
+    from gearhead.core.parts import FAMILIES, SHAFT_BORES, VENDORS, catalogue, finder
 
     t0 = time.perf_counter()
     catalogue.cache_clear()
@@ -86,7 +86,7 @@ def main() -> None:
           f"(goal {GOAL_S * 1e3:.0f} ms) {'OK' if worst <= GOAL_S else 'OVER'}")
 
     # a whole solve as the app and CLI run it (search, C-C of the listed stages, formatting)
-    from core.model import solve
+    from gearhead.core.model import solve
 
     solve("ratio_finder", {})  # warm: scipy (chain_belt's brentq) loads here once
     print(f"load average while measuring: {' '.join(f'{x:.1f}' for x in __import__('os').getloadavg())}")

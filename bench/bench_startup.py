@@ -27,7 +27,7 @@ RUNS = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 
 FIRST_FRAME = r"""
 import time, asyncio
 t0 = time.perf_counter()
-from tui.app import GearheadApp
+from gearhead.tui.app import GearheadApp
 class Timed(GearheadApp):
     async def on_ready(self):  # Textual sends Ready once the first frame is on screen
         self.first_frame = time.perf_counter() - t0
@@ -49,8 +49,8 @@ asyncio.run(main())
 FIRST_RESULT = r"""
 import time, asyncio
 t0 = time.perf_counter()
-from tui.app import GearheadApp
-from tui.components.calculator_tab import CalculatorTab
+from gearhead.tui.app import GearheadApp
+from gearhead.tui.components.calculator_tab import CalculatorTab
 async def main():
     app = GearheadApp(blink=False)
     async with app.run_test(size=(140, 45)) as pilot:
@@ -67,7 +67,7 @@ asyncio.run(main())
 # (the UI thread's part: its results follow from a solve thread).
 FIRST_VISIT = r"""
 import time, asyncio
-from tui.app import GearheadApp
+from gearhead.tui.app import GearheadApp
 async def main():
     try:
         app = GearheadApp(blink=False, warm_up=True)  # as run() starts it

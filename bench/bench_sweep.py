@@ -16,9 +16,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from core import sweep, tolerance  # noqa: E402
-from core.presets import load  # noqa: E402
-from core.registry import get  # noqa: E402
+from gearhead.core import sweep, tolerance  # noqa: E402
+from gearhead.core.presets import load  # noqa: E402
+from gearhead.core.registry import get  # noqa: E402
 
 
 def best(fn, repeats: int) -> tuple[float, object]:

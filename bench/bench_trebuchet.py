@@ -14,11 +14,11 @@ from timing import median_seconds  # noqa: E402  (bench/ is on sys.path when run
 
 
 def main() -> None:
-    from core.calculators import trebuchet as calc
-    from core.model import parse_inputs, solve
-    from core.registry import get
-    from core.sim import trebuchet as tb
-    from core.sim.scene import LEVELS, ladder
+    from gearhead.core.calculators import trebuchet as calc
+    from gearhead.core.model import parse_inputs, solve
+    from gearhead.core.registry import get
+    from gearhead.core.sim import trebuchet as tb
+    from gearhead.core.sim.scene import LEVELS, ladder
 
     c = get("trebuchet")
     print("  one throw at default accuracy (rtol 1e-6), swing + flight, median of 50:")

@@ -20,7 +20,7 @@ sys.path.insert(0, str(ROOT))
 FIRST_FRAME = r"""
 import time, asyncio
 t0 = time.perf_counter()
-from tui.app import GearheadApp
+from gearhead.tui.app import GearheadApp
 class Timed(GearheadApp):
     def on_ready(self):  # Textual sends Ready once the first frame is on screen
         self.first_frame = time.perf_counter() - t0
@@ -35,7 +35,7 @@ asyncio.run(main())
 COLD_SOLVE = r"""
 import time
 t0 = time.perf_counter()
-from core.model import solve
+from gearhead.core.model import solve
 solve("gear_ratio", {})
 print(time.perf_counter() - t0)
 """
@@ -50,8 +50,8 @@ def in_fresh_process(code: str, runs: int = 5) -> float:
 
 
 def main() -> None:
-    from core.model import solve
-    from core.registry import calculators
+    from gearhead.core.model import solve
+    from gearhead.core.registry import calculators
 
     print(f"first frame (headless, median of 5 fresh processes): {in_fresh_process(FIRST_FRAME) * 1e3:8.1f} ms")
     print(f"cold first solve incl. pint registry (median of 5):  {in_fresh_process(COLD_SOLVE) * 1e3:8.1f} ms")
@@ -67,13 +67,13 @@ def main() -> None:
 
 
 def simulations() -> None:
-    from core.model import parse_inputs
-    from core.registry import calculators
-    from core.sim.scene import LEVELS, ladder
+    from gearhead.core.model import parse_inputs
+    from gearhead.core.registry import calculators
+    from gearhead.core.sim.scene import LEVELS, ladder
 
     print("simulations at the default accuracy (median of 50; the scene alone, then the full solve "
           "including the 100x-tighter error estimate):")
-    from core.model import solve
+    from gearhead.core.model import solve
 
     for cid, calc in calculators().items():
         if calc.simulate is None:

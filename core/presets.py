@@ -34,7 +34,7 @@ class Preset:
 
 
 def builtin_dir() -> Path:
-    import presets as package  # the top-level data package shipped with Gearhead
+    import gearhead.presets as package  # the top-level data package shipped with Gearhead
 
     return Path(package.__file__).resolve().parent
 

@@ -4,7 +4,7 @@ solve with bare numbers (the CLI in a script's loop) never pays for pint's regis
 pint stays the source of truth: tests/test_unit_factors.py checks every stored factor against pint
 and that every unit a calculator declares is stored. Regenerate after adding a unit:
 
-    .venv/bin/python -m core.unit_factors
+    .venv/bin/python -m gearhead.core.unit_factors
 """
 
 from __future__ import annotations

@@ -13,7 +13,7 @@ sys.path.insert(0, str(ROOT))
 
 async def main() -> None:
     from tests.tui_helpers import settle
-    from tui.app import GearheadApp
+    from gearhead.tui.app import GearheadApp
 
     app = GearheadApp(blink=False, initial="trebuchet", hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:

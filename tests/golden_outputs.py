@@ -11,9 +11,9 @@ import json
 import sys
 from pathlib import Path
 
-from core import presets
-from core.model import solve
-from core.sim.scene import VOLATILE
+from gearhead.core import presets
+from gearhead.core.model import solve
+from gearhead.core.sim.scene import VOLATILE
 
 GOLDEN_DIR = Path(__file__).with_name("golden")
 

@@ -12,10 +12,10 @@ import pytest
 import sympy as sp
 from hypothesis import assume, given, settings, strategies as st
 
-from core import beams, presets
-from core.calculators import beam as calc
-from core.errors import InputError
-from core.model import parse_inputs, solve
+from gearhead.core import beams, presets
+from gearhead.core.calculators import beam as calc
+from gearhead.core.errors import InputError
+from gearhead.core.model import parse_inputs, solve
 
 IN = 0.0254
 LBF = 4.4482216152605

@@ -2,13 +2,13 @@
 
 import pytest
 
-from core.errors import InputError
-from tui import cli
+from gearhead.core.errors import InputError
+from gearhead.tui import cli
 
 
 @pytest.fixture
 def state_home(tmp_path, monkeypatch):
-    from tui import bug_log
+    from gearhead.tui import bug_log
 
     monkeypatch.setenv("XDG_STATE_HOME", str(tmp_path / "state"))
     bug_log._logger.cache_clear()
@@ -32,7 +32,7 @@ def _guarded(*args, **kwargs):
 
 
 def test_a_bug_on_the_cli_is_one_line_and_a_logged_traceback(state_home, monkeypatch, capsys):
-    monkeypatch.setattr("core.model.solve", _boom)
+    monkeypatch.setattr("gearhead.core.model.solve", _boom)
     assert cli.main(["solve", "gear_ratio"]) == cli.EXIT_INTERNAL
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "internal error (KeyError" in err and "traceback in" in err
@@ -41,7 +41,7 @@ def test_a_bug_on_the_cli_is_one_line_and_a_logged_traceback(state_home, monkeyp
 
 
 def test_the_last_resort_guard_keeps_its_cause_in_the_log(state_home, monkeypatch, capsys):
-    monkeypatch.setattr("core.model.solve", _guarded)
+    monkeypatch.setattr("gearhead.core.model.solve", _guarded)
     assert cli.main(["solve", "gear_ratio"]) == cli.EXIT_BAD_INPUT
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "traceback in" in err
@@ -58,12 +58,12 @@ async def test_a_bug_in_the_app_is_a_status_line_and_a_logged_traceback(state_ho
     from textual.widgets import Static
 
     from tests.tui_helpers import settle
-    from tui.app import GearheadApp
+    from gearhead.tui.app import GearheadApp
 
     app = GearheadApp(blink=False, initial="gear_ratio", warm_up=False)
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
-        monkeypatch.setattr("core.tolerance.solve_entries", _boom)
+        monkeypatch.setattr("gearhead.core.tolerance.solve_entries", _boom)
         app.current_tab.set_entries({"voltage": "11"})
         await settle(pilot)
         status = str(app.current_tab.query_one(".status", Static).render())

@@ -7,11 +7,11 @@ import mpmath as mp
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from core import presets
-from core.calculators import chain_belt as cb
-from core.errors import InputError
-from core.model import solve
-from core.registry import get
+from gearhead.core import presets
+from gearhead.core.calculators import chain_belt as cb
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
+from gearhead.core.registry import get
 
 IN = 0.0254
 MM = 1e-3
@@ -256,8 +256,8 @@ async def test_switching_to_a_chain_standard_in_the_app_solves_as_a_chain():
     from textual.widgets import Select
 
     from tests.tui_helpers import settle
-    from tui.app import GearheadApp
-    from tui.components.calculator_tab import CalculatorTab
+    from gearhead.tui.app import GearheadApp
+    from gearhead.tui.components.calculator_tab import CalculatorTab
 
     app = GearheadApp(blink=False, initial="chain_belt")
     async with app.run_test(size=(140, 45)) as pilot:

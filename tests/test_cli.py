@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from tui.cli import main
+from gearhead.tui.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -69,7 +69,7 @@ def test_calculators_and_presets_listings(capsys):
 
 
 def test_console_script_entry_point_runs():
-    out = subprocess.run([sys.executable, "-m", "tui", "solve", "motor", "--json"], capture_output=True,
+    out = subprocess.run([sys.executable, "-m", "gearhead.tui", "solve", "motor", "--json"], capture_output=True,
                          text=True, cwd=ROOT)
     assert out.returncode == 0 and json.loads(out.stdout)["calculator"] == "motor"
 

@@ -3,8 +3,8 @@
 import json
 import tomllib
 
-from core import presets
-from tui.cli import main
+from gearhead.core import presets
+from gearhead.tui.cli import main
 
 
 def run(capsys, *args):

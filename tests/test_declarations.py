@@ -5,10 +5,10 @@ import dataclasses
 
 import pytest
 
-from core import presets
-from core.declarations import DeclarationError, check, check_links
-from core.model import Calculator, Field, Output, Plot, Result, parse_inputs
-from core.registry import calculators
+from gearhead.core import presets
+from gearhead.core.declarations import DeclarationError, check, check_links
+from gearhead.core.model import Calculator, Field, Output, Plot, Result, parse_inputs
+from gearhead.core.registry import calculators
 
 
 def _calc(fields=(), outputs=(), **kw) -> Calculator:

@@ -6,9 +6,9 @@ import math
 import pytest
 from hypothesis import assume, given, settings, strategies as st
 
-from core import motors
-from core.errors import InputError
-from core.model import solve
+from gearhead.core import motors
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
 
 IN = 0.0254
 FT = 0.3048
@@ -172,7 +172,7 @@ def test_shift_speed_is_where_both_gears_push_equally(motor, n, d, G1, G2):
 
 
 def test_builtin_presets_load_and_solve():
-    from core import presets
+    from gearhead.core import presets
 
     found = presets.listing("drivetrain")
     assert len(found) >= 3 and presets.problems("drivetrain") == []

@@ -6,9 +6,9 @@ import math
 
 import pytest
 
-from core.model import Field, Output
-from core.sim.effects import Effect, Effects, Part, Slot
-from core.sim.integrate import Event, integrate
+from gearhead.core.model import Field, Output
+from gearhead.core.sim.effects import Effect, Effects, Part, Slot
+from gearhead.core.sim.integrate import Event, integrate
 
 SLOTS = (Slot("accel", "vsum"), Slot("cap", "min"), Slot("heat", "sum"))
 

@@ -4,9 +4,9 @@ import csv
 import io
 import tomllib
 
-from core import export, presets
-from core.model import solve
-from core.registry import get
+from gearhead.core import export, presets
+from gearhead.core.model import solve
+from gearhead.core.registry import get
 
 
 def test_results_csv_round_trips_every_output_at_full_precision():
@@ -42,7 +42,7 @@ def test_plot_csv_is_in_display_units():
     name = plot.series[0]
     xs, ys = sol.series[name]
     first = next(r for r in rows[1:] if r[0] == name)
-    from core import units
+    from gearhead.core import units
     assert float(first[2]) * units.factor(plot.y_unit, plot.y_quantity) == __import__("pytest").approx(ys[0], rel=1e-15)
 
 

@@ -11,12 +11,12 @@ import mpmath as mp
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from core import presets
-from core.calculators import flywheel as fw
-from core.errors import InputError
-from core.model import parse_inputs, solve
-from core.registry import get
-from core.sim.integrate import Event, integrate
+from gearhead.core import presets
+from gearhead.core.calculators import flywheel as fw
+from gearhead.core.errors import InputError
+from gearhead.core.model import parse_inputs, solve
+from gearhead.core.registry import get
+from gearhead.core.sim.integrate import Event, integrate
 
 ROOT = Path(__file__).resolve().parents[1]
 SEED = ROOT / "presets" / "flywheel" / "nbn_seed_single_wheel.toml"
@@ -295,7 +295,7 @@ def test_presets_load_and_solve():
 
 
 def test_cli_json_reproduces_the_seed_table():
-    cmd = [sys.executable, "-m", "tui", "solve", "flywheel", "--preset", str(SEED), "--json"]
+    cmd = [sys.executable, "-m", "gearhead.tui", "solve", "flywheel", "--preset", str(SEED), "--json"]
     data = json.loads(subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, check=True).stdout)
     o = data["outputs"]
     assert [round(o[f"range_error_linear_{n}"]["value"] * 100, 2) for n in range(1, 6)] == \
@@ -444,8 +444,8 @@ def test_fields_shown_only_where_used():
 def test_mass_bounds_are_physical_in_si():
     """Bounds are SI (kg): a 6 kg game piece or a 60 kg wheel is a typo, refused naming the field;
     the heaviest real game pieces (a 2023 cone, 0.65 kg) are accepted."""
-    from core.errors import InputError
-    from core.model import solve
+    from gearhead.core.errors import InputError
+    from gearhead.core.model import solve
 
     solve("flywheel", {"ball_mass": "650 g"})
     with pytest.raises(InputError) as info:

@@ -4,8 +4,8 @@ pitch-radius slip measured."""
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from core import presets
-from core.model import solve
+from gearhead.core import presets
+from gearhead.core.model import solve
 
 IN = 0.0254
 

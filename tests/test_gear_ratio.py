@@ -6,9 +6,9 @@ import math
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from core import motors
-from core.errors import InputError
-from core.model import solve
+from gearhead.core import motors
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
 
 LBF = 4.4482216152605
 IN = 0.0254

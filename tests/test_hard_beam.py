@@ -7,7 +7,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from core import beams
+from gearhead.core import beams
 
 mp.mp.dps = 50
 
@@ -214,7 +214,7 @@ def test_rectangular_tube_fem_and_bredt_agree_for_a_thin_wall():
 
 
 def _beam(**raw):
-    from core.model import solve
+    from gearhead.core.model import solve
     s = solve("beam", raw)
     return {k: v.value for k, v in s.outputs.items()}, s.warnings
 

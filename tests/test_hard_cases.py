@@ -11,12 +11,12 @@ import math
 import mpmath as mp
 import pytest
 
-from core import motors
-from core.calculators import pneumatics as pn
-from core.calculators.gear_ratio import ratio_for_loaded_speed
-from core.model import parse_inputs, solve
-from core.registry import get
-from core.sim.integrate import Event, integrate
+from gearhead.core import motors
+from gearhead.core.calculators import pneumatics as pn
+from gearhead.core.calculators.gear_ratio import ratio_for_loaded_speed
+from gearhead.core.model import parse_inputs, solve
+from gearhead.core.registry import get
+from gearhead.core.sim.integrate import Event, integrate
 
 mp.mp.dps = 40
 PSI = pn.PSI

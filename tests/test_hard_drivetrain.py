@@ -7,7 +7,7 @@ import math
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from core.model import solve
+from gearhead.core.model import solve
 
 LBF = 4.4482216152605
 
@@ -58,7 +58,7 @@ def test_reverse_ratio_fed_to_forward_gives_the_same_force_and_current(
                      min_voltage=f"{V_batt * V_min_frac!r} V", battery_resistance=f"{R_batt!r} ohm",
                      branch_resistance=f"{R_br!r} ohm")
     except Exception as e:  # a budget that cannot push at all is an InputError naming a field
-        from core.errors import InputError
+        from gearhead.core.errors import InputError
         assert isinstance(e, InputError) and e.field in ("min_voltage", "battery_voltage")
         return
     fwd, fw = out(**base, ratio=repr(rev["max_ratio"]))

@@ -6,10 +6,10 @@ import math
 import mpmath as mp
 import pytest
 
-from core import presets
-from core.calculators import flywheel as fw
-from core.model import parse_inputs, solve
-from core.registry import get
+from gearhead.core import presets
+from gearhead.core.calculators import flywheel as fw
+from gearhead.core.model import parse_inputs, solve
+from gearhead.core.registry import get
 
 mp.mp.dps = 40
 SEED = presets.load(fw.__file__.rsplit("/core/", 1)[0] + "/presets/flywheel/nbn_seed_single_wheel.toml").inputs

@@ -10,10 +10,10 @@ import math
 import mpmath as mp
 import pytest
 
-from core import motors
-from core.errors import InputError
-from core.model import parse_inputs, solve
-from core.registry import get
+from gearhead.core import motors
+from gearhead.core.errors import InputError
+from gearhead.core.model import parse_inputs, solve
+from gearhead.core.registry import get
 
 mp.mp.dps = 40
 

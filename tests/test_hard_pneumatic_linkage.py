@@ -7,8 +7,8 @@ import math
 import mpmath as mp
 import pytest
 
-from core.calculators import pneumatic_linkage as pl
-from core.model import solve
+from gearhead.core.calculators import pneumatic_linkage as pl
+from gearhead.core.model import solve
 
 mp.mp.dps = 50
 
@@ -130,7 +130,7 @@ def test_no_dead_centre_warning_for_a_lever_arm_above_a_tenth_of_the_arm():
 @pytest.mark.parametrize("value", ["1e15 rad", "361 deg", "-6.3 rad"])
 def test_arm_angles_are_bounded_to_a_turn(field, value):
     """1e15 rad used to be accepted (sin/cos of it keep no digits); angles are −360° to 360°."""
-    from core.errors import InputError
+    from gearhead.core.errors import InputError
     with pytest.raises(InputError) as e:
         solve("pneumatic_linkage", {"mode": "reverse", field: value})
     assert e.value.field == field

@@ -6,9 +6,9 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from core.calculators import pneumatics as pn
-from core.model import parse_inputs
-from core.registry import get
+from gearhead.core.calculators import pneumatics as pn
+from gearhead.core.model import parse_inputs
+from gearhead.core.registry import get
 
 PSI = pn.PSI
 NAMES = list(pn.COMPRESSORS)

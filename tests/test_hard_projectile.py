@@ -5,10 +5,10 @@ import math
 import mpmath as mp
 import pytest
 
-from core.calculators import projectile as pj
-from core.errors import InputError
-from core.model import parse_inputs, solve
-from core.registry import get
+from gearhead.core.calculators import projectile as pj
+from gearhead.core.errors import InputError
+from gearhead.core.model import parse_inputs, solve
+from gearhead.core.registry import get
 
 mp.mp.dps = 40
 G = mp.mpf("9.80665")

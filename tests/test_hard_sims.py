@@ -10,14 +10,14 @@ import mpmath as mp
 import pytest
 from hypothesis import HealthCheck, assume, example, given, settings, strategies as st
 
-from core.calculators import flywheel as fw
-from core.calculators import projectile as pj
-from core.errors import InputError
-from core.model import parse_inputs, solve
-from core.registry import get
-from core.sim import flight
-from core.sim import integrate as ig
-from core.sim import trebuchet as tb
+from gearhead.core.calculators import flywheel as fw
+from gearhead.core.calculators import projectile as pj
+from gearhead.core.errors import InputError
+from gearhead.core.model import parse_inputs, solve
+from gearhead.core.registry import get
+from gearhead.core.sim import flight
+from gearhead.core.sim import integrate as ig
+from gearhead.core.sim import trebuchet as tb
 
 mp.mp.dps = 30
 DEG = math.pi / 180
@@ -136,7 +136,7 @@ def test_projectile_reverse_with_extreme_magnus_counts_every_flight():
 def test_near_point_hinged_counterweight_optimise_polish_is_bounded():
     """Hanger 1 cm, gyration 0: a stiff pendulum, each accurate throw ~0.4 s; the Nelder–Mead polish
     took 27 s. It now stops at REFINE_NFEV with the best throw so far, and says so."""
-    from core.calculators import trebuchet as tc
+    from gearhead.core.calculators import trebuchet as tc
 
     raw = dict(effects="sling,ground_contact,hinged_counterweight,optimise", hanger_length=0.01,
                counterweight_gyration=0)
@@ -240,8 +240,8 @@ def test_flywheel_wheel_stopped_by_the_previous_shots_throws_nothing():
 
 
 def test_accuracy_command_reports_a_computation_failure_without_a_traceback(monkeypatch, capsys):
-    from core.sim import scene
-    from tui.cli import main
+    from gearhead.core.sim import scene
+    from gearhead.tui.cli import main
 
     def broken(simulate, values, *a, **k):
         raise ZeroDivisionError("float division by zero")
@@ -253,7 +253,7 @@ def test_accuracy_command_reports_a_computation_failure_without_a_traceback(monk
 
 
 def test_ctrl_c_gives_one_line_and_exit_130(monkeypatch, capsys):
-    import tui.cli as cli
+    import gearhead.tui.cli as cli
 
     def interrupted(args):
         raise KeyboardInterrupt
@@ -289,15 +289,15 @@ async def test_typing_cancels_a_running_simulation_in_the_app(monkeypatch):
     simulation is dropped at once, not run to its end, and the latest entries are solved."""
     import asyncio
 
-    import core.model
+    import gearhead.core.model
     from textual import events
     from textual.widgets import Input
 
     from tests.tui_helpers import settle
-    from tui.app import GearheadApp
-    from tui.components.calculator_tab import CalculatorTab
+    from gearhead.tui.app import GearheadApp
+    from gearhead.tui.components.calculator_tab import CalculatorTab
 
-    real_solve = core.model.solve
+    real_solve = gearhead.core.model.solve
     outcomes: list[str] = []
 
     def slow_then_real(calc_id, raw=None, display_units=None):
@@ -316,7 +316,7 @@ async def test_typing_cancels_a_running_simulation_in_the_app(monkeypatch):
     app = GearheadApp(blink=False, initial="pneumatics")
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
-        monkeypatch.setattr(core.model, "solve", slow_then_real)
+        monkeypatch.setattr(gearhead.core.model, "solve", slow_then_real)
         tab = app.query_one("#calc-pneumatics", CalculatorTab)
         entry = app.query_one("#in-match_length", Input)
         entry.focus()

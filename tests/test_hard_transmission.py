@@ -6,8 +6,8 @@ import math
 import mpmath as mp
 import pytest
 
-from core.calculators import chain_belt as cb
-from core.model import solve
+from gearhead.core.calculators import chain_belt as cb
+from gearhead.core.model import solve
 
 IN = 0.0254
 
@@ -139,7 +139,7 @@ def test_fewest_links_is_the_first_count_at_which_the_wheels_clear(standard, n1,
     one (D = Δ). Now: the fewest at which D > (OD_1 + OD_2)/2, OD = p(0.6 + cot(180°/n)) for chain
     sprockets (ANSI B29.1), the pitch diameter n·p/π for belt pulleys. Checked from the touching
     distance with the length equation in mpmath: the count is the first step past it."""
-    from core.calculators import chain_belt as cb
+    from gearhead.core.calculators import chain_belt as cb
     mp.mp.dps = 40
     p = cb.STANDARD_PITCH[standard]
     chain = standard.startswith("chain")
@@ -188,7 +188,7 @@ def test_ratio_distance_never_offers_a_pinion_below_ten_teeth():
     ({"center_distance": "0.45 in", "diametral_pitch": 20}, "center_distance"),  # 18 teeth < 2·10
 ])
 def test_ratio_distance_inputs_are_bounded_to_gear_pairs(raw, field):
-    from core.errors import InputError
+    from gearhead.core.errors import InputError
     with pytest.raises(InputError) as e:
         solve("ratio_distance", raw)
     assert e.value.field == field

@@ -6,8 +6,8 @@ import math
 import mpmath as mp
 import pytest
 
-from core.model import solve
-from core.sim import trebuchet as tb
+from gearhead.core.model import solve
+from gearhead.core.sim import trebuchet as tb
 
 mp.mp.dps = 40
 DEG = math.pi / 180

@@ -20,10 +20,10 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
-from core import units
-from core.errors import InputError
-from core.model import Field
-from core.registry import calculators
+from gearhead.core import units
+from gearhead.core.errors import InputError
+from gearhead.core.model import Field
+from gearhead.core.registry import calculators
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = int(os.environ.get("GEARHEAD_HOSTILE_EXAMPLES", "40"))
@@ -58,7 +58,7 @@ def refused(call, text, *words):
 # ---- regression cases -----------------------------------------------------------------------
 
 def _cli(*args, timeout=60):
-    return subprocess.run([sys.executable, "-m", "tui", *args], capture_output=True, text=True,
+    return subprocess.run([sys.executable, "-m", "gearhead.tui", *args], capture_output=True, text=True,
                           cwd=ROOT, timeout=timeout)
 
 
@@ -172,7 +172,7 @@ def test_whole_number_fields_read_the_same_characters():
 
 
 def test_a_multi_line_value_gives_a_one_line_message_in_the_cli(capsys):
-    from tui.cli import main
+    from gearhead.tui.cli import main
 
     assert main(["solve", "trebuchet", "--set", "release_angle=1\n2"]) == 2
     err = capsys.readouterr().err
@@ -181,7 +181,7 @@ def test_a_multi_line_value_gives_a_one_line_message_in_the_cli(capsys):
 
 @pytest.mark.parametrize("option,words", [("--unit", "OUTPUT=UNIT"), ("--set", "NAME=VALUE")])
 def test_an_option_without_equals_names_its_format_in_one_line(capsys, option, words):
-    from tui.cli import main
+    from gearhead.tui.cli import main
 
     assert main(["solve", "gear_ratio", option, "free_speed"]) == 2
     err = capsys.readouterr().err
@@ -351,7 +351,7 @@ def teardown_module():
                                   ["solve", "gear_ratio", "--unit", "free_speed=" + "q" * 5000]])
 def test_cli_messages_quote_only_the_start_of_what_was_typed(capsys, args):
     """Messages echoed the whole input (5 000+ characters)."""
-    from tui.cli import main
+    from gearhead.tui.cli import main
 
     assert main(args) == 2
     err = capsys.readouterr().err
@@ -362,10 +362,10 @@ async def test_the_app_answers_a_power_tower_and_opens_presets_past_hostile_file
     """9**9**9 froze the app; a deeply nested user preset crashed ctrl+o, a FIFO hung it."""
     from textual.widgets import Input, OptionList
 
-    from core import presets
+    from gearhead.core import presets
     from tests.tui_helpers import settle
-    from tui.app import GearheadApp
-    from tui.components.calculator_tab import CalculatorTab
+    from gearhead.tui.app import GearheadApp
+    from gearhead.tui.components.calculator_tab import CalculatorTab
 
     d = presets.user_dir() / "gear_ratio"
     d.mkdir(parents=True)

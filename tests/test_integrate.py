@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from core.sim.integrate import Event, integrate
+from gearhead.core.sim.integrate import Event, integrate
 
 oscillator = lambda t, y: [y[1], -y[0]]  # noqa: E731
 
@@ -67,7 +67,7 @@ def test_tiny_first_step_far_from_zero_is_not_an_underflow():
 def test_locate_when_interpolant_rounds_to_the_other_side_at_the_step_end():
     """g_new is a tiny positive number but the dense output at θ = 1 gives g < 0 (rounding): the
     root bracket [0, 1] has no sign change and brentq would raise; the crossing is at the step end."""
-    from core.sim.integrate import _locate
+    from gearhead.core.sim.integrate import _locate
 
     rc = ([0.0], [1.0], [0.0], [0.0], [0.0])  # y(θ) = θ, so g(θ = 1) = 0 while g_new > 0
     ev = Event("x", lambda t, y: y[0] - 1.0 - 1e-300, +1)  # -1e-300 rounds away: g(θ = 1) = 0, not > 0
@@ -77,7 +77,7 @@ def test_locate_when_interpolant_rounds_to_the_other_side_at_the_step_end():
 def test_huge_trial_step_error_is_a_rejection_not_an_overflow():
     """A wild trial step (seen in a projectile flight from 1000 m with drag and Magnus) gives an
     error ratio ~1e200: `r ** 2` raised OverflowError; the norm must be inf (and the step rejected)."""
-    from core.sim.integrate import _norm
+    from gearhead.core.sim.integrate import _norm
 
     assert _norm([1e200, 0.0], [1.0, 1.0], [1.0, 1.0], 1e-6, 1e-9) == math.inf
 

@@ -21,7 +21,7 @@ import pytest
 from textual import events
 from textual.widgets import Input
 
-from tui.app import GearheadApp
+from gearhead.tui.app import GearheadApp
 from tests.tui_helpers import started
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -68,7 +68,7 @@ class Terminal:
         env["XDG_CONFIG_HOME"] = str(tmp / "config")
         self.env = env
         self.tmux("new-session", "-d", "-s", "app", "-x", "140", "-y", "45",
-                  f"cd {ROOT} && {sys.executable} -m tui")
+                  f"cd {ROOT} && {sys.executable} -m gearhead.tui")
         self.wait_for(lambda screen: "Free speed" in screen, "the first frame")
 
     def tmux(self, *args: str) -> str:
@@ -168,11 +168,11 @@ def test_keys_kept_in_a_real_terminal(terminal):
     assert not failures, failures
 
 
-@pytest.mark.parametrize("calc_id", sorted(__import__("core.registry", fromlist=["x"]).calculators()))
+@pytest.mark.parametrize("calc_id", sorted(__import__("gearhead.core.registry", fromlist=["x"]).calculators()))
 async def test_key_bursts_kept_in_every_tab(calc_id):
     """Every entry of every tab is a FieldInput: a burst typed while the tab solves is kept."""
-    from core.registry import get
-    from tui.components.field_input import FieldInput
+    from gearhead.core.registry import get
+    from gearhead.tui.components.field_input import FieldInput
 
     app = GearheadApp(blink=False, initial=calc_id, hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:

@@ -7,8 +7,8 @@ import math
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from core.model import solve
-from core.registry import get
+from gearhead.core.model import solve
+from gearhead.core.registry import get
 
 IN = 0.0254
 LBF = 4.4482216152605
@@ -85,7 +85,7 @@ def test_locked_screw_is_reported_not_negative_or_infinite():
 
 
 def test_pitch_too_coarse_names_pitch():
-    from core.errors import InputError
+    from gearhead.core.errors import InputError
 
     with pytest.raises(InputError) as e:
         out(diameter="0.5 in", pitch="1 in")
@@ -170,7 +170,7 @@ def test_equivalent_wheel_reverses_the_screw(d, p_frac, n, angle, mu, F, omega):
 
 
 def test_builtin_presets_load_and_solve():
-    from core import presets
+    from gearhead.core import presets
 
     found = presets.listing("lead_screw")
     assert len(found) >= 3 and presets.problems("lead_screw") == []
@@ -182,8 +182,8 @@ def test_builtin_presets_load_and_solve():
 
 async def test_ctrl_g_sends_equivalent_load_and_radius_to_gear_ratio():
     """The TUI path: ctrl+g on the lead screw tab fills the gear-ratio tab's load and radius."""
-    from tui.app import GearheadApp
-    from tui.components.calculator_tab import CalculatorTab
+    from gearhead.tui.app import GearheadApp
+    from gearhead.tui.components.calculator_tab import CalculatorTab
     from tests.tui_helpers import settle
 
     app = GearheadApp(blink=False, initial="lead_screw")

@@ -2,9 +2,9 @@
 
 import pytest
 
-from core.errors import InputError
-from core.model import parse_inputs, solve
-from core.registry import get
+from gearhead.core.errors import InputError
+from gearhead.core.model import parse_inputs, solve
+from gearhead.core.registry import get
 
 
 def test_field_used_only_for_its_section():
@@ -37,7 +37,7 @@ def test_field_shown_when_any_named_effect_is_on():
 def test_a_bound_typed_in_another_unit_is_accepted_as_the_bound(typed):
     """125 psi against a bound of 125·6894.757… Pa: conversion may land one rounding step
     outside; it is the bound, not an error, and formulas see exactly the bound."""
-    from core.model import Field
+    from gearhead.core.model import Field
 
     relief = 125 * 6894.757293168361
     f = Field("p", "Pressure", "pressure", "psi", max=relief)
@@ -52,7 +52,7 @@ def test_a_failing_formula_is_a_message_not_a_traceback(monkeypatch):
     InputError (the robustness tests make sure no real input ever gets here)."""
     import dataclasses
 
-    from core import registry
+    from gearhead.core import registry
 
     broken = dataclasses.replace(get("ratio_distance"), compute=lambda v: 1 / 0)
     monkeypatch.setitem(registry.calculators(), "ratio_distance", broken)

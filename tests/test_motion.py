@@ -12,13 +12,13 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from core.calculators import arm, elevator
-from core.errors import InputError
-from core.model import parse_inputs, solve
-from core.registry import get
-from core.sim import motion
-from core.sim.effects import Effects
-from core.sim.scene import LEVELS, ladder
+from gearhead.core.calculators import arm, elevator
+from gearhead.core.errors import InputError
+from gearhead.core.model import parse_inputs, solve
+from gearhead.core.registry import get
+from gearhead.core.sim import motion
+from gearhead.core.sim.effects import Effects
+from gearhead.core.sim.scene import LEVELS, ladder
 
 G0 = 9.80665
 RPM = 2 * math.pi / 60
@@ -364,7 +364,7 @@ def test_batch_agrees_with_the_scalar_scene_and_optimise_finds_a_minimum(calc):
 
 @pytest.mark.parametrize("cid", ["elevator", "arm"])
 def test_cli_solve_json(cid, capsys):
-    from tui.cli import main
+    from gearhead.tui.cli import main
 
     code = main(["solve", cid, "--set", "effects=gravity, stator_limit", "--json"])
     assert code in (0, None)

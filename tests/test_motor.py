@@ -6,9 +6,9 @@ import mpmath as mp
 import pytest
 from scipy.optimize import minimize_scalar
 
-from core import motors
-from core.errors import InputError
-from core.model import solve
+from gearhead.core import motors
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
 
 RPM = 2 * math.pi / 60
 

@@ -6,10 +6,10 @@ import math
 import pytest
 from hypothesis import assume, given, settings, strategies as st
 
-from core import presets
-from core.calculators import pneumatic_linkage as pl
-from core.errors import InputError
-from core.model import solve
+from gearhead.core import presets
+from gearhead.core.calculators import pneumatic_linkage as pl
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
 
 DEG = math.pi / 180
 

@@ -5,10 +5,10 @@ import math
 import mpmath as mp
 import pytest
 
-from core.calculators import pneumatics as pn
-from core.errors import InputError
-from core.model import parse_inputs, solve
-from core.registry import get
+from gearhead.core.calculators import pneumatics as pn
+from gearhead.core.errors import InputError
+from gearhead.core.model import parse_inputs, solve
+from gearhead.core.registry import get
 
 PSI = 6894.757293168361
 IN = 0.0254

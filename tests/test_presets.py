@@ -4,9 +4,9 @@ import tomllib
 
 import pytest
 
-from core import presets
-from core.errors import InputError
-from core.model import solve
+from gearhead.core import presets
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
 
 
 def write(tmp_path, text, name="p.toml"):
@@ -146,11 +146,11 @@ def test_hostile_preset_files_are_clear_errors_naming_the_file(tmp_path):
 
 def test_hostile_presets_exit_2_from_the_cli_naming_the_file(tmp_path, capsys):
     """Deep nesting was a RecursionError traceback (exit 1), a FIFO hung, /dev/zero a MemoryError."""
-    from tui.cli import main
+    from gearhead.tui.cli import main
 
     for kind, (path, words) in hostile_files(tmp_path).items():
         if kind == "fifo":  # in a child process, so that a regression fails the test, not hangs it
-            out = subprocess.run([sys.executable, "-m", "tui", "solve", "gear_ratio", "--preset", str(path)],
+            out = subprocess.run([sys.executable, "-m", "gearhead.tui", "solve", "gear_ratio", "--preset", str(path)],
                                  capture_output=True, text=True, cwd=ROOT, timeout=60)
             code, stdout, stderr = out.returncode, out.stdout, out.stderr
         else:
@@ -168,7 +168,7 @@ def test_a_nul_in_the_path_is_a_clear_error():
 
 
 def test_the_presets_listing_reports_hostile_user_files_and_goes_on(tmp_path, capsys):
-    from tui.cli import main
+    from gearhead.tui.cli import main
 
     d = presets.user_dir() / "gear_ratio"
     d.mkdir(parents=True)
@@ -188,7 +188,7 @@ def test_a_byte_order_mark_is_accepted(tmp_path):
 
 
 def test_a_junk_value_in_a_field_the_mode_ignores_is_a_warning_naming_it(tmp_path, capsys):
-    from tui.cli import main
+    from gearhead.tui.cli import main
 
     path = write(tmp_path, GOOD + 'target_linear_speed = "banana"\n')  # mode is max_power
     p = presets.load(path)

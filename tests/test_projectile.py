@@ -5,12 +5,12 @@ import math
 import pytest
 from hypothesis import HealthCheck, assume, given, settings, strategies as st
 
-from core import presets
-from core.calculators import projectile as pj
-from core.errors import InputError
-from core.model import parse_inputs, solve
-from core.registry import get
-from core.sim.flight import Air, rhs_for
+from gearhead.core import presets
+from gearhead.core.calculators import projectile as pj
+from gearhead.core.errors import InputError
+from gearhead.core.model import parse_inputs, solve
+from gearhead.core.registry import get
+from gearhead.core.sim.flight import Air, rhs_for
 
 G = 9.80665
 DEG = math.pi / 180

@@ -6,9 +6,9 @@ import math
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from core import presets
-from core.errors import InputError
-from core.model import solve
+from gearhead.core import presets
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
 
 IN = 0.0254
 

@@ -9,11 +9,11 @@ from fractions import Fraction
 
 import pytest
 
-from core.errors import InputError
-from core.model import solve
-from core.parts import (BORES, FAMILIES, SHAFT_BORES, VENDORS, Belt, Catalogue, Part, catalogue,
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
+from gearhead.core.parts import (BORES, FAMILIES, SHAFT_BORES, VENDORS, Belt, Catalogue, Part, catalogue,
                         problems, read)
-from core.parts import finder
+from gearhead.core.parts import finder
 
 ALL = dict(vendors=frozenset(VENDORS), families=frozenset(FAMILIES), shaft_bores=frozenset(SHAFT_BORES))
 
@@ -243,7 +243,7 @@ def test_near_miss_says_how_far():
 # --- center distances: the chain_belt and ratio_distance equations, checked by sending ----------
 
 def test_every_belt_and_gear_row_is_what_the_other_calculators_compute():
-    from core.registry import get
+    from gearhead.core.registry import get
 
     calc_table = get("ratio_finder").tables[0]
     seen = set()
@@ -282,7 +282,7 @@ def test_center_distance_limits_are_met():
 
 
 def test_loop_choice_is_the_shortest_stocked_belt():
-    from core.calculators.chain_belt import length_from_center, pitch_radius
+    from gearhead.core.calculators.chain_belt import length_from_center, pitch_radius
 
     belts = finder.belt_lengths(query(), catalogue())["htd_5mm"]
     links, center = finder.loop_choice("htd_5mm", 18, 30, None, None, belts)
@@ -314,7 +314,7 @@ def test_bad_entries_name_their_field(raw, field):
 
 
 def test_cli_json(capsys):
-    from tui.cli import main
+    from gearhead.tui.cli import main
 
     assert main(["solve", "ratio_finder", "--set", "target_ratio=22.5", "--set", "max_stages=2", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -335,7 +335,7 @@ async def test_ctrl_g_sends_the_belt_row_under_the_cursor_to_chain_belt():
     from textual.widgets import DataTable
 
     from tests.tui_helpers import settle
-    from tui.app import GearheadApp
+    from gearhead.tui.app import GearheadApp
 
     app = GearheadApp(blink=False, initial="ratio_finder", hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:
@@ -360,7 +360,7 @@ async def test_ctrl_g_sends_the_belt_row_under_the_cursor_to_chain_belt():
 
 async def test_gear_ratio_sends_its_ratio_to_the_finder():
     from tests.tui_helpers import settle
-    from tui.app import GearheadApp
+    from gearhead.tui.app import GearheadApp
 
     app = GearheadApp(blink=False, initial="gear_ratio", hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:
@@ -374,8 +374,8 @@ async def test_gear_ratio_sends_its_ratio_to_the_finder():
 
 
 def test_markdown_export_lists_the_combinations_and_part_numbers():
-    from core.export import results_markdown
-    from core.registry import get
+    from gearhead.core.export import results_markdown
+    from gearhead.core.registry import get
 
     sol = solve("ratio_finder", {"target_ratio": 9, "max_stages": 1, "families": "gear_20dp", "results": 5})
     text = results_markdown(get("ratio_finder"), sol)
@@ -387,7 +387,7 @@ def test_markdown_export_lists_the_combinations_and_part_numbers():
 
 @pytest.mark.parametrize("calc_id", ["elevator", "arm"])
 def test_elevator_and_arm_send_their_fastest_ratio_to_the_finder(calc_id):
-    from core.registry import calculators
+    from gearhead.core.registry import calculators
 
     calc = calculators()[calc_id]
     assert calc.exports == {"ratio_finder": {"target_ratio": "best_ratio"}}

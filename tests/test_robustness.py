@@ -9,9 +9,9 @@ import math
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
-from core.errors import InputError
-from core.model import solve
-from core.registry import calculators
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
+from gearhead.core.registry import calculators
 
 CALC_IDS = list(calculators())
 

@@ -2,8 +2,8 @@
 
 import pytest
 
-from core.registry import calculators
-from tui.app import GearheadApp
+from gearhead.core.registry import calculators
+from gearhead.tui.app import GearheadApp
 from tests.tui_helpers import settle
 
 SIZE = (140, 45)

@@ -8,13 +8,13 @@ from pathlib import Path
 
 import pytest
 
-from core import sweep, units
-from core.errors import InputError
-from core.model import solve
-from core.presets import load
-from core.registry import get
-from core.sim.scene import VOLATILE
-from tui.cli import main
+from gearhead.core import sweep, units
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
+from gearhead.core.presets import load
+from gearhead.core.registry import get
+from gearhead.core.sim.scene import VOLATILE
+from gearhead.tui.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -3,10 +3,10 @@ table equal to core.sweep's, Esc cancels then closes, ctrl+e writes CSV; one sna
 
 import pytest
 
-from core import sweep
+from gearhead.core import sweep
 from tests.tui_helpers import settle
-from tui.app import GearheadApp
-from tui.components.sweep_screen import SweepScreen, default_range
+from gearhead.tui.app import GearheadApp
+from gearhead.tui.components.sweep_screen import SweepScreen, default_range
 
 SIZE = (140, 45)
 
@@ -129,7 +129,7 @@ def test_sweep_view_snapshot(snap_compare):
 
 @pytest.mark.asyncio
 async def test_tolerance_in_a_field_shows_spreads_and_goes_away():
-    from core import tolerance
+    from gearhead.core import tolerance
 
     app = GearheadApp(blink=False, initial="lead_screw", hide_timings=True)
     async with app.run_test(size=SIZE) as pilot:

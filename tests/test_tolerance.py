@@ -8,12 +8,12 @@ from pathlib import Path
 
 import pytest
 
-from core import tolerance, units
-from core.errors import InputError
-from core.model import solve
-from core.presets import from_dict, load
-from core.registry import get
-from tui.cli import main
+from gearhead.core import tolerance, units
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
+from gearhead.core.presets import from_dict, load
+from gearhead.core.registry import get
+from gearhead.tui.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -9,14 +9,14 @@ import pytest
 import sympy as sp
 from hypothesis import given, settings, strategies as st
 
-from core import presets
-from core.calculators import trebuchet as calc
-from core.errors import InputError
-from core.model import parse_inputs, solve
-from core.registry import get
-from core.sim import flight
-from core.sim import trebuchet as tb
-from core.sim.integrate import integrate
+from gearhead.core import presets
+from gearhead.core.calculators import trebuchet as calc
+from gearhead.core.errors import InputError
+from gearhead.core.model import parse_inputs, solve
+from gearhead.core.registry import get
+from gearhead.core.sim import flight
+from gearhead.core.sim import trebuchet as tb
+from gearhead.core.sim.integrate import integrate
 
 DEG = math.pi / 180
 SEED = dict(M=500, k=2, m=50, L=15, a=0.25, h=4, m_p=5, l=5, g=9.81)
@@ -415,8 +415,8 @@ async def test_accuracy_view_of_the_seed_scene():
     """ctrl+r on the trebuchet tab: every accuracy level, errors falling with the tolerance."""
     from textual.widgets import DataTable
 
-    from core.sim.scene import LEVELS
-    from tui.app import GearheadApp
+    from gearhead.core.sim.scene import LEVELS
+    from gearhead.tui.app import GearheadApp
 
     app = GearheadApp(blink=False, initial="trebuchet", hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:

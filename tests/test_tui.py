@@ -5,10 +5,10 @@ import asyncio
 import pytest
 from textual.widgets import Input, OptionList, Select, Static
 
-from core import presets
-from core.model import solve
-from tui.app import GearheadApp
-from tui.components.calculator_tab import CalculatorTab
+from gearhead.core import presets
+from gearhead.core.model import solve
+from gearhead.tui.app import GearheadApp
+from gearhead.tui.components.calculator_tab import CalculatorTab
 from tests.tui_helpers import settle
 
 SIZE = (140, 45)
@@ -116,7 +116,7 @@ async def test_command_palette_offers_presets_and_every_calculator():
 
 
 async def test_accuracy_view_tabulates_every_level():
-    from core.sim.scene import LEVELS
+    from gearhead.core.sim.scene import LEVELS
     from textual.widgets import DataTable
 
     app = GearheadApp(blink=False, initial="pneumatics", hide_timings=True)
@@ -133,11 +133,11 @@ async def test_accuracy_view_tabulates_every_level():
 
 FIRST_FRAME_PROBE = r"""
 import asyncio, sys
-from tui.app import GearheadApp
-from tui.components.calculator_tab import CalculatorTab
+from gearhead.tui.app import GearheadApp
+from gearhead.tui.components.calculator_tab import CalculatorTab
 class Probe(GearheadApp):
     async def on_ready(self):  # Ready: the first frame is on screen
-        self.seen = (sorted(m for m in sys.modules if m.startswith("core.calculators.")),
+        self.seen = (sorted(m for m in sys.modules if m.startswith("gearhead.core.calculators.")),
                      len(self.query(CalculatorTab)))
         await super().on_ready()
 async def main():
@@ -164,7 +164,7 @@ def test_first_frame_imports_no_calculator_and_the_first_card_follows():
 async def test_idle_builds_every_card_and_a_key_postpones_it():
     """While the user does nothing the other cards are built, so a first visit finds its card
     ready; keys arriving hold the warm-up back."""
-    from core.registry import ORDER
+    from gearhead.core.registry import ORDER
     from textual import events
 
     app = GearheadApp(blink=False, initial="motor", hide_timings=True, warm_up=True)
@@ -282,9 +282,9 @@ async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatc
     """Keys typed while a (slow) solve runs do not queue a solve each: the running one finishes,
     its now-stale result is dropped, and the latest entries are solved once."""
 
-    import core.model
+    import gearhead.core.model
 
-    real_solve = core.model.solve
+    real_solve = gearhead.core.model.solve
     solved: list[str] = []
 
     import threading
@@ -299,7 +299,7 @@ async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatc
     app = GearheadApp(blink=False, initial="motor")
     async with app.run_test(size=SIZE) as pilot:
         await settle(pilot)
-        monkeypatch.setattr(core.model, "solve", slow_solve)
+        monkeypatch.setattr(gearhead.core.model, "solve", slow_solve)
         tab = app.query_one("#calc-motor", CalculatorTab)
         shown = []
         show = tab._show
@@ -361,7 +361,7 @@ async def test_enter_on_a_result_walks_every_unit_of_its_kind():
     """Enter used to bounce between two units (762 mm <-> 76.2 cm)."""
     from textual.widgets import DataTable
 
-    from core.units import COMMON_UNITS
+    from gearhead.core.units import COMMON_UNITS
 
     app = GearheadApp(blink=False, initial="motor")
     async with app.run_test(size=SIZE) as pilot:
@@ -381,7 +381,7 @@ async def test_enter_on_a_result_walks_every_unit_of_its_kind():
 
 async def test_any_calculator_in_two_keys_from_anywhere():
     """F1-F5 pick an area (even from inside an entry), then a digit picks the calculator."""
-    from core.registry import AREAS
+    from gearhead.core.registry import AREAS
 
     app = GearheadApp(blink=False, initial="gear_ratio")
     async with app.run_test(size=SIZE) as pilot:
@@ -404,7 +404,7 @@ async def test_any_calculator_in_two_keys_from_anywhere():
 
 
 def test_every_calculator_is_in_exactly_one_area():
-    from core.registry import AREAS, calculators
+    from gearhead.core.registry import AREAS, calculators
 
     placed = [cid for _, ids in AREAS.values() for cid in ids]
     assert sorted(placed) == sorted(calculators())

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from textual.widgets import Input, OptionList, Static
 
-from core import presets
-from tui.app import GearheadApp
-from tui.components.calculator_tab import CalculatorTab
+from gearhead.core import presets
+from gearhead.tui.app import GearheadApp
+from gearhead.tui.components.calculator_tab import CalculatorTab
 from tests.tui_helpers import settle
 
 
@@ -129,9 +129,9 @@ async def test_status_shows_the_whole_solve_time(monkeypatch):
     import re
     import time
 
-    import core.model
+    import gearhead.core.model
 
-    real = core.model.solve
+    real = gearhead.core.model.solve
 
     def slow_solve(*args, **kwargs):
         time.sleep(0.6)
@@ -140,7 +140,7 @@ async def test_status_shows_the_whole_solve_time(monkeypatch):
     app = GearheadApp(blink=False, initial="gear_ratio", warm_up=False)
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
-        monkeypatch.setattr(core.model, "solve", slow_solve)
+        monkeypatch.setattr(gearhead.core.model, "solve", slow_solve)
         tab = app.query_one("#calc-gear_ratio", CalculatorTab)
         tab.query_one("#in-load", Input).value = "31 lbf"
         await settle(pilot)

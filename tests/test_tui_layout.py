@@ -4,8 +4,8 @@ import pytest
 from rich.text import Text
 from textual.widgets import DataTable
 
-from tui.app import GearheadApp
-from tui.components.calculator_tab import CalculatorTab
+from gearhead.tui.app import GearheadApp
+from gearhead.tui.components.calculator_tab import CalculatorTab
 from tests.tui_helpers import settle
 
 
@@ -42,8 +42,8 @@ async def test_loading_a_preset_resets_the_fields_it_omits():
     what the CLI solves for that preset (it used to keep 1.62 and show a different range)."""
     from textual.widgets import Input, OptionList
 
-    from core import presets
-    from core.model import solve
+    from gearhead.core import presets
+    from gearhead.core.model import solve
 
     preset = next(p for p in presets.listing("trebuchet") if p.name == "Pumpkin chunker")
     assert "gravity" not in preset.inputs
@@ -125,8 +125,8 @@ async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_ser
     from textual.app import App
     from textual.widgets import Select, Static
 
-    from core.model import Plot, Solution
-    from tui.components.plot_panel import PlotPanel
+    from gearhead.core.model import Plot, Solution
+    from gearhead.tui.components.plot_panel import PlotPanel
 
     plots = (Plot("Force [N]", ("a", "b"), "x", "length", "mm", "F", "force", "lbf"),
              Plot("Other", ("c",), "x", "length", "m", "y", "length", "m"))
@@ -154,8 +154,8 @@ async def test_field_help_tooltips_keep_brackets():
     """Tooltips are markup when given a str: help mentioning "[psi]" must keep it."""
     from textual.app import App
 
-    from core.model import Field
-    from tui.components.calculator_tab import FieldRow
+    from gearhead.core.model import Field
+    from gearhead.tui.components.calculator_tab import FieldRow
 
     fields = [Field("p", "Pressure", "pressure", "psi", default=60, help="gauge pressure [psi]"),
               Field("n", "Count", integer=True, default=1, help="how many [each]"),
@@ -180,7 +180,7 @@ async def test_long_warnings_scroll_and_keep_the_status_line_in_the_pane(monkeyp
     """Three long warnings used to push the status line below the results pane at 120x35."""
     import dataclasses
 
-    from core.registry import calculators
+    from gearhead.core.registry import calculators
 
     calc = calculators()["flywheel"]
     original = calc.compute

@@ -2,9 +2,9 @@
 
 import pytest
 
-from core import unit_systems, units
-from core.model import solve
-from core.registry import calculators, get
+from gearhead.core import unit_systems, units
+from gearhead.core.model import solve
+from gearhead.core.registry import calculators, get
 
 
 @pytest.mark.parametrize("table", [unit_systems.TO_METRIC, unit_systems.TO_IMPERIAL])
@@ -45,8 +45,8 @@ def test_as_entered_uses_the_unit_typed_for_that_kind():
 
 async def test_units_preference_in_the_app_is_remembered(tmp_path):
     from tests.tui_helpers import settle
-    from tui import settings
-    from tui.app import GearheadApp
+    from gearhead.tui import settings
+    from gearhead.tui.app import GearheadApp
 
     app = GearheadApp(blink=False, initial="beam", settings_file={})
     async with app.run_test(size=(140, 45)) as pilot:

@@ -2,8 +2,8 @@
 
 import pytest
 
-from core import units
-from core.errors import InputError
+from gearhead.core import units
+from gearhead.core.errors import InputError
 
 
 @pytest.mark.parametrize("text,unit,kind,si", [
@@ -43,7 +43,7 @@ def test_format_quantity_uses_display_unit():
 
 
 def test_next_unit_walks_the_whole_ring_and_returns_home():
-    from core.units import COMMON_UNITS, next_unit
+    from gearhead.core.units import COMMON_UNITS, next_unit
 
     seen, unit = [], "in"
     for _ in range(6):
@@ -60,8 +60,8 @@ def test_next_unit_walks_the_whole_ring_and_returns_home():
 
 def test_units_shown_on_screen_read_back_as_typed():
     """The app shows mm⁴, m/s², N·m; typing what is shown must give the same value."""
-    from core.units import parse
-    from tui.components.unit_text import pretty_quantity, pretty_unit
+    from gearhead.core.units import parse
+    from gearhead.tui.components.unit_text import pretty_quantity, pretty_unit
 
     assert pretty_unit("mm**4") == "mm⁴" and pretty_unit("m/s**2") == "m/s²"
     assert pretty_unit("N*m/A") == "N·m/A" and pretty_unit("1/m**-1") == "1/m⁻¹"

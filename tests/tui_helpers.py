@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from textual.widgets import DataTable
 
-from tui.components.calculator_tab import CalculatorTab
+from gearhead.tui.components.calculator_tab import CalculatorTab
 
 
 async def started(pilot) -> None:

@@ -13,8 +13,8 @@ from textual.screen import Screen
 from textual import events, work
 from textual.widgets import Footer, Tab, TabbedContent, TabPane, Tabs
 
-from core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
-from core.unit_systems import SYSTEM_LABELS, SYSTEMS
+from gearhead.core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
+from gearhead.core.unit_systems import SYSTEM_LABELS, SYSTEMS
 
 if TYPE_CHECKING:
     from .components.calculator_tab import CalculatorTab
@@ -26,7 +26,7 @@ if TYPE_CHECKING:
 def exact_text(value, output) -> str:
     """A result as an entry for another calculator: its display unit, every significant digit
     (the 5-figure display text would pass on a rounding error)."""
-    from core import units
+    from gearhead.core import units
 
     if not isinstance(value.value, float):
         return value.text
@@ -320,7 +320,7 @@ class GearheadApp(App):
 
     def action_copy_preset(self) -> None:
         """ctrl+y: the tab as preset TOML on the clipboard (OSC 52), to paste in a chat or file."""
-        from core.export import preset_toml
+        from gearhead.core.export import preset_toml
 
         tab = self.current_tab
         name, description = tab.preset_meta
@@ -395,7 +395,7 @@ class GearheadApp(App):
         if tab.solution is None or tab.error is not None:
             self.notify("Fix the highlighted input first.", severity="error")
             return
-        from core.model import parse_inputs
+        from gearhead.core.model import parse_inputs
 
         values, _ = parse_inputs(tab.calculator, tab.entries)
         from .components.accuracy_screen import AccuracyScreen

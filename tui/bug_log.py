@@ -37,7 +37,7 @@ def _logger() -> logging.Logger | None:
 def is_bug(exc: BaseException) -> bool:
     """An exception the user cannot fix by changing an entry: anything but an InputError, or an
     InputError the last-resort guard raised from another exception (its `__cause__`)."""
-    from core.errors import InputError
+    from gearhead.core.errors import InputError
 
     return not isinstance(exc, InputError) or exc.__cause__ is not None
 

@@ -7,7 +7,7 @@ import json
 import sys
 from typing import Sequence
 
-from core.errors import InputError, shown
+from gearhead.core.errors import InputError, shown
 
 EXIT_BAD_INPUT = 2
 EXIT_INTERNAL = 70  # EX_SOFTWARE: a bug, not the user's input
@@ -93,7 +93,7 @@ def _complain(message: str, kind: str = "") -> None:
 
 def _raw_inputs(args, calc) -> dict:
     """Inputs from --preset then --set, as typed; a preset's warnings go to stderr, one line each."""
-    from core import presets
+    from gearhead.core import presets
 
     raw: dict = {}
     if args.preset:
@@ -127,15 +127,15 @@ def _display_units(args) -> dict[str, str]:
 
 
 def _solve(args) -> int:
-    from core.model import solve
-    from core.registry import get
+    from gearhead.core.model import solve
+    from gearhead.core.registry import get
 
     calc = get(args.calculator)
     display_units = _display_units(args)
     raw = _raw_inputs(args, calc)
     spread = None
     if any(isinstance(v, str) and ("±" in v or "+-" in v or "+/-" in v) for v in raw.values()):
-        from core import tolerance  # only then: a plain solve starts as fast as before
+        from gearhead.core import tolerance  # only then: a plain solve starts as fast as before
 
         solution, spread, _ = tolerance.solve(calc.id, raw, display_units, args.spread, args.samples, args.seed)
     else:
@@ -179,8 +179,8 @@ def _sweep_parser(sub) -> None:
 
 
 def _sweep(args) -> int:
-    from core import sweep, tolerance
-    from core.registry import get
+    from gearhead.core import sweep, tolerance
+    from gearhead.core.registry import get
 
     calc = get(args.calculator)
     display_units = _display_units(args)
@@ -217,8 +217,8 @@ def _preset_out(args, calc, raw: dict, solution) -> int:
     given), '-' to stdout alone so it pipes into a file or another tool, else a new file."""
     from pathlib import Path
 
-    from core import presets
-    from core.export import preset_toml
+    from gearhead.core import presets
+    from gearhead.core.export import preset_toml
 
     inputs = {f.name: f.default_text() if f.type not in ("bool", "choice") else f.default
               for f in calc.fields}
@@ -254,9 +254,9 @@ def _preset_out(args, calc, raw: dict, solution) -> int:
 
 
 def _accuracy(args) -> int:
-    from core.model import parse_inputs
-    from core.registry import get, calculators
-    from core.sim.scene import DEFAULT_ADVICE, REFERENCE_RTOL, ladder
+    from gearhead.core.model import parse_inputs
+    from gearhead.core.registry import get, calculators
+    from gearhead.core.sim.scene import DEFAULT_ADVICE, REFERENCE_RTOL, ladder
 
     calc = get(args.calculator)
     if calc.simulate is None:
@@ -288,8 +288,8 @@ def _accuracy(args) -> int:
 
 
 def _presets(args) -> int:
-    from core import presets
-    from core.registry import get
+    from gearhead.core import presets
+    from gearhead.core.registry import get
 
     if args.calculator:
         get(args.calculator)
@@ -302,8 +302,8 @@ def _presets(args) -> int:
 
 
 def _calculators(args) -> int:
-    from core.registry import calculators
-    from core.units import SI_UNITS
+    from gearhead.core.registry import calculators
+    from gearhead.core.units import SI_UNITS
 
     described = []
     for calc in calculators().values():

@@ -8,7 +8,7 @@ import tempfile
 import tomllib
 from pathlib import Path
 
-from core.unit_systems import SYSTEMS
+from gearhead.core.unit_systems import SYSTEMS
 
 
 def config_file() -> Path:

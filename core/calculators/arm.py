@@ -5,7 +5,7 @@ Coordinate θ: the arm's angle from the horizontal, up positive (θ = 90°: stra
     I·θ̈ = η·N·Kt·G·I_m − m·g·L·cos θ (gravity) + τ_cb·cos θ (counterbalance) − τ_f·sgn(θ̇) (friction)
 with L the pivot-to-centre-of-mass distance and I the moment of inertia about the pivot
 (default: a uniform bar whose centre of mass is at L, so its length is 2L and I = m·(2L)²/3 =
-4/3·m·L²), and the motor current I_m from core.sim.motion (E1)-(E3).
+4/3·m·L²), and the motor current I_m from gearhead.core.sim.motion (E1)-(E3).
 Counterbalance (our choice, documented): an ideal zero-length spring (a spring and cable over a
 pulley, or a spring whose pre-load equals its stiffness times its free length) from a point a
 above the pivot to a point b along the arm stores U = ½k·(a² + b² − 2ab·sin θ), so it gives the

@@ -6,7 +6,7 @@ Coordinate x: carriage travel along the rail, up positive; the rail leans `incli
     moves k times the first stage, which the spool pulls)
     n = G/(r·k)                        motor radians per metre of carriage travel
     m·ẍ = η·N·Kt·n·I − m·g·cos(incline) (gravity) + F_cb (counterbalance) − F_f·sgn(ẋ) (friction)
-with the motor current I from core.sim.motion (E1)-(E3). The rigging's own stage masses are not
+with the motor current I from gearhead.core.sim.motion (E1)-(E3). The rigging's own stage masses are not
 modelled (add them to load_mass, scaled by their speed ratio squared, if they matter).
 Closed form with no limits, no sag and a constant load F (the check in tests/test_motion.py):
     τ = m·R/(η·N·Kt·n²/Kv),  v_f = (V·Kv/n)·(1 − F/F_stall),

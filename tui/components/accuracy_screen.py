@@ -14,7 +14,7 @@ from textual.containers import Vertical
 from textual.screen import ModalScreen
 from textual.widgets import DataTable, Label, Static
 
-from core.model import Calculator
+from gearhead.core.model import Calculator
 
 
 class AccuracyScreen(ModalScreen[None]):
@@ -45,7 +45,7 @@ class AccuracyScreen(ModalScreen[None]):
 
     @work(thread=True, exclusive=True)
     def run_ladder(self) -> None:
-        from core.sim.scene import REFERENCE_RTOL, ladder
+        from gearhead.core.sim.scene import REFERENCE_RTOL, ladder
 
         rungs, reference = ladder(self.calculator.simulate, self.values)
         self.app.call_from_thread(self._show, rungs, reference.nfev, REFERENCE_RTOL)

@@ -18,9 +18,9 @@ from textual.reactive import reactive
 from textual.widget import Widget
 from textual.widgets import Checkbox, DataTable, Input, Label, Select, Static
 
-from core.errors import InputError
-from core.model import Calculator, Field, Solution
-from core.sim.scene import VOLATILE
+from gearhead.core.errors import InputError
+from gearhead.core.model import Calculator, Field, Solution
+from gearhead.core.sim.scene import VOLATILE
 
 from .field_input import FieldInput
 from .plot_panel import PlotPanel
@@ -209,7 +209,7 @@ class CalculatorTab(Widget):
         self.query_one(".help-line", Static).update(line)
 
     def _apply_mode(self) -> None:
-        from core.model import choice_values
+        from gearhead.core.model import choice_values
 
         mode = self.entries.get("mode")
         choices = choice_values(self.calculator, self.entries)
@@ -260,7 +260,7 @@ class CalculatorTab(Widget):
     def _cycle_unit(self, event: DataTable.RowSelected) -> None:
         """Show the chosen result in the next common unit of its kind (mm → cm → m → in → ft …)."""
         event.stop()
-        from core import units
+        from gearhead.core import units
 
         name = str(event.row_key.value)
         out = self.calculator.output(name)
@@ -307,9 +307,9 @@ class CalculatorTab(Widget):
 
     @work(thread=True, group="solve")
     def _solve_in_thread(self, entries: dict[str, Any], display_units: dict[str, str], system: str) -> None:
-        from core import unit_systems
-        from core.sim.integrate import Cancelled, budget
-        from core.tolerance import solve_entries  # entries may carry '± tolerance' (core/tolerance.py)
+        from gearhead.core import unit_systems
+        from gearhead.core.sim.integrate import Cancelled, budget
+        from gearhead.core.tolerance import solve_entries  # entries may carry '± tolerance' (core/tolerance.py)
 
         from time import perf_counter
 
@@ -409,7 +409,7 @@ class CalculatorTab(Widget):
     spread = None  # the last solve's core.tolerance.Spread, or None
 
     def _show_spread(self, solution: Solution, table: DataTable, status: Static) -> None:
-        from core.tolerance import spread_text
+        from gearhead.core.tolerance import spread_text
 
         result = self.spread
         has_column = "spread" in table.columns
@@ -441,8 +441,8 @@ class CalculatorTab(Widget):
     def _append_spread(self, name: str, line: Text) -> None:
         """With tolerances, the help line of a result also gives its spread in full: worst case and
         how it was found, σ and how, and the input that contributes most."""
-        from core.tolerance import shown_unit, short_method
-        from core import units
+        from gearhead.core.tolerance import shown_unit, short_method
+        from gearhead.core import units
 
         s = self.spread.outputs.get(name) if self.spread is not None and self.solution is not None else None
         if s is None or name not in self.solution.outputs:

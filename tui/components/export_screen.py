@@ -14,8 +14,8 @@ from textual.screen import ModalScreen
 from textual.widgets import Button, Input, Label, OptionList, Static
 from textual.widgets.option_list import Option
 
-from core import export
-from core.model import Calculator, Plot, Solution
+from gearhead.core import export
+from gearhead.core.model import Calculator, Plot, Solution
 
 from .field_input import FieldInput
 

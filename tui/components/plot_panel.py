@@ -9,8 +9,8 @@ from textual.app import ComposeResult
 from textual.containers import Vertical
 from textual.widgets import Select, Static
 
-from core import units
-from core.model import Plot, Solution
+from gearhead.core import units
+from gearhead.core.model import Plot, Solution
 
 from .unit_text import pretty_unit
 
@@ -52,7 +52,7 @@ class PlotPanel(Vertical):
     async def show(self, solution: Solution) -> None:
         from dataclasses import replace
 
-        from core.unit_systems import system_unit
+        from gearhead.core.unit_systems import system_unit
 
         self.solution = solution
         spec = self.current

@@ -14,8 +14,8 @@ from textual.screen import ModalScreen
 from textual.widgets import Button, Checkbox, Input, Label, OptionList, Static
 from textual.widgets.option_list import Option
 
-from core import presets
-from core.errors import InputError
+from gearhead.core import presets
+from gearhead.core.errors import InputError
 
 from .field_input import FieldInput
 
@@ -93,7 +93,7 @@ class SavePresetScreen(ModalScreen[Path | None]):
 
 def preview(preset: presets.Preset) -> Text:
     """A preset's description and the inputs it sets, a few lines, to read before loading."""
-    from core.registry import get
+    from gearhead.core.registry import get
 
     fields = {f.name: f for f in get(preset.calculator).fields}
 

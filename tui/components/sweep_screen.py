@@ -18,10 +18,10 @@ from textual.screen import ModalScreen
 from textual.widgets import Checkbox, DataTable, Input, Label, ProgressBar, Select, SelectionList, Static
 from textual.worker import get_current_worker
 
-from core import units
-from core.errors import InputError
-from core.model import Calculator, Field
-from core.sweep import cell_text
+from gearhead.core import units
+from gearhead.core.errors import InputError
+from gearhead.core.model import Calculator, Field
+from gearhead.core.sweep import cell_text
 
 from .field_input import FieldInput
 from .plot_panel import COLOURS, axis_label
@@ -33,7 +33,7 @@ DEFAULT_POINTS = 21
 
 def sweepable(calc: Calculator, entries: dict[str, Any]) -> list[Field]:
     """Numeric inputs the current choices use."""
-    from core.model import choice_values
+    from gearhead.core.model import choice_values
 
     mode = entries.get("mode")
     choices = choice_values(calc, entries)
@@ -42,7 +42,7 @@ def sweepable(calc: Calculator, entries: dict[str, Any]) -> list[Field]:
 
 def default_range(f: Field, entry: Any) -> tuple[str, str]:
     """Half to one and a half times the current value (whole numbers: ±3 within bounds), as text."""
-    from core import tolerance
+    from gearhead.core import tolerance
 
     nominal, _ = tolerance.split(entry)
     try:
@@ -145,7 +145,7 @@ class SweepScreen(ModalScreen[None]):
 
     @on(Input.Submitted)
     def run_sweep(self) -> None:
-        from core import sweep
+        from gearhead.core import sweep
 
         if self._running:
             self.workers.cancel_group(self, "sweep")
@@ -169,7 +169,7 @@ class SweepScreen(ModalScreen[None]):
 
     @work(thread=True, exclusive=True, group="sweep")
     def _sweep_in_thread(self, spec) -> None:
-        from core import sweep, tolerance
+        from gearhead.core import sweep, tolerance
 
         worker = get_current_worker()
         last = [0.0]
