@@ -80,8 +80,44 @@ async def _latencies(calc_id: str, field: str) -> list[float]:
     return out
 
 
+async def _baseline() -> list[float]:
+    """The floor Textual itself sets, measured the same way: a key into a plain Input of a minimal
+    app, until its Changed handler has run (no solve, no table)."""
+    from textual.app import App
+    from textual.widgets import Input
+
+    handled: list[float] = []
+
+    class Minimal(App):
+        def compose(self):
+            yield Input("1234")
+
+        def on_input_changed(self, event: Input.Changed) -> None:
+            handled.append(time.perf_counter())
+
+    app = Minimal()
+    out = []
+    async with app.run_test(size=(140, 45)) as pilot:
+        entry = app.query_one(Input)
+        entry.focus()
+        entry.cursor_position = len(entry.value)
+        await pilot.pause()
+        for i in range(KEYS):
+            before = len(handled)
+            t0 = time.perf_counter()
+            await pilot.press("backspace" if i % 2 == 0 else "4")
+            while len(handled) == before:
+                await asyncio.sleep(0.0002)
+            out.append(handled[-1] - t0)
+            await pilot.pause()
+    return out
+
+
 def main() -> None:
     print(f"keystroke -> result in the table (pilot, median and max of {KEYS} keys):")
+    base = asyncio.run(_baseline())
+    print(f"  {'baseline: a key reaching a plain Input (minimal app)':<31} median "
+          f"{statistics.median(base) * 1e3:7.2f} ms   max {max(base) * 1e3:7.2f} ms")
     for calc_id in CALCULATORS:
         field = typing_field(calc_id)
         lat = asyncio.run(_latencies(calc_id, field))
