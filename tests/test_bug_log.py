@@ -69,3 +69,21 @@ async def test_a_bug_in_the_app_is_a_status_line_and_a_logged_traceback(state_ho
         status = str(app.current_tab.query_one(".status", Static).render())
         assert "internal error: KeyError" in status
     assert "nowhere_to_be_found" in next(state_home.rglob("gearhead.log")).read_text()
+
+
+def test_a_reader_that_leaves_early_is_not_an_error(state_home):
+    """`gearhead sweep ... | head -1`: the pipe closes under a long table; no message, no log."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "XDG_STATE_HOME": str(state_home)}
+    pipe = subprocess.Popen([sys.executable, "-m", "gearhead.tui", "sweep", "gear_ratio", "--vary",
+                             "voltage=1..12:5000"],  # far more than a pipe's 64 KB buffer
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
+    pipe.stdout.readline()
+    pipe.stdout.close()  # the reader leaves after one line
+    err = pipe.stderr.read().decode()
+    assert pipe.wait(timeout=60) in (0, cli.EXIT_BROKEN_PIPE)
+    assert err == ""
+    assert not list(state_home.rglob("gearhead.log"))
