@@ -163,3 +163,16 @@ async def test_tolerance_in_a_field_shows_spreads_and_goes_away():
         app.query_one("#calc-lead_screw #in-force").value = "50 N ± 5 lbf*in"
         await settle(pilot)
         assert tab.error is not None and tab.error.field == "force"
+
+
+@pytest.mark.asyncio
+async def test_the_first_output_plotted_is_one_this_mode_produces():
+    """The elevator's first output, 'Fastest ratio', exists only in optimise mode: a sweep of a move
+    plotted it and showed an empty chart and a table with no result column (found in tmux)."""
+    app = GearheadApp(blink=False, initial="elevator", hide_timings=True, warm_up=False)
+    async with app.run_test(size=SIZE) as pilot:
+        screen = await open_sweep(pilot, "elevator", "ratio")
+        picked = screen.query_one("#sweep-outputs").selected
+        assert picked == ["time_to_goal"]
+        table = screen.query_one("#sweep-table")
+        assert "time_to_goal" in [str(c.value) for c in table.columns]

@@ -408,7 +408,8 @@ class GearheadApp(App):
 
         tab, focused = self.current_tab, self.focused
         name = focused.id[3:] if focused is not None and (focused.id or "").startswith("in-") else None
-        self.push_screen(SweepScreen(tab.calculator, dict(tab.entries), name, self.blink, self.hide_timings))
+        shown = tuple(tab.solution.outputs) if tab.solution is not None else ()
+        self.push_screen(SweepScreen(tab.calculator, dict(tab.entries), name, self.blink, self.hide_timings, shown))
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         yield from super().get_system_commands(screen)

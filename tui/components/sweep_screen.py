@@ -87,8 +87,9 @@ class SweepScreen(ModalScreen[None]):
     ]
 
     def __init__(self, calculator: Calculator, entries: dict[str, Any], field_name: str | None = None,
-                 blink: bool = True, hide_timings: bool = False) -> None:
+                 blink: bool = True, hide_timings: bool = False, shown: tuple[str, ...] = ()) -> None:
         super().__init__()
+        self.shown = shown  # the outputs the card shows now: the first is plotted at first
         self.calculator = calculator
         self.entries = dict(entries)
         self.fields = sweepable(calculator, self.entries)
@@ -122,7 +123,10 @@ class SweepScreen(ModalScreen[None]):
                 yield Checkbox("log", id="sweep-log", compact=True)
             with Horizontal(classes="sweep-body"):
                 outputs = [o for o in calc.outputs if o.name not in ("error_estimate", "rhs_evaluations", "wall_time")]
-                yield SelectionList[str](*[(Text(o.label), o.name, i == 0) for i, o in enumerate(outputs)],
+                # the first output this mode produces (the elevator's first, its optimise-only
+                # 'Fastest ratio', gave an empty plot and table in a move)
+                first = next((o.name for o in outputs if o.name in self.shown), outputs[0].name if outputs else None)
+                yield SelectionList[str](*[(Text(o.label), o.name, o.name == first) for o in outputs],
                                          id="sweep-outputs")
                 yield Vertical(id="sweep-plot")
             yield ProgressBar(total=100, show_eta=False, id="sweep-progress")
