@@ -18,12 +18,11 @@ net of the counterbalance; kV = G/Kv, kA = I·R/(η·N·Kt·G).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from ..errors import InputError
 from ..model import Calculator, Field, Output
-from ..motors import lookup, motor_fields
+from ..motors import lookup
 from ..sim import motion
 from ..sim.effects import Effect, Effects, Part
 from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
@@ -59,19 +58,9 @@ EFFECTS = Effects(
 )
 
 
-def _motor_fields():
-    out = []
-    for f in motor_fields(default_motor="Kraken X60", default_count=1):
-        if f.name == "voltage":
-            f = dataclasses.replace(f, label="Battery voltage", default=12,
-                                    help="Battery voltage at rest (open circuit); full voltage toward the goal.")
-        out.append(f)
-    return tuple(out)
-
-
 FIELDS = (
     motion.mode_field(),
-    *_motor_fields(),
+    *motion.battery_motor_fields("Kraken X60", 1),
     Field("ratio", "Reduction G", "dimensionless", "", default=75, min=0, min_exclusive=True, max=1e5,
           modes=("move",), help="Motor turns per arm turn."),
     Field("arm_mass", "Arm mass", "mass", "lb", default=8, min=0, min_exclusive=True, max=1e5,

@@ -20,12 +20,11 @@ this kV/η (they agree at η = 1). Feedback: WPILib's LQR on the plant (x, ẋ).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from ..errors import InputError
 from ..model import Calculator, Field, Output
-from ..motors import lookup, motor_fields
+from ..motors import lookup
 from ..sim import motion
 from ..sim.effects import Effect, Effects, Part
 from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
@@ -56,19 +55,9 @@ EFFECTS = Effects(
 )
 
 
-def _motor_fields():
-    out = []
-    for f in motor_fields(default_motor="NEO", default_count=2):
-        if f.name == "voltage":
-            f = dataclasses.replace(f, label="Battery voltage", default=12,
-                                    help="Battery voltage at rest (open circuit); full voltage toward the goal.")
-        out.append(f)
-    return tuple(out)
-
-
 FIELDS = (
     motion.mode_field(),
-    *_motor_fields(),
+    *motion.battery_motor_fields("NEO", 2),
     Field("ratio", "Reduction G", "dimensionless", "", default=10, min=0, min_exclusive=True, max=1e5,
           modes=("move",), help="Motor turns per spool turn."),
     Field("load_mass", "Load mass", "mass", "lb", default=15, min=0, min_exclusive=True, max=1e5,

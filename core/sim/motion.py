@@ -42,7 +42,7 @@ from typing import Any, Callable, Mapping
 
 from ..errors import InputError
 from ..model import Field, Output, Plot
-from ..motors import Motor
+from ..motors import Motor, motor_fields
 from .effects import Effect, Effects, Part, Slot, nothing
 from .integrate import Event, integrate
 from .scene import SimRun
@@ -628,6 +628,14 @@ def run_move(setup: Setup, rtol: float, hold_q: float | None = None) -> SimRun:
 
 MODES = ("move", "optimise")
 MODE_LABELS = ("One move at the given ratio", "Optimise: the ratio that arrives first")
+
+
+def battery_motor_fields(default_motor: str, default_count: int) -> tuple[Field, ...]:
+    """The motor fields, the voltage being the battery's at rest (a move runs at full voltage)."""
+    return tuple(replace(f, label="Battery voltage", default=12,
+                         help="Battery voltage at rest (open circuit); full voltage toward the goal.")
+                 if f.name == "voltage" else f
+                 for f in motor_fields(default_motor=default_motor, default_count=default_count))
 
 
 def mode_field() -> Field:
