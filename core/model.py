@@ -184,6 +184,9 @@ class Output:
     quantity: str = "dimensionless"
     unit: str = ""
     help: str = ""
+    # the seed's equation number(s) this output comes from, e.g. "(12)" or "(61)-(64)"; shown on the
+    # result row with `help` as its one-line "how"
+    equation: str = ""
 
 
 @dataclass(frozen=True)

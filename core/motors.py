@@ -14,8 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-RPM = 2 * math.pi / 60  # rad/s per rpm
-LB = 0.45359237  # kg per lb
+from .constants import LB, RPM
 
 
 @dataclass(frozen=True)

@@ -33,7 +33,7 @@ from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
 from ..units import format_number
 
-LBF = 4.4482216152605  # N per lbf
+from ..constants import LBF
 MILD_STEEL_YIELD = 250e6  # Pa, ASTM A36 (the low end of common steels), for the short-column warning
 
 # name: (label, E Pa, G Pa, yield Pa or None, density kg/m³ or None); REFERENCE_DATA.md

@@ -45,7 +45,7 @@ from ..errors import InputError
 from ..model import Calculator, Field, Output, Result
 
 MM = 1e-3
-IN = 0.0254
+from ..constants import INCH as IN
 
 STANDARDS = ("chain_25", "chain_35", "chain_40", "htd_5mm", "gt2_3mm", "rt25", "custom")
 STANDARD_LABELS = ("#25 chain (1/4 in)", "#35 chain (3/8 in)", "#40 chain (1/2 in)",

@@ -56,8 +56,8 @@ from ..motors import motor_fields, system_from
 from ..sim.integrate import Event, integrate
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, compute_with_stats
 
-G_ACC = 9.80665  # m/s²
-RPM = 2 * math.pi / 60
+from ..constants import G0 as G_ACC
+from ..constants import RPM
 TABLE_WHEELS = range(1, 7)
 # Slip phase: when the wheel's time constant is this many times shorter than the slip (b·τ_end), an
 # explicit integrator needs ~b·τ_end/3 steps for stability alone; the closed form is used instead.

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 
+from ..constants import INCH
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
 
@@ -115,7 +116,7 @@ def compute(v) -> Result:
     d_m = mean_diameter(d, p)
     if d_m <= 0:
         raise InputError("pitch", f"must be less than twice the diameter (mean diameter d − p/2 "
-                                  f"is {d_m / 0.0254:.4g} in)")
+                                  f"is {d_m / INCH:.4g} in)")
     warnings = []
     if p >= d:
         warnings.append("Pitch is at least the diameter: an Acme thread this coarse has no core left.")

@@ -32,10 +32,9 @@ from ..model import Calculator, Field, Output, Plot, Result
 from ..sim.integrate import Event, integrate
 from ..sim.scene import SOLVE_NFEV, STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats
 
-PSI = 6894.757293168361  # Pa
+from ..constants import INCH, PSI
 P_ATM = 101325.0  # Pa
 CFM = 0.028316846592 / 60  # m^3/s per ft^3/min
-INCH = 0.0254
 RELIEF = 125 * PSI  # FRC relief valve
 SLACK = 1 + 1e-12  # field bounds: a value typed exactly at a bound parses a bit off it (unit factors)
 PRESSURE_MAX = RELIEF * SLACK  # "125 psi" is in

@@ -42,7 +42,7 @@ from ..model import Calculator, Field, Output, Plot
 from ..sim.flight import Air, aim, aim_along, air, fly
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, compute_with_stats
 
-G = 9.80665  # m/s², standard gravity
+from ..constants import G0 as G
 HALF_PI = math.pi / 2
 EFFECTS = ("air_drag", "magnus")
 PATH_POINTS = 80

@@ -22,7 +22,7 @@ import math
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Result
 
-IN = 0.0254
+from ..constants import INCH as IN
 MIN_TEETH = 10  # smallest pinion counted (module docstring)
 MAX_RATIO = 50.0
 

@@ -16,7 +16,7 @@ from ..errors import InputError
 from ..model import Calculator, Column, Field, Output, Result, Table
 from ..parts import BORES, FAMILIES, SHAFT_BORES, VENDORS
 
-IN = 0.0254
+from ..constants import INCH as IN
 STAGES = (1, 2, 3)
 
 FIELDS = (

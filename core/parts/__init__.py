@@ -15,7 +15,7 @@ from functools import lru_cache
 from pathlib import Path
 
 HERE = Path(__file__).parent
-IN = 0.0254
+from ..constants import INCH as IN
 MM = 1e-3
 
 

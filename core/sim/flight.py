@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from ..constants import G0
 from .integrate import Event, integrate
 
 T_MAX = 120.0  # s: no robot throw flies longer; bounds the work of a stalled solve
@@ -21,7 +22,7 @@ T_MAX = 120.0  # s: no robot throw flies longer; bounds the work of a stalled so
 
 @dataclass(frozen=True)
 class Air:
-    g: float = 9.80665
+    g: float = G0
     k_drag: float = 0.0  # 1/m
     k_magnus: float = 0.0  # 1/m, signed by the spin direction
 

@@ -47,7 +47,7 @@ from .effects import Effect, Effects, Part, Slot, nothing
 from .integrate import Event, integrate
 from .scene import SimRun
 
-G_STD = 9.80665  # m/s²
+from ..constants import G0 as G_STD
 T_MAX = 3600.0  # s: a move longer than an hour is not a mechanism, it is an error
 DP54_STEPS = 2_000  # beyond this the move is stiff: LSODA takes over
 SAMPLES = 120  # points per plotted curve
