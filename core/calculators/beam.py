@@ -22,6 +22,21 @@ Other choices:
 - The torque twists the whole length (one end held, the torque at the other): θ = TL/(GJ) (60).
 - Polycarbonate's shear modulus is not in REFERENCE_DATA: G = E/(2(1+ν)) with ν = 0.37
   (typical datasheet value, e.g. the Wikipedia polycarbonate infobox).
+
+Equations beyond the seed (cited by the outputs; beams.py has the derivations):
+    A = √3/2·s² (hex), π/4·d² (round), π/4·(D² − d²) (round tube), a² (square),
+        2h·(x + y) − 4h² (rectangular tube)                                                   (B1)
+    J_lower ≤ J ≤ J_upper (stress-function and warping-function finite elements),
+        J = (J_lower + J_upper)/2, accuracy ±(J_upper − J_lower)/(J_upper + J_lower)          (B2)
+    e_thin = J_thin/J − 1, J_thin from (48) or (52)                                            (B3)
+    simple supports (Shigley A-9-6), b the shorter segment, x from the far support:
+        y_max = F·b·(l² − b²)^{3/2}/(9√3·E·I·l) at x = √((l² − b²)/3)                          (B4)
+    M_max = F·a·b/l (simple), F·a·b·max(a, b)/l² (fixed, at the nearer support), F·a (cantilever) (B5)
+    σ = M_max·c/I, c the distance to the extreme fibre                                        (B6)
+    SF = S_y/σ                                                                                 (B7)
+    KL/r with r = √(I_min/A);  (KL/r)_T = √(2π²E/S_y)                                          (B8)
+    P_Johnson = A·(S_y − (S_y·(KL/r)/(2π))²/E)  for KL/r < (KL/r)_T                            (B9)
+    m = ρ·A·l                                                                                  (B10)
 """
 
 from __future__ import annotations
@@ -106,36 +121,51 @@ FIELDS = (
 
 OUTPUTS = (
     Output("area_moment", "Area moment of inertia I", "area_moment", "in**4",
-           help="Exact second moment of area about the bending axis."),
+           help="Second moment of area about the bending axis, exact for the section ((47), (51) corrected).",
+           equation="(43), (45), (47), (49), (51)"),
     Output("torsion_constant", "Torsion constant J", "area_moment", "in**4",
-           help="Exact for round, round tube and square; hex to 4e-11; rectangular tube: finite-element "
-                "value between proven lower and upper bounds (see J accuracy)."),
+           help="Exact for round and round tube, series for square, finite elements for hex and rectangular tube.",
+           equation="(44), (46), (48), (50), (52), (B2)"),
     Output("torsion_constant_error", "J accuracy (±)", "dimensionless", "%",
-           help="Rectangular tube: half the gap between the lower (stress-function) and upper "
-                "(warping-function) finite-element bounds on J, relative; the true J is within it. "
-                "Walls under 1e-4 of the size use Bredt's J, good to about wall/size."),
+           help="Rectangular tube: half the gap between proven lower and upper finite-element bounds on J (B2).",
+           equation="(B2)"),
     Output("thin_wall_torsion_constant", "Thin-wall J (estimate)", "area_moment", "in**4",
-           help="Tubes: the seed's thin-wall formula (48) or Bredt's (52), for comparison."),
+           help="Tubes: the seed's thin-wall J, π/4·d³h (48) or Bredt's (52, corrected), for comparison.",
+           equation="(48), (52)"),
     Output("thin_wall_error", "Thin-wall J error", "dimensionless", "%",
-           help="How far the thin-wall J is from the finite-element (or exact) J."),
-    Output("max_deflection", "Max deflection", "length", "in"),
+           help="Thin-wall J ÷ J − 1: how far the seed's thin-wall formula is off for this wall (B3).",
+           equation="(B3)"),
+    Output("max_deflection", "Max deflection", "length", "in",
+           help="Largest deflection under the force: (57) fixed ends, (58) cantilever, (B4) simple supports.",
+           equation="(57), (58), (B4)"),
     Output("max_deflection_position", "Max deflection at", "length", "in",
-           help="Distance from the left support (cantilever: from the fixed end)."),
-    Output("max_bending_moment", "Max bending moment", "torque", "in*lbf"),
-    Output("max_bending_stress", "Max bending stress", "pressure", "MPa", help="M·c/I at the extreme fibre."),
-    Output("safety_factor", "Safety factor (bending yield)", help="Yield strength / max bending stress."),
+           help="Where it bends most, from the left support (cantilever: fixed end): (56), (B4); tip (58).",
+           equation="(56), (58), (B4)"),
+    Output("max_bending_moment", "Max bending moment", "torque", "in*lbf",
+           help="F·a·b/l between simple supports, F·a·b·max(a, b)/l² fixed, F·a at a cantilever's root (B5).",
+           equation="(B5)"),
+    Output("max_bending_stress", "Max bending stress", "pressure", "MPa",
+           help="Largest moment × distance to the extreme fibre ÷ I, σ = M·c/I (B6).", equation="(B6)"),
+    Output("safety_factor", "Safety factor (bending yield)",
+           help="Yield strength ÷ largest bending stress (B7).", equation="(B7)"),
     Output("buckling_load", "Buckling load", "force", "lbf",
-           help="Critical load of the column, weakest axis: Euler's (59) for slender columns, "
-                "Johnson's parabola for short ones (see 'Buckling governed by')."),
+           help="Critical column load, weakest axis: Euler's (59) if slender, Johnson's parabola (B9) if short.",
+           equation="(59), (B9)"),
     Output("buckling_formula", "Buckling governed by",
-           help="Euler above the transition slenderness √(2π²E/Sy), Johnson below it."),
+           help="Euler above the transition slenderness √(2π²E/Sy), Johnson below it (B8).", equation="(B8)"),
     Output("euler_load", "Euler load", "force", "lbf",
-           help="Euler's critical load π²EI/(KL)² (59); an overestimate for short columns."),
-    Output("slenderness_ratio", "Slenderness KL/r", help="K·L over the radius of gyration √(I/A)."),
-    Output("transition_slenderness", "Transition slenderness", help="√(2π²E/Sy): Euler above, Johnson below."),
-    Output("twist_angle", "Twist angle", "angle", "deg", help="θ = T·L/(G·J) (60)."),
-    Output("cross_section_area", "Cross-section area", "area", "in**2"),
-    Output("mass", "Beam mass", "mass", "lb", help="Density × area × length."),
+           help="Euler's critical load π²EI/(KL)², weakest axis; an overestimate for short columns (59).",
+           equation="(59)"),
+    Output("slenderness_ratio", "Slenderness KL/r",
+           help="K·L over the radius of gyration √(I/A) of the weakest axis (B8).", equation="(B8)"),
+    Output("transition_slenderness", "Transition slenderness",
+           help="√(2π²E/Sy), where Euler's stress is half the yield: Euler above, Johnson below (B8).",
+           equation="(B8)"),
+    Output("twist_angle", "Twist angle", "angle", "deg",
+           help="Twist of the whole length under the torque, θ = T·L/(G·J) (60).", equation="(60)"),
+    Output("cross_section_area", "Cross-section area", "area", "in**2",
+           help="Area of the section, exact (B1).", equation="(B1)"),
+    Output("mass", "Beam mass", "mass", "lb", help="Density × area × length (B10).", equation="(B10)"),
 )
 
 PLOTS = (Plot("Deflection along the beam", ("deflection",), "position", "length", "in",

@@ -35,6 +35,15 @@ Corrections to the seed (derived again; checked against mpmath in tests/test_cha
   inside its pitch circle by the pitch-line differential). Clear means D > (OD_1 + OD_2)/2.
 - A standard pitch says whether it is a chain or a belt; the "Chain or belt" field is asked only
   for a custom pitch (picking #25 chain with the field left at belt used to be an error).
+
+Equations beyond the seed (cited by the outputs), Δ = |r_2 − r_1|, X = √(D² − Δ²):
+    r = p/(2·sin(180°/n))          chordal pitch radius of a chain sprocket (shown only)   (CB1)
+    θ_small = π − 2·sin⁻¹(Δ/D) = 2·tan⁻¹(X/Δ)        wrap on the smaller wheel            (CB2)
+    the wheels clear when D > (OD_1 + OD_2)/2, OD = p·(0.6 + cot(180°/n)) for a chain
+        sprocket (ANSI B29.1), n·p/π for a belt pulley                                     (CB3)
+    L(D) = 2X + π(r_1 + r_2) + 2Δ·sin⁻¹(Δ/D)         (68) corrected, as derived above      (CB4)
+    l_below = s·⌊l_exact/s⌋, l_above = l_below + s (one count when l_exact is whole),
+        s = 2 for chain without half links, else 1                                         (CB5)
 """
 
 from __future__ import annotations
@@ -93,24 +102,37 @@ FIELDS = (
 
 OUTPUTS = (
     Output("center_distance", "Center distance", "length", "in",
-           help="Sprocket center to center distance D."),
+           help="Center distance D at which the length equation (68, corrected) gives this length L = l·p.",
+           equation="(66), (68)"),
     Output("clearance", "Clearance between pitch circles", "length", "in",
-           help="C = D − (r_1 + r_2) (67); negative means the sprockets overlap."),
-    Output("length", "Chain/belt length", "length", "in", help="L = l·p (66)."),
+           help="Gap between the pitch circles, C = D − (r_1 + r_2); negative: the sprockets overlap (67).",
+           equation="(67)"),
+    Output("length", "Chain/belt length", "length", "in",
+           help="Links (belt teeth) × pitch, L = l·p (66).", equation="(66)"),
     Output("links_exact", "Exact links for that distance",
-           help="Fractional link (belt tooth) count giving exactly the wanted center distance."),
-    Output("links_below", "Shorter usable length (links)"),
-    Output("center_below", "Center distance, shorter", "length", "in"),
-    Output("links_above", "Longer usable length (links)"),
-    Output("center_above", "Center distance, longer", "length", "in"),
-    Output("pitch_diameter_1", "Pitch diameter 1", "length", "in"),
-    Output("pitch_diameter_2", "Pitch diameter 2", "length", "in"),
+           help="Length at the wanted center distance (68, corrected) ÷ pitch: a fractional link count.",
+           equation="(66), (68)"),
+    Output("links_below", "Shorter usable length (links)",
+           help="The exact count rounded down to a usable one (even for chain without half links) (CB5).",
+           equation="(CB5)"),
+    Output("center_below", "Center distance, shorter", "length", "in",
+           help="Center distance the shorter usable length gives (68, corrected).", equation="(66), (68)"),
+    Output("links_above", "Longer usable length (links)",
+           help="The exact count rounded up to a usable one (even for chain without half links) (CB5).",
+           equation="(CB5)"),
+    Output("center_above", "Center distance, longer", "length", "in",
+           help="Center distance the longer usable length gives (68, corrected).", equation="(66), (68)"),
+    Output("pitch_diameter_1", "Pitch diameter 1", "length", "in",
+           help="Wheel 1: n·p/π (65), or a sprocket's chordal p/sin(180°/n) (CB1), as chosen below.",
+           equation="(65), (CB1)"),
+    Output("pitch_diameter_2", "Pitch diameter 2", "length", "in",
+           help="Wheel 2: n·p/π (65), or a sprocket's chordal p/sin(180°/n) (CB1), as chosen below.",
+           equation="(65), (CB1)"),
     Output("wrap_angle_small", "Wrap on the smaller sprocket", "angle", "deg",
-           help="Angle of contact on the smaller sprocket: π − 2·sin⁻¹(|r_2 − r_1|/D)."),
+           help="Angle of contact on the smaller wheel, π − 2·sin⁻¹(|r_2 − r_1|/D) (CB2).", equation="(CB2)"),
     Output("minimum_links", "Fewest links with both clear",
-           help="Fewest links (belt teeth) at which the two wheels clear each other, D > (OD_1 + OD_2)/2: "
-                "chain sprockets' outside diameters p·(0.6 + cot(180°/n)), belt pulleys' pitch "
-                "diameters n·p/π. Even for chain without half links."),
+           help="Fewest links (belt teeth) at which the wheels clear each other, D > (OD_1 + OD_2)/2 (CB3).",
+           equation="(CB3)"),
 )
 
 

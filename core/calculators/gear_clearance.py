@@ -17,7 +17,8 @@ Corrections to the seed:
       C_a = (n_2 + n_3)/(2 p_23) − (n_1 + 2)/(2 p_1) − d_axle/2
       C_g = (n_2 + n_3)/(2 p_23) − (n_1 + 2)/(2 p_1) − (n_4 + 2)/(2 p_4)
 - The seed checks only gear 1 against shaft B; the mirror check (gear 4 against shaft A) is
-  reported as well, since gear 4 passes shaft A in exactly the same way.
+  reported as well, since gear 4 passes shaft A in exactly the same way:
+      C_a4 = (n_2 + n_3)/(2 p_23) − (n_4 + 2)/(2 p_4) − d_axle/2                        (GC1)
 """
 
 from __future__ import annotations
@@ -52,18 +53,25 @@ FIELDS = (
 
 OUTPUTS = (
     Output("center_distance", "Center distance A-B (gears 2-3)", "length", "in",
-           help="r_p2 + r_p3 = (n_2 + n_3)/(2 p_23), eq. (69) for the meshing pair."),
-    Output("outside_diameter_1", "Gear 1 outside diameter", "length", "in", help="(n_1 + 2)/p_1 (70)."),
-    Output("outside_diameter_4", "Gear 4 outside diameter", "length", "in", help="(n_4 + 2)/p_4 (70)."),
+           help="Meshing gears 2 and 3 sit at the sum of their pitch radii, (n_2 + n_3)/(2·p_23) (69).",
+           equation="(69)"),
+    Output("outside_diameter_1", "Gear 1 outside diameter", "length", "in",
+           help="Gear 1's tip diameter, (n_1 + 2)/p_1 (70).", equation="(70)"),
+    Output("outside_diameter_4", "Gear 4 outside diameter", "length", "in",
+           help="Gear 4's tip diameter, (n_4 + 2)/p_4 (70).", equation="(70)"),
     Output("axle_clearance", "Gear 1 to shaft B clearance", "length", "in",
-           help="C_a: gap between gear 1's tooth tips and shaft B (eq. 71/73 corrected)."),
+           help="C_a: center distance − gear 1's outside radius − axle radius ((71)/(73), corrected).",
+           equation="(71), (73)"),
     Output("gear_clearance", "Gear 1 to gear 4 clearance", "length", "in",
-           help="C_g: gap between the tooth tips of gears 1 and 4 if in one plane (eq. 72/74 corrected)."),
-    Output("axle_clears", "Gear 1 clears shaft B", help="C_a > 0."),
-    Output("gear_clears", "Gear 1 clears gear 4", help="C_g > 0."),
+           help="C_g: center distance − outside radii of gears 1 and 4, if in one plane ((72)/(74), corrected).",
+           equation="(72), (74)"),
+    Output("axle_clears", "Gear 1 clears shaft B", help="Yes when C_a > 0 ((71)/(73)).", equation="(71), (73)"),
+    Output("gear_clears", "Gear 1 clears gear 4", help="Yes when C_g > 0 ((72)/(74)).", equation="(72), (74)"),
     Output("axle_clearance_4", "Gear 4 to shaft A clearance", "length", "in",
-           help="The mirror check: gap between gear 4's tooth tips and shaft A."),
-    Output("axle_clears_4", "Gear 4 clears shaft A", help="Gear 4 to shaft A clearance > 0."),
+           help="The mirror check: center distance − gear 4's outside radius − axle radius (GC1).",
+           equation="(GC1)"),
+    Output("axle_clears_4", "Gear 4 clears shaft A", help="Yes when the gear 4 to shaft A clearance is > 0 (GC1).",
+           equation="(GC1)"),
 )
 
 

@@ -7,6 +7,12 @@ Corrections to the seed (each derived again with sympy, see tests/test_gear_rati
 - (23) drops r: ω_load = ω̃f/G·(1 − rF/(τ̃s·G)).
 - (26) must use the adjusted free current ĩf (the seed writes i_f): G = rF / (K_T(n·i − ĩf)).
 - (28) hard-codes V_spec = 12 V; VEX 393 motors are specified at 7.2 V.
+
+Outputs beyond the seed's equations:
+    P_out = F·v_load = F·r·ω_load                                                   (GR1)
+    "Load torque ÷ ratio" is τ = r·F/G ((92): τ_manip = G·τ_motor), the torque the motor tab takes
+    as its operating torque for the same speed and current (its τ̃s and K_T hold η); the motors
+    themselves give r·F/(G·η) in all, each 1/n of that.
 """
 
 from __future__ import annotations
@@ -48,23 +54,36 @@ FIELDS = motor_fields() + (
 )
 
 OUTPUTS = (
-    Output("ratio", "Gear ratio", help="Reduction, motor turns per output turn."),
+    Output("ratio", "Gear ratio", help="Reduction G (motor turns per output turn) that meets the chosen "
+           "mode (19)-(28).", equation="(19)-(28)"),
     Output("ratio_alternative", "Other ratio (less efficient)",
-           help="The second ratio reaching the same loaded speed; it loads the motor past half stall."),
-    Output("free_speed", "Free speed", "angular_speed", "rpm"),
-    Output("loaded_speed", "Loaded speed", "angular_speed", "rpm"),
-    Output("linear_free_speed", "Linear free speed", "speed", "ft/s"),
-    Output("linear_loaded_speed", "Linear loaded speed", "speed", "ft/s"),
-    Output("current_per_motor", "Current per motor", "current", "A"),
-    Output("stall_load", "Stall load", "force", "lbf"),
-    Output("stall_voltage", "Stall voltage", "voltage", "V"),
+           help="The other root of (24): same loaded speed, motor past half stall, so less efficient.",
+           equation="(24)"),
+    Output("free_speed", "Free speed", "angular_speed", "rpm",
+           help="Adjusted motor free speed divided by the ratio, ω̃f/G (11).", equation="(11)"),
+    Output("loaded_speed", "Loaded speed", "angular_speed", "rpm",
+           help="Free speed × (1 − load/stall load): the motors slow along their torque-speed line (13).",
+           equation="(13)"),
+    Output("linear_free_speed", "Linear free speed", "speed", "ft/s",
+           help="Free speed × load radius, v = ω·r (14, with ω in rad/s).", equation="(14)"),
+    Output("linear_loaded_speed", "Linear loaded speed", "speed", "ft/s",
+           help="Loaded speed × load radius, v = ω·r (15, with ω in rad/s).", equation="(15)"),
+    Output("current_per_motor", "Current per motor", "current", "A",
+           help="Load torque at the motor side over K_T, plus the free current, shared by the n motors (16).",
+           equation="(16)"),
+    Output("stall_load", "Stall load", "force", "lbf",
+           help="Load that stops the mechanism: stall torque (after η) × ratio ÷ radius, τ̃s·G/r (12).",
+           equation="(12)"),
+    Output("stall_voltage", "Stall voltage", "voltage", "V",
+           help="Voltage at which this load just stalls the motors, V_spec·r·F/(τs·η·n·G) (17, corrected).",
+           equation="(17)"),
     Output("motor_torque", "Load torque ÷ ratio (after η)", "torque", "N*m",
-           help="r·F/G: the load torque referred to the motor side, efficiency already taken off, as "
-                "the motor tab's operating torque (enter it there for the same speed and current). "
-                "The motors themselves give r·F/(G·η) in all, each 1/n of that."),
-    Output("output_power", "Output power", "power", "W"),
+           help="r·F/G, the load torque at the motor side with η taken off: the motor tab's torque (92).",
+           equation="(92)"),
+    Output("output_power", "Output power", "power", "W",
+           help="Load × linear loaded speed, F·r·ω_load (GR1).", equation="(GR1)"),
     Output("system_efficiency", "Efficiency at load", "dimensionless", "%",
-           help="Output power over electrical input power, motors and gearbox together (10)."),
+           help="Output power ÷ electrical power V·i, motors and gearbox together (10).", equation="(10)"),
 )
 
 

@@ -15,6 +15,9 @@ Departures from / corrections to the seed:
 - (33) is evaluated in its closed form (independent of F), so a zero load still has an efficiency.
 - Backdrivable exactly when T_L < 0 (seed), i.e. μ < l·cos α/(π·dm); the sign is taken from the
   numerator of (32), which decides it without the F·dm/2 factor's rounding.
+
+Outputs beyond the seed's equations:
+    P_R = T_R·ω                    power to raise the load at the screw speed ω (rad/s)  (LS1)
 """
 
 from __future__ import annotations
@@ -44,23 +47,37 @@ FIELDS = (
 )
 
 OUTPUTS = (
-    Output("lead", "Lead (travel per turn)", "length", "in"),
-    Output("mean_diameter", "Mean diameter", "length", "in"),
+    Output("lead", "Lead (travel per turn)", "length", "in",
+           help="Travel of the nut per screw turn: starts × pitch, l = n·p (29).", equation="(29)"),
+    Output("mean_diameter", "Mean diameter", "length", "in",
+           help="Diameter halfway up the thread, d_m = d − p/2 (30).", equation="(30)"),
     Output("drivable", "Can be driven to raise",
-           help="False when friction locks the screw: no torque raises the load."),
-    Output("raise_torque", "Raise torque", "torque", "N*m", help="Torque to raise the load (31)."),
+           help="Whether any torque raises the load: the denominator of (31), π·d_m·cos α − μ·l, is positive.",
+           equation="(31)"),
+    Output("raise_torque", "Raise torque", "torque", "N*m",
+           help="Torque to raise the load against thread friction, from the force balance on the thread (31).",
+           equation="(31)"),
     Output("lower_torque", "Lower torque", "torque", "N*m",
-           help="Torque to lower the load (32); negative means the load turns the screw by itself."),
-    Output("backdrivable", "Backdrivable", help="True when the load alone turns the screw (T_L < 0)."),
-    Output("efficiency", "Efficiency", "dimensionless", "%", help="Raise efficiency (33)."),
-    Output("linear_speed", "Linear speed", "speed", "in/s", help="Nut speed at the screw speed (29)."),
-    Output("raise_power", "Power to raise", "power", "W", help="Raise torque times screw speed."),
+           help="Torque to lower the load (32); negative means the load turns the screw by itself.",
+           equation="(32)"),
+    Output("backdrivable", "Backdrivable",
+           help="True when the load alone turns the screw: T_L < 0, i.e. μ < l·cos α/(π·d_m) (32).",
+           equation="(32)"),
+    Output("efficiency", "Efficiency", "dimensionless", "%",
+           help="Raise torque without friction ÷ raise torque with it; independent of the load (33).",
+           equation="(33)"),
+    Output("linear_speed", "Linear speed", "speed", "in/s",
+           help="Nut speed: screw speed × lead, v = ω·n·p/(2π) with ω in rad/s (29).", equation="(29)"),
+    Output("raise_power", "Power to raise", "power", "W",
+           help="Raise torque × screw speed, P = T_R·ω (LS1).", equation="(LS1)"),
     Output("equivalent_radius", "Equivalent radius", "length", "in",
-           help="Spool radius with the same travel per turn (34); send it to the gear-ratio tab."),
+           help="Spool radius with the same travel per turn, n·p/(2π); send it to the gear-ratio tab (34).",
+           equation="(34)"),
     Output("equivalent_raise_load", "Equivalent raise load", "force", "lbf",
-           help="Load at the equivalent radius needing the raise torque (35)."),
+           help="Raise torque ÷ equivalent radius: the load a spool would carry for the same work (35).",
+           equation="(35)"),
     Output("equivalent_lower_load", "Equivalent lower load", "force", "lbf",
-           help="Load at the equivalent radius matching the lower torque (36)."),
+           help="Lower torque ÷ equivalent radius (36).", equation="(36)"),
 )
 
 

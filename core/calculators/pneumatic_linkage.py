@@ -10,16 +10,24 @@ below the horizontal, L its retracted pin-to-pin length and L + ΔL its extended
 With r = |(X, Y)|, d = |C|, φ = atan2(Y, X) and ψ = atan2(B, −A), (88)/(89) are the law of cosines
     ℓ² = r² + d² − 2rd·cos(θ + φ − ψ)                                   (88), (89)
 so in the triangle (arm pivot, cylinder pivot, rod end) the angle at the arm pivot is
-    γ(ℓ) = atan2(2·area, (r² + d² − ℓ²)/2),   2·area = ½·sqrt(Heron product of r, d, ℓ)
-and θ = ψ − φ ± γ(ℓ). The two signs are the two assemblies (mirror images about the line from the
-arm pivot to the cylinder pivot). "Primary" is +: extending the cylinder turns the arm
-counter-clockwise; the other assembly turns it clockwise. The pushing cylinder's torque on the arm
-is F·dℓ/dθ, and dℓ/dθ = ±rd·sin γ/ℓ = ±2·area/ℓ is the lever arm (the distance from the arm pivot
-to the cylinder's line), so no cylinder can turn an arm through 180° or more (dead centre).
+    γ(ℓ) = atan2(2·area, (r² + d² − ℓ²)/2),   2·area = ½·sqrt(Heron product of r, d, ℓ)     (PL1)
+and
+    θ = ψ − φ ± γ(ℓ)                                                                          (PL2)
+The two signs are the two assemblies (mirror images about the line from the arm pivot to the
+cylinder pivot). "Primary" is +: extending the cylinder turns the arm counter-clockwise; the other
+assembly turns it clockwise. The pushing cylinder's torque on the arm is F·dℓ/dθ, and
+    h = |dℓ/dθ| = rd·sin γ/ℓ = 2·area/ℓ,   τ = ±F·h                                           (PL3)
+is the lever arm (the distance from the arm pivot to the cylinder's line), so no cylinder can turn
+an arm through 180° or more (dead centre). The cylinder's own angle below the horizontal follows
+from (84)/(86) (retracted) and (85)/(87) (extended): ℓ·cos α = A + P_x(θ), ℓ·sin α = B − P_y(θ).
+The pin-to-pin length can only lie between the two dead centres:
+    |d − r| ≤ ℓ ≤ d + r                                                                       (PL5)
 
 Reverse: the cylinder pivot is at distance L from P(θ1) and L + ΔL from P(θ2): a circle-circle
 intersection with two mirror solutions about the chord P(θ1)P(θ2), of length c = 2r·|sin(Δθ/2)|
-(closed form; subtracting the two points loses every digit when Δθ is tiny). A solution is kept
+(closed form; subtracting the two points loses every digit when Δθ is tiny):
+    C = P(θ1) + a·e ± b·e⊥,  a = (c² − ΔL·(2L + ΔL))/(2c),  b = 2·area(L, L + ΔL, c)/c       (PL4)
+with e the unit vector from P(θ1) to P(θ2). A solution is kept
 only if the arm does not pass dead centre between θ1 and θ2 (then, and only then, the cylinder
 length grows monotonically from L to L + ΔL along the swing); rejected ones are named in a warning.
 
@@ -80,27 +88,54 @@ FIELDS = (
 
 OUTPUTS = (
     Output("retracted_angle", "Arm angle retracted θ1", "angle", "deg",
-           help="Assembly in which extending turns the arm counter-clockwise."),
-    Output("extended_angle", "Arm angle extended θ2", "angle", "deg"),
-    Output("pivot_x", "Cylinder pivot A", "length", "in"),
-    Output("pivot_y", "Cylinder pivot B", "length", "in"),
-    Output("sweep", "Arm swing θ2 − θ1", "angle", "deg"),
+           help="θ1 at which the pin-to-pin length is L: ψ − φ + γ(L); extending turns the arm CCW (PL2).",
+           equation="(88), (PL2)"),
+    Output("extended_angle", "Arm angle extended θ2", "angle", "deg",
+           help="θ2 at which the length is L + ΔL, same assembly: θ1 + γ(L + ΔL) − γ(L) (PL2).",
+           equation="(89), (PL2)"),
+    Output("pivot_x", "Cylinder pivot A", "length", "in",
+           help="Reverse: A of the pivot at L from the rod end at θ1 and L + ΔL from it at θ2 (PL4).",
+           equation="(88), (89), (PL4)"),
+    Output("pivot_y", "Cylinder pivot B", "length", "in",
+           help="Reverse: B of the pivot at L from the rod end at θ1 and L + ΔL from it at θ2 (PL4).",
+           equation="(88), (89), (PL4)"),
+    Output("sweep", "Arm swing θ2 − θ1", "angle", "deg",
+           help="θ2 − θ1: how far the arm turns over the stroke (PL2).", equation="(PL2)"),
     Output("retracted_angle_alt", "Other assembly: θ1", "angle", "deg",
-           help="Mirror assembly: extending turns the arm clockwise. θ2 values continue from θ1 (may pass ±180°)."),
-    Output("extended_angle_alt", "Other assembly: θ2", "angle", "deg"),
-    Output("pivot_x_alt", "Second pivot A", "length", "in"),
-    Output("pivot_y_alt", "Second pivot B", "length", "in"),
-    Output("retracted_cylinder_angle", "Cylinder angle α1 (below horiz.)", "angle", "deg"),
-    Output("extended_cylinder_angle", "Cylinder angle α2 (below horiz.)", "angle", "deg"),
+           help="Mirror assembly, ψ − φ − γ(L): extending turns the arm clockwise (PL2).",
+           equation="(88), (PL2)"),
+    Output("extended_angle_alt", "Other assembly: θ2", "angle", "deg",
+           help="Mirror assembly's θ2 = θ1 − (γ(L + ΔL) − γ(L)), continuing from θ1 (may pass ±180°) (PL2).",
+           equation="(89), (PL2)"),
+    Output("pivot_x_alt", "Second pivot A", "length", "in",
+           help="Reverse: A of the other circle intersection, when it also works (PL4).",
+           equation="(88), (89), (PL4)"),
+    Output("pivot_y_alt", "Second pivot B", "length", "in",
+           help="Reverse: B of the other circle intersection, when it also works (PL4).",
+           equation="(88), (89), (PL4)"),
+    Output("retracted_cylinder_angle", "Cylinder angle α1 (below horiz.)", "angle", "deg",
+           help="α1 from L·cos α = A + P_x(θ1) and L·sin α = B − P_y(θ1) (84), (86).", equation="(84), (86)"),
+    Output("extended_cylinder_angle", "Cylinder angle α2 (below horiz.)", "angle", "deg",
+           help="α2 from (L + ΔL)·cos α = A + P_x(θ2) and (L + ΔL)·sin α = B − P_y(θ2) (85), (87).",
+           equation="(85), (87)"),
     Output("retracted_lever_arm", "Lever arm retracted", "length", "in",
-           help="Distance h from the arm pivot to the cylinder's line (= dℓ/dθ); a warning below "
-                "10 % of the arm length (near dead centre)."),
-    Output("extended_lever_arm", "Lever arm extended", "length", "in"),
+           help="Distance h from the arm pivot to the cylinder's line, = dℓ/dθ; warned below 10 % of r (PL3).",
+           equation="(PL3)"),
+    Output("extended_lever_arm", "Lever arm extended", "length", "in",
+           help="Distance h from the arm pivot to the cylinder's line when extended, = dℓ/dθ (PL3).",
+           equation="(PL3)"),
     Output("retracted_torque", "Arm torque retracted", "torque", "N*m",
-           help="Torque of the push force on the arm, counter-clockwise positive."),
-    Output("extended_torque", "Arm torque extended", "torque", "N*m"),
-    Output("min_length", "Shortest pin-to-pin reachable", "length", "in", help="|d − r|: arm at dead centre."),
-    Output("max_length", "Longest pin-to-pin reachable", "length", "in", help="d + r: arm at dead centre."),
+           help="Push force × lever arm, F·h, on the arm when retracted; counter-clockwise positive (PL3).",
+           equation="(PL3)"),
+    Output("extended_torque", "Arm torque extended", "torque", "N*m",
+           help="Push force × lever arm, F·h, on the arm when extended; counter-clockwise positive (PL3).",
+           equation="(PL3)"),
+    Output("min_length", "Shortest pin-to-pin reachable", "length", "in",
+           help="|d − r|: the shortest cylinder length these pivots allow, arm at dead centre (PL5).",
+           equation="(PL5)"),
+    Output("max_length", "Longest pin-to-pin reachable", "length", "in",
+           help="d + r: the longest cylinder length these pivots allow, arm at dead centre (PL5).",
+           equation="(PL5)"),
 )
 
 

@@ -13,6 +13,11 @@ a 20° full-depth involute undercuts below 17 T already. A ratio that would need
 at this center distance is refused: the nearest feasible pair (10 T pinion, the highest ratio the
 distance allows) is offered instead, with a warning. Inputs are bounded to what a gear pair can
 be: ratio 1-50 (50:1 needs a 500 T gear on a 10 T pinion), center distance up to 100 in, 1-200 DP.
+
+Whole-tooth pairs (cited by the outputs):
+    T = round(2dp)                         total teeth, (76) at the nearest whole total     (RD1)
+    n_below = max(⌈T/(G + 1)⌉, 10), n_above = ⌊T/(G + 1)⌋ (if ≥ 10), N = T − n; the nearest
+        pair is the one of the two with the smallest |ln(N/n) − ln G|                       (RD2)
 """
 
 from __future__ import annotations
@@ -37,26 +42,45 @@ FIELDS = (
 )
 
 OUTPUTS = (
-    Output("small_teeth", "Small gear teeth (exact)", help="n = 2dp/(G + 1) (77), fractional."),
-    Output("large_teeth", "Large gear teeth (exact)", help="N = G·n (78), fractional."),
+    Output("small_teeth", "Small gear teeth (exact)",
+           help="Small gear teeth for exactly this ratio and distance, n = 2dp/(G + 1), fractional (77).",
+           equation="(77)"),
+    Output("large_teeth", "Large gear teeth (exact)",
+           help="Large gear teeth, N = G·n, fractional (78).", equation="(78)"),
     Output("nearest_small_teeth", "Nearest pair: small teeth",
-           help="Whole-tooth pair with the total closest to 2dp, split closest to the ratio."),
-    Output("nearest_large_teeth", "Nearest pair: large teeth"),
-    Output("nearest_ratio", "Nearest pair: ratio"),
+           help="Whole teeth: total nearest 2dp, split nearest the ratio on a log scale (RD1), (RD2).",
+           equation="(RD1), (RD2)"),
+    Output("nearest_large_teeth", "Nearest pair: large teeth",
+           help="The whole-tooth total round(2dp) minus the small gear's teeth (RD1), (RD2).",
+           equation="(RD1), (RD2)"),
+    Output("nearest_ratio", "Nearest pair: ratio", help="N/n of the nearest whole-tooth pair (75).",
+           equation="(75)"),
     Output("nearest_center_distance", "Nearest pair: center distance", "length", "in",
-           help="(N + n)/(2p) for the whole-tooth pair."),
+           help="(N + n)/(2p) for the nearest whole-tooth pair (76).", equation="(76)"),
     Output("below_small_teeth", "Just below the ratio: small teeth",
-           help="Same total teeth, the split whose ratio is the largest not above the target."),
-    Output("below_large_teeth", "Just below the ratio: large teeth"),
-    Output("below_ratio", "Just below the ratio: ratio"),
+           help="Same total T, small gear ⌈T/(G + 1)⌉ teeth: the largest ratio not above the target (RD2).",
+           equation="(RD2)"),
+    Output("below_large_teeth", "Just below the ratio: large teeth",
+           help="The total T minus the small gear's teeth, for the pair just below the ratio (RD2).",
+           equation="(RD2)"),
+    Output("below_ratio", "Just below the ratio: ratio", help="N/n of the pair just below the ratio (75).",
+           equation="(75)"),
     Output("above_small_teeth", "Just above the ratio: small teeth",
-           help="Same total teeth, the split whose ratio is the smallest not below the target."),
-    Output("above_large_teeth", "Just above the ratio: large teeth"),
-    Output("above_ratio", "Just above the ratio: ratio"),
-    Output("small_pitch_diameter", "Small gear pitch diameter", "length", "in", help="n/p (69)."),
-    Output("small_outside_diameter", "Small gear outside diameter", "length", "in", help="(n + 2)/p (70)."),
-    Output("large_pitch_diameter", "Large gear pitch diameter", "length", "in", help="N/p (69)."),
-    Output("large_outside_diameter", "Large gear outside diameter", "length", "in", help="(N + 2)/p (70)."),
+           help="Same total T, small gear ⌊T/(G + 1)⌋ teeth: the smallest ratio not below the target (RD2).",
+           equation="(RD2)"),
+    Output("above_large_teeth", "Just above the ratio: large teeth",
+           help="The total T minus the small gear's teeth, for the pair just above the ratio (RD2).",
+           equation="(RD2)"),
+    Output("above_ratio", "Just above the ratio: ratio", help="N/n of the pair just above the ratio (75).",
+           equation="(75)"),
+    Output("small_pitch_diameter", "Small gear pitch diameter", "length", "in",
+           help="Nearest pair's small gear, n/p (69).", equation="(69)"),
+    Output("small_outside_diameter", "Small gear outside diameter", "length", "in",
+           help="Nearest pair's small gear tip diameter, (n + 2)/p (70).", equation="(70)"),
+    Output("large_pitch_diameter", "Large gear pitch diameter", "length", "in",
+           help="Nearest pair's large gear, N/p (69).", equation="(69)"),
+    Output("large_outside_diameter", "Large gear outside diameter", "length", "in",
+           help="Nearest pair's large gear tip diameter, (N + 2)/p (70).", equation="(70)"),
 )
 
 SNAP = 1e-9  # a count this close (relatively) to a whole number is that number

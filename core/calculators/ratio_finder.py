@@ -6,6 +6,11 @@ core/parts/*.toml; the search and its guarantees: core/parts/finder.py. Every st
 center distance: (N + n)/(2p) for gears (76), and for belts and chains the shortest stocked belt
 (or even chain) whose center distance keeps the pitch circles apart and meets the stage's limits,
 from the exact length equation (68, corrected) of chain_belt.py.
+
+Equations (cited by the outputs):
+    G = G_1·G_2·G_3,  G_k = driven teeth/driving teeth of stage k (a planetary stage: the
+        product of its cartridges' ratios)                                                 (RF1)
+    e = G/G* − 1; in range mode e = G/G_min − 1 below the range, G/G_max − 1 above, 0 inside (RF2)
 """
 
 from __future__ import annotations
@@ -69,15 +74,16 @@ FIELDS = (
 )
 
 OUTPUTS = (
-    Output("ratio", "Best ratio", help="The best combination's reduction (product of its stages)."),
+    Output("ratio", "Best ratio", help="The best combination's reduction: the product of its stages' ratios (RF1).",
+           equation="(RF1)"),
     Output("ratio_error", "Its error", "dimensionless", "%",
-           help="G/G* − 1 (in range mode: how far outside the range; 0 inside)."),
-    Output("stage_count", "Stages"),
+           help="G/G* − 1; in range mode the distance outside the range (0 inside), relative (RF2).",
+           equation="(RF2)"),
+    Output("stage_count", "Stages", help="Stages in series in the best combination (a planetary stack is one)."),
     Output("part_count", "Parts to buy",
-           help="Two per gear stage, two plus the belt or chain per belt/chain stage, the gearbox "
-                "plus each cartridge for a planetary stage."),
-    *(Output(f"stage_{i}", f"Stage {i}", help=f"Stage {i} of the best combination, motor side first "
-                                               "(driving:driven teeth); its parts are in the table.")
+           help="2 per gear stage; 2 + the belt or chain per loop stage; gearbox + cartridges for a planetary."),
+    *(Output(f"stage_{i}", f"Stage {i}", help=f"Stage {i}, motor side first, driving:driven teeth (its ratio G_{i} "
+                                               "in (RF1)); parts in the table.", equation="(RF1)")
       for i in STAGES),
     Output("combinations", "Combinations found",
            help="Distinct feasible combinations the search assembled (not all of them listed)."),
