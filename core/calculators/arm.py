@@ -3,22 +3,44 @@ the goal angle at full voltage, as a scene with effects (core.sim.motion, core.s
 
 Coordinate θ: the arm's angle from the horizontal, up positive (θ = 90°: straight up).
     I·θ̈ = η·N·Kt·G·I_m − m·g·L·cos θ (gravity) + τ_cb·cos θ (counterbalance) − τ_f·sgn(θ̇) (friction)
+                                                                                               (AR1)
+    I_m = (u·V_bus − G·θ̇/Kv)/R  per motor, u the duty (1 unless a current limit lowers it);
+        R = V_spec/I_stall, Kv = ω_free/(V_spec − R·I_free), Kt = τ_stall/I_stall (WPILib)    (AR2)
 with L the pivot-to-centre-of-mass distance and I the moment of inertia about the pivot
-(default: a uniform bar whose centre of mass is at L, so its length is 2L and I = m·(2L)²/3 =
-4/3·m·L²), and the motor current I_m from gearhead.core.sim.motion (E1)-(E3).
+    I = m·(2L)²/3 = 4/3·m·L²  (default: a uniform bar whose centre of mass is at L, so its length
+        is 2L), or the entered I (at least m·L²)                                               (AR3)
+(gearhead.core.sim.motion (M1)-(M4); the current limits and battery sag set u and V_bus, (E1)-(E3)).
 Counterbalance (our choice, documented): an ideal zero-length spring (a spring and cable over a
 pulley, or a spring whose pre-load equals its stiffness times its free length) from a point a
 above the pivot to a point b along the arm stores U = ½k·(a² + b² − 2ab·sin θ), so it gives the
 torque −dU/dθ = k·a·b·cos θ: the counterbalance_torque is k·a·b, its value at horizontal, and
 it cancels gravity at every angle when it equals m·g·L. (A gas strut's torque varies less
 simply; enter its torque at horizontal as an approximation.)
-kG is quoted at horizontal (WPILib ArmFeedforward: V = kS·sgn(ω) + kG·cos θ + kV·ω + kA·α),
-net of the counterbalance; kV = G/Kv, kA = I·R/(η·N·Kt·G).
+What a move reports:
+    T: the first time θ reaches the goal, (AR1) integrated from rest at full voltage with an
+       event at the goal                                                                       (AR4)
+    ω_max = largest |θ̇| over the move (a peak inside it located as an event);
+    ω_free = V_b·Kv/G (no load: no current, u = 1)                                             (AR5)
+    peak stator current: |I_m| of (AR2) at rest (at top speed if the load drives the motor past
+    free speed); supply current u·I_m per motor; battery current N·u·I_m; bus voltage
+    V_bus = V_b − N·R_batt·u·I_m, lowest where the supply current peaks                        (AR6)
+    E = ∫ V_b·N·u·I_m dt, the battery's EMF times its current                                   (AR7)
+    I_hold = |(τ_cb − m·g·L)·cos θ_goal|/(η·N·Kt·G) per motor                                   (AR8)
+Feedforward (WPILib ArmFeedforward: V = kS·sgn(ω) + kG·cos θ + kV·ω + kA·α), from (AR1), (AR2)
+at u = 1, kG quoted at horizontal and net of the counterbalance:
+    kG = (m·g·L − τ_cb)·R/(η·N·Kt·G),  kV = G/Kv,  kA = I·R/(η·N·Kt·G),  kS = τ_f·R/(η·N·Kt·G) (AR9)
+Feedback: WPILib's LQR on the plant (θ, θ̇),
+    ẋ = [[0, 1], [0, −kV/kA]]·x + [0, 1/kA]·V, discretised over the control period,
+    Q = diag(1/q_pos², 1/q_vel²), R = 1/r²: [kP, kD] from the discrete Riccati equation,
+    latency-compensated (motion.lqr)                                                           (AR10)
+Optimise: G* minimising T(G): 240 ratios log-spaced about the characteristic ratio, then
+bounded Brent on the accurate move around the best (motion.optimise)                           (AR11)
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 from ..errors import InputError
 from ..model import Calculator, Field, Output
@@ -88,16 +110,38 @@ FIELDS = (
 )
 
 OUTPUTS = (
-    Output("best_ratio", "Fastest ratio", help="Optimise mode: the reduction G that arrives first. "
-           "Near it the time changes only to second order, so the ratio is known less sharply than "
-           "the time (the error estimate includes it); ratios a few % either side are as good."),
-    Output("moment_of_inertia", "Moment of inertia used", "inertia", "lb*in**2"),
+    Output("best_ratio", "Fastest ratio", help="Optimise: the reduction G that arrives first; ratios a few % "
+           "either side are nearly as fast (AR11).", equation="(AR11)"),
+    Output("moment_of_inertia", "Moment of inertia used", "inertia", "lb*in**2",
+           help="About the pivot: 4/3·m·L² for the uniform bar, else as entered (AR3).", equation="(AR3)"),
     *motion.common_outputs("angle", "deg", "angular_speed", "deg/s", "V*s/rad", "V*s**2/rad", "V/rad",
                            "Volts to hold the arm horizontal against gravity (minus the counterbalance); "
                            "WPILib ArmFeedforward multiplies it by cos θ."),
     *EFFECTS.outputs(),
     *STATS_OUTPUTS,
 )
+# what each shared output means here (equation, help), in this module's numbering
+HOW = {
+    "time_to_goal": ("(AR4)", "First time the arm reaches the goal angle from rest at full voltage (AR4)."),
+    "max_speed": ("(AR5)", "Fastest the arm turns during the move (AR5)."),
+    "free_speed": ("(AR5)", "Arm speed with no load at the battery voltage, V_b·Kv/G (AR5)."),
+    "peak_stator_current": ("(AR2), (AR6)", "Largest motor (stator) current per motor: at rest, unless a "
+                                            "limit holds it (AR6)."),
+    "peak_supply_current": ("(AR6)", "Largest battery-side current per motor: stator current × duty (AR6)."),
+    "peak_battery_current": ("(AR6)", "Largest total battery current, N × supply current per motor (AR6)."),
+    "min_bus_voltage": ("(AR6)", "Battery voltage minus the sag N·R_batt·(supply current); no sag: the "
+                                 "battery's (AR6)."),
+    "energy": ("(AR7)", "Energy drawn from the battery over the move, ∫ V_b·N·u·I dt (AR7)."),
+    "hold_current": ("(AR8)", "Per motor, to hold at the goal against gravity and counterbalance, friction "
+                              "aside (AR8)."),
+    "kG": ("(AR9)", "Volts to hold the arm horizontal, gravity minus counterbalance; WPILib uses kG·cos θ (AR9)."),
+    "kV": ("(AR9)", "Volts per unit of angular speed, G/Kv (WPILib kV) (AR9)."),
+    "kA": ("(AR9)", "Volts per unit of angular acceleration, I·R/(η·N·Kt·G) (WPILib kA) (AR9)."),
+    "kS": ("(AR9)", "Volts to overcome the friction, τ_f·R/(η·N·Kt·G) (WPILib kS) (AR9)."),
+    "kP": ("(AR10)", "LQR position gain for the plant kV, kA, as WPILib's LinearQuadraticRegulator (AR10)."),
+    "kD": ("(AR10)", "LQR velocity gain for the plant kV, kA, as WPILib's LinearQuadraticRegulator (AR10)."),
+}
+OUTPUTS = tuple(replace(o, equation=HOW[o.name][0], help=HOW[o.name][1]) if o.name in HOW else o for o in OUTPUTS)
 
 
 def inertia(v) -> float:

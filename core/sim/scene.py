@@ -56,8 +56,8 @@ def effects_field(choices: tuple[str, ...], default: tuple[str, ...], help: str)
 
 
 STATS_OUTPUTS = (
-    Output("error_estimate", "Error estimate", help="Largest difference of the key results to a run "
-           "at 100x tighter tolerance (10 000x if the two agree exactly), relative."),
+    Output("error_estimate", "Error estimate", help="Largest relative difference of the key results from a "
+           "run at 100x tighter tolerance (10 000x if equal)."),
     Output("rhs_evaluations", "Solver work (evaluations)", help="Right-hand-side evaluations of the main run."),
     Output("wall_time", "Time of one run", "time", "ms", help="Wall time of the main run (not the estimate)."),
 )
