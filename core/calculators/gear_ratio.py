@@ -78,7 +78,7 @@ OUTPUTS = (
            help="Voltage at which this load just stalls the motors, V_spec·r·F/(τs·η·n·G) (17, corrected).",
            equation="(17)"),
     Output("motor_torque", "Load torque ÷ ratio (after η)", "torque", "N*m",
-           help="r·F/G, the load torque at the motor side with η taken off: the motor tab's torque (92).",
+           help="r·F/G, the motor tab's operating torque (η already off: the motors give r·F/(G·η) in all) (92).",
            equation="(92)"),
     Output("output_power", "Output power", "power", "W",
            help="Load × linear loaded speed, F·r·ω_load (GR1).", equation="(GR1)"),
