@@ -200,3 +200,23 @@ def test_switch_fields_are_checked_only_while_the_switch_is_on():
         pn.simulate(pn_values(**bad), 1e-6)
     assert err.value.field == "switch_on"
     assert pn.simulate(pn_values(effects="compressor, regulator", **bad), 1e-6).values["compressor_duty"] == 1.0
+
+
+# --- the "fold" combine (added to core.sim.effects for the flight's slot) -------------------------
+
+@pytest.mark.parametrize("arity", [None, 1, 2, 3])
+def test_fold_applies_the_terms_in_catalogue_order_on_the_running_value(arity):
+    from gearhead.core.sim.effects import Effect, Effects, Part, Slot
+
+    n = arity or 2
+
+    def effect(name):
+        return Effect(name, "", lambda values, ctx: Part(terms={"s": lambda acc, *a: acc + f"{name}{sum(a)};"}))
+
+    catalogue = Effects(effect("a"), effect("b"), effect("c"))
+    slots = (Slot("s", "fold", arity=arity),)
+    args = tuple(range(1, n + 1))
+    for on, want in (({"a", "b", "c"}, "a;b;c;"), ({"c", "a"}, "a;c;"), ({"b"}, "b;")):
+        got = catalogue.assemble(on, {}, None, slots).slots["s"]("start:", *args)
+        assert got == "start:" + want.replace(";", f"{sum(args)};")
+    assert catalogue.assemble((), {}, None, slots).slots["s"] is None

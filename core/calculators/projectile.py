@@ -28,7 +28,7 @@ frontal area, air density; (F1)) and `magnus` (lift C_L·½ρA|v|² perpendicula
 for backspin; (F2)). Each declares its fields here and adds its term to the flight's slot "accel";
 `magnus` also reports the spin ratio S = |ω|·r/v_i (P1) that guides the choice of C_L. With no term
 (no effect on, or only ones with a zero coefficient) the answer is the closed form above (core.sim.
-flight (V1)-(V3), the one copy), with no integration. With effects, forward integrates to the target distance;
+flight (V1)-(V3), the one copy), with no integration. With terms, forward integrates to the target distance;
 reverse finds θ_i and v_i by root finding (hybrid Powell) from the vacuum answer (or, when Magnus lift
 from backspin bends the path upward so that no vacuum answer exists, from a throw above the line).
 Where that misses (strong effects bend the path far from the parabola), continuation: the effects are
@@ -38,9 +38,8 @@ last root; the path is followed with flights at rtol ≤ 1e-6 and the root polis
 
 from __future__ import annotations
 
-import math
-
 import dataclasses
+import math
 
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot

@@ -31,7 +31,7 @@ from .integrate import Event, integrate
 T_MAX = 120.0  # s: no robot throw flies longer; bounds the work of a stalled solve
 STATES = ("x", "y", "vx", "vy")
 SLOTS = (Slot("accel", "fold", "acceleration (ax, ay): each term adds its own to the running one, "
-                              "of (a, vx, vy, |v|); the scene starts from gravity's (0, −g)"),)
+                              "of (a, vx, vy, |v|); the scene starts from gravity's (0, −g)", arity=3),)
 
 
 # --- the vacuum flight, in closed form ------------------------------------------------------------
