@@ -192,7 +192,8 @@ FIELDS = (
     _EFFECT_FIELDS["switch_off"],
     Field("match_length", "Match length", "time", "s", default=150, min=0, min_exclusive=True, max=3600,
           help="Simulated time."),
-    EFFECTS.field("compressor, pressure_switch, regulator."),
+    EFFECTS.field("compressor, pressure_switch, regulator. (Absolute P·V bookkeeping, once the effect "
+                  "absolute_pressure, is the choice pressure_model = absolute.)"),
     Field("pressure_model", "Air bookkeeping", choices=PRESSURE_MODELS, default="gauge",
           choice_labels=("Gauge P·V (the seed's)", "Absolute P·V, isothermal"),
           help="How a stroke's air leaves the storage: gauge, as the seed's (79), (81); or absolute, "

@@ -45,7 +45,7 @@ from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot
 from ..sim import flight
 from ..sim.effects import Effect, Effects
-from ..sim.flight import Air, aim, aim_along, fly, vacuum_apex, vacuum_at, vacuum_landing_time, vacuum_path
+from ..sim.flight import Air, aim, aim_along, fly, vacuum_apex, vacuum_at, vacuum_path, vacuum_range
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stats
 
 from ..constants import G0 as G
@@ -175,11 +175,6 @@ def _too_high(h_i, h_f, d, theta_f) -> str:
             f"would need infinite speed")
 
 
-def landing_distance(h_i: float, theta_i: float, v_i: float) -> float:
-    """Where the vacuum arc meets the floor, (V3)."""
-    return v_i * math.cos(theta_i) * vacuum_landing_time(h_i, theta_i, v_i, G)
-
-
 def _floor_error(x: float) -> InputError:
     return InputError("distance", f"is beyond where the ball comes down to the floor "
                                   f"(x = {max(x, 0.0):.4g} m): it never reaches the target distance")
@@ -287,7 +282,7 @@ def simulate(v, rtol: float) -> SimRun:
         if forward:
             h_f, theta_f, t = vacuum_at(h_i, theta_i, v_i, d, G)
             if h_f < -FLOOR_SLACK * max(1.0, d):
-                raise _floor_error(landing_distance(h_i, theta_i, v_i))
+                raise _floor_error(vacuum_range(h_i, theta_i, v_i, G))
             h_f = max(h_f, 0.0)
         else:
             theta_i, v_i, t = reverse_vacuum(h_i, h_f, d, theta_f)

@@ -71,6 +71,11 @@ def vacuum_landing_time(h_i: float, theta_i: float, v_i: float, g: float = G0) -
     return (q + root) / g if q >= 0 else (2 * h_i / (root - q) if root - q > 0 else 0.0)
 
 
+def vacuum_range(h_i: float, theta_i: float, v_i: float, g: float = G0) -> float:
+    """Horizontal distance where the vacuum arc from height h_i ≥ 0 comes down to 0, (V3)."""
+    return v_i * math.cos(theta_i) * vacuum_landing_time(h_i, theta_i, v_i, g)
+
+
 def vacuum_path(h_i: float, theta_i: float, v_i: float, t_end: float, n: int, g: float = G0):
     """n + 1 points (x, y) of the vacuum arc, evenly spaced in time over [0, t_end]."""
     vx, vy = v_i * math.cos(theta_i), v_i * math.sin(theta_i)
