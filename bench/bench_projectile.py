@@ -28,19 +28,29 @@ CASES = {
 }
 
 
-def main() -> None:
+def scene_rows(calc_id: str, cases: dict) -> None:
+    """One line a case: the scene alone at the default accuracy, the full solve, the scene's nfev."""
     from gearhead.core.model import parse_inputs, solve
     from gearhead.core.registry import get
-    from gearhead.core.sim.scene import LEVELS, ladder
+    from gearhead.core.sim.scene import LEVELS
 
-    calc = get("projectile")
+    calc = get(calc_id)
     print("  default accuracy (rtol 1e-6), median of 50; nfev of the scene alone:")
-    for name, raw in CASES.items():
+    for name, raw in cases.items():
         values, _ = parse_inputs(calc, raw)
         scene = median_seconds(lambda: calc.simulate(values, LEVELS["default"]), 50) * 1e3
-        full = median_seconds(lambda: solve("projectile", raw), 50) * 1e3
+        full = median_seconds(lambda: solve(calc_id, raw), 50) * 1e3
         nfev = calc.simulate(values, LEVELS["default"]).nfev
         print(f"    {name:<30} scene {scene:7.3f} ms   solve {full:7.3f} ms   nfev {nfev:6d}")
+
+
+def main() -> None:
+    from gearhead.core.model import parse_inputs
+    from gearhead.core.registry import get
+    from gearhead.core.sim.scene import ladder
+
+    calc = get("projectile")
+    scene_rows("projectile", CASES)
     for name in ("drag forward", "drag reverse (root finding)"):
         values, _ = parse_inputs(calc, CASES[name])
         t0 = time.perf_counter()

@@ -5,7 +5,7 @@ import math
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from gearhead.core.sim.flight import Air, aim, fly
+from gearhead.core.sim.flight import aim, air_with as Air, fly
 
 G = 9.80665
 

@@ -68,12 +68,12 @@ def test_switch_off_time_matches_the_quadrature(compressor):
 
 def test_absolute_bookkeeping_uses_more_air_than_the_seeds_gauge():
     gauge = solve("pneumatics", {}).outputs["final_pressure"].value
-    absolute = solve("pneumatics", {"effects": "compressor, pressure_switch, regulator, absolute_pressure"})
+    absolute = solve("pneumatics", {"pressure_model": "absolute"})
     assert absolute.outputs["final_pressure"].value < gauge
 
 
 def test_unregulated_stroke_shares_air_exactly_in_absolute_mode():
-    v = values(effects="absolute_pressure", c1_period=0, c1_start=0)
+    v = values(effects="", pressure_model="absolute", c1_period=0, c1_start=0)
     V = 1148e-6
     g = pn.groups(v)[0]
     P_abs = (120 * PSI + pn.P_ATM) * V / (V + g["A_push"] * 6 * IN * 2)
@@ -156,7 +156,7 @@ def test_absolute_regulated_stroke_by_hand():
     """Absolute bookkeeping, regulated at 60 psi, one actuation from 120 psi: each stroke takes
     (60 psi + 1 atm)·A·L·2 of P·V. By hand: push 347.50 cc, pull 317.94 cc of 1148 cc, 74.696 psi abs:
     120 − 74.696·(347.50 + 317.94)/1148 = 76.70 psi."""
-    v = values(effects="regulator, absolute_pressure", c1_period=0, c1_start=0)
+    v = values(effects="regulator", pressure_model="absolute", c1_period=0, c1_start=0)
     V, L = 1148e-6, 6 * IN
     A_push, A_pull = math.pi * (1.5 * IN) ** 2 / 4, math.pi * ((1.5 * IN) ** 2 - (0.4375 * IN) ** 2) / 4
     expected = 120 * PSI - (60 * PSI + 101325.0) * (A_push + A_pull) * L * 2 / V

@@ -10,7 +10,7 @@ from gearhead.core.calculators import projectile as pj
 from gearhead.core.errors import InputError
 from gearhead.core.model import parse_inputs, solve
 from gearhead.core.registry import get
-from gearhead.core.sim.flight import Air, rhs_for
+from gearhead.core.sim.flight import air_with, rhs_for, vacuum_at
 
 G = 9.80665
 DEG = math.pi / 180
@@ -90,7 +90,7 @@ def test_seeds_absolute_value_would_accept_an_impossible_target():
     th_i, v_seed = seed_63_64(0.0, 1.0, 3.0, 30 * DEG)
     assert math.isfinite(v_seed)  # the seed's answer, which no thrown ball follows
     # check: fly the seed's answer forward; it does not arrive at +30°
-    _, th_f, _ = pj.forward_vacuum(0.0, th_i, v_seed, 3.0)
+    _, th_f, _ = vacuum_at(0.0, th_i, v_seed, 3.0)
     assert math.degrees(th_f) < 18.44
     with pytest.raises(InputError) as e:
         solve("projectile", {"mode": "reverse", "release_height": 0, "target_height": 1, "distance": 3,
@@ -120,7 +120,7 @@ def test_floor_before_the_target_is_an_error_with_the_landing_point():
 def test_forward_accepts_arrays_for_sweeps():
     np = pytest.importorskip("numpy")
     th = np.radians(np.array([30.0, 45.0, 60.0]))
-    h_f, th_f, t = pj.forward_vacuum(0.6, th, 8.0, 3.0)
+    h_f, th_f, t = vacuum_at(0.6, th, 8.0, 3.0)
     for k in range(3):
         assert (h_f[k], th_f[k]) == pytest.approx(seed_61_62(0.6, float(th[k]), 8.0, 3.0), rel=1e-12)
 
@@ -128,11 +128,12 @@ def test_forward_accepts_arrays_for_sweeps():
 def test_switching_an_effect_off_removes_its_cost():
     # no effect: closed form, nothing integrated
     assert pj.simulate(values(effects=""), 1e-6).nfev == 0
-    # the right-hand side holds only the terms switched on: the drag-only one does not even capture k_m
-    both, drag_only = rhs_for(Air(G, 0.03, 0.01)), rhs_for(Air(G, 0.03, 0.0))
-    assert set(both.__code__.co_freevars) == {"g", "kd", "km"}
-    assert set(drag_only.__code__.co_freevars) == {"g", "kd"}
-    assert set(rhs_for(Air(G, 0.0, 0.0)).__code__.co_freevars) == {"g"}
+    # the right-hand side holds only the terms switched on (tests/test_effects_scenes.py counts them)
+    both, drag_only = air_with(G, 0.03, 0.01), air_with(G, 0.03, 0.0)
+    assert both.assembly.contributors["accel"] == ("air_drag", "magnus")
+    assert drag_only.assembly.contributors["accel"] == ("air_drag",)
+    assert drag_only.accel is drag_only.assembly.parts["air_drag"].terms["accel"]  # used as is, no wrapper
+    assert set(rhs_for(air_with(G)).__code__.co_freevars) == {"g"}
     # magnus off: lift coefficient and spin are ignored, the run is identical to a spinless one
     spun = pj.simulate(values(effects="air_drag", spin="3000 rpm", lift_coefficient=0.5), 1e-6)
     plain = pj.simulate(values(effects="air_drag", spin=0), 1e-6)

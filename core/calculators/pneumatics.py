@@ -1,16 +1,23 @@
 """Seed section 10 (Appendix F): air over a match, as a scene with effects.
 
-State: storage pressure P (gauge, Pa). Between firings the compressor (if on) adds free air:
-    d(P·V)/dt = P_atm · V̇_comp(P)  ⇒  dP/dt = P_atm · V̇_comp(P) / V        (80) into (79), dt → 0
-Each firing of a cylinder group removes the air of one extend and one retract stroke (81):
+State: storage pressure P (gauge, Pa). Between firings the slot "inflow" (core.sim.effects) gives
+dP/dt; the compressor (if on) adds free air:
+    d(P·V)/dt = P_atm · V̇_comp(P)  ⇒  dP/dt = P_atm · V̇_comp(P) / V        (N1) = (80) into (79), dt → 0
+Each firing of a cylinder group removes the air of one extend and one retract stroke (81), at
+t_k = start + k·period < T (N3):
     ΔP = −(A_push·P_push + A_pull·P_pull)·L·count / V                     (79), (81), gauge (seed)
-With the `absolute_pressure` effect the bookkeeping is isothermal in absolute pressure: a stroke
-fills the chamber from empty to its absolute pressure, so it takes (P_cyl + P_atm)·A·L of P·V; and
-an unregulated stroke shares the tank's air, P_abs ← P_abs·V/(V + A·L) (exact, not linearised).
-Effects: `compressor` (off: no compressor term, and the match is answered in closed form with no
-integration), `pressure_switch` (on at or below 95 psi, off at 120 psi; without it the compressor
-runs all match and the 125 psi relief valve holds the top), `regulator` (cylinders get
-min(setting, storage pressure); without it they get storage pressure), `absolute_pressure`.
+The model choice `pressure_model` = absolute makes the bookkeeping isothermal in absolute pressure:
+a stroke fills the chamber from empty to its absolute pressure, so it takes (P_cyl + P_atm)·A·L of
+P·V; and an unregulated stroke shares the tank's air, P_abs ← P_abs·V/(V + A·L) (exact, not
+linearised) (N2).
+Effects (parts, core.sim.effects), each with its own fields:
+- `compressor` (compressor_model): the term of "inflow"; off, the slot is None and the match is
+  answered in closed form (firings only) with no integration.
+- `pressure_switch` (switch_on, switch_off): a discrete state (motor on/off) through its event at
+  the switch-off pressure and its check after each firing (on at or below switch_on). Without it the
+  compressor runs all match and the 125 psi relief valve (the scene's own event) holds the top.
+- `regulator`: cylinders get min(setting, storage pressure); without it they get storage pressure
+  (a parameter of the firing map (81), no term).
 Departures from the seed: the seed integrates with a 1 s explicit step (its own result is shown
 beside ours with the difference); events (switch flips) are located to the solver's tolerance.
 Compressor curves: the accurate run follows the vendor table (REFERENCE_DATA.md) through every
@@ -29,8 +36,9 @@ from functools import lru_cache
 
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
+from ..sim.effects import Effect, Effects, Part, Slot
 from ..sim.integrate import Event, integrate
-from ..sim.scene import SOLVE_NFEV, STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats
+from ..sim.scene import SOLVE_NFEV, STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats
 
 from ..constants import INCH, PSI
 P_ATM = 101325.0  # Pa
@@ -54,7 +62,8 @@ COMPRESSORS: dict[str, tuple[float, ...]] = {
     "AndyMark 1.1 12 V": (1.100, .602, .502, .406, .331, .312, .300),
 }
 CURVE_PSI = (0, 20, 40, 60, 80, 100, 120)
-EFFECTS = ("compressor", "pressure_switch", "regulator", "absolute_pressure")
+PRESSURE_MODELS = ("gauge", "absolute")
+SLOTS = (Slot("inflow", "sum", "dP/dt of the storage (Pa/s), of its gauge pressure P"),)
 
 
 @lru_cache(maxsize=None)
@@ -115,6 +124,41 @@ def flow(coeffs, P: float) -> float:
     return q if q > 0 else 0.0
 
 
+# --- the effects ---------------------------------------------------------------------------------
+
+def _compressor(values, V: float) -> Part:
+    """(N1): dP/dt = P_atm·V̇(P)/V on the vendor curve."""
+    curve = flow_curve(values["compressor_model"])
+    k = P_ATM / V
+    return Part(terms={"inflow": lambda P: k * flow_through(curve, P)})
+
+
+def _switch(values, V: float) -> Part:
+    """On at or below switch_on, off at switch_off: its event stops the compressor's run."""
+    on_at, off_at = values["switch_on"], values["switch_off"]
+    if on_at >= off_at:
+        raise InputError("switch_on", "must be below the switch-off pressure")
+    return Part(events=(Event("switch_off", lambda t, y: y[0] - off_at, +1),),
+                params={"switch_on": on_at, "top": off_at})
+
+
+EFFECTS = Effects(
+    Effect("compressor", "the compressor fills the storage (N1)", _compressor, default_on=True,
+           fields=(Field("compressor_model", "Compressor", choices=tuple(COMPRESSORS), default="VIAIR 90C 13.8 V",
+                         help="Compressor flow curve: vendor data, followed through every point (shape-"
+                              "preserving PCHIP); the seed's 1 s comparison uses its 4th-degree fit."),)),
+    Effect("pressure_switch", "stops the compressor at switch_off, restarts it at or below switch_on",
+           _switch, default_on=True,
+           fields=(Field("switch_on", "Switch on at", "pressure", "psi", default=95, min=0, max=PRESSURE_MAX,
+                         help="Pressure switch closes (compressor on) at or below this."),
+                   Field("switch_off", "Switch off at", "pressure", "psi", default=120, min=0, max=PRESSURE_MAX,
+                         help="Pressure switch opens (compressor off) at this."),)),
+    Effect("regulator", "cylinders get min(setting, storage pressure)",
+           lambda values, V: Part(params={"regulated": True}), default_on=True),
+)
+_EFFECT_FIELDS = {f.name: f for f in EFFECTS.fields()}
+
+
 def _group_fields(i: int):
     on = i == 1
     g = f"Cylinder group {i}: "
@@ -139,40 +183,51 @@ def _group_fields(i: int):
 
 
 FIELDS = (
-    Field("compressor_model", "Compressor", choices=tuple(COMPRESSORS), default="VIAIR 90C 13.8 V",
-          help="Compressor flow curve: vendor data, followed through every point (shape-preserving "
-               "PCHIP); the seed's 1 s comparison uses its 4th-degree fit."),
+    _EFFECT_FIELDS["compressor_model"],
     Field("tank_volume", "Storage volume", "volume", "cc", default=1148, min=1e-6 / SLACK, max=1.0 * SLACK,
           help="Total storage: tanks plus tubing (two Clippard tanks: 1148 cc)."),
     Field("start_pressure", "Start pressure", "pressure", "psi", default=120, min=0, max=PRESSURE_MAX,
           help="Storage pressure (gauge) when the match starts."),
-    Field("switch_on", "Switch on at", "pressure", "psi", default=95, min=0, max=PRESSURE_MAX,
-          help="Pressure switch closes (compressor on) at or below this."),
-    Field("switch_off", "Switch off at", "pressure", "psi", default=120, min=0, max=PRESSURE_MAX,
-          help="Pressure switch opens (compressor off) at this."),
+    _EFFECT_FIELDS["switch_on"],
+    _EFFECT_FIELDS["switch_off"],
     Field("match_length", "Match length", "time", "s", default=150, min=0, min_exclusive=True, max=3600,
           help="Simulated time."),
-    effects_field(EFFECTS, ("compressor", "pressure_switch", "regulator"),
-                  "compressor, pressure_switch, regulator, absolute_pressure (isothermal, absolute "
-                  "P·V bookkeeping instead of the seed's gauge P·V)."),
+    EFFECTS.field("compressor, pressure_switch, regulator. (Absolute P·V bookkeeping, once the effect "
+                  "absolute_pressure, is the choice pressure_model = absolute.)"),
+    Field("pressure_model", "Air bookkeeping", choices=PRESSURE_MODELS, default="gauge",
+          choice_labels=("Gauge P·V (the seed's)", "Absolute P·V, isothermal"),
+          help="How a stroke's air leaves the storage: gauge, as the seed's (79), (81); or absolute, "
+               "isothermal (a stroke fills its chamber from empty to its absolute pressure; an "
+               "unregulated one shares the tank's air) (N2)."),
     accuracy_field(),
 ) + tuple(f for i in range(1, GROUPS + 1) for f in _group_fields(i))
 
+_MATCH = "(79)-(81)"
 OUTPUTS = (
-    Output("min_pressure", "Minimum pressure", "pressure", "psi"),
-    Output("min_pressure_time", "…at time", "time", "s"),
-    Output("final_pressure", "Final pressure", "pressure", "psi"),
-    Output("compressor_duty", "Compressor duty", "dimensionless", "%",
-           help="Fraction of the match the compressor runs."),
-    Output("firings", "Actuations"),
-    Output("tank_empty", "Tank emptied"),
+    Output("min_pressure", "Minimum pressure", "pressure", "psi", equation=_MATCH,
+           help="Lowest storage pressure (gauge): (N1) integrated between firings, (81) at each firing."),
+    Output("min_pressure_time", "…at time", "time", "s", equation=_MATCH,
+           help="When the storage pressure is lowest (the first time, if it is reached twice)."),
+    Output("final_pressure", "Final pressure", "pressure", "psi", equation=_MATCH,
+           help="Storage pressure (gauge) at the end of the match, as the minimum."),
+    Output("compressor_duty", "Compressor duty", "dimensionless", "%", equation="(80)",
+           help="Fraction of the match the compressor runs (switch closed, or all match without a switch)."),
+    Output("firings", "Actuations", equation="(N3)",
+           help="Firings of all groups in the match: start + k·period before its end."),
+    Output("tank_empty", "Tank emptied", equation="(81)",
+           help="Whether a stroke found the storage at atmospheric pressure (the stroke is incomplete)."),
     *[o for i in range(1, GROUPS + 1) for o in (
-        Output(f"push_force_{i}", f"Cyl {i}: push force", "force", "lbf", help="(82) at its push pressure."),
-        Output(f"pull_force_{i}", f"Cyl {i}: pull force", "force", "lbf", help="(83) at its pull pressure."),
+        Output(f"push_force_{i}", f"Cyl {i}: push force", "force", "lbf", equation="(82)",
+               help="π·D²/4 at its push pressure."),
+        Output(f"pull_force_{i}", f"Cyl {i}: pull force", "force", "lbf", equation="(83)",
+               help="π·(D² − d²)/4 at its pull pressure."),
     )],
-    Output("seed_min_pressure", "Spreadsheet (1 s steps): minimum", "pressure", "psi"),
-    Output("seed_final_pressure", "Spreadsheet (1 s steps): final", "pressure", "psi"),
-    Output("seed_difference", "Spreadsheet minus accurate (final)", "pressure", "psi"),
+    Output("seed_min_pressure", "Spreadsheet (1 s steps): minimum", "pressure", "psi", equation=_MATCH,
+           help="The seed's own scheme: explicit 1 s steps of (79)-(81) on its 4th-degree fit of the curve."),
+    Output("seed_final_pressure", "Spreadsheet (1 s steps): final", "pressure", "psi", equation=_MATCH,
+           help="The seed's own scheme at the end of the match."),
+    Output("seed_difference", "Spreadsheet minus accurate (final)", "pressure", "psi", equation=_MATCH,
+           help="Spreadsheet's final pressure minus the accurate one."),
     *STATS_OUTPUTS,
 )
 
@@ -211,12 +266,12 @@ def firing_times(gs: list[dict], T: float) -> list[tuple[float, dict]]:
     return times
 
 
-def fire(P: float, g: dict, V: float, effects) -> float:
-    """Storage pressure (gauge) after one actuation of group g: extend, then retract."""
-    absolute = "absolute_pressure" in effects
+def fire(P: float, g: dict, V: float, regulator: bool, absolute: bool) -> float:
+    """Storage pressure (gauge) after one actuation of group g: extend, then retract; (81), or (N2)
+    when `absolute`."""
     for A, setting in ((g["A_push"], g["P_push"]), (g["A_pull"], g["P_pull"])):
         Vc = A * g["stroke"] * g["count"]
-        regulated = "regulator" in effects and setting < P
+        regulated = regulator and setting < P
         if not absolute:
             P_cyl = setting if regulated else P
             P = P - P_cyl * Vc / V  # (81) into (79), gauge as in the seed
@@ -231,19 +286,24 @@ def fire(P: float, g: dict, V: float, effects) -> float:
     return P
 
 
+def assemble(v):
+    """The effects that are on, composed once for this solve (ctx: the storage volume)."""
+    return EFFECTS.assemble(v["effects"], v, v["tank_volume"], SLOTS, ("pressure",))
+
+
 def simulate(v, rtol: float) -> SimRun:
-    effects = v["effects"]
     V, T = v["tank_volume"], v["match_length"]
     gs = groups(v)
-    if v["switch_on"] >= v["switch_off"]:
-        raise InputError("switch_on", "must be below the switch-off pressure")
-    curve = flow_curve(v["compressor_model"])
-    k = P_ATM / V
-    rhs = lambda t, y: [k * flow_through(curve, y[0])]  # noqa: E731  (80) into (79)
-    has_comp = "compressor" in effects
-    switch = "pressure_switch" in effects
-    top = v["switch_off"] if switch else RELIEF
-    stop = [Event("full", lambda t, y: y[0] - top, +1)]
+    asm = assemble(v)
+    inflow = asm.slots["inflow"]
+    has_comp = inflow is not None
+    switch = "pressure_switch" in asm.on
+    regulator, absolute = "regulator" in asm.on, v["pressure_model"] == "absolute"
+    if has_comp:
+        rhs = lambda t, y: [inflow(y[0])]  # noqa: E731  (N1)
+    top = asm.params.get("top", RELIEF)
+    # the switch's event stops the motor below the relief valve; without it the valve holds the top
+    stop = list(asm.events) or [Event("relief", lambda t, y: y[0] - RELIEF, +1)]
     P = v["start_pressure"]
     on = has_comp and (P < top or not switch)  # with no switch the motor runs from the start
     t = 0.0
@@ -272,7 +332,7 @@ def simulate(v, rtol: float) -> SimRun:
             ts.extend(run.t[1:])
             Ps.extend(y[0] for y in run.y[1:])
             P = run.y[-1][0]
-            if run.event == "full":
+            if run.event is not None:  # the switch opened, or the relief valve
                 run_time += run.t[-1] - t
                 P = top
                 on = not switch  # without a switch the relief valve holds the top, motor still runs
@@ -291,13 +351,13 @@ def simulate(v, rtol: float) -> SimRun:
         if g is None:
             break
         P_before = P
-        P = fire(P, g, V, effects)
+        P = fire(P, g, V, regulator, absolute)
         if P == 0.0 and not empty:
             empty = True
             warnings.append(f"The tank empties at t = {tf:.3g} s: strokes after that are incomplete.")
         ts.append(tf)
         Ps.append(P)
-        if has_comp and (not switch or P <= v["switch_on"]) and P < top:
+        if has_comp and (not switch or P <= asm.params["switch_on"]) and P < top:
             on = True
         elif has_comp and not switch and P_before >= top > P:
             on = True
@@ -315,7 +375,7 @@ def simulate(v, rtol: float) -> SimRun:
         values[f"pull_force_{g['index']}"] = g["A_pull"] * g["P_pull"]  # (83)
     if not has_comp:
         warnings.append("No compressor: pressure only falls; answered in closed form (no integration).")
-    if gs and "regulator" not in effects:
+    if gs and not regulator:
         warnings.append("No regulator: cylinders get storage pressure, so the air used follows the tank; "
                         "the forces shown are at the push/pull pressures entered.")
     return SimRun(values, {"min_pressure": Ps[i_min] + P_ATM, "final_pressure": P + P_ATM}, nfev, warnings,
@@ -328,6 +388,7 @@ def seed_step(v) -> tuple[float, float, tuple[list[float], list[float]]]:
     V, T = v["tank_volume"], v["match_length"]
     gs = groups(v)
     coeffs = flow_fit(v["compressor_model"])
+    regulator = "regulator" in effects
     switch = "pressure_switch" in effects
     top = v["switch_off"] if switch else RELIEF
     P = v["start_pressure"]
@@ -340,7 +401,7 @@ def seed_step(v) -> tuple[float, float, tuple[list[float], list[float]]]:
         W_comp = flow(coeffs, P) * 1.0 * P_ATM if on else 0.0  # (80), dt = 1 s
         P = min(P + W_comp / V, top) if on else P  # (79)
         while k < len(schedule) and schedule[k][0] < n + 1:  # firings in [n, n + 1)
-            P = fire(P, schedule[k][1], V, effects - {"absolute_pressure"})  # (81): the seed is gauge only
+            P = fire(P, schedule[k][1], V, regulator, False)  # (81): the seed is gauge only
             k += 1
         low = min(low, P)
         ts.append(float(n + 1))

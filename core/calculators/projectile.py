@@ -23,9 +23,12 @@ Departures from / corrections to the seed:
 - Added, not in the seed: time of flight, apex (highest point between release and target), speed at
   the target, and the floor: a ball that reaches the floor before the target distance is an error
   naming `distance`.
-Effects (core.sim.flight): `air_drag` (quadratic, C_d, frontal area, air density) and `magnus`
-(lift C_L·½ρA|v|² perpendicular to the path, upward for backspin). With no effect the answer is the
-closed form above, with no integration. With effects, forward integrates to the target distance;
+Effects (core.sim.effects parts, their physics in core.sim.flight): `air_drag` (quadratic, C_d,
+frontal area, air density; (F1)) and `magnus` (lift C_L·½ρA|v|² perpendicular to the path, upward
+for backspin; (F2)). Each declares its fields here and adds its term to the flight's slot "accel";
+`magnus` also reports the spin ratio S = |ω|·r/v_i (P1) that guides the choice of C_L. With no term
+(no effect on, or only ones with a zero coefficient) the answer is the closed form above (core.sim.
+flight (V1)-(V3), the one copy), with no integration. With terms, forward integrates to the target distance;
 reverse finds θ_i and v_i by root finding (hybrid Powell) from the vacuum answer (or, when Magnus lift
 from backspin bends the path upward so that no vacuum answer exists, from a throw above the line).
 Where that misses (strong effects bend the path far from the parabola), continuation: the effects are
@@ -35,16 +38,18 @@ last root; the path is followed with flights at rtol ≤ 1e-6 and the root polis
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot
-from ..sim.flight import Air, aim, aim_along, air, fly
-from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, compute_with_stats
+from ..sim import flight
+from ..sim.effects import Effect, Effects
+from ..sim.flight import Air, aim, aim_along, fly, vacuum_apex, vacuum_at, vacuum_path, vacuum_range
+from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stats
 
 from ..constants import G0 as G
 HALF_PI = math.pi / 2
-EFFECTS = ("air_drag", "magnus")
 PATH_POINTS = 80
 MAX_STEPS = 5_000  # per flight (a real throw takes < 100): a path curled up by extreme Magnus lift is
 MAX_FLIGHTS = 150  # refused, not crawled along; the reverse root finder may try this many flights
@@ -55,6 +60,42 @@ FLOOR_SLACK = 1e-9  # relative: a target on the floor (h_f = 0) is reached, not 
 
 MODES = ("forward", "reverse")
 MODE_LABELS = ("Forward: where the ball goes", "Reverse: how to throw it")
+
+_MASS = Field("ball_mass", "Ball mass", "mass", "kg", default=0.27, min=1e-3, max=100,
+              help="Mass of the game piece (2022 FRC cargo: 0.27 kg).")
+_DIAMETER = Field("ball_diameter", "Ball diameter", "length", "m", default=0.24, min=1e-3, max=2,
+                  help="Diameter; the frontal area is π·D²/4 (2022 FRC cargo: 0.24 m).")
+_DENSITY = Field("air_density", "Air density", "density", "kg/m^3", default=1.204, min=0, max=2,
+                 help="ρ (1.204 kg/m³ at 20 °C and sea level; ≈ 1.0 at 1600 m).")
+
+
+def _magnus(values, body):
+    """(F2), and the spin ratio (P1) at release: |ω|·r/v_i, r = D/2."""
+    spin, D = values["spin"], values["ball_diameter"]
+    return dataclasses.replace(flight.magnus_build(values, body),
+                               report=lambda run: {"spin_ratio": abs(spin) * D / 2 / run["release_speed"]})
+
+
+EFFECTS = Effects(
+    Effect("air_drag", "quadratic drag", flight.drag_build,
+           fields=(_MASS, _DIAMETER,
+                   Field("drag_coefficient", "Drag coefficient", default=0.47, min=0, max=2,
+                         help="C_d for `air_drag` (smooth sphere ≈ 0.47, foam ball ≈ 0.5)."),
+                   _DENSITY)),
+    Effect("magnus", "spin lift", _magnus,
+           fields=(_MASS, _DIAMETER,
+                   Field("lift_coefficient", "Lift coefficient", default=0.2, min=0, max=1,
+                         help="C_L for `magnus`, constant over the flight. It grows with the spin ratio "
+                              "ω·r/v (shown as an output): about 0.1-0.3 for spin ratios 0.1-0.4."),
+                   Field("spin", "Spin", "angular_speed", "rpm", default=0, min=-1e5, max=1e5,
+                         help="Spin of the ball; positive is backspin (lifts), negative topspin (drops). Its "
+                              "sign sets the direction of the Magnus force, C_L sets its size; 0: no Magnus "
+                              "force."),
+                   _DENSITY),
+           outputs=(Output("spin_ratio", "Spin ratio ω·r/v", equation="(P1)",
+                           help="|ω|·r/v_i at release (r = D/2); guides the choice of C_L (magnus)."),)),
+)
+_EFFECT_FIELDS = {f.name: f for f in EFFECTS.fields()}
 
 FIELDS = (
     Field("mode", "Solve", choices=MODES, choice_labels=MODE_LABELS, default="forward",
@@ -77,74 +118,34 @@ FIELDS = (
           help="Angle θ_f of the ball's path at the target (negative: coming down). It must be "
                "below the line from release to target: a thrown ball curves downward (only strong "
                "backspin with `magnus` can bend it up)."),
-    effects_field(EFFECTS, (), "air_drag (quadratic drag), magnus (spin lift). None: the seed's "
-                               "closed form, no integration."),
+    EFFECTS.field("air_drag (quadratic drag), magnus (spin lift). None: the seed's closed form, no "
+                  "integration."),
     accuracy_field(),
-    Field("ball_mass", "Ball mass", "mass", "kg", default=0.27, min=1e-3, max=100,
-          help="Mass of the game piece (2022 FRC cargo: 0.27 kg).",
-          when=(("effects", ("air_drag", "magnus")),)),
-    Field("ball_diameter", "Ball diameter", "length", "m", default=0.24, min=1e-3, max=2,
-          help="Diameter; the frontal area is π·D²/4 (2022 FRC cargo: 0.24 m).",
-          when=(("effects", ("air_drag", "magnus")),)),
-    Field("drag_coefficient", "Drag coefficient", default=0.47, min=0, max=2,
-          help="C_d for `air_drag` (smooth sphere ≈ 0.47, foam ball ≈ 0.5).",
-          when=(("effects", ("air_drag",)),)),
-    Field("lift_coefficient", "Lift coefficient", default=0.2, min=0, max=1,
-          help="C_L for `magnus`, constant over the flight. It grows with the spin ratio "
-               "ω·r/v (shown as an output): about 0.1-0.3 for spin ratios 0.1-0.4.",
-          when=(("effects", ("magnus",)),)),
-    Field("spin", "Spin", "angular_speed", "rpm", default=0, min=-1e5, max=1e5,
-          help="Spin of the ball; positive is backspin (lifts), negative topspin (drops). Its sign "
-               "sets the direction of the Magnus force, C_L sets its size; 0: no Magnus force.",
-          when=(("effects", ("magnus",)),)),
-    Field("air_density", "Air density", "density", "kg/m^3", default=1.204, min=0, max=2,
-          help="ρ (1.204 kg/m³ at 20 °C and sea level; ≈ 1.0 at 1600 m).",
-          when=(("effects", ("air_drag", "magnus")),)),
+    *(_EFFECT_FIELDS[n] for n in ("ball_mass", "ball_diameter", "drag_coefficient", "lift_coefficient", "spin",
+                                  "air_density")),
 )
 
 OUTPUTS = (
-    Output("target_height", "Target height", "length", "m", help="h_f (61): height at the target distance."),
-    Output("target_angle", "Target angle", "angle", "deg", help="θ_f (62): path angle at the target."),
-    Output("release_angle", "Release angle", "angle", "deg", help="θ_i (63)."),
-    Output("release_speed", "Release speed", "speed", "m/s", help="v_i (64), corrected."),
-    Output("time_of_flight", "Time of flight", "time", "s", help="From release to the target distance (103)."),
-    Output("apex_height", "Apex height", "length", "m",
+    Output("target_height", "Target height", "length", "m", equation="(61)",
+           help="h_f: height at the target distance; (61) in vacuum, else the integrated flight."),
+    Output("target_angle", "Target angle", "angle", "deg", equation="(62)",
+           help="θ_f: path angle at the target, atan2(v_y, v_x) there; (62) = (105) in vacuum."),
+    Output("release_angle", "Release angle", "angle", "deg", equation="(63)",
+           help="θ_i; (63) in vacuum, else root finding on the integrated flight."),
+    Output("release_speed", "Release speed", "speed", "m/s", equation="(64)",
+           help="v_i; (64) corrected (no |·|) in vacuum, else root finding on the integrated flight."),
+    Output("time_of_flight", "Time of flight", "time", "s", equation="(103)",
+           help="From release to the target distance: d/(v_i·cos θ_i) in vacuum, else the integrated flight."),
+    Output("apex_height", "Apex height", "length", "m", equation="(V2)",
            help="Highest point between release and target (the target height if still rising)."),
-    Output("target_speed", "Speed at target", "speed", "m/s"),
-    Output("spin_ratio", "Spin ratio ω·r/v", help="At release; guides the choice of C_L (magnus)."),
+    Output("target_speed", "Speed at target", "speed", "m/s", equation="(105)",
+           help="|v| at the target: hypot(v_i·cos θ_i, v_i·sin θ_i − g·t) in vacuum, else integrated."),
+    *EFFECTS.outputs(),
     *STATS_OUTPUTS,
 )
 
 
-# --- closed form (no effects) -------------------------------------------------------------------
-
-def _xp(*args):
-    """math for scalars, numpy for arrays: the forward formulas run over sweeps in one call."""
-    if all(isinstance(a, (int, float)) for a in args):
-        return math, math.atan2
-    import numpy as np
-
-    return np, np.arctan2
-
-
-def forward_vacuum(h_i, theta_i, v_i, d):
-    """(h_f, θ_f, t) of the vacuum arc; accepts numpy arrays. cos θ_i > 0 (|θ_i| < 90°)."""
-    xp, atan2 = _xp(h_i, theta_i, v_i, d)
-    vx = v_i * xp.cos(theta_i)
-    vy_i = v_i * xp.sin(theta_i)
-    t = d / vx  # (103)
-    h_f = h_i + (vy_i - G * t / 2) * t  # (104) = (61)
-    theta_f = atan2(vy_i - G * t, vx)  # (105) = (62)
-    return h_f, theta_f, t
-
-
-def apex_vacuum(h_i: float, theta_i: float, v_i: float, t: float, h_f: float) -> float:
-    """Highest point flown before the target: the vertex if it comes before t, else an end."""
-    vy_i = v_i * math.sin(theta_i)
-    if vy_i > 0 and vy_i / G < t:
-        return h_i + vy_i * vy_i / (2 * G)
-    return max(h_i, h_f)
-
+# --- closed form (no effects): core.sim.flight (V1)-(V3) ------------------------------------
 
 def line_angle(h_i: float, h_f: float, d: float) -> float:
     """Angle of the straight line from release to target: θ_f must lie below it."""
@@ -174,30 +175,21 @@ def _too_high(h_i, h_f, d, theta_f) -> str:
             f"would need infinite speed")
 
 
-def landing_distance(h_i: float, theta_i: float, v_i: float) -> float:
-    """Where the vacuum arc meets the floor: t = (q + sqrt(q² + 2gh))/g, q = v·sin θ, stably."""
-    q = v_i * math.sin(theta_i)
-    root = math.sqrt(q * q + 2 * G * h_i)
-    t = (q + root) / G if q >= 0 else (2 * h_i / (root - q) if root - q > 0 else 0.0)
-    return v_i * math.cos(theta_i) * t
-
-
 def _floor_error(x: float) -> InputError:
     return InputError("distance", f"is beyond where the ball comes down to the floor "
                                   f"(x = {max(x, 0.0):.4g} m): it never reaches the target distance")
 
 
 def _parabola(h_i, theta_i, v_i, t_end):
-    vx, vy = v_i * math.cos(theta_i), v_i * math.sin(theta_i)
-    ts = [t_end * k / PATH_POINTS for k in range(PATH_POINTS + 1)]
-    return [vx * t for t in ts], [h_i + (vy - G * t / 2) * t for t in ts]
+    return vacuum_path(h_i, theta_i, v_i, t_end, PATH_POINTS, G)
 
 
 # --- the scene ----------------------------------------------------------------------------------
 
 def scene_air(v) -> Air:
-    return air(v["effects"], v["ball_mass"], v["ball_diameter"], v["drag_coefficient"],
-               v["lift_coefficient"], v["air_density"], v["spin"], G)
+    """The flight effects that are on, assembled once for this solve."""
+    return flight.assemble(EFFECTS, v["effects"], v, flight.Body.of(G, v["ball_mass"], v["ball_diameter"],
+                                                                     v["air_density"]))
 
 
 def _check_release(h_i: float, theta_i: float) -> None:
@@ -250,7 +242,7 @@ def _search(a: Air, h_i, h_f, d, theta_f, rtol, series) -> tuple[float, float, i
         try:
             return aim(a, h_i, h_f, d, theta_target, rtol_path, vac[:2], spent=spent, **limits)[:2]
         except (ValueError, RuntimeError):
-            grow = lambda s: (Air(a.g, a.k_drag * s, a.k_magnus * s), theta_target)  # noqa: E731
+            grow = lambda s: (a.scaled(s), theta_target)  # noqa: E731
             return aim_along(grow, h_i, h_f, d, rtol_path, vac[:2], spent, **limits)
 
     try:
@@ -288,14 +280,14 @@ def simulate(v, rtol: float) -> SimRun:
         h_f, theta_f = v["target_height"], v["target_angle"]
     if a.vacuum:
         if forward:
-            h_f, theta_f, t = forward_vacuum(h_i, theta_i, v_i, d)
+            h_f, theta_f, t = vacuum_at(h_i, theta_i, v_i, d, G)
             if h_f < -FLOOR_SLACK * max(1.0, d):
-                raise _floor_error(landing_distance(h_i, theta_i, v_i))
+                raise _floor_error(vacuum_range(h_i, theta_i, v_i, G))
             h_f = max(h_f, 0.0)
         else:
             theta_i, v_i, t = reverse_vacuum(h_i, h_f, d, theta_f)
         vx, vy_f = v_i * math.cos(theta_i), v_i * math.sin(theta_i) - G * t
-        apex = apex_vacuum(h_i, theta_i, v_i, t, h_f)
+        apex = vacuum_apex(h_i, theta_i, v_i, t, h_f, G)
         speed_f = math.hypot(vx, vy_f)
         series["flight"] = _parabola(h_i, theta_i, v_i, t)
     else:
@@ -303,7 +295,7 @@ def simulate(v, rtol: float) -> SimRun:
             f = _fly(a, h_i, theta_i, v_i, d, rtol, samples=PATH_POINTS)
             nfev = f.nfev
             h_f, theta_f = max(f.height, 0.0), f.angle
-            vac = forward_vacuum(h_i, theta_i, v_i, d)
+            vac = vacuum_at(h_i, theta_i, v_i, d, G)
             if vac[0] >= 0:
                 series["vacuum"] = _parabola(h_i, theta_i, v_i, vac[2])
         else:
@@ -330,8 +322,8 @@ def simulate(v, rtol: float) -> SimRun:
         key = {"release_speed": v_i, "release_angle": theta_i + math.pi}  # θ + π ∈ (π/2, 3π/2)
     values.update(time_of_flight=t, apex_height=apex, target_speed=speed_f)
     key.update(time_of_flight=t, target_speed=speed_f)
+    values.update(a.assembly.report({"release_speed": v_i}))
     if "magnus" in v["effects"]:
-        values["spin_ratio"] = abs(v["spin"]) * v["ball_diameter"] / 2 / v_i
         if v["spin"] == 0:
             warnings.append("magnus is on but the spin is 0: no Magnus force.")
     if a.vacuum:

@@ -1,9 +1,11 @@
-"""One ODE interface, several methods behind it (in the manner of scipy.integrate.solve_ivp).
+"""The ODE integrator of every scene (an interface in the manner of scipy.integrate.solve_ivp).
 
-- "DP54": Dormand–Prince 5(4) with FSAL, 4th-order dense output and event location, on plain
-  Python floats. Written by hand because solve_ivp spends ~60 µs of numpy overhead per step on
-  systems of 1-6 states; this costs a few µs, which is what keeps a 150 s match under 5 ms.
-- "RK45", "DOP853", "Radau", "LSODA": scipy.integrate.solve_ivp (used for tight references).
+Dormand–Prince 5(4) with FSAL, 4th-order dense output and event location, on plain Python floats.
+Written by hand because solve_ivp spends ~60 µs of numpy overhead per step on systems of 1-6
+states; this costs a few µs, which is what keeps a 150 s match under 5 ms (bench/bench_integrators.py
+measures the lead on the scenes' own right-hand sides). There is no second backend: the tests check
+the scenes against scipy's solve_ivp (DOP853, tight) called directly on equations written out in the
+test, an independent reference; a stiff scene calls solve_ivp itself (core.sim.motion's LSODA).
 
 Every run returns its right-hand-side evaluation count, so the cost of accuracy is visible.
 Events are located on the dense output with scipy.optimize.brentq to ~1e-13 of the step, not to
@@ -36,8 +38,6 @@ _A = (
 _E = (71 / 57600, 0.0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40)
 _D = (-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799, -10690763975 / 1880347072,
       701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423)
-
-METHODS = ("DP54", "RK45", "DOP853", "Radau", "LSODA")
 
 
 # ---- the per-solve guard: a budget of work and wall time, and a way to cancel ------------------
@@ -138,14 +138,11 @@ def _interp(rc, theta: float) -> Vector:
 
 
 def integrate(rhs: RHS, t0: float, t1: float, y0: Sequence[float], rtol: float = 1e-6,
-              atol: float = 1e-9, events: Sequence[Event] = (), method: str = "DP54",
-              max_steps: int = 100_000, first_step: float | None = None, dense: bool = False,
+              atol: float = 1e-9, events: Sequence[Event] = (), max_steps: int = 100_000, first_step: float | None = None, dense: bool = False,
               restart: Sequence[str] = ()) -> Run:
     """`restart`: names of events that were located at t0 and handled by the caller (a restart at an
     event). A crossing of one of them found again at t0 itself (within 1e-10 of the first step) is
     that same event, not a new one: it is not reported, so a caller that restarts cannot loop."""
-    if method != "DP54":
-        return _scipy(rhs, t0, t1, y0, rtol, atol, events, method)
     return _dp54(rhs, t0, t1, list(map(float, y0)), rtol, atol, events, max_steps, first_step, dense,
                  frozenset(restart))
 
@@ -275,34 +272,3 @@ def _locate(ev: Event, rc, t: float, hs: float, g_old: float, g_new: float) -> f
         return t + hs
     theta = brentq(f, 0.0, 1.0, xtol=1e-15, rtol=1e-15, maxiter=200)
     return t + theta * hs
-
-
-def _scipy(rhs, t0, t1, y0, rtol, atol, events, method) -> Run:
-    import numpy as np
-    from scipy.integrate import solve_ivp
-
-    budgets = _budgets.get()
-    fns = []
-    for ev in events:
-        fn = (lambda e: (lambda t, y: e.g(t, list(y))))(ev)
-        fn.terminal = ev.terminal
-        fn.direction = ev.direction
-        fns.append(fn)
-    def f(t, y):
-        for b in budgets:
-            b.charge(1)
-        return np.asarray(rhs(t, list(y)), dtype=float)
-
-    sol = solve_ivp(f, (t0, t1), np.asarray(y0, float),
-                    method=method, rtol=rtol, atol=atol, events=fns or None)
-    if sol.status == -1:
-        raise RuntimeError(sol.message)
-    ts = [float(x) for x in sol.t]
-    ys = [list(map(float, col)) for col in sol.y.T]
-    name = None
-    if sol.status == 1:
-        for ev, te in zip(events, sol.t_events):
-            if len(te):
-                name = ev.name
-                break
-    return Run(ts, ys, int(sol.nfev), len(ts) - 1, 0, name)
