@@ -55,10 +55,16 @@ LABEL = re.compile(r"\((\w+)\)")
 
 
 def module_doc(calc: Calculator) -> str:
-    """The docstring of the module that declares the calculator (core/calculators/<id>.py)."""
+    """The docstrings of the module that declares the calculator (core/calculators/<id>.py) and of
+    the core.sim modules it imports (a scene's equations are numbered where they are coded)."""
     module = importlib.import_module(f"gearhead.core.calculators.{calc.id}")
     assert getattr(module, "CALCULATOR", None) is calc
-    return module.__doc__ or ""
+    sims = {getattr(v, "__module__", None) if not isinstance(v, type(module)) else v.__name__
+            for v in vars(module).values()}
+    docs = [module.__doc__ or ""]
+    docs += [importlib.import_module(name).__doc__ or "" for name in sorted(n for n in sims if n and
+             n.startswith("gearhead.core.sim."))]
+    return "\n".join(docs)
 
 
 def unknown_labels(calc: Calculator, out: Output) -> list[str]:
