@@ -239,7 +239,7 @@ def test_sling_tension_while_the_projectile_slides_on_the_ground():
     (free of the ground's push λ), with a_x by central differences along the contact dynamics."""
     p = seed_machine()
     y = integrate(tb.rhs_for(p, True), 0.0, 0.3, tb.initial_state(p), rtol=1e-12, atol=1e-12).y[-1]
-    assert tb.accelerations(p, *tb.unpack(p, y), True, math.sin, math.cos)[3] > 0  # still on the ground
+    assert tb.build(p, True).accelerations(y, True)[1] > 0  # still on the ground
     rhs = tb.rhs_for(p, True)
     dt = 1e-6
     vx1 = tb.projectile(p, [a + dt * b for a, b in zip(y, rhs(0, y))])[2]
@@ -308,7 +308,7 @@ def test_optimise_a_machine_that_cannot_lift_the_projectile_in_a_cup_but_can_wit
                  = 9.81·37.5·0.934655 / (2724.375 + 632.8125·0.126420) = 343.836 / 2804.375 = 0.122607.
     The sling scene releases, so the optimiser must search it (it used to say no candidate released)."""
     p = seed_machine(M=60)
-    wd0 = tb.accelerations(p, *tb.unpack(p, tb.initial_state(p)), True, math.sin, math.cos)[0]
+    wd0 = tb.build(p, True).accelerations(tb.initial_state(p), True)[0][0]
     assert wd0 == pytest.approx(0.122607, rel=1e-5)
     sol = solve("trebuchet", {"effects": "sling, ground_contact, optimise", "counterweight_mass": "60 kg"})
     assert "range" in sol.outputs and "best_range" in sol.outputs

@@ -14,7 +14,9 @@ A `Part` holds
   are on into ONE function per slot, or None when nothing contributes, so the scene specialises
   its right-hand side once: an effect that is off leaves no call, no addition and no branch.
 - `states`: (name, initial value) of the state it adds, with `derivative(t, y) -> [..]` for them
-  (y is the whole state; the assembly appends the derivatives after the scene's own).
+  (y is the whole state; the assembly appends the derivatives after the scene's own). States
+  coupled to the scene's own (a degree of freedom in a mass matrix) have no `derivative`: the
+  scene computes theirs from its "each" slots, reading each term's own states (`with_state`).
 - `events`: core.sim.integrate.Event objects (e.g. a pressure switch).
 - `params`: constants the scene reads (e.g. a resistance that changes a closed form).
 - `report(run) -> {output: value}`: its outputs after the run.
@@ -55,7 +57,10 @@ class Slot:
     """A quantity the scene's right-hand side reads, assembled from the terms of the effects on."""
 
     name: str
-    combine: str = "sum"  # "sum": terms add; "vsum": vectors add component-wise; "min": the smallest wins
+    # "sum": terms add; "vsum": vectors add component-wise; "min": the smallest wins; "each": the
+    # slot holds the terms themselves, a tuple in catalogue order (for terms that do not simply add,
+    # e.g. the blocks of a mass matrix a scene eliminates itself; see Assembly.with_state)
+    combine: str = "sum"
     help: str = ""
 
 
@@ -130,7 +135,7 @@ class Assembly:
     def rhs(self, base: Callable[[float, list], list]) -> Callable[[float, list], list]:
         """The scene's right-hand side with the derivatives of the states effects add appended;
         `base` itself when no effect adds state (no wrapper, no cost)."""
-        extra = [p.derivative for p in self.parts.values() if p.states]
+        extra = [p.derivative for p in self.parts.values() if p.states and p.derivative is not None]
         if not extra:
             return base
         if len(extra) == 1:
@@ -144,6 +149,20 @@ class Assembly:
             return out
 
         return rhs
+
+    def offset(self, name: str) -> int:
+        """Index in the state vector of the first state effect `name` adds."""
+        i = len(self.states) - len(self.y0_extra)
+        for n, p in self.parts.items():
+            if n == name:
+                return i
+            i += len(p.states)
+        raise KeyError(name)
+
+    def with_state(self, slot: str) -> tuple[tuple[int, Term], ...]:
+        """((offset of the contributor's own states, term), ...) of an "each" slot, for terms that
+        read the states their effect adds."""
+        return tuple((self.offset(n), self.parts[n].terms[slot]) for n in self.contributors[slot])
 
     def report(self, run: Any) -> dict[str, Any]:
         out: dict[str, Any] = {}
@@ -170,8 +189,14 @@ class Effects:
     def defaults(self) -> tuple[str, ...]:
         return tuple(e.name for e in self.effects if e.default_on)
 
-    def field(self, help: str | None = None) -> Field:
+    def field(self, help: str | None = None, retired: tuple[tuple[str, str], ...] = ()) -> Field:
+        """The `effects` flags field. `retired`: (old name, what replaced it) of names that are no
+        longer effects (e.g. ("optimise", "mode = optimise")): still read, so old presets load,
+        but not offered; the calculator says what replaced them (see RetiredFlags)."""
         text = help or "; ".join(f"{e.name}: {e.help}" for e in self.effects)
+        if retired:
+            return RetiredFlags("effects", "Effects", choices=self.names, flags=True,
+                                default=", ".join(self.defaults), help=text, retired=retired)
         return Field("effects", "Effects", choices=self.names, flags=True,
                      default=", ".join(self.defaults), help=text)
 
@@ -218,6 +243,8 @@ class Effects:
                 composed[s.name] = _vsum([f for _, f in fns])
             elif s.combine == "sum":
                 composed[s.name] = _sum([f for _, f in fns])
+            elif s.combine == "each":
+                composed[s.name] = tuple(f for _, f in fns)
             else:
                 raise ValueError(f"slot {s.name}: unknown combine {s.combine!r}")
         for n, p in parts.items():
@@ -231,6 +258,30 @@ class Effects:
         for p in parts.values():
             params.update(p.params)
         return Assembly(names, parts, composed, contributors, states, y0_extra, events, params)
+
+
+@dataclass(frozen=True)
+class RetiredFlags(Field):
+    """A flags field that still reads names retired from its choices (kept in the parsed set, so
+    the calculator can honour them and say what replaced them), without offering them."""
+
+    retired: tuple[tuple[str, str], ...] = ()  # (old name, what replaced it)
+
+    def parse(self, raw: Any) -> Any:
+        old = {name for name, _ in self.retired}
+        if isinstance(raw, str):
+            items = [x for x in raw.replace(",", " ").split() if x]
+        elif isinstance(raw, (list, tuple, set, frozenset)) and all(isinstance(x, str) for x in raw):
+            items = list(raw)
+        else:
+            return super().parse(raw)
+        if isinstance(raw, str) and len(raw) > self._max_chars():
+            return super().parse(raw)  # the "too long" message
+        found = frozenset(x for x in items if x in old)
+        return super().parse([x for x in items if x not in old]) | found
+
+    def _max_chars(self) -> int:
+        return super()._max_chars() + sum(len(name) + 2 for name, _ in self.retired)
 
 
 def nothing(values: Mapping[str, Any], ctx: Any) -> Part:
