@@ -189,10 +189,10 @@ class Effects:
     def defaults(self) -> tuple[str, ...]:
         return tuple(e.name for e in self.effects if e.default_on)
 
-    def field(self, help: str | None = None, retired: tuple[tuple[str, str], ...] = ()) -> Field:
-        """The `effects` flags field. `retired`: (old name, what replaced it) of names that are no
-        longer effects (e.g. ("optimise", "mode = optimise")): still read, so old presets load,
-        but not offered; the calculator says what replaced them (see RetiredFlags)."""
+    def field(self, help: str | None = None, retired: tuple[tuple[str, str, str], ...] = ()) -> Field:
+        """The `effects` flags field. `retired`: (old name, field, value) of names that are no longer
+        effects and what replaced them (e.g. ("optimise", "mode", "optimise")): still read, so old
+        presets load, but not offered (see RetiredFlags and retire)."""
         text = help or "; ".join(f"{e.name}: {e.help}" for e in self.effects)
         if retired:
             return RetiredFlags("effects", "Effects", choices=self.names, flags=True,
@@ -263,25 +263,57 @@ class Effects:
 @dataclass(frozen=True)
 class RetiredFlags(Field):
     """A flags field that still reads names retired from its choices (kept in the parsed set, so
-    the calculator can honour them and say what replaced them), without offering them."""
+    the calculator can honour them), without offering them. `retired`: (old name, field, value):
+    what replaced each, e.g. ("optimise", "mode", "optimise")."""
 
-    retired: tuple[tuple[str, str], ...] = ()  # (old name, what replaced it)
+    retired: tuple[tuple[str, str, str], ...] = ()
 
     def parse(self, raw: Any) -> Any:
-        old = {name for name, _ in self.retired}
-        if isinstance(raw, str):
+        old = {name for name, _, _ in self.retired}
+        if isinstance(raw, str) and len(raw) <= self._max_chars():
             items = [x for x in raw.replace(",", " ").split() if x]
         elif isinstance(raw, (list, tuple, set, frozenset)) and all(isinstance(x, str) for x in raw):
             items = list(raw)
         else:
-            return super().parse(raw)
-        if isinstance(raw, str) and len(raw) > self._max_chars():
-            return super().parse(raw)  # the "too long" message
+            return super().parse(raw)  # its own message (too long, wrong type)
         found = frozenset(x for x in items if x in old)
         return super().parse([x for x in items if x not in old]) | found
 
     def _max_chars(self) -> int:
-        return super()._max_chars() + sum(len(name) + 2 for name, _ in self.retired)
+        return super()._max_chars() + sum(len(name) + 2 for name, _, _ in self.retired)
+
+    def notice(self, name: str) -> str:
+        """What to tell the user who still names a retired flag."""
+        _, field, value = next(r for r in self.retired if r[0] == name)
+        return (f"{self.name}: '{name}' is no longer one of the {self.name}; it is read as {field} = {value} "
+                f"(set that instead: '{name}' will stop being read in a later version)")
+
+
+def retire(fields: Sequence[Field], inputs: Mapping[str, Any]) -> tuple[dict[str, Any], list[str]]:
+    """Inputs as typed with each retired flag replaced by what replaced it (a preset written before
+    the flag was retired), and one notice per flag replaced. A field the inputs already set is kept."""
+    out = dict(inputs)
+    notes: list[str] = []
+    for f in fields:
+        if not isinstance(f, RetiredFlags) or f.name not in out:
+            continue
+        raw = out[f.name]
+        if isinstance(raw, str):
+            items = [x for x in raw.replace(",", " ").split() if x]
+        elif isinstance(raw, (list, tuple)) and all(isinstance(x, str) for x in raw):
+            items = list(raw)
+        else:
+            continue
+        kept = items
+        for name, field_name, value in f.retired:
+            if name in kept:
+                kept = [x for x in kept if x != name]
+                out.setdefault(field_name, value)
+                notes.append(f.notice(name))
+        if kept != items:
+            items = kept
+            out[f.name] = ", ".join(items) if isinstance(raw, str) else items
+    return out, notes
 
 
 def nothing(values: Mapping[str, Any], ctx: Any) -> Part:
