@@ -306,9 +306,9 @@ def retire(fields: Sequence[Field], inputs: Mapping[str, Any]) -> tuple[dict[str
             continue
         kept = items
         for name, field_name, value in f.retired:
-            if name in kept:
+            if name in kept and out.get(field_name, value) == value:  # set otherwise by hand: left as typed
                 kept = [x for x in kept if x != name]
-                out.setdefault(field_name, value)
+                out[field_name] = value
                 notes.append(f.notice(name))
         if kept != items:
             items = kept
