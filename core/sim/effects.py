@@ -32,8 +32,11 @@ How the older scenes map onto it (for their migration):
   discrete state through its events; `absolute_pressure` is a model choice (a choice field).
 - flywheel: energy/momentum transfer is a choice field; `motor_during_shot` adds the slip phase's
   state (wheel speed, ball speed) with its derivative and its end-of-slip event.
-- trebuchet: `sling` and `hinged_counterweight` add states (γ, γ̇ / ψ, ψ̇) and terms of the mass
-  matrix (slots "M12", "f2", ...); `ground_contact` adds an event and a constraint term.
+- trebuchet (done, core.sim.trebuchet): `sling` and `hinged_counterweight` (on a hanger) add states
+  (γ, γ̇ / ψ, ψ̇) and their blocks of the mass matrix through the "each" slot "coupling" (the scene
+  eliminates them itself), and their shares of energy and geometry; `ground_contact` adds the
+  constraint term ("constraint") and the swing its phase events; `optimise` is a mode, the
+  retired flag still read (RetiredFlags, retire).
 - motor scenes (core.sim.motion): slots "force" (sum), "friction" (sum), "duty" (min).
 
 Why hand-written: no library composes ODE right-hand sides from declared parts at the cost of
