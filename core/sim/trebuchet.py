@@ -367,19 +367,7 @@ def build(p: Machine, ground_contact: bool, xp: Any = math) -> Scene:
     cos = xp.cos
     dofs = asm.with_state("coupling")
 
-    def solve(phi, w, y):  # (T6)
-        f1 = K1 * cos(phi)
-        den = m11
-        blocks = [c(phi, w, y[i], y[i + 1]) for i, c in dofs]
-        for m1j, mjj, f1j, _ in blocks:
-            f1 = f1 + f1j
-            den = den - m1j * m1j / mjj
-        b1 = f1
-        for m1j, mjj, _, fj in blocks:
-            b1 = b1 - m1j * fj / mjj
-        x1 = b1 / den
-        return [x1] + [(fj - m1j * x1) / mjj for m1j, mjj, _, fj in blocks], blocks, den
-
+    solve = _elimination(m11, K1, cos, dofs)
     if not dofs:
         def free(phi, w, y):
             return [K1 * cos(phi) / m11]
@@ -391,14 +379,17 @@ def build(p: Machine, ground_contact: bool, xp: Any = math) -> Scene:
     if asm.slots["constraint"] is not None:
         (constraint,) = asm.slots["constraint"]
         i_s = asm.offset("sling")
+        n_rest = len(dofs) - 1  # couplings besides the sling's: the ground does not push on them
 
         def mobility(phi, y, blocks, den):
             """M⁻¹·Jᵀ by the same elimination (the ground pushes on φ and γ only), J·M⁻¹·Jᵀ."""
-            (m12, m22, _, _), rest = blocks[0], blocks[1:]
+            m12, m22 = blocks[0][0], blocks[0][1]
             J1, J2, c = constraint(phi, y[1], y[i_s], y[i_s + 1])
             y1 = (J1 - m12 * J2 / m22) / den
             y2 = (J2 - m12 * y1) / m22
-            ys = [y1, y2] + [-m1j * y1 / mjj for m1j, mjj, _, _ in rest]
+            ys = [y1, y2]
+            if n_rest:
+                ys += [-b[0] * y1 / b[1] for b in blocks[1:]]
             return ys, J1 * y1 + J2 * y2, J1, J2, c
 
         def contact(phi, w, y, gate):  # (T7): λ from J·q̈ = J·(x + λ·M⁻¹Jᵀ)
@@ -409,6 +400,47 @@ def build(p: Machine, ground_contact: bool, xp: Any = math) -> Scene:
 
     return Scene(p, asm, free, contact, solve, mobility, asm.with_state("energy"), asm.with_state("tip"),
                  asm.with_state("hanger"))
+
+
+def _elimination(m11, K1, cos, dofs):
+    """(φ, ω, y) -> ([φ̈, q̈j ...], blocks, Schur denominator): (T6) for the couplings on. The loop
+    is the definition; one and two couplings (the sling, a pendulum) run it unrolled, with the same
+    operations in the same order (so the same bits), for speed."""
+    if len(dofs) == 1:
+        ((i1, c1),) = dofs
+
+        def solve1(phi, w, y):
+            b = c1(phi, w, y[i1], y[i1 + 1])
+            m12, m22, f12, f2 = b
+            den = m11 - m12 * m12 / m22
+            x1 = (K1 * cos(phi) + f12 - m12 * f2 / m22) / den
+            return [x1, (f2 - m12 * x1) / m22], (b,), den
+        return solve1
+    if len(dofs) == 2:
+        (i1, c1), (i2, c2) = dofs
+
+        def solve2(phi, w, y):
+            b, e = c1(phi, w, y[i1], y[i1 + 1]), c2(phi, w, y[i2], y[i2 + 1])
+            m12, m22, f12, f2 = b
+            m13, m33, f13, f3 = e
+            den = m11 - m12 * m12 / m22 - m13 * m13 / m33
+            x1 = (K1 * cos(phi) + f12 + f13 - m12 * f2 / m22 - m13 * f3 / m33) / den
+            return [x1, (f2 - m12 * x1) / m22, (f3 - m13 * x1) / m33], (b, e), den
+        return solve2
+
+    def solve(phi, w, y):
+        f1 = K1 * cos(phi)
+        den = m11
+        blocks = [c(phi, w, y[i], y[i + 1]) for i, c in dofs]
+        for m1j, mjj, f1j, _ in blocks:
+            f1 = f1 + f1j
+            den = den - m1j * m1j / mjj
+        b1 = f1
+        for m1j, mjj, _, fj in blocks:
+            b1 = b1 - m1j * fj / mjj
+        x1 = b1 / den
+        return [x1] + [(fj - m1j * x1) / mjj for m1j, mjj, _, fj in blocks], blocks, den
+    return solve
 
 
 def initial_state(p: Machine) -> list:
@@ -606,7 +638,7 @@ class Progress:
 
 def _start(sc: Scene, ground_contact: bool) -> tuple[Progress, float]:
     """At rest: on the ground unless the sling pulls the projectile up at once; (progress, ω̇(0))."""
-    y = initial_state(sc.p)
+    y = [sc.p.phi0, 0.0] + list(sc.asm.y0_extra)  # (T2), as initial_state
     contact = sc.contact is not None and ground_contact
     xs, lam0 = sc.accelerations(y, contact)
     if contact and lam0 <= 0:
