@@ -222,30 +222,52 @@ def fly(v, g: float, z0: float, speed: float, angle: float, rtol: float):
 
 
 def simulate(v, rtol: float) -> SimRun:
+    """One throw: the swing (the scene assembled once from the effects on), then the flight."""
     effects = effects_on(v)
     p = machine(v)
-    beta = v["release_angle"]
-    try:
-        s = tb.swing(p, beta, "ground_contact" in effects, rtol)
-    except RuntimeError as exc:  # step-size underflow: a machine too stiff to resolve
-        raise InputError("sling_length" if p.sling else "projectile_mass",
-                         f"the swing could not be integrated ({exc}); the machine's proportions are too extreme") from None
-    warnings: list[str] = []
-    values: dict = {"energy_drift": s.drift}
+    sc = tb.build(p, "ground_contact" in effects)
+    s = _swing(p, sc, v["release_angle"], rtol)
     # the results whose error is estimated; all present in every run (0 when absent), so a run at
     # a tighter tolerance that ends differently (e.g. no release) shows as a large error estimate
     key = dict.fromkeys(("release_time", "release_speed", "range", "time_to_vertical", "arm_speed_at_vertical"), 0.0)
-    series = {"φ arm": sample(s.t, s.phi), "ω arm": sample(s.t, s.omega)}
-    if p.sling:
-        n = len(s.theta)
-        series["θ sling"] = sample(s.t[:n], s.theta)
+    values: dict = {"energy_drift": s.drift}
     if s.vertical is not None:
         values["time_to_vertical"], values["arm_speed_at_vertical"] = s.vertical
         key["time_to_vertical"], key["arm_speed_at_vertical"] = s.vertical
-    else:
+    values.update(sc.asm.report(s))  # the effects' own outputs (liftoff_time)
+    warnings = swing_warnings(s, p, effects)
+    series = {"φ arm": sample(s.t, s.phi), "ω arm": sample(s.t, s.omega)}
+    if p.sling:
+        series["θ sling"] = sample(s.t[:len(s.theta)], s.theta)
+    # the projectile path, x toward the throw (−x of the seed's frame)
+    path = ([-x for x in s.path[0]], list(s.path[1]))
+    if not s.released:
+        why = {"stuck": "the counterweight cannot lift the arm off the ground",
+               "stopped": "the arm swings back first", "arm_ground": "the arm hits the ground first",
+               "time": f"not within {tb.T_SWING:.0f} s",
+               "bouncing": f"the projectile falls back onto the ground {tb.MAX_TOUCHDOWNS} times"}[s.ending]
+        warnings.append(f"The throw never releases at {v['release_angle'] / DEG:.4g}°: {why}.")
+        series["projectile"] = sample(*path)
+        return SimRun(values, key, s.nfev, warnings, series)
+    nfev = s.nfev + release_and_flight(v, p, s, rtol, values, key, warnings, path)
+    series["projectile"] = sample(*path, 2 * PLOT_POINTS)
+    return SimRun(values, key, nfev, warnings, series)
+
+
+def _swing(p: tb.Machine, sc: tb.Scene, beta: float, rtol: float) -> tb.Swing:
+    try:
+        return tb.swing(p, beta, sc.contact is not None, rtol, scene=sc)
+    except RuntimeError as exc:  # step-size underflow: a machine too stiff to resolve
+        raise InputError("sling_length" if p.sling else "projectile_mass",
+                         f"the swing could not be integrated ({exc}); the machine's proportions are too extreme") from None
+
+
+def swing_warnings(s: tb.Swing, p: tb.Machine, effects) -> list[str]:
+    """What the swing says about its own validity (a sling that pushes, a projectile or a
+    counterweight through the ground, ...), in the order they are shown."""
+    warnings = []
+    if s.vertical is None:
         warnings.append("The long arm never points straight up: the counterweight cannot raise it that far.")
-    if s.liftoff is not None:
-        values["liftoff_time"] = s.liftoff
     if "ground_contact" in effects and not p.sling:
         warnings.append("ground_contact needs the sling (without it the projectile rides in a cup at C).")
     scale = p.L * 1e-5  # deeper than the solver's drift
@@ -261,18 +283,13 @@ def simulate(v, rtol: float) -> SimRun:
     if s.min_counterweight_height < -scale:
         warnings.append(f"The counterweight's centre goes {-s.min_counterweight_height:.3g} m below the ground: "
                         "raise the pivot or shorten the short arm or hanger.")
-    # the projectile path, x toward the throw (−x of the seed's frame)
-    path_x = [-x for x in s.path[0]]
-    path_z = list(s.path[1])
-    nfev = s.nfev
-    if not s.released:
-        why = {"stuck": "the counterweight cannot lift the arm off the ground",
-               "stopped": "the arm swings back first", "arm_ground": "the arm hits the ground first",
-               "time": f"not within {tb.T_SWING:.0f} s",
-               "bouncing": f"the projectile falls back onto the ground {tb.MAX_TOUCHDOWNS} times"}[s.ending]
-        warnings.append(f"The throw never releases at {v['release_angle'] / DEG:.4g}°: {why}.")
-        series["projectile"] = sample(path_x, path_z)
-        return SimRun(values, key, nfev, warnings, series)
+    return warnings
+
+
+def release_and_flight(v, p: tb.Machine, s: tb.Swing, rtol: float, values: dict, key: dict, warnings: list,
+                       path: tuple[list, list]) -> int:
+    """The release, the efficiency (C2) and the flight (C1, or integrated with drag) into values,
+    key, warnings and the path; returns the flight's right-hand-side evaluations."""
     t_r, x_r, z_r, vx, vy = s.release
     speed = math.hypot(vx, vy)
     angle = math.atan2(vy, -vx)  # toward the throw
@@ -285,20 +302,19 @@ def simulate(v, rtol: float) -> SimRun:
     E_p = 0.5 * p.m_p * speed**2 + p.m_p * p.g * (z_r - s.path[1][0])
     supplied = p.g * (p.M * s.cw_drop + p.m * s.arm_drop)
     if supplied > 0:
-        values["efficiency"] = max(E_p, 0.0) / supplied
+        values["efficiency"] = max(E_p, 0.0) / supplied  # (C2)
+    n_fly = 0
     if z_r > 0:
         X, apex, fx, fz, n_fly = fly(v, p.g, z_r, speed, angle, rtol)
-        nfev += n_fly
-        path_x += [-x_r + x for x in fx[1:]]
-        path_z += fz[1:]
+        path[0].extend(-x_r + x for x in fx[1:])
+        path[1].extend(fz[1:])
     else:
         X, apex = 0.0, z_r
         warnings.append("The projectile is released below ground level: it lands where it is released.")
     values["range"] = -x_r + X
     values["max_height"] = max(apex, max(s.path[1]))
     key["range"] = values["range"]
-    series["projectile"] = sample(path_x, path_z, 2 * PLOT_POINTS)
-    return SimRun(values, key, nfev, warnings, series)
+    return n_fly
 
 
 def refine(v, beta: float, l: float, lo: float, hi: float) -> tuple[float, float, float, bool]:

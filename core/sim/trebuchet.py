@@ -200,7 +200,10 @@ def _ground(values, ctx: Ctx) -> Part:
     def constraint(phi, w, gam, gd):
         return R * cos(phi), l * cos(gam), R * sin(phi) * w * w + l * sin(gam) * gd * gd
 
-    return Part(terms={"constraint": constraint})
+    def report(swing) -> dict:
+        return {} if swing.liftoff is None else {"liftoff_time": swing.liftoff}
+
+    return Part(terms={"constraint": constraint}, report=report)
 
 
 EFFECTS = Effects(
