@@ -140,13 +140,13 @@ OUTPUTS = (
     Output("energy_drift", "Energy drift", equation="§1.5, (T4)",
            help="Largest change of total energy T + V over the swing, relative to the largest kinetic energy "
                 "(the solver's error; a plastic touchdown's loss is booked, not counted)."),
-    Output("best_release_angle", "Best release angle", "angle", "deg", equation="(T6), (T10), (C1)",
-           help="optimise: the release angle of longest range (grid of batch throws, then Nelder–Mead on "
-                "accurate throws)."),
-    Output("best_sling_length", "Best sling length", "length", "m", equation="(T6), (T10), (C1)",
-           help="optimise: the sling length of longest range, within the lengths searched."),
-    Output("best_range", "Best range", "length", "m", equation="(T6), (T10), (C1)",
-           help="optimise: the range of the best throw, by the accurate scene."),
+    *(Output(name, label, quantity, unit, equation="(T6), (T10), (C1)", help=f"optimise: {how}")
+      for name, label, quantity, unit, how in (
+          ("best_release_angle", "Best release angle", "angle", "deg",
+           "the release angle of longest range (grid of batch throws, then Nelder–Mead on accurate throws)."),
+          ("best_sling_length", "Best sling length", "length", "m",
+           "the sling length of longest range, within the lengths searched."),
+          ("best_range", "Best range", "length", "m", "the range of the best throw, by the accurate scene."))),
     Output("candidates", "Candidates evaluated",
            help="optimise: throws evaluated in the batch (40 sling lengths × 41 release angles)."),
     *STATS_OUTPUTS,
