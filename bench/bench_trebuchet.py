@@ -22,7 +22,6 @@ def main() -> None:
 
     c = get("trebuchet")
     print("  right-hand side of the assembled scene, one evaluation (min of 5 × 20 000):")
-    import math
     import timeit
 
     for effects, contact, kw in (("(arm alone)", False, dict(sling=False)), ("sling", False, {}),

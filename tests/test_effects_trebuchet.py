@@ -84,9 +84,15 @@ def test_ground_contact_adds_the_constraint_and_no_state():
     free = off.rhs(False)(0.0, y)
     held = on.rhs(True)(0.0, y)
     assert held != free  # the ground holds the projectile up at rest
-    # on the ground the projectile's height stays put: J·q̇ = 0 and J·q̈ = −J̇·q̇ (T7)
-    xs, lam = on.accelerations(y, True)
-    assert lam > 0
+    assert on.accelerations(y, True)[1] > 0  # the ground pushes up
+    # on the ground the constraint's second derivative holds: J·q̈ = R·sin φ·ω² + l·sin γ·γ̇² (T7)
+    y = [0.3, 1.1, 2.4, 0.7]
+    (x1, x2), _ = on.accelerations(y, True)
+    p = on.p
+    J_qdd = p.R * math.cos(y[0]) * x1 + p.l * math.cos(y[2]) * x2
+    assert J_qdd == pytest.approx(p.R * math.sin(0.3) * 1.1**2 + p.l * math.sin(2.4) * 0.7**2, rel=1e-12)
+    (f1, f2), _ = off.accelerations(y, False)
+    assert p.R * math.cos(y[0]) * f1 + p.l * math.cos(y[2]) * f2 != pytest.approx(J_qdd, rel=1e-3)
     a, b = out("sling"), out("sling, ground_contact")
     assert "liftoff_time" in b and "liftoff_time" not in a
     assert b["range"].value != pytest.approx(a["range"].value, rel=1e-3)
