@@ -152,12 +152,15 @@ def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = N
         if not isinstance(value, (str, int, float, bool)):
             raise InputError(key, f"wrong type ({type(value).__name__}); use a string, number or boolean", src)
     calc = calculators()[calc_id]
+    from .sim.effects import retire  # a flag retired since the preset was written: what replaced it
+
+    inputs, notices = retire(calc.fields, inputs)
     try:
         tolerance.parse(calc, inputs)  # unknown field, bad unit, out of bounds, bad ± tolerance
     except InputError as exc:
         raise InputError(exc.field, exc.message, src) from None
     preset = Preset(calc_id, name, description, dict(inputs), path, builtin)
-    preset.warnings = unused_entry_warnings(calc, inputs, src)
+    preset.warnings = [f"{src}: {n}" for n in notices] + unused_entry_warnings(calc, inputs, src)
     return preset
 
 

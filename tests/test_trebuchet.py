@@ -239,7 +239,7 @@ def test_sling_tension_while_the_projectile_slides_on_the_ground():
     (free of the ground's push λ), with a_x by central differences along the contact dynamics."""
     p = seed_machine()
     y = integrate(tb.rhs_for(p, True), 0.0, 0.3, tb.initial_state(p), rtol=1e-12, atol=1e-12).y[-1]
-    assert tb.accelerations(p, *tb.unpack(p, y), True, math.sin, math.cos)[3] > 0  # still on the ground
+    assert tb.build(p, True).accelerations(y, True)[1] > 0  # still on the ground
     rhs = tb.rhs_for(p, True)
     dt = 1e-6
     vx1 = tb.projectile(p, [a + dt * b for a, b in zip(y, rhs(0, y))])[2]
@@ -274,7 +274,7 @@ def test_integrating_back_from_release_returns_to_rest(beta, l, M):
 # --- optimiser ------------------------------------------------------------------------------------
 
 def test_optimise_evaluates_over_a_thousand_throws_and_beats_the_defaults():
-    out = solve("trebuchet", {"effects": "sling, ground_contact, optimise"}).outputs
+    out = solve("trebuchet", {"mode": "optimise", "effects": "sling, ground_contact"}).outputs
     assert out["candidates"].value >= 1000
     best = out["best_range"].value
     assert best >= out["range"].value
@@ -293,7 +293,7 @@ def test_optimise_reports_the_best_throws_own_warnings():
     """Without ground contact the longest range (seed machine) is at the 12 m sling, where the
     projectile dips deeper below the ground (2.7 m) than at the entered 5 m sling (1.06 m):
     the user must be told about the throw recommended, not only the one entered."""
-    sol = solve("trebuchet", {"effects": "sling, optimise"})
+    sol = solve("trebuchet", {"mode": "optimise", "effects": "sling"})
     best = [w for w in sol.warnings if w.startswith("optimise, best throw")]
     assert any("below the ground" in w for w in best)
     p = seed_machine(l=sol.outputs["best_sling_length"].value)
@@ -308,11 +308,36 @@ def test_optimise_a_machine_that_cannot_lift_the_projectile_in_a_cup_but_can_wit
                  = 9.81·37.5·0.934655 / (2724.375 + 632.8125·0.126420) = 343.836 / 2804.375 = 0.122607.
     The sling scene releases, so the optimiser must search it (it used to say no candidate released)."""
     p = seed_machine(M=60)
-    wd0 = tb.accelerations(p, *tb.unpack(p, tb.initial_state(p)), True, math.sin, math.cos)[0]
+    wd0 = tb.build(p, True).accelerations(tb.initial_state(p), True)[0][0]
     assert wd0 == pytest.approx(0.122607, rel=1e-5)
-    sol = solve("trebuchet", {"effects": "sling, ground_contact, optimise", "counterweight_mass": "60 kg"})
+    sol = solve("trebuchet", {"mode": "optimise", "effects": "sling, ground_contact", "counterweight_mass": "60 kg"})
     assert "range" in sol.outputs and "best_range" in sol.outputs
     assert sol.outputs["best_range"].value >= sol.outputs["range"].value
+
+
+def test_optimise_is_a_mode_and_the_retired_effect_still_means_it(tmp_path):
+    """'optimise' was an effect; it is the mode now. A preset written before (effects naming it)
+    loads as mode = optimise with a notice, and solves exactly as the mode does."""
+    effects = get("trebuchet").field("effects")
+    assert "optimise" not in effects.choices  # not offered as physics any more
+    assert get("trebuchet").field("mode").choices == ("throw", "optimise")
+    assert get("trebuchet").field("sling_min").modes == ("optimise",)
+    old = tmp_path / "old.toml"
+    old.write_text('calculator = "trebuchet"\nname = "old"\nformat = 1\n[inputs]\n'
+                   'effects = "sling, ground_contact, optimise"\nsling_min = "3 m"\n', encoding="utf-8")
+    loaded = presets.load(old)
+    assert loaded.inputs["mode"] == "optimise" and "optimise" not in loaded.inputs["effects"]
+    assert any("mode = optimise" in w for w in loaded.warnings)
+    def values(sol):
+        return {k: v.value for k, v in sol.outputs.items() if k != "wall_time"}
+
+    new = solve("trebuchet", {"mode": "optimise", "effects": "sling, ground_contact", "sling_min": "3 m"})
+    assert "best_range" in new.outputs
+    assert values(solve("trebuchet", loaded.inputs)) == values(new)
+    # named straight to solve (an API caller, a --set): the same optimise, and the notice
+    direct = solve("trebuchet", {"effects": "sling, ground_contact, optimise", "sling_min": "3 m"})
+    assert values(direct) == values(new)
+    assert any("mode = optimise" in w for w in direct.warnings)
 
 
 @pytest.mark.parametrize("kw", [dict(rigid=False, d=0.2), dict(rigid=False), dict(l=2.0)])

@@ -15,10 +15,22 @@ Scenes from the effects:
 - `ground_contact`: the projectile starts on the ground and slides (frictionless) until the sling
   lifts it (the ground's push, a Lagrange multiplier, falls to zero);
 - `air_drag`: the flight after release with quadratic drag (core/sim/flight.py); without it the
-  flight is the vacuum parabola in closed form;
-- `optimise`: the release angle and sling length of longest range: a grid of 1640 candidate
-  throws integrated together (numpy, fixed-step RK4, one swing per sling length serves every
-  release angle), then the best polished by Nelder–Mead on accurate single throws (rtol 1e-8).
+  flight is the vacuum parabola in closed form (C1).
+The effects (their fields and outputs) are declared in core.sim.trebuchet.EFFECTS, which assembles
+the swing's equations from those on, once per solve.
+
+Modes (an action is a mode, not an effect):
+- `throw`: one throw at the release angle and sling length entered;
+- `optimise`: that throw, and the release angle and sling length of longest range: a grid of 1640
+  candidate throws integrated together (numpy, fixed-step RK4, one swing per sling length serves
+  every release angle), then the best polished by Nelder–Mead on accurate single throws (rtol 1e-8).
+  `optimise` used to be an effect: an `effects` list that still names it is read as mode =
+  optimise, with a notice (core.sim.effects.RetiredFlags; a preset file is rewritten on loading).
+
+Flight and energy (beside the swing's (T1)-(T10) in core/sim/trebuchet.py):
+    vacuum: t_land = (v·sin β + √(v²·sin²β + 2·g·z0))/g,  X = v·cos β·t_land,
+            apex = z0 + (v·sin β)²/(2g)                                                   (C1)
+    efficiency = (½·m_p·v² + m_p·g·Δz_p) / (g·(M·Δz_cw + m·Δz_arm)), drops from rest to release (C2)
 
 Frame: the seed's, φ from the horizontal, φ = 0 to the right. The counterweight starts up on the
 left, so C swings up and over the top to the left: the throw goes toward −x (the side away from
@@ -50,9 +62,11 @@ from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
 from ..sim import flight
 from ..sim import trebuchet as tb
-from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, run_with_stats, solve_budget
+from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats, solve_budget
 
-EFFECTS = ("sling", "ground_contact", "hinged_counterweight", "air_drag", "optimise")
+EFFECTS = tb.EFFECTS
+MODES = ("throw", "optimise")
+RETIRED = (("optimise", "mode", "optimise"),)  # once an effect; a preset naming it means the mode
 DEG = math.pi / 180
 PLOT_POINTS = 240
 ADVICE = ("accuracy", "the swing is too long or too stiff for this accuracy (a short hanger or a nearly "
@@ -60,11 +74,16 @@ ADVICE = ("accuracy", "the swing is too long or too stiff for this accuracy (a s
 # optimise: the batch (1640 throws) and up to 200 accurate throws; the built-in preset takes ~400 000
 OPTIMISE_NFEV = 3_000_000
 REFINE_NFEV = 60_000  # the polish; the built-in preset takes ~23 000
-OPTIMISE_ADVICE = ("effects", "optimise needs too much work for this machine (a short hanger or a nearly "
-                              "balanced arm makes every throw long or stiff): switch optimise off, or "
-                              "lengthen hanger_length")
+OPTIMISE_ADVICE = ("mode", "optimise needs too much work for this machine (a short hanger or a nearly "
+                           "balanced arm makes every throw long or stiff): solve one throw instead, or "
+                           "lengthen hanger_length")
 
 FIELDS = (
+    Field("mode", "Solve", choices=MODES, default="throw",
+          choice_labels=("One throw at the release angle and sling entered",
+                         "Optimise: the release angle and sling length of longest range"),
+          help="One throw, or also the release angle and sling length that throw furthest (a grid of "
+               "1640 throws, then polished on accurate throws)."),
     Field("counterweight_mass", "Counterweight mass M", "mass", "kg", default=500, min=1e-3, max=1e7,
           help="Counterweight mass."),
     Field("counterweight_gyration", "Counterweight gyration k", "length", "m", default=2, min=0, max=1e3,
@@ -80,61 +99,71 @@ FIELDS = (
           help="Height of the pivot A above the ground; must be below the long arm (1−a)L so C rests on the ground."),
     Field("projectile_mass", "Projectile mass m_p", "mass", "kg", default=5, min=1e-3, max=1e7,
           help="Projectile mass."),
-    Field("sling_length", "Sling length l", "length", "m", default=5, min=1e-2, max=1e3,
-          help="Sling length (with the sling effect)."),
     Field("gravity", "Gravity g", "acceleration", "m/s**2", default=9.81, min=0.1, max=100,
           help="Gravitational acceleration."),
-    Field("hanger_length", "Hanger length d", "length", "m", default=0, min=0, max=1e3,
-          help="hinged_counterweight: hinge to counterweight centre. 0: hinged at its centre of mass "
-               "(the seed's hinged case); > 0: a pendulum.",
-          when=(("effects", ("hinged_counterweight",)),)),
     Field("release_angle", "Release angle", "angle", "deg", default=45, min=0, max=89 * DEG,
           help="Release when the projectile's velocity points this far above the horizontal, toward the throw."),
-    Field("projectile_diameter", "Projectile diameter", "length", "m", default=0.2, min=1e-3, max=5,
-          help="air_drag: diameter for the drag area.",
-          when=(("effects", ("air_drag",)),)),
-    Field("drag_coefficient", "Drag coefficient", default=0.47, min=0, max=2, help="air_drag: C_d (sphere 0.47).",
-          when=(("effects", ("air_drag",)),)),
-    Field("air_density", "Air density", "density", "kg/m**3", default=1.225, min=0, max=20,
-          help="air_drag: density of air.",
-          when=(("effects", ("air_drag",)),)),
+    EFFECTS.field("sling (2 DOF), ground_contact (projectile slides until lifted), hinged_counterweight "
+                  "(hinge or pendulum), air_drag (flight).", retired=RETIRED),
+    *EFFECTS.fields(),
     Field("sling_min", "Optimise: shortest sling", "length", "m", default=1, min=1e-2, max=1e3,
-          help="optimise: the sling lengths searched start here.",
-          when=(("effects", ("optimise",)),)),
+          help="optimise: the sling lengths searched start here.", modes=("optimise",)),
     Field("sling_max", "Optimise: longest sling", "length", "m", default=12, min=1e-2, max=1e3,
-          help="optimise: the sling lengths searched end here.",
-          when=(("effects", ("optimise",)),)),
-    effects_field(EFFECTS, ("sling", "ground_contact"),
-                  "sling (2 DOF), ground_contact (projectile slides until lifted), hinged_counterweight "
-                  "(hinge or pendulum), air_drag (flight), optimise (best release angle and sling length)."),
+          help="optimise: the sling lengths searched end here.", modes=("optimise",)),
     accuracy_field(),
 )
 
 OUTPUTS = (
-    Output("release_time", "Release time", "time", "s"),
-    Output("release_speed", "Release speed", "speed", "m/s"),
-    Output("release_angle", "Release angle", "angle", "deg", help="Of the velocity, above the horizontal toward the throw."),
-    Output("release_height", "Release height", "length", "m"),
-    Output("range", "Range", "length", "m", help="Pivot to landing point, toward the throw."),
-    Output("max_height", "Max height", "length", "m", help="Highest point of the projectile's path."),
-    Output("efficiency", "Efficiency", "dimensionless", "%",
+    Output("release_time", "Release time", "time", "s", equation="(T6), (T10)",
+           help="When the projectile's velocity first points up at the release angle toward the throw "
+                "(an event located on the integrated swing)."),
+    Output("release_speed", "Release speed", "speed", "m/s", equation="§2.1, (T3)",
+           help="The projectile's speed at release, from the arm's and the sling's rates."),
+    Output("release_angle", "Release angle", "angle", "deg", equation="(T10)",
+           help="Of the velocity at release, above the horizontal toward the throw (the release condition)."),
+    Output("release_height", "Release height", "length", "m", equation="§2.1, (T3)",
+           help="The projectile's height above the ground at release, h + R·sin φ + l·sin γ."),
+    Output("range", "Range", "length", "m", equation="(T3), (C1)",
+           help="Pivot to landing point, toward the throw: the release point plus the flight (vacuum "
+                "parabola, or integrated with air_drag)."),
+    Output("max_height", "Max height", "length", "m", equation="(C1)",
+           help="Highest point of the projectile's path: over the swing, or the flight's apex."),
+    Output("efficiency", "Efficiency", "dimensionless", "%", equation="(C2), (T4)",
            help="Projectile energy at release (kinetic + potential gained) over the potential energy released by "
                 "the counterweight and the arm (each by its centre of mass) from rest to release."),
-    Output("liftoff_time", "Lift-off time", "time", "s", help="ground_contact: when the sling lifts the projectile."),
-    Output("arm_speed_at_vertical", "Arm speed at vertical", "angular_speed", "rad/s",
-           help="The arm's angular speed when the long arm first points straight up."),
-    Output("time_to_vertical", "Time to vertical", "time", "s", help="From rest until the long arm points straight up."),
-    Output("energy_drift", "Energy drift", help="Largest change of total energy over the swing, relative to the largest kinetic energy."),
-    Output("best_release_angle", "Best release angle", "angle", "deg"),
-    Output("best_sling_length", "Best sling length", "length", "m"),
-    Output("best_range", "Best range", "length", "m"),
-    Output("candidates", "Candidates evaluated", help="optimise: throws evaluated in the batch."),
+    *EFFECTS.outputs(),
+    Output("arm_speed_at_vertical", "Arm speed at vertical", "angular_speed", "rad/s", equation="§1.5, (T6)",
+           help="The arm's angular speed when the long arm first points straight up (an event on the "
+                "swing; after release the arm swings on alone)."),
+    Output("time_to_vertical", "Time to vertical", "time", "s", equation="§1.5, (T6)",
+           help="From rest until the long arm points straight up (an event on the swing)."),
+    Output("energy_drift", "Energy drift", equation="§1.5, (T4)",
+           help="Largest change of total energy T + V over the swing, relative to the largest kinetic energy "
+                "(the solver's error; a plastic touchdown's loss is booked, not counted)."),
+    *(Output(name, label, quantity, unit, equation="(T6), (T10), (C1)", help=f"optimise: {how}")
+      for name, label, quantity, unit, how in (
+          ("best_release_angle", "Best release angle", "angle", "deg",
+           "the release angle of longest range (grid of batch throws, then Nelder–Mead on accurate throws)."),
+          ("best_sling_length", "Best sling length", "length", "m",
+           "the sling length of longest range, within the lengths searched."),
+          ("best_range", "Best range", "length", "m", "the range of the best throw, by the accurate scene."))),
+    Output("candidates", "Candidates evaluated",
+           help="optimise: throws evaluated in the batch (40 sling lengths × 41 release angles)."),
     *STATS_OUTPUTS,
 )
 
 
+def effects_on(v) -> frozenset:
+    """The physics switched on (a retired name, e.g. 'optimise', is not physics)."""
+    return v["effects"] - {name for name, _, _ in RETIRED}
+
+
+def optimising(v) -> bool:
+    return v["mode"] == "optimise" or "optimise" in v["effects"]
+
+
 def machine(v, sling: bool | None = None, l: float | None = None) -> tb.Machine:
-    effects = v["effects"]
+    effects = effects_on(v)
     a, L, h = v["short_arm_fraction"], v["arm_length"], v["pivot_height"]
     if h >= (1 - a) * L:
         raise InputError("pivot_height", f"must be below the long arm (1−a)·L = {(1 - a) * L:.4g} m, "
@@ -193,30 +222,52 @@ def fly(v, g: float, z0: float, speed: float, angle: float, rtol: float):
 
 
 def simulate(v, rtol: float) -> SimRun:
-    effects = v["effects"]
+    """One throw: the swing (the scene assembled once from the effects on), then the flight."""
+    effects = effects_on(v)
     p = machine(v)
-    beta = v["release_angle"]
-    try:
-        s = tb.swing(p, beta, "ground_contact" in effects, rtol)
-    except RuntimeError as exc:  # step-size underflow: a machine too stiff to resolve
-        raise InputError("sling_length" if p.sling else "projectile_mass",
-                         f"the swing could not be integrated ({exc}); the machine's proportions are too extreme") from None
-    warnings: list[str] = []
-    values: dict = {"energy_drift": s.drift}
+    sc = tb.build(p, "ground_contact" in effects)
+    s = _swing(p, sc, v["release_angle"], rtol)
     # the results whose error is estimated; all present in every run (0 when absent), so a run at
     # a tighter tolerance that ends differently (e.g. no release) shows as a large error estimate
     key = dict.fromkeys(("release_time", "release_speed", "range", "time_to_vertical", "arm_speed_at_vertical"), 0.0)
-    series = {"φ arm": sample(s.t, s.phi), "ω arm": sample(s.t, s.omega)}
-    if p.sling:
-        n = len(s.theta)
-        series["θ sling"] = sample(s.t[:n], s.theta)
+    values: dict = {"energy_drift": s.drift}
     if s.vertical is not None:
         values["time_to_vertical"], values["arm_speed_at_vertical"] = s.vertical
         key["time_to_vertical"], key["arm_speed_at_vertical"] = s.vertical
-    else:
+    values.update(sc.asm.report(s))  # the effects' own outputs (liftoff_time)
+    warnings = swing_warnings(s, p, effects)
+    series = {"φ arm": sample(s.t, s.phi), "ω arm": sample(s.t, s.omega)}
+    if p.sling:
+        series["θ sling"] = sample(s.t[:len(s.theta)], s.theta)
+    # the projectile path, x toward the throw (−x of the seed's frame)
+    path = ([-x for x in s.path[0]], list(s.path[1]))
+    if not s.released:
+        why = {"stuck": "the counterweight cannot lift the arm off the ground",
+               "stopped": "the arm swings back first", "arm_ground": "the arm hits the ground first",
+               "time": f"not within {tb.T_SWING:.0f} s",
+               "bouncing": f"the projectile falls back onto the ground {tb.MAX_TOUCHDOWNS} times"}[s.ending]
+        warnings.append(f"The throw never releases at {v['release_angle'] / DEG:.4g}°: {why}.")
+        series["projectile"] = sample(*path)
+        return SimRun(values, key, s.nfev, warnings, series)
+    nfev = s.nfev + release_and_flight(v, p, s, rtol, values, key, warnings, path)
+    series["projectile"] = sample(*path, 2 * PLOT_POINTS)
+    return SimRun(values, key, nfev, warnings, series)
+
+
+def _swing(p: tb.Machine, sc: tb.Scene, beta: float, rtol: float) -> tb.Swing:
+    try:
+        return tb.swing(p, beta, sc.contact is not None, rtol, scene=sc)
+    except RuntimeError as exc:  # step-size underflow: a machine too stiff to resolve
+        raise InputError("sling_length" if p.sling else "projectile_mass",
+                         f"the swing could not be integrated ({exc}); the machine's proportions are too extreme") from None
+
+
+def swing_warnings(s: tb.Swing, p: tb.Machine, effects) -> list[str]:
+    """What the swing says about its own validity (a sling that pushes, a projectile or a
+    counterweight through the ground, ...), in the order they are shown."""
+    warnings = []
+    if s.vertical is None:
         warnings.append("The long arm never points straight up: the counterweight cannot raise it that far.")
-    if s.liftoff is not None:
-        values["liftoff_time"] = s.liftoff
     if "ground_contact" in effects and not p.sling:
         warnings.append("ground_contact needs the sling (without it the projectile rides in a cup at C).")
     scale = p.L * 1e-5  # deeper than the solver's drift
@@ -232,18 +283,13 @@ def simulate(v, rtol: float) -> SimRun:
     if s.min_counterweight_height < -scale:
         warnings.append(f"The counterweight's centre goes {-s.min_counterweight_height:.3g} m below the ground: "
                         "raise the pivot or shorten the short arm or hanger.")
-    # the projectile path, x toward the throw (−x of the seed's frame)
-    path_x = [-x for x in s.path[0]]
-    path_z = list(s.path[1])
-    nfev = s.nfev
-    if not s.released:
-        why = {"stuck": "the counterweight cannot lift the arm off the ground",
-               "stopped": "the arm swings back first", "arm_ground": "the arm hits the ground first",
-               "time": f"not within {tb.T_SWING:.0f} s",
-               "bouncing": f"the projectile falls back onto the ground {tb.MAX_TOUCHDOWNS} times"}[s.ending]
-        warnings.append(f"The throw never releases at {v['release_angle'] / DEG:.4g}°: {why}.")
-        series["projectile"] = sample(path_x, path_z)
-        return SimRun(values, key, nfev, warnings, series)
+    return warnings
+
+
+def release_and_flight(v, p: tb.Machine, s: tb.Swing, rtol: float, values: dict, key: dict, warnings: list,
+                       path: tuple[list, list]) -> int:
+    """The release, the efficiency (C2) and the flight (C1, or integrated with drag) into values,
+    key, warnings and the path; returns the flight's right-hand-side evaluations."""
     t_r, x_r, z_r, vx, vy = s.release
     speed = math.hypot(vx, vy)
     angle = math.atan2(vy, -vx)  # toward the throw
@@ -256,20 +302,19 @@ def simulate(v, rtol: float) -> SimRun:
     E_p = 0.5 * p.m_p * speed**2 + p.m_p * p.g * (z_r - s.path[1][0])
     supplied = p.g * (p.M * s.cw_drop + p.m * s.arm_drop)
     if supplied > 0:
-        values["efficiency"] = max(E_p, 0.0) / supplied
+        values["efficiency"] = max(E_p, 0.0) / supplied  # (C2)
+    n_fly = 0
     if z_r > 0:
         X, apex, fx, fz, n_fly = fly(v, p.g, z_r, speed, angle, rtol)
-        nfev += n_fly
-        path_x += [-x_r + x for x in fx[1:]]
-        path_z += fz[1:]
+        path[0].extend(-x_r + x for x in fx[1:])
+        path[1].extend(fz[1:])
     else:
         X, apex = 0.0, z_r
         warnings.append("The projectile is released below ground level: it lands where it is released.")
     values["range"] = -x_r + X
     values["max_height"] = max(apex, max(s.path[1]))
     key["range"] = values["range"]
-    series["projectile"] = sample(path_x, path_z, 2 * PLOT_POINTS)
-    return SimRun(values, key, nfev, warnings, series)
+    return n_fly
 
 
 def refine(v, beta: float, l: float, lo: float, hi: float) -> tuple[float, float, float, bool]:
@@ -280,7 +325,7 @@ def refine(v, beta: float, l: float, lo: float, hi: float) -> tuple[float, float
 
     from ..sim.integrate import BudgetExceeded, budget
 
-    effects = v["effects"] - {"optimise"} | {"sling"}
+    effects = effects_on(v) | {"sling"}
     scale = max(abs(l), 1.0)
     best = [math.inf, None]
 
@@ -317,7 +362,10 @@ def refine(v, beta: float, l: float, lo: float, hi: float) -> tuple[float, float
 
 def compute(v) -> Result:
     run = run_with_stats(simulate, v, ADVICE)
-    if "optimise" in v["effects"]:
+    for name, _, _ in RETIRED:
+        if name in v["effects"]:
+            run.warnings.append(FIELDS_BY_NAME["effects"].notice(name))
+    if optimising(v):
         with solve_budget(OPTIMISE_ADVICE, max_nfev=OPTIMISE_NFEV):
             _optimise(v, run)
     return Result(run.values, run.warnings, run.series)
@@ -344,10 +392,12 @@ def _optimise(v, run: SimRun) -> None:
             run.values.update(best_release_angle=beta, best_sling_length=l, best_range=reach, candidates=n)
             # the best throw's own validity (sling pushing, projectile through the ground, ...):
             # the warnings above are about the throw at the entered angle and sling length
-            effects = v["effects"] - {"optimise"} | {"sling"}
+            effects = effects_on(v) | {"sling"}
             best_run = simulate(dict(v, release_angle=beta, sling_length=l, effects=effects), 1e-8)
             run.warnings += [f"optimise, best throw: {w}" for w in best_run.warnings if w not in run.warnings]
 
+
+FIELDS_BY_NAME = {f.name: f for f in FIELDS}
 
 CALCULATOR = Calculator(
     id="trebuchet",

@@ -10,11 +10,13 @@ An `Effect` declares
 A `Part` holds
 - `terms`: {slot: function}. A slot is a named quantity the scene's right-hand side reads
   (a force, a flow, a bound on the motor duty ...). The scene declares its slots and how terms
-  combine (`Slot.combine`: "sum", "vsum", "min" or "fold"); the assembly composes the terms of the effects that
+  combine (`Slot.combine`: "sum", "vsum", "min", "fold" or "each"); the assembly composes the terms of the effects that
   are on into ONE function per slot, or None when nothing contributes, so the scene specialises
   its right-hand side once: an effect that is off leaves no call, no addition and no branch.
 - `states`: (name, initial value) of the state it adds, with `derivative(t, y) -> [..]` for them
-  (y is the whole state; the assembly appends the derivatives after the scene's own).
+  (y is the whole state; the assembly appends the derivatives after the scene's own). States
+  coupled to the scene's own (a degree of freedom in a mass matrix) have no `derivative`: the
+  scene computes theirs from its "each" slots, reading each term's own states (`with_state`).
 - `events`: core.sim.integrate.Event objects (e.g. a pressure switch).
 - `params`: constants the scene reads (e.g. a resistance that changes a closed form).
 - `report(run) -> {output: value}`: its outputs after the run.
@@ -32,8 +34,11 @@ How the older scenes map onto it (for their migration):
   discrete state through its events; `absolute_pressure` is a model choice (a choice field).
 - flywheel: energy/momentum transfer is a choice field; `motor_during_shot` adds the slip phase's
   state (wheel speed, ball speed) with its derivative and its end-of-slip event.
-- trebuchet: `sling` and `hinged_counterweight` add states (γ, γ̇ / ψ, ψ̇) and terms of the mass
-  matrix (slots "M12", "f2", ...); `ground_contact` adds an event and a constraint term.
+- trebuchet (done, core.sim.trebuchet): `sling` and `hinged_counterweight` (on a hanger) add states
+  (γ, γ̇ / ψ, ψ̇) and their blocks of the mass matrix through the "each" slot "coupling" (the scene
+  eliminates them itself), and their shares of energy and geometry; `ground_contact` adds the
+  constraint term ("constraint") and the swing its phase events; `optimise` is a mode, the
+  retired flag still read (RetiredFlags, retire).
 - motor scenes (core.sim.motion): slots "force" (sum), "friction" (sum), "duty" (min).
 
 Why hand-written: no library composes ODE right-hand sides from declared parts at the cost of
@@ -59,7 +64,9 @@ class Slot:
     name: str
     # "sum": terms add; "vsum": vectors add component-wise; "min": the smallest wins; "fold": each
     # term takes the running value first, term(acc, *args) -> acc', applied in catalogue order (the
-    # scene passes the start value: slot(start, *args)), so the order of the additions is fixed
+    # scene passes the start value: slot(start, *args)), so the order of the additions is fixed;
+    # "each": the slot holds the terms themselves, a tuple in catalogue order (for terms that do not
+    # simply add, e.g. the blocks of a mass matrix a scene eliminates itself; see Assembly.with_state)
     combine: str = "sum"
     help: str = ""
     # "fold" only: how many arguments follow the running value (1-3 composes without *args
@@ -152,7 +159,7 @@ class Assembly:
     def rhs(self, base: Callable[[float, list], list]) -> Callable[[float, list], list]:
         """The scene's right-hand side with the derivatives of the states effects add appended;
         `base` itself when no effect adds state (no wrapper, no cost)."""
-        extra = [p.derivative for p in self.parts.values() if p.states]
+        extra = [p.derivative for p in self.parts.values() if p.states and p.derivative is not None]
         if not extra:
             return base
         if len(extra) == 1:
@@ -166,6 +173,20 @@ class Assembly:
             return out
 
         return rhs
+
+    def offset(self, name: str) -> int:
+        """Index in the state vector of the first state effect `name` adds."""
+        i = len(self.states) - len(self.y0_extra)
+        for n, p in self.parts.items():
+            if n == name:
+                return i
+            i += len(p.states)
+        raise KeyError(name)
+
+    def with_state(self, slot: str) -> tuple[tuple[int, Term], ...]:
+        """((offset of the contributor's own states, term), ...) of an "each" slot, for terms that
+        read the states their effect adds."""
+        return tuple((self.offset(n), self.parts[n].terms[slot]) for n in self.contributors[slot])
 
     def report(self, run: Any) -> dict[str, Any]:
         out: dict[str, Any] = {}
@@ -192,8 +213,14 @@ class Effects:
     def defaults(self) -> tuple[str, ...]:
         return tuple(e.name for e in self.effects if e.default_on)
 
-    def field(self, help: str | None = None) -> Field:
+    def field(self, help: str | None = None, retired: tuple[tuple[str, str, str], ...] = ()) -> Field:
+        """The `effects` flags field. `retired`: (old name, field, value) of names that are no longer
+        effects and what replaced them (e.g. ("optimise", "mode", "optimise")): still read, so old
+        presets load, but not offered (see RetiredFlags and retire)."""
         text = help or "; ".join(f"{e.name}: {e.help}" for e in self.effects)
+        if retired:
+            return RetiredFlags("effects", "Effects", choices=self.names, flags=True,
+                                default=", ".join(self.defaults), help=text, retired=retired)
         return Field("effects", "Effects", choices=self.names, flags=True,
                      default=", ".join(self.defaults), help=text)
 
@@ -242,6 +269,8 @@ class Effects:
                 composed[s.name] = _sum([f for _, f in fns])
             elif s.combine == "fold":
                 composed[s.name] = _fold([f for _, f in fns], s.arity)
+            elif s.combine == "each":
+                composed[s.name] = tuple(f for _, f in fns)
             else:
                 raise ValueError(f"slot {s.name}: unknown combine {s.combine!r}")
         for n, p in parts.items():
@@ -255,6 +284,62 @@ class Effects:
         for p in parts.values():
             params.update(p.params)
         return Assembly(names, parts, composed, contributors, states, y0_extra, events, params)
+
+
+@dataclass(frozen=True)
+class RetiredFlags(Field):
+    """A flags field that still reads names retired from its choices (kept in the parsed set, so
+    the calculator can honour them), without offering them. `retired`: (old name, field, value):
+    what replaced each, e.g. ("optimise", "mode", "optimise")."""
+
+    retired: tuple[tuple[str, str, str], ...] = ()
+
+    def parse(self, raw: Any) -> Any:
+        old = {name for name, _, _ in self.retired}
+        if isinstance(raw, str) and len(raw) <= self._max_chars():
+            items = [x for x in raw.replace(",", " ").split() if x]
+        elif isinstance(raw, (list, tuple, set, frozenset)) and all(isinstance(x, str) for x in raw):
+            items = list(raw)
+        else:
+            return super().parse(raw)  # its own message (too long, wrong type)
+        found = frozenset(x for x in items if x in old)
+        return super().parse([x for x in items if x not in old]) | found
+
+    def _max_chars(self) -> int:
+        return super()._max_chars() + sum(len(name) + 2 for name, _, _ in self.retired)
+
+    def notice(self, name: str) -> str:
+        """What to tell the user who still names a retired flag."""
+        _, field, value = next(r for r in self.retired if r[0] == name)
+        return (f"{self.name}: '{name}' is no longer one of the {self.name}; it is read as {field} = {value} "
+                f"(set that instead: '{name}' will stop being read in a later version)")
+
+
+def retire(fields: Sequence[Field], inputs: Mapping[str, Any]) -> tuple[dict[str, Any], list[str]]:
+    """Inputs as typed with each retired flag replaced by what replaced it (a preset written before
+    the flag was retired), and one notice per flag replaced. A field the inputs already set is kept."""
+    out = dict(inputs)
+    notes: list[str] = []
+    for f in fields:
+        if not isinstance(f, RetiredFlags) or f.name not in out:
+            continue
+        raw = out[f.name]
+        if isinstance(raw, str):
+            items = [x for x in raw.replace(",", " ").split() if x]
+        elif isinstance(raw, (list, tuple)) and all(isinstance(x, str) for x in raw):
+            items = list(raw)
+        else:
+            continue
+        kept = items
+        for name, field_name, value in f.retired:
+            if name in kept and out.get(field_name, value) == value:  # set otherwise by hand: left as typed
+                kept = [x for x in kept if x != name]
+                out[field_name] = value
+                notes.append(f.notice(name))
+        if kept != items:
+            items = kept
+            out[f.name] = ", ".join(items) if isinstance(raw, str) else items
+    return out, notes
 
 
 def nothing(values: Mapping[str, Any], ctx: Any) -> Part:
