@@ -153,6 +153,8 @@ def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = N
             raise InputError(key, f"wrong type ({type(value).__name__}); use a string, number or boolean", src)
     calc = calculators()[calc_id]
     try:
+        if calc.upgrade is not None:  # an older preset's inputs, in today's fields
+            inputs = dict(calc.upgrade(inputs))
         tolerance.parse(calc, inputs)  # unknown field, bad unit, out of bounds, bad ± tolerance
     except InputError as exc:
         raise InputError(exc.field, exc.message, src) from None
