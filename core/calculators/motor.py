@@ -127,16 +127,7 @@ def compute_limited(v) -> Result:
     Vb, Rb = circuit.battery_voltage, circuit.bus_resistance
     P_in = Vb * n * u * I
     values = {
-        "free_speed": m.free_speed,
-        "stall_torque": m.stall_torque,
-        "stall_current": m.stall_current,
-        "free_current": m.free_current,
-        "peak_power": m.peak_power,
-        "kt": m.kt,
-        "max_efficiency": m.max_efficiency,
-        "max_efficiency_torque": m.max_efficiency_torque,
-        "max_efficiency_speed": m.speed(m.max_efficiency_torque),
-        "max_efficiency_current": m.current(m.max_efficiency_torque),
+        **system_values(m),
         "speed": w,
         "current": n * I,
         "supply_current": n * u * I,
@@ -162,13 +153,10 @@ def compute_limited(v) -> Result:
     return Result(values, warnings, series)
 
 
-def compute_free(v) -> Result:
-    m, warnings = system_from(v)
-    tau = v["torque"]
-    if tau > m.stall_torque:
-        raise InputError("torque", f"is above the system's stall torque ({m.stall_torque:.4g} N*m)")
+def system_values(m) -> dict:
+    """The motor system's own figures (eqs. 1-7 and Appendix A), with or without limits."""
     t_eff = m.max_efficiency_torque
-    values = {
+    return {
         "free_speed": m.free_speed,
         "stall_torque": m.stall_torque,
         "stall_current": m.stall_current,
@@ -179,6 +167,16 @@ def compute_free(v) -> Result:
         "max_efficiency_torque": t_eff,
         "max_efficiency_speed": m.speed(t_eff),
         "max_efficiency_current": m.current(t_eff),
+    }
+
+
+def compute_free(v) -> Result:
+    m, warnings = system_from(v)
+    tau = v["torque"]
+    if tau > m.stall_torque:
+        raise InputError("torque", f"is above the system's stall torque ({m.stall_torque:.4g} N*m)")
+    values = {
+        **system_values(m),
         "speed": m.speed(tau),
         "current": m.current(tau),
         "output_power": tau * m.speed(tau),
