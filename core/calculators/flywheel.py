@@ -168,34 +168,40 @@ def upgrade(raw):
     return out
 
 OUTPUTS = (
-    Output("ball_speed", "Ball speed", "speed", "m/s", help="Release speed V at the target wheel speed."),
-    Output("ball_spin", "Ball spin", "angular_speed", "rpm"),
-    Output("ball_energy", "Ball energy", "energy", "J", help="Translation plus spin."),
-    Output("energy_ratio", "Ball / wheel energy after", help="E_b/E_w,final (seed: .165 for one wheel)."),
-    Output("wheel_speed_after", "Wheel speed after shot", "angular_speed", "rpm"),
-    Output("contact_time", "Slip time of the shot", "time", "ms", help="motor_during_shot only."),
-    Output("wheel_inertia_total", "Wheel inertia (all)", "inertia", "lb*in**2"),
+    Output("ball_speed", "Ball speed", "speed", "m/s", help="Release speed V at the target wheel speed.", equation="(2)"),
+    Output("ball_spin", "Ball spin", "angular_speed", "rpm", help="V/r_b for a ball rolling on the hood (2); 0 for two wheels.", equation="(2)"),
+    Output("ball_energy", "Ball energy", "energy", "J", help="Translation plus spin.", equation="(3)"),
+    Output("energy_ratio", "Ball / wheel energy after", help="E_b/E_w,final (seed: .165 for one wheel).", equation="(6)"),
+    Output("wheel_speed_after", "Wheel speed after shot", "angular_speed", "rpm", help="ω₁ after the first shot: ω₀/√(1+β) (energy, 5) or ω₀/(1+β) (momentum).", equation="(5)"),
+    Output("contact_time", "Slip time of the shot", "time", "ms",
+           help="From contact until the ball rolls, the slip phase integrated (motor_during_shot only)."),
+    Output("wheel_inertia_total", "Wheel inertia (all)", "inertia", "lb*in**2", help="n·I of one wheel; I = m_w·(k·r_w)² in radius-of-gyration mode (4).", equation="(4)"),
     Output("mass_ratio_coefficient", "β per ball/wheel mass ratio",
            help="(1+k_b)·s²/k²: E_b/E_w,final per ball-to-wheel mass ratio (radius-of-gyration mode); "
-                "the seed's .4954."),
-    Output("range", "Range", "length", "m", help="Vacuum range from the release height."),
+                "the seed's .4954.", equation="(6)"),
+    Output("range", "Range", "length", "m", help="Vacuum range from the release height.", equation="(1)"),
     Output("range_error", "Range error (heavy ball)", "dimensionless", "%",
-           help="Exact, for m₀·(1+e_m), with the effects and losses chosen."),
+           help="Exact, for m₀·(1+e_m), with the effects and losses chosen.", equation="(7), (8)"),
     Output("range_error_linear", "Range error, spreadsheet estimate", "dimensionless", "%",
            help="The seed's −e_m/(m_w/(c·m₀) + 1) with c computed exactly: its lossless energy model at "
-                "h = 0, whatever model is chosen (the momentum model's error is about twice it)."),
+                "h = 0, whatever model is chosen (the momentum model's error is about twice it).", equation="(9)"),
     Output("range_spread", "Range spread light to heavy", "length", "m",
-           help="R(m₀·(1−e_m)) − R(m₀·(1+e_m))."),
-    *[Output(f"range_error_{n}", f"Range error, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%")
+           help="R(m₀·(1−e_m)) − R(m₀·(1+e_m)).", equation="(1), (7)"),
+    *[Output(f"range_error_{n}", f"Range error, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%",
+             help="Exact (8) with n wheels, the same wheel, motor and target speed.", equation="(8)")
       for n in TABLE_WHEELS],
     *[Output(f"range_error_linear_{n}", f"Spreadsheet est., {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%",
-             help="The seed's table (9): lossless energy model, h = 0, whatever model is chosen.")
+             help="The seed's table (9): lossless energy model, h = 0, whatever model is chosen.", equation="(9)")
       for n in TABLE_WHEELS],
-    Output("free_speed", "Wheel free speed", "angular_speed", "rpm", help="ω̃f/G."),
+    Output("free_speed", "Wheel free speed", "angular_speed", "rpm",
+           help="ω̃f/G (with battery_sag: where the sagged torque is zero, (F2))."),
     Output("time_constant", "Spin-up time constant", "time", "s", help="T = I·ω̃f/(G²·τ̃s)."),
-    Output("spin_up_time", "Spin-up time", "time", "s", help="From rest to the target speed at full power."),
-    Output("recovery_time", "Recovery time", "time", "s", help="After one shot, back to the target speed."),
-    Output("slowest_ball_speed", "Slowest ball in burst", "speed", "m/s"),
+    Output("spin_up_time", "Spin-up time", "time", "s", help="From rest to the target at full power: "
+           "T·ln(ω_f/(ω_f − ω_t)); under a current limit integrated phase by phase (F1)."),
+    Output("recovery_time", "Recovery time", "time", "s", help="After one shot back to the target: "
+           "T·ln((ω_f − ω₁)/(ω_f − ω_t)); under a current limit integrated (F1)."),
+    Output("slowest_ball_speed", "Slowest ball in burst", "speed", "m/s",
+           help="The slowest release over the burst (the wheel not back to speed between shots)."),
     Output("peak_stator_current", "Peak stator current", "current", "A",
            help="Per motor, over the spin-up (at rest); stator_limit, supply_limit or battery_sag only."),
     Output("peak_supply_current", "Peak supply current", "current", "A",
