@@ -177,3 +177,17 @@ def test_old_preset_text_with_the_model_among_the_effects_loads_the_same():
     new = out(effects="stator_limit", stator_current_limit=40)
     got = {k: v.value for k, v in solve("flywheel", old.inputs).outputs.items()}
     assert got["spin_up_time"] == new["spin_up_time"] and got["wheel_speed_after"] == new["wheel_speed_after"]
+
+
+def test_rotor_inertia_is_wheel_inertia_reflected_by_the_ratio_squared():
+    """Each rotor turns G times per wheel turn: ½·J_r·(G·ω)² of kinetic energy, so N rotors act as
+    N·J_r·G² more wheel inertia, in the spin-up, the recovery and the shot alike."""
+    J_r = 2e-4
+    extra = N * J_r * G**2
+    for kw in ({}, {"effects": "stator_limit, battery_sag", "stator_current_limit": 40}):
+        a = out(rotor_inertia=f"{J_r!r} kg*m**2", **kw)
+        b = out(wheel_inertia=f"{I_W + extra!r} kg*m**2", **kw)
+        for k in ("spin_up_time", "recovery_time", "wheel_speed_after", "ball_speed", "range_error",
+                  "wheel_inertia_total"):
+            assert a[k] == pytest.approx(b[k], rel=1e-12), k
+    assert out(rotor_inertia=0)["spin_up_time"] == out()["spin_up_time"]

@@ -128,6 +128,10 @@ FIELDS = (
     *_motor_fields(),
     Field("ratio", "Gear ratio (motor : wheel)", "dimensionless", "", default=0.04, min=0, min_exclusive=True,
           max=1e4, help="G, motor turns per wheel turn (a speed-up is below 1: 1:25 is 0.04)."),
+    Field("rotor_inertia", "Rotor inertia (each motor)", "inertia", "kg*m**2", default=0, min=0, max=1,
+          help="J_r of one motor's rotor, reflected to the wheels as N·J_r·G² (the rotor turns G times per "
+               "wheel turn) and spun up and slowed by the shot with them; 0 neglects it, as WPILib's "
+               "DCMotor does."),
     Field("loss_fraction", "Loss fraction", "dimensionless", "%", default=0, min=0, max=1, max_exclusive=True,
           help="f: friction and ball compression (energy model: of the energy the wheel gives up; "
                "momentum model: of the ball's energy)."),
@@ -175,7 +179,7 @@ OUTPUTS = (
     Output("wheel_speed_after", "Wheel speed after shot", "angular_speed", "rpm", help="ω₁ after the first shot: ω₀/√(1+β) (energy, 5) or ω₀/(1+β) (momentum).", equation="(5)"),
     Output("contact_time", "Slip time of the shot", "time", "ms",
            help="From contact until the ball rolls, the slip phase integrated (motor_during_shot only)."),
-    Output("wheel_inertia_total", "Wheel inertia (all)", "inertia", "lb*in**2", help="n·I of one wheel; I = m_w·(k·r_w)² in radius-of-gyration mode (4).", equation="(4)"),
+    Output("wheel_inertia_total", "Wheel inertia (all)", "inertia", "lb*in**2", help="n·I of one wheel (I = m_w·(k·r_w)² in radius-of-gyration mode (4)) plus the rotors' N·J_r·G².", equation="(4)"),
     Output("mass_ratio_coefficient", "β per ball/wheel mass ratio",
            help="(1+k_b)·s²/k²: E_b/E_w,final per ball-to-wheel mass ratio (radius-of-gyration mode); "
                 "the seed's .4954.", equation="(6)"),
@@ -265,6 +269,11 @@ class Scene:
         return self.I / self.B
 
 
+def rotor_reflected(v) -> float:
+    """N·J_r·G²: the motors' rotors seen at the wheel (kinetic energy ½·J_r·(G·ω)² each)."""
+    return v["motor_count"] * v["rotor_inertia"] * v["ratio"] ** 2
+
+
 def inertia_each(v) -> float:
     if v["mode"] == "moment_of_inertia":
         return v["wheel_inertia"]
@@ -292,7 +301,10 @@ def scene_from(v, rtol: float = 1e-6) -> tuple[Scene, list[str]]:
             warnings.append("The current limits act on the spin-up and the recovery; the slip phase of "
                             "motor_during_shot runs the motors at full duty (unlimited).")
     hood = v["shooter"] == "hood"
-    sc = Scene(r_w=v["wheel_diameter"] / 2, I=v["wheel_count"] * inertia_each(v), r_b=v["ball_diameter"] / 2,
+    I = v["wheel_count"] * inertia_each(v)
+    if v["rotor_inertia"] > 0:
+        I += rotor_reflected(v)
+    sc = Scene(r_w=v["wheel_diameter"] / 2, I=I, r_b=v["ball_diameter"] / 2,
                k_b=v["ball_inertia_factor"], s=0.5 if hood else 1.0, sigma=1.0 if hood else 0.0,
                f=v["loss_fraction"], model=model, motor_on=motor_on,
                A=A, free_speed=free, grip=v["grip_force"], drive=drive, electric=electric)
@@ -684,7 +696,7 @@ def simulate(v, rtol: float) -> SimRun:
     if v["mode"] == "radius_of_gyration":
         values["mass_ratio_coefficient"] = (1 + sc.sigma * sc.k_b) * sc.s ** 2 / v["gyration_fraction"] ** 2  # (6)
     for n in TABLE_WHEELS:  # the seed's table; the free speed ω̃f/G does not depend on n
-        sc_n = sc if n == v["wheel_count"] else dataclasses.replace(sc, I=n * inertia_each(v))
+        sc_n = sc if n == v["wheel_count"] else dataclasses.replace(sc, I=n * inertia_each(v) + rotor_reflected(v))
         values[f"range_error_{n}"] = range_change(sc_n, v, shots, m0 * e_m)
         values[f"range_error_linear_{n}"] = range_error_linear(sc_n, m0, e_m)
     trace, slowest, t_spin, first_shot = burst(sc, v, shots)
