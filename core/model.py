@@ -259,6 +259,8 @@ class Calculator:
     tables: tuple[Table, ...] = ()
     # Simulated calculators: simulate(values, rtol) -> core.sim.scene.SimRun (for the accuracy ladder)
     simulate: Callable[[Mapping[str, Any], float], Any] | None = None
+    # raw inputs of an older preset -> today's (e.g. a choice that used to be an effect flag), or None
+    upgrade: Callable[[Mapping[str, Any]], Mapping[str, Any]] | None = None
 
     def field(self, name: str) -> Field:
         for f in self.fields:
@@ -323,6 +325,8 @@ def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, An
     Fields the current mode does not use never block a solve: a bad entry there falls back
     to its default, so switching modes never loses or is blocked by what was typed.
     """
+    if calc.upgrade is not None:
+        raw = calc.upgrade(raw)
     known = {f.name for f in calc.fields}
     for name in raw:
         if name not in known:

@@ -55,7 +55,9 @@ _WPILIB = [
     ("NEO Vortex", 3.60, 211, 3.6, 6784),
 ]
 
-# ReCalc: ωf rpm, τs N*m, is A, if A, mass lb
+# ReCalc: ωf rpm, τs N*m, is A, if A, mass lb (electrical figures checked against Motor.ts at tervay/recalc
+# commit 03511cb4; there "Kraken X60 (FOC)" and "Kraken X44 (FOC)" are named with brackets, and CIM, MiniCIM,
+# BAG and 775pro weigh a placeholder 1.0 lb: the weights here are REFERENCE_DATA.md's)
 _RECALC = [
     ("Kraken X60", 6065, 7.157, 374.383, 2.83, 1.2),
     ("Kraken X60 FOC", 5784, 9.362, 476.098, 3.496, 1.2),

@@ -156,6 +156,8 @@ def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = N
 
     inputs, notices = retire(calc.fields, inputs)
     try:
+        if calc.upgrade is not None:  # an older preset's inputs, in today's fields
+            inputs = dict(calc.upgrade(inputs))
         tolerance.parse(calc, inputs)  # unknown field, bad unit, out of bounds, bad ± tolerance
     except InputError as exc:
         raise InputError(exc.field, exc.message, src) from None

@@ -180,7 +180,8 @@ def test_builtin_presets_load_and_solve():
     for p in found:
         s = solve("drivetrain", p.inputs)
         modes.add(p.inputs["mode"])
-        assert s.outputs and not s.warnings
+        # (the limits preset shows on purpose that its stator limit, not traction, sets the force)
+        assert s.outputs and not [w for w in s.warnings if "cap the pushing force" not in w]
     assert modes == {"forward", "reverse", "shifting"}
     # swerve: 6000 rpm · π · 4 in / 6.75 = 628.3185·0.0508/6.75 = 4.72867 m/s = 15.514 ft/s
     swerve = next(p for p in found if "Swerve" in p.name)

@@ -232,9 +232,8 @@ def test_range_from_release_height():
 
 @pytest.mark.parametrize("raw,field", [
     ({"target_speed": "2500 rpm"}, "target_speed"),  # exactly the free speed: never reached
-    ({"effects": ""}, "effects"),
-    ({"effects": "energy, momentum"}, "effects"),
-    ({"effects": "motor_during_shot"}, "effects"),
+    ({"effects": "energy, momentum"}, "effects"),  # an old preset naming both transfer models
+    ({"transfer": "impulse"}, "transfer"),
 ])
 def test_errors_name_the_field(raw, field):
     with pytest.raises(InputError) as e:
@@ -288,7 +287,7 @@ def test_recovery_reverses_free_run(w_frac, dt, T_scale):
 
 def test_presets_load_and_solve():
     found = [p for p in presets.listing("flywheel") if p.builtin]
-    assert len(found) == 3
+    assert len(found) == 4
     for p in found:
         sol = solve("flywheel", p.inputs)
         assert sol.outputs["ball_speed"].value > 0

@@ -34,6 +34,12 @@ Corrections to the seed:
   i_tot = 308 A but stalled draw only 270 A, and (42) as printed gives 4.92 where 5.64 is the
   fastest ratio that slips; two CIMs at 8 V draw at most 177 A stalled, so 11.56, not the 10.49
   a battery-fed stall current of 195 A would give.
+
+Forward mode, effects (core.sim.motor_limits, the same definitions as the elevator, arm and
+flywheel): `stator_limit` caps each motor's current, hence the pushing force (D1); `supply_limit`
+caps stator current × duty; `battery_sag` feeds the motors from the battery voltage through the
+circuit of (41) (per motor R_bus = n·(R_batt + R_main) + R_br) and reports the voltage at the
+controllers while pushing (D2). See `pushing`.
 """
 
 from __future__ import annotations
@@ -43,6 +49,8 @@ import dataclasses
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
 from ..motors import MotorSystem, motor_fields, system_from
+from ..sim import motor_limits
+from ..sim.effects import Effect, Effects, nothing
 from ..units import format_quantity
 
 MODES = ("forward", "reverse", "shifting")
@@ -83,15 +91,18 @@ FIELDS = _drive_motor_fields() + (
           modes=("forward", "reverse"),
           help="Coefficient of friction μ of the tread on the floor (≈1.0-1.3 for FRC treads on carpet)."),
     Field("battery_voltage", "Battery voltage", "voltage", "V", default=12.7, min=0, min_exclusive=True,
-          modes=("reverse",), help="Battery resting (open-circuit) voltage V_batt."),
+          modes=("forward", "reverse"),
+          help="Battery resting (open-circuit) voltage V_batt (reverse mode; forward mode with battery_sag)."),
     Field("min_voltage", "Minimum voltage", "voltage", "V", default=7, min=0, modes=("reverse",),
           help="Lowest voltage allowed at the motor controllers while pushing (eq. 41)."),
     Field("battery_resistance", "Battery resistance", "resistance", "ohm", default=0.015, min=0,
-          modes=("reverse",), help="Battery internal resistance R_batt (≈0.015-0.020 Ω for an FRC battery)."),
+          modes=("forward", "reverse"),
+          help="Battery internal resistance R_batt (≈0.015-0.020 Ω for an FRC battery); reverse mode and "
+               "battery_sag."),
     Field("main_resistance", "Main wiring resistance", "resistance", "ohm", default=0.002, min=0,
-          modes=("reverse",), help="Main leads, breaker and distribution panel, R_main."),
+          modes=("forward", "reverse"), help="Main leads, breaker and distribution panel, R_main."),
     Field("branch_resistance", "Branch resistance", "resistance", "ohm", default=0.006, min=0,
-          modes=("reverse",),
+          modes=("forward", "reverse"),
           help="Each motor's branch (breaker, controller, wires), R_br; the n branches are in parallel."),
     Field("low_ratio", "Low gear ratio", "dimensionless", "", default=15, min=0, min_exclusive=True,
           modes=("shifting",), help="Reduction G in low (pushing) gear."),
@@ -99,24 +110,48 @@ FIELDS = _drive_motor_fields() + (
           modes=("shifting",), help="Reduction G in high (fast) gear."),
 )
 
+# Forward mode: the controllers' current limits and the battery's sag while pushing (core.sim.motor_limits).
+# battery_sag reads the circuit of (41): each motor's share of the supply current sees
+# R_bus = n·(R_batt + R_main) + R_br (the battery and main wiring carry all n motors, its branch one).
+EFFECTS = Effects(
+    *[e for e in motor_limits.electrical_effects(limit_default=60.0, supply_default=40.0) if e.name != "battery_sag"],
+    Effect("battery_sag", "the bus sags through the battery and wiring of (41), from the battery voltage",
+           nothing),
+)
+FIELDS = FIELDS + (
+    dataclasses.replace(EFFECTS.field("stator_limit, supply_limit (per motor current limits: they cap the "
+                                      "pushing force); battery_sag (the motors are fed from the battery "
+                                      "voltage through the battery, main and branch resistances)."),
+                        modes=("forward",)),
+    *[dataclasses.replace(f, modes=("forward",)) for f in EFFECTS.fields()],
+)
+
 OUTPUTS = (
     Output("max_ratio", "Fastest ratio that slips", "dimensionless", "",
            help="Smallest reduction G_slip whose slip current keeps the voltage above V_min (42), "
-                "or, if the motors cannot draw that much, the fastest that slips the wheels at all."),
+                "or, if the motors cannot draw that much, the fastest that slips the wheels at all.", equation="(42)"),
     Output("total_current", "Allowed total current", "current", "A",
-           help="Total current at which the motors see the minimum voltage (41)."),
-    Output("free_speed", "Free speed", "speed", "ft/s", help="Top speed with no losses (37)."),
+           help="Total current at which the motors see the minimum voltage (41).", equation="(41)"),
+    Output("free_speed", "Free speed", "speed", "ft/s", help="Top speed with no losses (37).", equation="(37)"),
     Output("adjusted_speed", "Adjusted speed", "speed", "ft/s",
-           help="Expected real top speed, free speed times the speed-loss constant (38)."),
+           help="Expected real top speed, free speed times the speed-loss constant (38).", equation="(38)"),
     Output("slip_current", "Slip current per motor", "current", "A",
-           help="Current each motor draws when the wheels just slip (39)."),
-    Output("slip_current_total", "Slip current, all motors", "current", "A"),
+           help="Current each motor draws when the wheels just slip (39).", equation="(39)"),
+    Output("slip_current_total", "Slip current, all motors", "current", "A", help="n times the per-motor slip current (39).", equation="(39)"),
     Output("pushing_force", "Pushing force", "force", "lbf",
-           help="Most the drive can push: wheel traction, or the motors' stall force if lower."),
-    Output("low_free_speed", "Low gear free speed", "speed", "ft/s"),
-    Output("high_free_speed", "High gear free speed", "speed", "ft/s"),
+           help="Most the drive can push: wheel traction, or the motors' stall force if lower.", equation="(98)"),
+    Output("push_current", "Stator current pushing, per motor", "current", "A",
+           help="Forward mode with a limit or sag: the slip current if the wheels slip, else the (limited) "
+                "stall current.", equation="(39)"),
+    Output("push_supply_current", "Supply current pushing, per motor", "current", "A",
+           help="Stator current × duty while pushing (a limit or sag on)."),
+    Output("push_battery_current", "Battery current pushing", "current", "A", help="All motors."),
+    Output("push_bus_voltage", "Voltage at the controllers pushing", "voltage", "V",
+           help="Battery voltage minus the sag of (41) at the pushing current (battery_sag).", equation="(41)"),
+    Output("low_free_speed", "Low gear free speed", "speed", "ft/s", help="Free speed (37) in the low gear.", equation="(37), (102)"),
+    Output("high_free_speed", "High gear free speed", "speed", "ft/s", help="Free speed (37) in the high gear.", equation="(37), (102)"),
     Output("shift_speed", "Shift speed", "speed", "ft/s",
-           help="Speed at which both gears push equally hard: shift up above it (40)."),
+           help="Speed at which both gears push equally hard: shift up above it (40).", equation="(40)"),
 )
 
 
@@ -141,6 +176,47 @@ def circuit_stall_current(m: MotorSystem, V_batt, R):
 
 def total_current(V_batt, V_min, R_batt, R_main, R_br, n):
     return (V_batt - V_min) / (R_batt + R_main + R_br / n)  # (41)
+
+
+def pushing(v, m: MotorSystem, G, d, i_slip, traction) -> dict:
+    """Forward mode with stator_limit, supply_limit or battery_sag: the stall current per motor
+    through core.sim.motor_limits (E1)-(E3) at E = 0, per motor R = V_spec/i_s (M1), fed the Voltage
+    field, or with battery_sag the battery voltage through R_bus = n·(R_batt + R_main) + R_br.
+    The wheel force is the seed's (7), (9): F = K_T·(n·I − ĩf)·G/r (K_T after η, all motors).
+        I₀ = I(E = 0);  F_stall = K_T·(n·I₀ − ĩf)·G/r;  pushing force = min(μ·W̃, F_stall)       (D1)
+    The wheels slip when n·I₀ ≥ ĩ_slip (39): the operating current is then ĩ_slip/n, at duty
+    u = min(1, I_sup/I) (the stator limit, at or above it, does not bind); else I₀ at its duty u₀.
+        supply current u·I per motor, battery n·u·I, V_controllers = V_b − R_bus·u·I             (D2)"""
+    on, n = v["effects"], m.count
+    motor = m.motor
+    sag = "battery_sag" in on
+    Vb = v["battery_voltage"] if sag else m.voltage
+    Rb = n * (v["battery_resistance"] + v["main_resistance"]) + v["branch_resistance"] if sag else 0.0
+    circuit = motor_limits.circuit_of(motor, Vb, Rb)
+    elec, _ = motor_limits.limits(EFFECTS, on, v, circuit)
+    u0, I0 = elec(0.0)
+    F_stall = m.kt * (n * I0 - m.free_current) * G / (d / 2)  # (D1)
+    if F_stall <= 0:
+        name = ("stator_current_limit" if "stator_limit" in on and I0 >= v["stator_current_limit"] * (1 - 1e-12)
+                else "supply_current_limit" if "supply_limit" in on and u0 < 1 else "battery_resistance")
+        raise InputError(name, f"leaves the stalled motors {I0:.4g} A each, not above their free current "
+                               f"{m.free_current / n:.4g} A: they cannot push")
+    if n * I0 >= i_slip:  # the wheels slip
+        I = i_slip / n
+        u = min(1.0, v["supply_current_limit"] / I) if "supply_limit" in on else 1.0
+    else:
+        I, u = I0, u0
+    out = {"stall_force": F_stall, "push_current": I, "push_supply_current": u * I,
+           "push_battery_current": n * u * I}
+    # the limited force over speed, (D1) at the back-EMF of each speed: E = (v·G/r)/Kv
+    v_top = circuit.Kv * Vb * (d / 2) / G
+    vs = [v_top * k / 120 for k in range(121)]
+    Fs = [m.kt * (n * elec(x * G / (d / 2) / circuit.Kv)[1] - m.free_current) * G / (d / 2) for x in vs]
+    keep = [k for k, F in enumerate(Fs) if F >= 0]
+    out["curve"] = ([vs[k] for k in keep], [Fs[k] for k in keep])
+    if sag:
+        out["push_bus_voltage"] = Vb - Rb * u * I  # (D2)
+    return out
 
 
 def shift_speed(v1, v2):
@@ -223,6 +299,12 @@ def compute(v) -> Result:
     i_slip = slip_current_total(m, W, mu, d, G)
     v_free = free_speed(m, d, G)
     stall_force = stall_torque * G / (d / 2)  # (98) at stall
+    limited = None
+    if mode == "forward" and v["effects"]:
+        limited = pushing(v, m, G, d, i_slip, traction)
+        stall_force = limited.pop("stall_force")
+        series["limited motor force"] = limited.pop("curve")
+        values.update(limited)
     values.update(
         free_speed=v_free,
         adjusted_speed=v_free * k_SL,  # (38)
@@ -230,7 +312,11 @@ def compute(v) -> Result:
         slip_current_total=i_slip,
         pushing_force=min(traction, stall_force),
     )
-    if stall_force < traction * (1 - 1e-12):  # (not when equal but for rounding: reverse mode's limit)
+    if limited is not None and stall_force < traction * (1 - 1e-12) and limited["push_current"] < m.stall_current / m.count:
+        warnings.append(f"The current limits or the sag cap the pushing force: the motors push "
+                        f"{format_quantity(stall_force, 'lbf', 'force')} ({limited['push_current']:.4g} A each) "
+                        f"but traction allows {format_quantity(traction, 'lbf', 'force')}: the wheels do not slip.")
+    elif stall_force < traction * (1 - 1e-12):  # (not when equal but for rounding: reverse mode's limit)
         warnings.append(f"The motors stall before the wheels slip: they push "
                         f"{format_quantity(stall_force, 'lbf', 'force')} but traction allows "
                         f"{format_quantity(traction, 'lbf', 'force')} (the slip current is not reached).")
@@ -249,7 +335,8 @@ CALCULATOR = Calculator(
     section="4",
     exports={"ratio_finder": {"target_ratio": "max_ratio"}},  # parts for the fastest slipping ratio
     plots=(
-        Plot("Force at the wheels vs speed", ("motor force", "traction limit", "low gear", "high gear"),
+        Plot("Force at the wheels vs speed", ("motor force", "limited motor force", "traction limit", "low gear",
+                                               "high gear"),
              "speed", "speed", "ft/s", "force", "force", "lbf"),
     ),
 )

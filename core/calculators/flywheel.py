@@ -49,12 +49,15 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import Any
 
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot
-from ..motors import motor_fields, system_from
+from ..motors import lookup, motor_fields, system_from
+from ..sim import motor_limits
+from ..sim.effects import Effect, Effects, nothing
 from ..sim.integrate import Event, integrate
-from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, effects_field, compute_with_stats
+from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stats
 
 from ..constants import G0 as G_ACC
 from ..constants import RPM
@@ -63,7 +66,17 @@ TABLE_WHEELS = range(1, 7)
 # explicit integrator needs ~b·τ_end/3 steps for stability alone; the closed form is used instead.
 STIFF = 200.0
 SLIP_LENGTH_WARN = 0.5  # m: longer than the contact path of any hood or wheel pair
-EFFECTS = ("energy", "momentum", "motor_during_shot")
+TRANSFERS = ("energy", "momentum")
+TRANSFER_LABELS = ("Energy (seed: energy conservation, translation + spin)",
+                   "Momentum (angular impulse with slip, Team 449)")
+ELECTRICAL = ("stator_limit", "supply_limit", "battery_sag")
+EFFECTS = Effects(
+    Effect("motor_during_shot", "momentum model: the motor keeps driving while the ball slips", nothing,
+           fields=(Field("grip_force", "Grip force μ·N (motor during shot)", "force", "N", default=40, min=0.1,
+                         max=1e5, help="Friction force of the wheels on the slipping ball; used by "
+                                       "motor_during_shot only."),)),
+    *motor_limits.electrical_effects(),
+)
 SHOOTERS = ("hood", "two_wheel")
 SHOOTER_LABELS = ("Single wheel with hood (ball at half surface speed)", "Two wheels (ball at surface speed)")
 INERTIA_MODES = ("radius_of_gyration", "moment_of_inertia")
@@ -115,53 +128,119 @@ FIELDS = (
     *_motor_fields(),
     Field("ratio", "Gear ratio (motor : wheel)", "dimensionless", "", default=0.04, min=0, min_exclusive=True,
           max=1e4, help="G, motor turns per wheel turn (a speed-up is below 1: 1:25 is 0.04)."),
+    Field("rotor_inertia", "Rotor inertia (each motor)", "inertia", "kg*m**2", default=0, min=0, max=1,
+          help="J_r of one motor's rotor, reflected to the wheels as N·J_r·G² (the rotor turns G times per "
+               "wheel turn) and spun up and slowed by the shot with them; 0 neglects it, as WPILib's "
+               "DCMotor does."),
     Field("loss_fraction", "Loss fraction", "dimensionless", "%", default=0, min=0, max=1, max_exclusive=True,
           help="f: friction and ball compression (energy model: of the energy the wheel gives up; "
                "momentum model: of the ball's energy)."),
-    Field("grip_force", "Grip force μ·N (motor during shot)", "force", "N", default=40, min=0.1, max=1e5,
-          when=(("effects", ("motor_during_shot",)),),
-          help="Friction force of the wheels on the slipping ball; used by motor_during_shot only."),
     Field("shots", "Shots in the burst", integer=True, default=4, min=1, max=50),
     Field("shot_interval", "Shot interval", "time", "s", default=0.5, min=0.01, max=60,
           help="Cadence of the burst: time from one shot to the next."),
-    effects_field(EFFECTS, ("energy",),
-                  "Transfer model: energy (seed: energy conservation, translation + spin) or momentum "
-                  "(angular impulse with slip, Team 449); motor_during_shot (momentum only): the motor "
-                  "drives during the slip."),
+    Field("transfer", "Transfer model", choices=TRANSFERS, choice_labels=TRANSFER_LABELS, default="energy",
+          help="How the wheel's spin reaches the ball: energy conservation (the seed) or angular impulse "
+               "with slip until the ball rolls (Team 449)."),
+    EFFECTS.field("motor_during_shot (momentum model only): the motor drives during the slip; stator_limit, "
+                  "supply_limit (per motor current limits) and battery_sag (bus = battery − R × total supply "
+                  "current) act on the spin-up and the recovery between shots."),
+    *EFFECTS.fields(),
     accuracy_field(),
 )
 
+
+def upgrade(raw):
+    """Presets written before the transfer model was a choice named it among the effects
+    (`effects = "momentum, motor_during_shot"`): move it to `transfer` (it wins over a `transfer`
+    beside it: that is a default filled in, or the newer field an old name is written over)."""
+    eff = raw.get("effects")
+    if isinstance(eff, str):
+        items = [x for x in eff.replace(",", " ").split() if x]
+    elif isinstance(eff, (list, tuple, set, frozenset)) and all(isinstance(x, str) for x in eff):
+        items = list(eff)
+    else:
+        return raw
+    named = [x for x in items if x in TRANSFERS]
+    if not named:
+        return raw
+    if len(set(named)) > 1:
+        raise InputError("effects", "names both transfer models (energy and momentum): choose one as `transfer`")
+    rest = [x for x in items if x not in TRANSFERS]
+    out = dict(raw)
+    out["effects"] = ", ".join(rest) if isinstance(eff, str) else rest
+    out["transfer"] = named[0]
+    return out
+
 OUTPUTS = (
-    Output("ball_speed", "Ball speed", "speed", "m/s", help="Release speed V at the target wheel speed."),
-    Output("ball_spin", "Ball spin", "angular_speed", "rpm"),
-    Output("ball_energy", "Ball energy", "energy", "J", help="Translation plus spin."),
-    Output("energy_ratio", "Ball / wheel energy after", help="E_b/E_w,final (seed: .165 for one wheel)."),
-    Output("wheel_speed_after", "Wheel speed after shot", "angular_speed", "rpm"),
-    Output("contact_time", "Slip time of the shot", "time", "ms", help="motor_during_shot only."),
-    Output("wheel_inertia_total", "Wheel inertia (all)", "inertia", "lb*in**2"),
+    Output("ball_speed", "Ball speed", "speed", "m/s", help="Release speed V at the target wheel speed.", equation="(2)"),
+    Output("ball_spin", "Ball spin", "angular_speed", "rpm", help="V/r_b for a ball rolling on the hood (2); 0 for two wheels.", equation="(2)"),
+    Output("ball_energy", "Ball energy", "energy", "J", help="Translation plus spin.", equation="(3)"),
+    Output("energy_ratio", "Ball / wheel energy after", help="E_b/E_w,final (seed: .165 for one wheel).", equation="(6)"),
+    Output("wheel_speed_after", "Wheel speed after shot", "angular_speed", "rpm", help="ω₁ after the first shot: ω₀/√(1+β) (energy, 5) or ω₀/(1+β) (momentum).", equation="(5)"),
+    Output("contact_time", "Slip time of the shot", "time", "ms",
+           help="From contact until the ball rolls, the slip phase integrated (motor_during_shot only)."),
+    Output("wheel_inertia_total", "Wheel inertia (all)", "inertia", "lb*in**2", help="n·I of one wheel (I = m_w·(k·r_w)² in radius-of-gyration mode (4)) plus the rotors' N·J_r·G².", equation="(4)"),
     Output("mass_ratio_coefficient", "β per ball/wheel mass ratio",
            help="(1+k_b)·s²/k²: E_b/E_w,final per ball-to-wheel mass ratio (radius-of-gyration mode); "
-                "the seed's .4954."),
-    Output("range", "Range", "length", "m", help="Vacuum range from the release height."),
+                "the seed's .4954.", equation="(6)"),
+    Output("range", "Range", "length", "m", help="Vacuum range from the release height.", equation="(1)"),
     Output("range_error", "Range error (heavy ball)", "dimensionless", "%",
-           help="Exact, for m₀·(1+e_m), with the effects and losses chosen."),
+           help="Exact, for m₀·(1+e_m), with the effects and losses chosen.", equation="(7), (8)"),
     Output("range_error_linear", "Range error, spreadsheet estimate", "dimensionless", "%",
            help="The seed's −e_m/(m_w/(c·m₀) + 1) with c computed exactly: its lossless energy model at "
-                "h = 0, whatever model is chosen (the momentum model's error is about twice it)."),
+                "h = 0, whatever model is chosen (the momentum model's error is about twice it).", equation="(9)"),
     Output("range_spread", "Range spread light to heavy", "length", "m",
-           help="R(m₀·(1−e_m)) − R(m₀·(1+e_m))."),
-    *[Output(f"range_error_{n}", f"Range error, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%")
+           help="R(m₀·(1−e_m)) − R(m₀·(1+e_m)).", equation="(1), (7)"),
+    *[Output(f"range_error_{n}", f"Range error, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%",
+             help="Exact (8) with n wheels, the same wheel, motor and target speed.", equation="(8)")
       for n in TABLE_WHEELS],
     *[Output(f"range_error_linear_{n}", f"Spreadsheet est., {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%",
-             help="The seed's table (9): lossless energy model, h = 0, whatever model is chosen.")
+             help="The seed's table (9): lossless energy model, h = 0, whatever model is chosen.", equation="(9)")
       for n in TABLE_WHEELS],
-    Output("free_speed", "Wheel free speed", "angular_speed", "rpm", help="ω̃f/G."),
+    Output("free_speed", "Wheel free speed", "angular_speed", "rpm",
+           help="ω̃f/G (with battery_sag: where the sagged torque is zero, (F2))."),
     Output("time_constant", "Spin-up time constant", "time", "s", help="T = I·ω̃f/(G²·τ̃s)."),
-    Output("spin_up_time", "Spin-up time", "time", "s", help="From rest to the target speed at full power."),
-    Output("recovery_time", "Recovery time", "time", "s", help="After one shot, back to the target speed."),
-    Output("slowest_ball_speed", "Slowest ball in burst", "speed", "m/s"),
+    Output("spin_up_time", "Spin-up time", "time", "s", help="From rest to the target at full power: "
+           "T·ln(ω_f/(ω_f − ω_t)); under a current limit integrated phase by phase (F1)."),
+    Output("recovery_time", "Recovery time", "time", "s", help="After one shot back to the target: "
+           "T·ln((ω_f − ω₁)/(ω_f − ω_t)); under a current limit integrated (F1)."),
+    Output("slowest_ball_speed", "Slowest ball in burst", "speed", "m/s",
+           help="The slowest release over the burst (the wheel not back to speed between shots)."),
+    Output("peak_stator_current", "Peak stator current", "current", "A",
+           help="Per motor, over the spin-up (at rest); stator_limit, supply_limit or battery_sag only."),
+    Output("peak_supply_current", "Peak supply current", "current", "A",
+           help="Per motor, stator current × duty, largest over the spin-up; with a limit or sag only."),
+    Output("min_bus_voltage", "Min bus voltage", "voltage", "V",
+           help="Battery voltage minus the sag at the peak supply current (battery_sag)."),
     *STATS_OUTPUTS,
 )
+
+
+@dataclasses.dataclass(eq=False)
+class Drive:
+    """The motors under a current limit (stator_limit, supply_limit; with or without battery_sag),
+    per motor through core.sim.motor_limits (E1)-(E3); the torque is the seed's (7), (9):
+        τ_w(ω) = A·(I(E) − i_f)/(i_s − i_f),  E = G·ω/Kv                                  (F1)
+    A = G·τ̃s the unlimited wheel torque at stall, i_s, i_f the stall and free current per motor at
+    the voltage field. With no limit I = (V − E)/R and (F1) is the seed's A·(1 − ω/ω_f) exactly."""
+
+    A: float
+    G: float
+    i_s: float
+    i_f: float
+    circuit: motor_limits.Circuit
+    elec: Any  # E -> (u, I)
+    asm: Any  # the assembled electrical effects (their duty bounds, one by one)
+    rtol: float
+    boundaries: tuple[float, ...] | None = ()  # wheel speeds where a limit lets go (kinks of τ_w); None: no limit
+    nfev: int = 0
+
+    def torque(self, w: float) -> float:
+        _, I = self.elec(self.G * w / self.circuit.Kv)
+        return self.A * (I - self.i_f) / (self.i_s - self.i_f)  # (F1)
+
+    def emf(self, w: float) -> float:
+        return self.G * w / self.circuit.Kv
 
 
 @dataclasses.dataclass(frozen=True)
@@ -178,6 +257,8 @@ class Scene:
     A: float  # G·τ̃s, N·m at the wheel at stall
     free_speed: float  # ω̃f/G, rad/s of the wheel
     grip: float  # N
+    drive: Drive | None = dataclasses.field(default=None, compare=False)  # a current limit is on
+    electric: Drive | None = dataclasses.field(default=None, compare=False)  # a limit or battery_sag is on
 
     @property
     def B(self) -> float:
@@ -188,33 +269,77 @@ class Scene:
         return self.I / self.B
 
 
+def rotor_reflected(v) -> float:
+    """N·J_r·G²: the motors' rotors seen at the wheel (kinetic energy ½·J_r·(G·ω)² each)."""
+    return v["motor_count"] * v["rotor_inertia"] * v["ratio"] ** 2
+
+
 def inertia_each(v) -> float:
     if v["mode"] == "moment_of_inertia":
         return v["wheel_inertia"]
     return v["wheel_mass"] * (v["gyration_fraction"] * v["wheel_diameter"] / 2) ** 2  # (4)
 
 
-def scene_from(v) -> tuple[Scene, list[str]]:
+def scene_from(v, rtol: float = 1e-6) -> tuple[Scene, list[str]]:
     effects = v["effects"]
     warnings: list[str] = []
-    models = [m for m in ("energy", "momentum") if m in effects]
-    if len(models) != 1:
-        raise InputError("effects", "switch on exactly one transfer model: energy or momentum")
+    model = v["transfer"]
     motor_on = "motor_during_shot" in effects
-    if motor_on and models[0] == "energy":
+    if motor_on and model == "energy":
         warnings.append("motor_during_shot is ignored by the energy model (it has no shot duration); "
                         "use the momentum model.")
         motor_on = False
     system, notes = system_from(v)
     warnings += notes
     G = v["ratio"]
+    A, free = G * system.stall_torque, system.free_speed / G
+    drive = electric = None
+    if any(n in effects for n in ELECTRICAL):
+        A, free, electric = electrical_drive(v, A, free, G, rtol)
+        drive = electric if electric.boundaries is not None else None
+        if drive is not None and motor_on:
+            warnings.append("The current limits act on the spin-up and the recovery; the slip phase of "
+                            "motor_during_shot runs the motors at full duty (unlimited).")
     hood = v["shooter"] == "hood"
-    sc = Scene(r_w=v["wheel_diameter"] / 2, I=v["wheel_count"] * inertia_each(v), r_b=v["ball_diameter"] / 2,
+    I = v["wheel_count"] * inertia_each(v)
+    if v["rotor_inertia"] > 0:
+        I += rotor_reflected(v)
+    sc = Scene(r_w=v["wheel_diameter"] / 2, I=I, r_b=v["ball_diameter"] / 2,
                k_b=v["ball_inertia_factor"], s=0.5 if hood else 1.0, sigma=1.0 if hood else 0.0,
-               f=v["loss_fraction"], model=models[0], motor_on=motor_on,
-               A=G * system.stall_torque, free_speed=system.free_speed / G,
-               grip=v["grip_force"])
+               f=v["loss_fraction"], model=model, motor_on=motor_on,
+               A=A, free_speed=free, grip=v["grip_force"], drive=drive, electric=electric)
     return sc, warnings
+
+
+def electrical_drive(v, A: float, free: float, G: float, rtol: float) -> tuple[float, float, Drive | None]:
+    """The wheel's stall torque and free speed with battery_sag (still linear in speed, through
+    R + R_bus), and the limited drive when stator_limit or supply_limit is on (None otherwise).
+    With sag alone, I = (V − E)/(R + R_bus) in (F1):
+        A' = A·(V/(R + R_bus) − i_f)/(i_s − i_f),  ω_f' = Kv·(V − i_f·(R + R_bus))/G          (F2)"""
+    on = v["effects"]
+    motor, _ = lookup(v["motor"], v["source"])
+    V = v["voltage"]
+    Rb = motor_limits.bus_resistance_of(v, on)
+    circuit = motor_limits.circuit_of(motor, V, Rb)
+    i_s = motor.stall_current * V / motor.v_spec  # (4), per motor
+    i_f = motor.free_current * V / motor.v_spec  # (3), per motor
+    A_sag = A
+    if Rb > 0:
+        I0 = V / (circuit.R + Rb)
+        if I0 <= i_f:
+            raise InputError("battery_resistance", f"sags the bus so far that the stalled motors draw "
+                                                   f"{I0:.4g} A each, not above their free current "
+                                                   f"{i_f:.4g} A: they give no torque")
+        A_sag = A * (I0 - i_f) / (i_s - i_f)  # (F2)
+        free = circuit.Kv * (V - i_f * (circuit.R + Rb)) / G  # (F2)
+    elec, asm = motor_limits.limits(EFFECTS, on, v, circuit)
+    if asm.slots["duty"] is None:  # sag alone: closed forms with A', ω_f'; boundaries None
+        return A_sag, free, Drive(A, G, i_s, i_f, circuit, elec, asm, rtol, None)
+    Es = motor_limits.release_emfs(circuit, v, on)
+    if "supply_limit" in on:  # the supply limit lets go to full duty: u = 1, I = I_sup   (E3)
+        Es.append(V - v["supply_current_limit"] * (circuit.R + Rb))
+    boundaries = tuple(sorted({E * circuit.Kv / G for E in Es if E > 0}))
+    return A_sag, free, Drive(A, G, i_s, i_f, circuit, elec, asm, rtol, boundaries)
 
 
 def beta(sc: Scene, m: float) -> float:
@@ -382,12 +507,68 @@ def range_error_linear(sc: Scene, m0: float, e_m: float) -> float:
 
 def recovery(sc: Scene, omega_from: float, omega_to: float, gap: float | None = None) -> float:
     """Full-power time from omega_from up to omega_to (< free speed): T·ln((ω_f − ω₁)/(ω_f − ω_t)),
-    as T·log1p(gap/(ω_f − ω_t)) with gap = ω_t − ω₁ (given when known without cancellation)."""
+    as T·log1p(gap/(ω_f − ω_t)) with gap = ω_t − ω₁ (given when known without cancellation).
+    Under a current limit, integrated (limited_run)."""
     if gap is None:
         gap = omega_to - omega_from
     if gap <= 0:
         return 0.0
+    if sc.drive is not None:
+        return limited_run(sc, omega_from, omega_to).t[-1]
     return sc.T * math.log1p(gap / (sc.free_speed - omega_to))
+
+
+class LimitedRun:
+    """Wheel speed from a limited spin-up, integrated phase by phase (see limited_run)."""
+
+    def __init__(self):
+        self.pieces: list[tuple[float, Any]] = []  # (start time, core.sim.integrate.Run)
+        self.t = [0.0]
+        self.y = [[0.0]]
+        self.event = None
+
+    def at(self, t: float) -> list:
+        for t0, run in reversed(self.pieces):
+            if t >= t0:
+                return run.at(min(t - t0, run.t[-1]))
+        return self.pieces[0][1].at(0.0)
+
+
+def limited_run(sc: Scene, omega_from: float, omega_to: float, t_end: float | None = None,
+                dense: bool = False) -> LimitedRun:
+    """I·dω/dt = τ_w(ω) (F1) from omega_from until ω = omega_to (event "target") or t_end, one
+    phase at a time: τ_w has a kink where a limit lets go (motor_limits.release_emfs, and
+    E = V_b − I_sup·(R + R_bus) where the supply limit lets go to full duty), so each phase is
+    integrated up to its boundary (an event) and the next starts there, every piece smooth.
+    τ_w never rises with ω (each phase's current falls or stays as the back-EMF grows) and is
+    positive at omega_to (checked in simulate), so a phase ending at ω_b is over before
+    I·(ω_b − ω)/τ_w(ω_b): the span integrated."""
+    d = sc.drive
+    I = sc.I
+    ends = sorted(w for w in d.boundaries if omega_from < w < omega_to) + [omega_to]
+    out = LimitedRun()
+    t, w = 0.0, omega_from
+    out.y = [[w]]
+    for w_b in ends:
+        span = I * (w_b - w) / d.torque(w_b) * (1 + 1e-6) + 1e-12
+        if t_end is not None:
+            span = min(span, t_end - t)
+        if span <= 0:
+            break
+        run = integrate(lambda t_, y: [d.torque(y[0]) / I], 0.0, span, [w], rtol=d.rtol,
+                        atol=d.rtol * omega_to, events=[Event("target", lambda t_, y, w_b=w_b: y[0] - w_b, +1)],
+                        dense=dense)
+        d.nfev += run.nfev
+        out.pieces.append((t, run))
+        t, w = t + run.t[-1], run.y[-1][0]
+        out.t, out.y = [t], [[w]]
+        if run.event != "target":
+            break
+        w = w_b  # on the boundary (the event's located state is w_b to the tolerance)
+        out.y = [[w]]
+        if w_b == omega_to:
+            out.event = "target"
+    return out
 
 
 def free_run(sc: Scene, omega: float, dt: float) -> float:
@@ -410,10 +591,19 @@ def burst(sc: Scene, v, shots: Shots):
         t_hit = recovery(sc, w_start, target)
         if t_hit > 0:
             reach = min(t_hit, duration)
+            if sc.drive is not None:
+                run = limited_run(sc, w_start, target, reach if reach < t_hit else None, dense=True)
+                end = run.t[-1]
+
+                def speed(dt):
+                    return run.y[-1][0] if dt >= end else run.at(dt)[0]
+            else:
+                def speed(dt):
+                    return free_run(sc, w_start, dt)
             for i in range(1, 25):
                 dt = reach * i / 24 if i < 24 else reach  # reach·24/24 need not round to reach
                 ts.append(t_start + dt)
-                ws.append(min(free_run(sc, w_start, dt), target))
+                ws.append(min(speed(dt), target))
         if duration > t_hit:
             ts.append(t_start + duration)
             ws.append(target)
@@ -441,12 +631,41 @@ def burst(sc: Scene, v, shots: Shots):
     return (ts, ws), slowest, t_spin, first_shot
 
 
+def check_limits(sc: Scene, target: float) -> None:
+    """InputError naming the limit that leaves the motors no torque at the target speed."""
+    d = sc.drive
+    if d.torque(target) > 1e-9 * d.A:  # (below it the spin-up would take 10⁹ stall-torque times)
+        return
+    E = d.emf(target)
+    bounds = {n: p.terms["duty"](E) for n, p in d.asm.parts.items() if "duty" in p.terms}
+    name = min(bounds, key=bounds.get)
+    u, I = d.elec(E)
+    field_name = "stator_current_limit" if name == "stator_limit" else "supply_current_limit"
+    raise InputError(field_name, f"is too low to spin the wheels up to {target / RPM:.4g} rpm: there the "
+                                 f"motors draw {I:.4g} A each (duty {u:.3g}), not above their free current "
+                                 f"{d.i_f:.4g} A, so they give no torque")
+
+
+def electrical_extremes(sc: Scene, target: float, v) -> dict[str, float]:
+    """Peak stator and supply current per motor and the lowest bus voltage over a spin-up from rest
+    to the target: the stator current never rises with speed (peak at rest); the supply current's
+    peak is at rest, at the target or where a limit lets go (core.sim.motor_limits.release_emfs)."""
+    d = sc.electric
+    E_t = d.emf(target)
+    Es = [0.0, E_t] + [E for E in motor_limits.release_emfs(d.circuit, v, v["effects"]) if 0.0 <= E <= E_t]
+    peak_sup = max(u * I for u, I in map(d.elec, Es))
+    return {"peak_stator_current": d.elec(0.0)[1], "peak_supply_current": peak_sup,
+            "min_bus_voltage": d.circuit.battery_voltage - d.circuit.bus_resistance * peak_sup}
+
+
 def simulate(v, rtol: float) -> SimRun:
-    sc, warnings = scene_from(v)
+    sc, warnings = scene_from(v, rtol)
     target = v["target_speed"]
     if target >= sc.free_speed:
         raise InputError("target_speed", f"the wheels cannot reach it: their free speed is "
                                          f"{sc.free_speed / RPM:.4g} rpm with this motor and ratio")
+    if sc.drive is not None:
+        check_limits(sc, target)
     m0, e_m = v["ball_mass"], v["ball_mass_tolerance"]
     shots = Shots(target, rtol)
     first = shots(sc, target, m0)
@@ -477,7 +696,7 @@ def simulate(v, rtol: float) -> SimRun:
     if v["mode"] == "radius_of_gyration":
         values["mass_ratio_coefficient"] = (1 + sc.sigma * sc.k_b) * sc.s ** 2 / v["gyration_fraction"] ** 2  # (6)
     for n in TABLE_WHEELS:  # the seed's table; the free speed ω̃f/G does not depend on n
-        sc_n = sc if n == v["wheel_count"] else dataclasses.replace(sc, I=n * inertia_each(v))
+        sc_n = sc if n == v["wheel_count"] else dataclasses.replace(sc, I=n * inertia_each(v) + rotor_reflected(v))
         values[f"range_error_{n}"] = range_change(sc_n, v, shots, m0 * e_m)
         values[f"range_error_linear_{n}"] = range_error_linear(sc_n, m0, e_m)
     trace, slowest, t_spin, first_shot = burst(sc, v, shots)
@@ -497,7 +716,13 @@ def simulate(v, rtol: float) -> SimRun:
                         f"{slowest:.3g} m/s instead of {first.V:.3g} m/s.")
     series = {"wheel speed": trace, "burst": (trace[0][first_shot:], trace[1][first_shot:])}
     key = {"ball_speed": first.V, "wheel_speed_after": first.omega_after, "slowest_ball_speed": slowest}
-    return SimRun(values, key, shots.nfev, warnings, series)
+    nfev = shots.nfev
+    if sc.electric is not None:
+        values.update(electrical_extremes(sc, target, v))
+    if sc.drive is not None:
+        key.update(spin_up_time=t_spin, recovery_time=values["recovery_time"])
+        nfev += sc.drive.nfev
+    return SimRun(values, key, nfev, warnings, series)
 
 
 compute = compute_with_stats(simulate)
@@ -512,6 +737,7 @@ CALCULATOR = Calculator(
     compute=compute,
     section="seed 000",
     simulate=simulate,
+    upgrade=upgrade,
     plots=(Plot("Wheel speed over the burst", ("burst",), "time", "time", "s", "wheel speed", "angular_speed", "rpm"),
            Plot("Spin-up and burst", ("wheel speed",), "time", "time", "s", "wheel speed", "angular_speed", "rpm")),
 )

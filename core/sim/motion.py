@@ -38,12 +38,13 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 from dataclasses import dataclass, field, replace
-from typing import Any, Callable, Mapping
+from typing import Any, Mapping
 
 from ..errors import InputError
 from ..model import Field, Output, Plot
 from ..motors import Motor, motor_fields
-from .effects import Effect, Effects, Part, Slot, nothing
+from .effects import Effect, Effects, Part, Slot
+from .motor_limits import _Array, SCALAR, bus_resistance_of, electrical, electrical_effects, release_emfs  # noqa: F401 (shared)
 from .integrate import Event, integrate
 from .scene import SimRun
 
@@ -59,36 +60,6 @@ SLOTS = (
 )
 
 
-class _Array:
-    """numpy stand-ins for the math functions the terms use, for a batch of candidates."""
-
-    def __init__(self):
-        import numpy as np
-
-        self.np = np
-        self.sqrt = np.sqrt
-        self.cos = np.cos
-        self.minimum = np.minimum
-
-    def where(self, cond, a, b):
-        return self.np.where(cond, a, b)
-
-    def maximum(self, a, b):
-        return self.np.maximum(a, b)
-
-
-class _Scalar:
-    sqrt = staticmethod(math.sqrt)
-    cos = staticmethod(math.cos)
-    minimum = staticmethod(min)
-    maximum = staticmethod(max)
-
-    @staticmethod
-    def where(cond, a, b):
-        return a if cond else b
-
-
-SCALAR = _Scalar()
 
 
 @dataclass(frozen=True)
@@ -143,61 +114,6 @@ class Mechanism:
         return self.q0 + self.s * p
 
 
-# --- the electrical effects, shared by every motor scene ----------------------------------------
-
-def _stator_build(values: Mapping[str, Any], mech: Mechanism) -> Part:
-    I_st, R, Vb, Rb, xp = values["stator_current_limit"], mech.R, mech.battery_voltage, mech.bus_resistance, mech.xp
-    if Rb == 0:
-        def bound(E):
-            return (E + R * I_st) / Vb  # (E2) without sag
-    else:
-        a = 4 * I_st * Rb
-
-        def bound(E):
-            W = E + R * I_st
-            disc = Vb * Vb - a * W
-            return xp.where(disc >= 0, 2 * W / (Vb + xp.sqrt(xp.maximum(disc, 0.0))), math.inf)  # (E2)
-    return Part(terms={"duty": bound})
-
-
-def _supply_build(values: Mapping[str, Any], mech: Mechanism) -> Part:
-    I_sup, R, Vb, Rb, xp = values["supply_current_limit"], mech.R, mech.battery_voltage, mech.bus_resistance, mech.xp
-    a = Vb - I_sup * Rb  # the bus voltage while the supply limit holds
-    c = I_sup * R
-    if not a > 0:  # the battery cannot deliver I_sup through its resistance: never binds
-        return Part(terms={"duty": lambda E: math.inf + 0 * E})
-
-    def bound(E):  # (E3), the positive root written without cancellation for either sign of E
-        root = xp.sqrt(E * E + 4 * a * c)
-        return xp.where(E >= 0, (E + root) / (2 * a), 2 * c / xp.maximum(root - E, 1e-300))
-    return Part(terms={"duty": bound})
-
-
-def electrical_effects(limit_default: float = 40.0, supply_default: float = 30.0) -> tuple[Effect, ...]:
-    return (
-        Effect("stator_limit", "stator current limit per motor (|I| clipped; the duty drops to hold it)",
-               _stator_build,
-               fields=(Field("stator_current_limit", "Stator current limit", "current", "A",
-                             default=limit_default, min=0, max=2000,
-                             help="Per motor: the controller lowers the duty so the motor current "
-                                  "never exceeds this (e.g. TalonFX StatorCurrentLimit, SPARK smart "
-                                  "current limit)."),)),
-        Effect("supply_limit", "supply current limit per motor (supply current = stator current × duty)",
-               _supply_build,
-               fields=(Field("supply_current_limit", "Supply current limit", "current", "A",
-                             default=supply_default, min=0, max=2000,
-                             help="Per motor: the current drawn from the battery, stator current × "
-                                  "duty, is held at or below this by lowering the duty."),)),
-        Effect("battery_sag", "battery and wiring resistance: the bus sags with the total supply current",
-               nothing,
-               fields=(Field("battery_resistance", "Battery + wiring resistance", "resistance", "ohm",
-                             default=0.02, min=0, max=10,
-                             help="Total of the battery's internal resistance and the wiring to the "
-                                  "controllers (FRC battery ≈ 0.015-0.020 Ω, plus ≈ 0.005 Ω of "
-                                  "wiring). V_bus = V_b − R·(total supply current), solved exactly."),)),
-    )
-
-
 def friction_effect(quantity: str, unit: str, name: str, help: str, default: float) -> Effect:
     def build(values, mech):
         F = values[name]
@@ -211,10 +127,6 @@ def friction_effect(quantity: str, unit: str, name: str, help: str, default: flo
                                   help="Voltage to overcome the friction (WPILib kS)."),))
 
 
-def bus_resistance_of(values: Mapping[str, Any], on) -> float:
-    return values["motor_count"] * values["battery_resistance"] if "battery_sag" in on else 0.0
-
-
 # --- the assembled right-hand side ---------------------------------------------------------------
 
 @dataclass
@@ -226,27 +138,6 @@ class Setup:
     critical: tuple[float, ...] = ()  # q where the field force may be extreme (besides the ends)
     values: Mapping[str, Any] = field(default_factory=dict)  # the parsed inputs
     names: Mapping[str, Any] = field(default_factory=dict)  # calculator-specific words and field names
-
-
-def electrical(mech: Mechanism, duty):
-    """E -> (u, I): the duty and stator current per motor at back-EMF E, (E1)-(E3)."""
-    Vb, R, Rb = mech.battery_voltage, mech.R, mech.bus_resistance
-    if duty is None:
-        if Rb == 0:
-            return lambda E: (1.0, (Vb - E) / R)
-        R1 = R + Rb
-        return lambda E: (1.0, (Vb - E) / R1)
-    minimum = mech.xp.minimum
-    if Rb == 0:
-        def f(E):
-            u = minimum(duty(E), 1.0)
-            return u, (u * Vb - E) / R
-        return f
-
-    def f(E):
-        u = minimum(duty(E), 1.0)
-        return u, (u * Vb - E) / (R + u * u * Rb)  # (E1)
-    return f
 
 
 def field_force(setup: Setup):
@@ -455,15 +346,7 @@ def extremes(setup: Setup, w_max: float) -> dict[str, float]:
     m = setup.mech
     elec = electrical(m, setup.asm.slots["duty"])
     E_max = w_max * m.n / m.Kv
-    Es = [0.0, E_max]
-    if "stator_limit" in setup.asm.on:
-        Vb, R, Rb = m.battery_voltage, m.R, m.bus_resistance
-        I_st = setup.values["stator_current_limit"]
-        Es.append(Vb - I_st * (R + Rb))
-        if "supply_limit" in setup.asm.on and I_st > 0:
-            u = setup.values["supply_current_limit"] / I_st
-            if u <= 1:
-                Es.append(u * Vb - I_st * (R + u * u * Rb))
+    Es = [0.0, E_max] + release_emfs(m, setup.values, setup.asm.on)
     Es = [E for E in Es if 0.0 <= E <= E_max]
     sup = []
     for E in Es:
