@@ -23,9 +23,10 @@ from tests.tui_helpers import settle
 
 def numbered(calc_id: str):
     """The calculator with an equation number of our own on every output (others fill in the
-    real ones in core/calculators): "(1)", "(2)" … and one range."""
+    real ones in core/calculators): "(1)", "(2)" … and one range; and a help where one is missing."""
     calc = get(calc_id)
-    outputs = tuple(dataclasses.replace(o, equation=f"({i})" if i != 2 else "(61)-(64)")
+    outputs = tuple(dataclasses.replace(o, equation=f"({i})" if i != 2 else "(61)-(64)",
+                                        help=o.help or f"How {o.label} is found.")
                     for i, o in enumerate(calc.outputs, 1))
     return dataclasses.replace(calc, outputs=outputs)
 
@@ -110,11 +111,15 @@ async def test_values_and_units_are_never_cut(calc_id, size):
                 app.set_unit_system(system, remember=False)
                 await settle(pilot)
                 assert not shown_cut(tab), (system, shown_cut(tab))
-            # a unit typed "as entered" wider than any the calculator foresees widens the column
-            tab.display_units = {next(iter(tab.solution.outputs)): "km/h" if calc_id != "motor" else "deg/s"}
+            # a unit wider than any the calculator foresees (typed, shown "as entered") widens the
+            # value column rather than being cut
+            speed = next(o for o in calc.outputs if o.quantity in ("speed", "angular_speed"))
+            tab.display_units = {speed.name: "furlong/fortnight" if speed.quantity == "speed"
+                                 else "revolution/fortnight"}
             tab.solve()
             await settle(pilot)
-            assert not shown_cut(tab)
+            assert "fortnight" in tab.solution.outputs[speed.name].text
+            assert not shown_cut(tab), shown_cut(tab)
     finally:
         app_module.get = restore
 

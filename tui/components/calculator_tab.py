@@ -172,13 +172,15 @@ class CalculatorTab(Widget):
             return
         room = table.size.width - 2 - 2 * table.cell_padding * len(table.columns)  # 2: the scrollbar
         others = sum(c.width for key, c in table.columns.items() if key.value != "label")
-        width = max(12, min(self._label_longest, room - others))
+        width = max(8, min(self._label_longest, room - others))  # 8: labels wrap by word
         column = table.columns[ColumnKey("label")]
         if column.width != width:
             column.width = width
             self._rows_shown = None  # rows are re-added: the wrapped ones get their height
             if self.solution is not None and self.error is None:
                 self._fill_results(table, self.solution)
+                if self.spread is not None:  # the rebuilt rows' spread cells
+                    self._show_spread(self.solution, table, self._parts.status)
             else:
                 table._require_update_dimensions = True
                 table.refresh()
@@ -537,6 +539,7 @@ class CalculatorTab(Widget):
         widest = max((cell_len(text) for _, text in rows), default=0)
         if widest > column.width:  # a unit wider than foreseen (typed "as entered"): widen, never cut
             column.width = widest
+            self._rows_shown = None  # rebuilt at the new width
             self.call_after_refresh(self._size_columns)
         if names == self._rows_shown:
             for (name, text), old in zip(rows, self._texts_shown):
@@ -571,9 +574,11 @@ class CalculatorTab(Widget):
         if result is None:
             if has_column:
                 table.remove_column("spread")
+                self.call_after_refresh(self._size_columns)  # the labels get their room back
             return
         if not has_column:
             table.add_column("Worst case  σ (*: Monte Carlo)", key="spread", width=30)
+            self.call_after_refresh(self._size_columns)
         for name in solution.outputs:
             s = result.outputs.get(name)
             text = spread_text(self.calculator, solution, s) if s else ""
