@@ -164,7 +164,7 @@ async def _baseline() -> tuple[list[float], list[float], list[float]]:
 
 def main() -> None:
     med = statistics.median
-    print(f"keystroke -> result in the table, -> the frame showing it drawn, and the process's CPU time")
+    print("keystroke -> result in the table, -> the frame showing it drawn, and the process's CPU time")
     print(f"from the key to that frame (pilot, median of {KEYS} keys; x: the ratio to this run's baseline)")
     base, base_drawn, base_cpu = asyncio.run(_baseline())
     b, bd, bc = med(base), med(base_drawn), med(base_cpu)

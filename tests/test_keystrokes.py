@@ -143,7 +143,8 @@ def _tab_to(term: Terminal, label: str, most: int = 6) -> None:
         before = _help_label(term.screen())
         term.keys("Tab")
         try:
-            term.wait_for(lambda screen: _help_label(screen) != before, "the focus to move", timeout=3)
+            term.wait_for(lambda screen, before=before: _help_label(screen) != before, "the focus to move",
+                          timeout=3)
         except AssertionError:
             pass  # focus went to the strip (no help line of its own), or from it to the same field
         if _help_label(term.screen()) == label:

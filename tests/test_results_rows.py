@@ -8,16 +8,16 @@ import dataclasses
 import io
 import threading
 
-import pytest
-from rich.cells import cell_len
-from textual.widgets import DataTable, Static
-
 import gearhead.tui.app as app_module
+import pytest
 from gearhead.core import export
 from gearhead.core.model import solve
 from gearhead.core.registry import get
 from gearhead.tui.app import GearheadApp
 from gearhead.tui.components.calculator_tab import CalculatorTab
+from rich.cells import cell_len
+from textual.widgets import DataTable, Static
+
 from tests.tui_helpers import settle
 
 

@@ -98,7 +98,7 @@ class CalculatorTab(Widget):
         self._solving = False  # a solve thread is running
         self._dirty = False  # entries changed since the running solve started
         self._solve_seconds = 0.0  # wall time of the last whole solve
-        self._estimating = set()
+        self._estimating: set[int] = set()  # threads computing a shown solution's error estimate
         self.set_reactive(CalculatorTab.entries, {f.name: self.initial_entry(f) for f in calculator.fields})
 
     @staticmethod
@@ -417,7 +417,7 @@ class CalculatorTab(Widget):
             self._estimating.discard(get_ident())
 
     # ---- the error estimate of a scene, after its results (core/sim/scene.py deferred_estimate) ----
-    _estimating: set[int] = set()  # threads computing a shown solution's estimate (per tab: __init__)
+    # self._estimating (__init__): the threads computing a shown solution's estimate
     ESTIMATE = "error_estimate"
 
     def _estimate_pending(self, solution: Solution) -> Solution:
@@ -557,11 +557,11 @@ class CalculatorTab(Widget):
             if 0 < cursor < table.row_count:
                 table.move_cursor(row=cursor, animate=False)
             self._rows_shown = names
-        self._texts_shown = [text for _, text in rows]
+        self._texts_shown = tuple(text for _, text in rows)
 
     _show_generation = 0  # solutions shown so far (a pending estimate belongs to the last)
     _rows_shown: list[str] | None = None  # output names in the table, in order
-    _texts_shown: list[str] = []  # their value texts as shown
+    _texts_shown: tuple[str, ...] = ()  # their value texts as shown
 
     # ---- tolerances (core/tolerance.py): a Spread column while any entry carries '±' ------------
     spread = None  # the last solve's core.tolerance.Spread, or None
