@@ -7,7 +7,7 @@ never waits for pint or scipy.
 
 from __future__ import annotations
 
-from threading import get_ident
+from threading import Event, get_ident
 from typing import Any
 
 from rich.cells import cell_len
@@ -410,6 +410,10 @@ class CalculatorTab(Widget):
         try:
             self.app.call_from_thread(self._solve_done, solution, error)
             if pending and self.solution is solution:  # shown: now its error estimate
+                # once the frame with the results is drawn: this thread would hold the GIL from it
+                drawn = Event()
+                self.app.call_from_thread(self.call_after_refresh, drawn.set)
+                drawn.wait(1.0)
                 self.app.call_from_thread(self._estimate_done, solution, self._run_estimate(pending[0], solution))
         except RuntimeError:  # the app closed while this solve ran
             pass
