@@ -1,7 +1,12 @@
 """Keystroke -> result shown, as a user meets it: the pilot types one character into a field and
-we time until the tab has put the new result into its table (median over many keystrokes).
+we time until the tab has put the new result into its table, and until the frame that shows it
+has been drawn (median over many keystrokes). The baseline is measured the same way: a key into a
+plain Input of a minimal app, until its Changed handler ran and until the next frame was drawn.
+The machine may be shared: compare the ratios to the baseline of the same run, and the CPU time
+the process spent from the key to the drawn frame (all threads; what load on the machine changes
+least).
 
-Run alone:  .venv/bin/python bench/bench_keystroke.py
+Run alone:  .venv/bin/python bench/bench_keystroke.py [--keys N] [--only motor,pneumatics]
 """
 
 from __future__ import annotations
@@ -14,9 +19,11 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-# closed-form calculators, then simulated scenes at their default accuracy
+# closed-form calculators, then simulated scenes at their default accuracy (--only a,b: those)
 CALCULATORS = ["gear_ratio", "beam", "motor", "drivetrain", "pneumatics", "projectile", "flywheel",
                "trebuchet"]
+if "--only" in sys.argv:
+    CALCULATORS = sys.argv[sys.argv.index("--only") + 1].split(",")
 
 
 def typing_field(calc_id: str) -> str:
@@ -38,10 +45,39 @@ def typing_field(calc_id: str) -> str:
     raise LookupError(f"no field of {calc_id} to type into")
 
 
-KEYS = 30
+KEYS = int(sys.argv[sys.argv.index("--keys") + 1]) if "--keys" in sys.argv else 30
 
 
-async def _latencies(calc_id: str, field: str) -> list[float]:
+cpu_at = [0.0]  # process_time() at the end of the last frame drawn
+
+
+def _frames(app) -> list[float]:
+    """perf_counter() at the end of each frame the screen draws (Textual's compositor refresh)."""
+    drawn: list[float] = []
+    screen = app.screen
+    refresh = screen._compositor_refresh
+
+    def timed_refresh() -> None:
+        refresh()
+        drawn.append(time.perf_counter())
+        cpu_at[0] = time.process_time()
+
+    screen._compositor_refresh = timed_refresh
+    return drawn
+
+
+async def _frame_after(drawn: list[float], t: float, timeout: float = 1.0) -> float | None:
+    """The end of the first frame drawn after `t` (None if none came: nothing changed)."""
+    deadline = time.perf_counter() + timeout
+    while time.perf_counter() < deadline:
+        later = [d for d in drawn if d > t]
+        if later:
+            return later[0]
+        await asyncio.sleep(0.0002)
+    return None
+
+
+async def _latencies(calc_id: str, field: str) -> tuple[list[float], list[float], list[float]]:
     from textual.widgets import Input
 
     from gearhead.tui.app import GearheadApp
@@ -59,28 +95,36 @@ async def _latencies(calc_id: str, field: str) -> list[float]:
             shown_at.append(time.perf_counter())
 
         tab._show = timed_show
+        drawn = _frames(app)
         entry = tab.query_one(f"#in-{field}", Input)
         entry.focus()
         entry.cursor_position = len(entry.value)
         while tab.busy:
             await asyncio.sleep(0.001)
         await pilot.pause()
-        out = []
+        out, painted, cpu = [], [], []
         last = entry.value[-1]
         for i in range(KEYS):
             # delete the last digit then type it again: every keystroke is a new valid value
             key = "backspace" if i % 2 == 0 else last
             before = len(shown_at)
-            t0 = time.perf_counter()
+            c0, t0 = time.process_time(), time.perf_counter()
             await pilot.press(key)
-            while len(shown_at) == before or tab.busy:
+            while len(shown_at) == before:
                 await asyncio.sleep(0.0002)
-            out.append(shown_at[-1] - t0)
+            shown = shown_at[before]  # the first result shown after the key (a scene's estimate may follow)
+            out.append(shown - t0)
+            frame = await _frame_after(drawn, shown)
+            if frame is not None:
+                painted.append(frame - t0)
+                cpu.append(cpu_at[0] - c0)
+            while tab.busy:
+                await asyncio.sleep(0.0002)
             await pilot.pause()
-    return out
+    return out, painted, cpu
 
 
-async def _baseline() -> list[float]:
+async def _baseline() -> tuple[list[float], list[float], list[float]]:
     """The floor Textual itself sets, measured the same way: a key into a plain Input of a minimal
     app, until its Changed handler has run (no solve, no table)."""
     from textual.app import App
@@ -96,33 +140,42 @@ async def _baseline() -> list[float]:
             handled.append(time.perf_counter())
 
     app = Minimal()
-    out = []
+    out, painted, cpu = [], [], []
     async with app.run_test(size=(140, 45)) as pilot:
+        drawn = _frames(app)
         entry = app.query_one(Input)
         entry.focus()
         entry.cursor_position = len(entry.value)
         await pilot.pause()
         for i in range(KEYS):
             before = len(handled)
-            t0 = time.perf_counter()
+            c0, t0 = time.process_time(), time.perf_counter()
             await pilot.press("backspace" if i % 2 == 0 else "4")
             while len(handled) == before:
                 await asyncio.sleep(0.0002)
             out.append(handled[-1] - t0)
+            frame = await _frame_after(drawn, handled[-1])
+            if frame is not None:
+                painted.append(frame - t0)
+                cpu.append(cpu_at[0] - c0)
             await pilot.pause()
-    return out
+    return out, painted, cpu
 
 
 def main() -> None:
-    print(f"keystroke -> result in the table (pilot, median and max of {KEYS} keys):")
-    base = asyncio.run(_baseline())
-    print(f"  {'baseline: a key reaching a plain Input (minimal app)':<31} median "
-          f"{statistics.median(base) * 1e3:7.2f} ms   max {max(base) * 1e3:7.2f} ms")
+    med = statistics.median
+    print("keystroke -> result in the table, -> the frame showing it drawn, and the process's CPU time")
+    print(f"from the key to that frame (pilot, median of {KEYS} keys; x: the ratio to this run's baseline)")
+    base, base_drawn, base_cpu = asyncio.run(_baseline())
+    b, bd, bc = med(base), med(base_drawn), med(base_cpu)
+    print(f"  {'baseline: plain Input, minimal app':<34} handled {b * 1e3:6.2f} ms"
+          f"          drawn {bd * 1e3:6.2f} ms           cpu {bc * 1e3:6.2f} ms")
     for calc_id in CALCULATORS:
         field = typing_field(calc_id)
-        lat = asyncio.run(_latencies(calc_id, field))
-        print(f"  {calc_id:<14} {field:<16} median {statistics.median(lat) * 1e3:7.2f} ms"
-              f"   max {max(lat) * 1e3:7.2f} ms")
+        lat, drawn, cpu = asyncio.run(_latencies(calc_id, field))
+        print(f"  {calc_id:<14} {field:<19} table   {med(lat) * 1e3:6.2f} ms ({med(lat) / b:4.1f}x)"
+              f"   drawn {med(drawn) * 1e3:6.2f} ms ({med(drawn) / bd:4.1f}x)"
+              f"   cpu {med(cpu) * 1e3:6.2f} ms ({med(cpu) / bc:4.1f}x)")
 
 
 if __name__ == "__main__":

@@ -10,21 +10,23 @@ from . import units
 from .model import Calculator, Plot, Solution
 
 
-def _rows(calc: Calculator, solution: Solution) -> list[tuple[str, str, str, str, str]]:
-    """(name, label, shown value, value in SI, SI unit) for each output, in table order."""
+def _rows(calc: Calculator, solution: Solution) -> list[tuple[str, str, str, str, str, str]]:
+    """(name, label, shown value, value in SI, SI unit, equation number) for each output, in
+    table order."""
     rows = []
     for name, value in solution.outputs.items():
-        label = calc.output(name).label
-        rows.append((name, label, value.text, repr(value.value) if isinstance(value.value, float)
-                     else str(value.value), value.unit))
+        out = calc.output(name)
+        rows.append((name, out.label, value.text, repr(value.value) if isinstance(value.value, float)
+                     else str(value.value), value.unit, out.equation))
     return rows
 
 
 def results_csv(calc: Calculator, solution: Solution) -> str:
-    """One row per output: the shown text and the full-precision SI value, for a spreadsheet."""
+    """One row per output: the shown text and the full-precision SI value, for a spreadsheet, and
+    the seed's equation number it comes from."""
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
-    writer.writerow(["output", "label", "shown", "value_si", "unit_si"])
+    writer.writerow(["output", "label", "shown", "value_si", "unit_si", "equation"])
     writer.writerows(_rows(calc, solution))
     return out.getvalue()
 
@@ -35,8 +37,9 @@ def _md_cell(text: str) -> str:
 
 def results_markdown(calc: Calculator, solution: Solution) -> str:
     """The results table as shown, with the warnings under it (for a wiki or a design review)."""
-    lines = [f"**{_md_cell(calc.title)}**", "", "| Result | Value |", "|---|---|"]
-    lines += [f"| {_md_cell(label)} | {_md_cell(shown)} |" for _, label, shown, _, _ in _rows(calc, solution)]
+    lines = [f"**{_md_cell(calc.title)}**", "", "| Result | Value | Eq. |", "|---|---|---|"]
+    lines += [f"| {_md_cell(label)} | {_md_cell(shown)} | {_md_cell(equation)} |"
+              for _, label, shown, _, _, equation in _rows(calc, solution)]
     if solution.warnings:
         lines.append("")
         lines += [f"- {_md_cell(w)}" for w in solution.warnings]

@@ -26,10 +26,10 @@ def test_results_markdown_escapes_pipes_and_lists_warnings():
     sol.warnings.append("a | b")
     md = export.results_markdown(calc, sol)
     lines = md.splitlines()
-    assert lines[2] == "| Result | Value |"
-    body = [line for line in lines if line.startswith("| ") and line != "| Result | Value |"]
+    assert lines[2] == "| Result | Value | Eq. |"
+    body = [line for line in lines if line.startswith("| ") and line != "| Result | Value | Eq. |"]
     assert len(body) == len(sol.outputs)
-    assert all(line.count(" | ") - line.count("\\| ") == 1 for line in body)
+    assert all(line.count(" | ") - line.count("\\| ") == 2 for line in body)
     assert "- a \\| b" in lines
 
 

@@ -440,7 +440,7 @@ async def test_ctrl_e_exports_results_and_plot_data(tmp_path, monkeypatch):
         await settle(pilot)
         await pilot.click("#copy")  # first choice: Markdown to the clipboard
         await settle(pilot)
-        assert app.clipboard.splitlines()[2] == "| Result | Value |"
+        assert app.clipboard.splitlines()[2] == "| Result | Value | Eq. |"
         for _ in range(2):  # the results CSV saved twice: the second time it refuses to overwrite
             await pilot.press("ctrl+e")
             await settle(pilot)

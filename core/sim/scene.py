@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import time
 from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterator, Mapping
 
@@ -98,29 +99,69 @@ def run_with_stats(simulate: Simulate, values: Mapping[str, Any],
     """The run at the chosen accuracy, with error estimate, evaluations and wall time added, all
     within one solve's budget (`advice` says what to change when it is not enough)."""
     with solve_budget(advice):
-        return _run_with_stats(simulate, values)
+        return _run_with_stats(simulate, values, advice)
 
 
-def _run_with_stats(simulate: Simulate, values: Mapping[str, Any]) -> SimRun:
+# The app shows a scene's results before its error estimate (the estimate's run at 100x tighter
+# tolerance can cost more than the run itself: 36 of the pneumatics tab's 62 ms a key). Inside
+# deferred_estimate() the first run leaves "error_estimate" out and appends a function that
+# computes it; the app calls it after showing the results, and drops it if a key came meanwhile.
+# The CLI and --json never defer: they print the estimate with the results.
+_DEFERRED: ContextVar[list[Callable[[], float]] | None] = ContextVar("deferred_estimate", default=None)
+_WARMED: set[Simulate] = set()  # scenes that have run once in this process (imports paid)
+
+
+@contextmanager
+def deferred_estimate() -> Iterator[list[Callable[[], float]]]:
+    """Within: the first scene run leaves its error estimate out and appends a function computing
+    it (within its own solve budget) to the list yielded."""
+    pending: list[Callable[[], float]] = []
+    token = _DEFERRED.set(pending)
+    try:
+        yield pending
+    finally:
+        _DEFERRED.reset(token)
+
+
+def _run_with_stats(simulate: Simulate, values: Mapping[str, Any],
+                    advice: tuple[str, str] = DEFAULT_ADVICE) -> SimRun:
     rtol = LEVELS[values["accuracy"]]
-    # The check runs first: it pays the one-off costs (lazy imports of scipy and numpy, caches),
-    # so the wall time shown is what the chosen accuracy costs, not what starting up costs.
-    check = simulate(values, rtol / ESTIMATE_FACTOR)
+    pending = _DEFERRED.get()
+    defer = pending is not None and not pending and simulate in _WARMED
+    # Otherwise the check runs first: it pays the one-off costs (lazy imports of scipy and numpy,
+    # caches), so the wall time shown is what the chosen accuracy costs, not what starting up costs.
+    check = None if defer else simulate(values, rtol / ESTIMATE_FACTOR)
+    _WARMED.add(simulate)
     run, wall = timed(simulate, values, rtol)
-    if run.nfev:
-        check_rtol = rtol / ESTIMATE_FACTOR
-        estimate = relative_difference(run.key, check.key)
-        if estimate == 0.0 and check_rtol / ESTIMATE_FACTOR >= REFERENCE_RTOL:
-            # bit-identical key results say nothing about the error (both runs took the same steps
-            # where it matters, or an event reset the state, e.g. a tank refilled to the switch-off
-            # pressure): compare once more, 100x tighter again
-            estimate = relative_difference(run.key, simulate(values, check_rtol / ESTIMATE_FACTOR).key)
-        run.values["error_estimate"] = estimate
-    else:
+    if not run.nfev:
         run.values["error_estimate"] = 0.0  # closed form: nothing was integrated
+    elif defer:
+        def later() -> float:
+            with solve_budget(advice):
+                return _estimate(simulate, values, rtol, run.key)
+
+        pending.append(later)
+    else:
+        run.values["error_estimate"] = _estimate(simulate, values, rtol, run.key, check.key)
     run.values["rhs_evaluations"] = run.nfev
     run.values["wall_time"] = wall
     return run
+
+
+def _estimate(simulate: Simulate, values: Mapping[str, Any], rtol: float, key: Mapping[str, float],
+              check_key: Mapping[str, float] | None = None) -> float:
+    """The largest relative difference of the key results to a run at rtol / 100 (`check_key`
+    when that run is done already)."""
+    check_rtol = rtol / ESTIMATE_FACTOR
+    if check_key is None:
+        check_key = simulate(values, check_rtol).key
+    estimate = relative_difference(key, check_key)
+    if estimate == 0.0 and check_rtol / ESTIMATE_FACTOR >= REFERENCE_RTOL:
+        # bit-identical key results say nothing about the error (both runs took the same steps
+        # where it matters, or an event reset the state, e.g. a tank refilled to the switch-off
+        # pressure): compare once more, 100x tighter again
+        estimate = relative_difference(key, simulate(values, check_rtol / ESTIMATE_FACTOR).key)
+    return estimate
 
 
 def compute_with_stats(simulate: Simulate, advice: tuple[str, str] = DEFAULT_ADVICE):

@@ -7,16 +7,19 @@ never waits for pint or scipy.
 
 from __future__ import annotations
 
+from threading import Event, get_ident
 from typing import Any
 
+from rich.cells import cell_len
 from rich.text import Text
 from textual import on, work
 from textual.app import ComposeResult
 from textual.containers import Horizontal, Vertical, VerticalScroll
 from textual.content import Content
-from textual.reactive import reactive
+from textual.reactive import var
 from textual.widget import Widget
 from textual.widgets import Checkbox, DataTable, Input, Label, Select, Static
+from textual.widgets.data_table import ColumnKey
 
 from gearhead.core.errors import InputError
 from gearhead.core.model import Calculator, Field, Solution
@@ -32,7 +35,6 @@ class Form(VerticalScroll, can_focus=False):
     the form scrolls to the focused field)."""
 
 BUSY_AFTER_S = 0.1  # a solve running longer than this shows '… solving'
-VALUE_WIDTH = 18  # "-1.2346e-05 N*m/A" fits
 
 
 class FieldRow(Horizontal):
@@ -77,7 +79,8 @@ class FieldRow(Horizontal):
 class CalculatorTab(Widget):
     """The whole card for one calculator."""
 
-    entries: reactive[dict[str, Any]] = reactive(dict, init=False, always_update=True)
+    # a var, not a reactive: a reactive repaints the whole card on every key
+    entries: var[dict[str, Any]] = var(dict, init=False, always_update=True)
 
     def __init__(self, calculator: Calculator, blink: bool = True, hide_timings: bool = False,
                  **kwargs) -> None:
@@ -95,6 +98,7 @@ class CalculatorTab(Widget):
         self._solving = False  # a solve thread is running
         self._dirty = False  # entries changed since the running solve started
         self._solve_seconds = 0.0  # wall time of the last whole solve
+        self._estimating: set[int] = set()  # threads computing a shown solution's error estimate
         self.set_reactive(CalculatorTab.entries, {f.name: self.initial_entry(f) for f in calculator.fields})
 
     @staticmethod
@@ -126,10 +130,13 @@ class CalculatorTab(Widget):
                 table = DataTable(classes="results", cursor_type="row", zebra_stripes=True)
                 table.tooltip = "Enter or click on a result shows it in another unit"
                 # fixed widths from the description: no re-measuring on idle, so the
-                # layout is the same every time (snapshots) and never jumps while typing
-                label_width = max([len(o.label) for o in calc.outputs] + [6])
-                table.add_column("Result", key="label", width=min(label_width, 33))
-                table.add_column("Value", key="value", width=VALUE_WIDTH)
+                # layout is the same every time (snapshots) and never jumps while typing. The
+                # value column fits the widest value any result can show (values are never
+                # cut); the labels take the room left (_size_columns) and wrap when longer.
+                table.add_column("Result", key="label", width=min(self._label_longest, 33))
+                table.add_column("Value", key="value", width=value_width(calc))
+                if self._equation_width:  # the seed's equation number of each result
+                    table.add_column(Text("Eq.", style="dim"), key="equation", width=self._equation_width)
                 yield table
                 if calc.plots:
                     panel = PlotPanel(calc.plots)
@@ -142,7 +149,55 @@ class CalculatorTab(Widget):
                     yield Static("", classes="warnings")
                 yield Static("", classes="status")
 
+    _parts = None  # the widgets a solve updates, found once (a CSS query per key cost ~1 ms)
+
+    @property
+    def _label_longest(self) -> int:
+        return max([len(o.label) for o in self.calculator.outputs] + [6])
+
+    @property
+    def _equation_width(self) -> int:
+        """Width of the equation column: 0 (no column) when no result has an equation number."""
+        widest = max((len(o.equation) for o in self.calculator.outputs), default=0)
+        return max(widest, 3) if widest else 0
+
+    def on_resize(self) -> None:
+        self.call_after_refresh(self._size_columns)
+
+    def _size_columns(self) -> None:
+        """The label column takes the room the value (and equation) columns leave in the pane, at
+        most its longest label; a label longer than that wraps onto a second line."""
+        table = self._parts.table if self._parts is not None else None
+        if table is None or not table.size.width:
+            return
+        room = table.size.width - 2 - 2 * table.cell_padding * len(table.columns)  # 2: the scrollbar
+        others = sum(c.width for key, c in table.columns.items() if key.value != "label")
+        width = max(8, min(self._label_longest, room - others))  # 8: labels wrap by word
+        column = table.columns[ColumnKey("label")]
+        if column.width != width:
+            column.width = width
+            self._rows_shown = None  # rows are re-added: the wrapped ones get their height
+            if self.solution is not None and self.error is None:
+                self._fill_results(table, self.solution)
+                if self.spread is not None:  # the rebuilt rows' spread cells
+                    self._show_spread(self.solution, table, self._parts.status)
+            else:
+                table._require_update_dimensions = True
+                table.refresh()
+
     def on_mount(self) -> None:
+        from types import SimpleNamespace
+
+        self._parts = SimpleNamespace(
+            table=self.query_one(".results", DataTable), status=self.query_one(".status", Static),
+            glance=self.query_one(".glance", Static), warnings=self.query_one(".warnings", Static),
+            warnings_box=self.query_one(".warnings-box"), help_line=self.query_one(".help-line", Static),
+            plot=self.query_one(PlotPanel) if self.calculator.plots else None,
+            dimmed=list(self.query(".results, .plot-panel, .result-table")))
+        self._field_names = {f.name for f in self.calculator.fields}
+        self._bad_field: str | None = None  # the field whose error line is shown
+        self._warnings_text: str | None = None
+        self._shown_by = None
         self._apply_mode()
         self.solve()
 
@@ -174,7 +229,14 @@ class CalculatorTab(Widget):
         self.entries = {**self.entries, name: value}
 
     def watch_entries(self) -> None:
-        self._apply_mode()
+        # a typed number cannot show or hide a field: only a mode or choice change re-applies
+        # (the loop over every field row cost ~1 ms a key on the long forms)
+        from gearhead.core.model import choice_values
+
+        shown_by = (self.entries.get("mode"), tuple(sorted(choice_values(self.calculator, self.entries).items())))
+        if shown_by != getattr(self, "_shown_by", None):
+            self._shown_by = shown_by
+            self._apply_mode()
         self.solve()
 
     def on_descendant_focus(self, event) -> None:
@@ -202,7 +264,7 @@ class CalculatorTab(Widget):
 
     def _explain_output(self, name: str) -> None:
         out = self.calculator.output(name)
-        line = Text(out.label + ": ", style="bold")
+        line = Text(out.label + (f" {out.equation}" if out.equation else "") + ": ", style="bold")
         line.append(out.help or "see the help of the fields it comes from")
         line.append("  (Enter: next unit)", style="dim")
         self._append_spread(name, line)
@@ -288,8 +350,9 @@ class CalculatorTab(Widget):
 
     @property
     def busy(self) -> bool:
-        """A solve is running or waiting to run (tests wait for this to clear)."""
-        return self._solving or self._dirty
+        """A solve is running or waiting to run, or a shown solve's error estimate is being
+        computed (tests wait for this to clear)."""
+        return self._solving or self._dirty or bool(self._estimating)
 
     def _start_solve(self) -> None:
         self._dirty = False
@@ -309,18 +372,25 @@ class CalculatorTab(Widget):
     def _solve_in_thread(self, entries: dict[str, Any], display_units: dict[str, str], system: str) -> None:
         from gearhead.core import unit_systems
         from gearhead.core.sim.integrate import Cancelled, budget
+        from gearhead.core.sim.scene import deferred_estimate
         from gearhead.core.tolerance import solve_entries  # entries may carry '± tolerance' (core/tolerance.py)
 
         from time import perf_counter
 
         started = perf_counter()
+        pending: list = []
         try:
             # in the thread: "as entered" reads units with pint, which must not load on the UI thread
             preferred = unit_systems.display_units(self.calculator, system, entries)
             self._preferred_units = preferred
             # a simulation polls this between steps: keys typed meanwhile drop it (latest wins at once)
-            with budget(cancel=lambda: self._dirty):
+            with budget(cancel=lambda: self._dirty), deferred_estimate() as pending:
                 solution, self.spread = solve_entries(self.calculator.id, entries, {**preferred, **display_units})
+            if pending and self.spread is None:
+                # shown first with "…" in its row; computed below, after the results are on screen
+                solution = self._estimate_pending(solution)
+            else:
+                pending = []  # with tolerances every solve is whole (the spread needs each estimate)
             error = None
         except Cancelled:  # only when _dirty: _solve_done starts the solve of the latest entries
             solution, error = None, None
@@ -339,12 +409,62 @@ class CalculatorTab(Widget):
         self._solve_seconds = perf_counter() - started  # the whole solve (an optimiser's search too)
         try:
             self.app.call_from_thread(self._solve_done, solution, error)
+            if pending and self.solution is solution:  # shown: now its error estimate
+                # once the frame with the results is drawn: this thread would hold the GIL from it
+                drawn = Event()
+                self.app.call_from_thread(self.call_after_refresh, drawn.set)
+                drawn.wait(1.0)
+                self.app.call_from_thread(self._estimate_done, solution, self._run_estimate(pending[0], solution))
         except RuntimeError:  # the app closed while this solve ran
             pass
+        finally:
+            self._estimating.discard(get_ident())
+
+    # ---- the error estimate of a scene, after its results (core/sim/scene.py deferred_estimate) ----
+    # self._estimating (__init__): the threads computing a shown solution's estimate
+    ESTIMATE = "error_estimate"
+
+    def _estimate_pending(self, solution: Solution) -> Solution:
+        """The solution with "…" in the estimate's row (in table order), until it arrives."""
+        from dataclasses import replace
+
+        from gearhead.core.model import Value
+
+        outputs = {}
+        for o in self.calculator.outputs:
+            if o.name in solution.outputs:
+                outputs[o.name] = solution.outputs[o.name]
+            elif o.name == self.ESTIMATE:
+                outputs[o.name] = Value(None, "", "…")
+        self._estimating.add(get_ident())
+        return replace(solution, outputs=outputs)
+
+    def _run_estimate(self, estimate, solution: Solution):
+        """The estimate's Value, None if a key came meanwhile (the next solve replaces it), or a
+        dash when it does not fit in one solve's budget (the results above it stand)."""
+        from gearhead.core.model import Value, format_value
+        from gearhead.core.sim.integrate import Cancelled, budget
+
+        shown = self._show_generation
+        try:
+            with budget(cancel=lambda: self._dirty or self._solving or self._show_generation != shown):
+                value = estimate()
+        except Cancelled:
+            return None
+        except InputError:
+            return Value(None, "", "— (over one solve's budget)")
+        o = self.calculator.output(self.ESTIMATE)
+        return format_value(value, o.quantity, self.display_units.get(o.name) or self._preferred_units.get(o.name, o.unit))
+
+    def _estimate_done(self, solution: Solution, value) -> None:
+        if value is None or solution is not self.solution or self._parts is None:
+            return  # a newer solve is (or will be) on screen
+        solution.outputs[self.ESTIMATE] = value
+        self._fill_results(self._parts.table, solution)
 
     def _solve_done(self, solution: Solution | None, error: InputError | None) -> None:
         self._solving = False
-        if not self.is_attached or not self.query(".status"):
+        if self._parts is None or not self._parts.status.is_attached:
             return  # the app closed, or the card was removed or is being torn down, meanwhile
         if self._dirty:  # entries changed while solving: this result is already stale
             self._start_solve()
@@ -354,22 +474,33 @@ class CalculatorTab(Widget):
     def _mark_stale(self, stale: bool) -> None:
         """Dim the last valid results while an entry is bad. The class goes on the results and
         the plot only: on the whole tab it restyled every field row (40 ms on the beam tab)."""
+        if stale == self.stale and self._parts is not None:
+            return
         self.stale = stale
-        for widget in self.query(".results, .plot-panel, .result-table"):
+        for widget in self._parts.dimmed:
             widget.set_class(stale, "stale")
 
     def _mark_busy(self) -> None:
         if self._solving:
-            self.query_one(".status", Static).update(Text("… solving", style="yellow"))
+            self._parts.status.update(Text("… solving", style="yellow"), layout=False)
+
+    # What a key costs to show is mostly what it makes Textual redo: a Static.update lays the
+    # screen out again unless told the size stays (layout=False: status and glance are one line),
+    # and clearing the table rebuilds it. So _show touches only what changed: the error line of
+    # the field that was or is bad, the cells whose text changed, the warnings when they differ.
+    def _show_field_error(self, error: InputError | None) -> None:
+        bad = error.field if error is not None and error.field in self._field_names else None
+        for name in {self._bad_field, bad} - {None}:
+            err = self.query_one(f"#err-{name}", Static)
+            err.update(Text("⚠ " + error.message, style="bold red") if name == bad else "")
+            err.display = name == bad
+            self.query_one(f"#row-{name}").set_class(name == bad, "invalid")
+        self._bad_field = bad
 
     def _show(self, solution: Solution | None, error: InputError | None) -> None:
-        for f in self.calculator.fields:
-            err = self.query_one(f"#err-{f.name}", Static)
-            bad = error is not None and error.field == f.name
-            err.update(Text("⚠ " + error.message, style="bold red") if bad else "")
-            err.display = bad
-            self.query_one(f"#row-{f.name}").set_class(bad, "invalid")
-        status = self.query_one(".status", Static)
+        parts = self._parts
+        self._show_field_error(error)
+        status = parts.status
         if error is not None:
             self.error = error
             self._mark_stale(True)
@@ -378,32 +509,63 @@ class CalculatorTab(Widget):
             except KeyError:
                 where = error.field
             status.update(Text(f"✗ {where}: {error.message} (results show the last valid inputs)",
-                               style="red"))
-            glance = Text(f"✗ {where}: {error.message}", style="red")
-            self.query_one(".glance", Static).update(glance)
+                               style="red"), layout=False)
+            parts.glance.update(Text(f"✗ {where}: {error.message}", style="red"), layout=False)
             return
         self.error = None
         self._mark_stale(False)
         self.solution = solution
-        table = self.query_one(DataTable)
-        cursor = table.cursor_row
-        table.clear()
-        for name, value in solution.outputs.items():
-            label = self.calculator.output(name).label
-            text = "(hidden)" if self.hide_timings and name in VOLATILE else pretty_quantity(value.text)
-            table.add_row(Text(label), Text(text), key=name)
-        if 0 < cursor < table.row_count:
-            table.move_cursor(row=cursor, animate=False)
-        if self.calculator.plots:
-            self.call_later(self.query_one(PlotPanel).show, solution)
+        self._show_generation += 1
+        table = parts.table
+        self._fill_results(table, solution)
+        if parts.plot is not None:
+            self.call_later(parts.plot.show, solution)
         self._show_tables(solution)
-        warnings = self.query_one(".warnings", Static)
-        warnings.update(Text("\n".join("! " + w for w in solution.warnings), style="yellow"))
-        self.query_one(".warnings-box").display = bool(solution.warnings)
+        warnings = "\n".join("! " + w for w in solution.warnings)
+        if warnings != self._warnings_text:  # its box grows with it: a layout, only when it changes
+            self._warnings_text = warnings
+            parts.warnings.update(Text(warnings, style="yellow"))
+            parts.warnings_box.display = bool(solution.warnings)
         status.update(Text("✓ solved" if self.hide_timings else
-                           f"✓ solved in {_duration(self._solve_seconds)}", style="green"))
-        self.query_one(".glance", Static).update(self._glance_text(solution))
+                           f"✓ solved in {_duration(self._solve_seconds)}", style="green"), layout=False)
+        parts.glance.update(self._glance_text(solution), layout=False)
         self._show_spread(solution, table, status)
+
+    def _fill_results(self, table: DataTable, solution: Solution) -> None:
+        """The results table: the same outputs as shown now get their changed cells updated in
+        place (cursor and scroll stay); other outputs (a mode change) rebuild it."""
+        rows = []
+        for name, value in solution.outputs.items():
+            text = "(hidden)" if self.hide_timings and name in VOLATILE else pretty_quantity(value.text)
+            rows.append((name, text))
+        names = [name for name, _ in rows]
+        column = table.columns[ColumnKey("value")]
+        widest = max((cell_len(text) for _, text in rows), default=0)
+        if widest > column.width:  # a unit wider than foreseen (typed "as entered"): widen, never cut
+            column.width = widest
+            self._rows_shown = None  # rebuilt at the new width
+            self.call_after_refresh(self._size_columns)
+        if names == self._rows_shown:
+            for (name, text), old in zip(rows, self._texts_shown):
+                if text != old:
+                    table.update_cell(name, "value", Text(text))
+        else:
+            cursor = table.cursor_row
+            table.clear()
+            label_width = table.columns[ColumnKey("label")].width
+            equations = "equation" in {key.value for key in table.columns}
+            for name, text in rows:
+                out = self.calculator.output(name)
+                cells = [Text(out.label), Text(text)] + ([Text(out.equation, style="dim")] if equations else [])
+                table.add_row(*cells, key=name, height=None if cell_len(out.label) > label_width else 1)
+            if 0 < cursor < table.row_count:
+                table.move_cursor(row=cursor, animate=False)
+            self._rows_shown = names
+        self._texts_shown = tuple(text for _, text in rows)
+
+    _show_generation = 0  # solutions shown so far (a pending estimate belongs to the last)
+    _rows_shown: list[str] | None = None  # output names in the table, in order
+    _texts_shown: tuple[str, ...] = ()  # their value texts as shown
 
     # ---- tolerances (core/tolerance.py): a Spread column while any entry carries '±' ------------
     spread = None  # the last solve's core.tolerance.Spread, or None
@@ -416,9 +578,11 @@ class CalculatorTab(Widget):
         if result is None:
             if has_column:
                 table.remove_column("spread")
+                self.call_after_refresh(self._size_columns)  # the labels get their room back
             return
         if not has_column:
             table.add_column("Worst case  σ (*: Monte Carlo)", key="spread", width=30)
+            self.call_after_refresh(self._size_columns)
         for name in solution.outputs:
             s = result.outputs.get(name)
             text = spread_text(self.calculator, solution, s) if s else ""
@@ -435,8 +599,9 @@ class CalculatorTab(Widget):
         status.update(line)
         if result.notes:  # e.g. 'backdrivable changes within the tolerances', samples left out
             lines = [f"! {w}" for w in solution.warnings] + [f"± {n}" for n in result.notes]
-            self.query_one(".warnings", Static).update(Text("\n".join(lines), style="yellow"))
-            self.query_one(".warnings-box").display = True
+            self._parts.warnings.update(Text("\n".join(lines), style="yellow"))
+            self._parts.warnings_box.display = True
+            self._warnings_text = None  # not the solution's own: the next _show rewrites it
 
     def _append_spread(self, name: str, line: Text) -> None:
         """With tolerances, the help line of a result also gives its spread in full: worst case and
@@ -502,6 +667,22 @@ class CalculatorTab(Widget):
             line.append(self.calculator.output(name).label + " ", style="dim")
             line.append(pretty_quantity(value.text), style="bold")
         return line
+
+
+def value_width(calc: Calculator) -> int:
+    """The widest value text a result of `calc` can show: a number as units.format_number writes
+    it at its widest ("-1.2346e-05") and the widest unit the output may be shown in (its own, the
+    ring Enter walks, and the units preferences)."""
+    from gearhead.core import units
+    from gearhead.core.unit_systems import SYSTEMS, system_unit
+
+    widest = 0
+    for o in calc.outputs:
+        ring = (o.unit,) + units.COMMON_UNITS.get(o.quantity, ())
+        ring += tuple(system_unit(u, system) for u in ring for system in SYSTEMS)
+        unit = max(cell_len(pretty_unit(u)) for u in ring if u is not None)
+        widest = max(widest, len("-1.2346e-05") + (1 + unit if unit else 0))
+    return max(widest, 12)
 
 
 def _duration(seconds: float) -> str:

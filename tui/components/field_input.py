@@ -15,10 +15,18 @@ checked by the app before the key reaches the widget, exactly as before.
 from __future__ import annotations
 
 from textual import events
+from textual.geometry import Size
+from textual.reactive import Reactive
 from textual.widgets import Input
 
 
 class FieldInput(Input):
+    # Input sets its virtual size (the text's width) on every key, and Widget's virtual_size asks
+    # for a layout of the whole screen (~3 ms a key on a card). An entry's size is fixed by the
+    # stylesheet (Input lays out again itself when it is auto-sized), and scrolling reads the
+    # value directly: a repaint is enough.
+    virtual_size = Reactive(Size(0, 0), layout=False)
+
     async def _on_key(self, event: events.Key) -> None:
         if not event.is_printable and await self._run_own_binding(event.key):
             event.stop()

@@ -1,0 +1,196 @@
+"""Daily use of the results table: each row's equation number, the "how" of the row under the
+cursor, values never cut, and a scene's error estimate shown after its results."""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import io
+import threading
+
+import gearhead.tui.app as app_module
+import pytest
+from gearhead.core import export
+from gearhead.core.model import solve
+from gearhead.core.registry import get
+from gearhead.tui.app import GearheadApp
+from gearhead.tui.components.calculator_tab import CalculatorTab
+from rich.cells import cell_len
+from textual.widgets import DataTable, Static
+
+from tests.tui_helpers import settle
+
+
+def numbered(calc_id: str):
+    """The calculator with an equation number of our own on every output (others fill in the
+    real ones in core/calculators): "(1)", "(2)" … and one range; and a help where one is missing."""
+    calc = get(calc_id)
+    outputs = tuple(dataclasses.replace(o, equation=f"({i})" if i != 2 else "(61)-(64)",
+                                        help=o.help or f"How {o.label} is found.")
+                    for i, o in enumerate(calc.outputs, 1))
+    return dataclasses.replace(calc, outputs=outputs)
+
+
+@pytest.fixture
+def gear_ratio_numbered(monkeypatch):
+    calc = numbered("gear_ratio")
+    real_get = app_module.get
+    monkeypatch.setattr(app_module, "get", lambda cid: calc if cid == calc.id else real_get(cid))
+    return calc
+
+
+def cell(table: DataTable, row: str, column: str) -> str:
+    return str(table.get_cell(row, column))
+
+
+async def test_each_result_row_shows_its_equation_number(gear_ratio_numbered):
+    calc = gear_ratio_numbered
+    app = GearheadApp(blink=False, initial=calc.id)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.query_one(f"#calc-{calc.id}", CalculatorTab)
+        table = tab.query_one(".results", DataTable)
+        assert tab.solution.outputs
+        for name in tab.solution.outputs:
+            assert cell(table, name, "equation") == calc.output(name).equation
+
+
+async def test_the_row_under_the_cursor_says_how_with_its_equation(gear_ratio_numbered):
+    calc = gear_ratio_numbered
+    app = GearheadApp(blink=False, initial=calc.id)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.query_one(f"#calc-{calc.id}", CalculatorTab)
+        table = tab.query_one(".results", DataTable)
+        table.focus()
+        await pilot.pause()
+        for name in list(tab.solution.outputs)[1:3]:
+            table.move_cursor(row=list(tab.solution.outputs).index(name))
+            await settle(pilot)
+            out = calc.output(name)
+            line = str(tab.query_one(".help-line", Static).render())
+            assert line.startswith(f"{out.label} {out.equation}: ")
+            assert out.help and out.help in line
+
+
+def test_export_carries_the_equation_numbers():
+    calc = numbered("gear_ratio")
+    sol = solve("gear_ratio", {})
+    rows = list(csv.DictReader(io.StringIO(export.results_csv(calc, sol))))
+    assert [r["equation"] for r in rows] == [calc.output(r["output"]).equation for r in rows]
+    lines = export.results_markdown(calc, sol).splitlines()
+    assert lines[2] == "| Result | Value | Eq. |"
+    first = calc.output(next(iter(sol.outputs)))
+    assert lines[4] == f"| {first.label} | {sol.outputs[first.name].text} | {first.equation} |"
+
+
+def shown_cut(tab: CalculatorTab) -> list[str]:
+    """Values or units that do not fit their column, or columns that do not fit the table."""
+    table = tab.query_one(".results", DataTable)
+    value = table.columns[next(k for k in table.columns if k.value == "value")]
+    cut = [text for text in (str(table.get_cell(name, "value")) for name in tab.solution.outputs)
+           if cell_len(text) > value.width]
+    used = sum(c.get_render_width(table) for c in table.columns.values()) + 2  # + the scrollbar
+    if used > table.size.width:
+        cut.append(f"columns need {used} of {table.size.width}")
+    return cut
+
+
+@pytest.mark.parametrize("size", [(80, 24), (140, 45)])
+@pytest.mark.parametrize("calc_id", ["flywheel", "trebuchet", "motor"])
+async def test_values_and_units_are_never_cut(calc_id, size):
+    calc = numbered(calc_id)  # with an equation column too
+    real_get = app_module.get
+    app_module.get, restore = (lambda cid: calc if cid == calc_id else real_get(cid)), real_get
+    try:
+        app = GearheadApp(blink=False, initial=calc_id)
+        async with app.run_test(size=size) as pilot:
+            await settle(pilot)
+            tab = app.query_one(f"#calc-{calc_id}", CalculatorTab)
+            for system in ("calculator", "imperial", "metric"):
+                app.set_unit_system(system, remember=False)
+                await settle(pilot)
+                assert not shown_cut(tab), (system, shown_cut(tab))
+            # a unit wider than any the calculator foresees (typed, shown "as entered") widens the
+            # value column rather than being cut
+            speed = next(o for o in calc.outputs if o.quantity in ("speed", "angular_speed"))
+            tab.display_units = {speed.name: "furlong/fortnight" if speed.quantity == "speed"
+                                 else "revolution/fortnight"}
+            tab.solve()
+            await settle(pilot)
+            assert "fortnight" in tab.solution.outputs[speed.name].text
+            assert not shown_cut(tab), shown_cut(tab)
+    finally:
+        app_module.get = restore
+
+
+async def test_scene_results_come_before_their_error_estimate(monkeypatch):
+    """The pneumatics tab shows its results while the 100x tighter estimate run is still going
+    ("…" in its row), then the estimate, the same number the CLI prints."""
+    from gearhead.core.sim import scene
+
+    release = threading.Event()
+    real = scene._estimate
+
+    def held(*args, **kwargs):
+        release.wait(20)
+        return real(*args, **kwargs)
+
+    app = GearheadApp(blink=False, initial="pneumatics")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-pneumatics", CalculatorTab)
+        table = tab.query_one(".results", DataTable)
+        monkeypatch.setattr(scene, "_estimate", held)
+        entries = {**tab.entries, "tank_volume": "1.5 L"}
+        tab.set_entries({"tank_volume": "1.5 L"})
+        for _ in range(200):
+            await pilot.pause()
+            if tab.solution is not None and tab.solution.inputs["tank_volume"].text == "1.5 L":
+                break
+        assert tab.busy  # the estimate is still running
+        assert cell(table, "error_estimate", "value") == "…"
+        assert cell(table, "final_pressure", "value") == tab.solution.outputs["final_pressure"].text
+        release.set()
+        await settle(pilot)
+        expected = solve("pneumatics", entries).outputs["error_estimate"].text  # as the CLI computes it
+        assert cell(table, "error_estimate", "value") == expected
+
+
+async def test_a_key_drops_the_pending_error_estimate(monkeypatch):
+    """Nothing stale: an estimate still running when the next key arrives is never shown."""
+    from gearhead.core.sim import scene
+
+    started, release = threading.Event(), threading.Event()
+    real = scene._estimate
+    shown = []
+
+    def held(*args, **kwargs):
+        started.set()
+        release.wait(20)
+        return real(*args, **kwargs)
+
+    app = GearheadApp(blink=False, initial="pneumatics")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-pneumatics", CalculatorTab)
+        done = tab._estimate_done
+        tab._estimate_done = lambda solution, value: (shown.append((solution, value)), done(solution, value))
+        monkeypatch.setattr(scene, "_estimate", held)
+        tab.set_entries({"tank_volume": "1.5 L"})
+        for _ in range(200):
+            await pilot.pause()
+            if started.is_set():
+                break
+        first = tab.solution
+        monkeypatch.setattr(scene, "_estimate", real)
+        tab.set_entries({"tank_volume": "2 L"})  # the next key, while the first estimate runs
+        release.set()
+        await settle(pilot)
+        assert tab.solution is not first and tab.solution.inputs["tank_volume"].text == "2 L"
+        # the first estimate was dropped (cancelled, or computed and not shown): its row kept "…"
+        assert first.outputs["error_estimate"].text == "…"
+        assert any(solution is tab.solution and value is not None for solution, value in shown)
+        table = tab.query_one(".results", DataTable)
+        assert cell(table, "error_estimate", "value") == solve(
+            "pneumatics", {**tab.entries}).outputs["error_estimate"].text
