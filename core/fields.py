@@ -92,6 +92,10 @@ class Kind:
         """A bound as a message quotes it: in the field's display unit."""
         return units.format_number(si)
 
+    def declaration_problem(self, f: Field) -> str | None:
+        """What is wrong with a field's declaration for this kind (core.declarations asks), or None."""
+        return None
+
     # ---- text ---------------------------------------------------------------------------
     def default_text(self, f: Field) -> str:
         return str(f.default)
@@ -197,6 +201,11 @@ class Integer(Kind):
 
     def bound_text(self, f, si):
         return str(int(si))
+
+    def declaration_problem(self, f):
+        if any(b is not None and b != int(b) for b in (f.min, f.max)):
+            return f"a whole number's bounds are whole numbers (min {f.min}, max {f.max})"
+        return None
 
     def stored(self, f, entry):
         try:

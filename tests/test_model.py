@@ -33,16 +33,20 @@ def test_field_shown_when_any_named_effect_is_on():
     assert err.value.field == "drag_coefficient"
 
 
-@pytest.mark.parametrize("typed", ["125", "125 psi", "861844.6616460452 Pa"])
+@pytest.mark.parametrize("typed", ["125", "125 psi", "861844.6616460452 Pa", "0.86184466164604 MPa"])
 def test_a_bound_typed_in_another_unit_is_accepted_as_the_bound(typed):
-    """125 psi against a bound of 125·6894.757… Pa: conversion may land one rounding step
+    """125 psi typed against a bound of 125 psi read in Pa: conversion may land one rounding step
     outside; it is the bound, not an error, and formulas see exactly the bound."""
     from gearhead.core.model import Field
 
     relief = 125 * 6894.757293168361
-    f = Field("p", "Pressure", "pressure", "psi", max=relief)
+    f = Field("p", "Pressure", "pressure", "psi", max=125)
+    bound = f.bounds_si()[1]
+    assert bound == pytest.approx(relief, rel=1e-15)
     value = f.parse(typed)
-    assert value <= relief and value == pytest.approx(relief, rel=1e-9)
+    assert value <= bound and value == pytest.approx(bound, rel=1e-9)
+    if "125" in typed:
+        assert value == bound  # a hair outside is the bound itself
     with pytest.raises(InputError):
         f.parse("125.001 psi")  # a real excess is still refused
 
@@ -182,3 +186,38 @@ async def test_a_new_field_kind_renders_in_the_generic_tab(monkeypatch):
         assert app.query_one("#in-code", Input).value == "0xFF"
         assert tab.current_inputs() == {"code": "0xff"}
         assert tab.solution.outputs["double"].value == 510
+
+
+# ---- bounds: min, max and default in the display unit -------------------------------------------
+
+def test_bounds_are_in_the_display_unit_and_messages_quote_them_there():
+    from gearhead.core.model import Field
+
+    f = Field("wall", "Wall", "length", "in", default=0.0625, min=0, min_exclusive=True, max=1)
+    assert f.bounds_si() == (0.0, 0.0254)
+    assert f.parse("1 in") == 0.0254 and f.parse("25.4 mm") == pytest.approx(0.0254)
+    with pytest.raises(InputError, match=r"too large: must be at most 1 in"):
+        f.parse("26 mm")
+    with pytest.raises(InputError, match=r"too small: must be greater than 0 in"):
+        f.parse("0")
+    pct = Field("loss", "Loss", "dimensionless", "%", default=5, min=0, max=100)
+    assert pct.parse("100") == 1.0 and pct.parse("1") == 0.01
+    with pytest.raises(InputError, match=r"at most 100 %"):
+        pct.parse("150")
+
+
+def test_a_calculator_still_in_the_si_convention_reads_the_same_bounds(monkeypatch):
+    """Transitional: a calculator listed in model.SI_BOUNDS declares bounds in SI; its fields are
+    restated in the display unit, so both conventions give the same SI bounds."""
+    from gearhead.core import model
+    from gearhead.core.model import Calculator, Field, Result
+
+    legacy = Field("wall", "Wall", "length", "in", default=0.0625, min=0, max=0.0254)
+    monkeypatch.setattr(model, "SI_BOUNDS", model.SI_BOUNDS | {"legacy_toy"})
+    calc = Calculator("legacy_toy", "T", "", (legacy,), (), lambda v: Result({}))
+    assert calc.field("wall").max == pytest.approx(1.0, rel=1e-15)
+    import dataclasses
+    calc = dataclasses.replace(calc, title="T2")  # restated once, not again
+    assert calc.field("wall").max == pytest.approx(1.0, rel=1e-15)
+    assert calc.field("wall").bounds_si() == (0.0, pytest.approx(0.0254, rel=1e-15))
+    assert legacy.bounds_si() == (0.0, pytest.approx(0.0254 ** 2))  # read as declared: 0.0254 in
