@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from dataclasses import dataclass, field as dc_field, replace
+from dataclasses import dataclass, field as dc_field
 from typing import Any, Callable, Mapping
 
 from . import units
@@ -182,35 +182,6 @@ class Result:
     tables: dict[str, list[dict[str, Any]]] = dc_field(default_factory=dict)  # rows of each Table
 
 
-# Transitional (issue 11): the calculators whose Field declarations still give `min`/`max` in SI,
-# the convention before bounds moved to the display unit. Their fields' bounds are converted on
-# construction; a calculator leaves this set when its declarations are converted.
-SI_BOUNDS: frozenset[str] = frozenset({
-    "motor", "gear_ratio", "ratio_distance", "ratio_finder", "lead_screw", "drivetrain", "elevator", "arm",
-    "beam", "chain_belt", "gear_clearance", "pneumatics", "pneumatic_linkage", "projectile", "flywheel",
-    "trebuchet"})
-
-
-_RESTATED: dict[int, Field] = {}  # fields already restated (dataclasses.replace re-runs __post_init__)
-
-
-def _bounds_from_si(f: Field) -> Field:
-    """`f` with SI bounds restated in its display unit (a unit that cannot show its quantity is
-    left for the declaration check to name)."""
-    if not isinstance(f.kind, type(QUANTITY)) or (f.min is None and f.max is None) or id(f) in _RESTATED:
-        return f
-    try:
-        factor = units.factor(f.unit, f.quantity)
-    except Exception:  # unknown unit or kind: core.declarations names it
-        return f
-    if factor == 1.0:
-        return f
-    restated = replace(f, min=None if f.min is None else f.min / factor,
-                       max=None if f.max is None else f.max / factor)
-    _RESTATED[id(restated)] = restated
-    return restated
-
-
 @dataclass(frozen=True)
 class Calculator:
     id: str
@@ -226,10 +197,6 @@ class Calculator:
     tables: tuple[Table, ...] = ()
     # Simulated calculators: simulate(values, rtol) -> core.sim.scene.SimRun (for the accuracy ladder)
     simulate: Callable[[Mapping[str, Any], float], Any] | None = None
-
-    def __post_init__(self) -> None:
-        if self.id in SI_BOUNDS:  # transitional: bounds declared in SI, read in the display unit
-            object.__setattr__(self, "fields", tuple(_bounds_from_si(f) for f in self.fields))
 
     def field(self, name: str) -> Field:
         for f in self.fields:

@@ -204,20 +204,3 @@ def test_bounds_are_in_the_display_unit_and_messages_quote_them_there():
     assert pct.parse("100") == 1.0 and pct.parse("1") == 0.01
     with pytest.raises(InputError, match=r"at most 100 %"):
         pct.parse("150")
-
-
-def test_a_calculator_still_in_the_si_convention_reads_the_same_bounds(monkeypatch):
-    """Transitional: a calculator listed in model.SI_BOUNDS declares bounds in SI; its fields are
-    restated in the display unit, so both conventions give the same SI bounds."""
-    from gearhead.core import model
-    from gearhead.core.model import Calculator, Field, Result
-
-    legacy = Field("wall", "Wall", "length", "in", default=0.0625, min=0, max=0.0254)
-    monkeypatch.setattr(model, "SI_BOUNDS", model.SI_BOUNDS | {"legacy_toy"})
-    calc = Calculator("legacy_toy", "T", "", (legacy,), (), lambda v: Result({}))
-    assert calc.field("wall").max == pytest.approx(1.0, rel=1e-15)
-    import dataclasses
-    calc = dataclasses.replace(calc, title="T2")  # restated once, not again
-    assert calc.field("wall").max == pytest.approx(1.0, rel=1e-15)
-    assert calc.field("wall").bounds_si() == (0.0, pytest.approx(0.0254, rel=1e-15))
-    assert legacy.bounds_si() == (0.0, pytest.approx(0.0254 ** 2))  # read as declared: 0.0254 in

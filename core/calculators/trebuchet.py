@@ -88,7 +88,7 @@ FIELDS = (
           help="hinged_counterweight: hinge to counterweight centre. 0: hinged at its centre of mass "
                "(the seed's hinged case); > 0: a pendulum.",
           when=(("effects", ("hinged_counterweight",)),)),
-    Field("release_angle", "Release angle", "angle", "deg", default=45, min=0, max=89 * DEG,
+    Field("release_angle", "Release angle", "angle", "deg", default=45, min=0, max=89,
           help="Release when the projectile's velocity points this far above the horizontal, toward the throw."),
     Field("projectile_diameter", "Projectile diameter", "length", "m", default=0.2, min=1e-3, max=5,
           help="air_drag: diameter for the drag area.",
