@@ -3,14 +3,16 @@
 naming a field that does not exist) fails at once with the calculator and the field named, instead
 of as a KeyError or a pint traceback the first time someone solves it.
 
-Conventions checked here (the Field docstring states them too): `default` is what a user would type
-(a bare number in the display unit, or a string with a unit); `min`/`max` are SI. Cheap enough to
+Conventions checked here (the Field docstring states them too): `default`, `min` and `max` are what a
+user would type, numbers in the field's display unit (a string default may carry its own unit), and
+the default lies within the bounds. Cheap enough to
 run on every load: units are looked up in the generated factor table, pint only for a unit missing
 from it.
 """
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 from . import units
@@ -68,8 +70,18 @@ def check(calc: Calculator) -> None:
             raise DeclarationError(cid, part, f"{len(f.choice_labels)} choice labels for {len(f.choices)} choices")
         if f.type == "quantity":
             _check_unit(cid, part, f.unit, f.quantity)
+        for word in ("min", "max"):
+            bound = getattr(f, word)
+            if bound is not None and (isinstance(bound, bool) or not isinstance(bound, (int, float))
+                                      or not math.isfinite(bound)):
+                raise DeclarationError(cid, part, f"{word} {bound!r} is not a finite number "
+                                                  f"(bounds are numbers in the display unit)")
         if f.min is not None and f.max is not None and f.min > f.max:
-            raise DeclarationError(cid, part, f"min {f.min} is above max {f.max} (both SI)")
+            raise DeclarationError(cid, part, f"min {f.min} is above max {f.max} "
+                                              f"(both {'in ' + f.unit if f.unit else 'plain numbers'})")
+        problem = f.kind.declaration_problem(f)
+        if problem:
+            raise DeclarationError(cid, part, problem)
         for mode in f.modes:
             if mode not in modes:
                 raise DeclarationError(cid, part, f"shown in mode {mode!r}, which is not a mode "

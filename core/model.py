@@ -11,19 +11,21 @@ from dataclasses import dataclass, field as dc_field
 from typing import Any, Callable, Mapping
 
 from . import units
-from .errors import InputError, shown
+from .errors import InputError
+from .fields import BOOLEAN, CHOICE, FLAGS, INTEGER, QUANTITY, Kind, kind_of
 
-
-# Beyond these magnitudes (in SI) no robot part exists, and products of such values overflow
-# or underflow; rejecting them keeps every formula finite without per-field guesswork.
-MAGNITUDE_FLOOR = 1e-15
-MAGNITUDE_CEILING = 1e15
-BOUND_SLACK = 1e-12  # relative: unit conversion may land a typed bound one rounding step outside
+_BUILTIN_KINDS = (QUANTITY, INTEGER, CHOICE, FLAGS, BOOLEAN)
 
 
 @dataclass(frozen=True)
 class Field:
-    """One input. Bounds are in SI; `default` is what the user would type (display unit)."""
+    """One input. `default`, `min` and `max` are what the user would type: numbers in the display
+    unit `unit` (the unit the author reads beside the field; a string default may carry its own
+    unit), e.g. `Field("wall", "Wall", "length", "in", default=0.0625, min=0, max=1)` is 0 to 1 in.
+    Parsed values are SI; `bounds_si` gives the bounds in SI. What sort of value it holds (a
+    quantity, whole number, choice, set of flags, yes/no) is its `kind` (core/fields.py), named
+    by the declaration syntax (`integer=True`, `choices=(...)`, `boolean=True`, `flags=True`;
+    else a quantity) or given as `kind=`."""
 
     name: str
     label: str
@@ -44,18 +46,21 @@ class Field:
     # shown and used only when other choice fields hold one of these values (for a flags field:
     # when one of them is on), e.g. (("section", ("round_tube", "rectangular_tube")),) for a wall
     when: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    kind: Kind | None = None  # after construction always the field's Kind
+
+    def __post_init__(self) -> None:
+        legacy = kind_of(self)
+        # a built-in kind follows the syntax (so dataclasses.replace(f, integer=True) re-kinds f);
+        # any other kind object given is kept
+        declared = self.kind
+        if declared is None or (declared in _BUILTIN_KINDS and legacy is not QUANTITY):
+            declared = legacy
+        object.__setattr__(self, "kind", declared)
 
     @property
     def type(self) -> str:
-        if self.flags:
-            return "flags"
-        if self.choices:
-            return "choice"
-        if self.boolean:
-            return "bool"
-        if self.integer:
-            return "int"
-        return "quantity"
+        """The kind's name ("quantity", "int", "choice", "flags", "bool", ...)."""
+        return self.kind.name
 
     def label_of(self, choice: str) -> str:
         if self.choice_labels:
@@ -79,102 +84,35 @@ class Field:
         return True
 
     def default_text(self) -> str:
-        if self.type == "quantity":
-            return units.format_number(float(self.default)) if isinstance(self.default, (int, float)) else str(self.default)
-        if self.type == "bool":
-            return "true" if self.default else "false"
-        if self.type == "flags":
-            return flags_text(self.default)
-        return str(self.default)
+        return self.kind.default_text(self)
+
+    def entry_text(self, entered: Any) -> str:
+        """The text shown for what was entered."""
+        return self.kind.entry_text(self, entered)
 
     def parse(self, raw: Any) -> Any:
-        """SI value (float), int, bool or choice string from what a user entered; or an InputError
-        naming this field, in one line, quoting at most the start of what was typed."""
-        kind = self.type
-        if isinstance(raw, str) and len(raw) > self._max_chars():
-            raise InputError(self.name, f"is too long ({len(raw)} characters; at most {self._max_chars()})")
-        if kind == "flags":
-            if isinstance(raw, str):
-                items = [x for x in raw.replace(",", " ").split() if x]
-            elif isinstance(raw, (list, tuple, set, frozenset)) and all(isinstance(x, str) for x in raw):
-                items = list(raw)
-            else:
-                raise InputError(self.name, f"expected names from: {', '.join(self.choices)}")
-            unknown = [x for x in items if x not in self.choices]
-            if unknown:
-                more = f" and {len(unknown) - 3} more" if len(unknown) > 3 else ""
-                raise InputError(self.name, f"unknown {', '.join(map(shown, unknown[:3]))}{more}; "
-                                            f"choose from: {', '.join(self.choices)}")
-            return frozenset(items)
-        if kind == "choice":
-            text = str(raw).strip() if isinstance(raw, str) else None
-            if text not in self.choices:
-                # accept the display label too, case-insensitively
-                lowered = {c.lower(): c for c in self.choices}
-                lowered.update({self.label_of(c).lower(): c for c in self.choices})
-                if text is not None and text.lower() in lowered:
-                    return lowered[text.lower()]
-                shown_choices = ", ".join(self.choices[:12]) + (", ..." if len(self.choices) > 12 else "")
-                raise InputError(self.name, f"{shown(raw)} is not one of: {shown_choices}")
-            return text
-        if kind == "bool":
-            if isinstance(raw, bool):
-                return raw
-            text = str(raw).strip().lower()
-            if text in ("true", "yes", "on", "1"):
-                return True
-            if text in ("false", "no", "off", "0"):
-                return False
-            raise InputError(self.name, f"{shown(raw)} is not true or false")
-        if kind == "int":
-            if isinstance(raw, bool):
-                raise InputError(self.name, f"expected a whole number, got {raw!r}")
-            if isinstance(raw, numbers.Integral):
-                value = int(raw)
-            else:
-                text = units.normalise(raw, self.name)  # the same screening as a quantity: "−2", "３"
-                try:
-                    as_float = float(text)
-                except ValueError:
-                    raise InputError(self.name, f"{shown(text)} is not a whole number") from None
-                if not math.isfinite(as_float) or as_float != int(as_float):
-                    raise InputError(self.name, f"{shown(text)} is not a whole number")
-                value = int(as_float)
-            self._check_bounds(value, str(value))
-            return value
-        value = units.parse(raw, self.unit, self.quantity, self.name)
-        return self._check_bounds(value, str(raw))
-
-    def _max_chars(self) -> int:
-        """Longest entry read: a value, or every flag name listed (they may exceed a value's)."""
-        return max(units.MAX_INPUT_CHARS, sum(len(c) + 2 for c in self.choices))
+        """SI value (float), int, bool, choice string or set of flags (as the kind reads it) from
+        what a user entered; or an InputError naming this field, in one line, quoting at most the
+        start of what was typed."""
+        limit = self.kind.max_chars(self)
+        if isinstance(raw, str) and len(raw) > limit:
+            raise InputError(self.name, f"is too long ({len(raw)} characters; at most {limit})")
+        return self.kind.parse(self, raw)
 
     def _check_bounds(self, value: float, typed: str) -> float:
-        """The value, or an InputError; a value within rounding of an inclusive bound (e.g. 125 psi
-        typed against a bound set in Pa) is that bound, so formulas never see it a hair outside."""
-        typed = typed.strip()
-        typed = typed if len(typed) <= 40 and typed.isprintable() else shown(typed)
-        if self.type == "quantity" and value != 0 and not (MAGNITUDE_FLOOR <= abs(value) <= MAGNITUDE_CEILING):
-            raise InputError(self.name, f"{typed} is out of range for a mechanism "
-                                        f"(magnitude {abs(value):.3g} in SI units)")
-        def in_unit(si: float) -> str:
-            if self.type == "int":
-                return str(int(si))
-            return units.format_quantity(si, self.unit, self.quantity)
+        """`value` (SI) checked against the bounds (and, for a quantity, the magnitude limits)."""
+        return self.kind.checked(self, value, typed)
 
-        if self.min is not None:
-            if not self.min_exclusive and value < self.min and value >= self.min - BOUND_SLACK * abs(self.min):
-                value = self.min
-            if value < self.min or (self.min_exclusive and value == self.min):
-                word = "greater than" if self.min_exclusive else "at least"
-                raise InputError(self.name, f"{typed} is too small: must be {word} {in_unit(self.min)}")
-        if self.max is not None:
-            if not self.max_exclusive and value > self.max and value <= self.max + BOUND_SLACK * abs(self.max):
-                value = self.max
-            if value > self.max or (self.max_exclusive and value == self.max):
-                word = "less than" if self.max_exclusive else "at most"
-                raise InputError(self.name, f"{typed} is too large: must be {word} {in_unit(self.max)}")
-        return value
+    def bounds_si(self) -> tuple[float | None, float | None]:
+        """(min, max) in the unit `parse` returns (SI), None where unbounded; `min` and `max` are
+        declared in the display unit (converted once, on first use, as a bare number typed)."""
+        try:
+            return self.__dict__["_bounds_si"]
+        except KeyError:
+            pass
+        bounds = tuple(None if b is None else self.kind.bound_si(self, b) for b in (self.min, self.max))
+        object.__setattr__(self, "_bounds_si", bounds)
+        return bounds
 
 
 @dataclass(frozen=True)
@@ -346,7 +284,7 @@ def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, An
                 values[f.name] = f.parse(entered)
             except InputError:
                 values[f.name] = f.parse(f.default)
-        texts[f.name] = _input_text(f, entered)
+        texts[f.name] = f.entry_text(entered)
     return values, texts
 
 
@@ -361,24 +299,6 @@ def choice_values(calc: Calculator, raw: Mapping[str, Any]) -> dict[str, Any]:
         except InputError:
             out[name] = f.default
     return out
-
-
-def flags_text(items: Any) -> str:
-    if isinstance(items, str):
-        items = [x for x in items.replace(",", " ").split() if x]
-    return ", ".join(sorted(items))
-
-
-def _input_text(f: Field, entered: Any) -> str:
-    if f.type == "flags":
-        return flags_text(entered) if isinstance(entered, (str, list, tuple, set, frozenset)) else str(entered)
-    if f.type == "quantity" and isinstance(entered, (int, float)) and not isinstance(entered, bool):
-        return f"{units.format_number(float(entered))} {f.unit}".rstrip()
-    if f.type == "quantity" and isinstance(entered, str) and units._NUMBER.match(entered):
-        return f"{entered.strip()} {f.unit}".rstrip()
-    if isinstance(entered, bool):
-        return "true" if entered else "false"
-    return str(entered)
 
 
 def format_value(value: Any, quantity: str, unit: str) -> Value:
@@ -422,13 +342,8 @@ def solve(calc_id: str, raw: Mapping[str, Any] | None = None,
     display_units = check_display_units(calc, display_units)
     inputs = {}
     for f in calc.fields:
-        v = values[f.name]
-        if f.type == "quantity":
-            inputs[f.name] = Value(v, units.SI_UNITS[f.quantity], texts[f.name])
-        elif f.type == "flags":
-            inputs[f.name] = Value(sorted(v), "", texts[f.name])
-        else:
-            inputs[f.name] = Value(v, "", texts[f.name])
+        value, si_unit = f.kind.reported(f, values[f.name])
+        inputs[f.name] = Value(value, si_unit, texts[f.name])
     outputs = {}
     for o in calc.outputs:
         if o.name not in result.values:

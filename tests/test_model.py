@@ -33,16 +33,20 @@ def test_field_shown_when_any_named_effect_is_on():
     assert err.value.field == "drag_coefficient"
 
 
-@pytest.mark.parametrize("typed", ["125", "125 psi", "861844.6616460452 Pa"])
+@pytest.mark.parametrize("typed", ["125", "125 psi", "861844.6616460452 Pa", "0.86184466164604 MPa"])
 def test_a_bound_typed_in_another_unit_is_accepted_as_the_bound(typed):
-    """125 psi against a bound of 125·6894.757… Pa: conversion may land one rounding step
+    """125 psi typed against a bound of 125 psi read in Pa: conversion may land one rounding step
     outside; it is the bound, not an error, and formulas see exactly the bound."""
     from gearhead.core.model import Field
 
     relief = 125 * 6894.757293168361
-    f = Field("p", "Pressure", "pressure", "psi", max=relief)
+    f = Field("p", "Pressure", "pressure", "psi", max=125)
+    bound = f.bounds_si()[1]
+    assert bound == pytest.approx(relief, rel=1e-15)
     value = f.parse(typed)
-    assert value <= relief and value == pytest.approx(relief, rel=1e-9)
+    assert value <= bound and value == pytest.approx(bound, rel=1e-9)
+    if "125" in typed:
+        assert value == bound  # a hair outside is the bound itself
     with pytest.raises(InputError):
         f.parse("125.001 psi")  # a real excess is still refused
 
@@ -59,3 +63,144 @@ def test_a_failing_formula_is_a_message_not_a_traceback(monkeypatch):
     with pytest.raises(InputError) as err:
         solve("ratio_distance", {})
     assert err.value.field == "(result)" and "ZeroDivisionError" in err.value.message
+
+
+# ---- field kinds (core/fields.py): a new kind is one class -------------------------------------
+
+def _hex_kind():
+    """A toy kind, declared here and nowhere else: a whole number written in hexadecimal."""
+    from gearhead.core.fields import INTEGER, Kind
+
+    class Hex(Kind):
+        name = "hex"
+        numeric = True
+
+        def parse(self, f, raw):
+            text = str(raw).strip().lower()
+            try:
+                value = int(text, 16) if text.startswith("0x") else None
+            except ValueError:
+                value = None
+            if value is None:
+                raise InputError(f.name, f"{text[:20]!r} is not a hexadecimal number like 0x1f")
+            return self.checked(f, value, text)
+
+        def holds(self, f, value):
+            return isinstance(value, int) and not isinstance(value, bool)
+
+        bound_text = INTEGER.bound_text
+
+        def stored(self, f, entry):
+            return str(entry).strip().lower()
+
+        def vocabulary(self, f):
+            return ("0x10", "0xff", "0x", "0xg")
+
+    return Hex()
+
+
+def _toy_calculator():
+    from gearhead.core.model import Calculator, Field, Output, Result
+
+    code = Field("code", "Code", kind=_hex_kind(), default="0x10", min=1, max=0xFFFF, help="Any CAN id.")
+    return Calculator("toy_hex", "Toy hex", "A toy with a hexadecimal field.", (code,),
+                      (Output("double", "Twice the code"),), lambda v: Result({"double": 2 * v["code"]}))
+
+
+def test_a_new_field_kind_is_one_class(monkeypatch, tmp_path):
+    """The toy kind above is the only code written for it: declarations, parse_inputs, solve's
+    JSON, presets and the generated hostile entries all work through the kind object."""
+    from hypothesis import given, settings
+
+    from gearhead.core import presets, registry
+    from gearhead.core.declarations import check
+    from tests.test_input_hostile import hostile_text, parse_once
+
+    calc = _toy_calculator()
+    code = calc.field("code")
+    check(calc)
+    assert code.type == "hex" and code.default_text() == "0x10"
+    assert code.parse(" 0x1F ") == 31
+    with pytest.raises(InputError, match="too large: must be at most 65535"):
+        code.parse("0x10000")
+    with pytest.raises(InputError) as err:
+        code.parse("31")
+    assert err.value.field == "code"
+    # a kind that changes a built-in syntax flag is kept (replace keeps it, too)
+    import dataclasses
+    assert dataclasses.replace(code, help="x").kind is code.kind
+
+    monkeypatch.setitem(registry.calculators(), "toy_hex", calc)
+    out = solve("toy_hex", {"code": "0xff"}).as_json()
+    assert out["inputs"]["code"] == {"value": 255, "unit": "", "text": "0xff"}
+    assert out["outputs"]["double"]["value"] == 510
+
+    preset = presets.Preset("toy_hex", "Toy", inputs={"code": code.kind.stored(code, " 0xFF")})
+    path = presets.save(preset, tmp_path / "toy.toml")
+    assert presets.load(path).inputs == {"code": "0xff"}
+    with pytest.raises(InputError) as err:
+        presets.from_dict({"calculator": "toy_hex", "inputs": {"code": "12"}})
+    assert err.value.field == "code"
+
+    @settings(max_examples=30, deadline=None, database=None, derandomize=True)
+    @given(hostile_text(code))
+    def hostile(text):
+        parse_once(code, text)  # a value the kind holds, or a one-line message naming the field
+
+    hostile()
+
+
+async def test_a_new_field_kind_renders_in_the_generic_tab(monkeypatch):
+    """The tab draws the toy kind from its widget description (an input, no unit label), puts a
+    preset's value into it, and hands it back as a preset stores it."""
+    from textual.app import App
+    from textual.widgets import Input
+
+    from gearhead.core import registry
+    from gearhead.tui.components.calculator_tab import CalculatorTab
+
+    calc = _toy_calculator()
+    monkeypatch.setitem(registry.calculators(), "toy_hex", calc)
+
+    class Harness(App):
+        def compose(self):
+            yield CalculatorTab(calc, blink=False, hide_timings=True)
+
+    app = Harness()
+    async with app.run_test(size=(120, 30)) as pilot:
+        tab = app.query_one(CalculatorTab)
+
+        async def solved():
+            for _ in range(200):
+                await pilot.pause()
+                await app.workers.wait_for_complete()
+                if not tab.busy:
+                    return
+
+        await solved()
+        assert app.query_one("#in-code", Input).value == "0x10"
+        assert len(tab.query("#row-code .field-unit")) == 1  # an input: the unit column is kept
+        assert tab.solution.outputs["double"].value == 32
+        tab.set_entries({"code": "0xFF"})
+        await solved()
+        assert app.query_one("#in-code", Input).value == "0xFF"
+        assert tab.current_inputs() == {"code": "0xff"}
+        assert tab.solution.outputs["double"].value == 510
+
+
+# ---- bounds: min, max and default in the display unit -------------------------------------------
+
+def test_bounds_are_in_the_display_unit_and_messages_quote_them_there():
+    from gearhead.core.model import Field
+
+    f = Field("wall", "Wall", "length", "in", default=0.0625, min=0, min_exclusive=True, max=1)
+    assert f.bounds_si() == (0.0, 0.0254)
+    assert f.parse("1 in") == 0.0254 and f.parse("25.4 mm") == pytest.approx(0.0254)
+    with pytest.raises(InputError, match=r"too large: must be at most 1 in"):
+        f.parse("26 mm")
+    with pytest.raises(InputError, match=r"too small: must be greater than 0 in"):
+        f.parse("0")
+    pct = Field("loss", "Loss", "dimensionless", "%", default=5, min=0, max=100)
+    assert pct.parse("100") == 1.0 and pct.parse("1") == 0.01
+    with pytest.raises(InputError, match=r"at most 100 %"):
+        pct.parse("150")

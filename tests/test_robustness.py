@@ -25,16 +25,11 @@ junk = st.sampled_from(["", " ", "abc", "nan", "inf", "-inf", "1e999", "5 parsec
 
 
 def field_value(f):
-    if f.type == "flags":
-        return st.one_of(st.lists(st.sampled_from(f.choices), unique=True).map(", ".join),
-                         st.just("warp_drive"))
-    if f.type == "choice":
-        return st.one_of(st.sampled_from(f.choices), st.just("not-a-choice"))
-    if f.type == "bool":
-        return st.one_of(st.booleans(), st.sampled_from(["yes", "maybe"]))
-    if f.type == "int":
-        return st.one_of(st.integers(min_value=-5, max_value=10**9), st.sampled_from(["2.5", "x", "1e400"]))
-    return st.one_of(numbers, numbers.map(str), junk)
+    if f.kind.numeric:  # quantities and whole numbers
+        return st.one_of(numbers, numbers.map(str), junk, st.sampled_from(["2.5", "x", "1e400"]))
+    words = f.kind.vocabulary(f)  # choice and flag names, yes/no words...
+    return st.one_of(st.sampled_from(words), st.lists(st.sampled_from(words), unique=True).map(", ".join),
+                     st.booleans(), st.sampled_from(["not-a-choice", "warp_drive", "maybe"]))
 
 
 def inputs_for(calc):
@@ -84,6 +79,6 @@ def test_every_mode_with_extreme_single_entries(calc_id):
     for mode in modes:
         base = {"mode": mode} if mode else {}
         for f in calc.fields:
-            if f.type in ("quantity", "int"):
+            if f.kind.numeric:
                 for x in extremes:
                     check(calc_id, {**base, f.name: x})

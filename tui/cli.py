@@ -226,15 +226,10 @@ def _preset_out(args, calc, raw: dict, solution) -> int:
     from gearhead.core import presets
     from gearhead.core.export import preset_toml
 
-    inputs = {f.name: f.default_text() if f.type not in ("bool", "choice") else f.default
-              for f in calc.fields}
+    inputs = {f.name: f.kind.initial_entry(f) for f in calc.fields}
     inputs.update(raw)
-    for f in calc.fields:  # whole numbers as TOML integers, as the app saves them
-        if f.type == "int":
-            try:
-                inputs[f.name] = int(str(inputs[f.name]).strip())
-            except ValueError:
-                pass
+    # as the app saves them (whole numbers as TOML integers)
+    inputs = {f.name: f.kind.stored(f, inputs[f.name]) for f in calc.fields}
     name = presets.load(args.preset).name if args.preset else f"{calc.title} (command line)"
     text = preset_toml(calc.id, inputs, name)
     if args.preset_out == "-":

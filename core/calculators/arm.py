@@ -49,7 +49,7 @@ from ..sim import motion
 from ..sim.effects import Effect, Effects, Part
 from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
 
-G = motion.G_STD
+from ..constants import G0 as G
 INERTIA_MODELS = ("uniform_bar", "entered")
 INERTIA_LABELS = ("Uniform bar: I = 4/3·m·L² (bar of length 2L)", "Entered moment of inertia")
 
@@ -85,21 +85,21 @@ FIELDS = (
     *motion.battery_motor_fields("Kraken X60", 1),
     Field("ratio", "Reduction G", "dimensionless", "", default=75, min=0, min_exclusive=True, max=1e5,
           modes=("move",), help="Motor turns per arm turn."),
-    Field("arm_mass", "Arm mass", "mass", "lb", default=8, min=0, min_exclusive=True, max=1e5,
+    Field("arm_mass", "Arm mass", "mass", "lb", default=8, min=0, min_exclusive=True, max=2.2e5,
           help="Everything that swings: arm, end effector, game piece."),
     Field("com_distance", "Pivot to centre of mass", "length", "in", default=12, min=0, min_exclusive=True,
-          max=1000, help="L: distance from the pivot to the centre of mass of everything that swings."),
+          max=3.9e4, help="L: distance from the pivot to the centre of mass of everything that swings."),
     Field("inertia_model", "Moment of inertia", choices=INERTIA_MODELS, choice_labels=INERTIA_LABELS,
           default="uniform_bar",
           help="Uniform bar: I = 4/3·m·L², a bar of length 2L pivoted at its end. Otherwise enter I: "
                "from CAD (mass properties about the pivot axis), or add m_i·r_i² for each lump "
                "(end effector, game piece) to m·l²/3 for the bare tube of length l."),
     Field("moment_of_inertia", "Moment of inertia about pivot", "inertia", "lb*in**2", default=1500,
-          min=0, min_exclusive=True, max=1e9, when=(("inertia_model", ("entered",)),),
+          min=0, min_exclusive=True, max=3.4e12, when=(("inertia_model", ("entered",)),),
           help="About the pivot axis; must be at least m·L² (all mass at the centre of mass)."),
-    Field("start_angle", "Start angle", "angle", "deg", default=-30, min=-2 * math.pi, max=2 * math.pi,
+    Field("start_angle", "Start angle", "angle", "deg", default=-30, min=-360, max=360,
           help="From the horizontal, up positive (−90°: hanging straight down)."),
-    Field("goal_angle", "Goal angle", "angle", "deg", default=90, min=-2 * math.pi, max=2 * math.pi,
+    Field("goal_angle", "Goal angle", "angle", "deg", default=90, min=-360, max=360,
           help="From the horizontal, up positive; below the start the arm swings down."),
     EFFECTS.field("gravity (m·g·L·cos θ); stator_limit, supply_limit (per motor current limits); "
                   "battery_sag (bus = battery − R × total supply current); friction (kS); "

@@ -48,7 +48,6 @@ from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
 from ..units import format_number
 
-from ..constants import LBF
 MILD_STEEL_YIELD = 250e6  # Pa, ASTM A36 (the low end of common steels), for the short-column warning
 
 # name: (label, E Pa, G Pa, yield Pa or None, density kg/m³ or None); REFERENCE_DATA.md

@@ -49,7 +49,7 @@ from ..sim import motion
 from ..sim.effects import Effect, Effects, Part
 from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
 
-G = motion.G_STD
+from ..constants import G0 as G
 RIGGINGS = ("continuous", "cascade")
 RIGGING_LABELS = ("Continuous (carriage moves with the rope)", "Cascade (carriage moves stages × the first stage)")
 
@@ -71,7 +71,7 @@ EFFECTS = Effects(
                            "a constant force against the motion (reported as kS)", 2.0),
     Effect("counterbalance", "a constant-force spring pulling the carriage up", _counterbalance,
            fields=(Field("counterbalance_force", "Counterbalance force", "force", "lbf", default=10, min=0,
-                         max=1e6, help="Upward pull of constant-force springs on the carriage."),)),
+                         max=2.2e5, help="Upward pull of constant-force springs on the carriage."),)),
 )
 
 
@@ -80,13 +80,13 @@ FIELDS = (
     *motion.battery_motor_fields("NEO", 2),
     Field("ratio", "Reduction G", "dimensionless", "", default=10, min=0, min_exclusive=True, max=1e5,
           modes=("move",), help="Motor turns per spool turn."),
-    Field("load_mass", "Load mass", "mass", "lb", default=15, min=0, min_exclusive=True, max=1e5,
+    Field("load_mass", "Load mass", "mass", "lb", default=15, min=0, min_exclusive=True, max=2.2e5,
           help="Carriage plus game piece (plus moving stages, scaled by their speed ratio squared)."),
-    Field("spool_diameter", "Spool diameter", "length", "in", default=1.5, min=0, min_exclusive=True, max=100,
+    Field("spool_diameter", "Spool diameter", "length", "in", default=1.5, min=0, min_exclusive=True, max=3900,
           help="Pitch diameter of the spool, drum or sprocket that pulls the first stage."),
-    Field("travel", "Travel", "length", "in", default=40, min=-1e4, max=1e4,
+    Field("travel", "Travel", "length", "in", default=40, min=-3.9e5, max=3.9e5,
           help="From start to goal along the rail; up is positive, negative moves down."),
-    Field("incline", "Incline from vertical", "angle", "deg", default=0, min=0, max=math.pi,
+    Field("incline", "Incline from vertical", "angle", "deg", default=0, min=0, max=180,
           help="0: vertical; 90°: horizontal slide (no gravity along it); beyond 90° the rail points down."),
     Field("rigging", "Rigging", choices=RIGGINGS, choice_labels=RIGGING_LABELS, default="continuous",
           help="Continuous: the carriage moves with the rope. Cascade: each stage doubles up, the carriage "

@@ -35,7 +35,7 @@ FIELDS = (
           help="Axial distance p between neighbouring threads (1/TPI); 1/2-10 Acme has p = 0.1 in."),
     Field("starts", "Starts", integer=True, default=1, min=1, max=16,
           help="Number of thread starts n; the lead (travel per turn) is n·p."),
-    Field("thread_angle", "Thread angle", "angle", "deg", default=29, min=0, max=math.pi,
+    Field("thread_angle", "Thread angle", "angle", "deg", default=29, min=0, max=180,
           max_exclusive=True,
           help="Full included thread angle 2α: 29° Acme, 30° metric trapezoidal, 0° square, 60° V thread."),
     Field("friction", "Thread friction", "dimensionless", "", default=0.15, min=0,

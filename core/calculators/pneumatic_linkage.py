@@ -55,7 +55,6 @@ TOUCH = 1e-10  # relative slack: inputs meant to be exactly at dead centre still
 # distance from the arm pivot), i.e. while the cylinder pushes within asin(0.1) = 5.7° of along
 # the arm, so the torque is under a tenth of F·r.
 NEAR_DEAD_CENTRE = 0.10
-ANGLE_LIMIT = 2 * math.pi  # arm angles beyond ±360° describe no further pose and lose digits in sin
 SIDE_SLACK = 1e-9  # sin of the angle by which a rod end may sit past the line through both pivots (rounding)
 CURVE_POINTS = 61
 
@@ -68,11 +67,11 @@ FIELDS = (
     Field("pivot_y", "Cylinder pivot B (vertical)", "length", "in", default=-14, modes=("forward",),
           help="B: how far the cylinder's fixed pivot lies above the arm pivot (negative: below)."),
     Field("retracted_angle", "Arm angle retracted θ1", "angle", "deg", default=-45, modes=("reverse",),
-          min=-ANGLE_LIMIT, max=ANGLE_LIMIT,
+          min=-360, max=360,
           help="Arm rotation θ1 with the cylinder retracted, counter-clockwise from the pose in "
                "which the rod end is at (X, Y); −360° to 360°."),
     Field("extended_angle", "Arm angle extended θ2", "angle", "deg", default=45, modes=("reverse",),
-          min=-ANGLE_LIMIT, max=ANGLE_LIMIT,
+          min=-360, max=360,
           help="Arm rotation θ2 with the cylinder extended, −360° to 360°; |θ2 − θ1| must be under 180°."),
     Field("arm_x", "Rod end on arm X", "length", "in", default=5,
           help="X: rod-end attachment along the arm, from the arm pivot, at θ = 0."),

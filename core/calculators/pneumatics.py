@@ -40,13 +40,11 @@ from ..sim.effects import Effect, Effects, Part, Slot
 from ..sim.integrate import Event, integrate
 from ..sim.scene import SOLVE_NFEV, STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats
 
-from ..constants import INCH, PSI
+from ..constants import PSI
 P_ATM = 101325.0  # Pa
 CFM = 0.028316846592 / 60  # m^3/s per ft^3/min
 RELIEF = 125 * PSI  # FRC relief valve
 SLACK = 1 + 1e-12  # field bounds: a value typed exactly at a bound parses a bit off it (unit factors)
-PRESSURE_MAX = RELIEF * SLACK  # "125 psi" is in
-CYLINDER_PRESSURE_MAX = 200 * PSI * SLACK
 GROUPS = 3
 MIN_PERIOD = 0.1  # s; a valve cannot cycle faster, and it bounds the work of a match
 MAX_FIRINGS = SOLVE_NFEV // 30  # with the compressor on: 2 runs × ≥ 15 evaluations per firing
@@ -149,9 +147,9 @@ EFFECTS = Effects(
                               "preserving PCHIP); the seed's 1 s comparison uses its 4th-degree fit."),)),
     Effect("pressure_switch", "stops the compressor at switch_off, restarts it at or below switch_on",
            _switch, default_on=True,
-           fields=(Field("switch_on", "Switch on at", "pressure", "psi", default=95, min=0, max=PRESSURE_MAX,
+           fields=(Field("switch_on", "Switch on at", "pressure", "psi", default=95, min=0, max=125 * SLACK,
                          help="Pressure switch closes (compressor on) at or below this."),
-                   Field("switch_off", "Switch off at", "pressure", "psi", default=120, min=0, max=PRESSURE_MAX,
+                   Field("switch_off", "Switch off at", "pressure", "psi", default=120, min=0, max=125 * SLACK,
                          help="Pressure switch opens (compressor off) at this."),)),
     Effect("regulator", "cylinders get min(setting, storage pressure)",
            lambda values, V: Part(params={"regulated": True}), default_on=True),
@@ -166,15 +164,15 @@ def _group_fields(i: int):
         Field(f"c{i}_count", f"Cyl {i}: count", integer=True, default=2 if on else 0, min=0, max=50,
               help=g + "number of identical cylinders firing together (0: group unused)."),
         Field(f"c{i}_bore", f"Cyl {i}: bore", "length", "in", default=1.5, min=0, min_exclusive=True,
-              max=0.5, help=g + "bore D."),
-        Field(f"c{i}_rod", f"Cyl {i}: rod", "length", "in", default=0.4375, min=0, max=0.5,
+              max=19, help=g + "bore D."),
+        Field(f"c{i}_rod", f"Cyl {i}: rod", "length", "in", default=0.4375, min=0, max=19,
               help=g + "rod diameter d (smaller than the bore)."),
         Field(f"c{i}_stroke", f"Cyl {i}: stroke", "length", "in", default=6 if on else 4, min=0,
-              min_exclusive=True, max=5, help=g + "stroke L."),
+              min_exclusive=True, max=190, help=g + "stroke L."),
         Field(f"c{i}_push_pressure", f"Cyl {i}: push pressure", "pressure", "psi", default=60, min=0,
-              max=CYLINDER_PRESSURE_MAX, help=g + "pressure on the extend stroke (its regulator setting)."),
+              max=200 * SLACK, help=g + "pressure on the extend stroke (its regulator setting)."),
         Field(f"c{i}_pull_pressure", f"Cyl {i}: pull pressure", "pressure", "psi", default=60, min=0,
-              max=CYLINDER_PRESSURE_MAX, help=g + "pressure on the retract stroke."),
+              max=200 * SLACK, help=g + "pressure on the retract stroke."),
         Field(f"c{i}_period", f"Cyl {i}: firing period", "time", "s", default=10 if on else 5, min=0,
               max=1000, help=g + "time between actuations (extend + retract); 0 fires once."),
         Field(f"c{i}_start", f"Cyl {i}: first firing", "time", "s", default=5 if on else 0, min=0,
@@ -184,9 +182,9 @@ def _group_fields(i: int):
 
 FIELDS = (
     _EFFECT_FIELDS["compressor_model"],
-    Field("tank_volume", "Storage volume", "volume", "cc", default=1148, min=1e-6 / SLACK, max=1.0 * SLACK,
+    Field("tank_volume", "Storage volume", "volume", "cc", default=1148, min=1 / SLACK, max=1e6 * SLACK,
           help="Total storage: tanks plus tubing (two Clippard tanks: 1148 cc)."),
-    Field("start_pressure", "Start pressure", "pressure", "psi", default=120, min=0, max=PRESSURE_MAX,
+    Field("start_pressure", "Start pressure", "pressure", "psi", default=120, min=0, max=125 * SLACK,
           help="Storage pressure (gauge) when the match starts."),
     _EFFECT_FIELDS["switch_on"],
     _EFFECT_FIELDS["switch_off"],

@@ -87,7 +87,7 @@ EFFECTS = Effects(
                    Field("lift_coefficient", "Lift coefficient", default=0.2, min=0, max=1,
                          help="C_L for `magnus`, constant over the flight. It grows with the spin ratio "
                               "ω·r/v (shown as an output): about 0.1-0.3 for spin ratios 0.1-0.4."),
-                   Field("spin", "Spin", "angular_speed", "rpm", default=0, min=-1e5, max=1e5,
+                   Field("spin", "Spin", "angular_speed", "rpm", default=0, min=-9.5e5, max=9.5e5,
                          help="Spin of the ball; positive is backspin (lifts), negative topspin (drops). Its "
                               "sign sets the direction of the Magnus force, C_L sets its size; 0: no Magnus "
                               "force."),
@@ -103,7 +103,7 @@ FIELDS = (
                "Reverse: from the target to the release angle and speed (6.2)."),
     Field("release_height", "Release height", "length", "m", default=0.6, min=0, max=1000,
           help="Height h_i of the ball above the floor when it leaves the mechanism."),
-    Field("release_angle", "Release angle", "angle", "deg", default=60, min=-HALF_PI, max=HALF_PI,
+    Field("release_angle", "Release angle", "angle", "deg", default=60, min=-90, max=90,
           min_exclusive=True, max_exclusive=True, modes=("forward",),
           help="Angle θ_i of the release velocity above the horizontal."),
     Field("release_speed", "Release speed", "speed", "m/s", default=7.5, min=0, min_exclusive=True,
@@ -113,7 +113,7 @@ FIELDS = (
                            "closer, the release angle of a reverse solve rounds to 90°, which no throw has)."),
     Field("target_height", "Target height", "length", "m", default=2.64, min=0, max=1000,
           modes=("reverse",), help="Height h_f above the floor where the ball must pass."),
-    Field("target_angle", "Target angle", "angle", "deg", default=-45, min=-HALF_PI, max=HALF_PI,
+    Field("target_angle", "Target angle", "angle", "deg", default=-45, min=-90, max=90,
           min_exclusive=True, max_exclusive=True, modes=("reverse",),
           help="Angle θ_f of the ball's path at the target (negative: coming down). It must be "
                "below the line from release to target: a thrown ball curves downward (only strong "

@@ -36,9 +36,9 @@ FIELDS = (
           help="G = N/n (75): large gear teeth over small gear teeth, 1 to 50. Pairs have a pinion "
                f"of at least {MIN_TEETH} teeth (about the smallest sold for FRC/VEX motors)."),
     Field("center_distance", "Center distance", "length", "in", default=2, min=0, min_exclusive=True,
-          max=100 * IN, help="Distance d between the two gear centers (76), up to 100 in."),
-    Field("diametral_pitch", "Diametral pitch", "reciprocal_length", "1/in", default=20, min=1 / IN,
-          max=200 / IN, help="p: teeth per inch of pitch diameter (e.g. 20 DP, 32 DP), 1 to 200."),
+          max=100, help="Distance d between the two gear centers (76), up to 100 in."),
+    Field("diametral_pitch", "Diametral pitch", "reciprocal_length", "1/in", default=20, min=1,
+          max=200, help="p: teeth per inch of pitch diameter (e.g. 20 DP, 32 DP), 1 to 200."),
 )
 
 OUTPUTS = (

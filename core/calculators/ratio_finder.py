@@ -21,7 +21,6 @@ from ..errors import InputError
 from ..model import Calculator, Column, Field, Output, Result, Table
 from ..parts import BORES, FAMILIES, SHAFT_BORES, VENDORS
 
-from ..constants import INCH as IN
 STAGES = (1, 2, 3)
 
 FIELDS = (

@@ -101,7 +101,7 @@ FIELDS = (
           help="Projectile mass."),
     Field("gravity", "Gravity g", "acceleration", "m/s**2", default=9.81, min=0.1, max=100,
           help="Gravitational acceleration."),
-    Field("release_angle", "Release angle", "angle", "deg", default=45, min=0, max=89 * DEG,
+    Field("release_angle", "Release angle", "angle", "deg", default=45, min=0, max=89,
           help="Release when the projectile's velocity points this far above the horizontal, toward the throw."),
     EFFECTS.field("sling (2 DOF), ground_contact (projectile slides until lifted), hinged_counterweight "
                   "(hinge or pendulum), air_drag (flight).", retired=RETIRED),

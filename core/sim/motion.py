@@ -48,7 +48,6 @@ from .motor_limits import _Array, SCALAR, bus_resistance_of, electrical, electri
 from .integrate import Event, integrate
 from .scene import SimRun
 
-from ..constants import G0 as G_STD
 T_MAX = 3600.0  # s: a move longer than an hour is not a mechanism, it is an error
 DP54_STEPS = 2_000  # beyond this the move is stiff: LSODA takes over
 SAMPLES = 120  # points per plotted curve
@@ -120,7 +119,7 @@ def friction_effect(quantity: str, unit: str, name: str, help: str, default: flo
         return Part(terms={"friction": lambda: F},
                     report=lambda run: {"kS": F / mech.force_per_volt})
     return Effect("friction", help, build,
-                  fields=(Field(name, "Friction", quantity, unit, default=default, min=0, max=1e6,
+                  fields=(Field(name, "Friction", quantity, unit, default=default, min=0, max=2.2e5,
                                 help="Constant force or torque against the motion (Coulomb friction), "
                                      "reported as kS."),),
                   outputs=(Output("kS", "kS", "voltage", "V",
@@ -531,17 +530,17 @@ def feedback_fields(position_quantity: str, position_unit: str, q_pos: float, sp
                     speed_unit: str, q_vel: float) -> tuple[Field, ...]:
     return (
         Field("q_position", "LQR position tolerance", position_quantity, position_unit, default=q_pos,
-              min=0, min_exclusive=True, max=1e3,
+              min=0, min_exclusive=True, max=3.9e4,
               help="LQR state tolerance on position (WPILib qelms[0]): the error you accept."),
         Field("q_velocity", "LQR velocity tolerance", speed_quantity, speed_unit, default=q_vel,
-              min=0, min_exclusive=True, max=1e4,
+              min=0, min_exclusive=True, max=3.9e5,
               help="LQR state tolerance on velocity (WPILib qelms[1])."),
         Field("r_volts", "LQR control effort", "voltage", "V", default=12, min=0, min_exclusive=True, max=100,
               help="LQR input tolerance (WPILib relms): the voltage you are willing to apply."),
-        Field("control_period", "Control period", "time", "ms", default=20, min=1e-4, max=1,
+        Field("control_period", "Control period", "time", "ms", default=20, min=0.1, max=1000,
               help="Loop period dt the gains are discretised for (roboRIO: 20 ms; on a motor "
                    "controller: 1 ms)."),
-        Field("sensor_delay", "Sensor delay", "time", "ms", default=0, min=0, max=1,
+        Field("sensor_delay", "Sensor delay", "time", "ms", default=0, min=0, max=1000,
               help="Measurement latency; the gains are latency-compensated as WPILib's "
                    "LinearQuadraticRegulator.latencyCompensate does (0: none)."),
     )

@@ -41,30 +41,32 @@ class FieldRow(Horizontal):
     """Label, entry widget and unit for one field; an error line appears under it when needed."""
 
     def __init__(self, field: Field, value: Any, blink: bool) -> None:
-        # choices, flags and yes/no have no unit: their widget takes the unit's column too, so
-        # "pressure switch" or "Rectangular tube" is not cut at 120 columns
-        wide = field.type in ("flags", "choice", "bool") and not field.unit
-        super().__init__(classes="field-row" + (" flags-row" if field.type == "flags" else "")
-                         + (" unitless" if wide else ""), id=f"row-{field.name}")
+        # the field's kind describes the widget (core.fields.Widget); a widget without a unit
+        # label (choices, flags and yes/no) takes the unit's column too, so "pressure switch" or
+        # "Rectangular tube" is not cut at 120 columns
+        self.widget_spec = field.kind.widget(field)
+        shape = self.widget_spec.shape
+        super().__init__(classes="field-row" + (" flags-row" if shape == "checkboxes" else "")
+                         + (" unitless" if self.widget_spec.unit is None else ""), id=f"row-{field.name}")
         self.field = field
         self.initial = value
         self.blink = blink
 
     def compose(self) -> ComposeResult:
-        f = self.field
+        f, spec = self.field, self.widget_spec
         tip = Text(f.help) if f.help else None  # a str tooltip is markup: "[psi]" would vanish
         yield Label(Text(f.label), classes="field-label")
-        if f.type == "choice":
-            options = [(Text(f.label_of(c)), c) for c in f.choices]
+        if spec.shape == "select":
+            options = [(Text(label), value) for value, label in spec.options]
             yield Select(options, value=self.initial, allow_blank=False, id=f"in-{f.name}",
                          classes="field-input", tooltip=tip, compact=True)
-        elif f.type == "flags":
+        elif spec.shape == "checkboxes":
             chosen = set(x for x in str(self.initial).replace(",", " ").split() if x)
             with Vertical(classes="field-input flags", id=f"in-{f.name}"):
-                for c in f.choices:
-                    yield Checkbox(Content(f.label_of(c)), value=c in chosen, id=f"flag-{f.name}--{c}",
+                for value, label in spec.options:
+                    yield Checkbox(Content(label), value=value in chosen, id=f"flag-{f.name}--{value}",
                                    compact=True, tooltip=tip)
-        elif f.type == "bool":
+        elif spec.shape == "checkbox":
             yield Checkbox(value=bool(self.initial), id=f"in-{f.name}", classes="field-input",
                            tooltip=tip, compact=True)
         else:
@@ -72,8 +74,8 @@ class FieldRow(Horizontal):
                           tooltip=tip, select_on_focus=False, compact=True)
             entry.cursor_blink = self.blink
             yield entry
-        if not self.has_class("unitless"):
-            yield Label(Text(pretty_unit(f.unit)), classes="field-unit")
+        if spec.unit is not None:
+            yield Label(Text(pretty_unit(spec.unit)), classes="field-unit")
 
 
 class CalculatorTab(Widget):
@@ -104,11 +106,7 @@ class CalculatorTab(Widget):
     @staticmethod
     def initial_entry(f: Field) -> Any:
         """A field's default as its widget holds it."""
-        if f.type == "bool":
-            return bool(f.default)
-        if f.type == "choice":
-            return f.default
-        return f.default_text()
+        return f.kind.initial_entry(f)
 
     # ---- layout -------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -287,36 +285,20 @@ class CalculatorTab(Widget):
         merged = dict(self.entries)
         for name, value in values.items():
             f = self.calculator.field(name)
-            widget = self.query_one(f"#in-{name}")
-            if f.type == "flags":
-                chosen = set(value) if isinstance(value, (list, tuple, set, frozenset)) else \
-                    set(x for x in str(value).replace(",", " ").split() if x)
-                for c in f.choices:
+            value = f.kind.entry(f, value)
+            row = self.query_one(f"#row-{name}", FieldRow)
+            if row.widget_spec.shape == "checkboxes":
+                chosen = set(x for x in str(value).replace(",", " ").split() if x)
+                for c, _ in row.widget_spec.options:
                     self.query_one(f"#flag-{name}--{c}", Checkbox).value = c in chosen
-                value = ", ".join(c for c in f.choices if c in chosen)
-            elif f.type == "bool":
-                value = value if isinstance(value, bool) else str(value).lower() in ("true", "yes", "1", "on")
-                widget.value = value
-            elif f.type == "choice":
-                widget.value = value
             else:
-                value = str(value)
-                widget.value = value
+                self.query_one(f"#in-{name}").value = value
             merged[name] = value
         self.entries = merged
 
     def current_inputs(self) -> dict[str, Any]:
         """What the user entered, as a preset stores it (whole numbers as TOML integers)."""
-        out: dict[str, Any] = {}
-        for f in self.calculator.fields:
-            v = self.entries[f.name]
-            if f.type == "int":
-                try:
-                    v = int(str(v).strip())
-                except ValueError:
-                    pass
-            out[f.name] = v
-        return out
+        return {f.name: f.kind.stored(f, self.entries[f.name]) for f in self.calculator.fields}
 
     @on(DataTable.RowSelected, ".results")
     def _cycle_unit(self, event: DataTable.RowSelected) -> None:
