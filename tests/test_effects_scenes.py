@@ -220,3 +220,22 @@ def test_fold_applies_the_terms_in_catalogue_order_on_the_running_value(arity):
         got = catalogue.assemble(on, {}, None, slots).slots["s"]("start:", *args)
         assert got == "start:" + want.replace(";", f"{sum(args)};")
     assert catalogue.assemble((), {}, None, slots).slots["s"] is None
+
+
+def test_the_retired_absolute_pressure_effect_still_means_the_absolute_model(tmp_path):
+    """'absolute_pressure' was an effect; it is the choice pressure_model = absolute now. An entry or
+    preset naming it solves exactly as the choice does, with a notice (never refused, never ignored)."""
+    from gearhead.core.model import solve
+    from gearhead.core.presets import load
+
+    new = solve("pneumatics", {"effects": "compressor", "pressure_model": "absolute"})
+    old = solve("pneumatics", {"effects": "compressor, absolute_pressure"})
+    assert old.outputs["final_pressure"].value == new.outputs["final_pressure"].value
+    assert any("pressure_model = absolute" in w for w in old.warnings)
+    gauge = solve("pneumatics", {"effects": "compressor"})
+    assert gauge.outputs["final_pressure"].value != new.outputs["final_pressure"].value
+    path = tmp_path / "old.toml"
+    path.write_text('calculator = "pneumatics"\nname = "old"\nformat = 1\n[inputs]\n'
+                    'effects = "compressor, absolute_pressure"\n', encoding="utf-8")
+    loaded = load(path)
+    assert loaded.inputs["pressure_model"] == "absolute" and "absolute_pressure" not in loaded.inputs["effects"]

@@ -155,6 +155,8 @@ EFFECTS = Effects(
            lambda values, V: Part(params={"regulated": True}), default_on=True),
 )
 _EFFECT_FIELDS = {f.name: f for f in EFFECTS.fields()}
+# once an effect, now a model choice: a preset or --set naming it still means the choice (with a notice)
+RETIRED = (("absolute_pressure", "pressure_model", "absolute"),)
 
 
 def _group_fields(i: int):
@@ -191,7 +193,7 @@ FIELDS = (
     Field("match_length", "Match length", "time", "s", default=150, min=0, min_exclusive=True, max=3600,
           help="Simulated time."),
     EFFECTS.field("compressor, pressure_switch, regulator. (Absolute P·V bookkeeping, once the effect "
-                  "absolute_pressure, is the choice pressure_model = absolute.)"),
+                  "absolute_pressure, is the choice pressure_model = absolute.)", retired=RETIRED),
     Field("pressure_model", "Air bookkeeping", choices=PRESSURE_MODELS, default="gauge",
           choice_labels=("Gauge P·V (the seed's)", "Absolute P·V, isothermal"),
           help="How a stroke's air leaves the storage: gauge, as the seed's (79), (81); or absolute, "
@@ -410,7 +412,13 @@ def seed_step(v) -> tuple[float, float, tuple[list[float], list[float]]]:
 
 
 def compute(v) -> Result:
+    notices = []
+    for name, field, value in RETIRED:  # an older entry naming a retired effect: what replaced it
+        if name in v["effects"]:
+            v = {**v, "effects": v["effects"] - {name}, field: value}
+            notices.append(FIELDS[[f.name for f in FIELDS].index("effects")].notice(name))
     run = run_with_stats(simulate, v, ADVICE)
+    run.warnings[:0] = notices
     seed_min, seed_final, seed_trace = seed_step(v)
     run.series["spreadsheet, 1 s"] = seed_trace
     run.values["seed_min_pressure"] = seed_min

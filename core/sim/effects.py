@@ -306,7 +306,7 @@ class RetiredFlags(Field):
         return super().parse([x for x in items if x not in old]) | found
 
     def _max_chars(self) -> int:
-        return super()._max_chars() + sum(len(name) + 2 for name, _, _ in self.retired)
+        return self.kind.max_chars(self) + sum(len(name) + 2 for name, _, _ in self.retired)
 
     def notice(self, name: str) -> str:
         """What to tell the user who still names a retired flag."""
