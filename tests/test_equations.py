@@ -3,7 +3,9 @@ that comes from an equation names it in `equation` (issue 15).
 
 An equation is either the seed's number, "(12)", from seeds/003 (the AMB Design Spreadsheet
 Equations, numbered (1)-(117)), or a label the calculator's own module docstring defines, "(EL3)",
-for what the seed does not cover. Several are written "(61)-(64)" or "(14), (GR1)".
+for what the seed does not cover. Several are written "(61)-(64)" or "(14), (GR1)". The flywheel
+(seeds/000, which numbers nothing) numbers the seed's equations (1)-(9) in its module docstring; the
+trebuchet's seed (seeds/001) numbers its sections, not its equations, and is cited "§2.1, (T3)".
 """
 
 from __future__ import annotations
@@ -39,6 +41,12 @@ SECTION_EQUATIONS = {
 }
 SEED_FILE = Path("/work/shared/seeds/003_38524b71ccf9c8b1.txt")  # read when present (not in the repo)
 
+# Calculators of the other seeds. Their numbers "(3)" are the module docstring's own (seeds/000 numbers
+# no equations); a section of the seed is cited "§2.1" (seeds/001 numbers its sections 1.1-2.5).
+OWN_NUMBERS = {"seed 000"}
+SEED_SECTIONS = {"001": ("1", "1.1", "1.2", "1.3", "1.4", "1.5", "2", "2.1", "2.2", "2.3", "2.4", "2.5")}
+SECTION_FILES = {"001": Path("/work/shared/seeds/001_0826cae8dd8b66ab.txt")}
+
 # Outputs that report on the computation, not on the mechanism: they may have no equation.
 BOOKKEEPING = {"error_estimate", "rhs_evaluations", "wall_time"}
 BOOKKEEPING_OF = {
@@ -46,12 +54,10 @@ BOOKKEEPING_OF = {
     "trebuchet": {"candidates"},  # throws evaluated by the optimiser
 }
 
-# Filled in by other engineers in parallel (issue 15): skipped while none of their outputs names an
-# equation, enforced as soon as one does (the lead removes this after merging).
-OTHERS = {"projectile", "pneumatics", "trebuchet", "flywheel", "drivetrain", "motor"}
-
-EQUATION_FORM = re.compile(r"\((\w+)\)(\s*[-–,/]\s*\((\w+)\))*")
+ITEM = r"(?:\(\w+\)|§\d+(?:\.\d+)?)"  # an equation "(12)", "(GR1)" or a seed section "§2.1"
+EQUATION_FORM = re.compile(rf"{ITEM}(\s*[-–,/]\s*{ITEM})*")
 LABEL = re.compile(r"\((\w+)\)")
+SECTION_REF = re.compile(r"§(\d+(?:\.\d+)?)")
 
 
 def module_doc(calc: Calculator) -> str:
@@ -73,30 +79,23 @@ def unknown_labels(calc: Calculator, out: Output) -> list[str]:
     allowed = set(SECTION_EQUATIONS.get(calc.section, ()))
     bad = []
     for label in LABEL.findall(out.equation):
-        if label.isdigit():
+        if label.isdigit() and calc.section not in OWN_NUMBERS:
             if int(label) not in allowed:
                 bad.append(f"({label}) is not an equation of seed section {calc.section or '-'}")
         elif f"({label})" not in doc:
             bad.append(f"({label}) is not defined in the module docstring")
+    for ref in SECTION_REF.findall(out.equation):
+        if ref not in SEED_SECTIONS.get(calc.section, ()):
+            bad.append(f"§{ref} is not a section of seed {calc.section or '-'}")
     return bad
-
-
-def pending(calc: Calculator) -> bool:
-    return calc.id in OTHERS and not any(o.equation for o in calc.outputs)
 
 
 CALCS = list(calculators().values())
 IDS = [c.id for c in CALCS]
 
 
-def _skip_pending(calc: Calculator) -> None:
-    if pending(calc):
-        pytest.skip(f"{calc.id}: equations and help texts are being filled in by another engineer (issue 15)")
-
-
 @pytest.mark.parametrize("calc", CALCS, ids=IDS)
 def test_every_output_has_a_one_line_help(calc):
-    _skip_pending(calc)
     bad = [f"{o.name}: {problem}" for o in calc.outputs for problem in help_problems(o)]
     assert not bad, f"{calc.id}: " + "; ".join(bad)
 
@@ -114,13 +113,12 @@ def help_problems(o: Output) -> list[str]:
 
 @pytest.mark.parametrize("calc", CALCS, ids=IDS)
 def test_every_output_names_its_equation(calc):
-    _skip_pending(calc)
     skip = BOOKKEEPING | BOOKKEEPING_OF.get(calc.id, set())
     missing = [o.name for o in calc.outputs if o.name not in skip and not o.equation]
     assert not missing, f"{calc.id}: no equation for {', '.join(missing)}"
     malformed = [f"{o.name}: {o.equation!r}" for o in calc.outputs
                  if o.equation and not EQUATION_FORM.fullmatch(o.equation)]
-    assert not malformed, f"{calc.id}: equations written neither (12) nor (12)-(14) nor (12), (GR1): {malformed}"
+    assert not malformed, f"{calc.id}: equations written neither (12) nor (12)-(14) nor (12), (GR1) nor §2.1, (T3): {malformed}"
     unknown = [f"{o.name}: {why}" for o in calc.outputs for why in unknown_labels(calc, o)]
     assert not unknown, f"{calc.id}: " + "; ".join(unknown)
 
@@ -142,6 +140,15 @@ def test_section_table_matches_the_seed():
     assert tags == set(SEED_TAGS)
 
 
+def test_section_references_match_the_seeds():
+    """SEED_SECTIONS lists the sections the seed text numbers, no more and no fewer."""
+    for section, path in SECTION_FILES.items():
+        if not path.exists():
+            pytest.skip("seed text not on this machine")
+        numbered = set(re.findall(r"^(\d+(?:\.\d+)?) \S", path.read_text(), re.M))
+        assert numbered == set(SEED_SECTIONS[section]), section
+
+
 def test_labels_are_checked():
     """The checks can fail: a wrong section number, an undefined label, a bad form, a long help."""
     calc = calculators()["gear_ratio"]
@@ -149,6 +156,14 @@ def test_labels_are_checked():
     assert unknown_labels(calc, Output("x", "X", equation="(ZZ9)"))
     assert not unknown_labels(calc, Output("x", "X", equation="(12), (10)"))
     assert not EQUATION_FORM.fullmatch("eq. 12")
+    assert not EQUATION_FORM.fullmatch("§, (T3)")
+    assert EQUATION_FORM.fullmatch("§2.1, (T3)")
+    assert unknown_labels(calc, Output("x", "X", equation="§2.1"))  # gear_ratio's seed numbers no sections
+    trebuchet, flywheel = calculators()["trebuchet"], calculators()["flywheel"]
+    assert unknown_labels(trebuchet, Output("x", "X", equation="§3.1, (T3)"))  # seeds/001 has no 3.1
+    assert not unknown_labels(trebuchet, Output("x", "X", equation="§2.1, (T3)"))
+    assert unknown_labels(flywheel, Output("x", "X", equation="(12)"))  # its docstring numbers (1)-(9)
+    assert not unknown_labels(flywheel, Output("x", "X", equation="(9), (FW1)"))
     assert help_problems(Output("x", "X", help="a\nb"))
     assert help_problems(Output("x", "X", help="x" * (HELP_MAX + 1)))
     assert help_problems(Output("x", "X"))

@@ -39,7 +39,11 @@ Forward mode, effects (core.sim.motor_limits, the same definitions as the elevat
 flywheel): `stator_limit` caps each motor's current, hence the pushing force (D1); `supply_limit`
 caps stator current × duty; `battery_sag` feeds the motors from the battery voltage through the
 circuit of (41) (per motor R_bus = n·(R_batt + R_main) + R_br) and reports the voltage at the
-controllers while pushing (D2). See `pushing`.
+controllers while pushing (D2). See `pushing`:
+    I₀ = I(E = 0);  F_stall = K_T·(n·I₀ − ĩf)·G/r;  pushing force = min(μ·W̃, F_stall)       (D1)
+    supply current u·I per motor, battery n·u·I, V_controllers = V_b − R_bus·u·I             (D2)
+with I the operating current per motor (ĩ_slip/n (39) if the wheels slip, else I₀) and u its duty.
+Reverse mode's "fastest that slips at all" (the motors cannot draw i_tot) is (42) with i_max, as above.
 """
 
 from __future__ import annotations
@@ -128,8 +132,8 @@ FIELDS = FIELDS + (
 
 OUTPUTS = (
     Output("max_ratio", "Fastest ratio that slips", "dimensionless", "",
-           help="Smallest reduction G_slip whose slip current keeps the voltage above V_min (42), "
-                "or, if the motors cannot draw that much, the fastest that slips the wheels at all.", equation="(42)"),
+           help="Fastest gearing that slips the wheels with the voltage above V_min (42); else the fastest that slips at all.",
+           equation="(42)"),
     Output("total_current", "Allowed total current", "current", "A",
            help="Total current at which the motors see the minimum voltage (41).", equation="(41)"),
     Output("free_speed", "Free speed", "speed", "ft/s", help="Top speed with no losses (37).", equation="(37)"),
@@ -144,8 +148,8 @@ OUTPUTS = (
            help="Forward mode with a limit or sag: the slip current if the wheels slip, else the (limited) "
                 "stall current.", equation="(39)"),
     Output("push_supply_current", "Supply current pushing, per motor", "current", "A",
-           help="Stator current × duty while pushing (a limit or sag on)."),
-    Output("push_battery_current", "Battery current pushing", "current", "A", help="All motors."),
+           help="Stator current × duty while pushing (a limit or sag on).", equation="(D2)"),
+    Output("push_battery_current", "Battery current pushing", "current", "A", help="All motors: n × the supply current while pushing.", equation="(D2)"),
     Output("push_bus_voltage", "Voltage at the controllers pushing", "voltage", "V",
            help="Battery voltage minus the sag of (41) at the pushing current (battery_sag).", equation="(41)"),
     Output("low_free_speed", "Low gear free speed", "speed", "ft/s", help="Free speed (37) in the low gear.", equation="(37), (102)"),

@@ -43,6 +43,23 @@ With F → ∞ it tends to the impulse model; a motor strong enough to hold the 
 launches the ball at the full s·r_w·ω_t (no range error). The model has no contact length: a warning
 says when the ball would slip over more than 0.5 m (weak grip) and so leave before it rolls.
 Range-error table (the seed's, n = 1..6): the same wheel, motor and target speed with n wheels.
+
+The motor side, labelled here (A = G·τ̃s the wheel torque at stall, B = A/ω_f,w, I all wheels):
+    ω_f,w = ω̃f/G,  T = I/B = I·ω̃f/(G²·τ̃s)          wheel free speed, spin-up time constant (FW1)
+    t(ω₁ → ω_t) = T·ln((ω_f,w − ω₁)/(ω_f,w − ω_t))    full power: spin-up ω₁ = 0, recovery (FW2)
+    I·dω/dt = A − B·ω − r_w·F,  m_e·s·dV/dt = F  until r_w·ω = V/s:  the slip phase of
+        motor_during_shot, its duration the contact time                                   (FW3)
+    ω(t) = ω_f,w − (ω_f,w − ω)·e^(−t/T) between shots ((F1) integrated under a limit), each
+        shot by (5) or the momentum model; the slowest ball is the least V of the burst    (FW4)
+    τ_w(ω) = A·(I(E) − i_f)/(i_s − i_f),  E = G·ω/Kv  under a current limit, I(E) by
+        core.sim.motor_limits (E1)-(E3); (FW2) is then integrated phase by phase           (F1)
+    A' = A·(V/(R + R_bus) − i_f)/(i_s − i_f),  ω_f,w' = Kv·(V − i_f·(R + R_bus))/G:
+        battery_sag alone, still linear in ω                                                (F2)
+    peak stator current I(E = 0) per motor (it never rises with speed); peak supply current
+        the largest u·I (E4) at rest, at the target and where a limit lets go; lowest bus
+        voltage V_b − R_bus·(u·I)_peak                                                      (FW5)
+`range_error_linear` is the seed's (9) whatever transfer model, losses or height are chosen: the
+momentum model's error is about twice it.
 """
 
 from __future__ import annotations
@@ -178,7 +195,7 @@ OUTPUTS = (
     Output("energy_ratio", "Ball / wheel energy after", help="E_b/E_w,final (seed: .165 for one wheel).", equation="(6)"),
     Output("wheel_speed_after", "Wheel speed after shot", "angular_speed", "rpm", help="ω₁ after the first shot: ω₀/√(1+β) (energy, 5) or ω₀/(1+β) (momentum).", equation="(5)"),
     Output("contact_time", "Slip time of the shot", "time", "ms",
-           help="From contact until the ball rolls, the slip phase integrated (motor_during_shot only)."),
+           help="From contact until the ball rolls, the slip phase integrated (motor_during_shot only).", equation="(FW3)"),
     Output("wheel_inertia_total", "Wheel inertia (all)", "inertia", "lb*in**2", help="n·I of one wheel (I = m_w·(k·r_w)² in radius-of-gyration mode (4)) plus the rotors' N·J_r·G².", equation="(4)"),
     Output("mass_ratio_coefficient", "β per ball/wheel mass ratio",
            help="(1+k_b)·s²/k²: E_b/E_w,final per ball-to-wheel mass ratio (radius-of-gyration mode); "
@@ -187,8 +204,8 @@ OUTPUTS = (
     Output("range_error", "Range error (heavy ball)", "dimensionless", "%",
            help="Exact, for m₀·(1+e_m), with the effects and losses chosen.", equation="(7), (8)"),
     Output("range_error_linear", "Range error, spreadsheet estimate", "dimensionless", "%",
-           help="The seed's −e_m/(m_w/(c·m₀) + 1) with c computed exactly: its lossless energy model at "
-                "h = 0, whatever model is chosen (the momentum model's error is about twice it).", equation="(9)"),
+           help="The seed's −e_m/(m_w/(c·m₀) + 1), c exact: lossless energy model at h = 0, whatever model is chosen.",
+           equation="(9)"),
     Output("range_spread", "Range spread light to heavy", "length", "m",
            help="R(m₀·(1−e_m)) − R(m₀·(1+e_m)).", equation="(1), (7)"),
     *[Output(f"range_error_{n}", f"Range error, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%",
@@ -198,20 +215,20 @@ OUTPUTS = (
              help="The seed's table (9): lossless energy model, h = 0, whatever model is chosen.", equation="(9)")
       for n in TABLE_WHEELS],
     Output("free_speed", "Wheel free speed", "angular_speed", "rpm",
-           help="ω̃f/G (with battery_sag: where the sagged torque is zero, (F2))."),
-    Output("time_constant", "Spin-up time constant", "time", "s", help="T = I·ω̃f/(G²·τ̃s)."),
-    Output("spin_up_time", "Spin-up time", "time", "s", help="From rest to the target at full power: "
-           "T·ln(ω_f/(ω_f − ω_t)); under a current limit integrated phase by phase (F1)."),
-    Output("recovery_time", "Recovery time", "time", "s", help="After one shot back to the target: "
-           "T·ln((ω_f − ω₁)/(ω_f − ω_t)); under a current limit integrated (F1)."),
+           help="ω̃f/G (with battery_sag: where the sagged torque is zero, (F2)).", equation="(FW1), (F2)"),
+    Output("time_constant", "Spin-up time constant", "time", "s", help="T = I·ω̃f/(G²·τ̃s).", equation="(FW1)"),
+    Output("spin_up_time", "Spin-up time", "time", "s", equation="(FW2), (F1)",
+           help="From rest to the target at full power: T·ln(ω_f/(ω_f − ω_t)); with a current limit, integrated (F1)."),
+    Output("recovery_time", "Recovery time", "time", "s", equation="(FW2), (F1)",
+           help="After one shot back to the target: T·ln((ω_f − ω₁)/(ω_f − ω_t)); under a current limit integrated (F1)."),
     Output("slowest_ball_speed", "Slowest ball in burst", "speed", "m/s",
-           help="The slowest release over the burst (the wheel not back to speed between shots)."),
+           help="The slowest release over the burst (the wheel not back to speed between shots).", equation="(FW4)"),
     Output("peak_stator_current", "Peak stator current", "current", "A",
-           help="Per motor, over the spin-up (at rest); stator_limit, supply_limit or battery_sag only."),
+           help="Per motor, over the spin-up (at rest); stator_limit, supply_limit or battery_sag only.", equation="(FW5)"),
     Output("peak_supply_current", "Peak supply current", "current", "A",
-           help="Per motor, stator current × duty, largest over the spin-up; with a limit or sag only."),
+           help="Per motor, stator current × duty, largest over the spin-up; with a limit or sag only.", equation="(FW5)"),
     Output("min_bus_voltage", "Min bus voltage", "voltage", "V",
-           help="Battery voltage minus the sag at the peak supply current (battery_sag)."),
+           help="Battery voltage minus the sag at the peak supply current (battery_sag).", equation="(FW5)"),
     *STATS_OUTPUTS,
 )
 

@@ -37,8 +37,8 @@ OUTPUTS = (
     Output("free_current", "Free current", "current", "A", help="All motors together.", equation="(3)"),
     Output("peak_power", "Peak power", "power", "W", help="At half stall torque, gearbox included (eq. 6).", equation="(6)"),
     Output("kt", "Kt at gearbox output (after η)", "torque_constant", "N*m/A",
-           help="K_T of eq. (7), τ̃s/(ĩs − ĩf): gearbox-output torque per amp of total current above "
-                "the free current. It includes the gearbox efficiency η; the motor's own constant is K_T/η.", equation="(7)"),
+           help="K_T (7) = τ̃s/(ĩs − ĩf): output torque per amp above the free current, η included (motor's own: K_T/η).",
+           equation="(7)"),
     Output("max_efficiency", "Max efficiency", "dimensionless", "%",
            help="Highest output power over electrical power, motors and gearbox together (Appendix A).", equation="(10), (91)"),
     Output("max_efficiency_torque", "Torque at max efficiency", "torque", "N*m", help="τ at the efficiency peak, τ̃s·√ĩf/(√ĩf + √ĩs) (91).", equation="(91)"),
@@ -50,15 +50,15 @@ OUTPUTS = (
     Output("efficiency_at_torque", "Efficiency at torque", "dimensionless", "%",
            help="Output power over electrical power at the operating torque, gearbox included (10).", equation="(10)"),
     Output("supply_current", "Supply current at torque", "current", "A",
-           help="All motors, stator current × duty (with a limit or sag)."),
+           help="All motors, stator current × duty (with a limit or sag).", equation="(E4)"),
     Output("bus_voltage", "Bus voltage at torque", "voltage", "V",
-           help="Battery voltage minus the sag at the operating point (battery_sag)."),
+           help="Battery voltage minus the sag at the operating point (battery_sag).", equation="(E4)"),
     Output("limited_stall_torque", "Stall torque, limited", "torque", "N*m",
            help="All motors at rest with the current limits and sag: K_T·(n·I(0) − ĩf) (L1).", equation="(7), (9)"),
     Output("limited_peak_power", "Peak power, limited", "power", "W",
            help="Largest τ(ω)·ω of the limited curve (L1).", equation="(7), (9)"),
     Output("limit_release_speed", "Speed where the limits let go", "angular_speed", "rpm",
-           help="Above it the duty is 1: no current limit binds and the unlimited line (8) holds."),
+           help="Above it the duty is 1: no current limit binds and the unlimited line (8) holds.", equation="(E5)"),
 )
 
 

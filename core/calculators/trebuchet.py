@@ -31,6 +31,11 @@ Flight and energy (beside the swing's (T1)-(T10) in core/sim/trebuchet.py):
     vacuum: t_land = (v·sin β + √(v²·sin²β + 2·g·z0))/g,  X = v·cos β·t_land,
             apex = z0 + (v·sin β)²/(2g)                                                   (C1)
     efficiency = (½·m_p·v² + m_p·g·Δz_p) / (g·(M·Δz_cw + m·Δz_arm)), drops from rest to release (C2)
+(Δz of each centre of mass: the projectile's rise, the counterweight's and the arm's drops.)
+`energy_drift` is max|E(t) − E(0)| / max T over the swing, E = T + V of (T4) plus the energy plastic
+touchdowns (T8) took: the solver's error alone (a touchdown's loss is booked, not counted).
+`arm_speed_at_vertical` and `time_to_vertical` read the swing (seed 1.5: φ and ω over time) at the
+event where the long arm first points straight up; after release the arm swings on alone.
 
 Frame: the seed's, φ from the horizontal, φ = 0 to the right. The counterweight starts up on the
 left, so C swings up and over the top to the left: the throw goes toward −x (the side away from
@@ -115,8 +120,7 @@ FIELDS = (
 
 OUTPUTS = (
     Output("release_time", "Release time", "time", "s", equation="(T6), (T10)",
-           help="When the projectile's velocity first points up at the release angle toward the throw "
-                "(an event located on the integrated swing)."),
+           help="When the projectile's velocity first points up at the release angle toward the throw (a swing event)."),
     Output("release_speed", "Release speed", "speed", "m/s", equation="§2.1, (T3)",
            help="The projectile's speed at release, from the arm's and the sling's rates."),
     Output("release_angle", "Release angle", "angle", "deg", equation="(T10)",
@@ -124,22 +128,18 @@ OUTPUTS = (
     Output("release_height", "Release height", "length", "m", equation="§2.1, (T3)",
            help="The projectile's height above the ground at release, h + R·sin φ + l·sin γ."),
     Output("range", "Range", "length", "m", equation="(T3), (C1)",
-           help="Pivot to landing point, toward the throw: the release point plus the flight (vacuum "
-                "parabola, or integrated with air_drag)."),
+           help="Pivot to landing point toward the throw: release point plus flight (vacuum, or with air_drag)."),
     Output("max_height", "Max height", "length", "m", equation="(C1)",
            help="Highest point of the projectile's path: over the swing, or the flight's apex."),
     Output("efficiency", "Efficiency", "dimensionless", "%", equation="(C2), (T4)",
-           help="Projectile energy at release (kinetic + potential gained) over the potential energy released by "
-                "the counterweight and the arm (each by its centre of mass) from rest to release."),
+           help="Projectile energy at release (kinetic + potential) over the potential energy the counterweight and arm lose."),
     *EFFECTS.outputs(),
     Output("arm_speed_at_vertical", "Arm speed at vertical", "angular_speed", "rad/s", equation="§1.5, (T6)",
-           help="The arm's angular speed when the long arm first points straight up (an event on the "
-                "swing; after release the arm swings on alone)."),
+           help="The arm's angular speed when the long arm first points straight up (it swings on alone after release)."),
     Output("time_to_vertical", "Time to vertical", "time", "s", equation="§1.5, (T6)",
            help="From rest until the long arm points straight up (an event on the swing)."),
     Output("energy_drift", "Energy drift", equation="§1.5, (T4)",
-           help="Largest change of total energy T + V over the swing, relative to the largest kinetic energy "
-                "(the solver's error; a plastic touchdown's loss is booked, not counted)."),
+           help="The solver's error: largest change of total energy T + V over the swing, over the largest kinetic energy."),
     *(Output(name, label, quantity, unit, equation="(T6), (T10), (C1)", help=f"optimise: {how}")
       for name, label, quantity, unit, how in (
           ("best_release_angle", "Best release angle", "angle", "deg",

@@ -17,6 +17,11 @@ motor tabs, which keeps their unlimited answers the seed's).
   No real root: the current never reaches the limit, u = 1.
 - `supply_limit` (u·I ≤ I_sup): (V_b − I_sup·R_bus)·u² − E·u − I_sup·R = 0, the positive root (E3)
 - the duty is u = min(1, u_st, u_sup).
+Per motor, the supply current drawn from the bus, and the bus voltage (R_bus the motor's share):
+      I_supply = u·I,  V_bus = V_b − R_bus·u·I  (n motors: n·u·I from the battery)           (E4)
+The limits let go (u = 1 from there on as the motor speeds up) at the back-EMF
+      E_free = min{E ≥ 0 : min(1, u_st(E), u_sup(E)) = 1},  speed ω = Kv·E_free          (E5)
+  (the limits that are on), found by bisection (`full_duty_emf`: with strong sag no closed form covers every case).
 The context an effect is built with (`ctx`) needs R, battery_voltage, bus_resistance and xp (the
 math namespace): core.sim.motion.Mechanism, or `Circuit` here.
 """
