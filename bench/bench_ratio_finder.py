@@ -1,7 +1,10 @@
 """Ratio finder: how long a search over the full catalogue takes, cold and warm, for 1-3 stages,
 and how much the windowed search saves against trying every k-tuple of stage classes.
 
-    python bench/bench_ratio_finder.py
+    python bench/bench_ratio_finder.py [--hard]
+
+--hard: only the hard cases (out-of-reach targets, the fields' extremes, a huge range), each in
+its own process for its peak memory; no input may take more than a few seconds or a few hundred MB.
 
 Cold = the first search after the filters change (stage classes rebuilt); warm = a new ratio with
 the same filters (what typing the ratio costs). Goal: a three-stage search over the full catalogue
@@ -94,5 +97,60 @@ def main() -> None:
           f"{median_seconds(lambda: solve('ratio_finder', {}), runs=7) * 1e3:.0f} ms")
 
 
+HARD = [  # (name, query overrides): out-of-reach targets, the field's extremes, a huge range
+    ("5000, 20 DP gears only", dict(target=5000, families=["gear_20dp"])),
+    ("5000, all families", dict(target=5000)),
+    ("1e5 (field max)", dict(target=1e5)),
+    ("1e5, no planetary, 1-1000 T", dict(target=1e5, no_planetary=True, min_teeth=1, max_teeth=1000)),
+    ("1234.5, gear/HTD/#25", dict(target=1234.5, families=["chain_25", "htd_5mm", "gear_20dp"])),
+    ("range 100-1e5, 20 DP", dict(target=math.sqrt(1e7), ratio_min=100, ratio_max=1e5, families=["gear_20dp"])),
+    ("1e-5 (speed-up), 1-1000 T", dict(target=1e-5, min_teeth=1, max_teeth=1000)),
+]
+
+CHILD = """
+import json, resource, sys, time, importlib
+sys.path.insert(0, {root!r})
+from gearhead.core.parts import FAMILIES, SHAFT_BORES, VENDORS
+finder = importlib.import_module({module!r})
+kw = json.loads({kw!r})
+fams = set(kw.pop("families", FAMILIES)) - ({{"planetary"}} if kw.pop("no_planetary", False) else set())
+base = dict(target=kw["target"], ratio_min=kw["target"], ratio_max=kw["target"], input_bore="keyed_8mm",
+            output_bore="hex_half_in", vendors=frozenset(VENDORS), families=frozenset(fams),
+            shaft_bores=frozenset(SHAFT_BORES), min_teeth=10, max_teeth=84, max_stages=3, results=20)
+base.update(kw)
+t0 = time.process_time()
+combos, stats = finder.search(finder.Query(**base))
+print(json.dumps([time.process_time() - t0, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+                  float(combos[0].ratio) if combos else None, stats["checked"]]))
+"""
+
+
+def hard_cases(module: str = "gearhead.core.parts.finder", limit_s: float = 120) -> None:
+    """Each hard case in a fresh process (its own peak resident memory), cold (classes built).
+    BENCH_FINDER=gearhead.core.parts.<copy> measures another copy of finder.py (before/after)."""
+    import json
+    import os
+    import subprocess
+
+    module = os.environ.get("BENCH_FINDER", module)
+    root = str(Path(__file__).resolve().parents[1])
+    print(f"hard cases ({module}), cold, one process each:")
+    print(f"{'case':<30}{'CPU s':>8}{'peak RSS MB':>13}{'best ratio':>12}{'checked':>9}")
+    for name, kw in HARD:
+        code = CHILD.format(root=root, module=module, kw=json.dumps(kw))
+        try:
+            out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=limit_s)
+            cpu, rss, best, checked = json.loads(out.stdout.strip().splitlines()[-1])
+            print(f"{name:<30}{cpu:>8.2f}{rss:>13.0f}{best:>12.4g}{checked:>9}")
+        except subprocess.TimeoutExpired:
+            print(f"{name:<30}{'> ' + str(limit_s):>8}")
+        except (IndexError, ValueError):
+            print(f"{name:<30}  failed: {out.stderr.strip().splitlines()[-1] if out.stderr else '?'}")
+
+
 if __name__ == "__main__":
-    main()
+    if "--hard" in sys.argv:
+        hard_cases()
+    else:
+        main()
+        hard_cases()

@@ -394,3 +394,54 @@ def test_elevator_and_arm_send_their_fastest_ratio_to_the_finder(calc_id):
     best = solve(calc_id, {"mode": "optimise"}).outputs["best_ratio"].value
     found = solve("ratio_finder", {"target_ratio": best})
     assert found.outputs  # the sent ratio is one the finder accepts
+
+
+def largest_reachable(q):
+    """The largest ratio any feasible combination of at most q.max_stages stages gives, by
+    dynamic programming over the bore on each shaft (from raw_stages, not the finder's tables)."""
+    raw = raw_stages(q)
+    out_bores = set(q.shaft_bores) if q.output_bore == "any" else {q.output_bore}
+    reach = {q.input_bore: Fraction(1)}  # shaft bore -> largest ratio that reaches it
+    best = None
+    for _ in range(q.max_stages):
+        after = {}
+        for _ident, ratio, _parts, drive, take, _fam in raw:
+            came = [reach[b] for b in drive if b in reach]
+            if came:
+                for b in take:
+                    after[b] = max(after.get(b, 0), max(came) * ratio)
+        reach = after
+        for b in out_bores & reach.keys():
+            best = reach[b] if best is None else max(best, reach[b])
+    return best
+
+
+@pytest.mark.parametrize("kw", [
+    dict(target=5000, families=frozenset({"gear_20dp"})),  # bores cap 3 stages at 302.4:1
+    dict(target=5000),
+    dict(target=1e5),  # the field's largest
+    dict(target=1e5, families=frozenset(FAMILIES) - {"planetary"}, min_teeth=1, max_teeth=1000),
+    dict(target=1234.5, families=frozenset({"chain_25", "htd_5mm", "gear_20dp"})),
+    dict(target=math.sqrt(100 * 1e5), ratio_min=100, ratio_max=1e5, families=frozenset({"gear_20dp"})),
+])
+def test_out_of_reach_and_wide_targets_search_in_bounded_memory(kw):
+    """Once ~12 GB and 40 s: the windows grew past every bore-infeasible value tuple at once."""
+    import tracemalloc
+
+    q = query(**{"ratio_min": kw["target"], "ratio_max": kw["target"], **kw})
+    finder._PREPARED.clear()
+    tracemalloc.start()
+    try:
+        combos, stats = finder.search(q)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 300e6, f"peak traced memory {peak / 1e6:.0f} MB"
+    assert stats["checked"] < 50_000
+    assert len(combos) == q.results
+    top = largest_reachable(q)
+    if top < Fraction(repr(q.ratio_min)):  # out of reach: the best is the largest reachable ratio
+        assert combos[0].ratio == top
+        assert all(c.ratio <= top for c in combos)
+    keys = [finder.rank_key(c, q) for c in combos]
+    assert keys == sorted(keys)

@@ -34,6 +34,7 @@ against brute-force enumeration; bench/bench_ratio_finder.py times it.
 
 from __future__ import annotations
 
+import bisect
 import itertools
 import math
 from dataclasses import dataclass, field
@@ -321,6 +322,11 @@ class Table:
     values: object  # numpy array
     members: list[list[Stage]]
     fewest_parts: object  # numpy array
+    drive_union: object = None  # numpy arrays: bores any class of the value drives from / drives onto
+    out_union: object = None
+
+
+WINDOW_CAP = 250_000  # value tuples held at once (about 25 MB of index arrays)
 
 
 @dataclass
@@ -366,6 +372,49 @@ def table(prep: Prepared, q: Query, position: int, first: bool, last: bool) -> T
     return prep.tables[key]
 
 
+def pruned_table(prep: Prepared, q: Query, position: int, k: int) -> Table:
+    """table() for position of k stages, keeping only the classes that some feasible chain of
+    bores passes through: a driving bore reachable from the motor through the stages before,
+    and a driven bore from which the stages after reach the output. Exact per class: with one
+    bore per shaft chosen freely, a class lies on a feasible chain iff both hold."""
+    import numpy as np
+
+    key = ("pruned", position, k)
+    if key not in prep.tables:
+        base = [[s for m in table(prep, q, i, i == 0, i == k - 1).members for s in m] for i in range(k)]
+        all_shafts = mask_of(q.shaft_bores)
+        ahead = [BIT[q.input_bore]]  # bores reachable on the shaft before each position
+        for i in range(k - 1):
+            fits = ahead[i] if (i == 0 or q.same_shaft_bore) else all_shafts
+            ahead.append(_union(s.out_mask for s in base[i] if s.drive_mask & fits))
+        behind = [0] * k + [BIT[q.output_bore] if q.output_bore != "any" else all_shafts]
+        for i in range(k - 1, -1, -1):  # bores after each position from which the output is reached
+            behind[i] = _union(s.drive_mask for s in base[i] if s.out_mask & behind[i + 1])
+            if i > 0 and not q.same_shaft_bore and behind[i]:
+                behind[i] = all_shafts
+        for i in range(k):
+            fits = ahead[i] if (i == 0 or q.same_shaft_bore) else all_shafts
+            by_value: dict[float, list[Stage]] = {}
+            for s in base[i]:
+                if s.drive_mask & fits and s.out_mask & behind[i + 1]:
+                    by_value.setdefault(s.ratio_f, []).append(s)
+            ordered = sorted(by_value)
+            groups = [by_value[v] for v in ordered]
+            prep.tables[("pruned", i, k)] = Table(
+                np.array(ordered, dtype=float), groups,
+                np.array([min(s.parts for s in g) for g in groups], dtype=np.int64),
+                np.array([_union(s.drive_mask for s in g) for g in groups], dtype=np.int64),
+                np.array([_union(s.out_mask for s in g) for g in groups], dtype=np.int64))
+    return prep.tables[key]
+
+
+def _union(masks: Iterable[int]) -> int:
+    m = 0
+    for x in masks:
+        m |= x
+    return m
+
+
 def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], dict]:
     """The best q.results combinations, ranked; and counts for the user (how much was searched)."""
     import numpy as np
@@ -375,6 +424,9 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
     keys: dict[tuple, tuple] = {}  # identity -> (float error, stages, parts) of what found holds
     n_best = q.results
     found: dict[tuple, Combination] = {}  # order-free identity -> its best order
+    top: list[tuple] = []  # (key, serial, identity) of the N best keys, sorted
+    in_top: dict[tuple, tuple] = {}
+    serial = itertools.count()
     all_shafts = mask_of(q.shaft_bores)
     out_mask = BIT[q.output_bore] if q.output_bore != "any" else all_shafts
 
@@ -392,7 +444,17 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
         old = found.get(ident)
         if old is None or rank_key(combo, q) < rank_key(old, q):
             found[ident] = combo
-            keys[ident] = (combo.error, len(stages), combo.parts)
+            key = (combo.error, len(stages), combo.parts, abs(math.log(num / den / q.target)))
+            keys[ident] = key
+            # the N best keys, kept sorted (an identity's key only ever decreases)
+            if ident in in_top:
+                top.remove(in_top[ident])
+            elif len(top) == n_best and not key < top[-1][0]:
+                return
+            entry = in_top[ident] = (key, next(serial), ident)
+            bisect.insort(top, entry)
+            if len(top) > n_best:
+                del in_top[top.pop()[2]]
 
     def expand(lists: list[list[Stage]]) -> None:
         """Every assembly of one class per position whose bores chain (depth first, pruned)."""
@@ -413,15 +475,118 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
     def nth_key() -> tuple | None:
         if len(found) < n_best:
             return None
-        e, stages, parts = sorted(keys.values())[n_best - 1]
-        return (e, stages, parts, round(e / tie))
+        e, stages, parts, middle = top[n_best - 1][0]  # as sorted(keys.values())[n_best - 1]
+        return (e, stages, parts, round(e / tie), middle)
 
     # one stage: exhaustive
     for members in table(prep, q, 0, True, True).members:
         expand([members])
 
     lo_t, hi_t = q.ratio_min, q.ratio_max
-    tie = 1e-12 * max(1.0, hi_t)  # float products of equal exact ratios differ by rounding only
+    tie = 1e-12 * max(1.0, hi_t)
+    log_t = math.log(q.target)
+
+    def scan(chosen: list[Table], tail, intervals: list[tuple[float, float]], k: int) -> None:
+        """Expand the value tuples whose product lies in the intervals, best first within each
+        slice of at most WINDOW_CAP tuples; a slice stops at the current N-th best (it is sorted
+        by error, fewest parts and distance to the middle, the rank's own order)."""
+        first = chosen[0].values
+        for rows, at in _slices(first, tail[0], intervals, np):
+            index = [rows] + [f[at] for f in tail[1]]
+            ok = np.ones(rows.size, dtype=bool)  # some class of each value chains to the next
+            for i in range(k - 1):
+                ok &= (chosen[i].out_union[index[i]] & chosen[i + 1].drive_union[index[i + 1]]) != 0
+            index = [ix[ok] for ix in index]
+            r = first[index[0]] * tail[0][at[ok]]
+            errors = np.maximum(np.maximum(lo_t - r, r - hi_t), 0.0)
+            parts = sum(chosen[i].fewest_parts[index[i]] for i in range(k))
+            grid = np.round(errors / tie)
+            middle = np.abs(np.log(r) - log_t)
+            order = np.lexsort((middle, parts, grid))
+            for n, j in enumerate(order):
+                if n % 32 == 0 and n:
+                    limit = nth_key()
+                    if limit is not None and (int(grid[j]), k, int(parts[j]), middle[j] - 1e-9) > \
+                            (limit[3], limit[1], limit[2], limit[4]):
+                        break
+                expand([chosen[i].members[index[i][j]] for i in range(k)])
+
+    def capped(k: int) -> None:
+        """k stages on tables pruned to classes that some feasible bore chain passes through,
+        windows grown so that no slice holds more than WINDOW_CAP value tuples (bounded memory),
+        and a wide range searched outward from its middle first (bounded time)."""
+        chosen = [pruned_table(prep, q, i, k) for i in range(k)]
+        if any(len(t.values) == 0 for t in chosen):
+            return
+        tail = tail_table(prep, q, k, np, chosen)
+        first = chosen[0].values
+        lowest = math.prod(float(t.values[0]) for t in chosen)
+        highest = math.prod(float(t.values[-1]) for t in chosen)
+        worst = max(lo_t - lowest, hi_t - lowest, highest - lo_t, highest - hi_t, 0.0)
+        least_parts = sum(int(t.fewest_parts.min()) for t in chosen)
+        # 1. inside a range: outward from its (geometric) middle, while the N best all have no
+        # error, k stages or fewer and the fewest parts possible (nothing farther can beat them)
+        if hi_t > lo_t:
+            rho = 1.0 + 1e-3
+            while True:
+                a, b = max(lo_t, q.target / rho), min(hi_t, q.target * rho)
+                covered = a <= lo_t and b >= hi_t
+                if not covered and _count_within(first, tail[0], a, b, np) < 8 * n_best:
+                    rho *= rho
+                    continue
+                scan(chosen, tail, [(a, b)], k)
+                now = nth_key()
+                if now is not None and now[0] == 0 and (now[1] < k or now[2] < least_parts or (
+                        now[2] == least_parts and now[4] <= math.log(rho))):
+                    return
+                if covered:
+                    if now is not None and now[0] == 0:
+                        return  # every tuple inside the range was seen; outside ones have an error
+                    break
+                rho *= rho
+            done = (lo_t, hi_t)
+        else:
+            done = None
+        # 2. error windows |G − G*| ≤ eps, grown until the N-th best is inside (as search())
+        nearest = _nearest_errors(first, tail, lo_t, hi_t, np)
+        m = min(4 * n_best, nearest.size) - 1
+        eps = float(np.partition(nearest, m)[m])
+        bound = nth_key()
+        if bound is not None:
+            eps = min(eps, bound[0])
+        while True:
+            window = eps + tie
+            lo_w, hi_w = lo_t - window, hi_t + window
+            if done is None:
+                intervals = [(lo_w, hi_w)]
+            else:  # the range itself was scanned whole above: its two sides only
+                intervals = [(lo_w, math.nextafter(lo_t, -math.inf)), (math.nextafter(hi_t, math.inf), hi_w)]
+            scan(chosen, tail, intervals, k)
+            now = nth_key()
+            if (now is not None and now[0] <= eps) or eps > worst:
+                return
+            eps = grown(eps, first, tail[0], 4 * _count_within(first, tail[0], lo_w, hi_w, np) + 64 * n_best)
+
+    def grown(eps: float, first, products, most: int) -> float:
+        """The next window: four times wider, or less if that would hold more than `most` tuples
+        (an out-of-reach target would jump to the whole catalogue at once)."""
+        wide = eps * 4 + 1e-6 * max(1.0, hi_t)
+
+        def count(e):
+            return _count_within(first, products, lo_t - e - tie, hi_t + e + tie, np)
+
+        if count(wide) <= most:
+            return wide
+        narrow = eps
+        for _ in range(60):  # bisection: the count grows with the window
+            mid = (narrow + wide) / 2
+            if count(mid) <= most:
+                narrow = mid
+            else:
+                wide = mid
+        return wide if narrow <= eps else narrow
+
+  # float products of equal exact ratios differ by rounding only
     for k in range(2, q.max_stages + 1):
         chosen = [table(prep, q, i, i == 0, i == k - 1) for i in range(k)]
         tables = [t.values for t in chosen]
@@ -447,6 +612,11 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
             eps = min(eps, bound[0])
         for _ in range(60):
             window = eps + tie
+            if _count_within(tables[0], tail[0], lo_t - window, hi_t + window, np) > WINDOW_CAP:
+                # bores make most value tuples here infeasible (or a wide range holds millions):
+                # search again on bore-pruned tables, a bounded slice at a time
+                capped(k)
+                break
             index, errors = _tuples_within(tables[0], tail, lo_t - window, hi_t + window, lo_t, hi_t, np)
             parts = sum(chosen[i].fewest_parts[index[i]] for i in range(k))
             grid = np.round(errors / tie)  # ties in exact error compare equal
@@ -470,18 +640,18 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
     return ranked[:n_best], stats
 
 
-def tail_table(prep: Prepared, q: Query, k: int, np):
+def tail_table(prep: Prepared, q: Query, k: int, np, chosen: list[Table] | None = None):
     """The positions after the first, as one sorted array of products and the index of each
     factor: for two stages the last table itself; for three, every product of the middle and
     last tables, sorted once per filter setting (meet in the middle: a new ratio then costs a
-    bisection per first-stage value)."""
-    key = ("tail", k)
+    bisection per first-stage value). chosen: other tables than table()'s (the pruned ones)."""
+    key = ("tail", k) if chosen is None else ("pruned tail", k)
     if key not in prep.tables:
-        last = table(prep, q, k - 1, False, True).values
+        last = (chosen[k - 1] if chosen else table(prep, q, k - 1, False, True)).values
         if k == 2:
             prep.tables[key] = (last, [np.arange(last.size)])
         else:
-            middle = table(prep, q, 1, False, False).values
+            middle = (chosen[1] if chosen else table(prep, q, 1, False, False)).values
             products = np.multiply.outer(middle, last).ravel()
             order = np.argsort(products)  # introsort: 4x faster than the stable sorts here
             prep.tables[key] = (products[order], [order // last.size, order % last.size])
@@ -512,3 +682,41 @@ def _tuples_within(first, tail, lo: float, hi: float, r_lo: float, r_hi: float, 
     r = first[rows] * products[at]
     errors = np.maximum(np.maximum(r_lo - r, r - r_hi), 0.0)
     return [rows] + [f[at] for f in factors], errors
+
+
+def _count_within(first, products, lo: float, hi: float, np) -> int:
+    """How many value tuples have their product in [lo, hi] (no tuple is built)."""
+    start = np.searchsorted(products, lo / first, side="left")
+    stop = np.searchsorted(products, hi / first, side="right")
+    return int(np.maximum(stop - start, 0).sum())
+
+
+def _slices(first, products, intervals, np):
+    """The value tuples whose product lies in one of the intervals, as (first-stage index, tail
+    index) arrays of at most WINDOW_CAP tuples each (a first-stage row split where it must)."""
+    rows, starts, counts = [], [], []
+    for lo, hi in intervals:
+        if hi < lo:
+            continue
+        start = np.searchsorted(products, lo / first, side="left")
+        stop = np.searchsorted(products, hi / first, side="right")
+        count = np.maximum(stop - start, 0)
+        pieces = -(-count // WINDOW_CAP)  # ceil: a row with more than the cap is cut in pieces
+        row = np.repeat(np.arange(first.size), pieces)
+        piece = np.arange(row.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
+        begin = start[row] + piece * WINDOW_CAP
+        rows.append(row)
+        starts.append(begin)
+        counts.append(np.minimum(stop[row] - begin, WINDOW_CAP))
+    if not rows:
+        return
+    row, begin, count = np.concatenate(rows), np.concatenate(starts), np.concatenate(counts)
+    total = np.cumsum(count)
+    cut = 0
+    while cut < row.size:
+        end = int(np.searchsorted(total, (total[cut - 1] if cut else 0) + WINDOW_CAP, side="right"))
+        end = max(end, cut + 1)
+        r, b, c = row[cut:end], begin[cut:end], count[cut:end]
+        offsets = np.arange(int(c.sum())) - np.repeat(np.cumsum(c) - c, c)
+        yield np.repeat(r, c), np.repeat(b, c) + offsets
+        cut = end
