@@ -41,7 +41,9 @@ def main() -> None:
     rungs, _ = ladder(fw.simulate, values)
     print("  accuracy ladder (momentum + motor_during_shot):")
     for r in rungs:
-        print(f"    {r.level:<8} rtol {r.rtol:.0e}  error {r.error:.2e}  time {r.wall_time * 1e3:7.3f} ms  nfev {r.nfev}")
+        print(
+            f"    {r.level:<8} rtol {r.rtol:.0e}  error {r.error:.2e}  time {r.wall_time * 1e3:7.3f} ms  nfev {r.nfev}"
+        )
 
 
 if __name__ == "__main__":

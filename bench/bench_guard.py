@@ -13,17 +13,47 @@ import sys
 import time
 
 CASES = {
-    "trebuchet release at 88.9° (hang)": ("trebuchet", dict(
-        counterweight_gyration=0.6, arm_mass=40, arm_length=16.97, pivot_height=1.9, projectile_mass=3.1,
-        gravity=50, release_angle=88.9, effects="", accuracy="coarse")),
-    "pneumatics 3600 s, 3 groups every 0.1 s": ("pneumatics", dict(
-        match_length=3600, c1_count=1, c1_period=0.1, c1_start=0, c2_count=1, c2_period=0.1, c2_start=0,
-        c3_count=1, c3_period=0.1, c3_start=0)),
-    "projectile reverse, extreme Magnus": ("projectile", dict(
-        mode="reverse", effects="magnus", spin=1e5, lift_coefficient=1, ball_mass=0.001)),
-    "trebuchet optimise, hanger 1 cm, k = 0": ("trebuchet", dict(
-        effects="sling,ground_contact,hinged_counterweight,optimise", hanger_length=0.01,
-        counterweight_gyration=0)),
+    "trebuchet release at 88.9° (hang)": (
+        "trebuchet",
+        dict(
+            counterweight_gyration=0.6,
+            arm_mass=40,
+            arm_length=16.97,
+            pivot_height=1.9,
+            projectile_mass=3.1,
+            gravity=50,
+            release_angle=88.9,
+            effects="",
+            accuracy="coarse",
+        ),
+    ),
+    "pneumatics 3600 s, 3 groups every 0.1 s": (
+        "pneumatics",
+        dict(
+            match_length=3600,
+            c1_count=1,
+            c1_period=0.1,
+            c1_start=0,
+            c2_count=1,
+            c2_period=0.1,
+            c2_start=0,
+            c3_count=1,
+            c3_period=0.1,
+            c3_start=0,
+        ),
+    ),
+    "projectile reverse, extreme Magnus": (
+        "projectile",
+        dict(mode="reverse", effects="magnus", spin=1e5, lift_coefficient=1, ball_mass=0.001),
+    ),
+    "trebuchet optimise, hanger 1 cm, k = 0": (
+        "trebuchet",
+        dict(
+            effects="sling,ground_contact,hinged_counterweight,optimise",
+            hanger_length=0.01,
+            counterweight_gyration=0,
+        ),
+    ),
 }
 
 CHILD = """
@@ -49,8 +79,12 @@ def main() -> None:
     limit = float(sys.argv[1]) if len(sys.argv) > 1 else 60.0
     for name, (calc, raw) in CASES.items():
         try:
-            out = subprocess.run([sys.executable, "-c", CHILD.format(calc=calc, raw=raw)], capture_output=True,
-                                 text=True, timeout=limit).stdout.strip()
+            out = subprocess.run(
+                [sys.executable, "-c", CHILD.format(calc=calc, raw=raw)],
+                capture_output=True,
+                text=True,
+                timeout=limit,
+            ).stdout.strip()
         except subprocess.TimeoutExpired:
             out = f"> {limit:.0f} s (killed)"
         print(f"{name:<44} {out}")

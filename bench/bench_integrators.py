@@ -29,8 +29,15 @@ def _scipy(rhs, t1, y0, rtol, atol, event, method):
 
     ev = lambda t, y: event(t, list(y))  # noqa: E731
     ev.terminal, ev.direction = True, 1
-    return solve_ivp(lambda t, y: rhs(t, list(y)), (0.0, t1), np.asarray(y0, float), method=method,
-                     rtol=rtol, atol=atol, events=ev)
+    return solve_ivp(
+        lambda t, y: rhs(t, list(y)),
+        (0.0, t1),
+        np.asarray(y0, float),
+        method=method,
+        rtol=rtol,
+        atol=atol,
+        events=ev,
+    )
 
 
 def cases():
@@ -41,8 +48,10 @@ def cases():
     from gearhead.core.sim import flight
 
     out = []
-    for name, raw in (("projectile, drag", {"effects": "air_drag"}),
-                      ("projectile, drag + magnus", {"effects": "air_drag, magnus", "spin": "2000 rpm"})):
+    for name, raw in (
+        ("projectile, drag", {"effects": "air_drag"}),
+        ("projectile, drag + magnus", {"effects": "air_drag, magnus", "spin": "2000 rpm"}),
+    ):
         v, _ = parse_inputs(get("projectile"), raw)
         a = pj.scene_air(v)
         h_i, th, sp, d = v["release_height"], v["release_angle"], v["release_speed"], v["distance"]
@@ -53,8 +62,16 @@ def cases():
     curve = pn.flow_curve(v["compressor_model"])
     k = pn.P_ATM / v["tank_volume"]
     top = v["switch_off"]
-    out.append(("pneumatics, compressor fill", lambda t, y: [k * pn.flow_through(curve, y[0])], 1e4, [0.0],
-                pn.PSI, lambda t, y: y[0] - top))
+    out.append(
+        (
+            "pneumatics, compressor fill",
+            lambda t, y: [k * pn.flow_through(curve, y[0])],
+            1e4,
+            [0.0],
+            pn.PSI,
+            lambda t, y: y[0] - top,
+        )
+    )
     return out
 
 
@@ -66,14 +83,18 @@ def main() -> None:
         for rtol in (1e-6, 1e-9):
             ev = [Event("end", g, +1)]
             ours = integrate(rhs, 0.0, t1, y0, rtol=rtol, atol=rtol * atol_scale, events=ev)
-            row = [f"DP54 {median_seconds(lambda: integrate(rhs, 0.0, t1, y0, rtol=rtol, atol=rtol * atol_scale, events=ev), 30) * 1e3:7.3f} ({ours.nfev})"]
+            row = [
+                f"DP54 {median_seconds(lambda: integrate(rhs, 0.0, t1, y0, rtol=rtol, atol=rtol * atol_scale, events=ev), 30) * 1e3:7.3f} ({ours.nfev})"
+            ]
             base = None
             for method in ("RK45", "DOP853"):
                 sol = _scipy(rhs, t1, y0, rtol, rtol * atol_scale, g, method)
                 t = median_seconds(lambda: _scipy(rhs, t1, y0, rtol, rtol * atol_scale, g, method), 30)
                 base = base or t
                 row.append(f"{method} {t * 1e3:7.3f} ({sol.nfev})")
-            dp = median_seconds(lambda: integrate(rhs, 0.0, t1, y0, rtol=rtol, atol=rtol * atol_scale, events=ev), 30)
+            dp = median_seconds(
+                lambda: integrate(rhs, 0.0, t1, y0, rtol=rtol, atol=rtol * atol_scale, events=ev), 30
+            )
             print(f"  {name:<28} rtol {rtol:.0e}:  " + "   ".join(row) + f"   RK45/DP54 {base / dp:.1f}x")
 
 

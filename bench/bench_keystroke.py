@@ -20,8 +20,16 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 # closed-form calculators, then simulated scenes at their default accuracy (--only a,b: those)
-CALCULATORS = ["gear_ratio", "beam", "motor", "drivetrain", "pneumatics", "projectile", "flywheel",
-               "trebuchet"]
+CALCULATORS = [
+    "gear_ratio",
+    "beam",
+    "motor",
+    "drivetrain",
+    "pneumatics",
+    "projectile",
+    "flywheel",
+    "trebuchet",
+]
 if "--only" in sys.argv:
     CALCULATORS = sys.argv[sys.argv.index("--only") + 1].split(",")
 
@@ -168,14 +176,18 @@ def main() -> None:
     print(f"from the key to that frame (pilot, median of {KEYS} keys; x: the ratio to this run's baseline)")
     base, base_drawn, base_cpu = asyncio.run(_baseline())
     b, bd, bc = med(base), med(base_drawn), med(base_cpu)
-    print(f"  {'baseline: plain Input, minimal app':<34} handled {b * 1e3:6.2f} ms"
-          f"          drawn {bd * 1e3:6.2f} ms           cpu {bc * 1e3:6.2f} ms")
+    print(
+        f"  {'baseline: plain Input, minimal app':<34} handled {b * 1e3:6.2f} ms"
+        f"          drawn {bd * 1e3:6.2f} ms           cpu {bc * 1e3:6.2f} ms"
+    )
     for calc_id in CALCULATORS:
         field = typing_field(calc_id)
         lat, drawn, cpu = asyncio.run(_latencies(calc_id, field))
-        print(f"  {calc_id:<14} {field:<19} table   {med(lat) * 1e3:6.2f} ms ({med(lat) / b:4.1f}x)"
-              f"   drawn {med(drawn) * 1e3:6.2f} ms ({med(drawn) / bd:4.1f}x)"
-              f"   cpu {med(cpu) * 1e3:6.2f} ms ({med(cpu) / bc:4.1f}x)")
+        print(
+            f"  {calc_id:<14} {field:<19} table   {med(lat) * 1e3:6.2f} ms ({med(lat) / b:4.1f}x)"
+            f"   drawn {med(drawn) * 1e3:6.2f} ms ({med(drawn) / bd:4.1f}x)"
+            f"   cpu {med(cpu) * 1e3:6.2f} ms ({med(cpu) / bc:4.1f}x)"
+        )
 
 
 if __name__ == "__main__":

@@ -17,9 +17,25 @@ from gearhead.core.model import Field  # noqa: E402
 from gearhead.core.units import registry  # noqa: E402
 
 FIELD = Field("load", "Load", "force", "lbf", default=25, min=0)
-ENTRIES = ["25", "25 lbf", "110 N", "2*12.5 lbf", "(25)", "25 lbf + 3 N", "9**9**9", "2**9**9 lbf",
-           "x" * 199, "(" * 100 + "1" + ")" * 100, "-" * 199 + "1", "1" + "*1" * 99, "9" * 8_000,
-           "9" * 100_000, "６ ㎜", "3,5", "１２ lbf"]
+ENTRIES = [
+    "25",
+    "25 lbf",
+    "110 N",
+    "2*12.5 lbf",
+    "(25)",
+    "25 lbf + 3 N",
+    "9**9**9",
+    "2**9**9 lbf",
+    "x" * 199,
+    "(" * 100 + "1" + ")" * 100,
+    "-" * 199 + "1",
+    "1" + "*1" * 99,
+    "9" * 8_000,
+    "9" * 100_000,
+    "６ ㎜",
+    "3,5",
+    "１２ lbf",
+]
 
 
 def main() -> None:

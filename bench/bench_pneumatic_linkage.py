@@ -21,10 +21,18 @@ def main() -> None:
     from gearhead.core.calculators import pneumatic_linkage as pl
     from gearhead.core.model import solve
 
-    print(f"  solve forward (defaults, with the 61-point torque curve) {median_seconds(lambda: solve('pneumatic_linkage', {}), 300) * 1e6:8.1f} µs")
-    print(f"  solve reverse (defaults)                                {median_seconds(lambda: solve('pneumatic_linkage', {'mode': 'reverse'}), 300) * 1e6:8.1f} µs")
-    print(f"  forward() geometry alone                                {median_seconds(lambda: pl.forward(6.0, -14.0, 5.0, 0.0, 11.0, 6.0), 300) * 1e6:8.2f} µs")
-    print(f"  reverse() geometry alone                                {median_seconds(lambda: pl.reverse(-0.8, 0.8, 5.0, 0.0, 11.0, 6.0), 300) * 1e6:8.2f} µs")
+    print(
+        f"  solve forward (defaults, with the 61-point torque curve) {median_seconds(lambda: solve('pneumatic_linkage', {}), 300) * 1e6:8.1f} µs"
+    )
+    print(
+        f"  solve reverse (defaults)                                {median_seconds(lambda: solve('pneumatic_linkage', {'mode': 'reverse'}), 300) * 1e6:8.1f} µs"
+    )
+    print(
+        f"  forward() geometry alone                                {median_seconds(lambda: pl.forward(6.0, -14.0, 5.0, 0.0, 11.0, 6.0), 300) * 1e6:8.2f} µs"
+    )
+    print(
+        f"  reverse() geometry alone                                {median_seconds(lambda: pl.reverse(-0.8, 0.8, 5.0, 0.0, 11.0, 6.0), 300) * 1e6:8.2f} µs"
+    )
 
     mp.mp.dps = 50
     print("  γ error near dead centre, ℓ = d + r − δ (d = 5, r = 2): closed form vs plain acos, rad")

@@ -58,8 +58,10 @@ def main() -> None:
         total = time.perf_counter() - t0
         print(f"  accuracy ladder, {name} (whole ladder incl. reference: {total * 1e3:.1f} ms):")
         for r in rungs:
-            print(f"    {r.level:<8} rtol {r.rtol:7.0e}   error {r.error:9.2e}   {r.wall_time * 1e3:8.3f} ms"
-                  f"   nfev {r.nfev:6d}")
+            print(
+                f"    {r.level:<8} rtol {r.rtol:7.0e}   error {r.error:9.2e}   {r.wall_time * 1e3:8.3f} ms"
+                f"   nfev {r.nfev:6d}"
+            )
 
 
 if __name__ == "__main__":

@@ -33,20 +33,37 @@ def main() -> None:
     catalogue.cache_clear()
     cat = catalogue()
     load_s = time.perf_counter() - t0
-    print(f"catalogue: {len(cat.parts)} gears/pulleys/sprockets, {len(cat.belts)} belts, "
-          f"{len(cat.planetaries)} planetary systems; read and checked in {load_s * 1e3:.1f} ms")
+    print(
+        f"catalogue: {len(cat.parts)} gears/pulleys/sprockets, {len(cat.belts)} belts, "
+        f"{len(cat.planetaries)} planetary systems; read and checked in {load_s * 1e3:.1f} ms"
+    )
 
     def query(target, stages, **kw):
-        base = dict(target=target, ratio_min=target, ratio_max=target, input_bore="keyed_8mm",
-                    output_bore="hex_half_in", vendors=frozenset(VENDORS), families=frozenset(FAMILIES),
-                    shaft_bores=frozenset(SHAFT_BORES), min_teeth=1, max_teeth=1000, max_stages=stages,
-                    results=20)
+        base = dict(
+            target=target,
+            ratio_min=target,
+            ratio_max=target,
+            input_bore="keyed_8mm",
+            output_bore="hex_half_in",
+            vendors=frozenset(VENDORS),
+            families=frozenset(FAMILIES),
+            shaft_bores=frozenset(SHAFT_BORES),
+            min_teeth=1,
+            max_teeth=1000,
+            max_stages=stages,
+            results=20,
+        )
         base.update(kw)
         return finder.Query(**base)
 
     # the full catalogue: every vendor, family and bore, any tooth count, output any shaft bore
-    cases = [("22.5 (exact hits)", 22.5), ("37.1 (near misses)", 37.1), ("1234.5 (far end)", 1234.5),
-             ("0.37 (speed-up)", 0.37)]
+    cases = [
+        ("22.5 (exact hits)", 22.5),
+        ("37.1 (near misses)", 37.1),
+        ("1234.5 (far end)", 1234.5),
+        ("0.37 (speed-up)", 0.37),
+    ]
+
     def cold_search(q):
         finder._PREPARED.clear()
         finder.loop_links.cache_clear()
@@ -63,8 +80,10 @@ def main() -> None:
 
     # wall time suffers from whatever else the machine runs; CPU time (process_time) much less
     worst = 0.0
-    print(f"{'target':<22}{'stages':>7}{'cold wall':>10}{'cold CPU':>9}{'warm wall':>10}{'warm CPU':>9}"
-          f"{'classes':>9}{'assembled':>10}{'kept':>6}   (ms, medians)")
+    print(
+        f"{'target':<22}{'stages':>7}{'cold wall':>10}{'cold CPU':>9}{'warm wall':>10}{'warm CPU':>9}"
+        f"{'classes':>9}{'assembled':>10}{'kept':>6}   (ms, medians)"
+    )
     for stages in (1, 2, 3):
         for name, target in cases:
             q = query(target, stages, output_bore="any")
@@ -75,26 +94,34 @@ def main() -> None:
             warm_cpu = cpu_median(lambda: finder.search(q), runs=7)
             if stages == 3:
                 worst = max(worst, cold_cpu, warm_cpu)
-            print(f"{name:<22}{stages:>7}{cold * 1e3:>10.1f}{cold_cpu * 1e3:>9.1f}{warm * 1e3:>10.1f}"
-                  f"{warm_cpu * 1e3:>9.1f}{stats['stage_classes']:>9}{stats['checked']:>10}{stats['feasible']:>6}")
+            print(
+                f"{name:<22}{stages:>7}{cold * 1e3:>10.1f}{cold_cpu * 1e3:>9.1f}{warm * 1e3:>10.1f}"
+                f"{warm_cpu * 1e3:>9.1f}{stats['stage_classes']:>9}{stats['checked']:>10}{stats['feasible']:>6}"
+            )
 
     # what exhaustive enumeration would have to try, against what the windows assembled
     q = query(22.5, 3, output_bore="any")
     prep = finder.prepare(q)
     sizes = [len(finder.table(prep, q, i, i == 0, i == 2).members) for i in range(3)]
     per_value = [sum(len(m) for m in finder.table(prep, q, i, i == 0, i == 2).members) for i in range(3)]
-    print(f"three stages, exhaustive: {math.prod(sizes):,} ratio-value triples "
-          f"({math.prod(per_value):,} class triples); the search assembled a few hundred to a few thousand")
-    print(f"three-stage search over the full catalogue, worst CPU median of cold and warm: {worst * 1e3:.0f} ms "
-          f"(goal {GOAL_S * 1e3:.0f} ms) {'OK' if worst <= GOAL_S else 'OVER'}")
+    print(
+        f"three stages, exhaustive: {math.prod(sizes):,} ratio-value triples "
+        f"({math.prod(per_value):,} class triples); the search assembled a few hundred to a few thousand"
+    )
+    print(
+        f"three-stage search over the full catalogue, worst CPU median of cold and warm: {worst * 1e3:.0f} ms "
+        f"(goal {GOAL_S * 1e3:.0f} ms) {'OK' if worst <= GOAL_S else 'OVER'}"
+    )
 
     # a whole solve as the app and CLI run it (search, C-C of the listed stages, formatting)
     from gearhead.core.model import solve
 
     solve("ratio_finder", {})  # warm: scipy (chain_belt's brentq) loads here once
     print(f"load average while measuring: {' '.join(f'{x:.1f}' for x in __import__('os').getloadavg())}")
-    print(f"solve('ratio_finder') with the defaults, warm: "
-          f"{median_seconds(lambda: solve('ratio_finder', {}), runs=7) * 1e3:.0f} ms")
+    print(
+        f"solve('ratio_finder') with the defaults, warm: "
+        f"{median_seconds(lambda: solve('ratio_finder', {}), runs=7) * 1e3:.0f} ms"
+    )
 
 
 HARD = [  # (name, query overrides): out-of-reach targets, the field's extremes, a huge range
@@ -103,7 +130,10 @@ HARD = [  # (name, query overrides): out-of-reach targets, the field's extremes,
     ("1e5 (field max)", dict(target=1e5)),
     ("1e5, no planetary, 1-1000 T", dict(target=1e5, no_planetary=True, min_teeth=1, max_teeth=1000)),
     ("1234.5, gear/HTD/#25", dict(target=1234.5, families=["chain_25", "htd_5mm", "gear_20dp"])),
-    ("range 100-1e5, 20 DP", dict(target=math.sqrt(1e7), ratio_min=100, ratio_max=1e5, families=["gear_20dp"])),
+    (
+        "range 100-1e5, 20 DP",
+        dict(target=math.sqrt(1e7), ratio_min=100, ratio_max=1e5, families=["gear_20dp"]),
+    ),
     ("1e-5 (speed-up), 1-1000 T", dict(target=1e-5, min_teeth=1, max_teeth=1000)),
 ]
 
@@ -139,7 +169,9 @@ def hard_cases(module: str = "gearhead.core.parts.finder", limit_s: float = 120)
     for name, kw in HARD:
         code = CHILD.format(root=root, module=module, kw=json.dumps(kw))
         try:
-            out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=limit_s)
+            out = subprocess.run(
+                [sys.executable, "-c", code], capture_output=True, text=True, timeout=limit_s
+            )
             cpu, rss, best, checked = json.loads(out.stdout.strip().splitlines()[-1])
             print(f"{name:<30}{cpu:>8.2f}{rss:>13.0f}{best:>12.4g}{checked:>9}")
         except subprocess.TimeoutExpired:

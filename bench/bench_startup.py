@@ -168,16 +168,31 @@ def main() -> None:
     numpy = lambda: wall([sys.executable, "-c", "import numpy"])  # noqa: E731
     minimal = lambda: reported(MINIMAL_APP)  # noqa: E731
     if "--app-only" not in sys.argv:
-        pair("gearhead solve gear_ratio --json", lambda: wall([gearhead, "solve", "gear_ratio", "--json"]),
-             numpy, "python -c 'import numpy'")
-        pair("gearhead solve beam --set length='20 in'",
-             lambda: wall([gearhead, "solve", "beam", "--set", "length=20 in"]),
-             numpy, "same (a typed unit loads pint)")
-    pair("app: first frame (headless, 140x45)", lambda: reported(FIRST_FRAME), minimal,
-         "minimal app, 13 empty tab panes")
+        pair(
+            "gearhead solve gear_ratio --json",
+            lambda: wall([gearhead, "solve", "gear_ratio", "--json"]),
+            numpy,
+            "python -c 'import numpy'",
+        )
+        pair(
+            "gearhead solve beam --set length='20 in'",
+            lambda: wall([gearhead, "solve", "beam", "--set", "length=20 in"]),
+            numpy,
+            "same (a typed unit loads pint)",
+        )
+    pair(
+        "app: first frame (headless, 140x45)",
+        lambda: reported(FIRST_FRAME),
+        minimal,
+        "minimal app, 13 empty tab panes",
+    )
     pair("app: first results on screen", lambda: reported(FIRST_RESULT), minimal, "same")
-    pair("app: first visit of another tab", lambda: reported(FIRST_VISIT),
-         lambda: reported(MINIMAL_VISIT), "minimal app, first visit of a pane")
+    pair(
+        "app: first visit of another tab",
+        lambda: reported(FIRST_VISIT),
+        lambda: reported(MINIMAL_VISIT),
+        "minimal app, first visit of a pane",
+    )
 
 
 if __name__ == "__main__":

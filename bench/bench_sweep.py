@@ -52,8 +52,12 @@ def main() -> None:
     rows.append(("1000-sample Monte Carlo, gear_ratio (3 inputs)", t, 0.100, r.cost.text()))
 
     # for information: the lead screw also builds its 60-point plot series on every solve
-    screw = {**inputs("lead_screw", "t8_lift"), "friction": "0.2 ± 0.05", "force": "50 N ± 10 %",
-             "diameter": "8 mm ± 0.05 mm"}
+    screw = {
+        **inputs("lead_screw", "t8_lift"),
+        "friction": "0.2 ± 0.05",
+        "force": "50 N ± 10 %",
+        "diameter": "8 mm ± 0.05 mm",
+    }
     calc = get("lead_screw")
     _, values, tols, _ = tolerance.parse(calc, screw)
     t, r = best(lambda: tolerance.spread(calc, values, tols, method="monte-carlo", samples=1000), 3)

@@ -44,7 +44,9 @@ print(time.perf_counter() - t0)
 def in_fresh_process(code: str, runs: int = 5) -> float:
     times = []
     for _ in range(runs):
-        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+        out = subprocess.run(
+            [sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True
+        )
         times.append(float(out.stdout.strip().splitlines()[-1]))
     return statistics.median(times)
 
@@ -53,8 +55,12 @@ def main() -> None:
     from gearhead.core.model import solve
     from gearhead.core.registry import calculators
 
-    print(f"first frame (headless, median of 5 fresh processes): {in_fresh_process(FIRST_FRAME) * 1e3:8.1f} ms")
-    print(f"cold first solve incl. pint registry (median of 5):  {in_fresh_process(COLD_SOLVE) * 1e3:8.1f} ms")
+    print(
+        f"first frame (headless, median of 5 fresh processes): {in_fresh_process(FIRST_FRAME) * 1e3:8.1f} ms"
+    )
+    print(
+        f"cold first solve incl. pint registry (median of 5):  {in_fresh_process(COLD_SOLVE) * 1e3:8.1f} ms"
+    )
     print("warm solve, median of 200 calls:")
     for cid in calculators():
         solve(cid, {})
@@ -71,8 +77,10 @@ def simulations() -> None:
     from gearhead.core.registry import calculators
     from gearhead.core.sim.scene import LEVELS, ladder
 
-    print("simulations at the default accuracy (median of 50; the scene alone, then the full solve "
-          "including the 100x-tighter error estimate):")
+    print(
+        "simulations at the default accuracy (median of 50; the scene alone, then the full solve "
+        "including the 100x-tighter error estimate):"
+    )
     from gearhead.core.model import solve
 
     for cid, calc in calculators().items():
@@ -91,8 +99,10 @@ def simulations() -> None:
         t0 = time.perf_counter()
         ladder(calc.simulate, values)
         view = time.perf_counter() - t0
-        print(f"  {cid:<18} scene {statistics.median(one) * 1e3:7.3f} ms   solve {statistics.median(full) * 1e3:7.3f} ms"
-              f"   accuracy view {view * 1e3:8.1f} ms")
+        print(
+            f"  {cid:<18} scene {statistics.median(one) * 1e3:7.3f} ms   solve {statistics.median(full) * 1e3:7.3f} ms"
+            f"   accuracy view {view * 1e3:8.1f} ms"
+        )
 
 
 def extras() -> None:

@@ -260,6 +260,7 @@ def _spectral_reference(p: int):
 
 # Load cases ------------------------------------------------------------------------------------
 
+
 def max_deflection(support: str, F: float, a: float, l: float, EI: float) -> tuple[float, float]:
     """(largest deflection, its distance from the left support / fixed end), load F at a."""
     if support == "cantilever":

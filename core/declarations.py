@@ -32,8 +32,9 @@ class DeclarationError(RuntimeError):
 
 def _check_unit(calc_id: str, part: str, unit: str, kind: str) -> None:
     if kind not in units.SI_UNITS:
-        raise DeclarationError(calc_id, part, f"unknown quantity kind {kind!r} "
-                                              f"(known: {', '.join(sorted(units.SI_UNITS))})")
+        raise DeclarationError(
+            calc_id, part, f"unknown quantity kind {kind!r} (known: {', '.join(sorted(units.SI_UNITS))})"
+        )
     if not unit:
         if kind != "dimensionless":
             raise DeclarationError(calc_id, part, f"a {kind} needs a display unit")
@@ -41,7 +42,9 @@ def _check_unit(calc_id: str, part: str, unit: str, kind: str) -> None:
     try:
         units.factor(unit, kind)
     except Exception as exc:  # unknown unit, wrong dimension: pint raises several types
-        raise DeclarationError(calc_id, part, f"unit {unit!r} cannot show a {kind} ({type(exc).__name__})") from None
+        raise DeclarationError(
+            calc_id, part, f"unit {unit!r} cannot show a {kind} ({type(exc).__name__})"
+        ) from None
 
 
 def check(calc: Calculator) -> None:
@@ -60,40 +63,56 @@ def check(calc: Calculator) -> None:
 
     for f in calc.fields:
         part = f"field {f.name!r}"
-        kinds = [k for k, on in (("integer", f.integer), ("boolean", f.boolean), ("choices", bool(f.choices)))
-                 if on]
+        kinds = [
+            k
+            for k, on in (("integer", f.integer), ("boolean", f.boolean), ("choices", bool(f.choices)))
+            if on
+        ]
         if len(kinds) > 1:
             raise DeclarationError(cid, part, f"is both {' and '.join(kinds)}")
         if f.flags and not f.choices:
             raise DeclarationError(cid, part, "a flags field needs its choices")
         if f.choice_labels and len(f.choice_labels) != len(f.choices):
-            raise DeclarationError(cid, part, f"{len(f.choice_labels)} choice labels for {len(f.choices)} choices")
+            raise DeclarationError(
+                cid, part, f"{len(f.choice_labels)} choice labels for {len(f.choices)} choices"
+            )
         if f.type == "quantity":
             _check_unit(cid, part, f.unit, f.quantity)
         for word in ("min", "max"):
             bound = getattr(f, word)
-            if bound is not None and (isinstance(bound, bool) or not isinstance(bound, (int, float))
-                                      or not math.isfinite(bound)):
-                raise DeclarationError(cid, part, f"{word} {bound!r} is not a finite number "
-                                                  f"(bounds are numbers in the display unit)")
+            if bound is not None and (
+                isinstance(bound, bool) or not isinstance(bound, (int, float)) or not math.isfinite(bound)
+            ):
+                raise DeclarationError(
+                    cid,
+                    part,
+                    f"{word} {bound!r} is not a finite number (bounds are numbers in the display unit)",
+                )
         if f.min is not None and f.max is not None and f.min > f.max:
-            raise DeclarationError(cid, part, f"min {f.min} is above max {f.max} "
-                                              f"(both {'in ' + f.unit if f.unit else 'plain numbers'})")
+            raise DeclarationError(
+                cid,
+                part,
+                f"min {f.min} is above max {f.max} (both {'in ' + f.unit if f.unit else 'plain numbers'})",
+            )
         problem = f.kind.declaration_problem(f)
         if problem:
             raise DeclarationError(cid, part, problem)
         for mode in f.modes:
             if mode not in modes:
-                raise DeclarationError(cid, part, f"shown in mode {mode!r}, which is not a mode "
-                                                  f"(modes: {', '.join(modes) or 'none'})")
+                raise DeclarationError(
+                    cid,
+                    part,
+                    f"shown in mode {mode!r}, which is not a mode (modes: {', '.join(modes) or 'none'})",
+                )
         for other, allowed in f.when:
             target = by_name.get(other)
             if target is None or not target.choices:
                 raise DeclarationError(cid, part, f"`when` names {other!r}, which is not a choice field")
             unknown = [a for a in allowed if a not in target.choices]
             if unknown:
-                raise DeclarationError(cid, part, f"`when` allows {', '.join(map(repr, unknown))}, "
-                                                  f"not a choice of {other!r}")
+                raise DeclarationError(
+                    cid, part, f"`when` allows {', '.join(map(repr, unknown))}, not a choice of {other!r}"
+                )
         try:
             f.parse(f.default)
         except InputError as exc:
@@ -107,8 +126,9 @@ def check(calc: Calculator) -> None:
     for target, mapping in calc.exports.items():
         for target_field, output in mapping.items():
             if output not in out_names:
-                raise DeclarationError(cid, f"export to {target}.{target_field}",
-                                       f"{output!r} is not an output of {cid}")
+                raise DeclarationError(
+                    cid, f"export to {target}.{target_field}", f"{output!r} is not an output of {cid}"
+                )
 
 
 def check_links(found: dict[str, Calculator]) -> None:

@@ -16,8 +16,16 @@ def _rows(calc: Calculator, solution: Solution) -> list[tuple[str, str, str, str
     rows = []
     for name, value in solution.outputs.items():
         out = calc.output(name)
-        rows.append((name, out.label, value.text, repr(value.value) if isinstance(value.value, float)
-                     else str(value.value), value.unit, out.equation))
+        rows.append(
+            (
+                name,
+                out.label,
+                value.text,
+                repr(value.value) if isinstance(value.value, float) else str(value.value),
+                value.unit,
+                out.equation,
+            )
+        )
     return rows
 
 
@@ -38,18 +46,28 @@ def _md_cell(text: str) -> str:
 def results_markdown(calc: Calculator, solution: Solution) -> str:
     """The results table as shown, with the warnings under it (for a wiki or a design review)."""
     lines = [f"**{_md_cell(calc.title)}**", "", "| Result | Value | Eq. |", "|---|---|---|"]
-    lines += [f"| {_md_cell(label)} | {_md_cell(shown)} | {_md_cell(equation)} |"
-              for _, label, shown, _, _, equation in _rows(calc, solution)]
+    lines += [
+        f"| {_md_cell(label)} | {_md_cell(shown)} | {_md_cell(equation)} |"
+        for _, label, shown, _, _, equation in _rows(calc, solution)
+    ]
     if solution.warnings:
         lines.append("")
         lines += [f"- {_md_cell(w)}" for w in solution.warnings]
     for table in calc.tables:  # e.g. the ratio finder's combinations and their part numbers
         columns = [c for c in table.columns if not c.hidden]
-        lines += ["", f"**{_md_cell(table.title)}**", "",
-                  "| " + " | ".join(_md_cell(f"{c.label} [{c.unit}]" if c.unit else c.label) for c in columns) + " |",
-                  "|" + "---|" * len(columns)]
-        lines += ["| " + " | ".join(_md_cell(row[c.name].text) if c.name in row else "" for c in columns) + " |"
-                  for row in solution.tables.get(table.name, [])]
+        lines += [
+            "",
+            f"**{_md_cell(table.title)}**",
+            "",
+            "| "
+            + " | ".join(_md_cell(f"{c.label} [{c.unit}]" if c.unit else c.label) for c in columns)
+            + " |",
+            "|" + "---|" * len(columns),
+        ]
+        lines += [
+            "| " + " | ".join(_md_cell(row[c.name].text) if c.name in row else "" for c in columns) + " |"
+            for row in solution.tables.get(table.name, [])
+        ]
     return "\n".join(lines) + "\n"
 
 

@@ -143,8 +143,10 @@ class Quantity(Kind):
 
     def checked(self, f, value, typed):
         if value != 0 and not (MAGNITUDE_FLOOR <= abs(value) <= MAGNITUDE_CEILING):
-            raise InputError(f.name, f"{_typed(typed)} is out of range for a mechanism "
-                                     f"(magnitude {abs(value):.3g} in SI units)")
+            raise InputError(
+                f.name,
+                f"{_typed(typed)} is out of range for a mechanism (magnitude {abs(value):.3g} in SI units)",
+            )
         return check_bounds(f, value, typed)
 
     def holds(self, f, value):
@@ -258,8 +260,10 @@ class Flags(Kind):
         unknown = [x for x in items if x not in f.choices]
         if unknown:
             more = f" and {len(unknown) - 3} more" if len(unknown) > 3 else ""
-            raise InputError(f.name, f"unknown {', '.join(map(shown, unknown[:3]))}{more}; "
-                                     f"choose from: {', '.join(f.choices)}")
+            raise InputError(
+                f.name,
+                f"unknown {', '.join(map(shown, unknown[:3]))}{more}; choose from: {', '.join(f.choices)}",
+            )
         return frozenset(items)
 
     def holds(self, f, value):

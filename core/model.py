@@ -7,8 +7,10 @@ from __future__ import annotations
 
 import math
 import numbers
-from dataclasses import dataclass, field as dc_field
-from typing import Any, Callable, Mapping
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from dataclasses import field as dc_field
+from typing import Any
 
 from . import units
 from .errors import InputError
@@ -252,8 +254,10 @@ class Solution:
             "warnings": list(self.warnings),
         }
         if self.tables:  # only calculators that declare tables have the key
-            out["tables"] = {name: [{k: v.as_json() for k, v in row.items()} for row in rows]
-                             for name, rows in self.tables.items()}
+            out["tables"] = {
+                name: [{k: v.as_json() for k, v in row.items()} for row in rows]
+                for name, rows in self.tables.items()
+            }
         return out
 
 
@@ -323,8 +327,9 @@ def check_display_units(calc: Calculator, display_units: Mapping[str, str] | Non
     return display_units
 
 
-def solve(calc_id: str, raw: Mapping[str, Any] | None = None,
-          display_units: Mapping[str, str] | None = None) -> Solution:
+def solve(
+    calc_id: str, raw: Mapping[str, Any] | None = None, display_units: Mapping[str, str] | None = None
+) -> Solution:
     """Parse, compute and format one calculator. Raises InputError on any bad entry."""
     from .registry import get
 
@@ -337,8 +342,9 @@ def solve(calc_id: str, raw: Mapping[str, Any] | None = None,
     except (ArithmeticError, ValueError, RuntimeError) as exc:
         # Last-resort guard, like the NaN one below: the user gets a message, never a traceback.
         # The robustness tests fail if it ever fires, since "(result)" names no field.
-        raise InputError("(result)", f"could not be computed from these inputs "
-                                     f"({type(exc).__name__}: {exc})") from exc
+        raise InputError(
+            "(result)", f"could not be computed from these inputs ({type(exc).__name__}: {exc})"
+        ) from exc
     display_units = check_display_units(calc, display_units)
     inputs = {}
     for f in calc.fields:

@@ -185,21 +185,57 @@ def system(motor: Motor, count: int, voltage: float, efficiency: float) -> Motor
 
 # ---- fields shared by every calculator that drives something with motors ------------------
 
+
 def motor_fields(default_motor: str = "Kraken X60", default_count: int = 1):
     """The motor picker and system fields (motor, source, count, voltage, gearbox efficiency)."""
     from .model import Field
 
     return (
-        Field("motor", "Motor", choices=motor_names(), default=default_motor,
-              help="Motor model; FRC motors from WPILib or ReCalc data, VEX V5 and 393 from VEX."),
-        Field("source", "Motor data", choices=SOURCES, choice_labels=SOURCE_LABELS, default="wpilib",
-              help="Which published figures to use where WPILib and ReCalc disagree."),
-        Field("motor_count", "Motors", integer=True, default=default_count, min=1, max=16,
-              help="Number of identical motors geared 1:1 together (n)."),
-        Field("voltage", "Voltage", "voltage", "V", default=12, min=0.1, max=48,
-              help="Applied voltage V; motor data is scaled by V/V_spec (eqs. 1-4)."),
-        Field("efficiency", "Gearbox efficiency", "dimensionless", "", default=1, min=0,
-              min_exclusive=True, max=1, help="Gearbox efficiency η, 0 to 1 (e.g. 0.9 or 90 %)."),
+        Field(
+            "motor",
+            "Motor",
+            choices=motor_names(),
+            default=default_motor,
+            help="Motor model; FRC motors from WPILib or ReCalc data, VEX V5 and 393 from VEX.",
+        ),
+        Field(
+            "source",
+            "Motor data",
+            choices=SOURCES,
+            choice_labels=SOURCE_LABELS,
+            default="wpilib",
+            help="Which published figures to use where WPILib and ReCalc disagree.",
+        ),
+        Field(
+            "motor_count",
+            "Motors",
+            integer=True,
+            default=default_count,
+            min=1,
+            max=16,
+            help="Number of identical motors geared 1:1 together (n).",
+        ),
+        Field(
+            "voltage",
+            "Voltage",
+            "voltage",
+            "V",
+            default=12,
+            min=0.1,
+            max=48,
+            help="Applied voltage V; motor data is scaled by V/V_spec (eqs. 1-4).",
+        ),
+        Field(
+            "efficiency",
+            "Gearbox efficiency",
+            "dimensionless",
+            "",
+            default=1,
+            min=0,
+            min_exclusive=True,
+            max=1,
+            help="Gearbox efficiency η, 0 to 1 (e.g. 0.9 or 90 %).",
+        ),
     )
 
 
@@ -208,7 +244,9 @@ def system_from(values) -> tuple[MotorSystem, list[str]]:
     motor, note = lookup(values["motor"], values["source"])
     warnings = [note] if note else []
     if values["voltage"] > 1.25 * motor.v_spec:  # e.g. a VEX 393 left at the 12 V default
-        warnings.append(f"{motor.name} is specified at {motor.v_spec:.3g} V: at {values['voltage']:.3g} V "
-                        f"its data are scaled up {values['voltage'] / motor.v_spec:.3g}× (eqs. 1-4), "
-                        f"beyond its rating; enter {motor.v_spec:.3g} V for its published figures.")
+        warnings.append(
+            f"{motor.name} is specified at {motor.v_spec:.3g} V: at {values['voltage']:.3g} V "
+            f"its data are scaled up {values['voltage'] / motor.v_spec:.3g}× (eqs. 1-4), "
+            f"beyond its rating; enter {motor.v_spec:.3g} V for its published figures."
+        )
     return system(motor, values["motor_count"], values["voltage"], values["efficiency"]), warnings

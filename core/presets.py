@@ -8,7 +8,8 @@ from __future__ import annotations
 import os
 import re
 import tomllib
-from dataclasses import dataclass, field as dc_field
+from dataclasses import dataclass
+from dataclasses import field as dc_field
 from pathlib import Path
 from typing import Any
 
@@ -29,8 +30,13 @@ class Preset:
     warnings: list[str] = dc_field(default_factory=list, compare=False)
 
     def as_toml(self) -> dict[str, Any]:
-        return {"calculator": self.calculator, "name": self.name,
-                "description": self.description, "format": FORMAT, "inputs": dict(self.inputs)}
+        return {
+            "calculator": self.calculator,
+            "name": self.name,
+            "description": self.description,
+            "format": FORMAT,
+            "inputs": dict(self.inputs),
+        }
 
 
 def builtin_dir() -> Path:
@@ -80,8 +86,9 @@ def read_text(path: str | Path) -> str:
         if not stat.S_ISREG(info.st_mode):
             raise InputError("preset", "is not a regular file (a device, pipe or socket)", src)
         if info.st_size > MAX_PRESET_BYTES:
-            raise InputError("preset", f"is too large for a preset ({info.st_size} bytes; "
-                                       f"at most {MAX_PRESET_BYTES})", src)
+            raise InputError(
+                "preset", f"is too large for a preset ({info.st_size} bytes; at most {MAX_PRESET_BYTES})", src
+            )
         chunks, size = [], 0
         while size <= MAX_PRESET_BYTES:  # the size may change while reading: never read past the cap
             chunk = os.read(fd, MAX_PRESET_BYTES + 1 - size)
@@ -120,17 +127,21 @@ def _os_reason(exc: BaseException) -> str:
     return getattr(exc, "strerror", None) or _first_line(exc)  # "Permission denied", not "[Errno 13] …"
 
 
-def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = None,
-              builtin: bool = False) -> Preset:
+def from_dict(
+    data: dict[str, Any], src: str = "<preset>", path: Path | None = None, builtin: bool = False
+) -> Preset:
     from . import tolerance  # reads "60 g ± 6 g" (the nominal through parse_inputs, as before)
     from .registry import calculators
 
     fmt = data.get("format", FORMAT)
     if not isinstance(fmt, int) or isinstance(fmt, bool) or fmt < 1:
-        raise InputError("format", f"must be a whole number from 1 (this Gearhead writes {FORMAT}), "
-                                   f"got {shown(fmt)}", src)
+        raise InputError(
+            "format", f"must be a whole number from 1 (this Gearhead writes {FORMAT}), got {shown(fmt)}", src
+        )
     if fmt > FORMAT:
-        raise InputError("format", f"version {fmt} is newer than this Gearhead reads ({FORMAT}); upgrade Gearhead", src)
+        raise InputError(
+            "format", f"version {fmt} is newer than this Gearhead reads ({FORMAT}); upgrade Gearhead", src
+        )
     calc_id = data.get("calculator")
     if not isinstance(calc_id, str):
         raise InputError("calculator", "missing or not a string", src)
@@ -150,7 +161,9 @@ def from_dict(data: dict[str, Any], src: str = "<preset>", path: Path | None = N
         if isinstance(value, list) and all(isinstance(x, str) for x in value):
             continue  # a set of flags, e.g. effects = ["compressor", "regulator"]
         if not isinstance(value, (str, int, float, bool)):
-            raise InputError(key, f"wrong type ({type(value).__name__}); use a string, number or boolean", src)
+            raise InputError(
+                key, f"wrong type ({type(value).__name__}); use a string, number or boolean", src
+            )
     calc = calculators()[calc_id]
     from .sim.effects import retire  # a flag retired since the preset was written: what replaced it
 
@@ -184,7 +197,14 @@ def unused_entry_warnings(calc, inputs: dict[str, Any], src: str) -> list[str]:
     return out
 
 
-_WINDOWS_RESERVED = {"con", "prn", "aux", "nul", *(f"com{i}" for i in range(10)), *(f"lpt{i}" for i in range(10))}
+_WINDOWS_RESERVED = {
+    "con",
+    "prn",
+    "aux",
+    "nul",
+    *(f"com{i}" for i in range(10)),
+    *(f"lpt{i}" for i in range(10)),
+}
 
 
 def slug(name: str) -> str:
@@ -199,7 +219,7 @@ def slug(name: str) -> str:
     s = unicodedata.normalize("NFC", s) or "preset"
     if len(s.encode("utf-8")) > MAX_NAME_BYTES:
         digest = hashlib.sha256(text.encode("utf-8")).hexdigest()[:10]
-        cut = s.encode("utf-8")[:MAX_NAME_BYTES - 11].decode("utf-8", "ignore").rstrip("_")
+        cut = s.encode("utf-8")[: MAX_NAME_BYTES - 11].decode("utf-8", "ignore").rstrip("_")
         s = f"{cut}_{digest}"
     if s.split(".")[0] in _WINDOWS_RESERVED:
         s += "_preset"

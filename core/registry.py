@@ -23,11 +23,22 @@ AREAS: dict[str, tuple[str, tuple[str, ...]]] = {
     "shooters": ("Shooters", ("projectile", "flywheel", "trebuchet")),
 }
 TITLES = {
-    "motor": "Motor", "gear_ratio": "Gear ratio", "ratio_distance": "Ratio & distance",
-    "lead_screw": "Lead screw", "drivetrain": "Drivetrain", "beam": "Beam",
-    "chain_belt": "Chain/belt C-C", "gear_clearance": "Gear clearance", "pneumatics": "Pneumatics",
-    "pneumatic_linkage": "Pneumatic linkage", "projectile": "Projectile", "flywheel": "Flywheel",
-    "trebuchet": "Trebuchet", "ratio_finder": "Ratio finder", "elevator": "Elevator", "arm": "Arm",
+    "motor": "Motor",
+    "gear_ratio": "Gear ratio",
+    "ratio_distance": "Ratio & distance",
+    "lead_screw": "Lead screw",
+    "drivetrain": "Drivetrain",
+    "beam": "Beam",
+    "chain_belt": "Chain/belt C-C",
+    "gear_clearance": "Gear clearance",
+    "pneumatics": "Pneumatics",
+    "pneumatic_linkage": "Pneumatic linkage",
+    "projectile": "Projectile",
+    "flywheel": "Flywheel",
+    "trebuchet": "Trebuchet",
+    "ratio_finder": "Ratio finder",
+    "elevator": "Elevator",
+    "arm": "Arm",
 }
 ORDER = tuple(cid for _, ids in AREAS.values() for cid in ids)
 
@@ -48,14 +59,18 @@ def calculators() -> dict[str, Calculator]:
             found[calc.id] = calc
     unplaced = sorted(set(found) - set(ORDER))
     if unplaced or len(set(ORDER)) != len(ORDER):
-        raise RuntimeError(f"core/registry.py AREAS must name every calculator exactly once "
-                           f"(not placed: {', '.join(unplaced) or 'none'})")
+        raise RuntimeError(
+            f"core/registry.py AREAS must name every calculator exactly once "
+            f"(not placed: {', '.join(unplaced) or 'none'})"
+        )
     for calc in found.values():
         check(calc)
     check_links(found)
     for cid, calc in found.items():
         if TITLES.get(cid) != calc.title:
-            raise RuntimeError(f"core/registry.py TITLES[{cid!r}] must be the calculator's title {calc.title!r}")
+            raise RuntimeError(
+                f"core/registry.py TITLES[{cid!r}] must be the calculator's title {calc.title!r}"
+            )
     return {cid: found[cid] for cid in ORDER if cid in found}
 
 
@@ -70,4 +85,6 @@ def get(calc_id: str) -> Calculator:
     try:
         return calculators()[calc_id]
     except KeyError:
-        raise InputError("calculator", f"unknown calculator {shown(calc_id)} (known: {', '.join(calculators())})") from None
+        raise InputError(
+            "calculator", f"unknown calculator {shown(calc_id)} (known: {', '.join(calculators())})"
+        ) from None

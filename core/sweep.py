@@ -17,8 +17,10 @@ import math
 import numbers
 import re
 import time
-from dataclasses import dataclass, field as dc_field
-from typing import Any, Callable, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from dataclasses import field as dc_field
+from typing import Any
 
 from . import units
 from .errors import InputError
@@ -97,8 +99,9 @@ def parse_vary(calc: Calculator, text: str) -> Vary:
                 raise InputError(name, f"the point count is given twice ({points} and {opt})")
             points = int(opt)
         else:
-            raise InputError(name, f"{opt!r} is neither a point count nor 'log' "
-                                   f"(expected NAME=START..STOP[:N][:log])")
+            raise InputError(
+                name, f"{opt!r} is neither a point count nor 'log' (expected NAME=START..STOP[:N][:log])"
+            )
     if f.type == "int":
         start, stop = (_whole(t, name) for t in (start_text, stop_text))  # bounds: per point, as rows
         shown = ""
@@ -171,14 +174,18 @@ def evaluate(calc: Calculator, values: Mapping[str, Any]) -> Outcome:
     except InputError as exc:
         return Outcome({}, [], str(exc))
     except (ArithmeticError, ValueError, RuntimeError) as exc:
-        return Outcome({}, [], f"(result): could not be computed from these inputs ({type(exc).__name__}: {exc})")
+        return Outcome(
+            {}, [], f"(result): could not be computed from these inputs ({type(exc).__name__}: {exc})"
+        )
     out = {}
     for o in calc.outputs:
         if o.name not in result.values:
             continue
         v = result.values[o.name]
         if isinstance(v, float) and not math.isfinite(v):
-            return Outcome({}, list(result.warnings), f"(result): {o.name} could not be computed from these inputs")
+            return Outcome(
+                {}, list(result.warnings), f"(result): {o.name} could not be computed from these inputs"
+            )
         out[o.name] = v
     nfev = out.get("rhs_evaluations", 0)
     return Outcome(out, list(result.warnings), None, int(nfev) if isinstance(nfev, numbers.Number) else 0)
@@ -197,8 +204,10 @@ class Cost:
         self.rhs_evaluations += outcome.rhs_evaluations
 
     def text(self) -> str:
-        return (f"{self.solves} solve{'s' if self.solves != 1 else ''}, "
-                f"{self.rhs_evaluations} RHS evaluations, {self.wall_time * 1e3:.1f} ms")
+        return (
+            f"{self.solves} solve{'s' if self.solves != 1 else ''}, "
+            f"{self.rhs_evaluations} RHS evaluations, {self.wall_time * 1e3:.1f} ms"
+        )
 
     def as_json(self) -> dict[str, Any]:
         return {"solves": self.solves, "rhs_evaluations": self.rhs_evaluations, "wall_time": self.wall_time}
@@ -249,8 +258,11 @@ class Sweep:
             f = self.calculator.field(v.name)
             row.append(x if f.type == "int" else units.to_unit(x, v.unit, f.quantity))
         for name in self.outputs:
-            row.append(_display(point.outputs.get(name), self.calculator.output(name).quantity,
-                                self.output_unit(name)))
+            row.append(
+                _display(
+                    point.outputs.get(name), self.calculator.output(name).quantity, self.output_unit(name)
+                )
+            )
         return row
 
     def csv_text(self) -> str:
@@ -261,7 +273,9 @@ class Sweep:
         writer = csv.writer(buf, lineterminator="\n")
         writer.writerow([f"{n} [{u}]" if u else n for n, _, u in self.columns()] + ["status"])
         for p in self.points:
-            cells = ["" if x is None else (repr(x) if isinstance(x, float) else x) for x in self.display_row(p)]
+            cells = [
+                "" if x is None else (repr(x) if isinstance(x, float) else x) for x in self.display_row(p)
+            ]
             writer.writerow(cells + [p.error or "ok"])
         return buf.getvalue()
 
@@ -269,13 +283,29 @@ class Sweep:
         calc = self.calculator
         return {
             "calculator": calc.id,
-            "vary": [{"name": v.name, "start": v.start, "stop": v.stop, "points": v.points, "log": v.log,
-                      "unit": units.SI_UNITS[calc.field(v.name).quantity] if calc.field(v.name).type == "quantity" else ""}
-                     for v in self.varies],
+            "vary": [
+                {
+                    "name": v.name,
+                    "start": v.start,
+                    "stop": v.stop,
+                    "points": v.points,
+                    "log": v.log,
+                    "unit": units.SI_UNITS[calc.field(v.name).quantity]
+                    if calc.field(v.name).type == "quantity"
+                    else "",
+                }
+                for v in self.varies
+            ],
             "outputs": {n: {"unit": units.SI_UNITS[calc.output(n).quantity]} for n in self.outputs},
-            "points": [{"inputs": p.inputs,
-                        "outputs": {n: p.outputs[n] for n in self.outputs if n in p.outputs},
-                        "warnings": p.warnings, "error": p.error} for p in self.points],
+            "points": [
+                {
+                    "inputs": p.inputs,
+                    "outputs": {n: p.outputs[n] for n in self.outputs if n in p.outputs},
+                    "warnings": p.warnings,
+                    "error": p.error,
+                }
+                for p in self.points
+            ],
             "cancelled": self.cancelled,
             "notes": self.notes,
             "cost": self.cost.as_json(),
@@ -304,10 +334,15 @@ def numeric_outputs(calc: Calculator, sample: Mapping[str, Any] | None = None) -
     return names
 
 
-def run(calc_id: str, raw: Mapping[str, Any], varies: Sequence[str | Vary], outputs: Sequence[str] = (),
-        display_units: Mapping[str, str] | None = None,
-        progress: Callable[[int, int], None] | None = None,
-        cancelled: Callable[[], bool] | None = None) -> Sweep:
+def run(
+    calc_id: str,
+    raw: Mapping[str, Any],
+    varies: Sequence[str | Vary],
+    outputs: Sequence[str] = (),
+    display_units: Mapping[str, str] | None = None,
+    progress: Callable[[int, int], None] | None = None,
+    cancelled: Callable[[], bool] | None = None,
+) -> Sweep:
     """Sweep `varies` (one or two 'NAME=START..STOP[:N][:log]' or Vary) from the inputs `raw`.
 
     Two varies make a grid: the first varies slowest. `progress(done, total)` is called as points
@@ -329,13 +364,16 @@ def run(calc_id: str, raw: Mapping[str, Any], varies: Sequence[str | Vary], outp
     choices = choice_values(calc, raw)
     for v in specs:
         if not calc.field(v.name).active(mode, choices):
-            raise InputError(v.name, f"is not used with these choices (mode {mode!r}); sweeping it changes nothing")
+            raise InputError(
+                v.name, f"is not used with these choices (mode {mode!r}); sweeping it changes nothing"
+            )
     for name in outputs:
         try:
             calc.output(name)
         except KeyError:
-            raise InputError(name, f"is not an output of {calc.id} "
-                                   f"(outputs: {', '.join(o.name for o in calc.outputs)})") from None
+            raise InputError(
+                name, f"is not an output of {calc.id} (outputs: {', '.join(o.name for o in calc.outputs)})"
+            ) from None
     display_units = check_display_units(calc, display_units)
 
     fields = [calc.field(v.name) for v in specs]
@@ -362,8 +400,11 @@ def run(calc_id: str, raw: Mapping[str, Any], varies: Sequence[str | Vary], outp
         if error is None:
             outcome = evaluate(calc, values)
             cost.add(outcome)
-            points.append(Point({f.name: values[f.name] for f in fields}, outcome.outputs,
-                                outcome.warnings, outcome.error))
+            points.append(
+                Point(
+                    {f.name: values[f.name] for f in fields}, outcome.outputs, outcome.warnings, outcome.error
+                )
+            )
         else:
             points.append(Point(shown, {}, [], error))
         if progress is not None:
@@ -397,19 +438,34 @@ def text_table(sweep: Sweep, max_outputs: int | None = 6) -> str:
             for n, _, _ in cols:
                 cells.append(cell_text(row[n]) if p.error is None or n in p.inputs else "")
             if p.error is not None:
-                cells = cells[:len(sweep.varies)] + [f"infeasible: {p.error}"]
+                cells = cells[: len(sweep.varies)] + [f"infeasible: {p.error}"]
             elif p.warnings:
-                cells.append("warning: " + p.warnings[0] + (f" (+{len(p.warnings) - 1})" if len(p.warnings) > 1 else ""))
+                cells.append(
+                    "warning: "
+                    + p.warnings[0]
+                    + (f" (+{len(p.warnings) - 1})" if len(p.warnings) > 1 else "")
+                )
             body.append(cells)
-        widths = [max([len(h)] + [len(r[i]) for r in body if i < len(r) and not r[i].startswith(("infeasible", "warning"))])
-                  for i, h in enumerate(heads)]
+        widths = [
+            max(
+                [len(h)]
+                + [len(r[i]) for r in body if i < len(r) and not r[i].startswith(("infeasible", "warning"))]
+            )
+            for i, h in enumerate(heads)
+        ]
         lines.append("  ".join(h.rjust(w) for h, w in zip(heads, widths)))
         for r in body:
-            lines.append("  ".join(c.rjust(w) if i < len(widths) and not c.startswith(("infeasible", "warning"))
-                                   else c for i, (c, w) in enumerate(zip(r, widths + [0] * len(r)))))
+            lines.append(
+                "  ".join(
+                    c.rjust(w) if i < len(widths) and not c.startswith(("infeasible", "warning")) else c
+                    for i, (c, w) in enumerate(zip(r, widths + [0] * len(r)))
+                )
+            )
     hidden = len(sweep.outputs) - len(shown)
     if hidden > 0:
-        lines.append(f"({hidden} more output{'s' if hidden > 1 else ''}: choose with --output NAME, or all with --csv/--json)")
+        lines.append(
+            f"({hidden} more output{'s' if hidden > 1 else ''}: choose with --output NAME, or all with --csv/--json)"
+        )
     bad = sum(1 for p in sweep.points if p.error is not None)
     if bad:
         lines.append(f"{bad} of {len(sweep.points)} points infeasible (reason in the row)")
@@ -455,11 +511,15 @@ def _matrix(sweep: Sweep, name: str) -> list[str]:
             current = [x, []]
             rows.append(current)
         v = p.outputs.get(name)
-        current[1].append("infeasible" if p.error else cell_text(_display(v, calc.output(name).quantity, unit)))
+        current[1].append(
+            "infeasible" if p.error else cell_text(_display(v, calc.output(name).quantity, unit))
+        )
     table = [head] + [[show_in(fx, vx, x)] + cells for x, cells in rows]
     widths = [max(len(r[i]) for r in table if i < len(r)) for i in range(len(head))]
-    out = [f"{name}{f' [{unit}]' if unit else ''}; rows {vx.name}{f' [{vx.unit}]' if vx.unit else ''}, "
-           f"columns {vy.name}{f' [{vy.unit}]' if vy.unit else ''}"]
+    out = [
+        f"{name}{f' [{unit}]' if unit else ''}; rows {vx.name}{f' [{vx.unit}]' if vx.unit else ''}, "
+        f"columns {vy.name}{f' [{vy.unit}]' if vy.unit else ''}"
+    ]
     out += ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in table]
     reasons = sorted({p.error for p in sweep.points if p.error})
     out += [f"infeasible: {r}" for r in reasons[:5]]

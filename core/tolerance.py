@@ -27,8 +27,10 @@ import math
 import numbers
 import re
 import time
-from dataclasses import dataclass, field as dc_field
-from typing import Any, Callable, Mapping
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from dataclasses import field as dc_field
+from typing import Any
 
 from . import units
 from .errors import InputError
@@ -39,7 +41,9 @@ _PLUS_MINUS = re.compile(r"±|\+/-|\+-")
 _NUMBER = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
 _NUMBER_THEN_UNIT = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*(?P<unit>.*?)\s*$")
 MAX_CORNER_INPUTS = 10  # 2^10 = 1024 corners; beyond, the corners the sensitivities point to
-LINEAR_ENOUGH = 0.01  # first-order σ is used when the linear model misses no corner by more than 1 % of the span
+LINEAR_ENOUGH = (
+    0.01  # first-order σ is used when the linear model misses no corner by more than 1 % of the span
+)
 DEFAULT_SAMPLES = 1000
 DEFAULT_SEED = 0
 MIN_SAMPLES = 100  # a time budget never cuts Monte Carlo below this
@@ -91,13 +95,18 @@ def split_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, An
             except KeyError:
                 raise InputError(name, f"unknown field for {calc.id}") from None
             if f.type != "quantity":
-                raise InputError(name, f"a {'whole number' if f.type == 'int' else f.type} cannot carry a "
-                                       f"tolerance; only quantities can")
+                raise InputError(
+                    name,
+                    f"a {'whole number' if f.type == 'int' else f.type} cannot carry a "
+                    f"tolerance; only quantities can",
+                )
             tols[name] = tol
     return nominal, tols
 
 
-def parse(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, Any], list[Tolerance], list[str]]:
+def parse(
+    calc: Calculator, raw: Mapping[str, Any]
+) -> tuple[dict[str, Any], dict[str, Any], list[Tolerance], list[str]]:
     """(nominal entries, SI values, tolerances, notes). Every mistake is an InputError naming the field.
 
     A tolerance on a field the current choices do not use is dropped with a note (it changes nothing).
@@ -124,7 +133,9 @@ def parse(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, Any], dic
             try:
                 f._check_bounds(end, shown)  # the box must be inside the field's bounds
             except InputError as exc:
-                raise InputError(name, f"the {word} end of {raw[name]!r} is outside the field: {exc.message}") from None
+                raise InputError(
+                    name, f"the {word} end of {raw[name]!r} is outside the field: {exc.message}"
+                ) from None
         out.append(Tolerance(name, str(raw[name]), nominal, low, high))
     return nominal_raw, values, out, notes
 
@@ -171,9 +182,13 @@ class OutputSpread:
     def as_json(self) -> dict[str, Any]:
         return {
             "worst_case": {"low": self.low, "high": self.high, "method": self.worst_case_method},
-            "statistical": {"mean": self.mean, "std": self.std, "method": self.statistical_method,
-                            "interval_95": list(self.interval) if self.interval else None,
-                            "std_confidence_95": list(self.std_interval) if self.std_interval else None},
+            "statistical": {
+                "mean": self.mean,
+                "std": self.std,
+                "method": self.statistical_method,
+                "interval_95": list(self.interval) if self.interval else None,
+                "std_confidence_95": list(self.std_interval) if self.std_interval else None,
+            },
             "sensitivities": self.sensitivities,
             "variance_shares": self.shares,
             "main_input": self.main_input,
@@ -194,8 +209,14 @@ class Spread:
 class _Probe:
     """Evaluates the calculator at points of the box (a dict of the toleranced SI values)."""
 
-    def __init__(self, calc: Calculator, values: Mapping[str, Any], tolerances: list[Tolerance], cost: Cost,
-                 cancelled: Callable[[], bool] | None):
+    def __init__(
+        self,
+        calc: Calculator,
+        values: Mapping[str, Any],
+        tolerances: list[Tolerance],
+        cost: Cost,
+        cancelled: Callable[[], bool] | None,
+    ):
         self.calc, self.base, self.tols, self.cost = calc, dict(values), tolerances, cost
         self.cancelled = cancelled
 
@@ -225,10 +246,17 @@ def _number(v: Any) -> float | None:
     return float(v)
 
 
-def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Tolerance],
-           outputs: list[str] | None = None, method: str = "auto", samples: int = DEFAULT_SAMPLES,
-           seed: int = DEFAULT_SEED, cancelled: Callable[[], bool] | None = None,
-           budget_s: float | None = None) -> Spread:
+def spread(
+    calc: Calculator,
+    values: Mapping[str, Any],
+    tolerances: list[Tolerance],
+    outputs: list[str] | None = None,
+    method: str = "auto",
+    samples: int = DEFAULT_SAMPLES,
+    seed: int = DEFAULT_SEED,
+    cancelled: Callable[[], bool] | None = None,
+    budget_s: float | None = None,
+) -> Spread:
     """Worst case and statistical spread of `outputs` (default: every numeric output) over the box.
 
     method: 'auto' (first-order where it is exact enough, else Monte Carlo), 'first-order', or
@@ -247,7 +275,9 @@ def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Toleran
     center = probe(nominal_x)
     if center.error is not None:
         raise InputError(center.error.partition(":")[0], center.error.partition(": ")[2] or center.error)
-    names = outputs or [n for n in numeric_outputs(calc, center.outputs) if _number(center.outputs.get(n)) is not None]
+    names = outputs or [
+        n for n in numeric_outputs(calc, center.outputs) if _number(center.outputs.get(n)) is not None
+    ]
     names = [n for n in names if n not in STATS and _number(center.outputs.get(n)) is not None]
     y0 = {n: _number(center.outputs[n]) for n in names}
 
@@ -356,8 +386,12 @@ def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Toleran
             m4 = float(((arr - mean) ** 4).mean())
             # asymptotic 95 % interval on the variance: Var(s²) ≈ (μ4 − σ⁴)/n (any distribution)
             half = Z95 * math.sqrt(max(m4 - var * var, 0.0) / len(arr))
-            mc[n] = (mean, math.sqrt(var), (float(np.quantile(arr, 0.025)), float(np.quantile(arr, 0.975))),
-                     (math.sqrt(max(var - half, 0.0)), math.sqrt(var + half)))
+            mc[n] = (
+                mean,
+                math.sqrt(var),
+                (float(np.quantile(arr, 0.025)), float(np.quantile(arr, 0.975))),
+                (math.sqrt(max(var - half, 0.0)), math.sqrt(var + half)),
+            )
 
     for n in names:
         # worst case over the nominal and the corners (the optimiser's finds added where it ran)
@@ -378,8 +412,9 @@ def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Toleran
             mean = y0[n] + sum(sens[n][t.name] * ((t.low + t.high) / 2 - t.nominal) for t in tolerances)
             std, interval, std_ci = math.sqrt(total), None, None
             stat = "first-order (sensitivities; inputs uniform)"
-        result[n] = OutputSpread(n, y0[n], lo, hi, how, std, mean, stat, dict(sens[n]), shares, main,
-                                 interval, std_ci, infeasible)
+        result[n] = OutputSpread(
+            n, y0[n], lo, hi, how, std, mean, stat, dict(sens[n]), shares, main, interval, std_ci, infeasible
+        )
     cost.wall_time = time.perf_counter() - t0
     notes = []
     # a yes/no or named result (e.g. 'backdrivable') that flips inside the box matters as much as a spread
@@ -389,14 +424,20 @@ def spread(calc: Calculator, values: Mapping[str, Any], tolerances: list[Toleran
         seen_values = {o.outputs.get(n) for _, o in seen if o.error is None and n in o.outputs}
         if len(seen_values) > 1:
             shown = sorted(("yes" if x else "no") if isinstance(x, bool) else str(x) for x in seen_values)
-            notes.append(f"{n} changes within the tolerances: {' / '.join(shown)} (nominal: "
-                         f"{('yes' if v else 'no') if isinstance(v, bool) else v})")
+            notes.append(
+                f"{n} changes within the tolerances: {' / '.join(shown)} (nominal: "
+                f"{('yes' if v else 'no') if isinstance(v, bool) else v})"
+            )
     if mc_bad:
-        notes.append(f"{len(mc_bad)} of {stopped_at} Monte Carlo samples could not be solved "
-                     f"(left out), e.g. {mc_bad[0]}")
+        notes.append(
+            f"{len(mc_bad)} of {stopped_at} Monte Carlo samples could not be solved "
+            f"(left out), e.g. {mc_bad[0]}"
+        )
     if stopped_at < samples:
         notes.append(f"Monte Carlo stopped at {stopped_at} of {samples} samples (time budget {budget_s:g} s)")
-    return Spread(list(tolerances), result, cost, notes, stopped_at if need_mc else 0, seed if need_mc else None)
+    return Spread(
+        list(tolerances), result, cost, notes, stopped_at if need_mc else 0, seed if need_mc else None
+    )
 
 
 def _is_monotone(ys: list[float]) -> bool:
@@ -429,8 +470,13 @@ def _optimise(at, tolerances: list[Tolerance], seen, name: str) -> tuple[float, 
             y = _number(o.outputs.get(name)) if o.error is None else None
             return penalty if y is None else sign * y
 
-        res = minimize(objective, list(start[0]), method="Powell", bounds=bounds,
-                       options={"xtol": 1e-10, "ftol": 1e-13, "maxfev": 400})
+        res = minimize(
+            objective,
+            list(start[0]),
+            method="Powell",
+            bounds=bounds,
+            options={"xtol": 1e-10, "ftol": 1e-13, "maxfev": 400},
+        )
         found.append(sign * float(res.fun))
     return found[0], found[1]
 
@@ -439,9 +485,16 @@ def _optimise(at, tolerances: list[Tolerance], seen, name: str) -> tuple[float, 
 # solve with tolerances (CLI and app)
 
 
-def solve(calc_id: str, raw: Mapping[str, Any], display_units: Mapping[str, str] | None = None,
-          method: str = "auto", samples: int = DEFAULT_SAMPLES, seed: int = DEFAULT_SEED,
-          cancelled: Callable[[], bool] | None = None, budget_s: float | None = None):
+def solve(
+    calc_id: str,
+    raw: Mapping[str, Any],
+    display_units: Mapping[str, str] | None = None,
+    method: str = "auto",
+    samples: int = DEFAULT_SAMPLES,
+    seed: int = DEFAULT_SEED,
+    cancelled: Callable[[], bool] | None = None,
+    budget_s: float | None = None,
+):
     """(Solution at the nominal values, exactly core.model.solve's; Spread or None; notes)."""
     from .model import solve as solve_nominal
     from .registry import get
@@ -454,7 +507,9 @@ def solve(calc_id: str, raw: Mapping[str, Any], display_units: Mapping[str, str]
         solution.inputs[t.name] = type(entered)(entered.value, entered.unit, t.entry)
     if not tols:
         return solution, None, notes
-    result = spread(calc, values, tols, [n for n in solution.outputs], method, samples, seed, cancelled, budget_s)
+    result = spread(
+        calc, values, tols, [n for n in solution.outputs], method, samples, seed, cancelled, budget_s
+    )
     result.notes = notes + result.notes
     return solution, result, result.notes
 
@@ -513,8 +568,10 @@ def as_json(solution, result: Spread | None) -> dict[str, Any]:
 
 def short_method(s: OutputSpread) -> tuple[str, str]:
     """('corners' or 'optimiser', 'first-order' or 'Monte Carlo') for a compact line."""
-    return ("optimiser" if "optimiser" in s.worst_case_method else "corners",
-            "Monte Carlo" if s.statistical_method.startswith("Monte Carlo") else "first-order")
+    return (
+        "optimiser" if "optimiser" in s.worst_case_method else "corners",
+        "Monte Carlo" if s.statistical_method.startswith("Monte Carlo") else "first-order",
+    )
 
 
 def spread_lines(calc: Calculator, solution, result: Spread, width: int) -> list[str]:
@@ -534,13 +591,17 @@ def spread_lines(calc: Calculator, solution, result: Spread, width: int) -> list
         u = f" {unit}" if unit else ""
         worst, stat = short_method(s)
         main = f"; mostly {s.main_input} ({s.shares[s.main_input] * 100:.0f} %)" if s.main_input else ""
-        lines.append(f"  {o.label:<{width}}  {q(s.low)} .. {q(s.high)}{u} ({worst}); σ {q(s.std)}{u} ({stat}){main}")
+        lines.append(
+            f"  {o.label:<{width}}  {q(s.low)} .. {q(s.high)}{u} ({worst}); σ {q(s.std)}{u} ({stat}){main}"
+        )
     if unaffected:
         lines.append(f"  unaffected: {', '.join(unaffected)}")
     methods = sorted({s.worst_case_method for s in result.outputs.values()})
     lines.append(f"  worst case over the box: {'; '.join(methods)}")
     if result.samples:
-        lines.append(f"  Monte Carlo where first order is not exact enough: {result.samples} samples, seed {result.seed}")
+        lines.append(
+            f"  Monte Carlo where first order is not exact enough: {result.samples} samples, seed {result.seed}"
+        )
     lines.append(f"  cost: {result.cost.text()}")
     lines += [f"  note: {n}" for n in result.notes]
     return lines

@@ -45,7 +45,10 @@ def declared_units() -> set[tuple[str, str]]:
             if o.unit:
                 found.add((o.unit, o.quantity))
         for p in calc.plots:
-            found.update({(p.x_unit, p.x_quantity), (p.y_unit, p.y_quantity)} - {("", p.x_quantity), ("", p.y_quantity)})
+            found.update(
+                {(p.x_unit, p.x_quantity), (p.y_unit, p.y_quantity)}
+                - {("", p.x_quantity), ("", p.y_quantity)}
+            )
     for kind, ring in COMMON_UNITS.items():
         found.update((u, kind) for u in ring if u)
     for table in (TO_METRIC, TO_IMPERIAL):
@@ -62,7 +65,9 @@ def generate() -> dict[str, float]:
     ureg = registry.__wrapped__()
     out = {}
     for unit, kind in sorted(declared_units()):
-        out[f"{kind}|{unit}"] = float(ureg.Quantity(1.0, unit).to(SI_UNITS[kind] or "dimensionless").magnitude)
+        out[f"{kind}|{unit}"] = float(
+            ureg.Quantity(1.0, unit).to(SI_UNITS[kind] or "dimensionless").magnitude
+        )
     return out
 
 

@@ -169,8 +169,11 @@ def normalise(text: object, field: str, kind: str = "dimensionless") -> str:
         if problem:
             raise InputError(field, f"{shown(s)} {problem}")
     if _TWO_NUMBERS.search(s):
-        raise InputError(field, f"{shown(s)} has two numbers in a row; write one number (1.5, not "
-                                f"1 1/2), or an operator between them (3*4)")
+        raise InputError(
+            field,
+            f"{shown(s)} has two numbers in a row; write one number (1.5, not "
+            f"1 1/2), or an operator between them (3*4)",
+        )
     if _UNDERSCORED_NUMBER.search(s):
         raise InputError(field, f"{shown(s)}: write numbers without '_' (1000, not 1_000)")
     return s
@@ -202,8 +205,10 @@ def _character_problem(ch: str) -> str | None:
     return f"contains {ch!r}, which is not part of a number or unit"
 
 
-_TOKEN = re.compile(r"\s*(?:(?P<number>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?)"
-                    r"|(?P<name>[^\W\d]\w*)|(?P<op>\*\*|[-+*/()]))")
+_TOKEN = re.compile(
+    r"\s*(?:(?P<number>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?)"
+    r"|(?P<name>[^\W\d]\w*)|(?P<op>\*\*|[-+*/()]))"
+)
 
 
 def _tokens(s: str, field: str, kind: str) -> list:
@@ -270,8 +275,9 @@ def _evaluate(s: str, field: str, kind: str):
         except Exception:  # pint raises several types for names it does not know
             power_hint = re.fullmatch(r"([^\W\d_]+)([0-9]+)", name)
             hint = f"; for a power write {power_hint[1]}**{power_hint[2]}" if power_hint else ""
-            raise InputError(field, f"{shown(name)} is not a unit I know "
-                                    f"(units of {_a(kind)}: {example_unit(kind)}){hint}") from None
+            raise InputError(
+                field, f"{shown(name)} is not a unit I know (units of {_a(kind)}: {example_unit(kind)}){hint}"
+            ) from None
 
     def power(base, exponent):
         tick()
@@ -287,7 +293,7 @@ def _evaluate(s: str, field: str, kind: str):
         if b == 0 and exponent < 0:
             fail("divides by zero")
         try:
-            return checked(base ** exponent)
+            return checked(base**exponent)
         except (OverflowError, ZeroDivisionError):
             fail("is not a finite number")
 
@@ -308,6 +314,7 @@ def _evaluate(s: str, field: str, kind: str):
                 return checked(a + b if sign > 0 else a - b)
             except pint.errors.DimensionalityError:
                 fail("adds quantities of different kinds (give every term a unit)")
+
         return op
 
     import token as tokenlib
@@ -340,7 +347,9 @@ def _to_si(q, s: str, field: str, kind: str) -> float:
     try:
         value = float(q.to(target).magnitude)
     except pint.errors.DimensionalityError:
-        raise InputError(field, f"{shown(s)} is not {_a(kind)} (expected units like {example_unit(kind)})") from None
+        raise InputError(
+            field, f"{shown(s)} is not {_a(kind)} (expected units like {example_unit(kind)})"
+        ) from None
     except (ArithmeticError, TypeError, ValueError):
         raise InputError(field, f"{shown(s)} is not a finite number") from None
     return value
@@ -357,10 +366,22 @@ def _a(kind: str) -> str:
 
 
 _EXAMPLES = {
-    "length": "mm, in, ft", "force": "N, lbf", "torque": "N*m, in*lbf", "speed": "m/s, ft/s",
-    "angular_speed": "rpm, rad/s", "angle": "deg, rad", "current": "A", "voltage": "V",
-    "pressure": "psi, kPa", "mass": "kg, lb", "volume": "cc, in**3, L", "time": "s, min",
-    "power": "W, hp", "resistance": "ohm", "modulus": "GPa, psi", "dimensionless": "a plain number, %",
+    "length": "mm, in, ft",
+    "force": "N, lbf",
+    "torque": "N*m, in*lbf",
+    "speed": "m/s, ft/s",
+    "angular_speed": "rpm, rad/s",
+    "angle": "deg, rad",
+    "current": "A",
+    "voltage": "V",
+    "pressure": "psi, kPa",
+    "mass": "kg, lb",
+    "volume": "cc, in**3, L",
+    "time": "s, min",
+    "power": "W, hp",
+    "resistance": "ohm",
+    "modulus": "GPa, psi",
+    "dimensionless": "a plain number, %",
 }
 
 
@@ -407,8 +428,9 @@ def check_unit(unit: str, kind: str, name: str) -> str:
     try:
         factor(unit, kind)
     except Exception:  # unknown unit or wrong dimension: both mean "cannot show it in that"
-        raise InputError(name, f"cannot show {_a(kind)} in {shown(unit)} "
-                               f"(units like {example_unit(kind)})") from None
+        raise InputError(
+            name, f"cannot show {_a(kind)} in {shown(unit)} (units like {example_unit(kind)})"
+        ) from None
     return unit
 
 

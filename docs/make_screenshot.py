@@ -1,6 +1,6 @@
 """Regenerate docs/screenshot.svg (the README's picture): the trebuchet tab at 140x45.
 
-    .venv/bin/python docs/make_screenshot.py
+.venv/bin/python docs/make_screenshot.py
 """
 
 import asyncio
@@ -12,8 +12,8 @@ sys.path.insert(0, str(ROOT))
 
 
 async def main() -> None:
-    from tests.tui_helpers import settle
     from gearhead.tui.app import GearheadApp
+    from tests.tui_helpers import settle
 
     app = GearheadApp(blink=False, initial="trebuchet", hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:

@@ -28,8 +28,10 @@ def current() -> dict[str, dict[str, dict]]:
         values = {k: v.value for k, v in sol.outputs.items() if k not in VOLATILE}
         record = {"outputs": values, "warnings": sol.warnings}
         if sol.tables:  # e.g. the ratio finder's combinations, cell by cell (SI values)
-            record["tables"] = {name: [{k: v.value for k, v in row.items()} for row in rows]
-                                for name, rows in sol.tables.items()}
+            record["tables"] = {
+                name: [{k: v.value for k, v in row.items()} for row in rows]
+                for name, rows in sol.tables.items()
+            }
         out.setdefault(p.calculator, {})[p.path.name] = record
     return out
 

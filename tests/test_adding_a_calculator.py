@@ -15,7 +15,8 @@ import re
 from pathlib import Path
 
 import pytest
-from hypothesis import assume, given, settings, strategies as st
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from gearhead.core import presets, registry
 from gearhead.core.declarations import check, check_links
@@ -74,7 +75,9 @@ def test_hand_values():
     assert tread.outputs["effective_diameter"].value == pytest.approx(4.5 * IN, rel=1e-15)
     assert tread.outputs["surface_speed"].value == pytest.approx(sol.outputs["surface_speed"].value * 4.5 / 4)
     # reverse: 15 ft/s on the 4 in wheel needs G = ω_m·d/(2v) = 594.4 rad/s · 0.1016 m/(2 · 4.572 m/s) = 6.6043
-    assert solve("toy_wheel", {"mode": "ratio"}).outputs["ratio_needed"].value == pytest.approx(6.60430, rel=1e-5)
+    assert solve("toy_wheel", {"mode": "ratio"}).outputs["ratio_needed"].value == pytest.approx(
+        6.60430, rel=1e-5
+    )
 
 
 @settings(max_examples=100, deadline=None, database=None)
@@ -82,7 +85,11 @@ def test_hand_values():
 def test_the_ratio_for_a_speed_gives_that_speed(speed, diameter, motor):
     assume(1.001 < motor * RPM * diameter * IN / (2 * speed * FT) < 999)  # within the ratio's bounds
     common = {"wheel_diameter": repr(diameter), "motor_speed": repr(motor)}
-    G = solve("toy_wheel", {"mode": "ratio", "target_speed": repr(speed), **common}).outputs["ratio_needed"].value
+    G = (
+        solve("toy_wheel", {"mode": "ratio", "target_speed": repr(speed), **common})
+        .outputs["ratio_needed"]
+        .value
+    )
     v = solve("toy_wheel", {"mode": "speed", "ratio": repr(G), **common}).outputs["surface_speed"].value
     assert v / FT == pytest.approx(speed, rel=1e-12)
 

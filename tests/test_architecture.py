@@ -41,8 +41,9 @@ def test_solving_every_calculator_loads_no_ui_module():
         "or m.startswith('gearhead.tui'))\n"
         "print(','.join(bad))\n"
     )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         cwd=CORE.parent, check=True)
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, cwd=CORE.parent, check=True
+    )
     assert out.stdout.strip() == ""
 
 
@@ -52,8 +53,11 @@ def test_every_package_folder_is_installed_under_gearhead():
     root = CORE.parent
     config = tomllib.loads((root / "pyproject.toml").read_text(encoding="utf-8"))["tool"]["setuptools"]
     listed = set(config["packages"])
-    found = {"gearhead." + ".".join(p.parent.relative_to(root).parts)
-             for top in ("core", "tui", "presets") for p in (root / top).rglob("__init__.py")}
+    found = {
+        "gearhead." + ".".join(p.parent.relative_to(root).parts)
+        for top in ("core", "tui", "presets")
+        for p in (root / top).rglob("__init__.py")
+    }
     assert listed == found, "pyproject.toml [tool.setuptools] packages must list every package folder"
     assert all(name.startswith("gearhead.") for name in listed)
 
@@ -63,12 +67,18 @@ def test_the_installed_distribution_puts_only_gearhead_at_the_top():
     from importlib.metadata import distributions
 
     # the copy pip installed in site-packages (a build may leave gearhead.egg-info in the checkout)
-    installed = [d for d in distributions(path=[sysconfig.get_paths()["purelib"]])
-                 if d.metadata["Name"] == "gearhead"]
+    installed = [
+        d for d in distributions(path=[sysconfig.get_paths()["purelib"]]) if d.metadata["Name"] == "gearhead"
+    ]
     assert len(installed) == 1
     tops = {f.parts[0] for f in installed[0].files or ()}
     # '..' is the console script in bin/; __editable__* and a .pth only in an editable install
-    stray = {t for t in tops if t not in ("gearhead", "..", "__pycache__") and not t.endswith((".dist-info", ".pth"))
-             and not t.startswith("__editable__")}
+    stray = {
+        t
+        for t in tops
+        if t not in ("gearhead", "..", "__pycache__")
+        and not t.endswith((".dist-info", ".pth"))
+        and not t.startswith("__editable__")
+    }
     assert "gearhead" in tops or any(t.startswith("__editable__") for t in tops)
     assert stray == set()

@@ -5,12 +5,13 @@ equation EI·y'''' = F·δ(x − a) solved again with sympy for each support.
 """
 
 import math
-from functools import lru_cache
+from functools import cache
 
 import mpmath as mp
 import pytest
 import sympy as sp
-from hypothesis import assume, given, settings, strategies as st
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from gearhead.core import beams, presets
 from gearhead.core.calculators import beam as calc
@@ -35,12 +36,15 @@ def rectangle(w, h):
 
 # --- sections ---------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("corner_angle", [0, 30])
 def test_hex_area_moment_is_5_root3_over_144_either_way_up(corner_angle):
     """Regular hexagon across flats s = 1: circumradius 1/√3; I is the same about every axis."""
     R = 1 / math.sqrt(3)
-    pts = [(R * math.cos(math.radians(corner_angle + 60 * k)), R * math.sin(math.radians(corner_angle + 60 * k)))
-           for k in range(6)]
+    pts = [
+        (R * math.cos(math.radians(corner_angle + 60 * k)), R * math.sin(math.radians(corner_angle + 60 * k)))
+        for k in range(6)
+    ]
     assert polygon_ix(pts) == pytest.approx(5 * math.sqrt(3) / 144, rel=1e-14)
     sec = beams.hex_section(1.0)
     assert sec.area_moment == pytest.approx(polygon_ix(pts), rel=1e-14)
@@ -67,7 +71,8 @@ def test_round_tube_thin_wall_error_is_minus_t2_over_dm2_plus_t2():
         sec = beams.round_tube_section(D, t)
         dm = D - t
         assert sec.thin_wall_torsion_constant / sec.torsion_constant - 1 == pytest.approx(
-            -t * t / (dm * dm + t * t), rel=1e-12)
+            -t * t / (dm * dm + t * t), rel=1e-12
+        )
 
 
 def test_square_torsion_constant_is_saint_venant_series():
@@ -108,7 +113,9 @@ def test_bredt_denominator_typo_in_seed_52():
     """Bredt: J = 4A_m²t/p_m, A_m = (x−h)(y−h), p_m = 2(x + y − 2h) → 2h(x−h)²(y−h)²/(x+y−2h)."""
     x, y, h = 2.0, 1.0, 0.1
     bredt = 4 * ((x - h) * (y - h)) ** 2 * h / (2 * (x + y - 2 * h))
-    assert beams.rectangular_tube_section(x, y, h).thin_wall_torsion_constant == pytest.approx(bredt, rel=1e-14)
+    assert beams.rectangular_tube_section(x, y, h).thin_wall_torsion_constant == pytest.approx(
+        bredt, rel=1e-14
+    )
     seed_52 = 2 * h**2 * (x - h) ** 2 * (y - h) ** 2 / (h * (x + y - h))
     assert seed_52 != pytest.approx(bredt, rel=1e-2)
 
@@ -129,7 +136,8 @@ def test_rectangular_tube_torsion_close_to_bredt_for_thin_walls_and_error_shown(
 
 # --- load cases: the beam equation solved again with sympy --------------------------------------
 
-@lru_cache(maxsize=None)
+
+@cache
 def sympy_beam(support, a, l):
     """Piecewise cubic y(x) (EI = F = 1, y along F) from EI·y'''' = F·δ(x − a) and the end conditions.
 
@@ -140,8 +148,12 @@ def sympy_beam(support, a, l):
     y1 = c[0] + c[1] * x + c[2] * x**2 + c[3] * x**3
     y2 = c[4] + c[5] * x + c[6] * x**2 + c[7] * x**3
     d = lambda f, n=1: sp.diff(f, x, n)  # noqa: E731
-    eqs = [(y1 - y2).subs(x, a), d(y1 - y2).subs(x, a), d(y1 - y2, 2).subs(x, a),
-           (d(y2, 3) - d(y1, 3)).subs(x, a) - 1]  # shear jumps by F at the load
+    eqs = [
+        (y1 - y2).subs(x, a),
+        d(y1 - y2).subs(x, a),
+        d(y1 - y2, 2).subs(x, a),
+        (d(y2, 3) - d(y1, 3)).subs(x, a) - 1,
+    ]  # shear jumps by F at the load
     if support == "simple":
         eqs += [y1.subs(x, 0), d(y1, 2).subs(x, 0), y2.subs(x, l), d(y2, 2).subs(x, l)]
     elif support == "fixed":
@@ -160,8 +172,9 @@ def sympy_beam(support, a, l):
 
 
 @pytest.mark.parametrize("support", beams.SUPPORTS)
-@pytest.mark.parametrize("a", [sp.Rational(1, 10), sp.Rational(1, 3), sp.Rational(1, 2), sp.Rational(7, 10),
-                               sp.Rational(19, 20)])
+@pytest.mark.parametrize(
+    "a", [sp.Rational(1, 10), sp.Rational(1, 3), sp.Rational(1, 2), sp.Rational(7, 10), sp.Rational(19, 20)]
+)
 def test_max_deflection_matches_the_beam_equation(support, a):
     l = 1
     y_ref, x_ref = sympy_beam(support, a, l)
@@ -211,8 +224,17 @@ def test_handworked_simply_supported_round_bar():
     y = 444.822·0.226535/(48·68.9e9·1.27698e-9) = 100.768/4223.23 = 0.023860 m (0.939 in).
     M = Fl/4 = 444.822·0.6096/4 = 67.791 N·m; σ = Mc/I = 67.791·0.00635/1.27698e-9 = 337.10 MPa.
     """
-    sol = solve("beam", {"section": "round", "outer_size": "0.5 in", "length": "24 in",
-                         "load_position": "12 in", "force": "100 lbf", "support": "simple"})
+    sol = solve(
+        "beam",
+        {
+            "section": "round",
+            "outer_size": "0.5 in",
+            "length": "24 in",
+            "load_position": "12 in",
+            "force": "100 lbf",
+            "support": "simple",
+        },
+    )
     out = {k: v.value for k, v in sol.outputs.items()}
     assert out["max_deflection"] == pytest.approx(0.023860, rel=1e-4)
     assert out["max_deflection_position"] == pytest.approx(0.3048, rel=1e-12)
@@ -236,12 +258,27 @@ def test_fixed_centre_load_is_a_quarter_of_simple_and_cantilever_tip():
 
 # --- buckling, twist, materials ---------------------------------------------------------------
 
-@pytest.mark.parametrize("end,k_values,K", [("fixed_fixed", "theoretical", 0.5), ("fixed_fixed", "recommended", 0.65),
-                                           ("fixed_free", "recommended", 2.1), ("pinned_pinned", "theoretical", 1.0),
-                                           ("fixed_guided", "recommended", 1.2)])
+
+@pytest.mark.parametrize(
+    "end,k_values,K",
+    [
+        ("fixed_fixed", "theoretical", 0.5),
+        ("fixed_fixed", "recommended", 0.65),
+        ("fixed_free", "recommended", 2.1),
+        ("pinned_pinned", "theoretical", 1.0),
+        ("fixed_guided", "recommended", 1.2),
+    ],
+)
 def test_buckling_uses_weak_axis_and_k_table(end, k_values, K):
-    raw = {"section": "rectangular_tube", "height": "2 in", "width": "1 in", "wall": "0.0625 in",
-           "length": "60 in", "end_condition": end, "k_values": k_values}
+    raw = {
+        "section": "rectangular_tube",
+        "height": "2 in",
+        "width": "1 in",
+        "wall": "0.0625 in",
+        "length": "60 in",
+        "end_condition": end,
+        "k_values": k_values,
+    }
     sec = beams.rectangular_tube_section(2 * IN, 1 * IN, 0.0625 * IN)
     expected = math.pi**2 * 68.9e9 * sec.min_area_moment / (K * 60 * IN) ** 2  # (59)
     assert solve("beam", raw).outputs["buckling_load"].value == pytest.approx(expected, rel=1e-12)
@@ -251,16 +288,30 @@ def test_buckling_uses_weak_axis_and_k_table(end, k_values, K):
 def test_twist_angle_of_steel_round_shaft():
     """θ = TL/(GJ): 10 N·m over 0.5 m, 12 mm steel: J = π·0.012⁴/32 = 2.03575e-9 m⁴,
     θ = 5/(79.3e9·2.03575e-9) = 5/161.435 = 0.030973 rad."""
-    sol = solve("beam", {"section": "round", "outer_size": "12 mm", "material": "steel",
-                         "torque": "10 N*m", "length": "0.5 m", "load_position": "0 m"})
+    sol = solve(
+        "beam",
+        {
+            "section": "round",
+            "outer_size": "12 mm",
+            "material": "steel",
+            "torque": "10 N*m",
+            "length": "0.5 m",
+            "load_position": "0 m",
+        },
+    )
     assert sol.outputs["twist_angle"].value == pytest.approx(0.030973, rel=1e-4)
     assert "safety_factor" not in sol.outputs  # steel grade unknown
     assert sol.outputs["mass"].value == pytest.approx(7850 * math.pi * 0.006**2 * 0.5, rel=1e-12)
 
 
 def test_custom_material_and_unknown_yield():
-    raw = {"material": "custom", "youngs_modulus": "200 GPa", "shear_modulus": "80 GPa",
-           "yield_strength": 0, "density": 0}
+    raw = {
+        "material": "custom",
+        "youngs_modulus": "200 GPa",
+        "shear_modulus": "80 GPa",
+        "yield_strength": 0,
+        "density": 0,
+    }
     sol = solve("beam", raw)
     assert "safety_factor" not in sol.outputs and "mass" not in sol.outputs
     values, _ = parse_inputs(calc.CALCULATOR, raw)
@@ -269,13 +320,17 @@ def test_custom_material_and_unknown_yield():
 
 # --- input errors -----------------------------------------------------------------------------
 
-@pytest.mark.parametrize("raw,field", [
-    ({"section": "round_tube", "outer_size": "1 in", "wall": "0.5 in"}, "wall"),
-    ({"section": "rectangular_tube", "height": "2 in", "width": "1 in", "wall": "0.6 in"}, "wall"),
-    ({"length": "10 in", "load_position": "11 in"}, "load_position"),
-    ({"force": "-5 lbf"}, "force"),
-    ({"section": "round", "outer_size": "3 kg"}, "outer_size"),
-])
+
+@pytest.mark.parametrize(
+    "raw,field",
+    [
+        ({"section": "round_tube", "outer_size": "1 in", "wall": "0.5 in"}, "wall"),
+        ({"section": "rectangular_tube", "height": "2 in", "width": "1 in", "wall": "0.6 in"}, "wall"),
+        ({"length": "10 in", "load_position": "11 in"}, "load_position"),
+        ({"force": "-5 lbf"}, "force"),
+        ({"section": "round", "outer_size": "3 kg"}, "outer_size"),
+    ],
+)
 def test_bad_inputs_name_the_field(raw, field):
     with pytest.raises(InputError) as e:
         solve("beam", raw)
@@ -288,6 +343,7 @@ def test_wall_is_not_checked_for_solid_sections():
 
 # --- presets and CLI shape --------------------------------------------------------------------
 
+
 def test_builtin_beam_presets_load_and_solve():
     found = presets.listing("beam")
     assert len(found) >= 2
@@ -298,8 +354,14 @@ def test_builtin_beam_presets_load_and_solve():
 
 def test_required_outputs_present():
     sol = solve("beam", {"section": "round_tube"}).as_json()
-    for name in ("area_moment", "torsion_constant", "max_deflection", "max_deflection_position",
-                 "buckling_load", "twist_angle"):
+    for name in (
+        "area_moment",
+        "torsion_constant",
+        "max_deflection",
+        "max_deflection_position",
+        "buckling_load",
+        "twist_angle",
+    ):
         assert sol["outputs"][name]["unit"] in ("m**4", "m", "N", "rad")
 
 
@@ -308,22 +370,39 @@ def test_short_column_gives_johnsons_load():
     Euler σ = π²E/(KL/r)² = 9.8696·68.9e9/1200 = 566.7 MPa > Sy/2 → Johnson:
     σ = Sy − (Sy·34.641/2π)²/E = 276e6 − (1.52167e9)²/68.9e9 = 276e6 − 33.607e6 = 242.39 MPa;
     P = 242.39e6·0.0254² = 156,380 N."""
-    sol = solve("beam", {"section": "square", "outer_size": "1 in", "length": "10 in",
-                         "load_position": "5 in", "end_condition": "pinned_pinned", "k_values": "theoretical"})
+    sol = solve(
+        "beam",
+        {
+            "section": "square",
+            "outer_size": "1 in",
+            "length": "10 in",
+            "load_position": "5 in",
+            "end_condition": "pinned_pinned",
+            "k_values": "theoretical",
+        },
+    )
     assert sol.outputs["buckling_formula"].value == "Johnson"
     assert sol.outputs["buckling_load"].value == pytest.approx(156380, rel=1e-3)
-    long_column = solve("beam", {"section": "square", "outer_size": "1 in", "length": "100 in",
-                                 "load_position": "5 in"})
+    long_column = solve(
+        "beam", {"section": "square", "outer_size": "1 in", "length": "100 in", "load_position": "5 in"}
+    )
     assert long_column.outputs["buckling_formula"].value == "Euler"
 
 
 # --- review additions: lines no earlier test pinned down ------------------------------------
 
+
 def test_k_table_is_the_seeds():
     """Seed table under (59), columns in order: theoretical 0.5 0.7 1.0 1.0 2.0 2.0,
     recommended 0.65 0.80 1.2 1.0 2.10 2.0."""
-    table = {"fixed_fixed": (0.5, 0.65), "fixed_pinned": (0.7, 0.80), "fixed_guided": (1.0, 1.2),
-             "pinned_pinned": (1.0, 1.0), "fixed_free": (2.0, 2.10), "pinned_guided": (2.0, 2.0)}
+    table = {
+        "fixed_fixed": (0.5, 0.65),
+        "fixed_pinned": (0.7, 0.80),
+        "fixed_guided": (1.0, 1.2),
+        "pinned_pinned": (1.0, 1.0),
+        "fixed_free": (2.0, 2.10),
+        "pinned_guided": (2.0, 2.0),
+    }
     assert {k: v[1:] for k, v in calc.END_CONDITIONS.items()} == table
 
 
@@ -340,8 +419,17 @@ def test_hex_bending_stress_uses_the_corner_fibre():
     """1/2 in hex, 10 in cantilever, 10 lbf at the tip: M = 44.4822·0.254 = 11.29848 N·m;
     I = 5√3/144·0.0127⁴ = 0.0601407·2.60145e-8 = 1.564530e-9 m⁴; c = 0.0127/√3 = 7.33235e-3 m;
     σ = 11.29848·7.33235e-3/1.564530e-9 = 52.952 MPa."""
-    sol = solve("beam", {"section": "hex", "outer_size": "0.5 in", "support": "cantilever",
-                         "length": "10 in", "load_position": "10 in", "force": "10 lbf"})
+    sol = solve(
+        "beam",
+        {
+            "section": "hex",
+            "outer_size": "0.5 in",
+            "support": "cantilever",
+            "length": "10 in",
+            "load_position": "10 in",
+            "force": "10 lbf",
+        },
+    )
     assert sol.outputs["max_bending_stress"].value == pytest.approx(52.952e6, rel=1e-4)
 
 
@@ -349,33 +437,59 @@ def test_johnson_branch_starts_where_euler_stress_is_half_the_yield():
     """Solid 1 in square 6061, pinned, K = 1: r = 0.0254/√12 = 7.33235e-3 m. Euler σ = Sy/2 at
     KL/r = √(2π²E/Sy) = √(2·9.8696·68.9e9/276e6) = 70.197 → L = 0.51471 m = 20.264 in.
     At 18 in (KL/r = 62.35, σ_E = 174.9 MPa, between Sy/2 and Sy) Johnson applies; at 22 in not."""
-    base = {"section": "square", "outer_size": "1 in", "load_position": "0 in",
-            "end_condition": "pinned_pinned", "k_values": "theoretical"}
+    base = {
+        "section": "square",
+        "outer_size": "1 in",
+        "load_position": "0 in",
+        "end_condition": "pinned_pinned",
+        "k_values": "theoretical",
+    }
     assert solve("beam", {**base, "length": "18 in"}).outputs["buckling_formula"].value == "Johnson"
     assert solve("beam", {**base, "length": "22 in"}).outputs["buckling_formula"].value == "Euler"
 
 
-@pytest.mark.parametrize("material,E,G,rho", [
-    ("6061_t6", 68.9e9, 26.0e9, 2700.0), ("steel", 200e9, 79.3e9, 7850.0),
-    ("polycarbonate", 2.34e9, 2.34e9 / (2 * (1 + 0.37)), 1200.0)])
+@pytest.mark.parametrize(
+    "material,E,G,rho",
+    [
+        ("6061_t6", 68.9e9, 26.0e9, 2700.0),
+        ("steel", 200e9, 79.3e9, 7850.0),
+        ("polycarbonate", 2.34e9, 2.34e9 / (2 * (1 + 0.37)), 1200.0),
+    ],
+)
 def test_material_figures_reach_the_outputs(material, E, G, rho):
     """REFERENCE_DATA.md; polycarbonate G = E/(2(1 + ν)) = 2.34/2.74 = 0.85401 GPa with ν = 0.37.
     1 in round bar, 10 in, 1 N·m of torque: θ = T·L/(G·J), J = π·0.0254⁴/32 = 4.08620e-8 m⁴."""
-    sol = solve("beam", {"section": "round", "outer_size": "1 in", "length": "10 in",
-                         "load_position": "0 in", "torque": "1 N*m", "material": material})
+    sol = solve(
+        "beam",
+        {
+            "section": "round",
+            "outer_size": "1 in",
+            "length": "10 in",
+            "load_position": "0 in",
+            "torque": "1 N*m",
+            "material": material,
+        },
+    )
     J = math.pi * IN**4 / 32
     assert sol.outputs["twist_angle"].value == pytest.approx(0.254 / (G * J), rel=1e-12)
     assert sol.outputs["mass"].value == pytest.approx(rho * math.pi / 4 * IN**2 * 0.254, rel=1e-12)
     assert sol.outputs["euler_load"].value == pytest.approx(
-        math.pi**2 * E * J / 2 / 0.254**2, rel=1e-12)  # K = 1 (pinned, recommended 1.0), I = J/2
+        math.pi**2 * E * J / 2 / 0.254**2, rel=1e-12
+    )  # K = 1 (pinned, recommended 1.0), I = J/2
 
 
 def test_short_steel_column_without_a_yield_says_which_yield_euler_needs():
     """Steel 1 in square, 10 in pinned: KL/r = 34.641 (see the Johnson test), σ_E = π²·200e9/1200
     = 1644.9 MPa, so Euler needs a yield ≥ 3290 MPa: no steel in FRC has that. At 100 in,
     σ_E = 16.45 MPa < 125 MPa: no warning."""
-    base = {"section": "square", "outer_size": "1 in", "material": "steel", "load_position": "0 in",
-            "end_condition": "pinned_pinned", "k_values": "theoretical"}
+    base = {
+        "section": "square",
+        "outer_size": "1 in",
+        "material": "steel",
+        "load_position": "0 in",
+        "end_condition": "pinned_pinned",
+        "k_values": "theoretical",
+    }
     (warning,) = [w for w in solve("beam", {**base, "length": "10 in"}).warnings if "Short column" in w]
     needed = float(warning.split("at least ")[1].split(" MPa")[0])
     assert needed == pytest.approx(2 * math.pi**2 * 200e3 / 1200, rel=1e-4)  # 3289.9 MPa

@@ -26,7 +26,7 @@ def _boom(*args, **kwargs):
 
 def _guarded(*args, **kwargs):
     try:
-        1 / 0
+        1 / 0  # noqa: B018 (the point: an arithmetic error)
     except ZeroDivisionError as exc:
         raise InputError("(result)", "could not be computed from these inputs") from exc
 
@@ -57,8 +57,8 @@ def test_a_wrong_entry_is_not_logged(state_home, capsys):
 async def test_a_bug_in_the_app_is_a_status_line_and_a_logged_traceback(state_home, monkeypatch):
     from textual.widgets import Static
 
-    from tests.tui_helpers import settle
     from gearhead.tui.app import GearheadApp
+    from tests.tui_helpers import settle
 
     app = GearheadApp(blink=False, initial="gear_ratio", warm_up=False)
     async with app.run_test(size=(140, 45)) as pilot:
@@ -78,9 +78,20 @@ def test_a_reader_that_leaves_early_is_not_an_error(state_home):
     import sys
 
     env = {**os.environ, "XDG_STATE_HOME": str(state_home)}
-    pipe = subprocess.Popen([sys.executable, "-m", "gearhead.tui", "sweep", "gear_ratio", "--vary",
-                             "voltage=1..12:5000"],  # far more than a pipe's 64 KB buffer
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
+    pipe = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "gearhead.tui",
+            "sweep",
+            "gear_ratio",
+            "--vary",
+            "voltage=1..12:5000",
+        ],  # far more than a pipe's 64 KB buffer
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env=env,
+    )
     pipe.stdout.readline()
     pipe.stdout.close()  # the reader leaves after one line
     err = pipe.stderr.read().decode()

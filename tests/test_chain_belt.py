@@ -5,7 +5,8 @@ import math
 
 import mpmath as mp
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gearhead.core import presets
 from gearhead.core.calculators import chain_belt as cb
@@ -31,8 +32,9 @@ def belt_length_beta_form(C, D1, D2):
 def mp_center(L, D1, D2):
     """mpmath reference: solve the β-form for C by bisection-safe findroot (anderson)."""
     lo = (max(D1, D2) - min(D1, D2)) / 2
-    return mp.findroot(lambda C: belt_length_beta_form(C, D1, D2) - L, (lo + mp.mpf("1e-30"), L / 2),
-                       solver="anderson")
+    return mp.findroot(
+        lambda C: belt_length_beta_form(C, D1, D2) - L, (lo + mp.mpf("1e-30"), L / 2), solver="anderson"
+    )
 
 
 def test_recalc_belt_cross_check():
@@ -84,7 +86,9 @@ def test_overlapping_sprockets_warn():
 
 def test_chordal_pitch_diameter_option():
     # #25 chain 16T: true pitch circle p/sin(180°/16) = 0.25/0.19509032 = 1.281457 in; seed 16·0.25/π = 1.273240 in
-    o = out(kind="chain", pitch_standard="chain_25", teeth_1=16, teeth_2=32, links=80, pitch_diameter="chordal")
+    o = out(
+        kind="chain", pitch_standard="chain_25", teeth_1=16, teeth_2=32, links=80, pitch_diameter="chordal"
+    )
     assert o["pitch_diameter_1"] / IN == pytest.approx(1.281457, abs=2e-6)
     s = out(kind="chain", pitch_standard="chain_25", teeth_1=16, teeth_2=32, links=80)
     assert s["pitch_diameter_1"] / IN == pytest.approx(4 / math.pi, rel=1e-15)
@@ -101,8 +105,15 @@ def test_equal_chain_sprockets_exact_link_count(method):
     # 16T-16T #25, 6 in: the taut chain round two equal sprocket polygons is 2D + n·p (n links round
     # the two half-wraps), whatever the pitch circle: 2·6 + 16·0.25 = 16 in = 64 links exactly.
     # (p/sin(180°/n) in (68) would say 64.103 links and 64 links -> 5.987 in.)
-    o = out(kind="chain", pitch_standard="chain_25", teeth_1=16, teeth_2=16, mode="links_from_center",
-            target_center="6 in", pitch_diameter=method)
+    o = out(
+        kind="chain",
+        pitch_standard="chain_25",
+        teeth_1=16,
+        teeth_2=16,
+        mode="links_from_center",
+        target_center="6 in",
+        pitch_diameter=method,
+    )
     assert o["links_exact"] == pytest.approx(64, rel=1e-14)
     assert o["links_below"] == o["links_above"] == 64
     assert o["center_below"] / IN == pytest.approx(6, rel=1e-14)
@@ -120,18 +131,28 @@ def hull_links(D, n1, n2, p, phases=8):
         R = p / (2 * math.sin(math.pi / n))
         return np.c_[cx + R * np.cos(a), R * np.sin(a)]
 
-    per = [ConvexHull(np.vstack([ring(n1, 0, 2 * math.pi * i / (phases * n1)),
-                                 ring(n2, D, 2 * math.pi * j / (phases * n2))])).area / p
-           for i in range(phases) for j in range(phases)]  # 2-D hull: .area is the perimeter
+    per = [
+        ConvexHull(
+            np.vstack(
+                [ring(n1, 0, 2 * math.pi * i / (phases * n1)), ring(n2, D, 2 * math.pi * j / (phases * n2))]
+            )
+        ).area
+        / p
+        for i in range(phases)
+        for j in range(phases)
+    ]  # 2-D hull: .area is the perimeter
     return min(per), max(per)
 
 
-@pytest.mark.parametrize("n1, n2, links, standard, p", [(12, 36, 74, "chain_25", 0.25 * IN),
-                                                        (12, 60, 92, "chain_35", 0.375 * IN)])
+@pytest.mark.parametrize(
+    "n1, n2, links, standard, p", [(12, 36, 74, "chain_25", 0.25 * IN), (12, 60, 92, "chain_35", 0.375 * IN)]
+)
 def test_chain_center_against_sprocket_polygons(n1, n2, links, standard, p):
     # At the calculator's D the taut hull round the roller polygons brackets the chain (74.0 ± 0.005
     # links); (68) with p/sin(180°/n) radii gives a D where every phase leaves ~0.08 link of slack.
-    o = out(kind="chain", pitch_standard=standard, teeth_1=n1, teeth_2=n2, links=links, pitch_diameter="chordal")
+    o = out(
+        kind="chain", pitch_standard=standard, teeth_1=n1, teeth_2=n2, links=links, pitch_diameter="chordal"
+    )
     lo, hi = hull_links(o["center_distance"], n1, n2, p)
     assert lo <= links <= hi and hi - lo < 0.01
     R1, R2 = cb.pitch_radius(n1, p, "chordal"), cb.pitch_radius(n2, p, "chordal")
@@ -143,16 +164,35 @@ def test_reverse_even_links_for_chain_and_half_links():
     mp.mp.dps = 30
     D1, D2 = 12 * mp.mpf("0.25") / mp.pi, 36 * mp.mpf("0.25") / mp.pi
     exact_links = belt_length_beta_form(mp.mpf(6), D1, D2) / mp.mpf("0.25")  # 72.609...
-    o = out(kind="chain", pitch_standard="chain_25", teeth_1=12, teeth_2=36, mode="links_from_center",
-            target_center="6 in")
+    o = out(
+        kind="chain",
+        pitch_standard="chain_25",
+        teeth_1=12,
+        teeth_2=36,
+        mode="links_from_center",
+        target_center="6 in",
+    )
     assert o["links_exact"] == pytest.approx(float(exact_links), rel=1e-13)
     assert (o["links_below"], o["links_above"]) == (72, 74)
     assert o["center_below"] / IN < 6 < o["center_above"] / IN
-    h = out(kind="chain", pitch_standard="chain_25", teeth_1=12, teeth_2=36, mode="links_from_center",
-            target_center="6 in", half_links=True)
+    h = out(
+        kind="chain",
+        pitch_standard="chain_25",
+        teeth_1=12,
+        teeth_2=36,
+        mode="links_from_center",
+        target_center="6 in",
+        half_links=True,
+    )
     assert (h["links_below"], h["links_above"]) == (72, 73)
-    b = out(kind="belt", pitch_standard="rt25", teeth_1=12, teeth_2=36, mode="links_from_center",
-            target_center="6 in")
+    b = out(
+        kind="belt",
+        pitch_standard="rt25",
+        teeth_1=12,
+        teeth_2=36,
+        mode="links_from_center",
+        target_center="6 in",
+    )
     assert (b["links_below"], b["links_above"]) == (72, 73)
 
 
@@ -164,8 +204,14 @@ def test_odd_chain_links_warn():
 def test_a_standard_sets_the_kind():
     """Switching to #25 chain with 'Chain or belt' left at belt used to be an error; the field is
     asked only for a custom pitch now, so a chain standard is a chain (even links)."""
-    o = out(kind="belt", pitch_standard="chain_25", teeth_1=16, teeth_2=16, mode="links_from_center",
-            target_center="6.1 in")
+    o = out(
+        kind="belt",
+        pitch_standard="chain_25",
+        teeth_1=16,
+        teeth_2=16,
+        mode="links_from_center",
+        target_center="6.1 in",
+    )
     assert o["links_above"] % 2 == 0 and o["links_below"] % 2 == 0
     f = next(f for f in get("chain_belt").fields if f.name == "kind")
     assert not f.active("center_from_links", {"pitch_standard": "chain_25"})
@@ -182,13 +228,20 @@ def test_custom_pitch_is_used_only_for_custom():
 
 def test_target_inside_radius_difference_is_an_input_error():
     with pytest.raises(InputError) as e:
-        solve("chain_belt", {"mode": "links_from_center", "teeth_1": 10, "teeth_2": 60, "target_center": "1 mm"})
+        solve(
+            "chain_belt", {"mode": "links_from_center", "teeth_1": 10, "teeth_2": 60, "target_center": "1 mm"}
+        )
     assert e.value.field == "target_center"
 
 
 @settings(max_examples=200, deadline=None)
-@given(n1=st.integers(3, 120), n2=st.integers(3, 120), extra=st.integers(1, 400),
-       p=st.floats(1e-3, 0.03), chordal=st.booleans())
+@given(
+    n1=st.integers(3, 120),
+    n2=st.integers(3, 120),
+    extra=st.integers(1, 400),
+    p=st.floats(1e-3, 0.03),
+    chordal=st.booleans(),
+)
 def test_links_to_center_to_links(n1, n2, extra, p, chordal):
     method = "chordal" if chordal else "circumference"  # only what is shown; the path is n·p/π
     r1, r2 = cb.pitch_radius(n1, p, "circumference"), cb.pitch_radius(n2, p, "circumference")
@@ -226,12 +279,28 @@ def test_minimum_links_chain(method):
     # 44 with or without half links. (Wrapping alone needs 37 p: 38 even, 37 with a half link.)
     o = out(kind="chain", pitch_standard="chain_25", teeth_1=13, teeth_2=37, links=38, pitch_diameter=method)
     assert o["minimum_links"] == 44
-    h = out(kind="chain", pitch_standard="chain_25", teeth_1=13, teeth_2=37, links=38, pitch_diameter=method,
-            half_links=True)
+    h = out(
+        kind="chain",
+        pitch_standard="chain_25",
+        teeth_1=13,
+        teeth_2=37,
+        links=38,
+        pitch_diameter=method,
+        half_links=True,
+    )
     assert h["minimum_links"] == 44
     with pytest.raises(InputError):
-        solve("chain_belt", {"kind": "chain", "pitch_standard": "chain_25", "teeth_1": 13, "teeth_2": 37,
-                             "links": 36, "pitch_diameter": method})
+        solve(
+            "chain_belt",
+            {
+                "kind": "chain",
+                "pitch_standard": "chain_25",
+                "teeth_1": 13,
+                "teeth_2": 37,
+                "links": 36,
+                "pitch_diameter": method,
+            },
+        )
 
 
 @pytest.mark.parametrize("method", ["circumference", "chordal"])
@@ -240,9 +309,18 @@ def test_reverse_at_the_wrap_minimum(method, factor):
     # D = Δ (the small sprocket inside the large one): the length is the minimum, 2π r_2
     p = 0.375 * IN
     r1, r2 = cb.pitch_radius(15, p, "circumference"), cb.pitch_radius(40, p, "circumference")
-    sol = solve("chain_belt", {"kind": "chain", "pitch_standard": "chain_35", "teeth_1": 15, "teeth_2": 40,
-                               "pitch_diameter": method, "mode": "links_from_center",
-                               "target_center": f"{(r2 - r1) * factor!r} m"})
+    sol = solve(
+        "chain_belt",
+        {
+            "kind": "chain",
+            "pitch_standard": "chain_35",
+            "teeth_1": 15,
+            "teeth_2": 40,
+            "pitch_diameter": method,
+            "mode": "links_from_center",
+            "target_center": f"{(r2 - r1) * factor!r} m",
+        },
+    )
     o = {k: v.value for k, v in sol.outputs.items()}
     assert o["links_exact"] == pytest.approx(cb.minimum_length(r1, r2) / p, rel=1e-6)
     assert o["links_above"] == 40 and o["links_above"] < o["minimum_links"]  # wraps, but overlaps
@@ -255,9 +333,9 @@ async def test_switching_to_a_chain_standard_in_the_app_solves_as_a_chain():
     hand; the kind now follows the standard and half links appear for a chain."""
     from textual.widgets import Select
 
-    from tests.tui_helpers import settle
     from gearhead.tui.app import GearheadApp
     from gearhead.tui.components.calculator_tab import CalculatorTab
+    from tests.tui_helpers import settle
 
     app = GearheadApp(blink=False, initial="chain_belt")
     async with app.run_test(size=(140, 45)) as pilot:

@@ -20,15 +20,29 @@ def run(capsys, *args):
 
 
 def test_solve_gear_ratio_preset_json(capsys):
-    code, out, _ = run(capsys, "solve", "gear_ratio", "--preset",
-                       str(ROOT / "presets/gear_ratio/elevator_neo.toml"), "--json")
+    code, out, _ = run(
+        capsys,
+        "solve",
+        "gear_ratio",
+        "--preset",
+        str(ROOT / "presets/gear_ratio/elevator_neo.toml"),
+        "--json",
+    )
     assert code == 0
     data = json.loads(out)
     assert data["calculator"] == "gear_ratio"
     assert set(data) == {"calculator", "inputs", "outputs", "warnings"}
     assert data["inputs"]["load"] == {"value": pytest.approx(177.928864610), "unit": "N", "text": "40 lbf"}
-    for name in ["ratio", "free_speed", "loaded_speed", "linear_free_speed", "linear_loaded_speed",
-                 "current_per_motor", "stall_load", "stall_voltage"]:
+    for name in [
+        "ratio",
+        "free_speed",
+        "loaded_speed",
+        "linear_free_speed",
+        "linear_loaded_speed",
+        "current_per_motor",
+        "stall_load",
+        "stall_voltage",
+    ]:
         assert name in data["outputs"]
     assert data["outputs"]["loaded_speed"]["unit"] == "rad/s"
     assert data["outputs"]["stall_load"]["unit"] == "N"
@@ -39,20 +53,31 @@ def test_solve_gear_ratio_preset_json(capsys):
 def test_solve_motor_json_has_required_outputs(capsys):
     code, out, _ = run(capsys, "solve", "motor", "--set", "motor=NEO", "--set", "motor_count=2", "--json")
     data = json.loads(out)
-    for name in ["free_speed", "stall_torque", "stall_current", "free_current", "peak_power", "kt",
-                 "max_efficiency", "max_efficiency_torque"]:
+    for name in [
+        "free_speed",
+        "stall_torque",
+        "stall_current",
+        "free_current",
+        "peak_power",
+        "kt",
+        "max_efficiency",
+        "max_efficiency_torque",
+    ]:
         assert math.isfinite(data["outputs"][name]["value"])
     assert data["outputs"]["stall_torque"]["value"] == pytest.approx(5.2)
     assert data["outputs"]["kt"]["unit"] == "N*m/A"
 
 
-@pytest.mark.parametrize("args,field", [
-    (["solve", "gear_ratio", "--set", "load=abc"], "load"),
-    (["solve", "gear_ratio", "--set", "radius=3 kg"], "radius"),
-    (["solve", "gear_ratio", "--set", "wheels=4"], "wheels"),
-    (["solve", "motor", "--set", "motor_count=0"], "motor_count"),
-    (["solve", "nope"], "calculator"),
-])
+@pytest.mark.parametrize(
+    "args,field",
+    [
+        (["solve", "gear_ratio", "--set", "load=abc"], "load"),
+        (["solve", "gear_ratio", "--set", "radius=3 kg"], "radius"),
+        (["solve", "gear_ratio", "--set", "wheels=4"], "wheels"),
+        (["solve", "motor", "--set", "motor_count=0"], "motor_count"),
+        (["solve", "nope"], "calculator"),
+    ],
+)
 def test_bad_input_exits_2_naming_the_field(capsys, args, field):
     code, out, err = run(capsys, *args)
     assert code == 2
@@ -69,8 +94,12 @@ def test_calculators_and_presets_listings(capsys):
 
 
 def test_console_script_entry_point_runs():
-    out = subprocess.run([sys.executable, "-m", "gearhead.tui", "solve", "motor", "--json"], capture_output=True,
-                         text=True, cwd=ROOT)
+    out = subprocess.run(
+        [sys.executable, "-m", "gearhead.tui", "solve", "motor", "--json"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert out.returncode == 0 and json.loads(out.stdout)["calculator"] == "motor"
 
 
@@ -83,8 +112,10 @@ def test_unit_option_changes_only_the_display(capsys):
     assert float(shown["text"].split()[0]) == pytest.approx(default["value"], rel=1e-4)
 
 
-@pytest.mark.parametrize("spec, named", [("free_speed=lbf", "free_speed"), ("nothing=m", "nothing"),
-                                         ("free_speed=furlongs/", "free_speed")])
+@pytest.mark.parametrize(
+    "spec, named",
+    [("free_speed=lbf", "free_speed"), ("nothing=m", "nothing"), ("free_speed=furlongs/", "free_speed")],
+)
 def test_bad_unit_option_exits_2_naming_the_output(capsys, spec, named):
     code, out, err = run(capsys, "solve", "gear_ratio", "--unit", spec)
     assert code == 2 and out == "" and named in err and len(err.strip().splitlines()) == 1

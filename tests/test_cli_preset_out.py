@@ -14,8 +14,9 @@ def run(capsys, *args):
 
 
 def test_preset_out_dash_prints_a_preset_that_solves_the_same(capsys, tmp_path):
-    code, out, _ = run(capsys, "solve", "gear_ratio", "--set", "load=30 lbf", "--set", "motor_count=2",
-                       "--preset-out", "-")
+    code, out, _ = run(
+        capsys, "solve", "gear_ratio", "--set", "load=30 lbf", "--set", "motor_count=2", "--preset-out", "-"
+    )
     assert code == 0
     data = tomllib.loads(out)  # stdout is the preset alone: it pipes into a file
     assert data["calculator"] == "gear_ratio"
@@ -23,7 +24,9 @@ def test_preset_out_dash_prints_a_preset_that_solves_the_same(capsys, tmp_path):
     path = tmp_path / "chained.toml"
     path.write_text(out)
     assert presets.load(path).inputs["load"] == "30 lbf"
-    _, direct, _ = run(capsys, "solve", "gear_ratio", "--set", "load=30 lbf", "--set", "motor_count=2", "--json")
+    _, direct, _ = run(
+        capsys, "solve", "gear_ratio", "--set", "load=30 lbf", "--set", "motor_count=2", "--json"
+    )
     _, chained, _ = run(capsys, "solve", "gear_ratio", "--preset", str(path), "--json")
     assert json.loads(chained)["outputs"] == json.loads(direct)["outputs"]
 

@@ -1,8 +1,6 @@
 """Declarations are checked when the registry loads: a broken one names the calculator and field.
 And every declared output is produced somewhere, nothing undeclared is returned."""
 
-import dataclasses
-
 import pytest
 
 from gearhead.core import presets
@@ -12,8 +10,14 @@ from gearhead.core.registry import calculators
 
 
 def _calc(fields=(), outputs=(), **kw) -> Calculator:
-    base = dict(id="toy", title="Toy", summary="", compute=lambda v: Result({}),
-                fields=tuple(fields), outputs=tuple(outputs))
+    base = dict(
+        id="toy",
+        title="Toy",
+        summary="",
+        compute=lambda v: Result({}),
+        fields=tuple(fields),
+        outputs=tuple(outputs),
+    )
     base.update(kw)
     return Calculator(**base)
 
@@ -21,32 +25,66 @@ def _calc(fields=(), outputs=(), **kw) -> Calculator:
 MODE = Field("mode", "Mode", choices=("a", "b"), default="a")
 
 
-@pytest.mark.parametrize("calc,part,words", [
-    (_calc([Field("x", "X", "lenght", "mm", default=1)]), "field 'x'", "unknown quantity kind 'lenght'"),
-    (_calc([Field("x", "X", "length", "kg", default=1)]), "field 'x'", "cannot show a length"),
-    (_calc([Field("x", "X", "length", "furlongz", default=1)]), "field 'x'", "cannot show a length"),
-    (_calc([Field("x", "X", "length", "", default=1)]), "field 'x'", "needs a display unit"),
-    (_calc([Field("x", "X", "length", "mm", default=5, min=10)]), "field 'x'",
-     "default 5 is refused: 5 is too small: must be at least 10 mm"),
-    (_calc([Field("x", "X", "length", "mm", default=5, max=1)]), "field 'x'", "must be at most 1 mm"),
-    (_calc([Field("x", "X", "length", "mm", default="1 in", max=20)]), "field 'x'", "must be at most 20 mm"),
-    (_calc([Field("x", "X", "length", "mm", default=5, min=1, max=0)]), "field 'x'", "above max 0 (both in mm)"),
-    (_calc([Field("x", "X", "length", "mm", default=5, max=float("inf"))]), "field 'x'", "not a finite number"),
-    (_calc([Field("x", "X", "length", "mm", default=5, max="9 in")]), "field 'x'", "not a finite number"),
-    (_calc([Field("n", "N", integer=True, default=5, max=9.5)]), "field 'n'", "bounds are whole numbers"),
-    (_calc([Field("c", "C", choices=("p", "q"), default="r")]), "field 'c'", "default 'r' is refused"),
-    (_calc([Field("c", "C", choices=("p", "q"), choice_labels=("P",), default="p")]), "field 'c'", "1 choice labels"),
-    (_calc([MODE, Field("x", "X", default=1, modes=("c",))]), "field 'x'", "mode 'c'"),
-    (_calc([MODE, Field("x", "X", default=1, when=(("kind", ("p",)),))]), "field 'x'", "not a choice field"),
-    (_calc([MODE, Field("x", "X", default=1, when=(("mode", ("z",)),))]), "field 'x'", "'z'"),
-    (_calc([Field("x", "X", default=1), Field("x", "X2", default=2)]), "field 'x'", "more than once"),
-    (_calc(outputs=[Output("y", "Y", "force", "lbz")]), "output 'y'", "cannot show a force"),
-    (_calc(outputs=[Output("y", "Y", "forse", "N")]), "output 'y'", "unknown quantity kind"),
-    (_calc(outputs=[Output("y", "Y")], plots=(Plot("P", ("s",), "t", "time", "s", "v", "speed", "rpm"),)),
-     "plot 'P' y axis", "cannot show a speed"),
-    (_calc(outputs=[Output("y", "Y")], exports={"gear_ratio": {"load": "z"}}), "export to gear_ratio.load",
-     "'z' is not an output"),
-])
+@pytest.mark.parametrize(
+    "calc,part,words",
+    [
+        (_calc([Field("x", "X", "lenght", "mm", default=1)]), "field 'x'", "unknown quantity kind 'lenght'"),
+        (_calc([Field("x", "X", "length", "kg", default=1)]), "field 'x'", "cannot show a length"),
+        (_calc([Field("x", "X", "length", "furlongz", default=1)]), "field 'x'", "cannot show a length"),
+        (_calc([Field("x", "X", "length", "", default=1)]), "field 'x'", "needs a display unit"),
+        (
+            _calc([Field("x", "X", "length", "mm", default=5, min=10)]),
+            "field 'x'",
+            "default 5 is refused: 5 is too small: must be at least 10 mm",
+        ),
+        (_calc([Field("x", "X", "length", "mm", default=5, max=1)]), "field 'x'", "must be at most 1 mm"),
+        (
+            _calc([Field("x", "X", "length", "mm", default="1 in", max=20)]),
+            "field 'x'",
+            "must be at most 20 mm",
+        ),
+        (
+            _calc([Field("x", "X", "length", "mm", default=5, min=1, max=0)]),
+            "field 'x'",
+            "above max 0 (both in mm)",
+        ),
+        (
+            _calc([Field("x", "X", "length", "mm", default=5, max=float("inf"))]),
+            "field 'x'",
+            "not a finite number",
+        ),
+        (_calc([Field("x", "X", "length", "mm", default=5, max="9 in")]), "field 'x'", "not a finite number"),
+        (_calc([Field("n", "N", integer=True, default=5, max=9.5)]), "field 'n'", "bounds are whole numbers"),
+        (_calc([Field("c", "C", choices=("p", "q"), default="r")]), "field 'c'", "default 'r' is refused"),
+        (
+            _calc([Field("c", "C", choices=("p", "q"), choice_labels=("P",), default="p")]),
+            "field 'c'",
+            "1 choice labels",
+        ),
+        (_calc([MODE, Field("x", "X", default=1, modes=("c",))]), "field 'x'", "mode 'c'"),
+        (
+            _calc([MODE, Field("x", "X", default=1, when=(("kind", ("p",)),))]),
+            "field 'x'",
+            "not a choice field",
+        ),
+        (_calc([MODE, Field("x", "X", default=1, when=(("mode", ("z",)),))]), "field 'x'", "'z'"),
+        (_calc([Field("x", "X", default=1), Field("x", "X2", default=2)]), "field 'x'", "more than once"),
+        (_calc(outputs=[Output("y", "Y", "force", "lbz")]), "output 'y'", "cannot show a force"),
+        (_calc(outputs=[Output("y", "Y", "forse", "N")]), "output 'y'", "unknown quantity kind"),
+        (
+            _calc(
+                outputs=[Output("y", "Y")], plots=(Plot("P", ("s",), "t", "time", "s", "v", "speed", "rpm"),)
+            ),
+            "plot 'P' y axis",
+            "cannot show a speed",
+        ),
+        (
+            _calc(outputs=[Output("y", "Y")], exports={"gear_ratio": {"load": "z"}}),
+            "export to gear_ratio.load",
+            "'z' is not an output",
+        ),
+    ],
+)
 def test_broken_declaration_fails_naming_calculator_and_part(calc, part, words):
     with pytest.raises(DeclarationError) as info:
         check(calc)
@@ -87,11 +125,14 @@ def test_outputs_returned_are_declared_and_each_declared_one_is_produced(calc_id
     assert declared - produced == set(), f"{calc_id}: declared but never produced"
 
 
-@pytest.mark.parametrize("exports,part,words", [
-    ({"nowhere": {"load": "y"}}, "export to 'nowhere'", "no such calculator"),
-    ({"gear_ratio": {"lode": "y"}}, "export to gear_ratio.lode", "no such field"),
-    ({"gear_ratio": {"radius": "y"}}, "export to gear_ratio.radius", "sends a force to a length field"),
-])
+@pytest.mark.parametrize(
+    "exports,part,words",
+    [
+        ({"nowhere": {"load": "y"}}, "export to 'nowhere'", "no such calculator"),
+        ({"gear_ratio": {"lode": "y"}}, "export to gear_ratio.lode", "no such field"),
+        ({"gear_ratio": {"radius": "y"}}, "export to gear_ratio.radius", "sends a force to a length field"),
+    ],
+)
 def test_broken_link_between_calculators_fails_at_load(exports, part, words):
     toy = _calc(outputs=[Output("y", "Y", "force", "N")], exports=exports)
     with pytest.raises(DeclarationError) as info:

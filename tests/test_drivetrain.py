@@ -4,7 +4,8 @@ and the shift speed checked against the force balance (99)-(100) it comes from."
 import math
 
 import pytest
-from hypothesis import assume, given, settings, strategies as st
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from gearhead.core import motors
 from gearhead.core.errors import InputError
@@ -115,11 +116,14 @@ def test_reverse_battery_too_weak_to_push_names_a_field():
     assert e.value.field == "battery_voltage"
 
 
-@pytest.mark.parametrize("raw,field", [
-    ({"min_voltage": "13 V"}, "min_voltage"),  # above the battery
-    ({"battery_resistance": 0, "main_resistance": 0, "branch_resistance": 0}, "battery_resistance"),
-    ({"battery_resistance": "5 ohm"}, "min_voltage"),  # 5.7 V / 5 Ω < the 8 A free current
-])
+@pytest.mark.parametrize(
+    "raw,field",
+    [
+        ({"min_voltage": "13 V"}, "min_voltage"),  # above the battery
+        ({"battery_resistance": 0, "main_resistance": 0, "branch_resistance": 0}, "battery_resistance"),
+        ({"battery_resistance": "5 ohm"}, "min_voltage"),  # 5.7 V / 5 Ω < the 8 A free current
+    ],
+)
 def test_reverse_impossible_budgets_name_a_field(raw, field):
     with pytest.raises(InputError) as e:
         out(mode="reverse", **raw)
@@ -130,13 +134,29 @@ motor_names = st.sampled_from(["CIM", "NEO", "Kraken X60", "Falcon 500", "NEO Vo
 
 
 @settings(max_examples=150, deadline=None)
-@given(motor=motor_names, n=st.integers(1, 8), V=st.floats(6, 13), eta=st.floats(0.5, 1),
-       d=st.floats(0.03, 0.2), W=st.floats(10, 3000), mu=st.floats(0.2, 1.6), G=st.floats(1, 40),
-       V_min=st.floats(3, 9), R_br=st.one_of(st.just(0.0), st.floats(1e-5, 0.05)))
+@given(
+    motor=motor_names,
+    n=st.integers(1, 8),
+    V=st.floats(6, 13),
+    eta=st.floats(0.5, 1),
+    d=st.floats(0.03, 0.2),
+    W=st.floats(10, 3000),
+    mu=st.floats(0.2, 1.6),
+    G=st.floats(1, 40),
+    V_min=st.floats(3, 9),
+    R_br=st.one_of(st.just(0.0), st.floats(1e-5, 0.05)),
+)
 def test_reverse_of_forward_returns_the_ratio(motor, n, V, eta, d, W, mu, G, V_min, R_br):
     """Forward slip current at G; a battery budget allowing exactly that current gives G back."""
-    base = dict(motor=motor, motor_count=n, voltage=f"{V!r} V", efficiency=eta,
-                wheel_diameter=f"{d!r} m", weight=f"{W!r} N", friction=mu)
+    base = dict(
+        motor=motor,
+        motor_count=n,
+        voltage=f"{V!r} V",
+        efficiency=eta,
+        wheel_diameter=f"{d!r} m",
+        weight=f"{W!r} N",
+        friction=mu,
+    )
     fwd = out(**base, ratio=G)
     i_tot = fwd["slip_current_total"]
     m = motors.system(motors.lookup(motor, "wpilib")[0], n, V, eta)
@@ -146,8 +166,15 @@ def test_reverse_of_forward_returns_the_ratio(motor, n, V, eta, d, W, mu, G, V_m
     assert i_tot == pytest.approx(fwd["slip_current"] * n, rel=1e-12)
     R_batt, R_main = 0.015, 0.002
     V_batt = V_min + i_tot * (R_batt + R_main + R_br / n)  # (41) solved for V_batt
-    rev = out(**base, mode="reverse", battery_voltage=f"{V_batt!r} V", min_voltage=f"{V_min!r} V",
-              battery_resistance=R_batt, main_resistance=R_main, branch_resistance=f"{R_br!r} ohm")
+    rev = out(
+        **base,
+        mode="reverse",
+        battery_voltage=f"{V_batt!r} V",
+        min_voltage=f"{V_min!r} V",
+        battery_resistance=R_batt,
+        main_resistance=R_main,
+        branch_resistance=f"{R_br!r} ohm",
+    )
     assert rev["total_current"] == pytest.approx(i_tot, rel=1e-9)
     assert rev["max_ratio"] == pytest.approx(G, rel=1e-8)
     assert rev["free_speed"] == pytest.approx(fwd["free_speed"], rel=1e-8)
@@ -156,10 +183,14 @@ def test_reverse_of_forward_returns_the_ratio(motor, n, V, eta, d, W, mu, G, V_m
 
 
 @settings(max_examples=150, deadline=None)
-@given(motor=motor_names, n=st.integers(1, 8), d=st.floats(0.03, 0.2), G1=st.floats(1, 40), G2=st.floats(1, 40))
+@given(
+    motor=motor_names, n=st.integers(1, 8), d=st.floats(0.03, 0.2), G1=st.floats(1, 40), G2=st.floats(1, 40)
+)
 def test_shift_speed_is_where_both_gears_push_equally(motor, n, d, G1, G2):
     """(40) against its source, the wheel force (99): τ̃s·G/r·(1 − v·G/(r·ω̃f)) equal in both gears."""
-    o = out(mode="shifting", motor=motor, motor_count=n, wheel_diameter=f"{d!r} m", low_ratio=G1, high_ratio=G2)
+    o = out(
+        mode="shifting", motor=motor, motor_count=n, wheel_diameter=f"{d!r} m", low_ratio=G1, high_ratio=G2
+    )
     m = motors.system(motors.lookup(motor, "wpilib")[0], n, 12.0, 1.0)
     r, v = d / 2, o["shift_speed"]
 
@@ -204,8 +235,12 @@ def test_reverse_budget_just_above_circuit_stall_current():
     # i_tot = i_c when (V_batt − V_min)·(R + R_m) = V_batt·R: R = 5.7·(12/1464)/7 = 0.00667465 Ω;
     # either side of it the two branches give the same ratio
     R_eq = 5.7 * (12 / 1464) / 7
-    sides = [out(mode="reverse", battery_resistance=f"{R_eq * k!r} ohm", main_resistance=0,
-                 branch_resistance=0)["max_ratio"] for k in (1 - 1e-9, 1 + 1e-9)]
+    sides = [
+        out(mode="reverse", battery_resistance=f"{R_eq * k!r} ohm", main_resistance=0, branch_resistance=0)[
+            "max_ratio"
+        ]
+        for k in (1 - 1e-9, 1 + 1e-9)
+    ]
     assert sides[0] == pytest.approx(sides[1], rel=1e-7)
 
 

@@ -25,9 +25,12 @@ def _lift(values, ctx):
 
 def _thermal(values, ctx):
     # adds one state (temperature) that the base scene knows nothing of, and an event on it
-    return Part(states=(("temperature", 20.0),), derivative=lambda t, y: [1.0],
-                events=(Event("hot", lambda t, y: y[-1] - 25.0, +1),),
-                report=lambda run: {"final_temperature": run.y[-1][-1]})
+    return Part(
+        states=(("temperature", 20.0),),
+        derivative=lambda t, y: [1.0],
+        events=(Event("hot", lambda t, y: y[-1] - 25.0, +1),),
+        report=lambda run: {"final_temperature": run.y[-1][-1]},
+    )
 
 
 EFFECTS = Effects(

@@ -43,7 +43,9 @@ class Spy:
                 out = rhs(t, y)
                 assert len(out) == len(y0)
                 return out
+
             return original(counted, t0, t1, y0, *args, **kwargs)
+
         monkeypatch.setattr(module, "integrate", integrate)
 
     def _build(self, effect):
@@ -57,19 +59,27 @@ class Spy:
                 def counted(*a):
                     self.term_calls[effect.name] += 1
                     return fn(*a)
+
                 return counted
 
             def event(ev):
                 def g(t, y):
                     self.event_calls[effect.name] += 1
                     return ev.g(t, y)
+
                 return Event(ev.name, g, ev.direction, ev.terminal)
-            return dataclasses.replace(part, terms={s: term(f) for s, f in part.terms.items()},
-                                       events=tuple(event(ev) for ev in part.events))
+
+            return dataclasses.replace(
+                part,
+                terms={s: term(f) for s, f in part.terms.items()},
+                events=tuple(event(ev) for ev in part.events),
+            )
+
         return build
 
 
 # --- projectile ------------------------------------------------------------------------------------
+
 
 def pj_values(**raw):
     return parse_inputs(get("projectile"), {"spin": "2000 rpm", **raw})[0]
@@ -94,8 +104,10 @@ def test_projectile_effect_off_is_not_built_and_on_is_called_at_every_evaluation
 
 
 def test_projectile_each_effect_on_changes_the_flight():
-    heights = {on: pj.simulate(pj_values(effects=on), 1e-9).values["target_height"]
-               for on in ("", "air_drag", "magnus", "air_drag, magnus")}
+    heights = {
+        on: pj.simulate(pj_values(effects=on), 1e-9).values["target_height"]
+        for on in ("", "air_drag", "magnus", "air_drag, magnus")
+    }
     assert heights["air_drag"] < heights[""] < heights["magnus"]  # drag lowers it, backspin lifts it
     assert heights["air_drag"] < heights["air_drag, magnus"] < heights["magnus"]
 
@@ -123,12 +135,24 @@ def test_assembled_drag_and_magnus_flight_against_solve_ivp():
 
     def rhs(t, s):
         speed = math.hypot(s[2], s[3])
-        return [s[2], s[3], -kd * speed * s[2] - km * speed * s[3], -G - kd * speed * s[3] + km * speed * s[2]]
+        return [
+            s[2],
+            s[3],
+            -kd * speed * s[2] - km * speed * s[3],
+            -G - kd * speed * s[3] + km * speed * s[2],
+        ]
 
     hit = lambda t, s: s[0] - d  # noqa: E731
     hit.terminal = True
-    ref = solve_ivp(rhs, (0, 30), [0, h, v0 * math.cos(th), v0 * math.sin(th)], method="DOP853",
-                    rtol=1e-13, atol=1e-14, events=hit)
+    ref = solve_ivp(
+        rhs,
+        (0, 30),
+        [0, h, v0 * math.cos(th), v0 * math.sin(th)],
+        method="DOP853",
+        rtol=1e-13,
+        atol=1e-14,
+        events=hit,
+    )
     f = flight.fly(flight.air_with(G, kd, km), h, th, v0, d, 1e-11)
     assert f.reached
     assert f.t == pytest.approx(ref.t_events[0][0], rel=1e-9)
@@ -137,12 +161,19 @@ def test_assembled_drag_and_magnus_flight_against_solve_ivp():
 
 # --- pneumatics ------------------------------------------------------------------------------------
 
+
 def pn_values(**raw):
     return parse_inputs(get("pneumatics"), raw)[0]
 
 
-CASES = ["", "compressor", "compressor, pressure_switch", "compressor, regulator",
-         "compressor, pressure_switch, regulator", "pressure_switch, regulator"]
+CASES = [
+    "",
+    "compressor",
+    "compressor, pressure_switch",
+    "compressor, regulator",
+    "compressor, pressure_switch, regulator",
+    "pressure_switch, regulator",
+]
 
 
 @pytest.mark.parametrize("on", CASES)
@@ -189,7 +220,10 @@ def test_pressure_model_is_a_choice_not_an_effect():
     a, b = pn.assemble(gauge), pn.assemble(absolute)
     assert (a.on, a.contributors, a.states) == (b.on, b.contributors, b.states)
     assert "absolute_pressure" not in pn.EFFECTS.names
-    assert pn.simulate(absolute, 1e-6).values["final_pressure"] < pn.simulate(gauge, 1e-6).values["final_pressure"]
+    assert (
+        pn.simulate(absolute, 1e-6).values["final_pressure"]
+        < pn.simulate(gauge, 1e-6).values["final_pressure"]
+    )
 
 
 def test_switch_fields_are_checked_only_while_the_switch_is_on():
@@ -199,10 +233,13 @@ def test_switch_fields_are_checked_only_while_the_switch_is_on():
     with pytest.raises(InputError) as err:
         pn.simulate(pn_values(**bad), 1e-6)
     assert err.value.field == "switch_on"
-    assert pn.simulate(pn_values(effects="compressor, regulator", **bad), 1e-6).values["compressor_duty"] == 1.0
+    assert (
+        pn.simulate(pn_values(effects="compressor, regulator", **bad), 1e-6).values["compressor_duty"] == 1.0
+    )
 
 
 # --- the "fold" combine (added to core.sim.effects for the flight's slot) -------------------------
+
 
 @pytest.mark.parametrize("arity", [None, 1, 2, 3])
 def test_fold_applies_the_terms_in_catalogue_order_on_the_running_value(arity):
@@ -211,7 +248,9 @@ def test_fold_applies_the_terms_in_catalogue_order_on_the_running_value(arity):
     n = arity or 2
 
     def effect(name):
-        return Effect(name, "", lambda values, ctx: Part(terms={"s": lambda acc, *a: acc + f"{name}{sum(a)};"}))
+        return Effect(
+            name, "", lambda values, ctx: Part(terms={"s": lambda acc, *a: acc + f"{name}{sum(a)};"})
+        )
 
     catalogue = Effects(effect("a"), effect("b"), effect("c"))
     slots = (Slot("s", "fold", arity=arity),)
@@ -235,7 +274,12 @@ def test_the_retired_absolute_pressure_effect_still_means_the_absolute_model(tmp
     gauge = solve("pneumatics", {"effects": "compressor"})
     assert gauge.outputs["final_pressure"].value != new.outputs["final_pressure"].value
     path = tmp_path / "old.toml"
-    path.write_text('calculator = "pneumatics"\nname = "old"\nformat = 1\n[inputs]\n'
-                    'effects = "compressor, absolute_pressure"\n', encoding="utf-8")
+    path.write_text(
+        'calculator = "pneumatics"\nname = "old"\nformat = 1\n[inputs]\n'
+        'effects = "compressor, absolute_pressure"\n',
+        encoding="utf-8",
+    )
     loaded = load(path)
-    assert loaded.inputs["pressure_model"] == "absolute" and "absolute_pressure" not in loaded.inputs["effects"]
+    assert (
+        loaded.inputs["pressure_model"] == "absolute" and "absolute_pressure" not in loaded.inputs["effects"]
+    )

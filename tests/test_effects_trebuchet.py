@@ -24,7 +24,7 @@ def scene(ground_contact=False, **kw):
 
 def state(sc):
     """A state away from rest, of the scene's own length."""
-    return [0.3, 1.1, 2.4, 0.7, 0.2, -0.4][:sc.n]
+    return [0.3, 1.1, 2.4, 0.7, 0.2, -0.4][: sc.n]
 
 
 def out(effects, **raw):
@@ -137,6 +137,7 @@ def test_every_output_says_how_it_is_obtained():
 
 # --- the retired flag (generic, core.sim.effects) --------------------------------------------------
 
+
 def test_retired_flags_are_read_but_not_offered():
     f = get("trebuchet").field("effects")
     assert isinstance(f, RetiredFlags) and "optimise" not in f.choices
@@ -153,7 +154,10 @@ def test_retire_rewrites_the_inputs_and_keeps_what_was_set():
     inputs, notes = retire(fields, {"effects": ["optimise"], "mode": "optimise"})
     assert inputs == {"effects": [], "mode": "optimise"} and len(notes) == 1
     # a different mode set by hand: left as typed (the calculator honours the flag, with the notice)
-    assert retire(fields, {"effects": "optimise", "mode": "throw"}) == ({"effects": "optimise", "mode": "throw"}, [])
+    assert retire(fields, {"effects": "optimise", "mode": "throw"}) == (
+        {"effects": "optimise", "mode": "throw"},
+        [],
+    )
     assert retire(fields, {"effects": "sling"}) == ({"effects": "sling"}, [])
 
 
@@ -173,6 +177,6 @@ def test_the_unrolled_elimination_is_the_loop_to_the_bit(kw):
     rnd = random.Random(5)
     for _ in range(200):
         y = [rnd.uniform(-3, 3) for _ in range(6)]
-        xs, _, den = unrolled(y[0], y[1], y[:sc.n])
-        xl, _, den_l = loop(y[0], y[1], y[:sc.n])
-        assert xl[:len(xs)] == xs and den_l == den and xl[len(xs):] == [0.0] * (3 - len(dofs))
+        xs, _, den = unrolled(y[0], y[1], y[: sc.n])
+        xl, _, den_l = loop(y[0], y[1], y[: sc.n])
+        assert xl[: len(xs)] == xs and den_l == den and xl[len(xs) :] == [0.0] * (3 - len(dofs))

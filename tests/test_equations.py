@@ -65,11 +65,15 @@ def module_doc(calc: Calculator) -> str:
     the core.sim modules it imports (a scene's equations are numbered where they are coded)."""
     module = importlib.import_module(f"gearhead.core.calculators.{calc.id}")
     assert getattr(module, "CALCULATOR", None) is calc
-    sims = {getattr(v, "__module__", None) if not isinstance(v, type(module)) else v.__name__
-            for v in vars(module).values()}
+    sims = {
+        getattr(v, "__module__", None) if not isinstance(v, type(module)) else v.__name__
+        for v in vars(module).values()
+    }
     docs = [module.__doc__ or ""]
-    docs += [importlib.import_module(name).__doc__ or "" for name in sorted(n for n in sims if n and
-             n.startswith("gearhead.core.sim."))]
+    docs += [
+        importlib.import_module(name).__doc__ or ""
+        for name in sorted(n for n in sims if n and n.startswith("gearhead.core.sim."))
+    ]
     return "\n".join(docs)
 
 
@@ -116,9 +120,14 @@ def test_every_output_names_its_equation(calc):
     skip = BOOKKEEPING | BOOKKEEPING_OF.get(calc.id, set())
     missing = [o.name for o in calc.outputs if o.name not in skip and not o.equation]
     assert not missing, f"{calc.id}: no equation for {', '.join(missing)}"
-    malformed = [f"{o.name}: {o.equation!r}" for o in calc.outputs
-                 if o.equation and not EQUATION_FORM.fullmatch(o.equation)]
-    assert not malformed, f"{calc.id}: equations written neither (12) nor (12)-(14) nor (12), (GR1) nor §2.1, (T3): {malformed}"
+    malformed = [
+        f"{o.name}: {o.equation!r}"
+        for o in calc.outputs
+        if o.equation and not EQUATION_FORM.fullmatch(o.equation)
+    ]
+    assert not malformed, (
+        f"{calc.id}: equations written neither (12) nor (12)-(14) nor (12), (GR1) nor §2.1, (T3): {malformed}"
+    )
     unknown = [f"{o.name}: {why}" for o in calc.outputs for why in unknown_labels(calc, o)]
     assert not unknown, f"{calc.id}: " + "; ".join(unknown)
 

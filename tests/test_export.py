@@ -43,7 +43,10 @@ def test_plot_csv_is_in_display_units():
     xs, ys = sol.series[name]
     first = next(r for r in rows[1:] if r[0] == name)
     from gearhead.core import units
-    assert float(first[2]) * units.factor(plot.y_unit, plot.y_quantity) == __import__("pytest").approx(ys[0], rel=1e-15)
+
+    assert float(first[2]) * units.factor(plot.y_unit, plot.y_quantity) == __import__("pytest").approx(
+        ys[0], rel=1e-15
+    )
 
 
 def test_preset_toml_loads_back_to_the_same_solution(tmp_path):

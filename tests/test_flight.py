@@ -3,9 +3,11 @@
 import math
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from gearhead.core.sim.flight import aim, air_with as Air, fly
+from gearhead.core.sim.flight import aim, fly
+from gearhead.core.sim.flight import air_with as Air
 
 G = 9.80665
 

@@ -9,7 +9,8 @@ from pathlib import Path
 
 import mpmath as mp
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gearhead.core import presets
 from gearhead.core.calculators import flywheel as fw
@@ -156,8 +157,15 @@ def test_spin_up_is_the_first_order_motor_solution():
 
 def test_spin_up_integrated_matches_the_closed_form():
     o = out(seed_raw())
-    run = integrate(lambda t, y: [(A - B * y[0]) / I_1], 0.0, 10.0, [0.0], rtol=1e-11, atol=1e-9,
-                    events=[Event("target", lambda t, y: y[0] - W_T, +1)])
+    run = integrate(
+        lambda t, y: [(A - B * y[0]) / I_1],
+        0.0,
+        10.0,
+        [0.0],
+        rtol=1e-11,
+        atol=1e-9,
+        events=[Event("target", lambda t, y: y[0] - W_T, +1)],
+    )
     assert run.event == "target"
     assert run.t[-1] == pytest.approx(o["spin_up_time"].value, rel=1e-9)
 
@@ -188,8 +196,14 @@ def test_motor_during_shot_slip_phase_matches_closed_form():
 def test_motor_during_shot_strong_motor_holds_the_target():
     # two Kraken X60 through G = 0.2: A = 0.2·14.18 = 2.836 N·m, ω_f = 3141.6 rad/s,
     # A − B·ω_t = 2.836·(1 − 209.44/3141.6) = 2.647 N·m ≥ r_w·F = 0.0635·40 = 2.54 N·m: the wheel holds ω_t
-    raw = {**seed_raw(), "effects": "momentum, motor_during_shot", "motor": "Kraken X60", "voltage": 12,
-           "ratio": 0.2, "accuracy": "fine"}
+    raw = {
+        **seed_raw(),
+        "effects": "momentum, motor_during_shot",
+        "motor": "Kraken X60",
+        "voltage": 12,
+        "ratio": 0.2,
+        "accuracy": "fine",
+    }
     o = out(raw)
     assert o["wheel_speed_after"].value == pytest.approx(W_T, rel=1e-9)
     assert o["ball_speed"].value == pytest.approx(R_W / 2 * W_T, rel=1e-9)
@@ -230,27 +244,49 @@ def test_range_from_release_height():
     assert o["range"].value == pytest.approx(x, rel=1e-12)
 
 
-@pytest.mark.parametrize("raw,field", [
-    ({"target_speed": "2500 rpm"}, "target_speed"),  # exactly the free speed: never reached
-    ({"effects": "energy, momentum"}, "effects"),  # an old preset naming both transfer models
-    ({"transfer": "impulse"}, "transfer"),
-])
+@pytest.mark.parametrize(
+    "raw,field",
+    [
+        ({"target_speed": "2500 rpm"}, "target_speed"),  # exactly the free speed: never reached
+        ({"effects": "energy, momentum"}, "effects"),  # an old preset naming both transfer models
+        ({"transfer": "impulse"}, "transfer"),
+    ],
+)
 def test_errors_name_the_field(raw, field):
     with pytest.raises(InputError) as e:
         solve("flywheel", {**seed_raw(), **raw})
     assert e.value.field == field
 
 
-scene_params = st.fixed_dictionaries({
-    "I": st.floats(1e-6, 10), "m": st.floats(0, 5), "r_w": st.floats(0.01, 0.3), "f": st.floats(0, 0.9),
-    "w0": st.floats(1, 2000), "hood": st.booleans(), "k_b": st.floats(0, 0.67),
-})
+scene_params = st.fixed_dictionaries(
+    {
+        "I": st.floats(1e-6, 10),
+        "m": st.floats(0, 5),
+        "r_w": st.floats(0.01, 0.3),
+        "f": st.floats(0, 0.9),
+        "w0": st.floats(1, 2000),
+        "hood": st.booleans(),
+        "k_b": st.floats(0, 0.67),
+    }
+)
 
 
 def scene(p, model):
     hood = p["hood"]
-    return fw.Scene(r_w=p["r_w"], I=p["I"], r_b=0.05, k_b=p["k_b"], s=0.5 if hood else 1.0,
-                    sigma=1.0 if hood else 0.0, f=p["f"], model=model, motor_on=False, A=1.0, free_speed=1e3, grip=10.0)
+    return fw.Scene(
+        r_w=p["r_w"],
+        I=p["I"],
+        r_b=0.05,
+        k_b=p["k_b"],
+        s=0.5 if hood else 1.0,
+        sigma=1.0 if hood else 0.0,
+        f=p["f"],
+        model=model,
+        motor_on=False,
+        A=1.0,
+        free_speed=1e3,
+        grip=10.0,
+    )
 
 
 @settings(max_examples=200, deadline=None)
@@ -258,9 +294,11 @@ def scene(p, model):
 def test_energy_model_balances_and_reverses(p):
     sc = scene(p, "energy")
     s = fw.shot(sc, p["w0"], p["m"], p["w0"], 1e-6)
-    E0, E1 = 0.5 * sc.I * p["w0"] ** 2, 0.5 * sc.I * s.omega_after ** 2
+    E0, E1 = 0.5 * sc.I * p["w0"] ** 2, 0.5 * sc.I * s.omega_after**2
     assert E0 == pytest.approx(E1 + s.energy / (1 - p["f"]), rel=1e-12)  # (5) with losses
-    assert s.omega_after * math.sqrt(1 + fw.beta(sc, p["m"]) / (1 - p["f"])) == pytest.approx(p["w0"], rel=1e-13)
+    assert s.omega_after * math.sqrt(1 + fw.beta(sc, p["m"]) / (1 - p["f"])) == pytest.approx(
+        p["w0"], rel=1e-13
+    )
 
 
 @settings(max_examples=200, deadline=None)
@@ -276,8 +314,20 @@ def test_momentum_model_conserves_angular_impulse(p):
 @settings(max_examples=200, deadline=None)
 @given(st.floats(1e-3, 1e3), st.floats(0, 1e3), st.floats(0.01, 10))
 def test_recovery_reverses_free_run(w_frac, dt, T_scale):
-    sc = fw.Scene(r_w=0.05, I=T_scale * 1e-3, r_b=0.05, k_b=0.4, s=0.5, sigma=1.0, f=0.0, model="energy",
-                  motor_on=False, A=1.0, free_speed=1e3, grip=10.0)  # free speed 1000 rad/s, T = T_scale s
+    sc = fw.Scene(
+        r_w=0.05,
+        I=T_scale * 1e-3,
+        r_b=0.05,
+        k_b=0.4,
+        s=0.5,
+        sigma=1.0,
+        f=0.0,
+        model="energy",
+        motor_on=False,
+        A=1.0,
+        free_speed=1e3,
+        grip=10.0,
+    )  # free speed 1000 rad/s, T = T_scale s
     w0 = min(w_frac, 999.0)
     dt = dt * sc.T / 100
     w1 = fw.free_run(sc, w0, dt)
@@ -297,10 +347,26 @@ def test_cli_json_reproduces_the_seed_table():
     cmd = [sys.executable, "-m", "gearhead.tui", "solve", "flywheel", "--preset", str(SEED), "--json"]
     data = json.loads(subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, check=True).stdout)
     o = data["outputs"]
-    assert [round(o[f"range_error_linear_{n}"]["value"] * 100, 2) for n in range(1, 6)] == \
-        [-1.42, -0.76, -0.52, -0.40, -0.32]
-    for name in ("ball_speed", "ball_spin", "ball_energy", "energy_ratio", "wheel_speed_after", "range",
-                 "range_error", "range_error_linear", "spin_up_time", "recovery_time", "range_error_6"):
+    assert [round(o[f"range_error_linear_{n}"]["value"] * 100, 2) for n in range(1, 6)] == [
+        -1.42,
+        -0.76,
+        -0.52,
+        -0.40,
+        -0.32,
+    ]
+    for name in (
+        "ball_speed",
+        "ball_spin",
+        "ball_energy",
+        "energy_ratio",
+        "wheel_speed_after",
+        "range",
+        "range_error",
+        "range_error_linear",
+        "spin_up_time",
+        "recovery_time",
+        "range_error_6",
+    ):
         assert name in o
     assert o["ball_speed"]["unit"] == "m/s" and o["range_error"]["unit"] == ""
 
@@ -314,8 +380,15 @@ def test_slip_phase_integrated_equals_its_closed_form(b, a_over_b, u_t):
     a = a_over_b * b
     tau, u = fw.slip_closed_form(a, b, u_t, span)
     rhs = lambda t, y: [min(a - b * y[0], 0.0) if y[0] >= u_t else a - b * y[0], 1.0]  # noqa: E731
-    run = integrate(rhs, 0.0, span, [1.0, 0.0], rtol=1e-11, atol=1e-14,
-                    events=[Event("rolling", lambda t, y: y[0] - y[1], -1)])
+    run = integrate(
+        rhs,
+        0.0,
+        span,
+        [1.0, 0.0],
+        rtol=1e-11,
+        atol=1e-14,
+        events=[Event("rolling", lambda t, y: y[0] - y[1], -1)],
+    )
     assert run.event == "rolling"
     assert run.t[-1] == pytest.approx(tau, rel=1e-8)
     assert run.y[-1][0] == pytest.approx(u, rel=1e-8)
@@ -323,8 +396,15 @@ def test_slip_phase_integrated_equals_its_closed_form(b, a_over_b, u_t):
 
 def test_stiff_slip_uses_the_closed_form_and_stays_finite():
     # a wheel of 1e-9 lb·in² on two Krakens: its time constant is ~1e-10 s against a ~7 ms slip
-    raw = {**seed_raw(), "mode": "moment_of_inertia", "wheel_inertia": "1e-9 lb*in**2", "motor": "Kraken X60",
-           "voltage": 12, "ratio": 0.2, "effects": "momentum, motor_during_shot"}
+    raw = {
+        **seed_raw(),
+        "mode": "moment_of_inertia",
+        "wheel_inertia": "1e-9 lb*in**2",
+        "motor": "Kraken X60",
+        "voltage": 12,
+        "ratio": 0.2,
+        "effects": "momentum, motor_during_shot",
+    }
     o = out(raw)
     assert o["rhs_evaluations"].value == 0
     # held at the target (A − B·ω_t = 2.647 N·m ≥ r_w·F = 2.54 N·m): V = s·r_w·ω_t
@@ -335,8 +415,20 @@ def test_stiff_slip_uses_the_closed_form_and_stays_finite():
 def test_module_slip_phase_below_the_target_matches_the_closed_form(omega0_frac, grip):
     """A shot in an unrecovered burst starts below the target: the wheel may reach the target during
     the slip (event "target") and is then held; compare with the closed form at rtol 1e-11."""
-    sc = fw.Scene(r_w=R_W, I=I_1, r_b=2 * IN, k_b=0.4, s=0.5, sigma=1.0, f=0.0, model="momentum",
-                  motor_on=True, A=2.836, free_speed=3141.6, grip=grip)
+    sc = fw.Scene(
+        r_w=R_W,
+        I=I_1,
+        r_b=2 * IN,
+        k_b=0.4,
+        s=0.5,
+        sigma=1.0,
+        f=0.0,
+        model="momentum",
+        motor_on=True,
+        A=2.836,
+        free_speed=3141.6,
+        grip=grip,
+    )
     w0, m_e = W_T * omega0_frac, 0.06 * 1.4
     w1, V, t_c, nfev = fw.slip_phase(sc, w0, m_e, W_T, 1e-11)
     t0 = 0.25 * m_e * R_W * w0 / grip
@@ -391,8 +483,16 @@ def test_motor_during_shot_range_error_and_wheel_table_against_the_closed_form()
 def test_motor_during_shot_burst_waits_the_interval_from_shot_to_shot():
     """Shot 1 from ω_t slips for t_c; the motor then has 0.1 s − t_c at full power before shot 2,
     which starts below the target and (393s, u_eq < 0) keeps decelerating until the ball rolls."""
-    sol = solve("flywheel", {**seed_raw(), "effects": "momentum, motor_during_shot", "accuracy": "fine",
-                             "shots": 2, "shot_interval": "0.1 s"})
+    sol = solve(
+        "flywheel",
+        {
+            **seed_raw(),
+            "effects": "momentum, motor_during_shot",
+            "accuracy": "fine",
+            "shots": 2,
+            "shot_interval": "0.1 s",
+        },
+    )
     T = I_1 * W_F / A
     t_c, w1, V1 = slip_closed_form(I_1, A, B, 40.0, 0.5, 0.084, R_W, W_T)
     w2 = W_F - (W_F - w1) * math.exp(-(0.1 - t_c) / T)
@@ -435,7 +535,9 @@ def test_fields_shown_only_where_used():
     calc = get("flywheel")
     grip, k_b = calc.field("grip_force"), calc.field("ball_inertia_factor")
     assert not grip.active("radius_of_gyration", {"effects": frozenset({"energy"}), "shooter": "hood"})
-    assert grip.active("radius_of_gyration", {"effects": frozenset({"momentum", "motor_during_shot"}), "shooter": "hood"})
+    assert grip.active(
+        "radius_of_gyration", {"effects": frozenset({"momentum", "motor_during_shot"}), "shooter": "hood"}
+    )
     assert k_b.active("radius_of_gyration", {"effects": frozenset({"energy"}), "shooter": "hood"})
     assert not k_b.active("radius_of_gyration", {"effects": frozenset({"energy"}), "shooter": "two_wheel"})
 

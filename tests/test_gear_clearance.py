@@ -2,7 +2,8 @@
 pitch-radius slip measured."""
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gearhead.core import presets
 from gearhead.core.model import solve
@@ -41,8 +42,16 @@ def test_mixed_pitches():
     # gears 2-3 at 32 DP: D = (64 + 16)/64 = 1.25 in; gear 1 at 20 DP 18T: r_o1 = 20/40 = 0.5 in
     # gear 4 at 16 DP 10T: r_o4 = 12/32 = 0.375 in; axle 3/8 in -> C_a = 1.25 - 0.5 - 0.1875 = 0.5625
     # C_g = 1.25 - 0.5 - 0.375 = 0.375 in
-    o = out(teeth_1=18, teeth_2=64, teeth_3=16, teeth_4=10, diametral_pitch_1=20, diametral_pitch_23=32,
-            diametral_pitch_4=16, axle_diameter="0.375 in")
+    o = out(
+        teeth_1=18,
+        teeth_2=64,
+        teeth_3=16,
+        teeth_4=10,
+        diametral_pitch_1=20,
+        diametral_pitch_23=32,
+        diametral_pitch_4=16,
+        axle_diameter="0.375 in",
+    )
     assert o["axle_clearance"] / IN == pytest.approx(0.5625, rel=1e-13)
     assert o["gear_clearance"] / IN == pytest.approx(0.375, rel=1e-13)
 
@@ -59,8 +68,15 @@ def test_pitch_in_other_units():
 def test_clearance_sign_matches_integer_tooth_arithmetic(n, dp):
     # One pitch for all: C_g·2p = (n2 + n3) - (n1 + 2) - (n4 + 2) exactly, an integer.
     n1, n2, n3, n4 = n
-    o = out(teeth_1=n1, teeth_2=n2, teeth_3=n3, teeth_4=n4, diametral_pitch_1=dp, diametral_pitch_23=dp,
-            diametral_pitch_4=dp)
+    o = out(
+        teeth_1=n1,
+        teeth_2=n2,
+        teeth_3=n3,
+        teeth_4=n4,
+        diametral_pitch_1=dp,
+        diametral_pitch_23=dp,
+        diametral_pitch_4=dp,
+    )
     k = (n2 + n3) - (n1 + 2) - (n4 + 2)
     assert o["gear_clearance"] / IN == pytest.approx(k / (2 * dp), rel=1e-12, abs=1e-15)
     assert o["gear_clears"] is (k > 0)

@@ -4,7 +4,8 @@ modes reproduce their target through the forward equations (11)-(17)."""
 import math
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gearhead.core import motors
 from gearhead.core.errors import InputError
@@ -87,21 +88,40 @@ def test_current_mode_uses_adjusted_free_current():
 
 
 def test_stall_voltage_uses_raw_stall_torque_and_motor_spec_voltage():
-    o = out(motor="VEX 393", motor_count=2, voltage="7.2 V", efficiency=0.8, load="10 lbf",
-            radius="1 in", mode="stall_voltage", target_stall_voltage="3 V")
+    o = out(
+        motor="VEX 393",
+        motor_count=2,
+        voltage="7.2 V",
+        efficiency=0.8,
+        load="10 lbf",
+        radius="1 in",
+        mode="stall_voltage",
+        target_stall_voltage="3 V",
+    )
     # at 3 V the stall load must equal the load: run forward at 3 V with that ratio
-    at_vs = out(motor="VEX 393", motor_count=2, voltage="3 V", efficiency=0.8, load="10 lbf",
-                radius="1 in", mode="ratio", ratio=o["ratio"])
+    at_vs = out(
+        motor="VEX 393",
+        motor_count=2,
+        voltage="3 V",
+        efficiency=0.8,
+        load="10 lbf",
+        radius="1 in",
+        mode="ratio",
+        ratio=o["ratio"],
+    )
     assert at_vs["stall_load"] == pytest.approx(10 * LBF, rel=1e-12)
     assert o["stall_voltage"] == pytest.approx(3, rel=1e-12)
 
 
-@pytest.mark.parametrize("mode,field,value", [
-    ("current", "target_current", "1 A"),       # below free current per motor
-    ("current", "target_current", "400 A"),     # above stall current
-    ("stall_load", "target_stall_load", "100 lbf"),  # below the load
-    ("stall_voltage", "target_stall_voltage", "13 V"),  # above applied voltage
-])
+@pytest.mark.parametrize(
+    "mode,field,value",
+    [
+        ("current", "target_current", "1 A"),  # below free current per motor
+        ("current", "target_current", "400 A"),  # above stall current
+        ("stall_load", "target_stall_load", "100 lbf"),  # below the load
+        ("stall_voltage", "target_stall_voltage", "13 V"),  # above applied voltage
+    ],
+)
 def test_impossible_targets_name_their_field(mode, field, value):
     with pytest.raises(InputError) as e:
         out(mode=mode, **{field: value})
@@ -112,8 +132,15 @@ motor_names = st.sampled_from(["CIM", "NEO", "Kraken X60", "Falcon 500", "775pro
 
 
 @settings(max_examples=120, deadline=None)
-@given(motor=motor_names, n=st.integers(1, 4), V=st.floats(6, 13), eta=st.floats(0.5, 1),
-       F=st.floats(1, 2000), r=st.floats(0.005, 0.5), frac=st.floats(0.01, 0.99))
+@given(
+    motor=motor_names,
+    n=st.integers(1, 4),
+    V=st.floats(6, 13),
+    eta=st.floats(0.5, 1),
+    F=st.floats(1, 2000),
+    r=st.floats(0.005, 0.5),
+    frac=st.floats(0.01, 0.99),
+)
 def test_inverse_modes_reproduce_their_targets(motor, n, V, eta, F, r, frac):
     base = dict(motor=motor, motor_count=n, voltage=V, efficiency=eta, load=f"{F} N", radius=f"{r} m")
     m = motors.system(motors.lookup(motor, "wpilib")[0], n, V, eta)
@@ -161,13 +188,29 @@ def test_max_efficiency_mode_lands_on_the_motor_max_efficiency_point(motor):
 
 
 @settings(max_examples=200, deadline=None)
-@given(motor=motor_names, n=st.integers(1, 6), V=st.floats(3, 13), eta=st.floats(0.3, 1),
-       F=st.floats(1, 1000), r=st.floats(0.001, 1))
+@given(
+    motor=motor_names,
+    n=st.integers(1, 6),
+    V=st.floats(3, 13),
+    eta=st.floats(0.3, 1),
+    F=st.floats(1, 1000),
+    r=st.floats(0.001, 1),
+)
 def test_stall_mode_is_exactly_stalled_and_not_back_driven(motor, n, V, eta, F, r):
     # G = rF/τ̃s (22) makes F_s = F exactly; F/F_s rounding to 1 + 1 ulp used to show a loaded
     # speed of −3e-17 rpm and the "back-driven" warning beside "holds the load" (10 % of inputs)
-    s = solve("gear_ratio", dict(motor=motor, motor_count=n, voltage=f"{V!r} V", efficiency=eta,
-                                 load=f"{F!r} N", radius=f"{r!r} m", mode="stall"))
+    s = solve(
+        "gear_ratio",
+        dict(
+            motor=motor,
+            motor_count=n,
+            voltage=f"{V!r} V",
+            efficiency=eta,
+            load=f"{F!r} N",
+            radius=f"{r!r} m",
+            mode="stall",
+        ),
+    )
     assert s.outputs["loaded_speed"].value == 0 and s.outputs["output_power"].value == 0
     assert not any("back-driven" in w for w in s.warnings)
     assert s.outputs["stall_load"].value == pytest.approx(F, rel=1e-14)

@@ -29,13 +29,15 @@ def test_preset_outputs_unchanged(calc, name):
     assert want is not None, f"no golden record for {calc}/{name}: run python -m tests.golden_outputs"
     got = NOW[calc][name]
     assert sorted(got["outputs"]) == sorted(want["outputs"]), "outputs added or removed"
-    changed = {k: (want["outputs"][k], v) for k, v in got["outputs"].items()
-               if not _same(v, want["outputs"][k])}
+    changed = {
+        k: (want["outputs"][k], v) for k, v in got["outputs"].items() if not _same(v, want["outputs"][k])
+    }
     assert not changed, f"outputs changed (golden, now): {changed}"
     assert got["warnings"] == want["warnings"]
     assert sorted(got.get("tables", {})) == sorted(want.get("tables", {}))
     for name, rows in got.get("tables", {}).items():
         assert len(rows) == len(want["tables"][name]), f"{name}: rows added or removed"
         for n, (row, was) in enumerate(zip(rows, want["tables"][name])):
-            assert sorted(row) == sorted(was) and all(_same(row[k], was[k]) for k in row), \
+            assert sorted(row) == sorted(was) and all(_same(row[k], was[k]) for k in row), (
                 f"{name} row {n} changed (golden, now): {was}, {row}"
+            )

@@ -99,14 +99,19 @@ def _p1_torsion(n, inside, on_edge, lo):
 
 def _hex_torsion_p1(n):
     """Regular hexagon of side 1: |i|, |j|, |i + j| ≤ n."""
-    return _p1_torsion(n, lambda i, j: abs(i) <= n and abs(j) <= n and abs(i + j) <= n,
-                       lambda i, j: abs(i) == n or abs(j) == n or abs(i + j) == n, -n)
+    return _p1_torsion(
+        n,
+        lambda i, j: abs(i) <= n and abs(j) <= n and abs(i + j) <= n,
+        lambda i, j: abs(i) == n or abs(j) == n or abs(i + j) == n,
+        -n,
+    )
 
 
 def _triangle_torsion_p1(n):
     """Equilateral triangle of side 1: i, j ≥ 0, i + j ≤ n."""
-    return _p1_torsion(n, lambda i, j: i >= 0 and j >= 0 and i + j <= n,
-                       lambda i, j: i == 0 or j == 0 or i + j == n, 0)
+    return _p1_torsion(
+        n, lambda i, j: i >= 0 and j >= 0 and i + j <= n, lambda i, j: i == 0 or j == 0 or i + j == n, 0
+    )
 
 
 def test_hex_torsion_constant_from_an_independent_fem():
@@ -118,7 +123,7 @@ def test_hex_torsion_constant_from_an_independent_fem():
     t32, t64 = _triangle_torsion_p1(32), _triangle_torsion_p1(64)
     assert t64 + (t64 - t32) / 3 == pytest.approx(math.sqrt(3) / 80, rel=2e-4)
     ns = (16, 32, 64, 128)
-    A = np.array([[1.0] + [n ** -p for p in (2, 3, 4)] for n in ns])
+    A = np.array([[1.0] + [n**-p for p in (2, 3, 4)] for n in ns])
     j_side = np.linalg.solve(A, np.array([_hex_torsion_p1(n) for n in ns]))[0]
     assert _hex_torsion_p1(128) < 9 * beams.HEX_TORSION  # P1 on Prandtl's problem is a lower bound
     assert beams.HEX_TORSION == pytest.approx(j_side / 9, rel=1e-9)  # side 1 → across flats √3: /9
@@ -166,9 +171,18 @@ def test_rectangular_tube_J_is_above_an_independent_lower_bound(W, H, m):
     assert J > _q1_tube_lower_bound(W, H, m)
 
 
-@pytest.mark.parametrize("W,H,accuracy", [
-    (4.0, 4.0, 2e-8), (32.0, 16.0, 3e-9), (16.0, 32.0, 3e-9), (16.0, 16.0, 1e-8), (2.5, 2.2, 1e-7),
-    (2.0001, 2.0001, 2e-7), (2.0001, 10.0, 5e-8)])
+@pytest.mark.parametrize(
+    "W,H,accuracy",
+    [
+        (4.0, 4.0, 2e-8),
+        (32.0, 16.0, 3e-9),
+        (16.0, 32.0, 3e-9),
+        (16.0, 16.0, 1e-8),
+        (2.5, 2.2, 1e-7),
+        (2.0001, 2.0001, 2e-7),
+        (2.0001, 10.0, 5e-8),
+    ],
+)
 def test_rectangular_tube_J_is_bracketed_by_two_bounds(W, H, accuracy):
     """Stress function (lower) and warping function (upper) on one mesh: the midpoint is within
     half the gap. FRC tubes (2×1×1/16 in is 32×16 in walls) are bracketed to 1e-9..1e-7; the
@@ -177,7 +191,8 @@ def test_rectangular_tube_J_is_bracketed_by_two_bounds(W, H, accuracy):
     J = beams.tube_torsion_fem(W, H, 1.0)
     assert lower <= J <= upper
     assert beams.tube_torsion_error(W, H, 1.0) == pytest.approx(
-        max((upper - lower) / (upper + lower), beams.TUBE_ROUNDING), rel=1e-12)
+        max((upper - lower) / (upper + lower), beams.TUBE_ROUNDING), rel=1e-12
+    )
     assert beams.tube_torsion_error(W, H, 1.0) < accuracy
     if W < 5 and all(abs(x * 10 - round(x * 10)) < 1e-9 for x in (W, H)):  # a whole grid of 1/20
         assert _q1_tube_lower_bound(W, H, 20) < upper
@@ -215,6 +230,7 @@ def test_rectangular_tube_fem_and_bredt_agree_for_a_thin_wall():
 
 def _beam(**raw):
     from gearhead.core.model import solve
+
     s = solve("beam", raw)
     return {k: v.value for k, v in s.outputs.items()}, s.warnings
 
@@ -245,8 +261,13 @@ def test_buckling_load_is_continuous_at_the_transition_slenderness():
     L_T = math.sqrt(2 * math.pi**2 * 68.9e9 / 276e6) * r
     loads = {}
     for k in (1 - 1e-9, 1 + 1e-9):
-        o, _ = _beam(section="round", outer_size=1, length=f"{L_T * k!r} m", load_position=0,
-                     end_condition="pinned_pinned")
+        o, _ = _beam(
+            section="round",
+            outer_size=1,
+            length=f"{L_T * k!r} m",
+            load_position=0,
+            end_condition="pinned_pinned",
+        )
         loads[o["buckling_formula"]] = o["buckling_load"]
     assert set(loads) == {"Johnson", "Euler"}
     area = math.pi / 4 * 0.0254**2

@@ -66,16 +66,35 @@ def test_max_efficiency_with_tiny_free_current_matches_mpmath():
 
 def test_gear_ratio_extreme_but_legal_magnitudes():
     """A 1 mm spool with a 10 kN load on sixteen motors at 0.5 V: ratios far from unity stay exact."""
-    o = solve("gear_ratio", {"motor": "Kraken X60 FOC", "motor_count": 16, "voltage": "0.5 V", "efficiency": 0.05,
-                             "load": "10 kN", "radius": "1 mm", "mode": "max_power"}).outputs
+    o = solve(
+        "gear_ratio",
+        {
+            "motor": "Kraken X60 FOC",
+            "motor_count": 16,
+            "voltage": "0.5 V",
+            "efficiency": 0.05,
+            "load": "10 kN",
+            "radius": "1 mm",
+            "mode": "max_power",
+        },
+    ).outputs
     ts = mp.mpf("9.37") * mp.mpf("0.05") * 16 * mp.mpf("0.5") / 12
     assert o["ratio"].value == pytest.approx(float(2 * mp.mpf("0.001") * 10000 / ts), rel=1e-12)
 
 
 def test_pneumatics_tank_that_empties_stays_at_atmospheric():
     """Consumption far beyond the tank: pressure clamps at 0 gauge, never negative or NaN."""
-    sol = solve("pneumatics", {"effects": "", "c1_count": 50, "c1_bore": "3 in", "c1_stroke": "20 in",
-                               "c1_period": 0.1, "c1_start": 0})
+    sol = solve(
+        "pneumatics",
+        {
+            "effects": "",
+            "c1_count": 50,
+            "c1_bore": "3 in",
+            "c1_stroke": "20 in",
+            "c1_period": 0.1,
+            "c1_start": 0,
+        },
+    )
     assert sol.outputs["final_pressure"].value == 0.0 and sol.outputs["tank_empty"].value
 
 
@@ -94,16 +113,19 @@ def test_pneumatics_fill_time_against_mpmath_quadrature():
     knots = [k * PSI for k in pn.CURVE_PSI]
     q = PchipInterpolator(knots, [c * pn.CFM for c in pn.COMPRESSORS["Thomas 215 12 V"]])
     exact = mp.quad(lambda p: mp.mpf("1148e-6") / (pn.P_ATM * float(q(float(p)))), knots)
-    v = parse_inputs(get("pneumatics"), {"c1_count": 0, "start_pressure": 0,
-                                         "compressor_model": "Thomas 215 12 V"})[0]
+    v = parse_inputs(
+        get("pneumatics"), {"c1_count": 0, "start_pressure": 0, "compressor_model": "Thomas 215 12 V"}
+    )[0]
     run = pn.simulate(v, 1e-11)
     assert run.values["compressor_duty"] * 150 == pytest.approx(float(exact), rel=1e-9)
 
 
 def test_pneumatics_fastest_cycling_is_bounded_work():
     """1500 firings in a match: work grows linearly, the result stays finite."""
-    v = parse_inputs(get("pneumatics"), {"c1_period": 0.1, "c1_start": 0, "c1_bore": "0.5 in",
-                                         "c1_rod": "0.125 in", "c1_stroke": "0.5 in"})[0]
+    v = parse_inputs(
+        get("pneumatics"),
+        {"c1_period": 0.1, "c1_start": 0, "c1_bore": "0.5 in", "c1_rod": "0.125 in", "c1_stroke": "0.5 in"},
+    )[0]
     run = pn.simulate(v, 1e-6)
     assert run.values["firings"] == 1500
     assert math.isfinite(run.values["final_pressure"]) and run.nfev < 200_000
@@ -117,15 +139,29 @@ def test_integrator_stiff_decay_has_bounded_steps():
 
 def test_integrator_event_grazing_zero_from_above():
     """g = 1 − cos t touches zero at 2π without crossing: no spurious event, no hang."""
-    run = integrate(lambda t, y: [1.0], 0.1, 8.0, [0.0], rtol=1e-9, atol=1e-12,
-                    events=[Event("touch", lambda t, y: 1 - math.cos(t) + 0.0, -1)])
+    run = integrate(
+        lambda t, y: [1.0],
+        0.1,
+        8.0,
+        [0.0],
+        rtol=1e-9,
+        atol=1e-12,
+        events=[Event("touch", lambda t, y: 1 - math.cos(t) + 0.0, -1)],
+    )
     assert run.event is None and run.t[-1] == 8.0
 
 
 def test_integrator_event_at_the_very_first_step_end():
     """The event lies on the end of the span: it is found, located exactly at t1."""
-    run = integrate(lambda t, y: [1.0], 0.0, 1.0, [0.0], rtol=1e-9, atol=1e-12,
-                    events=[Event("reach", lambda t, y: y[0] - 1.0, +1)])
+    run = integrate(
+        lambda t, y: [1.0],
+        0.0,
+        1.0,
+        [0.0],
+        rtol=1e-9,
+        atol=1e-12,
+        events=[Event("reach", lambda t, y: y[0] - 1.0, +1)],
+    )
     assert run.t[-1] == pytest.approx(1.0, abs=1e-12)
 
 

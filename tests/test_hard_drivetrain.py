@@ -5,7 +5,8 @@ at the applied voltage, or the battery through the wiring)."""
 import math
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gearhead.core.model import solve
 
@@ -37,28 +38,63 @@ def test_two_cims_at_8_volts_are_capped_by_their_stall_current_at_8_volts():
     assert not any("stall before" in x for x in fw)
 
 
-motors_ = st.sampled_from(["CIM", "NEO", "Kraken X60", "Falcon 500", "MiniCIM", "BAG", "775pro",
-                           "V5 100 rpm (red)", "V5 600 rpm (blue)", "VEX 393"])
+motors_ = st.sampled_from(
+    [
+        "CIM",
+        "NEO",
+        "Kraken X60",
+        "Falcon 500",
+        "MiniCIM",
+        "BAG",
+        "775pro",
+        "V5 100 rpm (red)",
+        "V5 600 rpm (blue)",
+        "VEX 393",
+    ]
+)
 
 
 @settings(max_examples=300, deadline=None)
-@given(motor=motors_, n=st.integers(1, 8), V=st.floats(1, 14), eta=st.floats(0.5, 1),
-       d=st.floats(0.03, 0.2), W=st.floats(10, 3000), mu=st.floats(0.2, 1.6),
-       V_batt=st.floats(7, 13.5), V_min_frac=st.floats(0, 0.9), R_batt=st.floats(0.001, 0.05),
-       R_br=st.one_of(st.just(0.0), st.floats(1e-5, 0.05)))
+@given(
+    motor=motors_,
+    n=st.integers(1, 8),
+    V=st.floats(1, 14),
+    eta=st.floats(0.5, 1),
+    d=st.floats(0.03, 0.2),
+    W=st.floats(10, 3000),
+    mu=st.floats(0.2, 1.6),
+    V_batt=st.floats(7, 13.5),
+    V_min_frac=st.floats(0, 0.9),
+    R_batt=st.floats(0.001, 0.05),
+    R_br=st.one_of(st.just(0.0), st.floats(1e-5, 0.05)),
+)
 def test_reverse_ratio_fed_to_forward_gives_the_same_force_and_current(
-        motor, n, V, eta, d, W, mu, V_batt, V_min_frac, R_batt, R_br):
+    motor, n, V, eta, d, W, mu, V_batt, V_min_frac, R_batt, R_br
+):
     """One model for both modes: at reverse's ratio forward mode slips the wheels (pushing force =
     traction, no 'stall before slip') at the same slip current. Old code: 107 of 300 random cases
     (VEX motors, low voltages) disagreed."""
-    base = dict(motor=motor, motor_count=n, voltage=f"{V!r} V", efficiency=eta,
-                wheel_diameter=f"{d!r} m", weight=f"{W!r} N", friction=mu)
+    base = dict(
+        motor=motor,
+        motor_count=n,
+        voltage=f"{V!r} V",
+        efficiency=eta,
+        wheel_diameter=f"{d!r} m",
+        weight=f"{W!r} N",
+        friction=mu,
+    )
     try:
-        rev, _ = out(**base, mode="reverse", battery_voltage=f"{V_batt!r} V",
-                     min_voltage=f"{V_batt * V_min_frac!r} V", battery_resistance=f"{R_batt!r} ohm",
-                     branch_resistance=f"{R_br!r} ohm")
+        rev, _ = out(
+            **base,
+            mode="reverse",
+            battery_voltage=f"{V_batt!r} V",
+            min_voltage=f"{V_batt * V_min_frac!r} V",
+            battery_resistance=f"{R_batt!r} ohm",
+            branch_resistance=f"{R_br!r} ohm",
+        )
     except Exception as e:  # a budget that cannot push at all is an InputError naming a field
         from gearhead.core.errors import InputError
+
         assert isinstance(e, InputError) and e.field in ("min_voltage", "battery_voltage")
         return
     fwd, fw = out(**base, ratio=repr(rev["max_ratio"]))

@@ -12,7 +12,9 @@ from gearhead.core.model import parse_inputs, solve
 from gearhead.core.registry import get
 
 mp.mp.dps = 40
-SEED = presets.load(fw.__file__.rsplit("/core/", 1)[0] + "/presets/flywheel/nbn_seed_single_wheel.toml").inputs
+SEED = presets.load(
+    fw.__file__.rsplit("/core/", 1)[0] + "/presets/flywheel/nbn_seed_single_wheel.toml"
+).inputs
 G = mp.mpf("9.80665")
 
 
@@ -30,8 +32,11 @@ def mp_range(V, theta, h):
 def mp_ball_speed(v, m, model):
     """V from the transfer model written out in mpmath (lossless, motor off in the shot)."""
     r_w = mp.mpf(v["wheel_diameter"]) / 2
-    I = v["wheel_count"] * mp.mpf(v["wheel_mass"]) * (mp.mpf(v["gyration_fraction"]) * r_w) ** 2 \
-        if v["mode"] == "radius_of_gyration" else v["wheel_count"] * mp.mpf(v["wheel_inertia"])
+    I = (
+        v["wheel_count"] * mp.mpf(v["wheel_mass"]) * (mp.mpf(v["gyration_fraction"]) * r_w) ** 2
+        if v["mode"] == "radius_of_gyration"
+        else v["wheel_count"] * mp.mpf(v["wheel_inertia"])
+    )
     s = mp.mpf(1) / 2
     m_e = mp.mpf(m) * (1 + mp.mpf(v["ball_inertia_factor"]))
     w0 = mp.mpf(v["target_speed"])
@@ -47,7 +52,12 @@ def test_tiny_mass_tolerance_from_a_release_height():
     ranges and subtracting loses every digit, and even m₀·(1 + e_m) carries a 1e-4 relative error
     in the mass change; the module works with the change dm = m₀·e_m and β(dm), and rationalises
     the difference of square roots."""
-    raw = {**SEED, "ball_mass_tolerance": "1.234567e-10 %", "release_height": "1.5 m", "launch_angle": "20 deg"}
+    raw = {
+        **SEED,
+        "ball_mass_tolerance": "1.234567e-10 %",
+        "release_height": "1.5 m",
+        "launch_angle": "20 deg",
+    }
     v = vals(raw)
     o = solve("flywheel", raw).outputs
     V0, _ = mp_ball_speed(v, v["ball_mass"], "energy")
@@ -56,15 +66,24 @@ def test_tiny_mass_tolerance_from_a_release_height():
     ref = mp_range(V1, th, h) / mp_range(V0, th, h) - 1
     assert abs(ref) < 1e-12
     assert o["range_error"].value == pytest.approx(float(ref), rel=1e-11)
-    naive = fw.projectile_range(float(V1), v["launch_angle"], 1.5) / fw.projectile_range(float(V0), v["launch_angle"], 1.5) - 1
+    naive = (
+        fw.projectile_range(float(V1), v["launch_angle"], 1.5)
+        / fw.projectile_range(float(V0), v["launch_angle"], 1.5)
+        - 1
+    )
     assert abs(naive - float(ref)) > 1e-5 * abs(float(ref))  # the naive subtraction loses ~4 digits more
 
 
 def test_nearly_infinite_wheel_inertia_momentum_model():
     """I = 1e6 lb·in² (292.6 kg·m²) against a 60 g ball: β ≈ 3e-7, the wheel loses 3e-7 of its
     speed and the range error is ~1e-8; 1/(1+β) − 1 and q² − 1 must not be formed by subtraction."""
-    raw = {**SEED, "mode": "moment_of_inertia", "wheel_inertia": "1e6 lb*in**2", "effects": "momentum",
-           "release_height": "0.8 m"}
+    raw = {
+        **SEED,
+        "mode": "moment_of_inertia",
+        "wheel_inertia": "1e6 lb*in**2",
+        "effects": "momentum",
+        "release_height": "0.8 m",
+    }
     v = vals(raw)
     o = solve("flywheel", raw).outputs
     m0 = mp.mpf(v["ball_mass"])
@@ -108,12 +127,24 @@ def test_grip_exactly_at_what_the_motor_can_hold():
     sc = fw.scene_from({**v0, "effects": frozenset({"momentum", "motor_during_shot"})})[0]
     w_t = v0["target_speed"]
     F = (sc.A - sc.B * w_t) / sc.r_w * (1 + 1e-7)
-    raw = {**SEED, "motor": "Kraken X60", "voltage": 12, "ratio": 0.2, "grip_force": f"{F!r} N",
-           "effects": "momentum, motor_during_shot", "accuracy": "tight"}
+    raw = {
+        **SEED,
+        "motor": "Kraken X60",
+        "voltage": 12,
+        "ratio": 0.2,
+        "grip_force": f"{F!r} N",
+        "effects": "momentum, motor_during_shot",
+        "accuracy": "tight",
+    }
     v = vals(raw)
     o = solve("flywheel", raw).outputs
     I, A, B = mp.mpf(sc.I), mp.mpf(sc.A), mp.mpf(sc.A) / mp.mpf(sc.free_speed)
-    r_w, s, m_e, Fm = mp.mpf(sc.r_w), mp.mpf(1) / 2, mp.mpf(v["ball_mass"]) * mp.mpf("1.4"), mp.mpf(v["grip_force"])
+    r_w, s, m_e, Fm = (
+        mp.mpf(sc.r_w),
+        mp.mpf(1) / 2,
+        mp.mpf(v["ball_mass"]) * mp.mpf("1.4"),
+        mp.mpf(v["grip_force"]),
+    )
     w_eq = (A - r_w * Fm) / B
     w = lambda t: w_eq + (w_t - w_eq) * mp.exp(-B * t / I)  # noqa: E731
     t_c = mp.findroot(lambda t: Fm * t / (s * m_e) - s * r_w * w(t), s * s * m_e * r_w * w_t / Fm)

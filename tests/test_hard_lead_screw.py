@@ -79,8 +79,14 @@ def test_nearly_flat_thread_angle():
     sqrt(1 − sin²α) would lose 8 digits to cancellation. Given an exact cos α, (31)-(33) are well
     conditioned and match to ~1e-13 (measured: 2e-17)."""
     ta = math.pi - 2e-8
-    v, o = screw(diameter="0.5 in", pitch="0.1 in", starts=1, thread_angle=f"{ta!r} rad",
-                 friction="1e-10", force="100 lbf")
+    v, o = screw(
+        diameter="0.5 in",
+        pitch="0.1 in",
+        starts=1,
+        thread_angle=f"{ta!r} rad",
+        friction="1e-10",
+        force="100 lbf",
+    )
     T_R, T_L, _ = mp_torques(v)
     assert o["raise_torque"] == pytest.approx(float(T_R), rel=1e-12)
     assert o["lower_torque"] == pytest.approx(float(T_L), rel=1e-12)
@@ -104,11 +110,18 @@ def test_drivetrain_reverse_with_allowed_current_a_hair_above_free_current():
     o = {k: x.value for k, x in solve("drivetrain", raw).outputs.items()}
     mot = m.motor
     n = mp.mpf(4)
-    tau_s, i_s, i_f = mp.mpf(mot.stall_torque) * n, mp.mpf(mot.stall_current) * n, mp.mpf(mot.free_current) * n
+    tau_s, i_s, i_f = (
+        mp.mpf(mot.stall_torque) * n,
+        mp.mpf(mot.stall_current) * n,
+        mp.mpf(mot.free_current) * n,
+    )
     Kt = tau_s / (i_s - i_f)  # (7) at 12 V, η = 1
     i_tot = (mp.mpf(v["battery_voltage"]) - mp.mpf(v["min_voltage"])) / (
-        mp.mpf(v["battery_resistance"]) + mp.mpf(v["main_resistance"]) + mp.mpf(v["branch_resistance"]) / n)  # (41)
-    G = mp.mpf(v["friction"]) * mp.mpf(v["wheel_diameter"]) * mp.mpf(v["weight"]) / (2 * Kt * (i_tot - i_f))  # (42)
+        mp.mpf(v["battery_resistance"]) + mp.mpf(v["main_resistance"]) + mp.mpf(v["branch_resistance"]) / n
+    )  # (41)
+    G = (
+        mp.mpf(v["friction"]) * mp.mpf(v["wheel_diameter"]) * mp.mpf(v["weight"]) / (2 * Kt * (i_tot - i_f))
+    )  # (42)
     assert i_tot - i_f > 0
     assert o["total_current"] == pytest.approx(float(i_tot), rel=1e-14)
     assert o["max_ratio"] == pytest.approx(float(G), rel=1e-5)

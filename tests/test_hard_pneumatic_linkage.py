@@ -46,8 +46,18 @@ def test_forward_one_part_in_2e12_short_of_dead_centre():
 def test_forward_exactly_at_dead_centre_is_finite():
     """ℓ2 = d + r exactly: the Heron product is 0 (a degenerate triangle), the lever arm and torque are
     exactly 0, and θ2 = ψ − φ + π in closed form; nothing may become NaN (acos(−1 − ulp) would)."""
-    sol = solve("pneumatic_linkage", {"pivot_x": "3 m", "pivot_y": "4 m", "arm_x": "2 m", "arm_y": "0 m",
-                                      "retracted_length": "4 m", "stroke": "3 m", "cylinder_force": "100 N"})
+    sol = solve(
+        "pneumatic_linkage",
+        {
+            "pivot_x": "3 m",
+            "pivot_y": "4 m",
+            "arm_x": "2 m",
+            "arm_y": "0 m",
+            "retracted_length": "4 m",
+            "stroke": "3 m",
+            "cylinder_force": "100 N",
+        },
+    )
     o = {k: v.value for k, v in sol.outputs.items()}
     assert o["extended_lever_arm"] == 0.0 and o["extended_torque"] == 0.0
     assert o["extended_angle"] == pytest.approx(math.atan2(4, -3) + math.pi, abs=1e-15)
@@ -61,10 +71,10 @@ def test_forward_pivot_almost_on_the_arm_pivot():
     d = 2.0**-30
     f = pl.forward(d, 0.0, 1.0, 0.0, 1 - 2.0**-31, 2.0**-30)  # ℓ = 1 ∓ 2⁻³¹, both exact
     psi = mp.pi  # C = (−d, 0)
-    for key, ell in (("1", 1 - mp.mpf(2)**-31), ("2", 1 + mp.mpf(2)**-31)):
-        gamma = mp.acos((1 + mp.mpf(d)**2 - ell**2) / (2 * d))
+    for key, ell in (("1", 1 - mp.mpf(2) ** -31), ("2", 1 + mp.mpf(2) ** -31)):
+        gamma = mp.acos((1 + mp.mpf(d) ** 2 - ell**2) / (2 * d))
         assert abs(mp.mpf(f["g" + key]) - gamma) < 3e-16
-    theta1 = psi + mp.acos((1 + mp.mpf(d)**2 - (1 - mp.mpf(2)**-31)**2) / (2 * d)) - 2 * mp.pi
+    theta1 = psi + mp.acos((1 + mp.mpf(d) ** 2 - (1 - mp.mpf(2) ** -31) ** 2) / (2 * d)) - 2 * mp.pi
     assert abs(mp.mpf(f["theta1"]) - theta1) < 1e-15
 
 
@@ -76,7 +86,7 @@ def test_reverse_stroke_equal_to_rod_end_travel_circles_touch():
     rv = pl.reverse(0.0, t2, 1.0, 0.0, 0.5, 1.0)
     p1 = (mp.mpf(1), mp.mpf(0))
     p2 = (mp.cos(t2), mp.sin(t2))
-    c = mp.sqrt((p2[0] - p1[0])**2 + (p2[1] - p1[1])**2)
+    c = mp.sqrt((p2[0] - p1[0]) ** 2 + (p2[1] - p1[1]) ** 2)
     touch = (p1[0] - mp.mpf("0.5") * (p2[0] - p1[0]) / c, p1[1] - mp.mpf("0.5") * (p2[1] - p1[1]) / c)
     assert rv["found"] and not rv["rejected"]
     for A, B in rv["found"]:
@@ -108,10 +118,22 @@ def test_dead_centre_warning_follows_the_lever_arm_not_the_arm_angle():
     r, d = 8.3, 0.3
     L = math.sqrt(r * r + d * d - 2 * r * d * math.cos(math.radians(45)))
     L2 = math.hypot(r, d)
-    sol = solve("pneumatic_linkage", dict(mode="forward", pivot_x=0.3, pivot_y=0, arm_x=8.3, arm_y=0,
-                                          retracted_length=repr(L), stroke=repr(L2 - L)))
+    sol = solve(
+        "pneumatic_linkage",
+        dict(
+            mode="forward",
+            pivot_x=0.3,
+            pivot_y=0,
+            arm_x=8.3,
+            arm_y=0,
+            retracted_length=repr(L),
+            stroke=repr(L2 - L),
+        ),
+    )
     IN = 0.0254
-    assert sol.outputs["retracted_lever_arm"].value == pytest.approx(r * d * math.sin(math.pi / 4) / L * IN, rel=1e-12)
+    assert sol.outputs["retracted_lever_arm"].value == pytest.approx(
+        r * d * math.sin(math.pi / 4) / L * IN, rel=1e-12
+    )
     assert sol.outputs["extended_lever_arm"].value == pytest.approx(r * d / L2 * IN, rel=1e-12)
     warned = [w for w in sol.warnings if "dead centre" in w]
     assert len(warned) == 2 and "2.62%" in warned[0] and "3.61%" in warned[1]
@@ -131,6 +153,7 @@ def test_no_dead_centre_warning_for_a_lever_arm_above_a_tenth_of_the_arm():
 def test_arm_angles_are_bounded_to_a_turn(field, value):
     """1e15 rad used to be accepted (sin/cos of it keep no digits); angles are −360° to 360°."""
     from gearhead.core.errors import InputError
+
     with pytest.raises(InputError) as e:
         solve("pneumatic_linkage", {"mode": "reverse", field: value})
     assert e.value.field == field

@@ -45,8 +45,10 @@ def test_curve_stays_between_neighbouring_table_points(name):
 def test_the_seeds_fit_misses_its_own_table_points():
     """Why the accurate run no longer uses it: 7.5 % off at AndyMark's own 0 psi point."""
     c = pn.flow_fit("AndyMark 1.1 12 V")
-    miss = max(abs(pn.flow(c, psi * PSI) / (cfm * pn.CFM) - 1)
-               for psi, cfm in zip(pn.CURVE_PSI, pn.COMPRESSORS["AndyMark 1.1 12 V"]))
+    miss = max(
+        abs(pn.flow(c, psi * PSI) / (cfm * pn.CFM) - 1)
+        for psi, cfm in zip(pn.CURVE_PSI, pn.COMPRESSORS["AndyMark 1.1 12 V"])
+    )
     assert miss > 0.07
 
 

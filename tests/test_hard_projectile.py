@@ -56,8 +56,12 @@ def test_target_angle_just_below_the_line_of_sight():
     test holds the result to it, so no further cancellation (e.g. through a rounded tan θ_i) may creep in."""
     h_i, h_f, d = 0.5, 1.5, 4.0
     th_f = math.atan(0.25) - 1e-5  # line of sight is atan(1/4) = 14.036°
-    run = pj.simulate(values(mode="reverse", release_height=h_i, target_height=h_f, distance=d,
-                             target_angle=f"{th_f!r} rad"), 1e-6)
+    run = pj.simulate(
+        values(
+            mode="reverse", release_height=h_i, target_height=h_f, distance=d, target_angle=f"{th_f!r} rad"
+        ),
+        1e-6,
+    )
     th_i, v_i = mp_reverse(h_i, h_f, d, th_f)
     assert run.values["release_speed"] > 1000  # really near the degenerate end
     assert run.values["release_speed"] == pytest.approx(float(v_i), rel=1e-10)
@@ -73,8 +77,16 @@ def test_target_angle_equal_to_release_angle_is_refused():
         line = math.atan2(h_f - h_i, d)
         for nudge in (0.0, 1e-15, -1e-15):
             with pytest.raises(InputError) as e:
-                solve("projectile", {"mode": "reverse", "release_height": h_i, "target_height": h_f,
-                                     "distance": d, "target_angle": f"{line + nudge!r} rad"})
+                solve(
+                    "projectile",
+                    {
+                        "mode": "reverse",
+                        "release_height": h_i,
+                        "target_height": h_f,
+                        "distance": d,
+                        "target_angle": f"{line + nudge!r} rad",
+                    },
+                )
             assert e.value.field == "target_angle"
             assert "infinite speed" in e.value.message or "release speed" in e.value.message
 
@@ -84,8 +96,16 @@ def test_nearly_vertical_reverse_throw():
     1.8e-7 rad of 90°. The seed's sec θ_i·sqrt(g·d/(tan θ_i − tan θ_f)) takes the secant of an angle
     rounded next to 90°; hypot(d, Δh + m)/sqrt(2m/g) never forms θ_i on the way."""
     h_i, h_f, d, th_f = 0.0, 2.0, 1e-3, math.radians(-89.99999)
-    run = pj.simulate(values(mode="reverse", release_height=h_i, target_height=h_f, distance=f"{d!r} m",
-                             target_angle=f"{th_f!r} rad"), 1e-6)
+    run = pj.simulate(
+        values(
+            mode="reverse",
+            release_height=h_i,
+            target_height=h_f,
+            distance=f"{d!r} m",
+            target_angle=f"{th_f!r} rad",
+        ),
+        1e-6,
+    )
     th_i, v_i = mp_reverse(h_i, h_f, d, th_f)
     assert float(mp.pi / 2 - th_i) < 3e-7
     assert run.values["release_speed"] == pytest.approx(float(v_i), rel=1e-13)
@@ -99,8 +119,9 @@ def test_nearly_vertical_forward_throw():
     54.5 m. Compared with (61)-(62) in 40 digits from the same double inputs."""
     th = math.pi / 2 - 1e-6
     d, v = 1e-3, 300.0
-    run = pj.simulate(values(release_height=1.0, release_angle=f"{th!r} rad", release_speed=v,
-                             distance=f"{d!r} m"), 1e-6)
+    run = pj.simulate(
+        values(release_height=1.0, release_angle=f"{th!r} rad", release_speed=v, distance=f"{d!r} m"), 1e-6
+    )
     h_f, th_f = mp_forward(1.0, th, v, d)
     assert run.values["target_height"] == pytest.approx(float(h_f), rel=1e-9)
     assert run.values["target_angle"] == pytest.approx(float(th_f), rel=1e-12)
@@ -112,9 +133,20 @@ def test_target_exactly_where_the_ball_lands():
     h_i, th, v = 0.0, math.radians(45), 7.0
     x = v * v / float(G)  # level 45° throw: range v²/g = 4.99661 m
     assert flight.vacuum_range(h_i, th, v) == pytest.approx(x, rel=1e-15)
-    o = solve("projectile", {"release_height": 0, "release_angle": 45, "release_speed": 7, "distance": f"{x!r} m"})
+    o = solve(
+        "projectile", {"release_height": 0, "release_angle": 45, "release_speed": 7, "distance": f"{x!r} m"}
+    )
     assert o.outputs["target_height"].value == pytest.approx(0.0, abs=1e-12)
     assert math.degrees(o.outputs["target_angle"].value) == pytest.approx(-45, rel=1e-12)
-    d = pj.simulate(values(release_height=0, release_angle=45, release_speed=7, distance=f"{x!r} m",
-                           effects="air_drag", drag_coefficient=1e-12), 1e-11)
+    d = pj.simulate(
+        values(
+            release_height=0,
+            release_angle=45,
+            release_speed=7,
+            distance=f"{x!r} m",
+            effects="air_drag",
+            drag_coefficient=1e-12,
+        ),
+        1e-11,
+    )
     assert d.values["target_height"] == pytest.approx(0.0, abs=1e-8)

@@ -8,7 +8,8 @@ import signal
 
 import mpmath as mp
 import pytest
-from hypothesis import HealthCheck, assume, example, given, settings, strategies as st
+from hypothesis import HealthCheck, assume, example, given, settings
+from hypothesis import strategies as st
 
 from gearhead.core.calculators import flywheel as fw
 from gearhead.core.calculators import projectile as pj
@@ -26,6 +27,7 @@ DEG = math.pi / 180
 @contextlib.contextmanager
 def deadline(seconds: int):
     """A hang becomes a failure (SIGALRM; pytest and its xdist workers run tests on the main thread)."""
+
     def expire(*_):
         raise TimeoutError(f"still running after {seconds} s")
 
@@ -40,8 +42,16 @@ def deadline(seconds: int):
 
 # ---- hangs: the trebuchet's release event re-detected at its own restart -----------------------
 
-HANG = dict(counterweight_gyration=0.6, arm_mass=40, arm_length=16.97, pivot_height=1.9, projectile_mass=3.1,
-            gravity=50, effects="", accuracy="coarse")
+HANG = dict(
+    counterweight_gyration=0.6,
+    arm_mass=40,
+    arm_length=16.97,
+    pivot_height=1.9,
+    projectile_mass=3.1,
+    gravity=50,
+    effects="",
+    accuracy="coarse",
+)
 
 
 @pytest.mark.parametrize("angle", ["88.9", "1.55334 rad"])
@@ -60,15 +70,32 @@ def test_trebuchet_release_near_89_degrees_neither_hangs_nor_misses_the_first_pa
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(M=st.floats(0, 3).map(lambda x: 10**x), m=st.floats(0, 200), k=st.floats(0, 3), L=st.floats(2, 20),
-       h_frac=st.floats(0.05, 0.95), m_p=st.floats(0.5, 20), g=st.floats(1, 100), beta=st.floats(0, 89),
-       effects=st.sets(st.sampled_from(["sling", "ground_contact"])))
+@given(
+    M=st.floats(0, 3).map(lambda x: 10**x),
+    m=st.floats(0, 200),
+    k=st.floats(0, 3),
+    L=st.floats(2, 20),
+    h_frac=st.floats(0.05, 0.95),
+    m_p=st.floats(0.5, 20),
+    g=st.floats(1, 100),
+    beta=st.floats(0, 89),
+    effects=st.sets(st.sampled_from(["sling", "ground_contact"])),
+)
 def test_random_trebuchets_at_coarse_accuracy_always_end(M, m, k, L, h_frac, m_p, g, beta, effects):
     """The family of the hanging case (4 in 10 000 random machines hung): each ends, in a result or
     a message naming a field."""
-    raw = dict(counterweight_mass=M, arm_mass=m, counterweight_gyration=k, arm_length=L,
-               pivot_height=h_frac * 0.75 * L, projectile_mass=m_p, gravity=g, release_angle=beta,
-               effects=",".join(sorted(effects)), accuracy="coarse")
+    raw = dict(
+        counterweight_mass=M,
+        arm_mass=m,
+        counterweight_gyration=k,
+        arm_length=L,
+        pivot_height=h_frac * 0.75 * L,
+        projectile_mass=m_p,
+        gravity=g,
+        release_angle=beta,
+        effects=",".join(sorted(effects)),
+        accuracy="coarse",
+    )
     with deadline(30):
         try:
             solve("trebuchet", raw)
@@ -99,11 +126,22 @@ def test_trebuchet_swing_restarts_are_capped(monkeypatch):
 
 # ---- the per-solve budget and cancellation -----------------------------------------------------
 
+
 def test_long_pneumatics_match_with_fast_firings_is_refused_with_advice():
     """3 600 s, three groups firing every 0.1 s: 108 000 firings, each a restart of the integration
     (5.2 s before the budget). Refused within the budget, naming the match length and what to do."""
-    raw = dict(match_length=3600, c1_count=1, c1_period=0.1, c1_start=0, c2_count=1, c2_period=0.1, c2_start=0,
-               c3_count=1, c3_period=0.1, c3_start=0)
+    raw = dict(
+        match_length=3600,
+        c1_count=1,
+        c1_period=0.1,
+        c1_start=0,
+        c2_count=1,
+        c2_period=0.1,
+        c2_start=0,
+        c3_count=1,
+        c3_period=0.1,
+        c3_start=0,
+    )
     with pytest.raises(InputError) as err:
         solve("pneumatics", raw)
     assert err.value.field == "match_length" and "shorter match" in err.value.message
@@ -122,6 +160,7 @@ def test_projectile_reverse_with_extreme_magnus_counts_every_flight():
         def rhs(t, s):
             calls[0] += 1
             return f(t, s)
+
         return rhs
 
     raw = dict(mode="reverse", effects="magnus", spin=1e5, lift_coefficient=1, ball_mass=0.001)
@@ -138,8 +177,11 @@ def test_near_point_hinged_counterweight_optimise_polish_is_bounded():
     took 27 s. It now stops at REFINE_NFEV with the best throw so far, and says so."""
     from gearhead.core.calculators import trebuchet as tc
 
-    raw = dict(effects="sling,ground_contact,hinged_counterweight,optimise", hanger_length=0.01,
-               counterweight_gyration=0)
+    raw = dict(
+        effects="sling,ground_contact,hinged_counterweight,optimise",
+        hanger_length=0.01,
+        counterweight_gyration=0,
+    )
     with ig.budget() as spent:
         sol = solve("trebuchet", raw)
     assert any("polish" in w for w in sol.warnings)
@@ -171,6 +213,7 @@ def test_budget_exceeded_is_not_swallowed_by_the_solver_failure_fallbacks():
 
 # ---- wrong results -----------------------------------------------------------------------------
 
+
 def test_trebuchet_efficiency_counts_the_arms_fall_exactly():
     """M = 10 kg, m = 200 kg, a = 0.6 (the arm's centre of mass on the counterweight's side, s < 0):
     the arm's own fall drives the throw; 112.95 % when only the counterweight's drop was counted.
@@ -183,26 +226,49 @@ def test_trebuchet_efficiency_counts_the_arms_fall_exactly():
     I = m * L**2 * (mp.mpf(1) / 12 + (mp.mpf(1) / 2 - a) ** 2) + M * r**2 + M * k**2
     C, W = g * (M * r - m * s), g * m_p * R
     eta = (m_p * R**2 * (C - W) / (I + m_p * R**2) + W) / C
-    out = solve("trebuchet", dict(counterweight_mass=10, arm_mass=200, short_arm_fraction=0.6, effects="",
-                                  accuracy="fine")).outputs
+    out = solve(
+        "trebuchet",
+        dict(counterweight_mass=10, arm_mass=200, short_arm_fraction=0.6, effects="", accuracy="fine"),
+    ).outputs
     assert out["efficiency"].value == pytest.approx(float(eta), rel=1e-7)
     sling = solve("trebuchet", dict(counterweight_mass=10, arm_mass=200, short_arm_fraction=0.6)).outputs
     assert 0 < sling["efficiency"].value <= 1
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@example(M=10, m=200, a=0.6, L=15, h_frac=4 / 6, m_p=5, l=5, beta=45, k=2, d=0, effects={"sling", "ground_contact"})
-@given(M=st.floats(0, 3).map(lambda x: 10**x), m=st.floats(-1, 2.7).map(lambda x: 10**x), a=st.floats(0.1, 0.7),
-       L=st.floats(2, 20),
-       h_frac=st.floats(0.1, 0.9), m_p=st.floats(0.1, 50), l=st.floats(0.5, 10), beta=st.floats(10, 80),
-       k=st.floats(0, 3), d=st.floats(0, 2),
-       effects=st.sets(st.sampled_from(["sling", "ground_contact", "hinged_counterweight"])))
+@example(
+    M=10, m=200, a=0.6, L=15, h_frac=4 / 6, m_p=5, l=5, beta=45, k=2, d=0, effects={"sling", "ground_contact"}
+)
+@given(
+    M=st.floats(0, 3).map(lambda x: 10**x),
+    m=st.floats(-1, 2.7).map(lambda x: 10**x),
+    a=st.floats(0.1, 0.7),
+    L=st.floats(2, 20),
+    h_frac=st.floats(0.1, 0.9),
+    m_p=st.floats(0.1, 50),
+    l=st.floats(0.5, 10),
+    beta=st.floats(10, 80),
+    k=st.floats(0, 3),
+    d=st.floats(0, 2),
+    effects=st.sets(st.sampled_from(["sling", "ground_contact", "hinged_counterweight"])),
+)
 def test_trebuchet_efficiency_never_exceeds_one(M, m, a, L, h_frac, m_p, l, beta, k, d, effects):
     """Energy conservation: what the projectile holds at release comes out of the potential energy
     the counterweight and the arm gave up (the ground's push does no work, touchdowns only take)."""
-    raw = dict(counterweight_mass=M, arm_mass=m, short_arm_fraction=a, arm_length=L,
-               pivot_height=h_frac * (1 - a) * L, projectile_mass=m_p, sling_length=l, release_angle=beta,
-               counterweight_gyration=k, hanger_length=d, effects=",".join(sorted(effects)), accuracy="fine")
+    raw = dict(
+        counterweight_mass=M,
+        arm_mass=m,
+        short_arm_fraction=a,
+        arm_length=L,
+        pivot_height=h_frac * (1 - a) * L,
+        projectile_mass=m_p,
+        sling_length=l,
+        release_angle=beta,
+        counterweight_gyration=k,
+        hanger_length=d,
+        effects=",".join(sorted(effects)),
+        accuracy="fine",
+    )
     try:
         out = solve("trebuchet", raw).outputs
     except InputError as exc:
@@ -215,8 +281,16 @@ def test_trebuchet_efficiency_never_exceeds_one(M, m, a, L, h_frac, m_p, l, beta
 def test_trebuchet_massless_arm_with_point_counterweight_on_a_hanger_is_refused():
     """m = 0, k = 0 and a hanger: after release the arm's inertia I_arm + M·r²·k²/(d² + k²) is 0
     (a ZeroDivisionError reported as '(result)'). Refused naming the arm mass."""
-    raw = dict(arm_mass=0, counterweight_gyration=0, effects="hinged_counterweight", hanger_length=0.5,
-               counterweight_mass=100, short_arm_fraction=0.1, pivot_height=0.5, release_angle=5)
+    raw = dict(
+        arm_mass=0,
+        counterweight_gyration=0,
+        effects="hinged_counterweight",
+        hanger_length=0.5,
+        counterweight_mass=100,
+        short_arm_fraction=0.1,
+        pivot_height=0.5,
+        release_angle=5,
+    )
     with pytest.raises(InputError) as err:
         solve("trebuchet", raw)
     assert err.value.field == "arm_mass"
@@ -227,9 +301,19 @@ def test_flywheel_wheel_stopped_by_the_previous_shots_throws_nothing():
     speed by 1 + β and the motor adds nothing between shots, so it reaches 0 (underflow) within the
     burst. The next shot's slip phase scales by t₀ ∝ ω₀ and divided by zero ("(result)"). A wheel at
     rest meets the ball with no impulse: the ball is not thrown, and a warning says so."""
-    raw = dict(effects="momentum,motor_during_shot", shooter="two_wheel", wheel_diameter="2 m",
-               mode="moment_of_inertia", wheel_inertia="1e-6 kg*m^2", ratio=1e-12, voltage=0.1,
-               target_speed="1e-3 rad/s", shots=50, shot_interval=0.01, ball_mass=100)
+    raw = dict(
+        effects="momentum,motor_during_shot",
+        shooter="two_wheel",
+        wheel_diameter="2 m",
+        mode="moment_of_inertia",
+        wheel_inertia="1e-6 kg*m^2",
+        ratio=1e-12,
+        voltage=0.1,
+        target_speed="1e-3 rad/s",
+        shots=50,
+        shot_interval=0.01,
+        ball_mass=100,
+    )
     sol = solve("flywheel", raw)
     assert sol.outputs["slowest_ball_speed"].value == 0.0
     assert any("not thrown" in w for w in sol.warnings)
@@ -279,8 +363,15 @@ def test_projectile_reverse_at_the_minimum_distance_round_trips_through_forward(
     rev = solve("projectile", {"mode": "reverse", "distance": "1 mm", "target_angle": "-89.9 deg"}).outputs
     theta, v = rev["release_angle"].value, rev["release_speed"].value
     assert theta < math.pi / 2
-    fwd = solve("projectile", {"mode": "forward", "distance": "1 mm", "release_angle": f"{theta!r} rad",
-                               "release_speed": f"{v!r} m/s"}).outputs
+    fwd = solve(
+        "projectile",
+        {
+            "mode": "forward",
+            "distance": "1 mm",
+            "release_angle": f"{theta!r} rad",
+            "release_speed": f"{v!r} m/s",
+        },
+    ).outputs
     assert fwd["target_height"].value == pytest.approx(2.64, rel=1e-6)
 
 
@@ -289,13 +380,13 @@ async def test_typing_cancels_a_running_simulation_in_the_app(monkeypatch):
     simulation is dropped at once, not run to its end, and the latest entries are solved."""
     import asyncio
 
-    import gearhead.core.model
     from textual import events
     from textual.widgets import Input
 
-    from tests.tui_helpers import settle
+    import gearhead.core.model
     from gearhead.tui.app import GearheadApp
     from gearhead.tui.components.calculator_tab import CalculatorTab
+    from tests.tui_helpers import settle
 
     real_solve = gearhead.core.model.solve
     outcomes: list[str] = []

@@ -85,9 +85,20 @@ def test_chain_reverse_at_an_exact_link_count():
     p = 0.25 * IN
     r1, r2 = 12 * p / (2 * math.pi), 36 * p / (2 * math.pi)
     _, D_ref = mp_span(74 * p, r1, r2)
-    o = {k: v.value for k, v in solve("chain_belt", {
-        "kind": "chain", "pitch_standard": "chain_25", "teeth_1": 12, "teeth_2": 36,
-        "mode": "links_from_center", "target_center": f"{float(D_ref)!r} m"}).outputs.items()}
+    o = {
+        k: v.value
+        for k, v in solve(
+            "chain_belt",
+            {
+                "kind": "chain",
+                "pitch_standard": "chain_25",
+                "teeth_1": 12,
+                "teeth_2": 36,
+                "mode": "links_from_center",
+                "target_center": f"{float(D_ref)!r} m",
+            },
+        ).outputs.items()
+    }
     assert o["links_exact"] == pytest.approx(74, rel=1e-14)
     assert o["links_below"] == o["links_above"] == 74
     assert o["center_below"] == pytest.approx(float(D_ref), rel=1e-14)
@@ -98,8 +109,10 @@ def test_gears_exactly_touching_do_not_clear():
     form, integer arithmetic). Summed term by term in SI (20 DP = 787.40157... 1/m) the rounding
     leaves ±1e-18 m and the verdict 'clears' would hang on a coin toss. Same for the axle:
     gear 1 tips exactly at the 0.5 in shaft surface."""
-    sol = solve("gear_clearance", {"teeth_1": 28, "teeth_2": 30, "teeth_3": 10, "teeth_4": 8,
-                                   "axle_diameter": "0.5 in"})
+    sol = solve(
+        "gear_clearance",
+        {"teeth_1": 28, "teeth_2": 30, "teeth_3": 10, "teeth_4": 8, "axle_diameter": "0.5 in"},
+    )
     # D = 40/40 = 1 in; r_o1 = 30/40 = 0.75 in; r_o4 = 10/40 = 0.25 in; C_g = 1 - 0.75 - 0.25 = 0
     # C_a = 1 - 0.75 - 0.25 = 0
     assert sol.outputs["gear_clearance"].value == 0.0
@@ -116,8 +129,13 @@ def test_ratio_typed_as_rounded_fraction():
     conversions): 52/(G + 1) = 11.999999999999998 in floating point, so a plain floor/ceil
     splits it 11/41 and 12/40 instead of recognising the exact pair 12/40 (closed form)."""
     assert 52 / (10 / 3 + 1) < 12  # the rounding this case is about
-    o = {k: v.value for k, v in solve("ratio_distance", {
-        "ratio": repr(10 / 3), "center_distance": "1.3 in", "diametral_pitch": "20 1/in"}).outputs.items()}
+    o = {
+        k: v.value
+        for k, v in solve(
+            "ratio_distance",
+            {"ratio": repr(10 / 3), "center_distance": "1.3 in", "diametral_pitch": "20 1/in"},
+        ).outputs.items()
+    }
     assert (o["nearest_small_teeth"], o["nearest_large_teeth"]) == (12, 40)
     assert (o["below_small_teeth"], o["below_large_teeth"]) == (12, 40)
     assert (o["above_small_teeth"], o["above_large_teeth"]) == (12, 40)
@@ -131,15 +149,24 @@ def _mp_length(D, r1, r2):
     return 2 * mp.sqrt(D**2 - delta**2) + mp.pi * (r1 + r2) + 2 * delta * mp.asin(delta / D)
 
 
-@pytest.mark.parametrize("standard,n1,n2,half", [
-    ("chain_25", 13, 37, False), ("chain_35", 15, 40, True), ("chain_25", 16, 16, False),
-    ("htd_5mm", 20, 30, False), ("gt2_3mm", 12, 72, False), ("rt25", 36, 36, False)])
+@pytest.mark.parametrize(
+    "standard,n1,n2,half",
+    [
+        ("chain_25", 13, 37, False),
+        ("chain_35", 15, 40, True),
+        ("chain_25", 16, 16, False),
+        ("htd_5mm", 20, 30, False),
+        ("gt2_3mm", 12, 72, False),
+        ("rt25", 36, 36, False),
+    ],
+)
 def test_fewest_links_is_the_first_count_at_which_the_wheels_clear(standard, n1, n2, half):
     """The old 'fewest links that wrap both' was the count with the small sprocket inside the large
     one (D = Δ). Now: the fewest at which D > (OD_1 + OD_2)/2, OD = p(0.6 + cot(180°/n)) for chain
     sprockets (ANSI B29.1), the pitch diameter n·p/π for belt pulleys. Checked from the touching
     distance with the length equation in mpmath: the count is the first step past it."""
     from gearhead.core.calculators import chain_belt as cb
+
     mp.mp.dps = 40
     p = cb.STANDARD_PITCH[standard]
     chain = standard.startswith("chain")
@@ -151,14 +178,18 @@ def test_fewest_links_is_the_first_count_at_which_the_wheels_clear(standard, n1,
     r1, r2 = n1 * mp.mpf(p) / (2 * mp.pi), n2 * mp.mpf(p) / (2 * mp.pi)
     exact = _mp_length(touch, r1, r2) / p
     expected = step * int(mp.floor(exact / step) + 1)
-    sol = solve("chain_belt", {"pitch_standard": standard, "teeth_1": n1, "teeth_2": n2,
-                               "links": expected, "half_links": half})
+    sol = solve(
+        "chain_belt",
+        {"pitch_standard": standard, "teeth_1": n1, "teeth_2": n2, "links": expected, "half_links": half},
+    )
     assert sol.outputs["minimum_links"].value == expected
     assert sol.outputs["center_distance"].value > touch
     assert not any("overlap" in w for w in sol.warnings)
     below = expected - step
-    short = solve("chain_belt", {"pitch_standard": standard, "teeth_1": n1, "teeth_2": n2,
-                                 "links": below, "half_links": half})
+    short = solve(
+        "chain_belt",
+        {"pitch_standard": standard, "teeth_1": n1, "teeth_2": n2, "links": below, "half_links": half},
+    )
     assert short.outputs["center_distance"].value <= touch
     assert any("overlap" in w for w in short.warnings)
 
@@ -174,21 +205,29 @@ def test_ratio_distance_never_offers_a_pinion_below_ten_teeth():
     assert o["small_teeth"] == pytest.approx(1.0, rel=1e-15)  # (77), fractional, still shown
     assert any("below the 10-tooth minimum" in w for w in sol.warnings)
     for ratio, d, dp in [(2.5, 2, 20), (4.3, 2, 32), (1.0, 0.55, 20), (49.9, 10, 64)]:
-        o = {k: v.value for k, v in solve("ratio_distance", {
-            "ratio": ratio, "center_distance": f"{d} in", "diametral_pitch": dp}).outputs.items()}
+        o = {
+            k: v.value
+            for k, v in solve(
+                "ratio_distance", {"ratio": ratio, "center_distance": f"{d} in", "diametral_pitch": dp}
+            ).outputs.items()
+        }
         assert min(o.get(f"{w}_small_teeth", 99) for w in ("nearest", "below", "above")) >= 10
 
 
-@pytest.mark.parametrize("raw,field", [
-    ({"ratio": "5.5e14"}, "ratio"),  # used to report an 'above' ratio of 249
-    ({"ratio": 51}, "ratio"),
-    ({"center_distance": "1e6 in"}, "center_distance"),
-    ({"diametral_pitch": "1e9 1/in"}, "diametral_pitch"),
-    ({"diametral_pitch": "0.5 1/in"}, "diametral_pitch"),
-    ({"center_distance": "0.45 in", "diametral_pitch": 20}, "center_distance"),  # 18 teeth < 2·10
-])
+@pytest.mark.parametrize(
+    "raw,field",
+    [
+        ({"ratio": "5.5e14"}, "ratio"),  # used to report an 'above' ratio of 249
+        ({"ratio": 51}, "ratio"),
+        ({"center_distance": "1e6 in"}, "center_distance"),
+        ({"diametral_pitch": "1e9 1/in"}, "diametral_pitch"),
+        ({"diametral_pitch": "0.5 1/in"}, "diametral_pitch"),
+        ({"center_distance": "0.45 in", "diametral_pitch": 20}, "center_distance"),  # 18 teeth < 2·10
+    ],
+)
 def test_ratio_distance_inputs_are_bounded_to_gear_pairs(raw, field):
     from gearhead.core.errors import InputError
+
     with pytest.raises(InputError) as e:
         solve("ratio_distance", raw)
     assert e.value.field == field

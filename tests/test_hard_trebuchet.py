@@ -64,7 +64,9 @@ def test_nearly_balanced_arm_swings_for_minutes():
     p = tb.Machine(**{**SEED, "M": M}, sling=False)
     s = tb.swing(p, 45 * DEG, False, 1e-10)
     I, C, I2, C2 = cup_machine_constants(M, 50, 15, 0.25, 5, 2, 9.81)
-    assert float(C) == pytest.approx(9.81 * 0.0375, rel=1e-9)  # by hand: 9.81·(243.7875 − 243.75) = 0.367875 N·m
+    assert float(C) == pytest.approx(
+        9.81 * 0.0375, rel=1e-9
+    )  # by hand: 9.81·(243.7875 − 243.75) = 0.367875 N·m
     phi0 = mp.asin(-mp.mpf(4) / 11.25)
     t_r = arm_time(I, C, phi0, mp.pi / 4)
     assert float(t_r) > 60

@@ -18,7 +18,8 @@ import time
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from gearhead.core import units
 from gearhead.core.errors import InputError
@@ -58,9 +59,15 @@ def refused(call, text, *words):
 
 # ---- regression cases -----------------------------------------------------------------------
 
+
 def _cli(*args, timeout=60):
-    return subprocess.run([sys.executable, "-m", "gearhead.tui", *args], capture_output=True, text=True,
-                          cwd=ROOT, timeout=timeout)
+    return subprocess.run(
+        [sys.executable, "-m", "gearhead.tui", *args],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=timeout,
+    )
 
 
 @pytest.mark.parametrize("entry", ["9**9**9", "2**9**9 mm", "(10**10)**(10**10)", "9^9^9"])
@@ -89,16 +96,19 @@ def test_a_long_entry_in_the_cli_exits_2_in_one_short_line():
     assert len(out.stderr) < 120 and "load:" in out.stderr
 
 
-@pytest.mark.parametrize("expression,bare", [("2+0", "2"), ("(2)", "2"), ("4/2", "2"), ("1*2", "2"),
-                                             ("2 deg", "2"), ("-(-2)", "2")])
+@pytest.mark.parametrize(
+    "expression,bare",
+    [("2+0", "2"), ("(2)", "2"), ("4/2", "2"), ("1*2", "2"), ("2 deg", "2"), ("-(-2)", "2")],
+)
 def test_a_plain_number_expression_is_in_the_display_unit(expression, bare):
     """`2+0` in a deg field was 2 rad (114.6 deg) while `2` was 2 deg."""
     assert angle(expression) == pytest.approx(angle(bare), rel=1e-15)
     assert angle(bare) == pytest.approx(math.radians(2), rel=1e-15)
 
 
-@pytest.mark.parametrize("expression,bare", [("(0.5)", "0.5"), ("0.25*2", "0.5"), ("0.5 %", "0.5"),
-                                             ("1/2", "0.5")])
+@pytest.mark.parametrize(
+    "expression,bare", [("(0.5)", "0.5"), ("0.25*2", "0.5"), ("0.5 %", "0.5"), ("1/2", "0.5")]
+)
 def test_a_plain_number_expression_is_in_percent_where_percent_is_shown(expression, bare):
     """`(0.5)` in a % field was 50 % while `0.5` was 0.5 %."""
     assert percent(expression) == pytest.approx(percent(bare), rel=1e-15) == 0.005
@@ -115,24 +125,52 @@ def test_dashes_are_refused_with_a_hint(dash):
     refused(mm, f"{dash}5", "dash", "type - for a minus")
 
 
-@pytest.mark.parametrize("entry,words", [
-    ("3,5", ("comma", "3.5")), ("1,000", ("comma", "thousands")), ("[1,2]", ("brackets",)),
-    ("[12]", ("brackets",)), ("{0}", ("brackets",)), ("1 1/2", ("two numbers",)), ("3 4", ("two numbers",)),
-    ("1.2.3", ("not a number",)), ("1_000", ("without '_'",)), ("½", ("digits 0-9",)), ("1½", ("digits 0-9",)),
-    ("٣", ("digits 0-9",)), ("5' 3\"", ("quote mark", "ft")), ("3\u200b", ("invisible",)),
-    ("1\n2", ("line break",)), ("1\t2", ("tab",)), ("5 # note", ("'#'",)), ("3 mm;", ("';'",)),
-])
+@pytest.mark.parametrize(
+    "entry,words",
+    [
+        ("3,5", ("comma", "3.5")),
+        ("1,000", ("comma", "thousands")),
+        ("[1,2]", ("brackets",)),
+        ("[12]", ("brackets",)),
+        ("{0}", ("brackets",)),
+        ("1 1/2", ("two numbers",)),
+        ("3 4", ("two numbers",)),
+        ("1.2.3", ("not a number",)),
+        ("1_000", ("without '_'",)),
+        ("½", ("digits 0-9",)),
+        ("1½", ("digits 0-9",)),
+        ("٣", ("digits 0-9",)),
+        ("5' 3\"", ("quote mark", "ft")),
+        ("3\u200b", ("invisible",)),
+        ("1\n2", ("line break",)),
+        ("1\t2", ("tab",)),
+        ("5 # note", ("'#'",)),
+        ("3 mm;", ("';'",)),
+    ],
+)
 def test_entries_that_were_misread_are_refused_with_a_hint(entry, words):
     """`3,5` was 35, `[1,2]` 12, `{0}` 0, `012 mm` 0 mm, `1.2.3` 0.36, `1\\n2` 2."""
     refused(mm, entry, *words)
 
 
-@pytest.mark.parametrize("entry,si", [("６ ㎜", 0.006), ("6 ㎜", 0.006), ("３", 0.0762), ("３ ｍｍ", 0.003),
-                                      ("012 mm", 0.012), ("0.5 µm", 5e-7), ("20 1/in", None)])
+@pytest.mark.parametrize(
+    "entry,si",
+    [
+        ("６ ㎜", 0.006),
+        ("6 ㎜", 0.006),
+        ("３", 0.0762),
+        ("３ ｍｍ", 0.003),
+        ("012 mm", 0.012),
+        ("0.5 µm", 5e-7),
+        ("20 1/in", None),
+    ],
+)
 def test_compatibility_characters_mean_what_they_show(entry, si):
     """`6 ㎜` was 6 of the display unit (in); a fullwidth ３ is 3 (of the display unit, in)."""
     if si is None:  # a number and a reciprocal unit, as the gear presets write diametral pitch
-        assert units.parse(entry, "1/in", "reciprocal_length", "diametral_pitch") == pytest.approx(20 / 0.0254)
+        assert units.parse(entry, "1/in", "reciprocal_length", "diametral_pitch") == pytest.approx(
+            20 / 0.0254
+        )
         return
     assert mm(entry, unit="in") == pytest.approx(si, rel=1e-12)
 
@@ -200,6 +238,7 @@ def test_a_typed_unit_is_read_by_the_same_bounded_parser():
 
 # ---- generated entries for every field of every calculator -----------------------------------
 
+
 def setup_module():
     units.registry()  # built once per process (~0.3 s): not part of any entry's time
 
@@ -226,20 +265,29 @@ def hostile_text(f):
     ops = st.sampled_from(["+", "-", "*", "/", "**", "^", " ", "", "//", "%", "+/-"])
     expression = st.recursive(
         st.one_of(number_text, word, st.builds(lambda n, w: f"{n} {w}", number_text, word)),
-        lambda inner: st.one_of(st.builds(lambda a, o, b: f"{a}{o}{b}", inner, ops, inner),
-                                inner.map(lambda a: f"({a})"), inner.map(lambda a: f"-{a}")),
-        max_leaves=8)
+        lambda inner: st.one_of(
+            st.builds(lambda a, o, b: f"{a}{o}{b}", inner, ops, inner),
+            inner.map(lambda a: f"({a})"),
+            inner.map(lambda a: f"-{a}"),
+        ),
+        max_leaves=8,
+    )
     return st.one_of(
         number_text,
         expression,
-        st.builds(lambda a, b, c: f"{a}**{b}**{c}", st.integers(0, 99), st.integers(0, 99), st.integers(0, 99)),
+        st.builds(
+            lambda a, b, c: f"{a}**{b}**{c}", st.integers(0, 99), st.integers(0, 99), st.integers(0, 99)
+        ),
         st.text(hostile_chars, max_size=60),
         st.text(st.sampled_from("0123456789.,eE+-*/^()[]{} %_°·−–\n\t\x00'\"#;=<>"), max_size=40),
-        st.integers(150, 20_000).flatmap(lambda n: st.sampled_from(["9" * n, "(" * n, "1" + " " * n + "x",
-                                                                    "1" + "*1" * (n // 2), "-" * n + "1"])),
+        st.integers(150, 20_000).flatmap(
+            lambda n: st.sampled_from(
+                ["9" * n, "(" * n, "1" + " " * n + "x", "1" + "*1" * (n // 2), "-" * n + "1"]
+            )
+        ),
         st.builds(lambda a, b: f"[{a},{b}]", number_text, number_text),
         st.builds(lambda a, b: f"{a},{b}", st.integers(0, 999), st.integers(0, 999)),
-        st.builds(lambda a: "{%s}" % a, number_text),
+        st.builds(lambda a: "{" + a + "}", number_text),
         number_text.map(_fullwidth),
         st.builds(lambda n, w: _fullwidth(f"{n} {w}"), number_text, word),
         number_text.map(lambda t: t.replace("-", "−")),
@@ -278,8 +326,13 @@ def parse_once(f, text):
 
 
 def _settings():
-    return settings(max_examples=EXAMPLES, deadline=None, database=None, derandomize=EXAMPLES <= 40,
-                    suppress_health_check=list(HealthCheck))
+    return settings(
+        max_examples=EXAMPLES,
+        deadline=None,
+        database=None,
+        derandomize=EXAMPLES <= 40,
+        suppress_health_check=list(HealthCheck),
+    )
 
 
 @pytest.mark.parametrize("calc_id", list(calculators()))
@@ -298,11 +351,27 @@ def test_every_field_reads_a_value_or_says_what_is_wrong_at_once(calc_id):
 def spellings(f, x):
     """Entries that mean the same quantity, for a number x in the display unit."""
     t = repr(x)
-    out = [t, f"({t})", f"{t}+0", f"{t}*1", f"1*{t}", f"+{t}", f"{t}/1", f"0.5*{t}*2", _fullwidth(t),
-           t.replace("-", "−"), f"  {t}  "]
+    out = [
+        t,
+        f"({t})",
+        f"{t}+0",
+        f"{t}*1",
+        f"1*{t}",
+        f"+{t}",
+        f"{t}/1",
+        f"0.5*{t}*2",
+        _fullwidth(t),
+        t.replace("-", "−"),
+        f"  {t}  ",
+    ]
     if f.unit:
-        out += [f"{t} {f.unit}", f"{t}*1 {f.unit}", f"({t}) {f.unit}", _fullwidth(f"{t} {f.unit}"),
-                f"{t} {f.unit}".replace("-", "−")]
+        out += [
+            f"{t} {f.unit}",
+            f"{t}*1 {f.unit}",
+            f"({t}) {f.unit}",
+            _fullwidth(f"{t} {f.unit}"),
+            f"{t} {f.unit}".replace("-", "−"),
+        ]
     return out
 
 
@@ -324,8 +393,10 @@ def test_the_same_quantity_spelled_differently_gives_the_same_si_value(calc_id):
         first_text, first = accepted[0]
         for text, v, rejected in results:
             if rejected:
-                at_bound = any(b is not None and math.isclose(first, b, rel_tol=1e-9, abs_tol=1e-300)
-                               for b in f.bounds_si())
+                at_bound = any(
+                    b is not None and math.isclose(first, b, rel_tol=1e-9, abs_tol=1e-300)
+                    for b in f.bounds_si()
+                )
                 assert at_bound, (f.name, first_text, text)
                 continue
             assert v == pytest.approx(first, rel=1e-12, abs=1e-300), (f.name, first_text, text)
@@ -336,14 +407,22 @@ def test_the_same_quantity_spelled_differently_gives_the_same_si_value(calc_id):
 
 def teardown_module():
     if os.environ.get("GEARHEAD_HOSTILE_EXAMPLES"):
-        print(f"\nhostile inputs: {STATS['cases']} entries parsed, {STATS['rejected']} refused, "
-              f"{STATS['equivalences']} equivalent spellings checked; slowest parse "
-              f"{STATS['slowest'] * 1e3:.2f} ms CPU ({STATS['slowest_entry']})")
+        print(
+            f"\nhostile inputs: {STATS['cases']} entries parsed, {STATS['rejected']} refused, "
+            f"{STATS['equivalences']} equivalent spellings checked; slowest parse "
+            f"{STATS['slowest'] * 1e3:.2f} ms CPU ({STATS['slowest_entry']})"
+        )
 
 
-@pytest.mark.parametrize("args", [["solve", "q" * 5000], ["solve", "gear_ratio", "--set", "q" * 5000 + "=1"],
-                                  ["solve", "gear_ratio", "--set", "mode=" + "q" * 5000],
-                                  ["solve", "gear_ratio", "--unit", "free_speed=" + "q" * 5000]])
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["solve", "q" * 5000],
+        ["solve", "gear_ratio", "--set", "q" * 5000 + "=1"],
+        ["solve", "gear_ratio", "--set", "mode=" + "q" * 5000],
+        ["solve", "gear_ratio", "--unit", "free_speed=" + "q" * 5000],
+    ],
+)
 def test_cli_messages_quote_only_the_start_of_what_was_typed(capsys, args):
     """Messages echoed the whole input (5 000+ characters)."""
     from gearhead.tui.cli import main
@@ -358,9 +437,9 @@ async def test_the_app_answers_a_power_tower_and_opens_presets_past_hostile_file
     from textual.widgets import Input, OptionList
 
     from gearhead.core import presets
-    from tests.tui_helpers import settle
     from gearhead.tui.app import GearheadApp
     from gearhead.tui.components.calculator_tab import CalculatorTab
+    from tests.tui_helpers import settle
 
     d = presets.user_dir() / "gear_ratio"
     d.mkdir(parents=True)

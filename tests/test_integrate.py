@@ -61,8 +61,9 @@ def test_dense_output_is_fourth_order_accurate():
 def test_tiny_first_step_far_from_zero_is_not_an_underflow():
     """A segment that starts with the tiny last step of the previous one (1e-16 s at t = 100 s) must
     grow its step, not stop with "step size underflow": 1e-16 < 1e-14·100 is accepted, not rejected."""
-    run = integrate(oscillator, 100.0, 110.0, [math.cos(100), -math.sin(100)], rtol=1e-8, atol=1e-10,
-                    first_step=1e-16)
+    run = integrate(
+        oscillator, 100.0, 110.0, [math.cos(100), -math.sin(100)], rtol=1e-8, atol=1e-10, first_step=1e-16
+    )
     assert abs(run.y[-1][0] - math.cos(110)) < 1e-6
 
 

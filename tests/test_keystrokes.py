@@ -63,17 +63,30 @@ class Terminal:
     def __init__(self, tmp: Path) -> None:
         self.socket = f"gearhead-test-{uuid.uuid4().hex[:8]}"
         # COLUMNS/LINES (set under pytest-xdist) would override the pane's size in Textual
-        env = {k: v for k, v in os.environ.items()
-               if k not in ("NO_COLOR", "TEXTUAL_THEME", "TMUX", "COLUMNS", "LINES")}
+        env = {
+            k: v
+            for k, v in os.environ.items()
+            if k not in ("NO_COLOR", "TEXTUAL_THEME", "TMUX", "COLUMNS", "LINES")
+        }
         env["XDG_CONFIG_HOME"] = str(tmp / "config")
         self.env = env
-        self.tmux("new-session", "-d", "-s", "app", "-x", "140", "-y", "45",
-                  f"cd {ROOT} && {sys.executable} -m gearhead.tui")
+        self.tmux(
+            "new-session",
+            "-d",
+            "-s",
+            "app",
+            "-x",
+            "140",
+            "-y",
+            "45",
+            f"cd {ROOT} && {sys.executable} -m gearhead.tui",
+        )
         self.wait_for(lambda screen: "Free speed" in screen, "the first frame")
 
     def tmux(self, *args: str) -> str:
-        out = subprocess.run([TMUX, "-L", self.socket, *args], capture_output=True, text=True,
-                             env=self.env, timeout=20)
+        out = subprocess.run(
+            [TMUX, "-L", self.socket, *args], capture_output=True, text=True, env=self.env, timeout=20
+        )
         return out.stdout
 
     def keys(self, *keys: str) -> None:
@@ -96,7 +109,7 @@ class Terminal:
         for line in self.screen().splitlines():
             if line.startswith(f"│ {label} "):
                 # the entry, then a wide gap before the unit label
-                return re.split(r"\s{3,}", line[len(label) + 2:].split("│")[0].strip())[0]
+                return re.split(r"\s{3,}", line[len(label) + 2 :].split("│")[0].strip())[0]
         raise AssertionError(f"no field {label!r} on screen")
 
     def close(self) -> None:
@@ -143,8 +156,9 @@ def _tab_to(term: Terminal, label: str, most: int = 6) -> None:
         before = _help_label(term.screen())
         term.keys("Tab")
         try:
-            term.wait_for(lambda screen, before=before: _help_label(screen) != before, "the focus to move",
-                          timeout=3)
+            term.wait_for(
+                lambda screen, before=before: _help_label(screen) != before, "the focus to move", timeout=3
+            )
         except AssertionError:
             pass  # focus went to the strip (no help line of its own), or from it to the same field
         if _help_label(term.screen()) == label:
@@ -195,7 +209,9 @@ def test_keys_kept_in_a_real_terminal(terminal):
     assert not failures, failures
 
 
-@pytest.mark.parametrize("calc_id", sorted(__import__("gearhead.core.registry", fromlist=["x"]).calculators()))
+@pytest.mark.parametrize(
+    "calc_id", sorted(__import__("gearhead.core.registry", fromlist=["x"]).calculators())
+)
 async def test_key_bursts_kept_in_every_tab(calc_id):
     """Every entry of every tab is a FieldInput: a burst typed while the tab solves is kept."""
     from gearhead.core.registry import get
@@ -212,8 +228,15 @@ async def test_key_bursts_kept_in_every_tab(calc_id):
         entry.focus()
         await pilot.pause()
         # ctrl+u, "12", backspace, backspace, "7", "8" in one burst, while the tab is solving
-        for key, char in [("ctrl+u", "\x15"), ("1", "1"), ("2", "2"), ("backspace", "\x7f"),
-                          ("backspace", "\x7f"), ("7", "7"), ("8", "8")]:
+        for key, char in [
+            ("ctrl+u", "\x15"),
+            ("1", "1"),
+            ("2", "2"),
+            ("backspace", "\x7f"),
+            ("backspace", "\x7f"),
+            ("7", "7"),
+            ("8", "8"),
+        ]:
             app.post_message(events.Key(key, char))
         for _ in range(5):
             await pilot.pause()

@@ -5,7 +5,8 @@ of the equivalent load and radius to the gear-ratio calculator (Appendix B)."""
 import math
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gearhead.core.model import solve
 from gearhead.core.registry import get
@@ -27,8 +28,11 @@ def tan_form(F, d, p, n, thread_angle, mu):
     dm = d - p / 2
     lam = math.atan(n * p / (math.pi * dm))
     phi = math.atan(mu / math.cos(thread_angle / 2))
-    return (F * dm / 2 * math.tan(lam + phi), F * dm / 2 * math.tan(phi - lam),
-            math.tan(lam) / math.tan(lam + phi))
+    return (
+        F * dm / 2 * math.tan(lam + phi),
+        F * dm / 2 * math.tan(phi - lam),
+        math.tan(lam) / math.tan(lam + phi),
+    )
 
 
 def test_default_half_inch_acme_by_hand():
@@ -99,17 +103,32 @@ def test_export_to_gear_ratio_gives_the_raise_torque():
     T_R = sol.outputs["raise_torque"].value
     sent = {field: sol.outputs[name] for field, name in calc.exports["gear_ratio"].items()}
     # exact SI values: at G = 1 and η = 1 the motor torque is r·F = r_eq·L_R,eq = T_R (35)
-    exact = solve("gear_ratio", {"mode": "ratio", "ratio": 1, "efficiency": 1,
-                                 **{k: f"{v.value!r} {v.unit}" for k, v in sent.items()}})
+    exact = solve(
+        "gear_ratio",
+        {
+            "mode": "ratio",
+            "ratio": 1,
+            "efficiency": 1,
+            **{k: f"{v.value!r} {v.unit}" for k, v in sent.items()},
+        },
+    )
     assert exact.outputs["motor_torque"].value == pytest.approx(T_R, rel=1e-12)
     # at G = 5 the gearbox input sees T_R/5, and the load speed equals the screw's linear speed
-    geared = solve("gear_ratio", {"mode": "ratio", "ratio": 5, "efficiency": 1,
-                                  **{k: f"{v.value!r} {v.unit}" for k, v in sent.items()}})
+    geared = solve(
+        "gear_ratio",
+        {
+            "mode": "ratio",
+            "ratio": 5,
+            "efficiency": 1,
+            **{k: f"{v.value!r} {v.unit}" for k, v in sent.items()},
+        },
+    )
     assert geared.outputs["motor_torque"].value == pytest.approx(T_R / 5, rel=1e-12)
     # what the TUI sends (ctrl+g) is the displayed text, 5 significant figures each: each is
     # off by at most half a unit in the 5th figure (≤ 5e-5 relative), so the product by ≤ 1e-4
-    shown = solve("gear_ratio", {"mode": "ratio", "ratio": 1, "efficiency": 1,
-                                 **{k: v.text for k, v in sent.items()}})
+    shown = solve(
+        "gear_ratio", {"mode": "ratio", "ratio": 1, "efficiency": 1, **{k: v.text for k, v in sent.items()}}
+    )
     assert shown.outputs["motor_torque"].value == pytest.approx(T_R, rel=1e-4)
 
 
@@ -119,8 +138,12 @@ def zero_or(lo, hi):
 
 
 inputs = dict(
-    d=st.floats(0.002, 0.1), p_frac=st.floats(0.01, 0.9), n=st.integers(1, 8),
-    angle=zero_or(1e-6, math.radians(120)), mu=zero_or(1e-6, 0.5), F=zero_or(1e-3, 1e5),
+    d=st.floats(0.002, 0.1),
+    p_frac=st.floats(0.01, 0.9),
+    n=st.integers(1, 8),
+    angle=zero_or(1e-6, math.radians(120)),
+    mu=zero_or(1e-6, 0.5),
+    F=zero_or(1e-3, 1e5),
 )
 
 
@@ -128,8 +151,14 @@ inputs = dict(
 @given(**inputs)
 def test_seed_forms_match_the_lead_angle_form(d, p_frac, n, angle, mu, F):
     p = p_frac * d
-    o = out(diameter=f"{d!r} m", pitch=f"{p!r} m", starts=n, thread_angle=f"{angle!r} rad",
-            friction=mu, force=f"{F!r} N")
+    o = out(
+        diameter=f"{d!r} m",
+        pitch=f"{p!r} m",
+        starts=n,
+        thread_angle=f"{angle!r} rad",
+        friction=mu,
+        force=f"{F!r} N",
+    )
     T_R, T_L, eta = tan_form(F, d, p, n, angle, mu)
     if not o["drivable"]:
         # locked: λ + φ' ≥ 90°, where tan(λ + φ') has no positive value
@@ -153,8 +182,15 @@ def test_seed_forms_match_the_lead_angle_form(d, p_frac, n, angle, mu, F):
 def test_equivalent_wheel_reverses_the_screw(d, p_frac, n, angle, mu, F, omega):
     """Appendix B both ways: ω·r_eq is the nut speed, r_eq·L_eq the torque, and L_R,eq = F/η."""
     p = p_frac * d
-    o = out(diameter=f"{d!r} m", pitch=f"{p!r} m", starts=n, thread_angle=f"{angle!r} rad",
-            friction=mu, force=f"{F!r} N", rotational_speed=f"{omega!r} rad/s")
+    o = out(
+        diameter=f"{d!r} m",
+        pitch=f"{p!r} m",
+        starts=n,
+        thread_angle=f"{angle!r} rad",
+        friction=mu,
+        force=f"{F!r} N",
+        rotational_speed=f"{omega!r} rad/s",
+    )
     r = o["equivalent_radius"]
     assert o["linear_speed"] / r == pytest.approx(omega, rel=1e-12, abs=1e-300)
     assert r * o["equivalent_lower_load"] == pytest.approx(o["lower_torque"], rel=1e-12, abs=1e-300)
@@ -162,8 +198,14 @@ def test_equivalent_wheel_reverses_the_screw(d, p_frac, n, angle, mu, F, omega):
         assert r * o["equivalent_raise_load"] == pytest.approx(o["raise_torque"], rel=1e-12, abs=1e-300)
         assert o["equivalent_raise_load"] * o["efficiency"] == pytest.approx(F, rel=1e-9, abs=1e-9)
         # frictionless the same screw needs exactly F·l/(2π) both ways
-    ideal = out(diameter=f"{d!r} m", pitch=f"{p!r} m", starts=n, thread_angle=f"{angle!r} rad",
-                friction=0, force=f"{F!r} N")
+    ideal = out(
+        diameter=f"{d!r} m",
+        pitch=f"{p!r} m",
+        starts=n,
+        thread_angle=f"{angle!r} rad",
+        friction=0,
+        force=f"{F!r} N",
+    )
     assert ideal["raise_torque"] == pytest.approx(F * n * p / (2 * math.pi), rel=1e-12, abs=1e-300)
     assert ideal["lower_torque"] == pytest.approx(-F * n * p / (2 * math.pi), rel=1e-12, abs=1e-300)
     assert ideal["efficiency"] == pytest.approx(1, rel=1e-12)
@@ -195,13 +237,16 @@ async def test_ctrl_g_sends_equivalent_load_and_radius_to_gear_ratio():
         gear = app.query_one("#calc-gear_ratio", CalculatorTab)
         # every digit is sent (in the display unit), not the 5-figure display text
         assert gear.solution.inputs["load"].value == pytest.approx(
-            screw_out["equivalent_raise_load"].value, rel=1e-14)
+            screw_out["equivalent_raise_load"].value, rel=1e-14
+        )
         assert gear.solution.inputs["radius"].value == pytest.approx(
-            screw_out["equivalent_radius"].value, rel=1e-14)
+            screw_out["equivalent_radius"].value, rel=1e-14
+        )
         # at the default ratio G the gearbox input sees T_R/G
         G = gear.solution.outputs["ratio"].value
         assert gear.solution.outputs["motor_torque"].value == pytest.approx(
-            screw_out["raise_torque"].value / G, rel=1e-12)
+            screw_out["raise_torque"].value / G, rel=1e-12
+        )
 
 
 def test_friction_sweep_plot_series():

@@ -20,8 +20,18 @@ TRACTION = 1.2 * 135 * LBF
 
 
 def out(**kw):
-    raw = {"mode": "forward", "motor": "Kraken X60", "source": "wpilib", "motor_count": 4, "voltage": "12 V",
-           "efficiency": 1, "wheel_diameter": "4 in", "ratio": G, "weight": "135 lbf", "friction": 1.2}
+    raw = {
+        "mode": "forward",
+        "motor": "Kraken X60",
+        "source": "wpilib",
+        "motor_count": 4,
+        "voltage": "12 V",
+        "efficiency": 1,
+        "wheel_diameter": "4 in",
+        "ratio": G,
+        "weight": "135 lbf",
+        "friction": 1.2,
+    }
     raw.update(kw)
     sol = solve("drivetrain", raw)
     return {k: v.value for k, v in sol.outputs.items()}, sol.warnings
@@ -56,9 +66,15 @@ def test_supply_limit_with_sag_changes_the_voltage():
     √(161.29 − 41.004) = 10.9675, u_st = 4.2623/23.6675 = 0.18009; u_sup = √(I_sup·R/(V_b − I_sup·R_bus))
     = 0.36694; the stator limit binds: I = 65 A (4·65 = 260 A, below the 286.4 A that slips the
     wheels), supply 11.706 A, bus 12.7 − 0.074·11.706 = 11.834 V."""
-    o, _ = out(effects="stator_limit, supply_limit, battery_sag", stator_current_limit="65 A",
-               supply_current_limit="40 A", battery_voltage="12.7 V", battery_resistance="0.015 ohm",
-               main_resistance="0.002 ohm", branch_resistance="0.006 ohm")
+    o, _ = out(
+        effects="stator_limit, supply_limit, battery_sag",
+        stator_current_limit="65 A",
+        supply_current_limit="40 A",
+        battery_voltage="12.7 V",
+        battery_resistance="0.015 ohm",
+        main_resistance="0.002 ohm",
+        branch_resistance="0.006 ohm",
+    )
     Vb, Rb, W = 12.7, 4 * 0.017 + 0.006, R * 65
     u_st = 2 * W / (Vb + math.sqrt(Vb**2 - 4 * 65 * Rb * W))
     assert u_st == pytest.approx(0.18009, abs=1e-5)
@@ -74,8 +90,14 @@ def test_supply_limit_alone_binds_at_stall_with_sag():
     """I_sup 10 A with the same circuit: u = √(c/a) at E = 0, a = V_b − I_sup·R_bus, c = I_sup·R
     (E3): √(0.32787/11.96) = 0.16557, I = I_sup/u = 60.40 A; the wheels do not slip (n·I = 241.6 A
     below the slip current 286.4 A)."""
-    o, _ = out(effects="supply_limit, battery_sag", supply_current_limit="10 A", battery_voltage="12.7 V",
-               battery_resistance="0.015 ohm", main_resistance="0.002 ohm", branch_resistance="0.006 ohm")
+    o, _ = out(
+        effects="supply_limit, battery_sag",
+        supply_current_limit="10 A",
+        battery_voltage="12.7 V",
+        battery_resistance="0.015 ohm",
+        main_resistance="0.002 ohm",
+        branch_resistance="0.006 ohm",
+    )
     Vb, Rb = 12.7, 4 * 0.017 + 0.006
     u = math.sqrt(10 * R / (Vb - 10 * Rb))
     assert u == pytest.approx(0.16557, abs=1e-5)
@@ -86,20 +108,32 @@ def test_supply_limit_alone_binds_at_stall_with_sag():
 
 
 def test_sag_alone_stall_current_through_the_wiring():
-    o, _ = out(effects="battery_sag", ratio=20, battery_voltage="12.7 V", battery_resistance="0.015 ohm",
-               main_resistance="0.002 ohm", branch_resistance="0.006 ohm")
+    o, _ = out(
+        effects="battery_sag",
+        ratio=20,
+        battery_voltage="12.7 V",
+        battery_resistance="0.015 ohm",
+        main_resistance="0.002 ohm",
+        branch_resistance="0.006 ohm",
+    )
     # G = 20: the wheels slip at ĩ_slip = 720.6·0.0508/(0.019478·20) + 8 = 101.97 A, well below stall
     i_slip = TRACTION * r / (KT * 20) + 8
     assert o["push_current"] == pytest.approx(i_slip / 4, rel=1e-12)
     assert o["push_bus_voltage"] == pytest.approx(12.7 - (4 * 0.017 + 0.006) * i_slip / 4, rel=1e-12)
 
 
-@pytest.mark.parametrize("kw,field", [
-    ({"effects": "stator_limit", "stator_current_limit": 0}, "stator_current_limit"),
-    ({"effects": "stator_limit", "stator_current_limit": "2 A"}, "stator_current_limit"),  # = free current
-    ({"effects": "supply_limit", "supply_current_limit": 0}, "supply_current_limit"),
-    ({"effects": "battery_sag", "branch_resistance": "10 ohm"}, "battery_resistance"),
-])
+@pytest.mark.parametrize(
+    "kw,field",
+    [
+        ({"effects": "stator_limit", "stator_current_limit": 0}, "stator_current_limit"),
+        (
+            {"effects": "stator_limit", "stator_current_limit": "2 A"},
+            "stator_current_limit",
+        ),  # = free current
+        ({"effects": "supply_limit", "supply_current_limit": 0}, "supply_current_limit"),
+        ({"effects": "battery_sag", "branch_resistance": "10 ohm"}, "battery_resistance"),
+    ],
+)
 def test_limits_too_low_name_the_field(kw, field):
     with pytest.raises(InputError) as e:
         out(**kw)

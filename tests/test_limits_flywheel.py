@@ -27,12 +27,28 @@ TS, IS, IF, WF = 7.09, 366.0, 2.0, 6000 * 2 * math.pi / 60
 
 
 def raw(**kw):
-    base = {"mode": "moment_of_inertia", "wheel_diameter": "0.1016 m", "wheel_inertia": "1.463e-3 kg*m**2",
-            "wheel_count": 1, "shooter": "hood", "ball_diameter": "0.15012 m", "ball_mass": "0.2268 kg",
-            "ball_inertia_factor": 0.4, "ball_mass_tolerance": "5 %", "target_speed": "622 rad/s",
-            "launch_angle": "60 deg", "motor": "Kraken X60", "source": "wpilib", "motor_count": N,
-            "voltage": "12 V", "ratio": G, "shots": 3, "shot_interval": "0.3 s", "transfer": "momentum",
-            "accuracy": "fine"}
+    base = {
+        "mode": "moment_of_inertia",
+        "wheel_diameter": "0.1016 m",
+        "wheel_inertia": "1.463e-3 kg*m**2",
+        "wheel_count": 1,
+        "shooter": "hood",
+        "ball_diameter": "0.15012 m",
+        "ball_mass": "0.2268 kg",
+        "ball_inertia_factor": 0.4,
+        "ball_mass_tolerance": "5 %",
+        "target_speed": "622 rad/s",
+        "launch_angle": "60 deg",
+        "motor": "Kraken X60",
+        "source": "wpilib",
+        "motor_count": N,
+        "voltage": "12 V",
+        "ratio": G,
+        "shots": 3,
+        "shot_interval": "0.3 s",
+        "transfer": "momentum",
+        "accuracy": "fine",
+    }
     base.update(kw)
     return base
 
@@ -118,8 +134,15 @@ def test_supply_limited_phase_against_a_quadrature():
         return A * ((u * V - E) / R - i_f) / (i_s - i_f)
 
     w_rel = Kv * (V - I_sup * R) / G  # the supply limit lets go here (u = 1, I = I_sup)
-    want = quad(lambda w: I_W / torque(w), 0, 622, points=[w_rel] if w_rel < 622 else None,
-                epsabs=0, epsrel=1e-12, limit=200)[0]
+    want = quad(
+        lambda w: I_W / torque(w),
+        0,
+        622,
+        points=[w_rel] if w_rel < 622 else None,
+        epsabs=0,
+        epsrel=1e-12,
+        limit=200,
+    )[0]
     o = out(effects="supply_limit", supply_current_limit=I_sup, accuracy="tight")
     assert o["spin_up_time"] == pytest.approx(want, rel=1e-8)
     assert o["peak_supply_current"] == pytest.approx(I_sup, rel=1e-9)
@@ -137,8 +160,10 @@ def test_two_kraken_stator_limit_factor():
     On the Team 449 shooter (1.463e-3 kg·m², 1.5:1 up, 622 rad/s) the factor is
     (I_w·ω_t/τ_c)/(T·ln(ω_f/(ω_f − ω_t))): 5.86 at 40 A, 4.64 at 50 A, 3.84 at 60 A."""
     base = out()["spin_up_time"]
-    factors = {lim: out(effects="stator_limit", stator_current_limit=lim)["spin_up_time"] / base
-               for lim in (40, 50, 60)}
+    factors = {
+        lim: out(effects="stator_limit", stator_current_limit=lim)["spin_up_time"] / base
+        for lim in (40, 50, 60)
+    }
     R, Kv, A, i_s, i_f = motor()
     for lim, f in factors.items():
         assert f == pytest.approx(stator_time(0, 622, lim) / base, rel=1e-9)
@@ -147,14 +172,20 @@ def test_two_kraken_stator_limit_factor():
     assert factors[60] == pytest.approx(3.84, abs=0.01)
 
 
-@pytest.mark.parametrize("kw,field", [
-    ({"effects": "stator_limit", "stator_current_limit": 0}, "stator_current_limit"),
-    ({"effects": "stator_limit", "stator_current_limit": 2}, "stator_current_limit"),  # = the free current
-    ({"effects": "supply_limit", "supply_current_limit": 0}, "supply_current_limit"),
-    ({"effects": "supply_limit", "supply_current_limit": 0.01}, "supply_current_limit"),
-    ({"effects": "battery_sag", "battery_resistance": "10 ohm"}, "battery_resistance"),
-    ({"effects": "battery_sag", "battery_resistance": "2 ohm"}, "target_speed"),  # free speed 310 rad/s
-])
+@pytest.mark.parametrize(
+    "kw,field",
+    [
+        ({"effects": "stator_limit", "stator_current_limit": 0}, "stator_current_limit"),
+        (
+            {"effects": "stator_limit", "stator_current_limit": 2},
+            "stator_current_limit",
+        ),  # = the free current
+        ({"effects": "supply_limit", "supply_current_limit": 0}, "supply_current_limit"),
+        ({"effects": "supply_limit", "supply_current_limit": 0.01}, "supply_current_limit"),
+        ({"effects": "battery_sag", "battery_resistance": "10 ohm"}, "battery_resistance"),
+        ({"effects": "battery_sag", "battery_resistance": "2 ohm"}, "target_speed"),  # free speed 310 rad/s
+    ],
+)
 def test_limits_too_low_name_the_field(kw, field):
     with pytest.raises(InputError) as e:
         solve("flywheel", raw(**kw))
@@ -164,15 +195,24 @@ def test_limits_too_low_name_the_field(kw, field):
 def test_limit_a_hair_above_the_free_current_is_slow_but_finite():
     o = out(effects="stator_limit", stator_current_limit=2.05, target_speed="100 rad/s", shots=1)
     assert math.isfinite(o["spin_up_time"]) and o["spin_up_time"] == pytest.approx(
-        stator_time(0, 100, 2.05), rel=1e-9)
+        stator_time(0, 100, 2.05), rel=1e-9
+    )
 
 
 def test_old_preset_text_with_the_model_among_the_effects_loads_the_same():
     from gearhead.core import presets
 
-    old = presets.from_dict({"calculator": "flywheel", "format": 1,
-                             "inputs": {**{k: v for k, v in raw().items() if k != "transfer"}, "effects": "momentum, stator_limit",
-                                        "stator_current_limit": "40 A"}})
+    old = presets.from_dict(
+        {
+            "calculator": "flywheel",
+            "format": 1,
+            "inputs": {
+                **{k: v for k, v in raw().items() if k != "transfer"},
+                "effects": "momentum, stator_limit",
+                "stator_current_limit": "40 A",
+            },
+        }
+    )
     assert old.inputs["transfer"] == "momentum" and old.inputs["effects"] == "stator_limit"
     new = out(effects="stator_limit", stator_current_limit=40)
     got = {k: v.value for k, v in solve("flywheel", old.inputs).outputs.items()}
@@ -187,7 +227,13 @@ def test_rotor_inertia_is_wheel_inertia_reflected_by_the_ratio_squared():
     for kw in ({}, {"effects": "stator_limit, battery_sag", "stator_current_limit": 40}):
         a = out(rotor_inertia=f"{J_r!r} kg*m**2", **kw)
         b = out(wheel_inertia=f"{I_W + extra!r} kg*m**2", **kw)
-        for k in ("spin_up_time", "recovery_time", "wheel_speed_after", "ball_speed", "range_error",
-                  "wheel_inertia_total"):
+        for k in (
+            "spin_up_time",
+            "recovery_time",
+            "wheel_speed_after",
+            "ball_speed",
+            "range_error",
+            "wheel_inertia_total",
+        ):
             assert a[k] == pytest.approx(b[k], rel=1e-12), k
     assert out(rotor_inertia=0)["spin_up_time"] == out()["spin_up_time"]

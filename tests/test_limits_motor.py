@@ -21,8 +21,14 @@ TS = 2 * 9.37 * 0.95
 
 
 def out(**kw):
-    raw = {"motor": "Kraken X60 FOC", "source": "wpilib", "motor_count": 2, "voltage": "12 V",
-           "efficiency": 0.95, "torque": "1 N*m"}
+    raw = {
+        "motor": "Kraken X60 FOC",
+        "source": "wpilib",
+        "motor_count": 2,
+        "voltage": "12 V",
+        "efficiency": 0.95,
+        "torque": "1 N*m",
+    }
     raw.update(kw)
     sol = solve("motor", raw)
     return {k: v.value for k, v in sol.outputs.items()}, sol.series
@@ -77,7 +83,9 @@ def test_sag_lowers_the_speed_and_the_bus():
 def test_supply_limit_with_sag_at_the_operating_point():
     """At 1 N·m each motor needs I = 29.018 A of stator current; with I_sup = 20 A the duty is
     u = I_sup/I and the speed follows from E = u·V_b − I·(R + u²·R_bus) (E1)."""
-    o, _ = out(effects="supply_limit, battery_sag", supply_current_limit="20 A", battery_resistance="0.02 ohm")
+    o, _ = out(
+        effects="supply_limit, battery_sag", supply_current_limit="20 A", battery_resistance="0.02 ohm"
+    )
     Rb = 2 * 0.02
     I = (1 / KT + 4) / 2
     u = 20 / I
@@ -86,12 +94,15 @@ def test_supply_limit_with_sag_at_the_operating_point():
     assert o["speed"] == pytest.approx(KV * (u * 12 - I * (R + u * u * Rb)), rel=1e-9)
 
 
-@pytest.mark.parametrize("kw,field", [
-    ({"effects": "stator_limit", "stator_current_limit": 0}, "stator_current_limit"),
-    ({"effects": "supply_limit", "supply_current_limit": 0}, "supply_current_limit"),
-    ({"effects": "battery_sag", "battery_resistance": "10 ohm"}, "battery_resistance"),
-    ({"effects": "stator_limit", "stator_current_limit": "40 A", "torque": "2 N*m"}, "torque"),
-])
+@pytest.mark.parametrize(
+    "kw,field",
+    [
+        ({"effects": "stator_limit", "stator_current_limit": 0}, "stator_current_limit"),
+        ({"effects": "supply_limit", "supply_current_limit": 0}, "supply_current_limit"),
+        ({"effects": "battery_sag", "battery_resistance": "10 ohm"}, "battery_resistance"),
+        ({"effects": "stator_limit", "stator_current_limit": "40 A", "torque": "2 N*m"}, "torque"),
+    ],
+)
 def test_bad_limits_name_the_field(kw, field):
     with pytest.raises(InputError) as e:
         out(**kw)
@@ -99,6 +110,10 @@ def test_bad_limits_name_the_field(kw, field):
 
 
 def test_every_value_finite_for_a_limit_just_above_the_free_current():
-    o, series = out(effects="stator_limit, supply_limit", stator_current_limit="2.001 A",
-                    supply_current_limit="0.01 A", torque=0)
+    o, series = out(
+        effects="stator_limit, supply_limit",
+        stator_current_limit="2.001 A",
+        supply_current_limit="0.01 A",
+        torque=0,
+    )
     assert all(math.isfinite(x) for x in o.values() if isinstance(x, float))

@@ -23,7 +23,8 @@ def test_recalc_figures(name):
     m, note = motors.lookup(name, "recalc")
     assert note is None and m.source == "recalc"
     assert (m.free_speed, m.stall_torque, m.stall_current, m.free_current) == pytest.approx(
-        (rpm * RPM, ts, i_s, i_f), rel=1e-12)
+        (rpm * RPM, ts, i_s, i_f), rel=1e-12
+    )
 
 
 @pytest.mark.parametrize("name", ["NEO 2.0", "775 RedLine", "NeveRest", "REV HD Hex", "REV Core Hex"])
@@ -38,5 +39,6 @@ def test_minion_in_both_sources():
     r, note_r = motors.lookup("Minion", "recalc")
     assert note_w is None and note_r is None
     assert (w.stall_torque, w.stall_current, w.free_current, w.free_speed) == pytest.approx(
-        (3.17, 211, 2, 7704 * RPM), rel=1e-12)
+        (3.17, 211, 2, 7704 * RPM), rel=1e-12
+    )
     assert r.stall_torque == pytest.approx(3.173, rel=1e-12)

@@ -67,6 +67,7 @@ def test_a_failing_formula_is_a_message_not_a_traceback(monkeypatch):
 
 # ---- field kinds (core/fields.py): a new kind is one class -------------------------------------
 
+
 def _hex_kind():
     """A toy kind, declared here and nowhere else: a whole number written in hexadecimal."""
     from gearhead.core.fields import INTEGER, Kind
@@ -103,8 +104,14 @@ def _toy_calculator():
     from gearhead.core.model import Calculator, Field, Output, Result
 
     code = Field("code", "Code", kind=_hex_kind(), default="0x10", min=1, max=0xFFFF, help="Any CAN id.")
-    return Calculator("toy_hex", "Toy hex", "A toy with a hexadecimal field.", (code,),
-                      (Output("double", "Twice the code"),), lambda v: Result({"double": 2 * v["code"]}))
+    return Calculator(
+        "toy_hex",
+        "Toy hex",
+        "A toy with a hexadecimal field.",
+        (code,),
+        (Output("double", "Twice the code"),),
+        lambda v: Result({"double": 2 * v["code"]}),
+    )
 
 
 def test_a_new_field_kind_is_one_class(monkeypatch, tmp_path):
@@ -128,6 +135,7 @@ def test_a_new_field_kind_is_one_class(monkeypatch, tmp_path):
     assert err.value.field == "code"
     # a kind that changes a built-in syntax flag is kept (replace keeps it, too)
     import dataclasses
+
     assert dataclasses.replace(code, help="x").kind is code.kind
 
     monkeypatch.setitem(registry.calculators(), "toy_hex", calc)
@@ -189,6 +197,7 @@ async def test_a_new_field_kind_renders_in_the_generic_tab(monkeypatch):
 
 
 # ---- bounds: min, max and default in the display unit -------------------------------------------
+
 
 def test_bounds_are_in_the_display_unit_and_messages_quote_them_there():
     from gearhead.core.model import Field

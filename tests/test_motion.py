@@ -37,6 +37,7 @@ def neo():  # WPILib DCMotor.getNEO: 2.6 N·m, 105 A, 1.8 A, 5676 rpm at 12 V
 
 # --- closed forms --------------------------------------------------------------------------------
 
+
 def elevator_closed_form_time(G, m, r, d, F_load, N=2, V=12.0):
     """m·ẇ = N·Kt·n·(V − n·w/Kv)/R − F_load  ⇒  w = w_f(1 − e^{−t/τ}),
     x = w_f(t − τ(1 − e^{−t/τ})); x = d ⇔ T = D + 1 + W0(−e^{−(D+1)}) with T = t/τ, D = d/(w_f·τ)."""
@@ -125,13 +126,18 @@ def test_feedforward_gains_by_hand():
     assert o["kV"] == pytest.approx(Ga / Kvk, rel=1e-12)
     assert o["kA"] == pytest.approx(4 / 3 * ma * L * L * Rk / (Ktk * Ga), rel=1e-12)
     # counterbalance and friction: kG net of the spring, kS = friction over force per volt
-    o = arm.simulate(values("arm", effects="gravity, counterbalance, friction", counterbalance_torque=3,
-                            friction_torque=0.5), 1e-6).values
+    o = arm.simulate(
+        values(
+            "arm", effects="gravity, counterbalance, friction", counterbalance_torque=3, friction_torque=0.5
+        ),
+        1e-6,
+    ).values
     assert o["kG"] == pytest.approx((ma * G0 * L - 3) * Rk / (Ktk * Ga), rel=1e-12)
     assert o["kS"] == pytest.approx(0.5 * Rk / (Ktk * Ga), rel=1e-12)
 
 
 # --- LQR against WPILib's own tests ----------------------------------------------------------------
+
 
 def _775pro(count):  # WPILib getVex775Pro: 0.71 N·m, 134 A, 0.7 A, 18730 rpm
     R = 12 / 134
@@ -149,33 +155,54 @@ def _elevator_gains(count, m, r, G):
 
 def test_lqr_matches_wpilib_elevator_and_arm_tests():
     kV, kA = _elevator_gains(2, 5.0, 0.0181864, 1.0)
-    assert motion.lqr(kV, kA, 0.02, 0.4, 12.0, 0.005, 0.0) == pytest.approx((522.87006795347486, 38.239878385020411),
-                                                                             abs=1e-6)
+    assert motion.lqr(kV, kA, 0.02, 0.4, 12.0, 0.005, 0.0) == pytest.approx(
+        (522.87006795347486, 38.239878385020411), abs=1e-6
+    )
     kV, kA = _elevator_gains(4, 8.0, 0.75 * 25.4 / 1000, 14.67)
     assert motion.lqr(kV, kA, 0.1, 0.2, 12.0, 0.020, 0.0) == pytest.approx((10.381, 0.6929), abs=1e-2)
-    assert motion.lqr(kV, kA, 0.1, 0.2, 12.0, 0.020, 0.01) == pytest.approx((8.97115941, 0.07904881), abs=1e-3)
+    assert motion.lqr(kV, kA, 0.1, 0.2, 12.0, 0.020, 0.01) == pytest.approx(
+        (8.97115941, 0.07904881), abs=1e-3
+    )
     R, Kv, Kt = _775pro(2)
     I, G = 4.0 * 0.4 * 0.4 / 3, 100.0
     A11, B1 = -G * G * Kt / (Kv * R * I), G * Kt / (R * I)  # Models.singleJointedArmFromPhysicalConstants
     assert motion.lqr(-A11 / B1, 1 / B1, 0.01745, 0.08726, 12.0, 0.005, 0.0) == pytest.approx(
-        (19.339349883583761, 3.3542559517421582), abs=1e-6)
+        (19.339349883583761, 3.3542559517421582), abs=1e-6
+    )
 
 
 def test_lqr_through_the_elevator_calculator():
-    v = values("elevator", motor="775pro", motor_count=2, load_mass="5 kg", spool_diameter=f"{2 * 0.0181864} m",
-               ratio=1, q_position="0.02 m", q_velocity="0.4 m/s", r_volts=12, control_period="5 ms",
-               travel="0.2 m")
+    v = values(
+        "elevator",
+        motor="775pro",
+        motor_count=2,
+        load_mass="5 kg",
+        spool_diameter=f"{2 * 0.0181864} m",
+        ratio=1,
+        q_position="0.02 m",
+        q_velocity="0.4 m/s",
+        r_volts=12,
+        control_period="5 ms",
+        travel="0.2 m",
+    )
     out = elevator.simulate(v, 1e-6).values
     assert (out["kP"], out["kD"]) == pytest.approx((522.87006795347486, 38.239878385020411), abs=1e-6)
 
 
 # --- the algebraic loop ------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("E", [0.0, 2.0, 7.5, 11.0])
 def test_current_limits_with_sag_solve_the_loop_exactly(E):
     """(E1)-(E3) against a direct solve: duty u, bus V = V_b − R_bus·u·I, I = (u·V − E)/R."""
-    v = values("elevator", effects="stator_limit, supply_limit, battery_sag", stator_current_limit=60,
-               supply_current_limit=25, battery_resistance=0.03, motor_count=4)
+    v = values(
+        "elevator",
+        effects="stator_limit, supply_limit, battery_sag",
+        stator_current_limit=60,
+        supply_current_limit=25,
+        battery_resistance=0.03,
+        motor_count=4,
+    )
     s = elevator.setup(v)
     m = s.mech
     u, I = motion.electrical(m, s.asm.slots["duty"])(E)
@@ -188,8 +215,7 @@ def test_current_limits_with_sag_solve_the_loop_exactly(E):
         return mp.findroot(lambda i: i - (x * (m.battery_voltage - 0.12 * x * i) - E) / m.R, 50)
 
     # the duty is the first one (rising from 0) at which a limit is met
-    binding = [x for x in np.linspace(1e-3, 1, 2000)
-               if current(x) > 60 or x * current(x) > 25]
+    binding = [x for x in np.linspace(1e-3, 1, 2000) if current(x) > 60 or x * current(x) > 25]
     if binding:
         assert u == pytest.approx(binding[0], abs=1e-3)
     else:
@@ -198,10 +224,18 @@ def test_current_limits_with_sag_solve_the_loop_exactly(E):
 
 # --- effects: off means absent --------------------------------------------------------------------
 
-CASES = [(elevator, "gravity, stator_limit, supply_limit, battery_sag, friction, counterbalance"),
-         (arm, "gravity, stator_limit, supply_limit, battery_sag, friction, counterbalance")]
-TERMS = {"gravity": "force", "counterbalance": "force", "friction": "friction", "stator_limit": "duty",
-         "supply_limit": "duty", "battery_sag": None}
+CASES = [
+    (elevator, "gravity, stator_limit, supply_limit, battery_sag, friction, counterbalance"),
+    (arm, "gravity, stator_limit, supply_limit, battery_sag, friction, counterbalance"),
+]
+TERMS = {
+    "gravity": "force",
+    "counterbalance": "force",
+    "friction": "friction",
+    "stator_limit": "duty",
+    "supply_limit": "duty",
+    "battery_sag": None,
+}
 
 
 @pytest.mark.parametrize("calc,all_on", CASES)
@@ -231,16 +265,25 @@ def test_an_effect_off_adds_no_state_no_term_and_changes_nothing(calc, all_on, e
 def test_neutral_settings_of_an_effect_change_nothing_and_real_ones_change_only_their_outputs(calc):
     cid = calc.CALCULATOR.id
     base = solve(cid, {"effects": "gravity"}).outputs
-    neutral = solve(cid, {"effects": "gravity, battery_sag, friction, counterbalance, stator_limit, supply_limit",
-                          "battery_resistance": 0, "friction_force" if calc is elevator else "friction_torque": 0,
-                          "counterbalance_force" if calc is elevator else "counterbalance_torque": 0,
-                          "stator_current_limit": 2000, "supply_current_limit": 2000}).outputs
+    neutral = solve(
+        cid,
+        {
+            "effects": "gravity, battery_sag, friction, counterbalance, stator_limit, supply_limit",
+            "battery_resistance": 0,
+            "friction_force" if calc is elevator else "friction_torque": 0,
+            "counterbalance_force" if calc is elevator else "counterbalance_torque": 0,
+            "stator_current_limit": 2000,
+            "supply_current_limit": 2000,
+        },
+    ).outputs
     for k in ("time_to_goal", "max_speed", "energy", "kG", "kV", "kA", "kP", "kD", "peak_stator_current"):
         assert neutral[k].value == pytest.approx(base[k].value, rel=1e-5, abs=1e-12), k
     assert neutral["kS"].value == 0 and "kS" not in base
     sag = solve(cid, {"effects": "gravity, battery_sag", "battery_resistance": 0.02}).outputs
     n = solve(cid, {}).inputs["motor_count"].value
-    assert sag["min_bus_voltage"].value == pytest.approx(12 - n * 0.02 * sag["peak_supply_current"].value, rel=1e-12)
+    assert sag["min_bus_voltage"].value == pytest.approx(
+        12 - n * 0.02 * sag["peak_supply_current"].value, rel=1e-12
+    )
     assert sag["time_to_goal"].value > base["time_to_goal"].value
     for k in ("kG", "kV", "kA", "hold_current"):  # sag changes the move, not the model's gains
         assert sag[k].value == base[k].value
@@ -251,6 +294,7 @@ def test_neutral_settings_of_an_effect_change_nothing_and_real_ones_change_only_
 
 
 # --- hard cases and bad input ------------------------------------------------------------------------
+
 
 def _accurate(cid, raw):
     """The default-accuracy answer against a run 1e5 tighter: finite and within 1e-5."""
@@ -264,51 +308,65 @@ def _accurate(cid, raw):
     return a
 
 
-@pytest.mark.parametrize("raw", [
-    {"travel": "0.1 mm"},
-    {"ratio": 2000},  # a 3 minute crawl: LSODA, not 10⁹ explicit steps
-    {"travel": "2 in", "ratio": 3},  # ~0.1 s
-    {"ratio": 300, "travel": "60 in"},  # ~60 s
-    {"effects": "gravity, stator_limit, supply_limit, battery_sag", "travel": "-40 in"},
-    {"incline": "90 deg"},
-    {"incline": "120 deg", "travel": "10 in"},
-    {"rigging": "cascade", "stages": 3},
-])
+@pytest.mark.parametrize(
+    "raw",
+    [
+        {"travel": "0.1 mm"},
+        {"ratio": 2000},  # a 3 minute crawl: LSODA, not 10⁹ explicit steps
+        {"travel": "2 in", "ratio": 3},  # ~0.1 s
+        {"ratio": 300, "travel": "60 in"},  # ~60 s
+        {"effects": "gravity, stator_limit, supply_limit, battery_sag", "travel": "-40 in"},
+        {"incline": "90 deg"},
+        {"incline": "120 deg", "travel": "10 in"},
+        {"rigging": "cascade", "stages": 3},
+    ],
+)
 def test_elevator_hard_cases_stay_finite_and_accurate(raw):
     _accurate("elevator", raw)
 
 
-@pytest.mark.parametrize("raw", [
-    {"goal_angle": "-60 deg"},  # goal behind the start: swings down
-    {"start_angle": "-90 deg", "goal_angle": "270 deg"},  # over the top
-    {"ratio": 5000},
-    {"goal_angle": "-29.9 deg"},  # tiny move
-    {"effects": "gravity, stator_limit, supply_limit, battery_sag, friction, counterbalance"},
-])
+@pytest.mark.parametrize(
+    "raw",
+    [
+        {"goal_angle": "-60 deg"},  # goal behind the start: swings down
+        {"start_angle": "-90 deg", "goal_angle": "270 deg"},  # over the top
+        {"ratio": 5000},
+        {"goal_angle": "-29.9 deg"},  # tiny move
+        {"effects": "gravity, stator_limit, supply_limit, battery_sag, friction, counterbalance"},
+    ],
+)
 def test_arm_hard_cases_stay_finite_and_accurate(raw):
     _accurate("arm", raw)
 
 
 def test_limit_barely_above_the_hold_current():
     hold = solve("elevator", {"effects": "gravity"}).outputs["hold_current"].value
-    out = _accurate("elevator", {"effects": "gravity, stator_limit", "stator_current_limit": f"{hold * 1.01} A"})
+    out = _accurate(
+        "elevator", {"effects": "gravity, stator_limit", "stator_current_limit": f"{hold * 1.01} A"}
+    )
     assert out["time_to_goal"] > 1.0  # slow, but it arrives
     with pytest.raises(InputError) as e:
         solve("elevator", {"effects": "gravity, stator_limit", "stator_current_limit": f"{hold * 0.99} A"})
     assert e.value.field == "stator_current_limit"
 
 
-@pytest.mark.parametrize("cid,raw,field", [
-    ("elevator", {"load_mass": "700 lb"}, "ratio"),
-    ("elevator", {"effects": "gravity, stator_limit", "stator_current_limit": 0}, "stator_current_limit"),
-    ("elevator", {"effects": "gravity, supply_limit", "supply_current_limit": 0}, "supply_current_limit"),
-    ("elevator", {"effects": "gravity, battery_sag", "battery_resistance": 5, "load_mass": "50 lb"},
-     "battery_resistance"),
-    ("elevator", {"travel": 0}, "travel"),
-    ("arm", {"arm_mass": "500 lb"}, "ratio"),
-    ("arm", {"goal_angle": "-30 deg"}, "goal_angle"),
-    ("arm", {"inertia_model": "entered", "moment_of_inertia": "10 lb*in**2"}, "moment_of_inertia"),
-])
+@pytest.mark.parametrize(
+    "cid,raw,field",
+    [
+        ("elevator", {"load_mass": "700 lb"}, "ratio"),
+        ("elevator", {"effects": "gravity, stator_limit", "stator_current_limit": 0}, "stator_current_limit"),
+        ("elevator", {"effects": "gravity, supply_limit", "supply_current_limit": 0}, "supply_current_limit"),
+        (
+            "elevator",
+            {"effects": "gravity, battery_sag", "battery_resistance": 5, "load_mass": "50 lb"},
+            "battery_resistance",
+        ),
+        ("elevator", {"travel": 0}, "travel"),
+        ("arm", {"arm_mass": "500 lb"}, "ratio"),
+        ("arm", {"goal_angle": "-30 deg"}, "goal_angle"),
+        ("arm", {"inertia_model": "entered", "moment_of_inertia": "10 lb*in**2"}, "moment_of_inertia"),
+    ],
+)
 def test_a_mechanism_that_cannot_move_names_the_reason_and_field(cid, raw, field):
     with pytest.raises(InputError) as e:
         solve(cid, raw)
@@ -334,6 +392,7 @@ def test_goal_behind_the_start_moves_the_other_way():
 
 
 # --- accuracy, optimise, CLI ----------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("cid", ["elevator", "arm"])
 def test_accuracy_ladder_tightens(cid):
@@ -390,7 +449,7 @@ def test_feedforward_against_recalcs_formulas():
     assert out["kA"] == pytest.approx(kA_rc, rel=1e-12)
     assert out["kG"] == pytest.approx(kG_rc, rel=1e-12)
     assert out["kV"] == pytest.approx(kV_rc * eta, rel=1e-12)
-    Rk, Kvk, Ktk = 12 / 366, 6000 * RPM / (12 - 12 / 366 * 2), 7.09 / 366
+    Rk, Ktk = 12 / 366, 7.09 / 366
     ma, L, Ga = 8 * LB, 12 * INCH, 75.0
     I = 4 / 3 * ma * L * L
     kA_arm = I * Rk / (Ktk * Ga) / eta

@@ -27,8 +27,9 @@ def test_cim_datasheet_values_and_derived_constants():
 
 def test_scaling_with_count_voltage_and_efficiency():
     one = solve("motor", {"motor": "NEO", "source": "wpilib"}).outputs
-    three = solve("motor", {"motor": "NEO", "source": "wpilib", "motor_count": 3, "voltage": "10 V",
-                            "efficiency": 0.9}).outputs
+    three = solve(
+        "motor", {"motor": "NEO", "source": "wpilib", "motor_count": 3, "voltage": "10 V", "efficiency": 0.9}
+    ).outputs
     s = 10 / 12
     assert three["free_speed"].value == pytest.approx(one["free_speed"].value * s)  # (1)
     assert three["stall_torque"].value == pytest.approx(one["stall_torque"].value * 0.9 * 3 * s)  # (2)
@@ -40,8 +41,12 @@ def test_scaling_with_count_voltage_and_efficiency():
 @pytest.mark.parametrize("name", ["CIM", "Kraken X60", "NEO 550", "BAG", "V5 200 rpm (green)", "VEX 393"])
 def test_max_efficiency_point_is_the_maximum_of_eq10(name):
     m = motors.system(motors.lookup(name, "wpilib")[0], 2, 11.0, 0.85)
-    res = minimize_scalar(lambda t: -m.efficiency_at(t), bounds=(1e-9, m.stall_torque),
-                          method="bounded", options={"xatol": 1e-12})
+    res = minimize_scalar(
+        lambda t: -m.efficiency_at(t),
+        bounds=(1e-9, m.stall_torque),
+        method="bounded",
+        options={"xatol": 1e-12},
+    )
     assert m.max_efficiency_torque == pytest.approx(res.x, rel=1e-5)  # (91)
     assert m.max_efficiency == pytest.approx(-res.fun, rel=1e-10)
     # closed form agrees with (10) evaluated at (91)
@@ -66,16 +71,42 @@ def test_both_data_sources_are_selectable_and_differ_where_sources_differ():
 def test_motor_missing_from_a_source_falls_back_with_a_warning():
     sol = solve("motor", {"motor": "BaneBots RS550", "source": "recalc"})
     assert sol.outputs["stall_torque"].value == pytest.approx(0.38)
-    assert any("ReCalc (dyno) has no data for BaneBots RS550; using WPILib DCMotor" in w for w in sol.warnings)
+    assert any(
+        "ReCalc (dyno) has no data for BaneBots RS550; using WPILib DCMotor" in w for w in sol.warnings
+    )
 
 
 def test_every_reference_motor_is_present():
     names = set(motors.motor_names())
-    for n in ["CIM", "MiniCIM", "BAG", "775pro", "AndyMark RS775-125", "BaneBots RS775", "AndyMark 9015",
-              "BaneBots RS550", "NEO", "NEO 550", "Falcon 500", "Falcon 500 FOC", "Kraken X60",
-              "Kraken X60 FOC", "Kraken X44", "Kraken X44 FOC", "Minion", "NEO Vortex", "VEX 393",
-              "V5 100 rpm (red)", "V5 200 rpm (green)", "V5 600 rpm (blue)",
-              "NEO 2.0", "775 RedLine", "NeveRest", "REV HD Hex", "REV Core Hex"]:
+    for n in [
+        "CIM",
+        "MiniCIM",
+        "BAG",
+        "775pro",
+        "AndyMark RS775-125",
+        "BaneBots RS775",
+        "AndyMark 9015",
+        "BaneBots RS550",
+        "NEO",
+        "NEO 550",
+        "Falcon 500",
+        "Falcon 500 FOC",
+        "Kraken X60",
+        "Kraken X60 FOC",
+        "Kraken X44",
+        "Kraken X44 FOC",
+        "Minion",
+        "NEO Vortex",
+        "VEX 393",
+        "V5 100 rpm (red)",
+        "V5 200 rpm (green)",
+        "V5 600 rpm (blue)",
+        "NEO 2.0",
+        "775 RedLine",
+        "NeveRest",
+        "REV HD Hex",
+        "REV Core Hex",
+    ]:
         assert n in names
     assert len([m for m in motors.MOTORS if m.source == "recalc"]) == 18
 

@@ -4,7 +4,8 @@ errors when the linkage cannot close, and reverse(forward(x)) returning x (hypot
 import math
 
 import pytest
-from hypothesis import assume, given, settings, strategies as st
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from gearhead.core import presets
 from gearhead.core.calculators import pneumatic_linkage as pl
@@ -30,9 +31,17 @@ def test_eq88_and_lever_arm_rederived_with_sympy():
     sp = pytest.importorskip("sympy")
     A, B, X, Y, t = sp.symbols("A B X Y theta", real=True)
     px, py = X * sp.cos(t) - Y * sp.sin(t), X * sp.sin(t) + Y * sp.cos(t)
-    eq88 = (A**2 + B**2 + X**2 + Y**2 + 2*A*X*sp.cos(t) - 2*B*Y*sp.cos(t)
-            - 2*B*X*sp.sin(t) - 2*A*Y*sp.sin(t))
-    assert sp.simplify((A + px)**2 + (B - py)**2 - eq88) == 0  # L cos α, L sin α from (84), (86)
+    eq88 = (
+        A**2
+        + B**2
+        + X**2
+        + Y**2
+        + 2 * A * X * sp.cos(t)
+        - 2 * B * Y * sp.cos(t)
+        - 2 * B * X * sp.sin(t)
+        - 2 * A * Y * sp.sin(t)
+    )
+    assert sp.simplify((A + px) ** 2 + (B - py) ** 2 - eq88) == 0  # L cos α, L sin α from (84), (86)
     ell = sp.sqrt(eq88)
     moment = (px * (py - B) - py * (px + A)) / ell  # P × (P − C)/ℓ with C = (−A, B)
     assert sp.simplify(moment - sp.diff(ell, t)) == 0
@@ -46,8 +55,15 @@ def test_forward_3_4_5_triangle_by_hand():
     #   P(120°) = (−3 sin 120°, 3 cos 120°) = (−2.598, −1.5), |P − C|² = 6.75 + 30.25 = 37 ✓.
     # Lever arms r·d·sin γ/ℓ: 12/5 = 2.4 m; 12·(√3/2)/√37 = 1.708480 m. F = 100 N.
     # α1 = atan2(B − Py, A + Px) = atan2(4, −3) = 126.8699°; α2 = atan2(5.5, −2.598) = 115.2856°.
-    o, w = out(pivot_x="0 m", pivot_y="4 m", arm_x="0 m", arm_y="3 m", retracted_length="5 m",
-               stroke=f"{math.sqrt(37) - 5} m", cylinder_force="100 N")
+    o, w = out(
+        pivot_x="0 m",
+        pivot_y="4 m",
+        arm_x="0 m",
+        arm_y="3 m",
+        retracted_length="5 m",
+        stroke=f"{math.sqrt(37) - 5} m",
+        cylinder_force="100 N",
+    )
     assert o["retracted_angle"] == pytest.approx(90 * DEG, abs=1e-14)
     assert o["extended_angle"] == pytest.approx(120 * DEG, abs=1e-14)
     assert o["retracted_angle_alt"] == pytest.approx(-90 * DEG, abs=1e-14)
@@ -69,8 +85,16 @@ def test_reverse_by_hand_both_pivots():
     # (1 − y, 1 − x) = (1, −1): |·− P1| = 1, |·− P2| = √5 ✓. Neither passes dead centre (ψ = 0°, −45°;
     # rod end 0°→90°). (1, −1) lies on the arm pivot's side of the chord (0 + 0 < 1) so it is first.
     # Pivot fields are (A, B) = (−Cx, Cy): (−1, −1) and (−2, 0).
-    o, w = out(mode="reverse", retracted_angle="0 deg", extended_angle="90 deg", arm_x="1 m", arm_y="0 m",
-               retracted_length="1 m", stroke=f"{math.sqrt(5) - 1} m", cylinder_force="10 N")
+    o, w = out(
+        mode="reverse",
+        retracted_angle="0 deg",
+        extended_angle="90 deg",
+        arm_x="1 m",
+        arm_y="0 m",
+        retracted_length="1 m",
+        stroke=f"{math.sqrt(5) - 1} m",
+        cylinder_force="10 N",
+    )
     assert (o["pivot_x"], o["pivot_y"]) == pytest.approx((-1, -1), abs=1e-14)
     assert (o["pivot_x_alt"], o["pivot_y_alt"]) == pytest.approx((-2, 0), abs=1e-14)
     # C = (1, −1), P1 = (1, 0): cylinder along x = 1, through... the line x = 1 is 1 m from the arm pivot
@@ -83,24 +107,41 @@ def test_reverse_by_hand_both_pivots():
 
 def test_reverse_clockwise_swing_gives_negative_torque():
     # Mirror of the case above in the x axis: θ 0 → −90°, pivots (A, B) = (−1, 1) and (−2, 0).
-    o, _ = out(mode="reverse", retracted_angle="0 deg", extended_angle="-90 deg", arm_x="1 m", arm_y="0 m",
-               retracted_length="1 m", stroke=f"{math.sqrt(5) - 1} m", cylinder_force="10 N")
+    o, _ = out(
+        mode="reverse",
+        retracted_angle="0 deg",
+        extended_angle="-90 deg",
+        arm_x="1 m",
+        arm_y="0 m",
+        retracted_length="1 m",
+        stroke=f"{math.sqrt(5) - 1} m",
+        cylinder_force="10 N",
+    )
     assert (o["pivot_x"], o["pivot_y"]) == pytest.approx((-1, 1), abs=1e-14)
     assert (o["pivot_x_alt"], o["pivot_y_alt"]) == pytest.approx((-2, 0), abs=1e-14)
     assert o["retracted_torque"] == pytest.approx(-10.0, rel=1e-14)
 
 
-
 def test_reverse_warns_when_the_pivot_found_ends_at_dead_centre():
     # Rod end (1, 0), θ 0° -> 90°, C = (0, -2): ℓ1 = |(1, 2)| = √5, ℓ2 = |(0, 3)| = 3 = d + r: extended,
     # the rod end (0, 1) is in line with both pivots (lever arm 0), as forward mode would warn.
-    sol = solve("pneumatic_linkage", {"mode": "reverse", "retracted_angle": "0 deg", "extended_angle": "90 deg",
-                                      "arm_x": "1 m", "arm_y": "0 m", "retracted_length": f"{math.sqrt(5)!r} m",
-                                      "stroke": f"{3 - math.sqrt(5)!r} m"})
+    sol = solve(
+        "pneumatic_linkage",
+        {
+            "mode": "reverse",
+            "retracted_angle": "0 deg",
+            "extended_angle": "90 deg",
+            "arm_x": "1 m",
+            "arm_y": "0 m",
+            "retracted_length": f"{math.sqrt(5)!r} m",
+            "stroke": f"{3 - math.sqrt(5)!r} m",
+        },
+    )
     assert (sol.outputs["pivot_x"].value, sol.outputs["pivot_y"].value) == pytest.approx((0, -2), abs=1e-14)
     assert sol.outputs["extended_lever_arm"].value == pytest.approx(0, abs=1e-7)
     assert any("When extended the arm is at dead centre" in w for w in sol.warnings)
     assert not any("When retracted" in w for w in sol.warnings)  # lever arm there 2/√5 m, γ = 63.4°
+
 
 def test_reverse_rejects_a_pivot_that_passes_dead_centre():
     # P1 = (1, 0), P2 = (0, 1), L = 0.5, L + ΔL = 1.5. Both circles meet at C = P1 ± (√2/4)(1, 1):
@@ -109,8 +150,15 @@ def test_reverse_rejects_a_pivot_that_passes_dead_centre():
     # C+ is at ψ = atan2(0.354, 1.354) = 14.6°, inside the swing 0°..90°: the rod end passes the point
     # nearest C+ (length d − r = 1.3990 − 1 = 0.399 < L), dead centre, so only C− works.
     s = math.sqrt(2) / 4
-    o, w = out(mode="reverse", retracted_angle="0 deg", extended_angle="90 deg", arm_x="1 m", arm_y="0 m",
-               retracted_length="0.5 m", stroke="1 m")
+    o, w = out(
+        mode="reverse",
+        retracted_angle="0 deg",
+        extended_angle="90 deg",
+        arm_x="1 m",
+        arm_y="0 m",
+        retracted_length="0.5 m",
+        stroke="1 m",
+    )
     assert (o["pivot_x"], o["pivot_y"]) == pytest.approx((-(1 - s), -s), abs=1e-14)  # (A, B) = (−Cx, Cy)
     assert "pivot_x_alt" not in o
     assert any("not a working linkage" in x for x in w)
@@ -121,27 +169,42 @@ def test_reverse_rejects_a_pivot_that_passes_dead_centre():
 def test_no_working_pivot_is_an_input_error():
     # θ ±30°, r = 1: chord 1 m, but the stroke is 1 cm on a 3 m cylinder: both intersections sit
     # near the chord's perpendicular bisector, i.e. in line with the arm pivot: the arm passes dead centre.
-    e = error(mode="reverse", retracted_angle="-30 deg", extended_angle="30 deg", arm_x="1 m",
-              retracted_length="3 m", stroke="0.01 m")
+    e = error(
+        mode="reverse",
+        retracted_angle="-30 deg",
+        extended_angle="30 deg",
+        arm_x="1 m",
+        retracted_length="3 m",
+        stroke="0.01 m",
+    )
     assert e.field == "stroke" and "dead centre" in e.message
     # 0° → 90°, L = 2 m, ΔL = 0.3 m: same story
-    e = error(mode="reverse", retracted_angle="0 deg", extended_angle="90 deg", arm_x="1 m",
-              retracted_length="2 m", stroke="0.3 m")
+    e = error(
+        mode="reverse",
+        retracted_angle="0 deg",
+        extended_angle="90 deg",
+        arm_x="1 m",
+        retracted_length="2 m",
+        stroke="0.3 m",
+    )
     assert e.field == "stroke" and "dead centre" in e.message
 
 
-@pytest.mark.parametrize("raw,field,words", [
-    (dict(arm_x=0, arm_y=0), "arm_x", "arm pivot"),
-    (dict(pivot_x=0, pivot_y=0), "pivot_x", "never changes"),
-    (dict(retracted_length="5 in"), "retracted_length", "too short"),
-    (dict(retracted_length="30 in"), "retracted_length", "too long"),
-    (dict(stroke="12 in"), "stroke", "too long"),
-    (dict(mode="reverse", extended_angle="-45 deg"), "extended_angle", "must turn"),
-    (dict(mode="reverse", extended_angle="150 deg"), "extended_angle", "180°"),
-    (dict(mode="reverse", stroke="8 in"), "stroke", "longer than the rod end travels"),
-    (dict(mode="reverse", retracted_length="1 in", stroke="1 in"), "retracted_length", "too short"),
-    (dict(mode="reverse", arm_x=0), "arm_x", "arm pivot"),
-])
+@pytest.mark.parametrize(
+    "raw,field,words",
+    [
+        (dict(arm_x=0, arm_y=0), "arm_x", "arm pivot"),
+        (dict(pivot_x=0, pivot_y=0), "pivot_x", "never changes"),
+        (dict(retracted_length="5 in"), "retracted_length", "too short"),
+        (dict(retracted_length="30 in"), "retracted_length", "too long"),
+        (dict(stroke="12 in"), "stroke", "too long"),
+        (dict(mode="reverse", extended_angle="-45 deg"), "extended_angle", "must turn"),
+        (dict(mode="reverse", extended_angle="150 deg"), "extended_angle", "180°"),
+        (dict(mode="reverse", stroke="8 in"), "stroke", "longer than the rod end travels"),
+        (dict(mode="reverse", retracted_length="1 in", stroke="1 in"), "retracted_length", "too short"),
+        (dict(mode="reverse", arm_x=0), "arm_x", "arm pivot"),
+    ],
+)
 def test_geometry_that_cannot_close_names_a_field(raw, field, words):
     # defaults: d = |(−6, −14)| = 15.23 in, r = 5 in: lengths 10.23..20.23 in.
     # reverse defaults: r = 5 in, θ −45°→45°: chord 2·5·sin 45° = 7.07 in.
@@ -160,8 +223,15 @@ def test_defaults_near_dead_centre_warning():
 def test_lever_arm_is_the_derivative_of_cylinder_length():
     """Virtual work: torque = F·dℓ/dθ; dℓ/dθ by central differences of |P(θ) − C| (no shared code)."""
     A, B, X, Y = 0.15, -0.35, 0.12, 0.03
-    o, _ = out(pivot_x=f"{A} m", pivot_y=f"{B} m", arm_x=f"{X} m", arm_y=f"{Y} m",
-               retracted_length="0.3 m", stroke="0.15 m", cylinder_force="500 N")
+    o, _ = out(
+        pivot_x=f"{A} m",
+        pivot_y=f"{B} m",
+        arm_x=f"{X} m",
+        arm_y=f"{Y} m",
+        retracted_length="0.3 m",
+        stroke="0.15 m",
+        cylinder_force="500 N",
+    )
 
     def length(t):
         return math.hypot(X * math.cos(t) - Y * math.sin(t) + A, X * math.sin(t) + Y * math.cos(t) - B)
@@ -185,28 +255,45 @@ def test_plot_series_runs_from_theta1_to_theta2():
     assert all(b > a for a, b in zip(xs, xs[1:]))
 
 
-
 def test_plot_series_clockwise_swing_has_clockwise_torque():
     # The clockwise case above, pivot (A, B) = (-1, 1), i.e. C = (1, 1): the cylinder line through
     # P1 = (1, 0) is x = 1, 1 m from the arm pivot -> -10 N·m at θ1; at θ2 = -90°, P2 = (0, -1), the
     # line from (1, 1) along (-1, -2) is |1·(-2) - 1·(-1)|/√5 = 1/√5 m away -> -10/√5 N·m.
     # The plot runs 0° -> -90° and every torque is clockwise (< 0).
-    sol = solve("pneumatic_linkage", {"mode": "reverse", "retracted_angle": "0 deg", "extended_angle": "-90 deg",
-                                      "arm_x": "1 m", "arm_y": "0 m", "retracted_length": "1 m",
-                                      "stroke": f"{math.sqrt(5) - 1} m", "cylinder_force": "10 N"})
+    sol = solve(
+        "pneumatic_linkage",
+        {
+            "mode": "reverse",
+            "retracted_angle": "0 deg",
+            "extended_angle": "-90 deg",
+            "arm_x": "1 m",
+            "arm_y": "0 m",
+            "retracted_length": "1 m",
+            "stroke": f"{math.sqrt(5) - 1} m",
+            "cylinder_force": "10 N",
+        },
+    )
     xs, ys = sol.series["torque"]
     assert xs[0] == pytest.approx(0, abs=1e-14) and xs[-1] == pytest.approx(-math.pi / 2, rel=1e-12)
     assert ys[0] == pytest.approx(-10.0, rel=1e-12) and ys[-1] == pytest.approx(-10 / math.sqrt(5), rel=1e-12)
     assert all(y < 0 for y in ys)
+
 
 sides = st.floats(0.2, 1.0)
 unit = st.floats(0.0, 1.0)
 
 
 @settings(max_examples=300, deadline=None)
-@given(st.floats(-1, 1), st.floats(-1, 1), st.floats(-0.5, 0.5), st.floats(-0.5, 0.5),
-       st.floats(0.05, 0.85), st.floats(0.1, 0.9), st.sampled_from([1, -1]),
-       st.sampled_from([1e-3, 1.0, 1e3]))
+@given(
+    st.floats(-1, 1),
+    st.floats(-1, 1),
+    st.floats(-0.5, 0.5),
+    st.floats(-0.5, 0.5),
+    st.floats(0.05, 0.85),
+    st.floats(0.1, 0.9),
+    st.sampled_from([1, -1]),
+    st.sampled_from([1e-3, 1.0, 1e3]),
+)
 def test_reverse_of_forward_returns_the_pivot(A, B, X, Y, u1, du, assembly, scale):
     """Forward gives (θ1, θ2) of each assembly; reverse from those angles lists (A, B) among its pivots,
     and every pivot it lists gives back L and L + ΔL at θ1, θ2."""
@@ -230,8 +317,14 @@ def test_reverse_of_forward_returns_the_pivot(A, B, X, Y, u1, du, assembly, scal
 
 
 @settings(max_examples=200, deadline=None)
-@given(st.floats(-170, 170), st.floats(-170, 170), st.floats(-0.5, 0.5), st.floats(-0.5, 0.5),
-       st.floats(0.05, 2.0), unit)
+@given(
+    st.floats(-170, 170),
+    st.floats(-170, 170),
+    st.floats(-0.5, 0.5),
+    st.floats(-0.5, 0.5),
+    st.floats(0.05, 2.0),
+    unit,
+)
 def test_forward_of_reverse_returns_the_angles(t1_deg, t2_deg, X, Y, L, frac):
     """Each pivot reverse reports, run forward, puts the arm back at θ1 and θ2 (same assembly sense)."""
     t1, t2 = t1_deg * DEG, t2_deg * DEG

@@ -23,7 +23,8 @@ def test_forces_eqs_82_83():
     out = solve("pneumatics", {}).outputs
     assert out["push_force_1"].value == pytest.approx(math.pi * (1.5 * IN) ** 2 / 4 * 60 * PSI, rel=1e-12)
     assert out["pull_force_1"].value == pytest.approx(
-        math.pi * ((1.5 * IN) ** 2 - (0.4375 * IN) ** 2) / 4 * 60 * PSI, rel=1e-12)
+        math.pi * ((1.5 * IN) ** 2 - (0.4375 * IN) ** 2) / 4 * 60 * PSI, rel=1e-12
+    )
     assert out["push_force_1"].text == "106.03 lbf"
 
 
@@ -82,8 +83,17 @@ def test_unregulated_stroke_shares_air_exactly_in_absolute_mode():
 
 
 def test_tank_that_empties_warns_and_stays_finite():
-    sol = solve("pneumatics", {"effects": "compressor", "c1_count": 20, "c1_bore": "2 in", "c1_stroke": "12 in",
-                               "c1_period": 1, "c1_start": 0})
+    sol = solve(
+        "pneumatics",
+        {
+            "effects": "compressor",
+            "c1_count": 20,
+            "c1_bore": "2 in",
+            "c1_stroke": "12 in",
+            "c1_period": 1,
+            "c1_start": 0,
+        },
+    )
     assert sol.outputs["tank_empty"].value is True
     assert sol.outputs["min_pressure"].value == 0.0
     assert any("empties" in w for w in sol.warnings)
@@ -98,7 +108,8 @@ def test_effect_off_removes_its_cost():
 def test_seed_one_second_step_is_reported_beside_the_accurate_result():
     out = solve("pneumatics", {}).outputs
     assert out["seed_difference"].value == pytest.approx(
-        out["seed_final_pressure"].value - out["final_pressure"].value, rel=1e-12)
+        out["seed_final_pressure"].value - out["final_pressure"].value, rel=1e-12
+    )
     # the 1 s explicit step is close but not equal
     assert 0 < abs(out["seed_difference"].value) < 10 * PSI
 
@@ -124,8 +135,13 @@ def test_bad_switch_settings_and_rods_name_fields():
 def test_values_typed_at_the_bounds_are_accepted():
     """'125 psi' parses to 125·PSI·(1 + 1 ulp), '1000000 cc' to 1.0000000000000002 m³: a value typed
     exactly at a bound the error message names must be accepted."""
-    for name, typed in (("start_pressure", "125 psi"), ("switch_off", "125 psi"), ("c1_push_pressure", "200 psi"),
-                        ("tank_volume", "1000000 cc"), ("tank_volume", "1 cc")):
+    for name, typed in (
+        ("start_pressure", "125 psi"),
+        ("switch_off", "125 psi"),
+        ("c1_push_pressure", "200 psi"),
+        ("tank_volume", "1000000 cc"),
+        ("tank_volume", "1 cc"),
+    ):
         sol = solve("pneumatics", {name: typed})  # the bounds shown in the field's own error message
         assert math.isfinite(sol.outputs["final_pressure"].value)
 
@@ -135,7 +151,9 @@ def test_seed_step_matches_an_independent_loop():
     at 5, 15, ... s (2 cylinders, regulator: each stroke at min(60 psi, tank)), switch 95/120 psi."""
     import numpy as np
 
-    c = np.polyfit(np.array(pn.CURVE_PSI) * PSI, np.array(pn.COMPRESSORS["VIAIR 90C 13.8 V"]) * 0.028316846592 / 60, 4)
+    c = np.polyfit(
+        np.array(pn.CURVE_PSI) * PSI, np.array(pn.COMPRESSORS["VIAIR 90C 13.8 V"]) * 0.028316846592 / 60, 4
+    )
     V, L = 1148e-6, 6 * IN
     A_push, A_pull = math.pi * (1.5 * IN) ** 2 / 4, math.pi * ((1.5 * IN) ** 2 - (0.4375 * IN) ** 2) / 4
     P, on, low = 120 * PSI, False, 120 * PSI
@@ -195,8 +213,12 @@ def test_no_switch_at_the_relief_pressure_holds_it_and_stays_finite():
     """No switch, cylinders that use no air (0 psi): after the tank reaches 125 psi each segment starts
     exactly at the relief pressure, where the rising 'full' event cannot fire. The pressure once climbed
     past the relief valve into the polynomial's rising tail and stopped with 'step size underflow'."""
-    raw = {"effects": "compressor, regulator", "c1_push_pressure": 0, "c1_pull_pressure": 0,
-           "start_pressure": "60 psi"}
+    raw = {
+        "effects": "compressor, regulator",
+        "c1_push_pressure": 0,
+        "c1_pull_pressure": 0,
+        "start_pressure": "60 psi",
+    }
     out = solve("pneumatics", raw).outputs
     assert out["final_pressure"].value == pytest.approx(125 * PSI, rel=1e-12)
     assert out["compressor_duty"].value == 1.0
@@ -209,8 +231,15 @@ def test_error_estimate_is_not_zero_when_the_check_run_agrees_to_the_last_bit():
     """Here the runs at rtol 1e-3 and 1e-5 give bit-identical minimum and final pressures (the tank
     refills to the switch-off pressure, which resets the state, and the later segments take the same
     steps), so the 100x check reported an error of exactly 0 while the true error is ~1e-7."""
-    raw = {"compressor_model": "AndyMark 1.1 12 V", "c1_count": 4, "c1_period": 7, "c2_count": 1,
-           "c2_period": 2.5, "c2_start": 1, "accuracy": "coarse"}
+    raw = {
+        "compressor_model": "AndyMark 1.1 12 V",
+        "c1_count": 4,
+        "c1_period": 7,
+        "c2_count": 1,
+        "c2_period": 2.5,
+        "c2_start": 1,
+        "accuracy": "coarse",
+    }
     v = values(**raw)
     rough, tight = pn.simulate(v, 1e-3).key, pn.simulate(v, 1e-13).key
     true = max(abs(rough[k] - tight[k]) / abs(tight[k]) for k in rough)

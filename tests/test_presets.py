@@ -1,6 +1,12 @@
 """Presets: TOML round trip, atomic and non-clobbering save, and clear errors naming file and field."""
 
+import os
+import stat
+import subprocess
+import sys
+import threading
 import tomllib
+from pathlib import Path
 
 import pytest
 
@@ -15,7 +21,7 @@ def write(tmp_path, text, name="p.toml"):
     return path
 
 
-GOOD = '''calculator = "gear_ratio"
+GOOD = """calculator = "gear_ratio"
 name = "Lift"
 description = "test"
 format = 1
@@ -25,7 +31,7 @@ load = "25 lbf"
 radius = 1.5
 motor_count = 2
 mode = "max_power"
-'''
+"""
 
 
 def test_builtin_presets_load_and_solve():
@@ -42,7 +48,12 @@ def test_round_trip_changes_nothing_typed(tmp_path):
     p = presets.load(src)
     out = presets.save(p, tmp_path / "copy.toml")
     assert tomllib.loads(out.read_text()) == tomllib.loads(GOOD)
-    assert presets.load(out).inputs == {"load": "25 lbf", "radius": 1.5, "motor_count": 2, "mode": "max_power"}
+    assert presets.load(out).inputs == {
+        "load": "25 lbf",
+        "radius": 1.5,
+        "motor_count": 2,
+        "mode": "max_power",
+    }
 
 
 def test_save_never_overwrites_silently_and_leaves_no_temp_files(tmp_path):
@@ -64,16 +75,19 @@ def test_user_presets_go_to_xdg_config(tmp_path, monkeypatch):
     assert any(not q.builtin and q.name == "Lift" for q in presets.listing("gear_ratio"))
 
 
-@pytest.mark.parametrize("text,field,words", [
-    (GOOD.replace('"gear_ratio"', '"warp_drive"'), "calculator", "unknown calculator"),
-    (GOOD.replace("load =", "lode ="), "lode", "unknown field"),
-    (GOOD.replace('"25 lbf"', '"25 kg"'), "load", "not a force"),
-    (GOOD.replace('"25 lbf"', '"-25 lbf"'), "load", "too small"),
-    (GOOD.replace("motor_count = 2", "motor_count = [2]"), "motor_count", "wrong type"),
-    (GOOD.replace("format = 1", "format = 9"), "format", "newer"),
-    (GOOD.replace('mode = "max_power"', 'mode = "fastest"'), "mode", "not one of"),
-    (GOOD + "\n[inputs\n", "preset", "malformed TOML"),
-])
+@pytest.mark.parametrize(
+    "text,field,words",
+    [
+        (GOOD.replace('"gear_ratio"', '"warp_drive"'), "calculator", "unknown calculator"),
+        (GOOD.replace("load =", "lode ="), "lode", "unknown field"),
+        (GOOD.replace('"25 lbf"', '"25 kg"'), "load", "not a force"),
+        (GOOD.replace('"25 lbf"', '"-25 lbf"'), "load", "too small"),
+        (GOOD.replace("motor_count = 2", "motor_count = [2]"), "motor_count", "wrong type"),
+        (GOOD.replace("format = 1", "format = 9"), "format", "newer"),
+        (GOOD.replace('mode = "max_power"', 'mode = "fastest"'), "mode", "not one of"),
+        (GOOD + "\n[inputs\n", "preset", "malformed TOML"),
+    ],
+)
 def test_bad_presets_name_file_and_field(tmp_path, text, field, words):
     path = write(tmp_path, text)
     with pytest.raises(InputError) as e:
@@ -94,12 +108,6 @@ def test_broken_user_preset_is_reported_not_fatal(tmp_path, monkeypatch):
 
 # ---- hostile preset files: each a one-line error naming the file, at once ---------------------
 
-import os
-import stat
-import subprocess
-import sys
-import threading
-from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 HEADER = 'calculator = "gear_ratio"\nformat = 1\n'
@@ -150,8 +158,13 @@ def test_hostile_presets_exit_2_from_the_cli_naming_the_file(tmp_path, capsys):
 
     for kind, (path, words) in hostile_files(tmp_path).items():
         if kind == "fifo":  # in a child process, so that a regression fails the test, not hangs it
-            out = subprocess.run([sys.executable, "-m", "gearhead.tui", "solve", "gear_ratio", "--preset", str(path)],
-                                 capture_output=True, text=True, cwd=ROOT, timeout=60)
+            out = subprocess.run(
+                [sys.executable, "-m", "gearhead.tui", "solve", "gear_ratio", "--preset", str(path)],
+                capture_output=True,
+                text=True,
+                cwd=ROOT,
+                timeout=60,
+            )
             code, stdout, stderr = out.returncode, out.stdout, out.stderr
         else:
             code = main(["solve", "gear_ratio", "--preset", str(path)])
@@ -246,9 +259,18 @@ def test_saved_files_get_the_umask_mode_and_a_replaced_file_keeps_its_mode(tmp_p
         os.umask(old)
 
 
-@pytest.mark.parametrize("name,stem", [("Élévateur", "élévateur"), ("日本語", "日本語"), ("Lift 2", "lift_2"),
-                                       ("a/b\\c:d*?", "a_b_c_d"), ("CON", "con_preset"), ("...", "preset"),
-                                       ("E\u0301le\u0301vateur", "élévateur")])
+@pytest.mark.parametrize(
+    "name,stem",
+    [
+        ("Élévateur", "élévateur"),
+        ("日本語", "日本語"),
+        ("Lift 2", "lift_2"),
+        ("a/b\\c:d*?", "a_b_c_d"),
+        ("CON", "con_preset"),
+        ("...", "preset"),
+        ("E\u0301le\u0301vateur", "élévateur"),
+    ],
+)
 def test_file_names_keep_unicode_letters(name, stem):
     """`Élévateur` was `l_vateur.toml`; names of only non-ASCII letters were all `preset.toml`."""
     assert presets.slug(name) == stem

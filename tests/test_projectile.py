@@ -3,7 +3,8 @@
 import math
 
 import pytest
-from hypothesis import HealthCheck, assume, given, settings, strategies as st
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
 
 from gearhead.core import presets
 from gearhead.core.calculators import projectile as pj
@@ -51,7 +52,9 @@ def test_forward_defaults_by_hand():
     assert o["target_speed"] == pytest.approx(math.hypot(3.75, 1.3501295), rel=1e-7)
 
 
-@pytest.mark.parametrize("h_i,th,v,d", [(0.6, 60, 7.5, 3), (1.0, 20, 12, 6), (0.2, -10, 15, 0.8), (3, 75, 10, 0.5)])
+@pytest.mark.parametrize(
+    "h_i,th,v,d", [(0.6, 60, 7.5, 3), (1.0, 20, 12, 6), (0.2, -10, 15, 0.8), (3, 75, 10, 0.5)]
+)
 def test_no_effects_is_the_seeds_closed_form_with_no_integration(h_i, th, v, d):
     run = pj.simulate(values(release_height=h_i, release_angle=th, release_speed=v, distance=d), 1e-6)
     assert run.nfev == 0
@@ -62,9 +65,13 @@ def test_no_effects_is_the_seeds_closed_form_with_no_integration(h_i, th, v, d):
     assert sol.outputs["rhs_evaluations"].value == 0 and sol.outputs["error_estimate"].value == 0
 
 
-@pytest.mark.parametrize("h_i,h_f,d,th_f", [(0.6, 2.64, 3, -45), (1.0, 0.5, 6, -30), (0.0, 0.0, 4, -45), (2, 3, 1, 10)])
+@pytest.mark.parametrize(
+    "h_i,h_f,d,th_f", [(0.6, 2.64, 3, -45), (1.0, 0.5, 6, -30), (0.0, 0.0, 4, -45), (2, 3, 1, 10)]
+)
 def test_reverse_matches_seed_63_64_where_reachable(h_i, h_f, d, th_f):
-    run = pj.simulate(values(mode="reverse", release_height=h_i, target_height=h_f, distance=d, target_angle=th_f), 1e-6)
+    run = pj.simulate(
+        values(mode="reverse", release_height=h_i, target_height=h_f, distance=d, target_angle=th_f), 1e-6
+    )
     th_i, v_i = seed_63_64(h_i, h_f, d, th_f * DEG)
     assert run.nfev == 0
     assert run.values["release_angle"] == pytest.approx(th_i, rel=1e-12)
@@ -93,8 +100,10 @@ def test_seeds_absolute_value_would_accept_an_impossible_target():
     _, th_f, _ = vacuum_at(0.0, th_i, v_seed, 3.0)
     assert math.degrees(th_f) < 18.44
     with pytest.raises(InputError) as e:
-        solve("projectile", {"mode": "reverse", "release_height": 0, "target_height": 1, "distance": 3,
-                             "target_angle": 30})
+        solve(
+            "projectile",
+            {"mode": "reverse", "release_height": 0, "target_height": 1, "distance": 3, "target_angle": 30},
+        )
     assert e.value.field == "target_angle" and "18.43" in e.value.message
 
 
@@ -109,8 +118,17 @@ def test_floor_before_the_target_is_an_error_with_the_landing_point():
     # level throw from the floor, 45°, 7 m/s: range v²/g = 49 / 9.80665 = 4.9966 m
     for effects in ("", "air_drag"):
         with pytest.raises(InputError) as e:
-            solve("projectile", {"release_height": 0, "release_angle": 45, "release_speed": 7, "distance": 6,
-                                 "effects": effects, "drag_coefficient": 1e-9})
+            solve(
+                "projectile",
+                {
+                    "release_height": 0,
+                    "release_angle": 45,
+                    "release_speed": 7,
+                    "distance": 6,
+                    "effects": effects,
+                    "drag_coefficient": 1e-9,
+                },
+            )
         assert e.value.field == "distance" and "4.997" in e.value.message
     with pytest.raises(InputError) as e:
         solve("projectile", {"release_height": 0, "release_angle": -5})
@@ -154,8 +172,15 @@ def reference_drag_flight(h_i, th, v, d, kd):
 
     hit = lambda t, s: s[0] - d  # noqa: E731
     hit.terminal = True
-    sol = solve_ivp(rhs, (0, 60), [0, h_i, v * math.cos(th), v * math.sin(th)], method="DOP853",
-                    rtol=1e-13, atol=1e-14, events=hit)
+    sol = solve_ivp(
+        rhs,
+        (0, 60),
+        [0, h_i, v * math.cos(th), v * math.sin(th)],
+        method="DOP853",
+        rtol=1e-13,
+        atol=1e-14,
+        events=hit,
+    )
     return sol.y_events[0][0][1], sol.t_events[0][0]
 
 
@@ -172,24 +197,40 @@ def test_error_falls_with_tolerance():
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=list(HealthCheck))
-@given(h_i=st.one_of(st.just(0.0), st.floats(1e-3, 2)), th=st.floats(-20, 80).filter(lambda x: abs(x) > 1e-3), v=st.floats(3, 25),
-       d=st.floats(0.3, 10))
+@given(
+    h_i=st.one_of(st.just(0.0), st.floats(1e-3, 2)),
+    th=st.floats(-20, 80).filter(lambda x: abs(x) > 1e-3),
+    v=st.floats(3, 25),
+    d=st.floats(0.3, 10),
+)
 def test_reverse_of_forward_in_vacuum(h_i, th, v, d):
     try:
         fwd = out({"release_height": h_i, "release_angle": th, "release_speed": v, "distance": d})
     except InputError as e:
         assert e.field in {"distance", "release_angle"}  # lands on the floor first / starts downward on it
         return
-    back = out({"mode": "reverse", "release_height": h_i, "target_height": fwd["target_height"], "distance": d,
-                "target_angle": f"{fwd['target_angle']!r} rad"})
+    back = out(
+        {
+            "mode": "reverse",
+            "release_height": h_i,
+            "target_height": fwd["target_height"],
+            "distance": d,
+            "target_angle": f"{fwd['target_angle']!r} rad",
+        }
+    )
     assert math.degrees(back["release_angle"]) == pytest.approx(th, abs=1e-9)
     assert back["release_speed"] == pytest.approx(v, rel=1e-9)
     assert back["time_of_flight"] == pytest.approx(fwd["time_of_flight"], rel=1e-9)
 
 
 @settings(max_examples=12, deadline=None, suppress_health_check=list(HealthCheck))
-@given(h_i=st.floats(0.2, 1.5), th=st.floats(20, 70), v=st.floats(6, 15), d=st.floats(1, 6),
-       spin=st.sampled_from([0, 1500, -1500]))
+@given(
+    h_i=st.floats(0.2, 1.5),
+    th=st.floats(20, 70),
+    v=st.floats(6, 15),
+    d=st.floats(1, 6),
+    spin=st.sampled_from([0, 1500, -1500]),
+)
 def test_reverse_of_forward_with_drag(h_i, th, v, d, spin):
     effects = "air_drag, magnus" if spin else "air_drag"
     common = {"effects": effects, "spin": spin, "accuracy": "tight", "release_height": h_i, "distance": d}
@@ -199,8 +240,14 @@ def test_reverse_of_forward_with_drag(h_i, th, v, d, spin):
         assert e.field == "distance"
         return
     assume(fwd["target_angle"] < th * DEG - 0.05)  # well inside the reachable region
-    back = out({**common, "mode": "reverse", "target_height": fwd["target_height"],
-                "target_angle": f"{fwd['target_angle']!r} rad"})
+    back = out(
+        {
+            **common,
+            "mode": "reverse",
+            "target_height": fwd["target_height"],
+            "target_angle": f"{fwd['target_angle']!r} rad",
+        }
+    )
     assert math.degrees(back["release_angle"]) == pytest.approx(th, abs=1e-6)
     assert back["release_speed"] == pytest.approx(v, rel=1e-7)
 
@@ -208,13 +255,24 @@ def test_reverse_of_forward_with_drag(h_i, th, v, d, spin):
 def test_backspin_reaches_a_target_angle_above_the_line_of_sight():
     """Magnus alone with strong backspin (k_m·v² ≈ 3.5 g) bends the path upward: the ball arrives at
     42.9°, above the 23.9° line from release to target, which the closed form (rightly) refuses."""
-    common = {"effects": "magnus", "ball_mass": 0.05, "lift_coefficient": 1, "spin": "3000 rpm",
-              "release_height": 0.5, "distance": 1.5, "accuracy": "tight"}
+    common = {
+        "effects": "magnus",
+        "ball_mass": 0.05,
+        "lift_coefficient": 1,
+        "spin": "3000 rpm",
+        "release_height": 0.5,
+        "distance": 1.5,
+        "accuracy": "tight",
+    }
     fwd = out({**common, "release_angle": 5, "release_speed": 8})
     line = math.atan2(fwd["target_height"] - 0.5, 1.5)
     assert fwd["target_angle"] > line + 0.3
-    reverse = {**common, "mode": "reverse", "target_height": fwd["target_height"],
-               "target_angle": f"{fwd['target_angle']!r} rad"}
+    reverse = {
+        **common,
+        "mode": "reverse",
+        "target_height": fwd["target_height"],
+        "target_angle": f"{fwd['target_angle']!r} rad",
+    }
     back = out(reverse)
     assert math.degrees(back["release_angle"]) == pytest.approx(5, abs=1e-6)
     assert back["release_speed"] == pytest.approx(8, rel=1e-7)
@@ -226,8 +284,18 @@ def test_backspin_reaches_a_target_angle_above_the_line_of_sight():
 def test_drag_unreachable_target_angle_names_the_field():
     # 40 m away with heavy drag, arriving almost level: no release does it
     with pytest.raises(InputError) as e:
-        solve("projectile", {"mode": "reverse", "effects": "air_drag", "distance": 40, "target_angle": -1,
-                             "target_height": 0.5, "drag_coefficient": 1.5, "ball_mass": 0.05})
+        solve(
+            "projectile",
+            {
+                "mode": "reverse",
+                "effects": "air_drag",
+                "distance": 40,
+                "target_angle": -1,
+                "target_height": 0.5,
+                "drag_coefficient": 1.5,
+                "ball_mass": 0.05,
+            },
+        )
     assert e.value.field in {"target_angle", "distance"}
 
 
@@ -250,27 +318,40 @@ def test_builtin_presets_solve():
 
 
 def test_drag_preset_reverse_needs_more_speed_than_vacuum():
-    p = next(p for p in presets.listing() if p.calculator == "projectile" and "air_drag" in str(p.inputs.get("effects")))
+    p = next(
+        p
+        for p in presets.listing()
+        if p.calculator == "projectile" and "air_drag" in str(p.inputs.get("effects"))
+    )
     drag = solve("projectile", p.inputs).outputs
     vac = solve("projectile", {**p.inputs, "effects": ""}).outputs
     key = "release_speed" if "release_speed" in drag else "target_height"
     assert drag[key].value > vac[key].value if key == "release_speed" else drag[key].value < vac[key].value
 
 
-@pytest.mark.parametrize("effects, spin, h_i, th, v, d", [
-    ("air_drag, magnus", -2000, 0.97, 68.4, 23.7, 14.79),  # topspin + drag: far from the parabola
-    ("magnus", 500, 1.96, 60.9, 17.57, 12.95),  # backspin lift ≈ 0.6 g at release
-    ("magnus", 5000, 1.92, 33.8, 22.37, 1.12),  # arrives above the line of sight: no vacuum answer
-    ("air_drag, magnus", 5000, 1.52, 1.7, 25.66, 0.78),  # the same, nearly flat
-])
+@pytest.mark.parametrize(
+    "effects, spin, h_i, th, v, d",
+    [
+        ("air_drag, magnus", -2000, 0.97, 68.4, 23.7, 14.79),  # topspin + drag: far from the parabola
+        ("magnus", 500, 1.96, 60.9, 17.57, 12.95),  # backspin lift ≈ 0.6 g at release
+        ("magnus", 5000, 1.92, 33.8, 22.37, 1.12),  # arrives above the line of sight: no vacuum answer
+        ("air_drag, magnus", 5000, 1.52, 1.7, 25.66, 0.78),  # the same, nearly flat
+    ],
+)
 def test_reverse_finds_throws_hybrid_powell_misses_from_the_vacuum_guess(effects, spin, h_i, th, v, d):
     """Found by a random reverse(forward(x)) sweep: straight hybrid Powell from the vacuum answer (or
     the above-the-line guess) fails on these; continuation (effects grown from 0, or θ_f moved up
     from below the line) must return the throw that was flown forward."""
     common = {"effects": effects, "spin": spin, "accuracy": "tight", "release_height": h_i, "distance": d}
     fwd = out({**common, "release_angle": th, "release_speed": v})
-    back = out({**common, "mode": "reverse", "target_height": fwd["target_height"],
-                "target_angle": f"{fwd['target_angle']!r} rad"})
+    back = out(
+        {
+            **common,
+            "mode": "reverse",
+            "target_height": fwd["target_height"],
+            "target_angle": f"{fwd['target_angle']!r} rad",
+        }
+    )
     assert math.degrees(back["release_angle"]) == pytest.approx(th, abs=1e-6)
     assert back["release_speed"] == pytest.approx(v, rel=1e-7)
 
@@ -288,8 +369,15 @@ def test_apex_with_effects_is_the_located_top_of_the_flight():
 def test_reverse_from_1000_m_straight_down_is_an_input_error_not_an_overflow():
     """Released 1000 m up, 3 m away, arriving at −89.999° with drag and Magnus: a trial step of the
     root finder's flights overflowed the integrator's error norm (OverflowError traceback)."""
-    raw = {"mode": "reverse", "release_height": 1000, "target_height": 0, "distance": 3,
-           "target_angle": -89.999, "effects": "air_drag, magnus", "spin": 3000}
+    raw = {
+        "mode": "reverse",
+        "release_height": 1000,
+        "target_height": 0,
+        "distance": 3,
+        "target_angle": -89.999,
+        "effects": "air_drag, magnus",
+        "spin": 3000,
+    }
     try:
         o = out(raw)
     except InputError as e:

@@ -4,7 +4,8 @@ and forward(reverse(x)) = x."""
 import math
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gearhead.core import presets
 from gearhead.core.errors import InputError

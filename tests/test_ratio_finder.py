@@ -11,21 +11,38 @@ import pytest
 
 from gearhead.core.errors import InputError
 from gearhead.core.model import solve
-from gearhead.core.parts import (BORES, FAMILIES, SHAFT_BORES, VENDORS, Belt, Catalogue, Part, catalogue,
-                        problems, read)
-from gearhead.core.parts import finder
+from gearhead.core.parts import (
+    FAMILIES,
+    SHAFT_BORES,
+    VENDORS,
+    catalogue,
+    finder,
+    problems,
+    read,
+)
 
 ALL = dict(vendors=frozenset(VENDORS), families=frozenset(FAMILIES), shaft_bores=frozenset(SHAFT_BORES))
 
 
 def query(target=22.5, **kw):
-    base = dict(target=target, ratio_min=target, ratio_max=target, input_bore="keyed_8mm",
-                output_bore="hex_half_in", min_teeth=10, max_teeth=84, max_stages=3, results=20, **ALL)
+    base = dict(
+        target=target,
+        ratio_min=target,
+        ratio_max=target,
+        input_bore="keyed_8mm",
+        output_bore="hex_half_in",
+        min_teeth=10,
+        max_teeth=84,
+        max_stages=3,
+        results=20,
+        **ALL,
+    )
     base.update(kw)
     return finder.Query(**base)
 
 
 # --- the catalogue -------------------------------------------------------------------------------
+
 
 def test_catalogue_is_consistent():
     cat = read()
@@ -33,31 +50,50 @@ def test_catalogue_is_consistent():
     assert len(cat.parts) > 600 and len(cat.belts) > 300
     assert {p.vendor for p in cat.parts} >= {"REV", "WCP", "AndyMark", "Thrifty", "SDS"}
     assert {p.family for p in cat.parts} == set(FAMILIES) - {"planetary"}
-    assert {p.bore for p in cat.parts} >= {"hex_half_in", "hex_3_8_in", "round_1125_in", "maxspline",
-                                          "splinexl", "keyed_8mm", "falcon"}
+    assert {p.bore for p in cat.parts} >= {
+        "hex_half_in",
+        "hex_3_8_in",
+        "round_1125_in",
+        "maxspline",
+        "splinexl",
+        "keyed_8mm",
+        "falcon",
+    }
     systems = {s.system: s for s in cat.planetaries}
     assert set(systems) == {"MAXPlanetary", "UltraPlanetary", "VersaPlanetary"}
     # REV's actual UltraPlanetary ratios, not the nominal 3, 4, 5
-    assert [c.ratio for c in systems["UltraPlanetary"].cartridges] == [Fraction(84, 29), Fraction(76, 21),
-                                                                       Fraction(68, 13)]
+    assert [c.ratio for c in systems["UltraPlanetary"].cartridges] == [
+        Fraction(84, 29),
+        Fraction(76, 21),
+        Fraction(68, 13),
+    ]
 
 
-@pytest.mark.parametrize("spoil,expected", [
-    (lambda c: replace(c, parts=c.parts + (replace(c.parts[0], family="gear_48dp"),)), "unknown family"),
-    (lambda c: replace(c, parts=c.parts + (replace(c.parts[0], bore="hex_7_16_in"),)), "unknown bore"),
-    (lambda c: replace(c, parts=c.parts + (c.parts[3],)), "listed twice"),
-    (lambda c: replace(c, parts=c.parts + (replace(c.parts[5], teeth=c.parts[5].teeth + 1),)),
-     "one part number for two different parts"),
-    (lambda c: replace(c, parts=c.parts + (replace(c.parts[0], vendor="Acme"),)), "unknown vendor"),
-    (lambda c: replace(c, pitches={**c.pitches, ("gears", "REV", "gear_20dp"): "32 DP"}), "has pitch"),
-    (lambda c: replace(c, belts=c.belts + (replace(c.belts[0], family="chain_25"),)), "a belt in the chain family"),
-])
+@pytest.mark.parametrize(
+    "spoil,expected",
+    [
+        (lambda c: replace(c, parts=c.parts + (replace(c.parts[0], family="gear_48dp"),)), "unknown family"),
+        (lambda c: replace(c, parts=c.parts + (replace(c.parts[0], bore="hex_7_16_in"),)), "unknown bore"),
+        (lambda c: replace(c, parts=c.parts + (c.parts[3],)), "listed twice"),
+        (
+            lambda c: replace(c, parts=c.parts + (replace(c.parts[5], teeth=c.parts[5].teeth + 1),)),
+            "one part number for two different parts",
+        ),
+        (lambda c: replace(c, parts=c.parts + (replace(c.parts[0], vendor="Acme"),)), "unknown vendor"),
+        (lambda c: replace(c, pitches={**c.pitches, ("gears", "REV", "gear_20dp"): "32 DP"}), "has pitch"),
+        (
+            lambda c: replace(c, belts=c.belts + (replace(c.belts[0], family="chain_25"),)),
+            "a belt in the chain family",
+        ),
+    ],
+)
 def test_catalogue_checks_catch_mistakes(spoil, expected):
     found = problems(spoil(read()))
     assert any(expected in p for p in found), found
 
 
 # --- brute force, from the raw parts ---------------------------------------------------------------
+
 
 def raw_stages(q):
     """Every (identity, ratio, parts, drive bores, driven bores, kind) the filters allow, from the
@@ -66,8 +102,11 @@ def raw_stages(q):
     allowed = set(q.shaft_bores)
     out = []
     reducing = q.target >= 1
-    usable = [p for p in cat.parts if p.vendor in q.vendors and p.family in q.families
-              and q.min_teeth <= p.teeth <= q.max_teeth]
+    usable = [
+        p
+        for p in cat.parts
+        if p.vendor in q.vendors and p.family in q.families and q.min_teeth <= p.teeth <= q.max_teeth
+    ]
     by = {}
     for p in usable:
         by.setdefault((p.family, p.teeth), []).append(p)
@@ -116,7 +155,7 @@ def brute_force(q, stages_allowed):
                 continue
             ratio = math.prod((st[1] for st in combo), start=Fraction(1))
             err = max(target_lo - ratio, ratio - target_hi, Fraction(0))
-            ident = tuple(sorted((repr(st[0]) for st in combo)))
+            ident = tuple(sorted(repr(st[0]) for st in combo))
             key = (float(err), k, sum(st[2] for st in combo))
             if ident not in best or key < best[ident]:
                 best[ident] = key
@@ -128,8 +167,10 @@ def finder_keys(q):
     return [(c.error, len(c.stages), c.parts) for c in combos]
 
 
-@pytest.mark.parametrize("target,bore", [(3.0, "keyed_8mm"), (4.2, "falcon"), (2.57, "hex_half_in"),
-                                         (0.6, "falcon"), (7.77, "splinexs")])
+@pytest.mark.parametrize(
+    "target,bore",
+    [(3.0, "keyed_8mm"), (4.2, "falcon"), (2.57, "hex_half_in"), (0.6, "falcon"), (7.77, "splinexs")],
+)
 def test_single_stage_agrees_with_exhaustive_enumeration(target, bore):
     q = query(target, input_bore=bore, max_stages=1, results=60, output_bore="any")
     want = brute_force(q, [1])[:60]
@@ -137,17 +178,51 @@ def test_single_stage_agrees_with_exhaustive_enumeration(target, bore):
     assert finder_keys(q) == want
 
 
-@pytest.mark.parametrize("target,k,kw", [
-    # small enough for the brute force (all k-tuples of raw stages) to run in a second or two
-    (22.5, 2, dict(vendors=frozenset({"REV"}), min_teeth=12, max_teeth=60)),
-    (13.7, 2, dict(families=frozenset({"htd_5mm", "gear_20dp", "planetary"}), vendors=frozenset({"REV", "WCP"}),
-                   min_teeth=12, max_teeth=48)),
-    (47.3, 3, dict(vendors=frozenset({"REV"}), families=frozenset({"chain_25", "planetary"}), min_teeth=16,
-                   max_teeth=36)),
-    (0.45, 2, dict(input_bore="falcon", families=frozenset({"gear_20dp", "htd_5mm"}), min_teeth=12, max_teeth=48)),
-    (9.0, 2, dict(vendors=frozenset({"WCP"}), same_shaft_bore=False, output_bore="any", min_teeth=12,
-                  max_teeth=48)),
-])
+@pytest.mark.parametrize(
+    "target,k,kw",
+    [
+        # small enough for the brute force (all k-tuples of raw stages) to run in a second or two
+        (22.5, 2, dict(vendors=frozenset({"REV"}), min_teeth=12, max_teeth=60)),
+        (
+            13.7,
+            2,
+            dict(
+                families=frozenset({"htd_5mm", "gear_20dp", "planetary"}),
+                vendors=frozenset({"REV", "WCP"}),
+                min_teeth=12,
+                max_teeth=48,
+            ),
+        ),
+        (
+            47.3,
+            3,
+            dict(
+                vendors=frozenset({"REV"}),
+                families=frozenset({"chain_25", "planetary"}),
+                min_teeth=16,
+                max_teeth=36,
+            ),
+        ),
+        (
+            0.45,
+            2,
+            dict(
+                input_bore="falcon", families=frozenset({"gear_20dp", "htd_5mm"}), min_teeth=12, max_teeth=48
+            ),
+        ),
+        (
+            9.0,
+            2,
+            dict(
+                vendors=frozenset({"WCP"}),
+                same_shaft_bore=False,
+                output_bore="any",
+                min_teeth=12,
+                max_teeth=48,
+            ),
+        ),
+    ],
+)
 def test_pruned_multi_stage_search_agrees_with_brute_force(target, k, kw):
     q = query(target, max_stages=k, results=25, **kw)
     want = brute_force(q, range(1, k + 1))[:25]
@@ -162,9 +237,16 @@ def test_planetary_plus_belt_found_for_five_times_three():
     # pulley, so the output may be any bore
     q = query(15, max_stages=2, families=frozenset({"planetary", "htd_5mm"}), results=60, output_bore="any")
     combos, _ = finder.search(q)
-    pairs = [c for c in combos if len(c.stages) == 2 and c.error == 0
-             and c.stages[0].system is not None and c.stages[0].ratio == 5
-             and c.stages[1].family == "htd_5mm" and c.stages[1].ratio == 3]
+    pairs = [
+        c
+        for c in combos
+        if len(c.stages) == 2
+        and c.error == 0
+        and c.stages[0].system is not None
+        and c.stages[0].ratio == 5
+        and c.stages[1].family == "htd_5mm"
+        and c.stages[1].ratio == 3
+    ]
     assert pairs, [(c.ratio, [s.identity for s in c.stages]) for c in combos]
     # the one-stage 5:1 x 3:1 stack ranks first (fewer stages), and every exact two-stage with
     # fewer parts (two gearboxes, 2 + 2) ahead of the planetary and belt (2 + 3)
@@ -192,11 +274,14 @@ def assembled(combo, q):
     return bool(shafts & out)
 
 
-@pytest.mark.parametrize("kw", [
-    dict(input_bore="falcon", output_bore="maxspline", vendors=frozenset({"REV", "WCP", "SDS"})),
-    dict(input_bore="keyed_8mm", output_bore="hex_3_8_in", shaft_bores=frozenset({"hex_3_8_in"})),
-    dict(input_bore="splinexs", output_bore="splinexl", vendors=frozenset({"WCP"})),
-])
+@pytest.mark.parametrize(
+    "kw",
+    [
+        dict(input_bore="falcon", output_bore="maxspline", vendors=frozenset({"REV", "WCP", "SDS"})),
+        dict(input_bore="keyed_8mm", output_bore="hex_3_8_in", shaft_bores=frozenset({"hex_3_8_in"})),
+        dict(input_bore="splinexs", output_bore="splinexl", vendors=frozenset({"WCP"})),
+    ],
+)
 def test_bores_and_vendors_are_respected(kw):
     q = query(12.0, max_stages=2, **kw)
     combos, _ = finder.search(q)
@@ -207,8 +292,14 @@ def test_bores_and_vendors_are_respected(kw):
             if s.system is not None:
                 assert s.system.vendor in q.vendors
     # and the calculator lists only those vendors' part numbers in the table
-    v = {"target_ratio": 12, "max_stages": 2, "input_bore": q.input_bore, "output_bore": q.output_bore,
-         "vendors": ", ".join(sorted(q.vendors)), "shaft_bores": ", ".join(sorted(q.shaft_bores))}
+    v = {
+        "target_ratio": 12,
+        "max_stages": 2,
+        "input_bore": q.input_bore,
+        "output_bore": q.output_bore,
+        "vendors": ", ".join(sorted(q.vendors)),
+        "shaft_bores": ", ".join(sorted(q.shaft_bores)),
+    }
     sol = solve("ratio_finder", v)
     for row in sol.tables["combinations"]:
         for vendor in VENDORS:
@@ -223,11 +314,18 @@ def test_a_bore_no_part_has_gives_no_result_and_says_why():
 
 
 def test_impossible_target_gives_the_nearest_and_says_why():
-    sol = solve("ratio_finder", {"target_ratio": 50000, "max_stages": 2, "families": "gear_20dp, htd_5mm",
-                                 "vendors": "REV, Thrifty"})
+    sol = solve(
+        "ratio_finder",
+        {"target_ratio": 50000, "max_stages": 2, "families": "gear_20dp, htd_5mm", "vendors": "REV, Thrifty"},
+    )
     rows = sol.tables["combinations"]
     assert rows, "the nearest combinations are listed"
-    q = query(50000, max_stages=2, families=frozenset({"gear_20dp", "htd_5mm"}), vendors=frozenset({"REV", "Thrifty"}))
+    q = query(
+        50000,
+        max_stages=2,
+        families=frozenset({"gear_20dp", "htd_5mm"}),
+        vendors=frozenset({"REV", "Thrifty"}),
+    )
     reach = brute_force(replace(q, target=1.0, ratio_min=1e9, ratio_max=1e9), [1, 2])
     assert sol.outputs["ratio"].value == pytest.approx(1e9 - reach[0][0], rel=1e-9)  # the largest
     assert any("Out of reach" in w and "at most" in w for w in sol.warnings), sol.warnings
@@ -242,14 +340,20 @@ def test_near_miss_says_how_far():
 
 # --- center distances: the chain_belt and ratio_distance equations, checked by sending ----------
 
+
 def test_every_belt_and_gear_row_is_what_the_other_calculators_compute():
     from gearhead.core.registry import get
 
     calc_table = get("ratio_finder").tables[0]
     seen = set()
-    rows = [row for families in ("htd_5mm, gt2_3mm, rt25", "chain_25, chain_35", "gear_20dp, gear_32dp")
-            for row in solve("ratio_finder", {"target_ratio": 9, "max_stages": 2, "results": 30,
-                                              "output_bore": "any", "families": families}).tables["combinations"]]
+    rows = [
+        row
+        for families in ("htd_5mm, gt2_3mm, rt25", "chain_25, chain_35", "gear_20dp, gear_32dp")
+        for row in solve(
+            "ratio_finder",
+            {"target_ratio": 9, "max_stages": 2, "results": 30, "output_bore": "any", "families": families},
+        ).tables["combinations"]
+    ]
     for row in rows:
         for target, mapping in calc_table.exports.items():
             if not all(c in row for c in mapping.values()):
@@ -257,21 +361,43 @@ def test_every_belt_and_gear_row_is_what_the_other_calculators_compute():
             seen.add(target)
             sent = {field: row[col].value for field, col in mapping.items()}
             if target == "chain_belt":
-                other = solve("chain_belt", {k: (v if not isinstance(v, float) else f"{v!r} m") for k, v in sent.items()})
-                assert other.outputs["center_distance"].value == pytest.approx(row["center_distance"].value, rel=1e-12)
+                other = solve(
+                    "chain_belt",
+                    {k: (v if not isinstance(v, float) else f"{v!r} m") for k, v in sent.items()},
+                )
+                assert other.outputs["center_distance"].value == pytest.approx(
+                    row["center_distance"].value, rel=1e-12
+                )
                 assert other.outputs["clearance"].value >= -1e-12  # pitch circles apart
             else:
-                other = solve("ratio_distance", {"ratio": sent["ratio"], "center_distance": f"{sent['center_distance']!r} m",
-                                                 "diametral_pitch": f"{sent['diametral_pitch']!r} 1/m"})
+                other = solve(
+                    "ratio_distance",
+                    {
+                        "ratio": sent["ratio"],
+                        "center_distance": f"{sent['center_distance']!r} m",
+                        "diametral_pitch": f"{sent['diametral_pitch']!r} 1/m",
+                    },
+                )
                 pair = sorted((row["teeth_1"].value, row["teeth_2"].value))
-                assert [other.outputs["nearest_small_teeth"].value, other.outputs["nearest_large_teeth"].value] == pair
+                assert [
+                    other.outputs["nearest_small_teeth"].value,
+                    other.outputs["nearest_large_teeth"].value,
+                ] == pair
     assert seen == {"chain_belt", "ratio_distance"}
 
 
 def test_center_distance_limits_are_met():
-    v = {"target_ratio": 6, "max_stages": 2, "center_limits": "per_stage", "families": "chain_25, htd_5mm",
-         "center_min_1": "3 in", "center_max_1": "5 in", "center_min_2": "6 in", "center_max_2": "9 in",
-         "results": 30}
+    v = {
+        "target_ratio": 6,
+        "max_stages": 2,
+        "center_limits": "per_stage",
+        "families": "chain_25, htd_5mm",
+        "center_min_1": "3 in",
+        "center_max_1": "5 in",
+        "center_min_2": "6 in",
+        "center_max_2": "9 in",
+        "results": 30,
+    }
     sol = solve("ratio_finder", v)
     rows = sol.tables["combinations"]
     assert rows
@@ -297,16 +423,20 @@ def test_loop_choice_is_the_shortest_stocked_belt():
 
 # --- inputs and the command line -----------------------------------------------------------------
 
-@pytest.mark.parametrize("raw,field", [
-    ({"mode": "range", "ratio_min": 5, "ratio_max": 3}, "ratio_max"),
-    ({"mode": "range", "ratio_min": 0.5, "ratio_max": 3}, "ratio_max"),
-    ({"min_teeth": 50, "max_teeth": 20}, "max_teeth"),
-    ({"vendors": ""}, "vendors"),
-    ({"target_ratio": "nan"}, "target_ratio"),
-    ({"target_ratio": 0}, "target_ratio"),
-    ({"max_stages": 4}, "max_stages"),
-    ({"center_limits": "per_stage", "center_min_1": "5 in", "center_max_1": "2 in"}, "center_max_1"),
-])
+
+@pytest.mark.parametrize(
+    "raw,field",
+    [
+        ({"mode": "range", "ratio_min": 5, "ratio_max": 3}, "ratio_max"),
+        ({"mode": "range", "ratio_min": 0.5, "ratio_max": 3}, "ratio_max"),
+        ({"min_teeth": 50, "max_teeth": 20}, "max_teeth"),
+        ({"vendors": ""}, "vendors"),
+        ({"target_ratio": "nan"}, "target_ratio"),
+        ({"target_ratio": 0}, "target_ratio"),
+        ({"max_stages": 4}, "max_stages"),
+        ({"center_limits": "per_stage", "center_min_1": "5 in", "center_max_1": "2 in"}, "center_max_1"),
+    ],
+)
 def test_bad_entries_name_their_field(raw, field):
     with pytest.raises(InputError) as err:
         solve("ratio_finder", raw)
@@ -316,7 +446,9 @@ def test_bad_entries_name_their_field(raw, field):
 def test_cli_json(capsys):
     from gearhead.tui.cli import main
 
-    assert main(["solve", "ratio_finder", "--set", "target_ratio=22.5", "--set", "max_stages=2", "--json"]) == 0
+    assert (
+        main(["solve", "ratio_finder", "--set", "target_ratio=22.5", "--set", "max_stages=2", "--json"]) == 0
+    )
     out = json.loads(capsys.readouterr().out)
     assert out["outputs"]["ratio"]["value"] == 22.5
     rows = out["tables"]["combinations"]
@@ -331,17 +463,20 @@ def test_other_calculators_json_has_no_tables_key():
 
 # --- the tab ------------------------------------------------------------------------------------
 
+
 async def test_ctrl_g_sends_the_belt_row_under_the_cursor_to_chain_belt():
     from textual.widgets import DataTable
 
-    from tests.tui_helpers import settle
     from gearhead.tui.app import GearheadApp
+    from tests.tui_helpers import settle
 
     app = GearheadApp(blink=False, initial="ratio_finder", hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
         tab = app.current_tab
-        tab.set_entries({"families": "htd_5mm", "max_stages": "1", "target_ratio": "2.5", "output_bore": "any"})
+        tab.set_entries(
+            {"families": "htd_5mm", "max_stages": "1", "target_ratio": "2.5", "output_bore": "any"}
+        )
         await settle(pilot)
         rows = tab.solution.tables["combinations"]
         n = next(i for i, r in enumerate(rows) if "links" in r)
@@ -353,14 +488,15 @@ async def test_ctrl_g_sends_the_belt_row_under_the_cursor_to_chain_belt():
         await settle(pilot)
         assert app.current_calculator == "chain_belt"
         belt = app.current_tab
-        assert belt.solution.outputs["center_distance"].value == pytest.approx(rows[n]["center_distance"].value,
-                                                                               rel=1e-12)
+        assert belt.solution.outputs["center_distance"].value == pytest.approx(
+            rows[n]["center_distance"].value, rel=1e-12
+        )
         assert belt.entries["teeth_1"] == str(rows[n]["teeth_1"].value)
 
 
 async def test_gear_ratio_sends_its_ratio_to_the_finder():
-    from tests.tui_helpers import settle
     from gearhead.tui.app import GearheadApp
+    from tests.tui_helpers import settle
 
     app = GearheadApp(blink=False, initial="gear_ratio", hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:
@@ -416,14 +552,17 @@ def largest_reachable(q):
     return best
 
 
-@pytest.mark.parametrize("kw", [
-    dict(target=5000, families=frozenset({"gear_20dp"})),  # bores cap 3 stages at 302.4:1
-    dict(target=5000),
-    dict(target=1e5),  # the field's largest
-    dict(target=1e5, families=frozenset(FAMILIES) - {"planetary"}, min_teeth=1, max_teeth=1000),
-    dict(target=1234.5, families=frozenset({"chain_25", "htd_5mm", "gear_20dp"})),
-    dict(target=math.sqrt(100 * 1e5), ratio_min=100, ratio_max=1e5, families=frozenset({"gear_20dp"})),
-])
+@pytest.mark.parametrize(
+    "kw",
+    [
+        dict(target=5000, families=frozenset({"gear_20dp"})),  # bores cap 3 stages at 302.4:1
+        dict(target=5000),
+        dict(target=1e5),  # the field's largest
+        dict(target=1e5, families=frozenset(FAMILIES) - {"planetary"}, min_teeth=1, max_teeth=1000),
+        dict(target=1234.5, families=frozenset({"chain_25", "htd_5mm", "gear_20dp"})),
+        dict(target=math.sqrt(100 * 1e5), ratio_min=100, ratio_max=1e5, families=frozenset({"gear_20dp"})),
+    ],
+)
 def test_out_of_reach_and_wide_targets_search_in_bounded_memory(kw):
     """Once ~12 GB and 40 s: the windows grew past every bore-infeasible value tuple at once."""
     import tracemalloc

@@ -8,16 +8,16 @@ import dataclasses
 import io
 import threading
 
-import gearhead.tui.app as app_module
 import pytest
+from rich.cells import cell_len
+from textual.widgets import DataTable, Static
+
+import gearhead.tui.app as app_module
 from gearhead.core import export
 from gearhead.core.model import solve
 from gearhead.core.registry import get
 from gearhead.tui.app import GearheadApp
 from gearhead.tui.components.calculator_tab import CalculatorTab
-from rich.cells import cell_len
-from textual.widgets import DataTable, Static
-
 from tests.tui_helpers import settle
 
 
@@ -25,9 +25,12 @@ def numbered(calc_id: str):
     """The calculator with an equation number of our own on every output (others fill in the
     real ones in core/calculators): "(1)", "(2)" … and one range; and a help where one is missing."""
     calc = get(calc_id)
-    outputs = tuple(dataclasses.replace(o, equation=f"({i})" if i != 2 else "(61)-(64)",
-                                        help=o.help or f"How {o.label} is found.")
-                    for i, o in enumerate(calc.outputs, 1))
+    outputs = tuple(
+        dataclasses.replace(
+            o, equation=f"({i})" if i != 2 else "(61)-(64)", help=o.help or f"How {o.label} is found."
+        )
+        for i, o in enumerate(calc.outputs, 1)
+    )
     return dataclasses.replace(calc, outputs=outputs)
 
 
@@ -88,8 +91,11 @@ def shown_cut(tab: CalculatorTab) -> list[str]:
     """Values or units that do not fit their column, or columns that do not fit the table."""
     table = tab.query_one(".results", DataTable)
     value = table.columns[next(k for k in table.columns if k.value == "value")]
-    cut = [text for text in (str(table.get_cell(name, "value")) for name in tab.solution.outputs)
-           if cell_len(text) > value.width]
+    cut = [
+        text
+        for text in (str(table.get_cell(name, "value")) for name in tab.solution.outputs)
+        if cell_len(text) > value.width
+    ]
     used = sum(c.get_render_width(table) for c in table.columns.values()) + 2  # + the scrollbar
     if used > table.size.width:
         cut.append(f"columns need {used} of {table.size.width}")
@@ -114,8 +120,9 @@ async def test_values_and_units_are_never_cut(calc_id, size):
             # a unit wider than any the calculator foresees (typed, shown "as entered") widens the
             # value column rather than being cut
             speed = next(o for o in calc.outputs if o.quantity in ("speed", "angular_speed"))
-            tab.display_units = {speed.name: "furlong/fortnight" if speed.quantity == "speed"
-                                 else "revolution/fortnight"}
+            tab.display_units = {
+                speed.name: "furlong/fortnight" if speed.quantity == "speed" else "revolution/fortnight"
+            }
             tab.solve()
             await settle(pilot)
             assert "fortnight" in tab.solution.outputs[speed.name].text
@@ -192,5 +199,7 @@ async def test_a_key_drops_the_pending_error_estimate(monkeypatch):
         assert first.outputs["error_estimate"].text == "…"
         assert any(solution is tab.solution and value is not None for solution, value in shown)
         table = tab.query_one(".results", DataTable)
-        assert cell(table, "error_estimate", "value") == solve(
-            "pneumatics", {**tab.entries}).outputs["error_estimate"].text
+        assert (
+            cell(table, "error_estimate", "value")
+            == solve("pneumatics", {**tab.entries}).outputs["error_estimate"].text
+        )

@@ -7,7 +7,8 @@ The only acceptable failure is an InputError naming a real field (never the "(re
 import math
 
 import pytest
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from gearhead.core.errors import InputError
 from gearhead.core.model import solve
@@ -18,18 +19,43 @@ CALC_IDS = list(calculators())
 numbers = st.one_of(
     st.sampled_from([0, -0.0, 1, -1, 1e-300, -1e-300, 1e-12, 1e12, 1e300, -1e300, 0.5, 2, 3]),
     st.floats(allow_nan=False, allow_infinity=False),
-    st.integers(min_value=-10**6, max_value=10**6),
+    st.integers(min_value=-(10**6), max_value=10**6),
 )
-junk = st.sampled_from(["", " ", "abc", "nan", "inf", "-inf", "1e999", "5 parsecs/", "3 kg", "2 psi",
-                        "(", "1/0", "0 m", "7 in", "12 ft/s", "45 deg", "100 rpm", "10 %", "1e-320"])
+junk = st.sampled_from(
+    [
+        "",
+        " ",
+        "abc",
+        "nan",
+        "inf",
+        "-inf",
+        "1e999",
+        "5 parsecs/",
+        "3 kg",
+        "2 psi",
+        "(",
+        "1/0",
+        "0 m",
+        "7 in",
+        "12 ft/s",
+        "45 deg",
+        "100 rpm",
+        "10 %",
+        "1e-320",
+    ]
+)
 
 
 def field_value(f):
     if f.kind.numeric:  # quantities and whole numbers
         return st.one_of(numbers, numbers.map(str), junk, st.sampled_from(["2.5", "x", "1e400"]))
     words = f.kind.vocabulary(f)  # choice and flag names, yes/no words...
-    return st.one_of(st.sampled_from(words), st.lists(st.sampled_from(words), unique=True).map(", ".join),
-                     st.booleans(), st.sampled_from(["not-a-choice", "warp_drive", "maybe"]))
+    return st.one_of(
+        st.sampled_from(words),
+        st.lists(st.sampled_from(words), unique=True).map(", ".join),
+        st.booleans(),
+        st.sampled_from(["not-a-choice", "warp_drive", "maybe"]),
+    )
 
 
 def inputs_for(calc):

@@ -9,10 +9,11 @@ from tests.tui_helpers import settle
 SIZE = (140, 45)
 
 
-
 @pytest.mark.parametrize("calc_id", list(calculators()))
 def test_tab_snapshot(snap_compare, calc_id):
-    assert snap_compare(GearheadApp(blink=False, initial=calc_id, hide_timings=True), terminal_size=SIZE, run_before=settle)
+    assert snap_compare(
+        GearheadApp(blink=False, initial=calc_id, hide_timings=True), terminal_size=SIZE, run_before=settle
+    )
 
 
 def test_invalid_entry_snapshot(snap_compare):
@@ -21,5 +22,8 @@ def test_invalid_entry_snapshot(snap_compare):
         pilot.app.query_one("#calc-gear_ratio #in-radius").value = "3 kg"
         await settle(pilot)
 
-    assert snap_compare(GearheadApp(blink=False, initial="gear_ratio", hide_timings=True), terminal_size=SIZE,
-                        run_before=type_bad_radius)
+    assert snap_compare(
+        GearheadApp(blink=False, initial="gear_ratio", hide_timings=True),
+        terminal_size=SIZE,
+        run_before=type_bad_radius,
+    )

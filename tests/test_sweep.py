@@ -71,13 +71,16 @@ def test_sweep_with_infeasible_points_gives_the_reason():
     assert all(p.outputs == {} for p in bad)
 
 
-@pytest.mark.parametrize("calc_id, preset, vary", [
-    ("beam", "frame_rail_1x2", "length=10 in..40 in:9"),
-    ("lead_screw", "t8_lift", "friction=0.05..0.6:8:log"),
-    ("flywheel", "nbn_seed_single_wheel", "wheel_count=0..4"),
-    ("trebuchet", "seed_kastmaskin", "release_angle=30 deg..60 deg:4"),
-    ("motor", "v5_green", "voltage=6..13:5"),
-])
+@pytest.mark.parametrize(
+    "calc_id, preset, vary",
+    [
+        ("beam", "frame_rail_1x2", "length=10 in..40 in:9"),
+        ("lead_screw", "t8_lift", "friction=0.05..0.6:8:log"),
+        ("flywheel", "nbn_seed_single_wheel", "wheel_count=0..4"),
+        ("trebuchet", "seed_kastmaskin", "release_angle=30 deg..60 deg:4"),
+        ("motor", "v5_green", "voltage=6..13:5"),
+    ],
+)
 def test_sweep_points_equal_single_solves(calc_id, preset, vary):
     raw = preset_inputs(calc_id, preset)
     result = sweep.run(calc_id, raw, [vary])
@@ -114,26 +117,34 @@ def test_grid_first_input_slowest_and_exact():
 def test_cancel_keeps_the_points_solved():
     calls = []
     raw = preset_inputs("gear_ratio", "elevator_neo")
-    result = sweep.run("gear_ratio", raw, ["radius=0.5 in..1.5 in:50"],
-                       progress=lambda done, total: calls.append(done), cancelled=lambda: len(calls) >= 3)
+    result = sweep.run(
+        "gear_ratio",
+        raw,
+        ["radius=0.5 in..1.5 in:50"],
+        progress=lambda done, total: calls.append(done),
+        cancelled=lambda: len(calls) >= 3,
+    )
     assert result.cancelled and len(result.points) == 3
 
 
-@pytest.mark.parametrize("text, words", [
-    ("ratio=3..12", "not used with these choices"),
-    ("bogus=3..12", "not an input"),
-    ("radius=1..", "START..STOP"),
-    ("radius=1...2", "two dots"),
-    ("radius=1..2:1", "at least 2"),
-    ("radius=1..2:5:9", "twice"),
-    ("radius=1..2:lin", "neither"),
-    ("radius=1..1", "empty"),
-    ("radius=-1 in..1 in:5:log", "log"),
-    ("radius=1 lbf..2 in", "length"),
-    ("motor=1..2", "only numbers"),
-    ("radius=1..2:99999", "more than"),
-    ("radius", "NAME=START..STOP"),
-])
+@pytest.mark.parametrize(
+    "text, words",
+    [
+        ("ratio=3..12", "not used with these choices"),
+        ("bogus=3..12", "not an input"),
+        ("radius=1..", "START..STOP"),
+        ("radius=1...2", "two dots"),
+        ("radius=1..2:1", "at least 2"),
+        ("radius=1..2:5:9", "twice"),
+        ("radius=1..2:lin", "neither"),
+        ("radius=1..1", "empty"),
+        ("radius=-1 in..1 in:5:log", "log"),
+        ("radius=1 lbf..2 in", "length"),
+        ("motor=1..2", "only numbers"),
+        ("radius=1..2:99999", "more than"),
+        ("radius", "NAME=START..STOP"),
+    ],
+)
 def test_bad_vary_is_a_message(text, words):
     with pytest.raises(InputError) as exc:
         sweep.run("gear_ratio", {}, [text])

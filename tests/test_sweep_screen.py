@@ -4,9 +4,9 @@ table equal to core.sweep's, Esc cancels then closes, ctrl+e writes CSV; one sna
 import pytest
 
 from gearhead.core import sweep
-from tests.tui_helpers import settle
 from gearhead.tui.app import GearheadApp
 from gearhead.tui.components.sweep_screen import SweepScreen, default_range
+from tests.tui_helpers import settle
 
 SIZE = (140, 45)
 
@@ -123,8 +123,11 @@ def test_sweep_view_snapshot(snap_compare):
     async def sweep_radius(pilot):
         await open_sweep(pilot, "gear_ratio", "radius")
 
-    assert snap_compare(GearheadApp(blink=False, initial="gear_ratio", hide_timings=True), terminal_size=SIZE,
-                        run_before=sweep_radius)
+    assert snap_compare(
+        GearheadApp(blink=False, initial="gear_ratio", hide_timings=True),
+        terminal_size=SIZE,
+        run_before=sweep_radius,
+    )
 
 
 @pytest.mark.asyncio
@@ -141,12 +144,16 @@ async def test_tolerance_in_a_field_shows_spreads_and_goes_away():
         assert tab.error is None and tab.spread is not None
         _, want, _ = tolerance.solve("lead_screw", tab.entries)
         s = want.outputs["raise_torque"]
-        assert str(table.get_cell("raise_torque", "spread")) == tolerance.spread_text(tab.calculator, tab.solution, s)
+        assert str(table.get_cell("raise_torque", "spread")) == tolerance.spread_text(
+            tab.calculator, tab.solution, s
+        )
         assert str(table.get_cell("lead", "spread")) == "unaffected"
         assert "tolerances: worst case by corners" in str(tab.query_one(".status").render())
         table.focus()
         await pilot.pause()
-        table.move_cursor(row=list(table.rows).index(next(k for k in table.rows if k.value == "raise_torque")))
+        table.move_cursor(
+            row=list(table.rows).index(next(k for k in table.rows if k.value == "raise_torque"))
+        )
         await settle(pilot)
         help_line = str(tab.query_one(".help-line").render())
         assert "Worst case" in help_line and "mostly force" in help_line, help_line

@@ -28,8 +28,18 @@ def si_text(calc_id, name, x):
 
 # --- reading ------------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("text", ["3.5 in ± 0.01 in", "3.5 in +- 0.01 in", "3.5 in+/-0.01 in", "3.5 in ± 0.01",
-                                  "88.9 mm ± 0.254 mm", "3.5 in ± 0.2857142857142857 %"])
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "3.5 in ± 0.01 in",
+        "3.5 in +- 0.01 in",
+        "3.5 in+/-0.01 in",
+        "3.5 in ± 0.01",
+        "88.9 mm ± 0.254 mm",
+        "3.5 in ± 0.2857142857142857 %",
+    ],
+)
 def test_spellings_of_a_length_tolerance(text):
     calc = get("beam")
     _, values, tols, _ = tolerance.parse(calc, {"outer_size": text, "section": "hex"})
@@ -51,18 +61,21 @@ def test_percent_relative_unless_the_nominal_is_in_percent():
     assert (t.low, t.high) == (pytest.approx(0.08), pytest.approx(0.12))
 
 
-@pytest.mark.parametrize("calc_id, entries, words", [
-    ("motor", {"voltage": "12 V ± "}, "no tolerance after"),
-    ("motor", {"voltage": "± 1 V"}, "no value before"),
-    ("motor", {"voltage": "12 V ± 1 V ± 1 V"}, "more than one"),
-    ("motor", {"voltage": "12 V ± 1 in"}, "voltage"),
-    ("motor", {"voltage": "12 V ± -1 V"}, "positive"),
-    ("motor", {"voltage": "12 V ± abc %"}, "cannot read"),
-    ("motor", {"motor_count": "2 ± 1"}, "whole number"),
-    ("motor", {"motor": "NEO ± 1"}, "cannot carry"),
-    ("flywheel", {"ball_mass": "60 g ± 70 g"}, "low end"),
-    ("flywheel", {"launch_angle": "80 deg ± 15 deg"}, "high end"),
-])
+@pytest.mark.parametrize(
+    "calc_id, entries, words",
+    [
+        ("motor", {"voltage": "12 V ± "}, "no tolerance after"),
+        ("motor", {"voltage": "± 1 V"}, "no value before"),
+        ("motor", {"voltage": "12 V ± 1 V ± 1 V"}, "more than one"),
+        ("motor", {"voltage": "12 V ± 1 in"}, "voltage"),
+        ("motor", {"voltage": "12 V ± -1 V"}, "positive"),
+        ("motor", {"voltage": "12 V ± abc %"}, "cannot read"),
+        ("motor", {"motor_count": "2 ± 1"}, "whole number"),
+        ("motor", {"motor": "NEO ± 1"}, "cannot carry"),
+        ("flywheel", {"ball_mass": "60 g ± 70 g"}, "low end"),
+        ("flywheel", {"launch_angle": "80 deg ± 15 deg"}, "high end"),
+    ],
+)
 def test_bad_tolerances_name_the_field(calc_id, entries, words):
     with pytest.raises(InputError) as exc:
         tolerance.parse(get(calc_id), entries)
@@ -80,10 +93,17 @@ def test_preset_with_a_tolerance_loads():
 # --- worst case = brute-force corners -----------------------------------------------------------
 
 CASES = [
-    ("gear_ratio", "elevator_neo", {"load": "40 lbf ± 10 %", "radius": "0.75 in ± 0.02 in", "voltage": "12 V ± 0.5 V"}),
+    (
+        "gear_ratio",
+        "elevator_neo",
+        {"load": "40 lbf ± 10 %", "radius": "0.75 in ± 0.02 in", "voltage": "12 V ± 0.5 V"},
+    ),
     # (the section's dimensions stay fixed: its exact torsion constant is a numerical solve, ~27 ms each)
-    ("beam", "frame_rail_1x2", {"length": "27 in ± 0.25 in", "force": "150 lbf ± 30 lbf",
-                                "load_position": "13.5 in ± 2 in"}),
+    (
+        "beam",
+        "frame_rail_1x2",
+        {"length": "27 in ± 0.25 in", "force": "150 lbf ± 30 lbf", "load_position": "13.5 in ± 2 in"},
+    ),
     ("lead_screw", "t8_lift", {"friction": "0.2 ± 0.05", "force": "50 N ± 5 N", "diameter": "8 mm ± 0.1 mm"}),
 ]
 
@@ -95,8 +115,10 @@ def test_worst_case_equals_brute_force_corners(calc_id, preset, tols):
     ts = result.tolerances
     assert len(ts) == len(tols)
     nominal = {**preset_inputs(calc_id, preset), **{k: v.split("±")[0] for k, v in tols.items()}}
-    corner_solutions = [solve(calc_id, {**nominal, **{t.name: si_text(calc_id, t.name, x) for t, x in zip(ts, c)}})
-                        for c in itertools.product(*[(t.low, t.high) for t in ts])]
+    corner_solutions = [
+        solve(calc_id, {**nominal, **{t.name: si_text(calc_id, t.name, x) for t, x in zip(ts, c)}})
+        for c in itertools.product(*[(t.low, t.high) for t in ts])
+    ]
     checked = 0
     for name, s in result.outputs.items():
         ys = [c.outputs[name].value for c in corner_solutions if name in c.outputs]
@@ -122,6 +144,7 @@ def test_optimiser_finds_an_interior_maximum():
 
 
 # --- statistics ---------------------------------------------------------------------------------
+
 
 def test_monte_carlo_agrees_with_analytic_variance_of_a_linear_case():
     # Stall current is proportional to the voltage (the motor data scale with V / V_spec): with V
@@ -173,7 +196,7 @@ def test_seed_000_range_error_through_a_ball_mass_tolerance(n):
     R0 = solution.outputs["range"].value
     # worst case (the heavy ball) against the seed's exact (8): e_r = −e_m/(m_w/(c·m₀) + 1 + e_m),
     # m_w = n·180 g, c = (1 + 2/5)·(1/2)²/0.84² (the seed's ".4954", computed exactly)
-    c = 1.4 * 0.25 / 0.84 ** 2
+    c = 1.4 * 0.25 / 0.84**2
     exact = -0.1 / (n * 0.180 / (c * 0.060) + 1 + 0.1)
     assert (s.low - R0) / R0 == pytest.approx(exact, rel=1e-9)
     # first order (the sensitivity times the tolerance): the seed's linearised table, its two decimals
@@ -184,6 +207,7 @@ def test_seed_000_range_error_through_a_ball_mass_tolerance(n):
 
 
 # --- CLI ----------------------------------------------------------------------------------------
+
 
 def test_cli_solve_json_carries_spreads(capsys):
     preset = str(ROOT / "presets/flywheel/nbn_seed_single_wheel.toml")

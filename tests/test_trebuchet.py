@@ -7,7 +7,8 @@ import random
 import numpy as np
 import pytest
 import sympy as sp
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gearhead.core import presets
 from gearhead.core.calculators import trebuchet as calc
@@ -32,6 +33,7 @@ def values(**raw):
 
 # --- the equations of motion -----------------------------------------------------------------
 
+
 def sympy_equations():
     """Lagrange's equations from scratch in the seed's coordinates (φ, θ relative to the arm, ψ)."""
     t = sp.symbols("t")
@@ -43,8 +45,12 @@ def sympy_equations():
     CW = A - a * L * e + d * sp.Matrix([sp.sin(psi), -sp.cos(psi)])
     G = A + (L / 2 - a * L) * e
     I_arm = m * L**2 * (sp.Rational(1, 12) + (sp.Rational(1, 2) - a) ** 2)
-    T = (I_arm * phi.diff(t) ** 2 + mp * P.diff(t).dot(P.diff(t)) + M * CW.diff(t).dot(CW.diff(t))
-         + M * k**2 * psi.diff(t) ** 2) / 2
+    T = (
+        I_arm * phi.diff(t) ** 2
+        + mp * P.diff(t).dot(P.diff(t))
+        + M * CW.diff(t).dot(CW.diff(t))
+        + M * k**2 * psi.diff(t) ** 2
+    ) / 2
     V = g * (m * G[1] + mp * P[1] + M * CW[1])
     Lg = T - V
     qs = (phi, th, psi)
@@ -94,10 +100,13 @@ def test_seed_moment_is_cos_phi_from_the_horizontal():
     I = 50 * 225 * (1 / 12 + 1 / 16) + 500 * 3.75**2 + 500 * 4 + 5 * 11.25**2  # 11304.6875 kg·m²
     wd = tb.accelerations(p, 0.0, 0.0, 0, 0, 0, 0, False, math.sin, math.cos)[0]
     assert wd == pytest.approx((C - 5 * 9.81 * 11.25) / I, rel=1e-12)
-    assert tb.accelerations(p, math.pi / 2, 0.0, 0, 0, 0, 0, False, math.sin, math.cos)[0] == pytest.approx(0, abs=1e-12)
+    assert tb.accelerations(p, math.pi / 2, 0.0, 0, 0, 0, 0, False, math.sin, math.cos)[0] == pytest.approx(
+        0, abs=1e-12
+    )
 
 
 # --- energy -------------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("rigid", [True, False])
 def test_one_dof_arm_matches_the_energy_closed_form_at_every_point(rigid):
@@ -127,11 +136,15 @@ def test_seed_section_1_arm_speed_at_vertical():
     assert sol.outputs["arm_speed_at_vertical"].value == pytest.approx(2.05073, rel=2e-5)
 
 
-@pytest.mark.parametrize("effects", ["sling", "sling, ground_contact", "sling, ground_contact, hinged_counterweight"])
+@pytest.mark.parametrize(
+    "effects", ["sling", "sling, ground_contact", "sling, ground_contact, hinged_counterweight"]
+)
 @pytest.mark.parametrize("rtol", [1e-6, 1e-9])
 def test_full_scene_conserves_energy(effects, rtol):
-    sol = solve("trebuchet", {"effects": effects, "hanger_length": "0.2 m",
-                              "accuracy": {1e-6: "default", 1e-9: "fine"}[rtol]})
+    sol = solve(
+        "trebuchet",
+        {"effects": effects, "hanger_length": "0.2 m", "accuracy": {1e-6: "default", 1e-9: "fine"}[rtol]},
+    )
     assert sol.outputs["energy_drift"].value < 10 * rtol
 
 
@@ -163,6 +176,7 @@ def test_scene_without_sling_is_one_degree_of_freedom_and_cheaper():
 
 
 # --- release and flight ------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("beta", [10, 30, 45, 60, 80])
 def test_release_is_forward_at_the_chosen_angle(beta):
@@ -203,6 +217,7 @@ def test_efficiency_is_projectile_energy_over_counterweight_and_arm_drop():
 
 
 # --- ground contact and sling tension -------------------------------------------------------------
+
 
 def test_ground_contact_holds_the_projectile_on_the_ground_until_liftoff():
     p = seed_machine()
@@ -252,12 +267,15 @@ def test_sling_tension_while_the_projectile_slides_on_the_ground():
 def test_compression_warning():
     # a light counterweight and a short sling released late: the arm slows while the projectile
     # swings over, so the sling would have to push it (found by a scan; tension from the test above)
-    sol = solve("trebuchet", {"counterweight_mass": "100 kg", "release_angle": "5 deg", "sling_length": "1 m"})
+    sol = solve(
+        "trebuchet", {"counterweight_mass": "100 kg", "release_angle": "5 deg", "sling_length": "1 m"}
+    )
     assert any("push" in w for w in sol.warnings)
     assert not any("push" in w for w in solve("trebuchet", {}).warnings)
 
 
 # --- property: the swing is time-reversible ---------------------------------------------------------
+
 
 @settings(max_examples=25, deadline=None)
 @given(st.floats(5, 80), st.floats(1, 12), st.floats(100, 2000))
@@ -272,6 +290,7 @@ def test_integrating_back_from_release_returns_to_rest(beta, l, M):
 
 
 # --- optimiser ------------------------------------------------------------------------------------
+
 
 def test_optimise_evaluates_over_a_thousand_throws_and_beats_the_defaults():
     out = solve("trebuchet", {"mode": "optimise", "effects": "sling, ground_contact"}).outputs
@@ -310,7 +329,9 @@ def test_optimise_a_machine_that_cannot_lift_the_projectile_in_a_cup_but_can_wit
     p = seed_machine(M=60)
     wd0 = tb.build(p, True).accelerations(tb.initial_state(p), True)[0][0]
     assert wd0 == pytest.approx(0.122607, rel=1e-5)
-    sol = solve("trebuchet", {"mode": "optimise", "effects": "sling, ground_contact", "counterweight_mass": "60 kg"})
+    sol = solve(
+        "trebuchet", {"mode": "optimise", "effects": "sling, ground_contact", "counterweight_mass": "60 kg"}
+    )
     assert "range" in sol.outputs and "best_range" in sol.outputs
     assert sol.outputs["best_range"].value >= sol.outputs["range"].value
 
@@ -323,11 +344,15 @@ def test_optimise_is_a_mode_and_the_retired_effect_still_means_it(tmp_path):
     assert get("trebuchet").field("mode").choices == ("throw", "optimise")
     assert get("trebuchet").field("sling_min").modes == ("optimise",)
     old = tmp_path / "old.toml"
-    old.write_text('calculator = "trebuchet"\nname = "old"\nformat = 1\n[inputs]\n'
-                   'effects = "sling, ground_contact, optimise"\nsling_min = "3 m"\n', encoding="utf-8")
+    old.write_text(
+        'calculator = "trebuchet"\nname = "old"\nformat = 1\n[inputs]\n'
+        'effects = "sling, ground_contact, optimise"\nsling_min = "3 m"\n',
+        encoding="utf-8",
+    )
     loaded = presets.load(old)
     assert loaded.inputs["mode"] == "optimise" and "optimise" not in loaded.inputs["effects"]
     assert any("mode = optimise" in w for w in loaded.warnings)
+
     def values(sol):
         return {k: v.value for k, v in sol.outputs.items() if k != "wall_time"}
 
@@ -356,6 +381,7 @@ def test_batch_throws_agree_with_the_accurate_scene(kw, contact):
 
 # --- warnings and errors --------------------------------------------------------------------------
 
+
 def test_too_light_counterweight_never_releases():
     sol = solve("trebuchet", {"counterweight_mass": "10 kg"})
     assert any("never releases" in w for w in sol.warnings)
@@ -369,7 +395,9 @@ def test_pivot_too_high_is_an_input_error():
 
 
 def test_counterweight_through_the_ground_is_warned():
-    sol = solve("trebuchet", {"effects": "sling, ground_contact, hinged_counterweight", "hanger_length": "1 m"})
+    sol = solve(
+        "trebuchet", {"effects": "sling, ground_contact, hinged_counterweight", "hanger_length": "1 m"}
+    )
     assert any("counterweight" in w and "below the ground" in w for w in sol.warnings)
 
 
@@ -382,7 +410,12 @@ def test_presets_load_and_solve():
         assert "range" in sol.outputs
     seed = next(p for p in found if "seed" in p.name.lower())
     v = parse_inputs(get("trebuchet"), seed.inputs)[0]
-    assert (v["counterweight_mass"], v["arm_length"], v["short_arm_fraction"], v["pivot_height"]) == (500, 15, 0.25, 4)
+    assert (v["counterweight_mass"], v["arm_length"], v["short_arm_fraction"], v["pivot_height"]) == (
+        500,
+        15,
+        0.25,
+        4,
+    )
     assert names
 
 

@@ -14,7 +14,6 @@ from tests.tui_helpers import settle
 SIZE = (140, 45)
 
 
-
 async def replace_text(pilot, selector, text):
     entry = pilot.app.query_one(selector, Input)
     entry.focus()
@@ -90,8 +89,11 @@ async def test_preset_save_then_load_round_trip():
         await pilot.press("ctrl+o")
         await pilot.pause()
         options = app.screen.query_one(OptionList)
-        index = next(i for i in range(options.option_count)
-                     if "Test lift" in str(options.get_option_at_index(i).prompt))
+        index = next(
+            i
+            for i in range(options.option_count)
+            if "Test lift" in str(options.get_option_at_index(i).prompt)
+        )
         options.highlighted = index
         await pilot.press("enter")
         await settle(pilot)
@@ -116,8 +118,9 @@ async def test_command_palette_offers_presets_and_every_calculator():
 
 
 async def test_accuracy_view_tabulates_every_level():
-    from gearhead.core.sim.scene import LEVELS
     from textual.widgets import DataTable
+
+    from gearhead.core.sim.scene import LEVELS
 
     app = GearheadApp(blink=False, initial="pneumatics", hide_timings=True)
     async with app.run_test(size=SIZE) as pilot:
@@ -155,8 +158,13 @@ def test_first_frame_imports_no_calculator_and_the_first_card_follows():
     import sys
     from pathlib import Path
 
-    out = subprocess.run([sys.executable, "-c", FIRST_FRAME_PROBE], capture_output=True, text=True,
-                         cwd=Path(__file__).resolve().parents[1], timeout=120)
+    out = subprocess.run(
+        [sys.executable, "-c", FIRST_FRAME_PROBE],
+        capture_output=True,
+        text=True,
+        cwd=Path(__file__).resolve().parents[1],
+        timeout=120,
+    )
     assert out.returncode == 0, out.stderr[-2000:]
     assert out.stdout.split()[-3:] == ["([],", "0)", "True"]
 
@@ -164,8 +172,9 @@ def test_first_frame_imports_no_calculator_and_the_first_card_follows():
 async def test_idle_builds_every_card_and_a_key_postpones_it():
     """While the user does nothing the other cards are built, so a first visit finds its card
     ready; keys arriving hold the warm-up back."""
-    from gearhead.core.registry import ORDER
     from textual import events
+
+    from gearhead.core.registry import ORDER
 
     app = GearheadApp(blink=False, initial="motor", hide_timings=True, warm_up=True)
     app.IDLE_BEFORE_BUILD_S = 1.0
@@ -272,8 +281,9 @@ async def test_notices_render_without_crashing():
         await settle(pilot)
         await pilot.press("ctrl+g")
         await settle(pilot)
-        shown = [str(Content.from_markup(message) if markup else Content(message))
-                 for message, markup in notified]
+        shown = [
+            str(Content.from_markup(message) if markup else Content(message)) for message, markup in notified
+        ]
         assert any(s.startswith("Saved ") and s.endswith("odd_name.toml") for s in shown), shown
         assert any("load = " in s and "radius = " in s for s in shown), shown
 
@@ -309,8 +319,14 @@ async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatc
         entry.cursor_position = len(entry.value)
         from textual import events
 
-        for key, char in [("backspace", "\x7f"), ("backspace", "\x7f"), ("1", "1"), ("1", "1"),
-                          ("full_stop", "."), ("5", "5")]:
+        for key, char in [
+            ("backspace", "\x7f"),
+            ("backspace", "\x7f"),
+            ("1", "1"),
+            ("1", "1"),
+            ("full_stop", "."),
+            ("5", "5"),
+        ]:
             app.post_message(events.Key(key, char))  # as the driver delivers a fast typist's keys
             await asyncio.sleep(0.02)
         for _ in range(200):  # the solve is held: after 0.1 s the busy marker is up
@@ -327,8 +343,15 @@ async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatc
         assert "solved" in str(tab.query_one(".status", Static).render())
 
 
-@pytest.mark.parametrize("focused", ["#calc-trebuchet Checkbox", "#calc-trebuchet #in-accuracy",
-                                     "#calc-trebuchet #plot-choice", "#calc-trebuchet DataTable"])
+@pytest.mark.parametrize(
+    "focused",
+    [
+        "#calc-trebuchet Checkbox",
+        "#calc-trebuchet #in-accuracy",
+        "#calc-trebuchet #plot-choice",
+        "#calc-trebuchet DataTable",
+    ],
+)
 async def test_palette_open_switches_tab_wherever_focus_is(focused):
     """'Open Motor' from the palette used to do nothing with focus on a checkbox or the chart
     selector: the focused widget in the old pane pulled its tab back."""
@@ -386,7 +409,7 @@ async def test_any_calculator_in_two_keys_from_anywhere():
     app = GearheadApp(blink=False, initial="gear_ratio")
     async with app.run_test(size=SIZE) as pilot:
         await settle(pilot)
-        for n, (area, (_, ids)) in enumerate(AREAS.items(), 1):
+        for n, (_, ids) in enumerate(AREAS.values(), 1):
             for i, calc_id in enumerate(ids, 1):
                 app.query_one("#calc-gear_ratio #in-load", Input).focus()  # typing in a field
                 await pilot.pause()
@@ -476,12 +499,15 @@ async def test_save_dialog_offers_the_loaded_presets_name_and_description():
         assert app.screen.query_one("#preset-description", Input).value == builtin.description
 
 
-@pytest.mark.parametrize("text,loads", [
-    (None, True),  # what ctrl+y copied on another tab of the same calculator
-    ('calculator = "gear_ratio"\nname = "x"\n[inputs]\nload = "3 kg"\n', False),  # wrong unit
-    ('calculator = "gear_ratio"\n' + "x = " + "[" * 5000 + "]" * 5000 + "\n", False),  # too deep
-    ('calculator = "beam"\nname = "x"\n', False),  # another calculator
-])
+@pytest.mark.parametrize(
+    "text,loads",
+    [
+        (None, True),  # what ctrl+y copied on another tab of the same calculator
+        ('calculator = "gear_ratio"\nname = "x"\n[inputs]\nload = "3 kg"\n', False),  # wrong unit
+        ('calculator = "gear_ratio"\n' + "x = " + "[" * 5000 + "]" * 5000 + "\n", False),  # too deep
+        ('calculator = "beam"\nname = "x"\n', False),  # another calculator
+    ],
+)
 async def test_pasting_a_preset_into_the_load_dialog(text, loads):
     from textual import events
 
@@ -514,6 +540,7 @@ async def test_result_under_the_cursor_is_explained():
         await settle(pilot)
         tab = app.query_one("#calc-gear_ratio", CalculatorTab)
         from textual.widgets import DataTable
+
         table = tab.query_one(".results", DataTable)
         table.focus()
         await pilot.pause()

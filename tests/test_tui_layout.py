@@ -9,7 +9,6 @@ from gearhead.tui.components.calculator_tab import CalculatorTab
 from tests.tui_helpers import settle
 
 
-
 @pytest.mark.parametrize("calc_id", ["flywheel", "ratio_distance"])
 async def test_results_are_reachable_on_an_80x24_terminal(calc_id):
     """At 80 columns the panes stack (they used to sit side by side and push the results off
@@ -33,7 +32,9 @@ async def test_results_columns_fit_side_by_side_at_120_columns():
     async with app.run_test(size=(120, 35)) as pilot:
         await settle(pilot)
         table = app.query_one("#calc-ratio_distance .results", DataTable)
-        assert table.region.y == app.query_one("#calc-ratio_distance .inputs-pane").region.y + 1  # side by side
+        assert (
+            table.region.y == app.query_one("#calc-ratio_distance .inputs-pane").region.y + 1
+        )  # side by side
         assert table.virtual_size.width <= table.size.width
 
 
@@ -56,8 +57,11 @@ async def test_loading_a_preset_resets_the_fields_it_omits():
         await pilot.press("ctrl+o")
         await pilot.pause()
         options = app.screen.query_one(OptionList)
-        options.highlighted = next(i for i in range(options.option_count)
-                                   if "Pumpkin chunker" in str(options.get_option_at_index(i).prompt))
+        options.highlighted = next(
+            i
+            for i in range(options.option_count)
+            if "Pumpkin chunker" in str(options.get_option_at_index(i).prompt)
+        )
         await pilot.press("enter")
         await settle(pilot)
         assert tab.query_one("#in-gravity", Input).value == "9.81"
@@ -128,8 +132,10 @@ async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_ser
     from gearhead.core.model import Plot, Solution
     from gearhead.tui.components.plot_panel import PlotPanel
 
-    plots = (Plot("Force [N]", ("a", "b"), "x", "length", "mm", "F", "force", "lbf"),
-             Plot("Other", ("c",), "x", "length", "m", "y", "length", "m"))
+    plots = (
+        Plot("Force [N]", ("a", "b"), "x", "length", "mm", "F", "force", "lbf"),
+        Plot("Other", ("c",), "x", "length", "m", "y", "length", "m"),
+    )
 
     class Harness(App):
         def compose(self):
@@ -143,8 +149,12 @@ async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_ser
         await panel.show(Solution("x", {}, {}, [], {}))
         await pilot.pause()
         assert empty.display
-        for series in ({"a": ([1.0], [2.0])}, {"a": ([1.0, 2.0, 3.0], [5.0, 5.0, 5.0])},
-                       {"a": ([], [])}, {"a": ([0.0, 1.0], [0.0, 1.0]), "b": ([0.0, 1.0], [1.0, 0.0])}):
+        for series in (
+            {"a": ([1.0], [2.0])},
+            {"a": ([1.0, 2.0, 3.0], [5.0, 5.0, 5.0])},
+            {"a": ([], [])},
+            {"a": ([0.0, 1.0], [0.0, 1.0]), "b": ([0.0, 1.0], [1.0, 0.0])},
+        ):
             await panel.show(Solution("x", {}, {}, [], series))
             await pilot.pause()
         assert not empty.display
@@ -157,10 +167,12 @@ async def test_field_help_tooltips_keep_brackets():
     from gearhead.core.model import Field
     from gearhead.tui.components.calculator_tab import FieldRow
 
-    fields = [Field("p", "Pressure", "pressure", "psi", default=60, help="gauge pressure [psi]"),
-              Field("n", "Count", integer=True, default=1, help="how many [each]"),
-              Field("c", "Kind", choices=("a", "b"), default="a", help="pick one [a/b]"),
-              Field("e", "Effects", choices=("x", "y"), flags=True, default=(), help="switch [on]")]
+    fields = [
+        Field("p", "Pressure", "pressure", "psi", default=60, help="gauge pressure [psi]"),
+        Field("n", "Count", integer=True, default=1, help="how many [each]"),
+        Field("c", "Kind", choices=("a", "b"), default="a", help="pick one [a/b]"),
+        Field("e", "Effects", choices=("x", "y"), flags=True, default=(), help="switch [on]"),
+    ]
 
     class Harness(App):
         def compose(self):

@@ -7,8 +7,7 @@ from gearhead.core import unit_factors, units
 
 
 def test_every_declared_unit_is_stored():
-    missing = sorted(u for u in unit_factors.declared_units()
-                     if unit_factors.lookup(*u) is None)
+    missing = sorted(u for u in unit_factors.declared_units() if unit_factors.lookup(*u) is None)
     assert not missing, f"run python -m gearhead.core.unit_factors (missing {missing})"
 
 
@@ -17,9 +16,11 @@ def test_stored_factors_equal_pints_exactly():
 
 
 def test_a_solve_with_bare_numbers_never_loads_pint():
-    code = ("import sys; from gearhead.core.model import solve; "
-            "solve('gear_ratio', {'load': '40', 'radius': '0.75'}); solve('beam', {}); "
-            "print('pint' in sys.modules)")
+    code = (
+        "import sys; from gearhead.core.model import solve; "
+        "solve('gear_ratio', {'load': '40', 'radius': '0.75'}); solve('beam', {}); "
+        "print('pint' in sys.modules)"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
 

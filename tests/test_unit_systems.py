@@ -44,9 +44,9 @@ def test_as_entered_uses_the_unit_typed_for_that_kind():
 
 
 async def test_units_preference_in_the_app_is_remembered(tmp_path):
-    from tests.tui_helpers import settle
     from gearhead.tui import settings
     from gearhead.tui.app import GearheadApp
+    from tests.tui_helpers import settle
 
     app = GearheadApp(blink=False, initial="beam", settings_file={})
     async with app.run_test(size=(140, 45)) as pilot:

@@ -32,8 +32,9 @@ async def settle(pilot) -> None:
     for _ in range(50):
         await pilot.pause()
         await pilot.wait_for_scheduled_animations()
-        if not any(t._require_update_dimensions or t._updated_cells or t._new_rows
-                   for t in app.query(DataTable)):
+        if not any(
+            t._require_update_dimensions or t._updated_cells or t._new_rows for t in app.query(DataTable)
+        ):
             break
     await pilot.pause()  # plots draw after the results land
     await pilot.pause()

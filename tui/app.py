@@ -2,15 +2,16 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from pathlib import Path
 from time import monotonic
-from typing import TYPE_CHECKING, Iterable
+from typing import TYPE_CHECKING
 
+from textual import events, work
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.content import Content
 from textual.screen import Screen
-from textual import events, work
 from textual.widgets import Footer, Tab, TabbedContent, TabPane, Tabs
 
 from gearhead.core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
@@ -50,12 +51,20 @@ class GearheadApp(App):
         # priority: from inside a field too (where Input binds ctrl+w to delete a word); not on the footer
         Binding("ctrl+w", "sweep", "Sweep", show=False, priority=True),
         Binding("ctrl+q", "quit", "Quit"),
-        *(Binding(f"f{n}", f"area('{area}')", title, show=False, priority=True)
-          for n, (area, (title, _)) in enumerate(AREAS.items(), 1)),
+        *(
+            Binding(f"f{n}", f"area('{area}')", title, show=False, priority=True)
+            for n, (area, (title, _)) in enumerate(AREAS.items(), 1)
+        ),
     ]
 
-    def __init__(self, blink: bool = True, initial: str | None = None, hide_timings: bool = False,
-                 settings_file: dict | None = None, warm_up: bool = False) -> None:
+    def __init__(
+        self,
+        blink: bool = True,
+        initial: str | None = None,
+        hide_timings: bool = False,
+        settings_file: dict | None = None,
+        warm_up: bool = False,
+    ) -> None:
         super().__init__()
         # build the other cards in idle moments after the first: on in the real app (run());
         # off by default so a pilot test that ends early never closes the app mid-mount
@@ -88,8 +97,9 @@ class GearheadApp(App):
         yield Footer()
 
     def _strip(self, area: str) -> TabbedContent:
-        strip = TabbedContent(initial=f"tab-{self._area_active[area]}", id=f"calcs-{area}",
-                              classes="calculators")
+        strip = TabbedContent(
+            initial=f"tab-{self._area_active[area]}", id=f"calcs-{area}", classes="calculators"
+        )
         for i, cid in enumerate(AREAS[area][1], 1):
             strip.compose_add_child(TabPane(Content(f"{i} {TITLES[cid]}"), id=f"tab-{cid}"))
         return strip
@@ -161,8 +171,9 @@ class GearheadApp(App):
     def _card(self, calc_id: str) -> CalculatorTab:
         from .components.calculator_tab import CalculatorTab
 
-        tab = CalculatorTab(get(calc_id), blink=self.blink, hide_timings=self.hide_timings,
-                            id=f"calc-{calc_id}")
+        tab = CalculatorTab(
+            get(calc_id), blink=self.blink, hide_timings=self.hide_timings, id=f"calc-{calc_id}"
+        )
         tab.unit_system = self.unit_system
         return tab
 
@@ -178,8 +189,12 @@ class GearheadApp(App):
                 where = settings.save({**settings.load(), "units": system})
                 self.notify(f"Results in {SYSTEM_LABELS[system]} (saved in {where})", markup=False)
             except OSError as exc:
-                self.notify(f"Results in {SYSTEM_LABELS[system]}; could not save the setting "
-                            f"({exc.strerror or type(exc).__name__})", severity="warning", markup=False)
+                self.notify(
+                    f"Results in {SYSTEM_LABELS[system]}; could not save the setting "
+                    f"({exc.strerror or type(exc).__name__})",
+                    severity="warning",
+                    markup=False,
+                )
 
     async def card(self, calc_id: str) -> CalculatorTab:
         """The tab of a calculator, built if it has not been visited yet."""
@@ -217,7 +232,11 @@ class GearheadApp(App):
         if action == "sweep":  # on the card only: in a dialog's entry ctrl+w deletes a word as usual
             return self.screen is self.screen_stack[0]
         if action in ("send", "accuracy"):
-            tab = self._cards.get(self.current_calculator) if self._screen_stack and self.home.query("#areas") else None
+            tab = (
+                self._cards.get(self.current_calculator)
+                if self._screen_stack and self.home.query("#areas")
+                else None
+            )
             if tab is None:  # not built yet (start-up): shown once the card is there
                 return False
             calc = tab.calculator
@@ -297,8 +316,12 @@ class GearheadApp(App):
         name, description = tab.preset_meta
         from .components.preset_screens import SavePresetScreen
 
-        self.push_screen(SavePresetScreen(tab.calculator.id, tab.current_inputs(), self.blink,
-                                          name=name, description=description), saved)
+        self.push_screen(
+            SavePresetScreen(
+                tab.calculator.id, tab.current_inputs(), self.blink, name=name, description=description
+            ),
+            saved,
+        )
 
     def action_load_preset(self) -> None:
         tab = self.current_tab
@@ -325,8 +348,12 @@ class GearheadApp(App):
         tab = self.current_tab
         name, description = tab.preset_meta
         self.copy_to_clipboard(preset_toml(tab.calculator.id, tab.current_inputs(), name, description))
-        self.notify(f"{tab.calculator.title} copied as preset TOML; paste it into ctrl+o of any "
-                    f"Gearhead or save it as a .toml file", title="Copied", markup=False)
+        self.notify(
+            f"{tab.calculator.title} copied as preset TOML; paste it into ctrl+o of any "
+            f"Gearhead or save it as a .toml file",
+            title="Copied",
+            markup=False,
+        )
 
     def action_export(self) -> None:
         tab = self.current_tab
@@ -359,15 +386,21 @@ class GearheadApp(App):
             return
         for target_id, mapping in exports.items():
             target = await self.card(target_id)
-            values = {field: exact_text(tab.solution.outputs[out], tab.calculator.output(out))
-                      for field, out in mapping.items() if out in tab.solution.outputs}
+            values = {
+                field: exact_text(tab.solution.outputs[out], tab.calculator.output(out))
+                for field, out in mapping.items()
+                if out in tab.solution.outputs
+            }
             if not values:  # e.g. drivetrain's forward mode has no ratio to send
                 self.notify("Nothing to send in this mode.", severity="warning")
                 continue
             target.set_entries(values)
             self.show_calculator(target_id)
-            self.notify(", ".join(f"{k} = {v}" for k, v in values.items()), markup=False,
-                        title=f"Sent to {target.calculator.title}")
+            self.notify(
+                ", ".join(f"{k} = {v}" for k, v in values.items()),
+                markup=False,
+                title=f"Sent to {target.calculator.title}",
+            )
 
     async def _send_row(self, tab: CalculatorTab) -> None:
         """Send the table row under the cursor (e.g. one ratio-finder stage) to the calculator
@@ -376,15 +409,22 @@ class GearheadApp(App):
         for target_id, mapping in table.exports.items():
             if all(column in row for column in mapping.values()):
                 target = await self.card(target_id)
-                values = {field: exact_text(row[column], table.column(column))
-                          for field, column in mapping.items()}
+                values = {
+                    field: exact_text(row[column], table.column(column)) for field, column in mapping.items()
+                }
                 target.set_entries(values)
                 self.show_calculator(target_id)
-                self.notify(", ".join(f"{k} = {v}" for k, v in values.items()), markup=False,
-                            title=f"Sent to {target.calculator.title}")
+                self.notify(
+                    ", ".join(f"{k} = {v}" for k, v in values.items()),
+                    markup=False,
+                    title=f"Sent to {target.calculator.title}",
+                )
                 return
-        self.notify("This row has nothing another calculator takes (a planetary stage, or no belt "
-                    "long enough).", severity="warning", markup=False)
+        self.notify(
+            "This row has nothing another calculator takes (a planetary stage, or no belt long enough).",
+            severity="warning",
+            markup=False,
+        )
 
     def action_accuracy(self) -> None:
         """Run the current simulation at every accuracy level (the accuracy-vs-time view)."""
@@ -409,38 +449,53 @@ class GearheadApp(App):
         tab, focused = self.current_tab, self.focused
         name = focused.id[3:] if focused is not None and (focused.id or "").startswith("in-") else None
         shown = tuple(tab.solution.outputs) if tab.solution is not None else ()
-        self.push_screen(SweepScreen(tab.calculator, dict(tab.entries), name, self.blink, self.hide_timings, shown))
+        self.push_screen(
+            SweepScreen(tab.calculator, dict(tab.entries), name, self.blink, self.hide_timings, shown)
+        )
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         yield from super().get_system_commands(screen)
-        yield SystemCommand("Save preset", "Save the current tab's inputs as a TOML preset",
-                            self.action_save_preset)
-        yield SystemCommand("Load preset", "Load a built-in or user preset into the current tab",
-                            self.action_load_preset)
-        yield SystemCommand("Copy as preset TOML", "Copy the current tab as preset text, to share",
-                            self.action_copy_preset)
-        yield SystemCommand("Export results", "The results table or the plot's data as CSV or Markdown",
-                            self.action_export)
+        yield SystemCommand(
+            "Save preset", "Save the current tab's inputs as a TOML preset", self.action_save_preset
+        )
+        yield SystemCommand(
+            "Load preset", "Load a built-in or user preset into the current tab", self.action_load_preset
+        )
+        yield SystemCommand(
+            "Copy as preset TOML", "Copy the current tab as preset text, to share", self.action_copy_preset
+        )
+        yield SystemCommand(
+            "Export results", "The results table or the plot's data as CSV or Markdown", self.action_export
+        )
         for system in SYSTEMS:
-            yield SystemCommand(f"Units: {SYSTEM_LABELS[system]}", "Show every result in these units "
-                                "(remembered)", lambda s=system: self.set_unit_system(s))
-        yield SystemCommand("Accuracy vs time", "Run the current simulation at every accuracy level",
-                            self.action_accuracy)
-        yield SystemCommand("Sweep…", "Vary the focused input over a range: plot, table, CSV", self.action_sweep)
+            yield SystemCommand(
+                f"Units: {SYSTEM_LABELS[system]}",
+                "Show every result in these units (remembered)",
+                lambda s=system: self.set_unit_system(s),
+            )
+        yield SystemCommand(
+            "Accuracy vs time", "Run the current simulation at every accuracy level", self.action_accuracy
+        )
+        yield SystemCommand(
+            "Sweep…", "Vary the focused input over a range: plot, table, CSV", self.action_sweep
+        )
         for calc in calculators().values():
-            yield SystemCommand(f"Open {calc.title}", calc.summary,
-                                lambda cid=calc.id: self.show_calculator(cid))
+            yield SystemCommand(
+                f"Open {calc.title}", calc.summary, lambda cid=calc.id: self.show_calculator(cid)
+            )
             if calc.exports:
                 targets = ", ".join(calculators()[t].title for t in calc.exports if t in calculators())
-                yield SystemCommand(f"Send {calc.title} results to {targets}",
-                                    "Copy the matching outputs into that calculator's inputs",
-                                    lambda cid=calc.id: self._send_from(cid))
-
+                yield SystemCommand(
+                    f"Send {calc.title} results to {targets}",
+                    "Copy the matching outputs into that calculator's inputs",
+                    lambda cid=calc.id: self._send_from(cid),
+                )
 
     async def _send_from(self, calc_id: str) -> None:
         self.show_calculator(calc_id)
         await self.card(calc_id)
         await self.action_send()
+
 
 def run() -> None:
     from . import settings

@@ -23,7 +23,9 @@ def _logger() -> logging.Logger | None:
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         # rotated at 1 MB, two old files kept: a loop of failures never fills the disk
-        handler = logging.handlers.RotatingFileHandler(path, maxBytes=1_000_000, backupCount=2, encoding="utf-8")
+        handler = logging.handlers.RotatingFileHandler(
+            path, maxBytes=1_000_000, backupCount=2, encoding="utf-8"
+        )
     except OSError:
         return None
     handler.setFormatter(logging.Formatter("%(asctime)s %(message)s"))

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from typing import Sequence
+from collections.abc import Sequence
 
 from gearhead.core.errors import InputError, shown
 
@@ -21,19 +21,38 @@ def _parser() -> argparse.ArgumentParser:
     s = sub.add_parser("solve", help="solve one calculator and print its outputs")
     s.add_argument("calculator", help="calculator id (see `gearhead calculators`)")
     s.add_argument("--preset", metavar="FILE", help="start from this preset file")
-    s.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE",
-                   help="set one input, e.g. --set load='25 lbf' (repeatable)")
-    s.add_argument("--unit", dest="units", action="append", default=[], metavar="OUTPUT=UNIT",
-                   help="show an output in another unit, e.g. --unit center_distance=in (repeatable)")
+    s.add_argument(
+        "--set",
+        dest="sets",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="set one input, e.g. --set load='25 lbf' (repeatable)",
+    )
+    s.add_argument(
+        "--unit",
+        dest="units",
+        action="append",
+        default=[],
+        metavar="OUTPUT=UNIT",
+        help="show an output in another unit, e.g. --unit center_distance=in (repeatable)",
+    )
     s.add_argument("--json", action="store_true", help="print one JSON object (values in SI)")
     # tolerances ('--set "load=25 lbf ± 5 %"'): how each output's statistical spread is found
-    s.add_argument("--spread", choices=("auto", "first-order", "monte-carlo"), default="auto",
-                   help="statistical spread when inputs carry ± tolerances (default: first-order where exact enough)")
+    s.add_argument(
+        "--spread",
+        choices=("auto", "first-order", "monte-carlo"),
+        default="auto",
+        help="statistical spread when inputs carry ± tolerances (default: first-order where exact enough)",
+    )
     s.add_argument("--samples", type=int, default=1000, help="Monte Carlo samples (default 1000)")
     s.add_argument("--seed", type=int, default=0, help="Monte Carlo seed (default 0)")
-    s.add_argument("--preset-out", metavar="FILE",
-                   help="write the inputs solved as a preset: '-' prints it instead of the results "
-                        "(to chain: ... --preset-out - > x.toml); a FILE is never overwritten")
+    s.add_argument(
+        "--preset-out",
+        metavar="FILE",
+        help="write the inputs solved as a preset: '-' prints it instead of the results "
+        "(to chain: ... --preset-out - > x.toml); a FILE is never overwritten",
+    )
     a = sub.add_parser("accuracy", help="run a simulation at every accuracy level: error, time, evaluations")
     a.add_argument("calculator", help="a simulated calculator (e.g. pneumatics)")
     a.add_argument("--preset", metavar="FILE")
@@ -105,8 +124,9 @@ def _raw_inputs(args, calc) -> dict:
     if args.preset:
         preset = presets.load(args.preset)
         if preset.calculator != calc.id:
-            raise InputError("calculator", f"preset is for {shown(preset.calculator)}, not {calc.id!r}",
-                             args.preset)
+            raise InputError(
+                "calculator", f"preset is for {shown(preset.calculator)}, not {calc.id!r}", args.preset
+            )
         for warning in preset.warnings:
             _complain(warning, "warning: ")
         raw.update(preset.inputs)
@@ -114,8 +134,9 @@ def _raw_inputs(args, calc) -> dict:
         name, sep, value = item.partition("=")
         name = name.strip()
         if not sep or not name:
-            raise InputError(name or "--set", f"--set takes NAME=VALUE (e.g. --set load='25 lbf'), "
-                                              f"got {shown(item)}")
+            raise InputError(
+                name or "--set", f"--set takes NAME=VALUE (e.g. --set load='25 lbf'), got {shown(item)}"
+            )
         raw[name] = value
     return raw
 
@@ -126,8 +147,10 @@ def _display_units(args) -> dict[str, str]:
     for item in args.units:
         name, sep, unit = item.partition("=")
         if not sep or not name.strip():
-            raise InputError(name.strip() or "--unit", f"--unit takes OUTPUT=UNIT (e.g. --unit "
-                                                       f"free_speed=rad/s), got {shown(item)}")
+            raise InputError(
+                name.strip() or "--unit",
+                f"--unit takes OUTPUT=UNIT (e.g. --unit free_speed=rad/s), got {shown(item)}",
+            )
         display_units[name.strip()] = unit.strip()
     return display_units
 
@@ -143,7 +166,9 @@ def _solve(args) -> int:
     if any(isinstance(v, str) and ("±" in v or "+-" in v or "+/-" in v) for v in raw.values()):
         from gearhead.core import tolerance  # only then: a plain solve starts as fast as before
 
-        solution, spread, _ = tolerance.solve(calc.id, raw, display_units, args.spread, args.samples, args.seed)
+        solution, spread, _ = tolerance.solve(
+            calc.id, raw, display_units, args.spread, args.samples, args.seed
+        )
     else:
         solution = solve(calc.id, raw, display_units)  # a bad input exits 2 before any preset is written
     if args.preset_out:
@@ -167,17 +192,30 @@ def _solve(args) -> int:
 
 # --- sweep (core.sweep) -----------------------------------------------------------------------
 
+
 def _sweep_parser(sub) -> None:
     w = sub.add_parser("sweep", help="solve over a range of one input (a table) or two (a grid)")
     w.add_argument("calculator", help="calculator id (see `gearhead calculators`)")
-    w.add_argument("--vary", dest="varies", action="append", default=[], required=True,
-                   metavar="NAME=START..STOP[:N][:log]",
-                   help="the input to vary, e.g. --vary ratio=3..12:50 or --vary 'spool_diameter=1 in..2 in:21' "
-                        "(give two for a grid)")
+    w.add_argument(
+        "--vary",
+        dest="varies",
+        action="append",
+        default=[],
+        required=True,
+        metavar="NAME=START..STOP[:N][:log]",
+        help="the input to vary, e.g. --vary ratio=3..12:50 or --vary 'spool_diameter=1 in..2 in:21' "
+        "(give two for a grid)",
+    )
     w.add_argument("--preset", metavar="FILE", help="start from this preset file")
     w.add_argument("--set", dest="sets", action="append", default=[], metavar="NAME=VALUE")
-    w.add_argument("--output", dest="outputs", action="append", default=[], metavar="NAME",
-                   help="an output to tabulate (repeatable; default: every numeric output)")
+    w.add_argument(
+        "--output",
+        dest="outputs",
+        action="append",
+        default=[],
+        metavar="NAME",
+        help="an output to tabulate (repeatable; default: every numeric output)",
+    )
     w.add_argument("--unit", dest="units", action="append", default=[], metavar="OUTPUT=UNIT")
     form = w.add_mutually_exclusive_group()
     form.add_argument("--csv", action="store_true", help="CSV in display units, a status column per row")
@@ -193,7 +231,9 @@ def _sweep(args) -> int:
     raw, tolerances = tolerance.split_inputs(calc, _raw_inputs(args, calc))
     result = sweep.run(calc.id, raw, args.varies, args.outputs, display_units)
     if tolerances:
-        result.notes.append(f"tolerances on {', '.join(tolerances)} are not swept: the nominal values are used")
+        result.notes.append(
+            f"tolerances on {', '.join(tolerances)} are not swept: the nominal values are used"
+        )
     if args.json:
         print(json.dumps(result.as_json(), allow_nan=False))
     elif args.csv:
@@ -242,8 +282,9 @@ def _preset_out(args, calc, raw: dict, solution) -> int:
     except FileExistsError:
         raise InputError("--preset-out", "file exists; choose another name", str(path)) from None
     except (OSError, ValueError) as exc:  # a missing folder, no permission, a NUL in the name
-        raise InputError("--preset-out", f"cannot write ({getattr(exc, 'strerror', None) or exc})",
-                         str(path)) from None
+        raise InputError(
+            "--preset-out", f"cannot write ({getattr(exc, 'strerror', None) or exc})", str(path)
+        ) from None
     width = max(len(calc.output(k).label) for k in solution.outputs)
     print(f"{calc.title} ({calc.id}): preset written to {path}", file=sys.stderr)
     if args.json:
@@ -256,7 +297,7 @@ def _preset_out(args, calc, raw: dict, solution) -> int:
 
 def _accuracy(args) -> int:
     from gearhead.core.model import parse_inputs
-    from gearhead.core.registry import get, calculators
+    from gearhead.core.registry import calculators, get
     from gearhead.core.sim.scene import DEFAULT_ADVICE, REFERENCE_RTOL, ladder
 
     calc = get(args.calculator)
@@ -272,14 +313,33 @@ def _accuracy(args) -> int:
         raise
     except (ArithmeticError, ValueError, RuntimeError) as exc:
         # the same last-resort guard as core.model.solve: a message, never a traceback
-        raise InputError("(result)", f"could not be computed from these inputs ({type(exc).__name__}: {exc})") from exc
+        raise InputError(
+            "(result)", f"could not be computed from these inputs ({type(exc).__name__}: {exc})"
+        ) from exc
     if args.json:
-        print(json.dumps({
-            "calculator": calc.id,
-            "reference": {"rtol": REFERENCE_RTOL, "rhs_evaluations": reference.nfev, "key": reference.key},
-            "levels": [{"level": r.level, "rtol": r.rtol, "error": r.error, "wall_time": r.wall_time,
-                        "rhs_evaluations": r.nfev} for r in rungs],
-        }, allow_nan=False))
+        print(
+            json.dumps(
+                {
+                    "calculator": calc.id,
+                    "reference": {
+                        "rtol": REFERENCE_RTOL,
+                        "rhs_evaluations": reference.nfev,
+                        "key": reference.key,
+                    },
+                    "levels": [
+                        {
+                            "level": r.level,
+                            "rtol": r.rtol,
+                            "error": r.error,
+                            "wall_time": r.wall_time,
+                            "rhs_evaluations": r.nfev,
+                        }
+                        for r in rungs
+                    ],
+                },
+                allow_nan=False,
+            )
+        )
         return 0
     print(f"{calc.title}: accuracy vs time (error relative to a run at rtol {REFERENCE_RTOL:.0e})")
     print(f"  {'level':<9}{'rtol':>8}{'error':>12}{'wall time':>12}{'RHS evals':>11}")
@@ -308,14 +368,29 @@ def _calculators(args) -> int:
 
     described = []
     for calc in calculators().values():
-        described.append({
-            "id": calc.id, "title": calc.title, "modes": list(calc.modes),
-            "fields": [{"name": f.name, "type": f.type, "unit": f.unit,
+        described.append(
+            {
+                "id": calc.id,
+                "title": calc.title,
+                "modes": list(calc.modes),
+                "fields": [
+                    {
+                        "name": f.name,
+                        "type": f.type,
+                        "unit": f.unit,
                         "si_unit": SI_UNITS[f.quantity] if f.type == "quantity" else "",
-                        "default": f.default, "choices": list(f.choices), "modes": list(f.modes),
-                        "help": f.help} for f in calc.fields],
-            "outputs": [{"name": o.name, "unit": o.unit, "si_unit": SI_UNITS[o.quantity]} for o in calc.outputs],
-        })
+                        "default": f.default,
+                        "choices": list(f.choices),
+                        "modes": list(f.modes),
+                        "help": f.help,
+                    }
+                    for f in calc.fields
+                ],
+                "outputs": [
+                    {"name": o.name, "unit": o.unit, "si_unit": SI_UNITS[o.quantity]} for o in calc.outputs
+                ],
+            }
+        )
     if args.json:
         print(json.dumps(described))
         return 0

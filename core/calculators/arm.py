@@ -42,6 +42,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from ..constants import G0 as G
 from ..errors import InputError
 from ..model import Calculator, Field, Output
 from ..motors import lookup
@@ -49,7 +50,6 @@ from ..sim import motion
 from ..sim.effects import Effect, Effects, Part
 from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
 
-from ..constants import G0 as G
 INERTIA_MODELS = ("uniform_bar", "entered")
 INERTIA_LABELS = ("Uniform bar: I = 4/3·m·L² (bar of length 2L)", "Entered moment of inertia")
 
@@ -69,54 +69,147 @@ def _counterbalance(values, mech) -> Part:
 EFFECTS = Effects(
     Effect("gravity", "the arm's weight, torque m·g·L·cos θ", _gravity, default_on=True),
     *motion.electrical_effects(),
-    motion.friction_effect("torque", "N*m", "friction_torque",
-                           "a constant torque against the motion (reported as kS)", 0.5),
-    Effect("counterbalance", "a zero-length spring above the pivot: torque τ_cb·cos θ", _counterbalance,
-           fields=(Field("counterbalance_torque", "Counterbalance torque at horizontal", "torque", "N*m",
-                         default=5, min=0, max=1e6,
-                         help="k·a·b of a zero-length spring (or spring and cable) anchored a above the "
-                              "pivot and b along the arm: it lifts with τ_cb·cos θ, cancelling gravity "
-                              "at every angle when τ_cb = m·g·L."),)),
+    motion.friction_effect(
+        "torque", "N*m", "friction_torque", "a constant torque against the motion (reported as kS)", 0.5
+    ),
+    Effect(
+        "counterbalance",
+        "a zero-length spring above the pivot: torque τ_cb·cos θ",
+        _counterbalance,
+        fields=(
+            Field(
+                "counterbalance_torque",
+                "Counterbalance torque at horizontal",
+                "torque",
+                "N*m",
+                default=5,
+                min=0,
+                max=1e6,
+                help="k·a·b of a zero-length spring (or spring and cable) anchored a above the "
+                "pivot and b along the arm: it lifts with τ_cb·cos θ, cancelling gravity "
+                "at every angle when τ_cb = m·g·L.",
+            ),
+        ),
+    ),
 )
 
 
 FIELDS = (
     motion.mode_field(),
     *motion.battery_motor_fields("Kraken X60", 1),
-    Field("ratio", "Reduction G", "dimensionless", "", default=75, min=0, min_exclusive=True, max=1e5,
-          modes=("move",), help="Motor turns per arm turn."),
-    Field("arm_mass", "Arm mass", "mass", "lb", default=8, min=0, min_exclusive=True, max=2.2e5,
-          help="Everything that swings: arm, end effector, game piece."),
-    Field("com_distance", "Pivot to centre of mass", "length", "in", default=12, min=0, min_exclusive=True,
-          max=3.9e4, help="L: distance from the pivot to the centre of mass of everything that swings."),
-    Field("inertia_model", "Moment of inertia", choices=INERTIA_MODELS, choice_labels=INERTIA_LABELS,
-          default="uniform_bar",
-          help="Uniform bar: I = 4/3·m·L², a bar of length 2L pivoted at its end. Otherwise enter I: "
-               "from CAD (mass properties about the pivot axis), or add m_i·r_i² for each lump "
-               "(end effector, game piece) to m·l²/3 for the bare tube of length l."),
-    Field("moment_of_inertia", "Moment of inertia about pivot", "inertia", "lb*in**2", default=1500,
-          min=0, min_exclusive=True, max=3.4e12, when=(("inertia_model", ("entered",)),),
-          help="About the pivot axis; must be at least m·L² (all mass at the centre of mass)."),
-    Field("start_angle", "Start angle", "angle", "deg", default=-30, min=-360, max=360,
-          help="From the horizontal, up positive (−90°: hanging straight down)."),
-    Field("goal_angle", "Goal angle", "angle", "deg", default=90, min=-360, max=360,
-          help="From the horizontal, up positive; below the start the arm swings down."),
-    EFFECTS.field("gravity (m·g·L·cos θ); stator_limit, supply_limit (per motor current limits); "
-                  "battery_sag (bus = battery − R × total supply current); friction (kS); "
-                  "counterbalance (zero-length spring, τ_cb·cos θ)."),
+    Field(
+        "ratio",
+        "Reduction G",
+        "dimensionless",
+        "",
+        default=75,
+        min=0,
+        min_exclusive=True,
+        max=1e5,
+        modes=("move",),
+        help="Motor turns per arm turn.",
+    ),
+    Field(
+        "arm_mass",
+        "Arm mass",
+        "mass",
+        "lb",
+        default=8,
+        min=0,
+        min_exclusive=True,
+        max=2.2e5,
+        help="Everything that swings: arm, end effector, game piece.",
+    ),
+    Field(
+        "com_distance",
+        "Pivot to centre of mass",
+        "length",
+        "in",
+        default=12,
+        min=0,
+        min_exclusive=True,
+        max=3.9e4,
+        help="L: distance from the pivot to the centre of mass of everything that swings.",
+    ),
+    Field(
+        "inertia_model",
+        "Moment of inertia",
+        choices=INERTIA_MODELS,
+        choice_labels=INERTIA_LABELS,
+        default="uniform_bar",
+        help="Uniform bar: I = 4/3·m·L², a bar of length 2L pivoted at its end. Otherwise enter I: "
+        "from CAD (mass properties about the pivot axis), or add m_i·r_i² for each lump "
+        "(end effector, game piece) to m·l²/3 for the bare tube of length l.",
+    ),
+    Field(
+        "moment_of_inertia",
+        "Moment of inertia about pivot",
+        "inertia",
+        "lb*in**2",
+        default=1500,
+        min=0,
+        min_exclusive=True,
+        max=3.4e12,
+        when=(("inertia_model", ("entered",)),),
+        help="About the pivot axis; must be at least m·L² (all mass at the centre of mass).",
+    ),
+    Field(
+        "start_angle",
+        "Start angle",
+        "angle",
+        "deg",
+        default=-30,
+        min=-360,
+        max=360,
+        help="From the horizontal, up positive (−90°: hanging straight down).",
+    ),
+    Field(
+        "goal_angle",
+        "Goal angle",
+        "angle",
+        "deg",
+        default=90,
+        min=-360,
+        max=360,
+        help="From the horizontal, up positive; below the start the arm swings down.",
+    ),
+    EFFECTS.field(
+        "gravity (m·g·L·cos θ); stator_limit, supply_limit (per motor current limits); "
+        "battery_sag (bus = battery − R × total supply current); friction (kS); "
+        "counterbalance (zero-length spring, τ_cb·cos θ)."
+    ),
     *EFFECTS.fields(),
     *motion.feedback_fields("angle", "deg", 2, "angular_speed", "deg/s", 20),
     accuracy_field(),
 )
 
 OUTPUTS = (
-    Output("best_ratio", "Fastest ratio", help="Optimise: the reduction G that arrives first; ratios a few % "
-           "either side are nearly as fast (AR11).", equation="(AR11)"),
-    Output("moment_of_inertia", "Moment of inertia used", "inertia", "lb*in**2",
-           help="About the pivot: 4/3·m·L² for the uniform bar, else as entered (AR3).", equation="(AR3)"),
-    *motion.common_outputs("angle", "deg", "angular_speed", "deg/s", "V*s/rad", "V*s**2/rad", "V/rad",
-                           "Volts to hold the arm horizontal against gravity (minus the counterbalance); "
-                           "WPILib ArmFeedforward multiplies it by cos θ."),
+    Output(
+        "best_ratio",
+        "Fastest ratio",
+        help="Optimise: the reduction G that arrives first; ratios a few % "
+        "either side are nearly as fast (AR11).",
+        equation="(AR11)",
+    ),
+    Output(
+        "moment_of_inertia",
+        "Moment of inertia used",
+        "inertia",
+        "lb*in**2",
+        help="About the pivot: 4/3·m·L² for the uniform bar, else as entered (AR3).",
+        equation="(AR3)",
+    ),
+    *motion.common_outputs(
+        "angle",
+        "deg",
+        "angular_speed",
+        "deg/s",
+        "V*s/rad",
+        "V*s**2/rad",
+        "V/rad",
+        "Volts to hold the arm horizontal against gravity (minus the counterbalance); "
+        "WPILib ArmFeedforward multiplies it by cos θ.",
+    ),
     *EFFECTS.outputs(),
     *STATS_OUTPUTS,
 )
@@ -125,23 +218,34 @@ HOW = {
     "time_to_goal": ("(AR4)", "First time the arm reaches the goal angle from rest at full voltage (AR4)."),
     "max_speed": ("(AR5)", "Fastest the arm turns during the move (AR5)."),
     "free_speed": ("(AR5)", "Arm speed with no load at the battery voltage, V_b·Kv/G (AR5)."),
-    "peak_stator_current": ("(AR2), (AR6)", "Largest motor (stator) current per motor: at rest, unless a "
-                                            "limit holds it (AR6)."),
+    "peak_stator_current": (
+        "(AR2), (AR6)",
+        "Largest motor (stator) current per motor: at rest, unless a limit holds it (AR6).",
+    ),
     "peak_supply_current": ("(AR6)", "Largest battery-side current per motor: stator current × duty (AR6)."),
     "peak_battery_current": ("(AR6)", "Largest total battery current, N × supply current per motor (AR6)."),
-    "min_bus_voltage": ("(AR6)", "Battery voltage minus the sag N·R_batt·(supply current); no sag: the "
-                                 "battery's (AR6)."),
+    "min_bus_voltage": (
+        "(AR6)",
+        "Battery voltage minus the sag N·R_batt·(supply current); no sag: the battery's (AR6).",
+    ),
     "energy": ("(AR7)", "Energy drawn from the battery over the move, ∫ V_b·N·u·I dt (AR7)."),
-    "hold_current": ("(AR8)", "Per motor, to hold at the goal against gravity and counterbalance, friction "
-                              "aside (AR8)."),
-    "kG": ("(AR9)", "Volts to hold the arm horizontal, gravity minus counterbalance; WPILib uses kG·cos θ (AR9)."),
+    "hold_current": (
+        "(AR8)",
+        "Per motor, to hold at the goal against gravity and counterbalance, friction aside (AR8).",
+    ),
+    "kG": (
+        "(AR9)",
+        "Volts to hold the arm horizontal, gravity minus counterbalance; WPILib uses kG·cos θ (AR9).",
+    ),
     "kV": ("(AR9)", "Volts per unit of angular speed, G/Kv (WPILib kV) (AR9)."),
     "kA": ("(AR9)", "Volts per unit of angular acceleration, I·R/(η·N·Kt·G) (WPILib kA) (AR9)."),
     "kS": ("(AR9)", "Volts to overcome the friction, τ_f·R/(η·N·Kt·G) (WPILib kS) (AR9)."),
     "kP": ("(AR10)", "LQR position gain for the plant kV, kA, as WPILib's LinearQuadraticRegulator (AR10)."),
     "kD": ("(AR10)", "LQR velocity gain for the plant kV, kA, as WPILib's LinearQuadraticRegulator (AR10)."),
 }
-OUTPUTS = tuple(replace(o, equation=HOW[o.name][0], help=HOW[o.name][1]) if o.name in HOW else o for o in OUTPUTS)
+OUTPUTS = tuple(
+    replace(o, equation=HOW[o.name][0], help=HOW[o.name][1]) if o.name in HOW else o for o in OUTPUTS
+)
 
 
 def inertia(v) -> float:
@@ -150,8 +254,11 @@ def inertia(v) -> float:
         return 4.0 / 3.0 * m * L * L
     I = v["moment_of_inertia"]
     if I < m * L * L * (1 - 1e-12):
-        raise InputError("moment_of_inertia", f"is below m·L² = {m * L * L:.4g} kg·m², the least an arm of "
-                                              f"this mass and centre of mass can have")
+        raise InputError(
+            "moment_of_inertia",
+            f"is below m·L² = {m * L * L:.4g} kg·m², the least an arm of "
+            f"this mass and centre of mass can have",
+        )
     return I
 
 
@@ -167,20 +274,41 @@ def setup(v, ratio=None, xp=motion.SCALAR) -> motion.Setup:
         raise InputError("goal_angle", "equals the start angle: nothing to move")
     motor, _ = lookup(v["motor"], v["source"])
     G_ = v["ratio"] if ratio is None else ratio
-    mech = motion.Mechanism(motor, v["motor_count"], v["voltage"], v["efficiency"], G_, inertia(v),
-                            v["start_angle"], v["goal_angle"], motion.bus_resistance_of(v, on), xp)
+    mech = motion.Mechanism(
+        motor,
+        v["motor_count"],
+        v["voltage"],
+        v["efficiency"],
+        G_,
+        inertia(v),
+        v["start_angle"],
+        v["goal_angle"],
+        motion.bus_resistance_of(v, on),
+        xp,
+    )
     asm = EFFECTS.assemble(on, v, mech, motion.SLOTS, ("angle", "speed", "energy"), minimum=xp.minimum)
     varying = asm.slots["force"] is not None
-    return motion.Setup(mech, EFFECTS, asm, varying=varying, values=v,
-                        critical=critical_angles(v["start_angle"], v["goal_angle"]),
-                        names={"force_unit": "N·m", "friction": "friction_torque",
-                               "where": lambda q: f" at {math.degrees(q):.4g}°"})
+    return motion.Setup(
+        mech,
+        EFFECTS,
+        asm,
+        varying=varying,
+        values=v,
+        critical=critical_angles(v["start_angle"], v["goal_angle"]),
+        names={
+            "force_unit": "N·m",
+            "friction": "friction_torque",
+            "where": lambda q: f" at {math.degrees(q):.4g}°",
+        },
+    )
 
 
 def simulate(v, rtol: float):
     _, note = lookup(v["motor"], v["source"])
     if v["mode"] == "optimise":
-        run = motion.optimise(lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, 1.0, hold_q=0.0)
+        run = motion.optimise(
+            lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, 1.0, hold_q=0.0
+        )
     else:
         run = motion.run_move(setup(v), rtol, hold_q=0.0)
     run.values["moment_of_inertia"] = inertia(v)

@@ -69,106 +69,301 @@ END_CONDITIONS = {
 }
 
 FIELDS = (
-    Field("section", "Cross section", choices=beams.SECTIONS, choice_labels=beams.SECTION_LABELS,
-          default="rectangular_tube", help="Shape of the beam's cross section (seed 5.1)."),
-    Field("outer_size", "Outer size (flats/diameter)", "length", "in", default=0.5,
-          min=0, min_exclusive=True,
-          help="Hex: across flats. Round and round tube: outside diameter. Square: side. "
-               "Not used by the rectangular tube.",
-          when=(("section", ("hex", "round", "round_tube", "square")),)),
-    Field("height", "Tube height (along the force)", "length", "in", default=2, min=0, min_exclusive=True,
-          help="Rectangular tube only: outside size in the direction of the force (x).",
-          when=(("section", ("rectangular_tube",)),)),
-    Field("width", "Tube width (across the force)", "length", "in", default=1, min=0, min_exclusive=True,
-          help="Rectangular tube only: outside size across the force (y).",
-          when=(("section", ("rectangular_tube",)),)),
-    Field("wall", "Wall thickness", "length", "in", default=0.0625, min=0, min_exclusive=True,
-          help="Tubes only: wall thickness h, less than half the smallest outside size.",
-          when=(("section", ("round_tube", "rectangular_tube")),)),
-    Field("material", "Material", choices=tuple(MATERIALS), choice_labels=tuple(m[0] for m in MATERIALS.values()),
-          default="6061_t6", help="6061-T6, steel or polycarbonate (REFERENCE_DATA), or your own figures."),
-    Field("youngs_modulus", "Custom Young's modulus E", "modulus", "GPa", default=68.9, min=0,
-          min_exclusive=True, help="Used only when the material is Custom.",
-          when=(("material", ("custom",)),)),
-    Field("shear_modulus", "Custom shear modulus G", "modulus", "GPa", default=26, min=0,
-          min_exclusive=True, help="Used only when the material is Custom.",
-          when=(("material", ("custom",)),)),
-    Field("yield_strength", "Custom yield strength", "pressure", "MPa", default=276, min=0,
-          help="Used only when the material is Custom; 0 if unknown (no safety factor).",
-          when=(("material", ("custom",)),)),
-    Field("density", "Custom density", "density", "g/cm**3", default=2.7, min=0,
-          help="Used only when the material is Custom; 0 if unknown (no mass).",
-          when=(("material", ("custom",)),)),
-    Field("support", "Load case", choices=beams.SUPPORTS, choice_labels=beams.SUPPORT_LABELS,
-          default="simple", help="Force between two simple supports, two fixed supports, "
-                                 "or on a cantilever (seed 5.2)."),
-    Field("length", "Length", "length", "in", default=24, min=0, min_exclusive=True,
-          help="Distance between supports l, or the cantilever's length; also the column and "
-               "twisted length."),
-    Field("load_position", "Load position", "length", "in", default=12, min=0,
-          help="Distance a of the force from the left support (cantilever: from the fixed end)."),
+    Field(
+        "section",
+        "Cross section",
+        choices=beams.SECTIONS,
+        choice_labels=beams.SECTION_LABELS,
+        default="rectangular_tube",
+        help="Shape of the beam's cross section (seed 5.1).",
+    ),
+    Field(
+        "outer_size",
+        "Outer size (flats/diameter)",
+        "length",
+        "in",
+        default=0.5,
+        min=0,
+        min_exclusive=True,
+        help="Hex: across flats. Round and round tube: outside diameter. Square: side. "
+        "Not used by the rectangular tube.",
+        when=(("section", ("hex", "round", "round_tube", "square")),),
+    ),
+    Field(
+        "height",
+        "Tube height (along the force)",
+        "length",
+        "in",
+        default=2,
+        min=0,
+        min_exclusive=True,
+        help="Rectangular tube only: outside size in the direction of the force (x).",
+        when=(("section", ("rectangular_tube",)),),
+    ),
+    Field(
+        "width",
+        "Tube width (across the force)",
+        "length",
+        "in",
+        default=1,
+        min=0,
+        min_exclusive=True,
+        help="Rectangular tube only: outside size across the force (y).",
+        when=(("section", ("rectangular_tube",)),),
+    ),
+    Field(
+        "wall",
+        "Wall thickness",
+        "length",
+        "in",
+        default=0.0625,
+        min=0,
+        min_exclusive=True,
+        help="Tubes only: wall thickness h, less than half the smallest outside size.",
+        when=(("section", ("round_tube", "rectangular_tube")),),
+    ),
+    Field(
+        "material",
+        "Material",
+        choices=tuple(MATERIALS),
+        choice_labels=tuple(m[0] for m in MATERIALS.values()),
+        default="6061_t6",
+        help="6061-T6, steel or polycarbonate (REFERENCE_DATA), or your own figures.",
+    ),
+    Field(
+        "youngs_modulus",
+        "Custom Young's modulus E",
+        "modulus",
+        "GPa",
+        default=68.9,
+        min=0,
+        min_exclusive=True,
+        help="Used only when the material is Custom.",
+        when=(("material", ("custom",)),),
+    ),
+    Field(
+        "shear_modulus",
+        "Custom shear modulus G",
+        "modulus",
+        "GPa",
+        default=26,
+        min=0,
+        min_exclusive=True,
+        help="Used only when the material is Custom.",
+        when=(("material", ("custom",)),),
+    ),
+    Field(
+        "yield_strength",
+        "Custom yield strength",
+        "pressure",
+        "MPa",
+        default=276,
+        min=0,
+        help="Used only when the material is Custom; 0 if unknown (no safety factor).",
+        when=(("material", ("custom",)),),
+    ),
+    Field(
+        "density",
+        "Custom density",
+        "density",
+        "g/cm**3",
+        default=2.7,
+        min=0,
+        help="Used only when the material is Custom; 0 if unknown (no mass).",
+        when=(("material", ("custom",)),),
+    ),
+    Field(
+        "support",
+        "Load case",
+        choices=beams.SUPPORTS,
+        choice_labels=beams.SUPPORT_LABELS,
+        default="simple",
+        help="Force between two simple supports, two fixed supports, or on a cantilever (seed 5.2).",
+    ),
+    Field(
+        "length",
+        "Length",
+        "length",
+        "in",
+        default=24,
+        min=0,
+        min_exclusive=True,
+        help="Distance between supports l, or the cantilever's length; also the column and twisted length.",
+    ),
+    Field(
+        "load_position",
+        "Load position",
+        "length",
+        "in",
+        default=12,
+        min=0,
+        help="Distance a of the force from the left support (cantilever: from the fixed end).",
+    ),
     Field("force", "Force", "force", "lbf", default=100, min=0, help="Point force F across the beam."),
-    Field("torque", "Torque", "torque", "in*lbf", default=100, min=0,
-          help="Torque T twisting the beam over its length (60)."),
-    Field("end_condition", "Column end condition", choices=tuple(END_CONDITIONS),
-          choice_labels=tuple(e[0] for e in END_CONDITIONS.values()), default="pinned_pinned",
-          help="End fixity for column buckling: sets K in (59)."),
-    Field("k_values", "K values", choices=("recommended", "theoretical"),
-          choice_labels=("Recommended design", "Theoretical"), default="recommended",
-          help="The seed's recommended design K (allows for imperfect fixity) or the theoretical K."),
+    Field(
+        "torque",
+        "Torque",
+        "torque",
+        "in*lbf",
+        default=100,
+        min=0,
+        help="Torque T twisting the beam over its length (60).",
+    ),
+    Field(
+        "end_condition",
+        "Column end condition",
+        choices=tuple(END_CONDITIONS),
+        choice_labels=tuple(e[0] for e in END_CONDITIONS.values()),
+        default="pinned_pinned",
+        help="End fixity for column buckling: sets K in (59).",
+    ),
+    Field(
+        "k_values",
+        "K values",
+        choices=("recommended", "theoretical"),
+        choice_labels=("Recommended design", "Theoretical"),
+        default="recommended",
+        help="The seed's recommended design K (allows for imperfect fixity) or the theoretical K.",
+    ),
 )
 
 OUTPUTS = (
-    Output("area_moment", "Area moment of inertia I", "area_moment", "in**4",
-           help="Second moment of area about the bending axis, exact for the section ((47), (51) corrected).",
-           equation="(43), (45), (47), (49), (51)"),
-    Output("torsion_constant", "Torsion constant J", "area_moment", "in**4",
-           help="Exact for round and round tube, series for square, finite elements for hex and rectangular tube.",
-           equation="(44), (46), (48), (50), (52), (B2)"),
-    Output("torsion_constant_error", "J accuracy (±)", "dimensionless", "%",
-           help="Rectangular tube: half the gap between proven lower and upper finite-element bounds on J (B2).",
-           equation="(B2)"),
-    Output("thin_wall_torsion_constant", "Thin-wall J (estimate)", "area_moment", "in**4",
-           help="Tubes: the seed's thin-wall J, π/4·d³h (48) or Bredt's (52, corrected), for comparison.",
-           equation="(48), (52)"),
-    Output("thin_wall_error", "Thin-wall J error", "dimensionless", "%",
-           help="Thin-wall J ÷ J − 1: how far the seed's thin-wall formula is off for this wall (B3).",
-           equation="(B3)"),
-    Output("max_deflection", "Max deflection", "length", "in",
-           help="Largest deflection under the force: (57) fixed ends, (58) cantilever, (B4) simple supports.",
-           equation="(57), (58), (B4)"),
-    Output("max_deflection_position", "Max deflection at", "length", "in",
-           help="Where it bends most, from the left support (cantilever: fixed end): (56), (B4); tip (58).",
-           equation="(56), (58), (B4)"),
-    Output("max_bending_moment", "Max bending moment", "torque", "in*lbf",
-           help="F·a·b/l between simple supports, F·a·b·max(a, b)/l² fixed, F·a at a cantilever's root (B5).",
-           equation="(B5)"),
-    Output("max_bending_stress", "Max bending stress", "pressure", "MPa",
-           help="Largest moment × distance to the extreme fibre ÷ I, σ = M·c/I (B6).", equation="(B6)"),
-    Output("safety_factor", "Safety factor (bending yield)",
-           help="Yield strength ÷ largest bending stress (B7).", equation="(B7)"),
-    Output("buckling_load", "Buckling load", "force", "lbf",
-           help="Critical column load, weakest axis: Euler's (59) if slender, Johnson's parabola (B9) if short.",
-           equation="(59), (B9)"),
-    Output("buckling_formula", "Buckling governed by",
-           help="Euler above the transition slenderness √(2π²E/Sy), Johnson below it (B8).", equation="(B8)"),
-    Output("euler_load", "Euler load", "force", "lbf",
-           help="Euler's critical load π²EI/(KL)², weakest axis; an overestimate for short columns (59).",
-           equation="(59)"),
-    Output("slenderness_ratio", "Slenderness KL/r",
-           help="K·L over the radius of gyration √(I/A) of the weakest axis (B8).", equation="(B8)"),
-    Output("transition_slenderness", "Transition slenderness",
-           help="√(2π²E/Sy), where Euler's stress is half the yield: Euler above, Johnson below (B8).",
-           equation="(B8)"),
-    Output("twist_angle", "Twist angle", "angle", "deg",
-           help="Twist of the whole length under the torque, θ = T·L/(G·J) (60).", equation="(60)"),
-    Output("cross_section_area", "Cross-section area", "area", "in**2",
-           help="Area of the section, exact (B1).", equation="(B1)"),
+    Output(
+        "area_moment",
+        "Area moment of inertia I",
+        "area_moment",
+        "in**4",
+        help="Second moment of area about the bending axis, exact for the section ((47), (51) corrected).",
+        equation="(43), (45), (47), (49), (51)",
+    ),
+    Output(
+        "torsion_constant",
+        "Torsion constant J",
+        "area_moment",
+        "in**4",
+        help="Exact for round and round tube, series for square, finite elements for hex and rectangular tube.",
+        equation="(44), (46), (48), (50), (52), (B2)",
+    ),
+    Output(
+        "torsion_constant_error",
+        "J accuracy (±)",
+        "dimensionless",
+        "%",
+        help="Rectangular tube: half the gap between proven lower and upper finite-element bounds on J (B2).",
+        equation="(B2)",
+    ),
+    Output(
+        "thin_wall_torsion_constant",
+        "Thin-wall J (estimate)",
+        "area_moment",
+        "in**4",
+        help="Tubes: the seed's thin-wall J, π/4·d³h (48) or Bredt's (52, corrected), for comparison.",
+        equation="(48), (52)",
+    ),
+    Output(
+        "thin_wall_error",
+        "Thin-wall J error",
+        "dimensionless",
+        "%",
+        help="Thin-wall J ÷ J − 1: how far the seed's thin-wall formula is off for this wall (B3).",
+        equation="(B3)",
+    ),
+    Output(
+        "max_deflection",
+        "Max deflection",
+        "length",
+        "in",
+        help="Largest deflection under the force: (57) fixed ends, (58) cantilever, (B4) simple supports.",
+        equation="(57), (58), (B4)",
+    ),
+    Output(
+        "max_deflection_position",
+        "Max deflection at",
+        "length",
+        "in",
+        help="Where it bends most, from the left support (cantilever: fixed end): (56), (B4); tip (58).",
+        equation="(56), (58), (B4)",
+    ),
+    Output(
+        "max_bending_moment",
+        "Max bending moment",
+        "torque",
+        "in*lbf",
+        help="F·a·b/l between simple supports, F·a·b·max(a, b)/l² fixed, F·a at a cantilever's root (B5).",
+        equation="(B5)",
+    ),
+    Output(
+        "max_bending_stress",
+        "Max bending stress",
+        "pressure",
+        "MPa",
+        help="Largest moment × distance to the extreme fibre ÷ I, σ = M·c/I (B6).",
+        equation="(B6)",
+    ),
+    Output(
+        "safety_factor",
+        "Safety factor (bending yield)",
+        help="Yield strength ÷ largest bending stress (B7).",
+        equation="(B7)",
+    ),
+    Output(
+        "buckling_load",
+        "Buckling load",
+        "force",
+        "lbf",
+        help="Critical column load, weakest axis: Euler's (59) if slender, Johnson's parabola (B9) if short.",
+        equation="(59), (B9)",
+    ),
+    Output(
+        "buckling_formula",
+        "Buckling governed by",
+        help="Euler above the transition slenderness √(2π²E/Sy), Johnson below it (B8).",
+        equation="(B8)",
+    ),
+    Output(
+        "euler_load",
+        "Euler load",
+        "force",
+        "lbf",
+        help="Euler's critical load π²EI/(KL)², weakest axis; an overestimate for short columns (59).",
+        equation="(59)",
+    ),
+    Output(
+        "slenderness_ratio",
+        "Slenderness KL/r",
+        help="K·L over the radius of gyration √(I/A) of the weakest axis (B8).",
+        equation="(B8)",
+    ),
+    Output(
+        "transition_slenderness",
+        "Transition slenderness",
+        help="√(2π²E/Sy), where Euler's stress is half the yield: Euler above, Johnson below (B8).",
+        equation="(B8)",
+    ),
+    Output(
+        "twist_angle",
+        "Twist angle",
+        "angle",
+        "deg",
+        help="Twist of the whole length under the torque, θ = T·L/(G·J) (60).",
+        equation="(60)",
+    ),
+    Output(
+        "cross_section_area",
+        "Cross-section area",
+        "area",
+        "in**2",
+        help="Area of the section, exact (B1).",
+        equation="(B1)",
+    ),
     Output("mass", "Beam mass", "mass", "lb", help="Density × area × length (B10).", equation="(B10)"),
 )
 
-PLOTS = (Plot("Deflection along the beam", ("deflection",), "position", "length", "in",
-              "deflection", "length", "in"),)
+PLOTS = (
+    Plot(
+        "Deflection along the beam", ("deflection",), "position", "length", "in", "deflection", "length", "in"
+    ),
+)
 
 
 def section_from(v) -> beams.Section:
@@ -184,13 +379,19 @@ def section_from(v) -> beams.Section:
     if name == "round_tube":
         D = v["outer_size"]
         if h >= D / 2:
-            raise InputError("wall", f"must be less than half the outer diameter ({D / 2 * 1e3:.4g} mm): "
-                                     "the tube would have no bore (use Round for a solid bar)")
+            raise InputError(
+                "wall",
+                f"must be less than half the outer diameter ({D / 2 * 1e3:.4g} mm): "
+                "the tube would have no bore (use Round for a solid bar)",
+            )
         return beams.round_tube_section(D, h)
     x, y = v["height"], v["width"]
     if h >= min(x, y) / 2:
-        raise InputError("wall", f"must be less than half the smaller outside size "
-                                 f"({min(x, y) / 2 * 1e3:.4g} mm): the tube would have no hole")
+        raise InputError(
+            "wall",
+            f"must be less than half the smaller outside size "
+            f"({min(x, y) / 2 * 1e3:.4g} mm): the tube would have no hole",
+        )
     return beams.rectangular_tube_section(x, y, h)
 
 
@@ -251,8 +452,10 @@ def compute(v) -> Result:
     if sec.torsion_constant_error is not None:
         values["torsion_constant_error"] = sec.torsion_constant_error
         if abs(error) > 0.05:
-            warnings.append(f"The seed's thin-wall torsion constant is {abs(error):.0%} "
-                            f"{'low' if error < 0 else 'high'} for this wall; the finite-element J is used.")
+            warnings.append(
+                f"The seed's thin-wall torsion constant is {abs(error):.0%} "
+                f"{'low' if error < 0 else 'high'} for this wall; the finite-element J is used."
+            )
     if transition is not None:
         values["transition_slenderness"] = transition
     if rho is not None:
@@ -266,12 +469,16 @@ def compute(v) -> Result:
     if Sy is None and P_cr / sec.area > MILD_STEEL_YIELD / 2:
         # Johnson's parabola takes over below σ_Euler = Sy/2: without Sy, say which yield Euler needs
         needed = 2 * P_cr / sec.area
-        warnings.append(f"Short column: Euler's load holds only if the yield strength is at least "
-                        f"{format_number(needed / 1e6)} MPa (twice the Euler stress); below that Johnson's "
-                        "parabola gives less. Choose Custom with the yield strength to check.")
+        warnings.append(
+            f"Short column: Euler's load holds only if the yield strength is at least "
+            f"{format_number(needed / 1e6)} MPa (twice the Euler stress); below that Johnson's "
+            "parabola gives less. Choose Custom with the yield strength to check."
+        )
     if y_max > 0.1 * l:
-        warnings.append(f"The deflection is {y_max / l:.0%} of the length: beyond small-deflection "
-                        "beam theory, treat the numbers as rough.")
+        warnings.append(
+            f"The deflection is {y_max / l:.0%} of the length: beyond small-deflection "
+            "beam theory, treat the numbers as rough."
+        )
     xs, ys = beams.deflection_curve(support, F, a, l, EI)
     return Result(values, warnings, {"deflection": (xs, ys)})
 

@@ -50,93 +50,230 @@ from __future__ import annotations
 
 import math
 
+from ..constants import INCH as IN
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Result
 
 MM = 1e-3
-from ..constants import INCH as IN
 
 STANDARDS = ("chain_25", "chain_35", "chain_40", "htd_5mm", "gt2_3mm", "rt25", "custom")
-STANDARD_LABELS = ("#25 chain (1/4 in)", "#35 chain (3/8 in)", "#40 chain (1/2 in)",
-                   "HTD 5 mm belt", "GT2 3 mm belt", "RT25 belt (1/4 in)", "Custom pitch")
-STANDARD_PITCH = {"chain_25": 0.25 * IN, "chain_35": 0.375 * IN, "chain_40": 0.5 * IN,
-                  "htd_5mm": 5 * MM, "gt2_3mm": 3 * MM, "rt25": 0.25 * IN}
-STANDARD_KIND = {"chain_25": "chain", "chain_35": "chain", "chain_40": "chain",
-                 "htd_5mm": "belt", "gt2_3mm": "belt", "rt25": "belt"}
+STANDARD_LABELS = (
+    "#25 chain (1/4 in)",
+    "#35 chain (3/8 in)",
+    "#40 chain (1/2 in)",
+    "HTD 5 mm belt",
+    "GT2 3 mm belt",
+    "RT25 belt (1/4 in)",
+    "Custom pitch",
+)
+STANDARD_PITCH = {
+    "chain_25": 0.25 * IN,
+    "chain_35": 0.375 * IN,
+    "chain_40": 0.5 * IN,
+    "htd_5mm": 5 * MM,
+    "gt2_3mm": 3 * MM,
+    "rt25": 0.25 * IN,
+}
+STANDARD_KIND = {
+    "chain_25": "chain",
+    "chain_35": "chain",
+    "chain_40": "chain",
+    "htd_5mm": "belt",
+    "gt2_3mm": "belt",
+    "rt25": "belt",
+}
 
 FIELDS = (
-    Field("mode", "Solve for", choices=("center_from_links", "links_from_center"),
-          choice_labels=("Center distance from length", "Length from center distance"),
-          default="center_from_links",
-          help="Forward: a chain/belt length gives the center distance. Reverse: a wanted center "
-               "distance gives the nearest usable lengths below and above it."),
-    Field("pitch_standard", "Pitch standard", choices=STANDARDS, choice_labels=STANDARD_LABELS,
-          default="htd_5mm", help="A standard sets the pitch and whether it is a chain or a belt; "
-                                  "choose Custom to type the pitch below."),
-    Field("kind", "Chain or belt", choices=("chain", "belt"), default="belt",
-          help="Custom pitch only (a standard sets it): chains use an even number of links unless "
-               "a half (offset) link is allowed; belts may have any number of teeth.",
-          when=(("pitch_standard", ("custom",)),)),
-    Field("pitch", "Custom pitch", "length", "mm", default=5, min=0, min_exclusive=True,
-          help="Chain pitch or belt tooth pitch p, used when the standard is Custom.",
-          when=(("pitch_standard", ("custom",)),)),
-    Field("teeth_1", "Sprocket/pulley 1 teeth", integer=True, default=20, min=3, max=10000,
-          help="Teeth n_1 on the first sprocket or pulley."),
-    Field("teeth_2", "Sprocket/pulley 2 teeth", integer=True, default=30, min=3, max=10000,
-          help="Teeth n_2 on the second sprocket or pulley."),
-    Field("links", "Links / belt teeth", integer=True, default=100, min=1,
-          modes=("center_from_links",), help="Chain links or belt teeth l; length L = l·p (66)."),
-    Field("target_center", "Wanted center distance", "length", "in", default=7.5, min=0,
-          min_exclusive=True, modes=("links_from_center",),
-          help="Center distance D you would like; the nearest usable lengths are found."),
-    Field("half_links", "Allow half links", boolean=True, default=False,
-          help="Chain only (ignored for a belt): a half (offset) link allows an odd number of links.",
-          when=(("pitch_standard", ("chain_25", "chain_35", "chain_40", "custom")),)),
-    Field("pitch_diameter", "Pitch diameter shown", choices=("circumference", "chordal"),
-          choice_labels=("n·p/π (spreadsheet; exact for belts)", "p/sin(180°/n) (true sprocket circle)"),
-          default="circumference",
-          help="Pitch diameters and clearance shown: n·p/π as the seed (65), or a chain sprocket's "
-               "true pitch circle through the roller centres, p/sin(180°/n). The center distance "
-               "does not depend on it: a chain wraps a sprocket as n links, n·p per turn."),
+    Field(
+        "mode",
+        "Solve for",
+        choices=("center_from_links", "links_from_center"),
+        choice_labels=("Center distance from length", "Length from center distance"),
+        default="center_from_links",
+        help="Forward: a chain/belt length gives the center distance. Reverse: a wanted center "
+        "distance gives the nearest usable lengths below and above it.",
+    ),
+    Field(
+        "pitch_standard",
+        "Pitch standard",
+        choices=STANDARDS,
+        choice_labels=STANDARD_LABELS,
+        default="htd_5mm",
+        help="A standard sets the pitch and whether it is a chain or a belt; "
+        "choose Custom to type the pitch below.",
+    ),
+    Field(
+        "kind",
+        "Chain or belt",
+        choices=("chain", "belt"),
+        default="belt",
+        help="Custom pitch only (a standard sets it): chains use an even number of links unless "
+        "a half (offset) link is allowed; belts may have any number of teeth.",
+        when=(("pitch_standard", ("custom",)),),
+    ),
+    Field(
+        "pitch",
+        "Custom pitch",
+        "length",
+        "mm",
+        default=5,
+        min=0,
+        min_exclusive=True,
+        help="Chain pitch or belt tooth pitch p, used when the standard is Custom.",
+        when=(("pitch_standard", ("custom",)),),
+    ),
+    Field(
+        "teeth_1",
+        "Sprocket/pulley 1 teeth",
+        integer=True,
+        default=20,
+        min=3,
+        max=10000,
+        help="Teeth n_1 on the first sprocket or pulley.",
+    ),
+    Field(
+        "teeth_2",
+        "Sprocket/pulley 2 teeth",
+        integer=True,
+        default=30,
+        min=3,
+        max=10000,
+        help="Teeth n_2 on the second sprocket or pulley.",
+    ),
+    Field(
+        "links",
+        "Links / belt teeth",
+        integer=True,
+        default=100,
+        min=1,
+        modes=("center_from_links",),
+        help="Chain links or belt teeth l; length L = l·p (66).",
+    ),
+    Field(
+        "target_center",
+        "Wanted center distance",
+        "length",
+        "in",
+        default=7.5,
+        min=0,
+        min_exclusive=True,
+        modes=("links_from_center",),
+        help="Center distance D you would like; the nearest usable lengths are found.",
+    ),
+    Field(
+        "half_links",
+        "Allow half links",
+        boolean=True,
+        default=False,
+        help="Chain only (ignored for a belt): a half (offset) link allows an odd number of links.",
+        when=(("pitch_standard", ("chain_25", "chain_35", "chain_40", "custom")),),
+    ),
+    Field(
+        "pitch_diameter",
+        "Pitch diameter shown",
+        choices=("circumference", "chordal"),
+        choice_labels=("n·p/π (spreadsheet; exact for belts)", "p/sin(180°/n) (true sprocket circle)"),
+        default="circumference",
+        help="Pitch diameters and clearance shown: n·p/π as the seed (65), or a chain sprocket's "
+        "true pitch circle through the roller centres, p/sin(180°/n). The center distance "
+        "does not depend on it: a chain wraps a sprocket as n links, n·p per turn.",
+    ),
 )
 
 OUTPUTS = (
-    Output("center_distance", "Center distance", "length", "in",
-           help="Center distance D at which the length equation (68, corrected) gives this length L = l·p.",
-           equation="(66), (68)"),
-    Output("clearance", "Clearance between pitch circles", "length", "in",
-           help="Gap between the pitch circles, C = D − (r_1 + r_2); negative: the sprockets overlap (67).",
-           equation="(67)"),
-    Output("length", "Chain/belt length", "length", "in",
-           help="Links (belt teeth) × pitch, L = l·p (66).", equation="(66)"),
-    Output("links_exact", "Exact links for that distance",
-           help="Length at the wanted center distance (68, corrected) ÷ pitch: a fractional link count.",
-           equation="(66), (68)"),
-    Output("links_below", "Shorter usable length (links)",
-           help="The exact count rounded down to a usable one (even for chain without half links) (CB5).",
-           equation="(CB5)"),
-    Output("center_below", "Center distance, shorter", "length", "in",
-           help="Center distance the shorter usable length gives (68, corrected).", equation="(66), (68)"),
-    Output("links_above", "Longer usable length (links)",
-           help="The exact count rounded up to a usable one (even for chain without half links) (CB5).",
-           equation="(CB5)"),
-    Output("center_above", "Center distance, longer", "length", "in",
-           help="Center distance the longer usable length gives (68, corrected).", equation="(66), (68)"),
-    Output("pitch_diameter_1", "Pitch diameter 1", "length", "in",
-           help="Wheel 1: n·p/π (65), or a sprocket's chordal p/sin(180°/n) (CB1), as chosen below.",
-           equation="(65), (CB1)"),
-    Output("pitch_diameter_2", "Pitch diameter 2", "length", "in",
-           help="Wheel 2: n·p/π (65), or a sprocket's chordal p/sin(180°/n) (CB1), as chosen below.",
-           equation="(65), (CB1)"),
-    Output("wrap_angle_small", "Wrap on the smaller sprocket", "angle", "deg",
-           help="Angle of contact on the smaller wheel, π − 2·sin⁻¹(|r_2 − r_1|/D) (CB2).", equation="(CB2)"),
-    Output("minimum_links", "Fewest links with both clear",
-           help="Fewest links (belt teeth) at which the wheels clear each other, D > (OD_1 + OD_2)/2 (CB3).",
-           equation="(CB3)"),
+    Output(
+        "center_distance",
+        "Center distance",
+        "length",
+        "in",
+        help="Center distance D at which the length equation (68, corrected) gives this length L = l·p.",
+        equation="(66), (68)",
+    ),
+    Output(
+        "clearance",
+        "Clearance between pitch circles",
+        "length",
+        "in",
+        help="Gap between the pitch circles, C = D − (r_1 + r_2); negative: the sprockets overlap (67).",
+        equation="(67)",
+    ),
+    Output(
+        "length",
+        "Chain/belt length",
+        "length",
+        "in",
+        help="Links (belt teeth) × pitch, L = l·p (66).",
+        equation="(66)",
+    ),
+    Output(
+        "links_exact",
+        "Exact links for that distance",
+        help="Length at the wanted center distance (68, corrected) ÷ pitch: a fractional link count.",
+        equation="(66), (68)",
+    ),
+    Output(
+        "links_below",
+        "Shorter usable length (links)",
+        help="The exact count rounded down to a usable one (even for chain without half links) (CB5).",
+        equation="(CB5)",
+    ),
+    Output(
+        "center_below",
+        "Center distance, shorter",
+        "length",
+        "in",
+        help="Center distance the shorter usable length gives (68, corrected).",
+        equation="(66), (68)",
+    ),
+    Output(
+        "links_above",
+        "Longer usable length (links)",
+        help="The exact count rounded up to a usable one (even for chain without half links) (CB5).",
+        equation="(CB5)",
+    ),
+    Output(
+        "center_above",
+        "Center distance, longer",
+        "length",
+        "in",
+        help="Center distance the longer usable length gives (68, corrected).",
+        equation="(66), (68)",
+    ),
+    Output(
+        "pitch_diameter_1",
+        "Pitch diameter 1",
+        "length",
+        "in",
+        help="Wheel 1: n·p/π (65), or a sprocket's chordal p/sin(180°/n) (CB1), as chosen below.",
+        equation="(65), (CB1)",
+    ),
+    Output(
+        "pitch_diameter_2",
+        "Pitch diameter 2",
+        "length",
+        "in",
+        help="Wheel 2: n·p/π (65), or a sprocket's chordal p/sin(180°/n) (CB1), as chosen below.",
+        equation="(65), (CB1)",
+    ),
+    Output(
+        "wrap_angle_small",
+        "Wrap on the smaller sprocket",
+        "angle",
+        "deg",
+        help="Angle of contact on the smaller wheel, π − 2·sin⁻¹(|r_2 − r_1|/D) (CB2).",
+        equation="(CB2)",
+    ),
+    Output(
+        "minimum_links",
+        "Fewest links with both clear",
+        help="Fewest links (belt teeth) at which the wheels clear each other, D > (OD_1 + OD_2)/2 (CB3).",
+        equation="(CB3)",
+    ),
 )
 
 
 # --- pitch radii (65) -----------------------------------------------------------------------
+
 
 def pitch_radius(n: int, p: float, method: str) -> float:
     if method == "chordal":
@@ -145,6 +282,7 @@ def pitch_radius(n: int, p: float, method: str) -> float:
 
 
 # --- length equation (68), exact form --------------------------------------------------------
+
 
 def u_minus_atan(u: float) -> float:
     """u − tan⁻¹(u) for u ≥ 0 without cancellation: series u³/3 − u⁵/5 + ... for small u."""
@@ -229,6 +367,7 @@ def wrap_angle(X: float, r1: float, r2: float) -> float:
 
 # --- the calculator --------------------------------------------------------------------------
 
+
 def step_of(kind: str, half_links: bool) -> int:
     return 2 if kind == "chain" and not half_links else 1
 
@@ -243,8 +382,9 @@ def compute(v) -> Result:
     n1, n2 = v["teeth_1"], v["teeth_2"]
     method = v["pitch_diameter"]
     if kind == "belt" and method == "chordal":
-        warnings.append("Belts: n·p/π is the exact pulley pitch diameter; p/sin(180°/n) is for "
-                        "chain sprockets.")
+        warnings.append(
+            "Belts: n·p/π is the exact pulley pitch diameter; p/sin(180°/n) is for chain sprockets."
+        )
     # the chain/belt path: n·p per turn of either, so r = n·p/(2π) (65) for chain as for belt
     r1, r2 = pitch_radius(n1, p, "circumference"), pitch_radius(n2, p, "circumference")
     shown_1, shown_2 = pitch_radius(n1, p, method), pitch_radius(n2, p, method)  # diameters, (67)
@@ -268,31 +408,39 @@ def compute(v) -> Result:
         l = v["links"]
         L = l * p  # (66)
         if spare(l) < 0:
-            raise InputError("links", f"{l} {unit} are too short to wrap both sprockets: "
-                                      f"at least {l_min} are needed")
+            raise InputError(
+                "links", f"{l} {unit} are too short to wrap both sprockets: at least {l_min} are needed"
+            )
         if kind == "chain" and l % 2 and not v["half_links"]:
-            warnings.append("An odd number of links needs a half (offset) link: allow half links "
-                            "or use an even count.")
+            warnings.append(
+                "An odd number of links needs a half (offset) link: allow half links or use an even count."
+            )
         D, X = span_from_length(L, r1, r2, spare(l))
         values.update(center_distance=D, length=L, clearance=D - (shown_1 + shown_2))  # (67)
         values["wrap_angle_small"] = wrap_angle(X, r1, r2)
         if D <= touch:
-            warnings.append(f"The {wheels} overlap at this length: the wheels would collide; "
-                            f"{l_clear} {unit} is the fewest at which they clear.")
+            warnings.append(
+                f"The {wheels} overlap at this length: the wheels would collide; "
+                f"{l_clear} {unit} is the fewest at which they clear."
+            )
         return Result(values, warnings)
 
     # links_from_center: the reverse calculation
     D = v["target_center"]
     delta = abs(r2 - r1)
     if D < delta:
-        raise InputError("target_center", "shorter than the difference of the pitch radii "
-                                          f"({delta / IN:.4g} in): no chain path wraps both")
+        raise InputError(
+            "target_center",
+            f"shorter than the difference of the pitch radii ({delta / IN:.4g} in): no chain path wraps both",
+        )
     L = length_from_center(D, r1, r2)
     l_exact = L / p
     values["links_exact"] = l_exact
     if D <= touch:
-        warnings.append(f"The {wheels} overlap at this center distance: the wheels would collide; "
-                        f"{l_clear} {unit} is the fewest at which they clear.")
+        warnings.append(
+            f"The {wheels} overlap at this center distance: the wheels would collide; "
+            f"{l_clear} {unit} is the fewest at which they clear."
+        )
     nearest = step * round(l_exact / step)
     if abs(nearest - l_exact) <= 1e-9 * l_exact:
         below = above = nearest
@@ -315,7 +463,7 @@ CALCULATOR = Calculator(
     id="chain_belt",
     title="Chain/belt C-C",
     summary="Center distance from a chain or belt length, or the nearest lengths for a wanted "
-            "center distance (seed section 7, Appendix E).",
+    "center distance (seed section 7, Appendix E).",
     fields=FIELDS,
     outputs=OUTPUTS,
     compute=compute,

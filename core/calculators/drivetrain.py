@@ -66,96 +66,298 @@ def _drive_motor_fields():
     for i, f in enumerate(fields):
         if f.name == "motor_count":
             fields[i] = dataclasses.replace(
-                f, label="Drive motors (total)",
-                help="All motors driving the wheels, both sides together (n in eqs. 39, 41).")
+                f,
+                label="Drive motors (total)",
+                help="All motors driving the wheels, both sides together (n in eqs. 39, 41).",
+            )
         elif f.name == "voltage":
             fields[i] = dataclasses.replace(
-                f, help="Voltage V the controllers apply to the motors; motor data is scaled by V/V_spec "
-                        "(eqs. 1-4). Reverse mode: the stalled motors draw at most ĩs at V, and no more "
-                        "than the battery can push through the wiring.")
+                f,
+                help="Voltage V the controllers apply to the motors; motor data is scaled by V/V_spec "
+                "(eqs. 1-4). Reverse mode: the stalled motors draw at most ĩs at V, and no more "
+                "than the battery can push through the wiring.",
+            )
     return tuple(fields)
 
 
 FIELDS = _drive_motor_fields() + (
-    Field("mode", "Calculate", choices=MODES, choice_labels=MODE_LABELS, default="forward",
-          help="Forward: speeds and slip current for a ratio (4.1). Reverse: the fastest ratio that "
-               "can slip the wheels before the battery sags below the minimum voltage (4.2). "
-               "Shifting: the speed at which to change gear (eq. 40)."),
-    Field("wheel_diameter", "Wheel diameter", "length", "in", default=4, min=0, min_exclusive=True,
-          help="Drive wheel diameter d (worn tread is smaller)."),
-    Field("speed_loss", "Speed loss constant", "dimensionless", "", default=0.81, min=0,
-          min_exclusive=True, max=1, modes=("forward", "reverse"),
-          help="k_SL: real top speed over free speed (JVN uses 0.81 for friction, voltage sag, turning)."),
-    Field("ratio", "Gear ratio", "dimensionless", "", default=6.12, min=0, min_exclusive=True,
-          modes=("forward",), help="Total reduction G, motor turns per wheel turn."),
-    Field("weight", "Weight on driven wheels", "force", "lbf", default=150, min=0, min_exclusive=True,
-          modes=("forward", "reverse"),
-          help="W̃: the part of the robot's weight resting on driven wheels (all of it for most drives)."),
-    Field("friction", "Wheel friction", "dimensionless", "", default=1.1, min=0, min_exclusive=True,
-          modes=("forward", "reverse"),
-          help="Coefficient of friction μ of the tread on the floor (≈1.0-1.3 for FRC treads on carpet)."),
-    Field("battery_voltage", "Battery voltage", "voltage", "V", default=12.7, min=0, min_exclusive=True,
-          modes=("forward", "reverse"),
-          help="Battery resting (open-circuit) voltage V_batt (reverse mode; forward mode with battery_sag)."),
-    Field("min_voltage", "Minimum voltage", "voltage", "V", default=7, min=0, modes=("reverse",),
-          help="Lowest voltage allowed at the motor controllers while pushing (eq. 41)."),
-    Field("battery_resistance", "Battery resistance", "resistance", "ohm", default=0.015, min=0,
-          modes=("forward", "reverse"),
-          help="Battery internal resistance R_batt (≈0.015-0.020 Ω for an FRC battery); reverse mode and "
-               "battery_sag."),
-    Field("main_resistance", "Main wiring resistance", "resistance", "ohm", default=0.002, min=0,
-          modes=("forward", "reverse"), help="Main leads, breaker and distribution panel, R_main."),
-    Field("branch_resistance", "Branch resistance", "resistance", "ohm", default=0.006, min=0,
-          modes=("forward", "reverse"),
-          help="Each motor's branch (breaker, controller, wires), R_br; the n branches are in parallel."),
-    Field("low_ratio", "Low gear ratio", "dimensionless", "", default=15, min=0, min_exclusive=True,
-          modes=("shifting",), help="Reduction G in low (pushing) gear."),
-    Field("high_ratio", "High gear ratio", "dimensionless", "", default=6, min=0, min_exclusive=True,
-          modes=("shifting",), help="Reduction G in high (fast) gear."),
+    Field(
+        "mode",
+        "Calculate",
+        choices=MODES,
+        choice_labels=MODE_LABELS,
+        default="forward",
+        help="Forward: speeds and slip current for a ratio (4.1). Reverse: the fastest ratio that "
+        "can slip the wheels before the battery sags below the minimum voltage (4.2). "
+        "Shifting: the speed at which to change gear (eq. 40).",
+    ),
+    Field(
+        "wheel_diameter",
+        "Wheel diameter",
+        "length",
+        "in",
+        default=4,
+        min=0,
+        min_exclusive=True,
+        help="Drive wheel diameter d (worn tread is smaller).",
+    ),
+    Field(
+        "speed_loss",
+        "Speed loss constant",
+        "dimensionless",
+        "",
+        default=0.81,
+        min=0,
+        min_exclusive=True,
+        max=1,
+        modes=("forward", "reverse"),
+        help="k_SL: real top speed over free speed (JVN uses 0.81 for friction, voltage sag, turning).",
+    ),
+    Field(
+        "ratio",
+        "Gear ratio",
+        "dimensionless",
+        "",
+        default=6.12,
+        min=0,
+        min_exclusive=True,
+        modes=("forward",),
+        help="Total reduction G, motor turns per wheel turn.",
+    ),
+    Field(
+        "weight",
+        "Weight on driven wheels",
+        "force",
+        "lbf",
+        default=150,
+        min=0,
+        min_exclusive=True,
+        modes=("forward", "reverse"),
+        help="W̃: the part of the robot's weight resting on driven wheels (all of it for most drives).",
+    ),
+    Field(
+        "friction",
+        "Wheel friction",
+        "dimensionless",
+        "",
+        default=1.1,
+        min=0,
+        min_exclusive=True,
+        modes=("forward", "reverse"),
+        help="Coefficient of friction μ of the tread on the floor (≈1.0-1.3 for FRC treads on carpet).",
+    ),
+    Field(
+        "battery_voltage",
+        "Battery voltage",
+        "voltage",
+        "V",
+        default=12.7,
+        min=0,
+        min_exclusive=True,
+        modes=("forward", "reverse"),
+        help="Battery resting (open-circuit) voltage V_batt (reverse mode; forward mode with battery_sag).",
+    ),
+    Field(
+        "min_voltage",
+        "Minimum voltage",
+        "voltage",
+        "V",
+        default=7,
+        min=0,
+        modes=("reverse",),
+        help="Lowest voltage allowed at the motor controllers while pushing (eq. 41).",
+    ),
+    Field(
+        "battery_resistance",
+        "Battery resistance",
+        "resistance",
+        "ohm",
+        default=0.015,
+        min=0,
+        modes=("forward", "reverse"),
+        help="Battery internal resistance R_batt (≈0.015-0.020 Ω for an FRC battery); reverse mode and "
+        "battery_sag.",
+    ),
+    Field(
+        "main_resistance",
+        "Main wiring resistance",
+        "resistance",
+        "ohm",
+        default=0.002,
+        min=0,
+        modes=("forward", "reverse"),
+        help="Main leads, breaker and distribution panel, R_main.",
+    ),
+    Field(
+        "branch_resistance",
+        "Branch resistance",
+        "resistance",
+        "ohm",
+        default=0.006,
+        min=0,
+        modes=("forward", "reverse"),
+        help="Each motor's branch (breaker, controller, wires), R_br; the n branches are in parallel.",
+    ),
+    Field(
+        "low_ratio",
+        "Low gear ratio",
+        "dimensionless",
+        "",
+        default=15,
+        min=0,
+        min_exclusive=True,
+        modes=("shifting",),
+        help="Reduction G in low (pushing) gear.",
+    ),
+    Field(
+        "high_ratio",
+        "High gear ratio",
+        "dimensionless",
+        "",
+        default=6,
+        min=0,
+        min_exclusive=True,
+        modes=("shifting",),
+        help="Reduction G in high (fast) gear.",
+    ),
 )
 
 # Forward mode: the controllers' current limits and the battery's sag while pushing (core.sim.motor_limits).
 # battery_sag reads the circuit of (41): each motor's share of the supply current sees
 # R_bus = n·(R_batt + R_main) + R_br (the battery and main wiring carry all n motors, its branch one).
 EFFECTS = Effects(
-    *[e for e in motor_limits.electrical_effects(limit_default=60.0, supply_default=40.0) if e.name != "battery_sag"],
-    Effect("battery_sag", "the bus sags through the battery and wiring of (41), from the battery voltage",
-           nothing),
+    *[
+        e
+        for e in motor_limits.electrical_effects(limit_default=60.0, supply_default=40.0)
+        if e.name != "battery_sag"
+    ],
+    Effect(
+        "battery_sag",
+        "the bus sags through the battery and wiring of (41), from the battery voltage",
+        nothing,
+    ),
 )
 FIELDS = FIELDS + (
-    dataclasses.replace(EFFECTS.field("stator_limit, supply_limit (per motor current limits: they cap the "
-                                      "pushing force); battery_sag (the motors are fed from the battery "
-                                      "voltage through the battery, main and branch resistances)."),
-                        modes=("forward",)),
+    dataclasses.replace(
+        EFFECTS.field(
+            "stator_limit, supply_limit (per motor current limits: they cap the "
+            "pushing force); battery_sag (the motors are fed from the battery "
+            "voltage through the battery, main and branch resistances)."
+        ),
+        modes=("forward",),
+    ),
     *[dataclasses.replace(f, modes=("forward",)) for f in EFFECTS.fields()],
 )
 
 OUTPUTS = (
-    Output("max_ratio", "Fastest ratio that slips", "dimensionless", "",
-           help="Fastest gearing that slips the wheels with the voltage above V_min (42); else the fastest that slips at all.",
-           equation="(42)"),
-    Output("total_current", "Allowed total current", "current", "A",
-           help="Total current at which the motors see the minimum voltage (41).", equation="(41)"),
-    Output("free_speed", "Free speed", "speed", "ft/s", help="Top speed with no losses (37).", equation="(37)"),
-    Output("adjusted_speed", "Adjusted speed", "speed", "ft/s",
-           help="Expected real top speed, free speed times the speed-loss constant (38).", equation="(38)"),
-    Output("slip_current", "Slip current per motor", "current", "A",
-           help="Current each motor draws when the wheels just slip (39).", equation="(39)"),
-    Output("slip_current_total", "Slip current, all motors", "current", "A", help="n times the per-motor slip current (39).", equation="(39)"),
-    Output("pushing_force", "Pushing force", "force", "lbf",
-           help="Most the drive can push: wheel traction, or the motors' stall force if lower.", equation="(98)"),
-    Output("push_current", "Stator current pushing, per motor", "current", "A",
-           help="Forward mode with a limit or sag: the slip current if the wheels slip, else the (limited) "
-                "stall current.", equation="(39)"),
-    Output("push_supply_current", "Supply current pushing, per motor", "current", "A",
-           help="Stator current × duty while pushing (a limit or sag on).", equation="(D2)"),
-    Output("push_battery_current", "Battery current pushing", "current", "A", help="All motors: n × the supply current while pushing.", equation="(D2)"),
-    Output("push_bus_voltage", "Voltage at the controllers pushing", "voltage", "V",
-           help="Battery voltage minus the sag of (41) at the pushing current (battery_sag).", equation="(41)"),
-    Output("low_free_speed", "Low gear free speed", "speed", "ft/s", help="Free speed (37) in the low gear.", equation="(37), (102)"),
-    Output("high_free_speed", "High gear free speed", "speed", "ft/s", help="Free speed (37) in the high gear.", equation="(37), (102)"),
-    Output("shift_speed", "Shift speed", "speed", "ft/s",
-           help="Speed at which both gears push equally hard: shift up above it (40).", equation="(40)"),
+    Output(
+        "max_ratio",
+        "Fastest ratio that slips",
+        "dimensionless",
+        "",
+        help="Fastest gearing that slips the wheels with the voltage above V_min (42); else the fastest that slips at all.",
+        equation="(42)",
+    ),
+    Output(
+        "total_current",
+        "Allowed total current",
+        "current",
+        "A",
+        help="Total current at which the motors see the minimum voltage (41).",
+        equation="(41)",
+    ),
+    Output(
+        "free_speed", "Free speed", "speed", "ft/s", help="Top speed with no losses (37).", equation="(37)"
+    ),
+    Output(
+        "adjusted_speed",
+        "Adjusted speed",
+        "speed",
+        "ft/s",
+        help="Expected real top speed, free speed times the speed-loss constant (38).",
+        equation="(38)",
+    ),
+    Output(
+        "slip_current",
+        "Slip current per motor",
+        "current",
+        "A",
+        help="Current each motor draws when the wheels just slip (39).",
+        equation="(39)",
+    ),
+    Output(
+        "slip_current_total",
+        "Slip current, all motors",
+        "current",
+        "A",
+        help="n times the per-motor slip current (39).",
+        equation="(39)",
+    ),
+    Output(
+        "pushing_force",
+        "Pushing force",
+        "force",
+        "lbf",
+        help="Most the drive can push: wheel traction, or the motors' stall force if lower.",
+        equation="(98)",
+    ),
+    Output(
+        "push_current",
+        "Stator current pushing, per motor",
+        "current",
+        "A",
+        help="Forward mode with a limit or sag: the slip current if the wheels slip, else the (limited) "
+        "stall current.",
+        equation="(39)",
+    ),
+    Output(
+        "push_supply_current",
+        "Supply current pushing, per motor",
+        "current",
+        "A",
+        help="Stator current × duty while pushing (a limit or sag on).",
+        equation="(D2)",
+    ),
+    Output(
+        "push_battery_current",
+        "Battery current pushing",
+        "current",
+        "A",
+        help="All motors: n × the supply current while pushing.",
+        equation="(D2)",
+    ),
+    Output(
+        "push_bus_voltage",
+        "Voltage at the controllers pushing",
+        "voltage",
+        "V",
+        help="Battery voltage minus the sag of (41) at the pushing current (battery_sag).",
+        equation="(41)",
+    ),
+    Output(
+        "low_free_speed",
+        "Low gear free speed",
+        "speed",
+        "ft/s",
+        help="Free speed (37) in the low gear.",
+        equation="(37), (102)",
+    ),
+    Output(
+        "high_free_speed",
+        "High gear free speed",
+        "speed",
+        "ft/s",
+        help="Free speed (37) in the high gear.",
+        equation="(37), (102)",
+    ),
+    Output(
+        "shift_speed",
+        "Shift speed",
+        "speed",
+        "ft/s",
+        help="Speed at which both gears push equally hard: shift up above it (40).",
+        equation="(40)",
+    ),
 )
 
 
@@ -201,17 +403,29 @@ def pushing(v, m: MotorSystem, G, d, i_slip, traction) -> dict:
     u0, I0 = elec(0.0)
     F_stall = m.kt * (n * I0 - m.free_current) * G / (d / 2)  # (D1)
     if F_stall <= 0:
-        name = ("stator_current_limit" if "stator_limit" in on and I0 >= v["stator_current_limit"] * (1 - 1e-12)
-                else "supply_current_limit" if "supply_limit" in on and u0 < 1 else "battery_resistance")
-        raise InputError(name, f"leaves the stalled motors {I0:.4g} A each, not above their free current "
-                               f"{m.free_current / n:.4g} A: they cannot push")
+        name = (
+            "stator_current_limit"
+            if "stator_limit" in on and I0 >= v["stator_current_limit"] * (1 - 1e-12)
+            else "supply_current_limit"
+            if "supply_limit" in on and u0 < 1
+            else "battery_resistance"
+        )
+        raise InputError(
+            name,
+            f"leaves the stalled motors {I0:.4g} A each, not above their free current "
+            f"{m.free_current / n:.4g} A: they cannot push",
+        )
     if n * I0 >= i_slip:  # the wheels slip
         I = i_slip / n
         u = min(1.0, v["supply_current_limit"] / I) if "supply_limit" in on else 1.0
     else:
         I, u = I0, u0
-    out = {"stall_force": F_stall, "push_current": I, "push_supply_current": u * I,
-           "push_battery_current": n * u * I}
+    out = {
+        "stall_force": F_stall,
+        "push_current": I,
+        "push_supply_current": u * I,
+        "push_battery_current": n * u * I,
+    }
     # the limited force over speed, (D1) at the back-EMF of each speed: E = (v·G/r)/Kv
     v_top = circuit.Kv * Vb * (d / 2) / G
     vs = [v_top * k / 120 for k in range(121)]
@@ -262,20 +476,29 @@ def compute(v) -> Result:
             raise InputError("min_voltage", f"must be below the battery voltage ({V_batt:.4g} V)")
         R = v["battery_resistance"] + v["main_resistance"] + v["branch_resistance"] / n
         if R <= 0:
-            raise InputError("battery_resistance", "the circuit needs some resistance "
-                                                   "(battery, main or branch) to limit the current")
-        i_tot = total_current(V_batt, V_min, v["battery_resistance"], v["main_resistance"],
-                              v["branch_resistance"], n)
+            raise InputError(
+                "battery_resistance",
+                "the circuit needs some resistance (battery, main or branch) to limit the current",
+            )
+        i_tot = total_current(
+            V_batt, V_min, v["battery_resistance"], v["main_resistance"], v["branch_resistance"], n
+        )
         if i_tot <= m.free_current:
-            raise InputError("min_voltage", f"the allowed current {i_tot:.4g} A is not above the motors' "
-                                            f"free current {m.free_current:.4g} A: lower the minimum "
-                                            f"voltage or the resistances")
+            raise InputError(
+                "min_voltage",
+                f"the allowed current {i_tot:.4g} A is not above the motors' "
+                f"free current {m.free_current:.4g} A: lower the minimum "
+                f"voltage or the resistances",
+            )
         i_c = circuit_stall_current(m, V_batt, R)
         i_max = min(m.stall_current, i_c)  # most the stalled motors draw (module docstring)
         if i_max <= m.free_current:
-            raise InputError("battery_voltage", f"stalled through this wiring the motors draw only "
-                                                f"{i_c:.4g} A, not above their free current "
-                                                f"{m.free_current:.4g} A: they cannot push")
+            raise InputError(
+                "battery_voltage",
+                f"stalled through this wiring the motors draw only "
+                f"{i_c:.4g} A, not above their free current "
+                f"{m.free_current:.4g} A: they cannot push",
+            )
         if i_tot <= i_max:
             G = max_ratio(m, W, mu, d, i_tot)  # (42)
         else:
@@ -283,18 +506,26 @@ def compute(v) -> Result:
             # fastest ratio that slips at all has the most they draw stalled producing the traction.
             G = max_ratio(m, W, mu, d, i_max)  # (42) with i_max
             if m.stall_current <= i_c:
-                limit = (f"at {m.voltage:.3g} V (the Voltage field) the stalled motors draw at most "
-                         f"{m.stall_current:.4g} A")
+                limit = (
+                    f"at {m.voltage:.3g} V (the Voltage field) the stalled motors draw at most "
+                    f"{m.stall_current:.4g} A"
+                )
             else:
-                limit = (f"stalled through this wiring they draw at most {i_c:.4g} A and the voltage "
-                         f"at the controllers stays above {V_batt - i_c * R:.3g} V")
-            warnings.append(f"The motors cannot draw the allowed {i_tot:.4g} A at the minimum voltage: "
-                            f"{limit}. The ratio shown is the fastest at which that current still "
-                            f"slips the wheels.")
+                limit = (
+                    f"stalled through this wiring they draw at most {i_c:.4g} A and the voltage "
+                    f"at the controllers stays above {V_batt - i_c * R:.3g} V"
+                )
+            warnings.append(
+                f"The motors cannot draw the allowed {i_tot:.4g} A at the minimum voltage: "
+                f"{limit}. The ratio shown is the fastest at which that current still "
+                f"slips the wheels."
+            )
         if m.voltage > V_batt:
-            warnings.append(f"The Voltage field ({m.voltage:.3g} V) is above the battery's "
-                            f"{V_batt:.3g} V: the controllers cannot apply it, so the free speed "
-                            f"shown is not reached.")
+            warnings.append(
+                f"The Voltage field ({m.voltage:.3g} V) is above the battery's "
+                f"{V_batt:.3g} V: the controllers cannot apply it, so the free speed "
+                f"shown is not reached."
+            )
         values.update(total_current=i_tot, max_ratio=G)
         stall_torque = m.kt * (i_max - m.free_current)  # (9) inverted, at the stall current reached
     else:
@@ -316,14 +547,22 @@ def compute(v) -> Result:
         slip_current_total=i_slip,
         pushing_force=min(traction, stall_force),
     )
-    if limited is not None and stall_force < traction * (1 - 1e-12) and limited["push_current"] < m.stall_current / m.count:
-        warnings.append(f"The current limits or the sag cap the pushing force: the motors push "
-                        f"{format_quantity(stall_force, 'lbf', 'force')} ({limited['push_current']:.4g} A each) "
-                        f"but traction allows {format_quantity(traction, 'lbf', 'force')}: the wheels do not slip.")
+    if (
+        limited is not None
+        and stall_force < traction * (1 - 1e-12)
+        and limited["push_current"] < m.stall_current / m.count
+    ):
+        warnings.append(
+            f"The current limits or the sag cap the pushing force: the motors push "
+            f"{format_quantity(stall_force, 'lbf', 'force')} ({limited['push_current']:.4g} A each) "
+            f"but traction allows {format_quantity(traction, 'lbf', 'force')}: the wheels do not slip."
+        )
     elif stall_force < traction * (1 - 1e-12):  # (not when equal but for rounding: reverse mode's limit)
-        warnings.append(f"The motors stall before the wheels slip: they push "
-                        f"{format_quantity(stall_force, 'lbf', 'force')} but traction allows "
-                        f"{format_quantity(traction, 'lbf', 'force')} (the slip current is not reached).")
+        warnings.append(
+            f"The motors stall before the wheels slip: they push "
+            f"{format_quantity(stall_force, 'lbf', 'force')} but traction allows "
+            f"{format_quantity(traction, 'lbf', 'force')} (the slip current is not reached)."
+        )
     series["motor force"] = force_curve(m, d, G)
     series["traction limit"] = ([0.0, v_free], [traction, traction])
     return Result(values, warnings, series)
@@ -339,8 +578,15 @@ CALCULATOR = Calculator(
     section="4",
     exports={"ratio_finder": {"target_ratio": "max_ratio"}},  # parts for the fastest slipping ratio
     plots=(
-        Plot("Force at the wheels vs speed", ("motor force", "limited motor force", "traction limit", "low gear",
-                                               "high gear"),
-             "speed", "speed", "ft/s", "force", "force", "lbf"),
+        Plot(
+            "Force at the wheels vs speed",
+            ("motor force", "limited motor force", "traction limit", "low gear", "high gear"),
+            "speed",
+            "speed",
+            "ft/s",
+            "force",
+            "force",
+            "lbf",
+        ),
     ),
 )

@@ -42,6 +42,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from ..constants import G0 as G
 from ..errors import InputError
 from ..model import Calculator, Field, Output
 from ..motors import lookup
@@ -49,9 +50,11 @@ from ..sim import motion
 from ..sim.effects import Effect, Effects, Part
 from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
 
-from ..constants import G0 as G
 RIGGINGS = ("continuous", "cascade")
-RIGGING_LABELS = ("Continuous (carriage moves with the rope)", "Cascade (carriage moves stages × the first stage)")
+RIGGING_LABELS = (
+    "Continuous (carriage moves with the rope)",
+    "Cascade (carriage moves stages × the first stage)",
+)
 
 
 def _gravity(values, mech) -> Part:
@@ -67,62 +70,159 @@ def _counterbalance(values, mech) -> Part:
 EFFECTS = Effects(
     Effect("gravity", "the load's weight along the rail", _gravity, default_on=True),
     *motion.electrical_effects(),
-    motion.friction_effect("force", "lbf", "friction_force",
-                           "a constant force against the motion (reported as kS)", 2.0),
-    Effect("counterbalance", "a constant-force spring pulling the carriage up", _counterbalance,
-           fields=(Field("counterbalance_force", "Counterbalance force", "force", "lbf", default=10, min=0,
-                         max=2.2e5, help="Upward pull of constant-force springs on the carriage."),)),
+    motion.friction_effect(
+        "force", "lbf", "friction_force", "a constant force against the motion (reported as kS)", 2.0
+    ),
+    Effect(
+        "counterbalance",
+        "a constant-force spring pulling the carriage up",
+        _counterbalance,
+        fields=(
+            Field(
+                "counterbalance_force",
+                "Counterbalance force",
+                "force",
+                "lbf",
+                default=10,
+                min=0,
+                max=2.2e5,
+                help="Upward pull of constant-force springs on the carriage.",
+            ),
+        ),
+    ),
 )
 
 
 FIELDS = (
     motion.mode_field(),
     *motion.battery_motor_fields("NEO", 2),
-    Field("ratio", "Reduction G", "dimensionless", "", default=10, min=0, min_exclusive=True, max=1e5,
-          modes=("move",), help="Motor turns per spool turn."),
-    Field("load_mass", "Load mass", "mass", "lb", default=15, min=0, min_exclusive=True, max=2.2e5,
-          help="Carriage plus game piece (plus moving stages, scaled by their speed ratio squared)."),
-    Field("spool_diameter", "Spool diameter", "length", "in", default=1.5, min=0, min_exclusive=True, max=3900,
-          help="Pitch diameter of the spool, drum or sprocket that pulls the first stage."),
-    Field("travel", "Travel", "length", "in", default=40, min=-3.9e5, max=3.9e5,
-          help="From start to goal along the rail; up is positive, negative moves down."),
-    Field("incline", "Incline from vertical", "angle", "deg", default=0, min=0, max=180,
-          help="0: vertical; 90°: horizontal slide (no gravity along it); beyond 90° the rail points down."),
-    Field("rigging", "Rigging", choices=RIGGINGS, choice_labels=RIGGING_LABELS, default="continuous",
-          help="Continuous: the carriage moves with the rope. Cascade: each stage doubles up, the carriage "
-               "moves `stages` times the first stage."),
-    Field("stages", "Moving stages", integer=True, default=2, min=1, max=10, when=(("rigging", ("cascade",)),),
-          help="Cascade: the carriage moves this many times the first stage's travel."),
-    EFFECTS.field("gravity (on: vertical or inclined lift); stator_limit, supply_limit (per motor current "
-                  "limits); battery_sag (bus = battery − R × total supply current); friction (kS); "
-                  "counterbalance (constant-force spring)."),
+    Field(
+        "ratio",
+        "Reduction G",
+        "dimensionless",
+        "",
+        default=10,
+        min=0,
+        min_exclusive=True,
+        max=1e5,
+        modes=("move",),
+        help="Motor turns per spool turn.",
+    ),
+    Field(
+        "load_mass",
+        "Load mass",
+        "mass",
+        "lb",
+        default=15,
+        min=0,
+        min_exclusive=True,
+        max=2.2e5,
+        help="Carriage plus game piece (plus moving stages, scaled by their speed ratio squared).",
+    ),
+    Field(
+        "spool_diameter",
+        "Spool diameter",
+        "length",
+        "in",
+        default=1.5,
+        min=0,
+        min_exclusive=True,
+        max=3900,
+        help="Pitch diameter of the spool, drum or sprocket that pulls the first stage.",
+    ),
+    Field(
+        "travel",
+        "Travel",
+        "length",
+        "in",
+        default=40,
+        min=-3.9e5,
+        max=3.9e5,
+        help="From start to goal along the rail; up is positive, negative moves down.",
+    ),
+    Field(
+        "incline",
+        "Incline from vertical",
+        "angle",
+        "deg",
+        default=0,
+        min=0,
+        max=180,
+        help="0: vertical; 90°: horizontal slide (no gravity along it); beyond 90° the rail points down.",
+    ),
+    Field(
+        "rigging",
+        "Rigging",
+        choices=RIGGINGS,
+        choice_labels=RIGGING_LABELS,
+        default="continuous",
+        help="Continuous: the carriage moves with the rope. Cascade: each stage doubles up, the carriage "
+        "moves `stages` times the first stage.",
+    ),
+    Field(
+        "stages",
+        "Moving stages",
+        integer=True,
+        default=2,
+        min=1,
+        max=10,
+        when=(("rigging", ("cascade",)),),
+        help="Cascade: the carriage moves this many times the first stage's travel.",
+    ),
+    EFFECTS.field(
+        "gravity (on: vertical or inclined lift); stator_limit, supply_limit (per motor current "
+        "limits); battery_sag (bus = battery − R × total supply current); friction (kS); "
+        "counterbalance (constant-force spring)."
+    ),
     *EFFECTS.fields(),
     *motion.feedback_fields("length", "in", 0.5, "speed", "in/s", 10),
     accuracy_field(),
 )
 
 OUTPUTS = (
-    Output("best_ratio", "Fastest ratio", help="Optimise: the reduction G that arrives first; ratios a few % "
-           "either side are nearly as fast (EL12).", equation="(EL12)"),
-    *motion.common_outputs("length", "in", "speed", "ft/s", "V*s/m", "V*s**2/m", "V/m",
-                           "Volts to hold the load against gravity (minus the counterbalance)."),
+    Output(
+        "best_ratio",
+        "Fastest ratio",
+        help="Optimise: the reduction G that arrives first; ratios a few % "
+        "either side are nearly as fast (EL12).",
+        equation="(EL12)",
+    ),
+    *motion.common_outputs(
+        "length",
+        "in",
+        "speed",
+        "ft/s",
+        "V*s/m",
+        "V*s**2/m",
+        "V/m",
+        "Volts to hold the load against gravity (minus the counterbalance).",
+    ),
     *EFFECTS.outputs(),
     *STATS_OUTPUTS,
 )
 # what each shared output means here (equation, help), in this module's numbering
 HOW = {
-    "time_to_goal": ("(EL4), (EL5)", "First time the carriage reaches the goal from rest at full voltage (EL5)."),
+    "time_to_goal": (
+        "(EL4), (EL5)",
+        "First time the carriage reaches the goal from rest at full voltage (EL5).",
+    ),
     "max_speed": ("(EL6)", "Fastest the carriage moves during the move (EL6)."),
     "free_speed": ("(EL6)", "Carriage speed with no load at the battery voltage, V_b·Kv/n (EL6)."),
-    "peak_stator_current": ("(EL3), (EL7)", "Largest motor (stator) current per motor: at rest, unless a "
-                                            "limit holds it (EL7)."),
+    "peak_stator_current": (
+        "(EL3), (EL7)",
+        "Largest motor (stator) current per motor: at rest, unless a limit holds it (EL7).",
+    ),
     "peak_supply_current": ("(EL7)", "Largest battery-side current per motor: stator current × duty (EL7)."),
     "peak_battery_current": ("(EL7)", "Largest total battery current, N × supply current per motor (EL7)."),
-    "min_bus_voltage": ("(EL7)", "Battery voltage minus the sag N·R_batt·(supply current); no sag: the "
-                                 "battery's (EL7)."),
+    "min_bus_voltage": (
+        "(EL7)",
+        "Battery voltage minus the sag N·R_batt·(supply current); no sag: the battery's (EL7).",
+    ),
     "energy": ("(EL8)", "Energy drawn from the battery over the move, ∫ V_b·N·u·I dt (EL8)."),
-    "hold_current": ("(EL9)", "Per motor, to hold at the goal against gravity and counterbalance, friction "
-                              "aside (EL9)."),
+    "hold_current": (
+        "(EL9)",
+        "Per motor, to hold at the goal against gravity and counterbalance, friction aside (EL9).",
+    ),
     "kG": ("(EL10)", "Volts to hold the load against gravity, minus the counterbalance (WPILib kG) (EL10)."),
     "kV": ("(EL10)", "Volts per unit of speed, n/Kv (WPILib kV) (EL10)."),
     "kA": ("(EL10)", "Volts per unit of acceleration, m·R/(η·N·Kt·n) (WPILib kA) (EL10)."),
@@ -130,7 +230,9 @@ HOW = {
     "kP": ("(EL11)", "LQR position gain for the plant kV, kA, as WPILib's LinearQuadraticRegulator (EL11)."),
     "kD": ("(EL11)", "LQR velocity gain for the plant kV, kA, as WPILib's LinearQuadraticRegulator (EL11)."),
 }
-OUTPUTS = tuple(replace(o, equation=HOW[o.name][0], help=HOW[o.name][1]) if o.name in HOW else o for o in OUTPUTS)
+OUTPUTS = tuple(
+    replace(o, equation=HOW[o.name][0], help=HOW[o.name][1]) if o.name in HOW else o for o in OUTPUTS
+)
 
 
 def spool_factor(v) -> float:
@@ -145,11 +247,22 @@ def setup(v, ratio=None, xp=motion.SCALAR) -> motion.Setup:
         raise InputError("travel", "is zero: enter the distance from start to goal (negative moves down)")
     motor, _ = lookup(v["motor"], v["source"])
     G_ = v["ratio"] if ratio is None else ratio
-    mech = motion.Mechanism(motor, v["motor_count"], v["voltage"], v["efficiency"], G_ / spool_factor(v),
-                            v["load_mass"], 0.0, v["travel"], motion.bus_resistance_of(v, on), xp)
+    mech = motion.Mechanism(
+        motor,
+        v["motor_count"],
+        v["voltage"],
+        v["efficiency"],
+        G_ / spool_factor(v),
+        v["load_mass"],
+        0.0,
+        v["travel"],
+        motion.bus_resistance_of(v, on),
+        xp,
+    )
     asm = EFFECTS.assemble(on, v, mech, motion.SLOTS, ("position", "speed", "energy"), minimum=xp.minimum)
-    return motion.Setup(mech, EFFECTS, asm, varying=False, values=v,
-                        names={"force_unit": "N", "friction": "friction_force"})
+    return motion.Setup(
+        mech, EFFECTS, asm, varying=False, values=v, names={"force_unit": "N", "friction": "friction_force"}
+    )
 
 
 def simulate(v, rtol: float):
@@ -157,7 +270,9 @@ def simulate(v, rtol: float):
 
     _, note = _lookup(v["motor"], v["source"])
     if v["mode"] == "optimise":
-        run = motion.optimise(lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, spool_factor(v))
+        run = motion.optimise(
+            lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, spool_factor(v)
+        )
     else:
         run = motion.run_move(setup(v), rtol)
     if note:

@@ -68,6 +68,8 @@ import dataclasses
 import math
 from typing import Any
 
+from ..constants import G0 as G_ACC
+from ..constants import RPM
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot
 from ..motors import lookup, motor_fields, system_from
@@ -76,22 +78,35 @@ from ..sim.effects import Effect, Effects, nothing
 from ..sim.integrate import Event, integrate
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stats
 
-from ..constants import G0 as G_ACC
-from ..constants import RPM
 TABLE_WHEELS = range(1, 7)
 # Slip phase: when the wheel's time constant is this many times shorter than the slip (b·τ_end), an
 # explicit integrator needs ~b·τ_end/3 steps for stability alone; the closed form is used instead.
 STIFF = 200.0
 SLIP_LENGTH_WARN = 0.5  # m: longer than the contact path of any hood or wheel pair
 TRANSFERS = ("energy", "momentum")
-TRANSFER_LABELS = ("Energy (seed: energy conservation, translation + spin)",
-                   "Momentum (angular impulse with slip, Team 449)")
+TRANSFER_LABELS = (
+    "Energy (seed: energy conservation, translation + spin)",
+    "Momentum (angular impulse with slip, Team 449)",
+)
 ELECTRICAL = ("stator_limit", "supply_limit", "battery_sag")
 EFFECTS = Effects(
-    Effect("motor_during_shot", "momentum model: the motor keeps driving while the ball slips", nothing,
-           fields=(Field("grip_force", "Grip force μ·N (motor during shot)", "force", "N", default=40, min=0.1,
-                         max=1e5, help="Friction force of the wheels on the slipping ball; used by "
-                                       "motor_during_shot only."),)),
+    Effect(
+        "motor_during_shot",
+        "momentum model: the motor keeps driving while the ball slips",
+        nothing,
+        fields=(
+            Field(
+                "grip_force",
+                "Grip force μ·N (motor during shot)",
+                "force",
+                "N",
+                default=40,
+                min=0.1,
+                max=1e5,
+                help="Friction force of the wheels on the slipping ball; used by motor_during_shot only.",
+            ),
+        ),
+    ),
     *motor_limits.electrical_effects(),
 )
 SHOOTERS = ("hood", "two_wheel")
@@ -103,64 +118,225 @@ def _motor_fields():
     out = []
     for f in motor_fields(default_motor="VEX 393", default_count=2):
         if f.name == "voltage":
-            f = dataclasses.replace(f, default=7.2, help="Applied voltage (VEX 393: 7.2 V; V5 and FRC: 12 V); "
-                                                        "motor data is scaled by V/V_spec.")
+            f = dataclasses.replace(
+                f,
+                default=7.2,
+                help="Applied voltage (VEX 393: 7.2 V; V5 and FRC: 12 V); motor data is scaled by V/V_spec.",
+            )
         out.append(f)
     return tuple(out)
 
 
 FIELDS = (
-    Field("mode", "Wheel inertia from", choices=INERTIA_MODES, default="radius_of_gyration",
-          choice_labels=("Mass and radius of gyration", "Moment of inertia"),
-          help="How the wheel's moment of inertia is given."),
-    Field("wheel_diameter", "Wheel diameter", "length", "in", default=5, min=0, min_exclusive=True, max=79,
-          help="Flywheel diameter 2·r_w."),
-    Field("wheel_mass", "Wheel mass (each)", "mass", "g", default=180, min=0, min_exclusive=True, max=50_000,
-          modes=("radius_of_gyration",), help="Mass m_w of one wheel (VEX 5 in wheel: 180 g)."),
-    Field("gyration_fraction", "Radius of gyration / radius", "dimensionless", "", default=0.84, min=0,
-          min_exclusive=True, max=1, modes=("radius_of_gyration",),
-          help="k/r_w with I = m_w·(k·r_w)² (seed: 0.84 for the VEX 5 in wheel; disc 0.707; rim 1)."),
-    Field("wheel_inertia", "Wheel inertia (each)", "inertia", "lb*in**2", default=1.75, min=0,
-          min_exclusive=True, max=3.4e9, modes=("moment_of_inertia",),
-          help="Moment of inertia of one wheel about its axle (with its share of shaft and gears)."),
-    Field("wheel_count", "Wheels", integer=True, default=1, min=1, max=20,
-          help="Wheels spinning together (all wheels of both sides for a two-wheel shooter)."),
-    Field("shooter", "Shooter", choices=SHOOTERS, choice_labels=SHOOTER_LABELS, default="hood",
-          help="Hood: the ball rolls on the hood and leaves at half the surface speed with spin V/r_b. "
-               "Two wheels: surface speed, no spin."),
-    Field("ball_diameter", "Ball diameter", "length", "in", default=4, min=0, min_exclusive=True, max=79,
-          when=(("shooter", ("hood",)),), help="2·r_b: sets the spin V/r_b of a ball rolling on the hood."),
-    Field("ball_mass", "Ball mass", "mass", "g", default=60, min=0, max=5000,
-          help="Nominal ball mass m₀ (NbN ball: 60 g)."),
-    Field("ball_inertia_factor", "Ball I/(m·r²)", "dimensionless", "", default=0.4, min=0, max=0.67,
-          when=(("shooter", ("hood",)),), help="k_b: 2/5 solid sphere (seed), 2/3 thin shell."),
-    Field("ball_mass_tolerance", "Ball mass tolerance", "dimensionless", "%", default=10, min=0, max=90,
-          help="e_m: balls up to m₀·(1 ± e_m); range errors are for the heavy ball, as in the seed."),
-    Field("target_speed", "Wheel target speed", "angular_speed", "rpm", default=2000, min=0, min_exclusive=True,
-          help="Wheel speed the controller spins up to and holds; the shot starts at it."),
-    Field("launch_angle", "Launch angle", "angle", "deg", default=45, min=0, min_exclusive=True,
-          max=90, max_exclusive=True, help="Elevation θ of the release above horizontal."),
-    Field("release_height", "Release height above target", "length", "m", default=0, min=0, max=100,
-          help="h: the release point above the landing height (0: the seed's R = V²·sin2θ/g)."),
+    Field(
+        "mode",
+        "Wheel inertia from",
+        choices=INERTIA_MODES,
+        default="radius_of_gyration",
+        choice_labels=("Mass and radius of gyration", "Moment of inertia"),
+        help="How the wheel's moment of inertia is given.",
+    ),
+    Field(
+        "wheel_diameter",
+        "Wheel diameter",
+        "length",
+        "in",
+        default=5,
+        min=0,
+        min_exclusive=True,
+        max=79,
+        help="Flywheel diameter 2·r_w.",
+    ),
+    Field(
+        "wheel_mass",
+        "Wheel mass (each)",
+        "mass",
+        "g",
+        default=180,
+        min=0,
+        min_exclusive=True,
+        max=50_000,
+        modes=("radius_of_gyration",),
+        help="Mass m_w of one wheel (VEX 5 in wheel: 180 g).",
+    ),
+    Field(
+        "gyration_fraction",
+        "Radius of gyration / radius",
+        "dimensionless",
+        "",
+        default=0.84,
+        min=0,
+        min_exclusive=True,
+        max=1,
+        modes=("radius_of_gyration",),
+        help="k/r_w with I = m_w·(k·r_w)² (seed: 0.84 for the VEX 5 in wheel; disc 0.707; rim 1).",
+    ),
+    Field(
+        "wheel_inertia",
+        "Wheel inertia (each)",
+        "inertia",
+        "lb*in**2",
+        default=1.75,
+        min=0,
+        min_exclusive=True,
+        max=3.4e9,
+        modes=("moment_of_inertia",),
+        help="Moment of inertia of one wheel about its axle (with its share of shaft and gears).",
+    ),
+    Field(
+        "wheel_count",
+        "Wheels",
+        integer=True,
+        default=1,
+        min=1,
+        max=20,
+        help="Wheels spinning together (all wheels of both sides for a two-wheel shooter).",
+    ),
+    Field(
+        "shooter",
+        "Shooter",
+        choices=SHOOTERS,
+        choice_labels=SHOOTER_LABELS,
+        default="hood",
+        help="Hood: the ball rolls on the hood and leaves at half the surface speed with spin V/r_b. "
+        "Two wheels: surface speed, no spin.",
+    ),
+    Field(
+        "ball_diameter",
+        "Ball diameter",
+        "length",
+        "in",
+        default=4,
+        min=0,
+        min_exclusive=True,
+        max=79,
+        when=(("shooter", ("hood",)),),
+        help="2·r_b: sets the spin V/r_b of a ball rolling on the hood.",
+    ),
+    Field(
+        "ball_mass",
+        "Ball mass",
+        "mass",
+        "g",
+        default=60,
+        min=0,
+        max=5000,
+        help="Nominal ball mass m₀ (NbN ball: 60 g).",
+    ),
+    Field(
+        "ball_inertia_factor",
+        "Ball I/(m·r²)",
+        "dimensionless",
+        "",
+        default=0.4,
+        min=0,
+        max=0.67,
+        when=(("shooter", ("hood",)),),
+        help="k_b: 2/5 solid sphere (seed), 2/3 thin shell.",
+    ),
+    Field(
+        "ball_mass_tolerance",
+        "Ball mass tolerance",
+        "dimensionless",
+        "%",
+        default=10,
+        min=0,
+        max=90,
+        help="e_m: balls up to m₀·(1 ± e_m); range errors are for the heavy ball, as in the seed.",
+    ),
+    Field(
+        "target_speed",
+        "Wheel target speed",
+        "angular_speed",
+        "rpm",
+        default=2000,
+        min=0,
+        min_exclusive=True,
+        help="Wheel speed the controller spins up to and holds; the shot starts at it.",
+    ),
+    Field(
+        "launch_angle",
+        "Launch angle",
+        "angle",
+        "deg",
+        default=45,
+        min=0,
+        min_exclusive=True,
+        max=90,
+        max_exclusive=True,
+        help="Elevation θ of the release above horizontal.",
+    ),
+    Field(
+        "release_height",
+        "Release height above target",
+        "length",
+        "m",
+        default=0,
+        min=0,
+        max=100,
+        help="h: the release point above the landing height (0: the seed's R = V²·sin2θ/g).",
+    ),
     *_motor_fields(),
-    Field("ratio", "Gear ratio (motor : wheel)", "dimensionless", "", default=0.04, min=0, min_exclusive=True,
-          max=1e4, help="G, motor turns per wheel turn (a speed-up is below 1: 1:25 is 0.04)."),
-    Field("rotor_inertia", "Rotor inertia (each motor)", "inertia", "kg*m**2", default=0, min=0, max=1,
-          help="J_r of one motor's rotor, reflected to the wheels as N·J_r·G² (the rotor turns G times per "
-               "wheel turn) and spun up and slowed by the shot with them; 0 neglects it, as WPILib's "
-               "DCMotor does."),
-    Field("loss_fraction", "Loss fraction", "dimensionless", "%", default=0, min=0, max=100, max_exclusive=True,
-          help="f: friction and ball compression (energy model: of the energy the wheel gives up; "
-               "momentum model: of the ball's energy)."),
+    Field(
+        "ratio",
+        "Gear ratio (motor : wheel)",
+        "dimensionless",
+        "",
+        default=0.04,
+        min=0,
+        min_exclusive=True,
+        max=1e4,
+        help="G, motor turns per wheel turn (a speed-up is below 1: 1:25 is 0.04).",
+    ),
+    Field(
+        "rotor_inertia",
+        "Rotor inertia (each motor)",
+        "inertia",
+        "kg*m**2",
+        default=0,
+        min=0,
+        max=1,
+        help="J_r of one motor's rotor, reflected to the wheels as N·J_r·G² (the rotor turns G times per "
+        "wheel turn) and spun up and slowed by the shot with them; 0 neglects it, as WPILib's "
+        "DCMotor does.",
+    ),
+    Field(
+        "loss_fraction",
+        "Loss fraction",
+        "dimensionless",
+        "%",
+        default=0,
+        min=0,
+        max=100,
+        max_exclusive=True,
+        help="f: friction and ball compression (energy model: of the energy the wheel gives up; "
+        "momentum model: of the ball's energy).",
+    ),
     Field("shots", "Shots in the burst", integer=True, default=4, min=1, max=50),
-    Field("shot_interval", "Shot interval", "time", "s", default=0.5, min=0.01, max=60,
-          help="Cadence of the burst: time from one shot to the next."),
-    Field("transfer", "Transfer model", choices=TRANSFERS, choice_labels=TRANSFER_LABELS, default="energy",
-          help="How the wheel's spin reaches the ball: energy conservation (the seed) or angular impulse "
-               "with slip until the ball rolls (Team 449)."),
-    EFFECTS.field("motor_during_shot (momentum model only): the motor drives during the slip; stator_limit, "
-                  "supply_limit (per motor current limits) and battery_sag (bus = battery − R × total supply "
-                  "current) act on the spin-up and the recovery between shots."),
+    Field(
+        "shot_interval",
+        "Shot interval",
+        "time",
+        "s",
+        default=0.5,
+        min=0.01,
+        max=60,
+        help="Cadence of the burst: time from one shot to the next.",
+    ),
+    Field(
+        "transfer",
+        "Transfer model",
+        choices=TRANSFERS,
+        choice_labels=TRANSFER_LABELS,
+        default="energy",
+        help="How the wheel's spin reaches the ball: energy conservation (the seed) or angular impulse "
+        "with slip until the ball rolls (Team 449).",
+    ),
+    EFFECTS.field(
+        "motor_during_shot (momentum model only): the motor drives during the slip; stator_limit, "
+        "supply_limit (per motor current limits) and battery_sag (bus = battery − R × total supply "
+        "current) act on the spin-up and the recovery between shots."
+    ),
     *EFFECTS.fields(),
     accuracy_field(),
 )
@@ -181,54 +357,175 @@ def upgrade(raw):
     if not named:
         return raw
     if len(set(named)) > 1:
-        raise InputError("effects", "names both transfer models (energy and momentum): choose one as `transfer`")
+        raise InputError(
+            "effects", "names both transfer models (energy and momentum): choose one as `transfer`"
+        )
     rest = [x for x in items if x not in TRANSFERS]
     out = dict(raw)
     out["effects"] = ", ".join(rest) if isinstance(eff, str) else rest
     out["transfer"] = named[0]
     return out
 
+
 OUTPUTS = (
-    Output("ball_speed", "Ball speed", "speed", "m/s", help="Release speed V at the target wheel speed.", equation="(2)"),
-    Output("ball_spin", "Ball spin", "angular_speed", "rpm", help="V/r_b for a ball rolling on the hood (2); 0 for two wheels.", equation="(2)"),
+    Output(
+        "ball_speed",
+        "Ball speed",
+        "speed",
+        "m/s",
+        help="Release speed V at the target wheel speed.",
+        equation="(2)",
+    ),
+    Output(
+        "ball_spin",
+        "Ball spin",
+        "angular_speed",
+        "rpm",
+        help="V/r_b for a ball rolling on the hood (2); 0 for two wheels.",
+        equation="(2)",
+    ),
     Output("ball_energy", "Ball energy", "energy", "J", help="Translation plus spin.", equation="(3)"),
-    Output("energy_ratio", "Ball / wheel energy after", help="E_b/E_w,final (seed: .165 for one wheel).", equation="(6)"),
-    Output("wheel_speed_after", "Wheel speed after shot", "angular_speed", "rpm", help="ω₁ after the first shot: ω₀/√(1+β) (energy, 5) or ω₀/(1+β) (momentum).", equation="(5)"),
-    Output("contact_time", "Slip time of the shot", "time", "ms",
-           help="From contact until the ball rolls, the slip phase integrated (motor_during_shot only).", equation="(FW3)"),
-    Output("wheel_inertia_total", "Wheel inertia (all)", "inertia", "lb*in**2", help="n·I of one wheel (I = m_w·(k·r_w)² in radius-of-gyration mode (4)) plus the rotors' N·J_r·G².", equation="(4)"),
-    Output("mass_ratio_coefficient", "β per ball/wheel mass ratio",
-           help="(1+k_b)·s²/k²: E_b/E_w,final per ball-to-wheel mass ratio (radius-of-gyration mode); "
-                "the seed's .4954.", equation="(6)"),
+    Output(
+        "energy_ratio",
+        "Ball / wheel energy after",
+        help="E_b/E_w,final (seed: .165 for one wheel).",
+        equation="(6)",
+    ),
+    Output(
+        "wheel_speed_after",
+        "Wheel speed after shot",
+        "angular_speed",
+        "rpm",
+        help="ω₁ after the first shot: ω₀/√(1+β) (energy, 5) or ω₀/(1+β) (momentum).",
+        equation="(5)",
+    ),
+    Output(
+        "contact_time",
+        "Slip time of the shot",
+        "time",
+        "ms",
+        help="From contact until the ball rolls, the slip phase integrated (motor_during_shot only).",
+        equation="(FW3)",
+    ),
+    Output(
+        "wheel_inertia_total",
+        "Wheel inertia (all)",
+        "inertia",
+        "lb*in**2",
+        help="n·I of one wheel (I = m_w·(k·r_w)² in radius-of-gyration mode (4)) plus the rotors' N·J_r·G².",
+        equation="(4)",
+    ),
+    Output(
+        "mass_ratio_coefficient",
+        "β per ball/wheel mass ratio",
+        help="(1+k_b)·s²/k²: E_b/E_w,final per ball-to-wheel mass ratio (radius-of-gyration mode); "
+        "the seed's .4954.",
+        equation="(6)",
+    ),
     Output("range", "Range", "length", "m", help="Vacuum range from the release height.", equation="(1)"),
-    Output("range_error", "Range error (heavy ball)", "dimensionless", "%",
-           help="Exact, for m₀·(1+e_m), with the effects and losses chosen.", equation="(7), (8)"),
-    Output("range_error_linear", "Range error, spreadsheet estimate", "dimensionless", "%",
-           help="The seed's −e_m/(m_w/(c·m₀) + 1), c exact: lossless energy model at h = 0, whatever model is chosen.",
-           equation="(9)"),
-    Output("range_spread", "Range spread light to heavy", "length", "m",
-           help="R(m₀·(1−e_m)) − R(m₀·(1+e_m)).", equation="(1), (7)"),
-    *[Output(f"range_error_{n}", f"Range error, {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%",
-             help="Exact (8) with n wheels, the same wheel, motor and target speed.", equation="(8)")
-      for n in TABLE_WHEELS],
-    *[Output(f"range_error_linear_{n}", f"Spreadsheet est., {n} wheel{'s' if n > 1 else ''}", "dimensionless", "%",
-             help="The seed's table (9): lossless energy model, h = 0, whatever model is chosen.", equation="(9)")
-      for n in TABLE_WHEELS],
-    Output("free_speed", "Wheel free speed", "angular_speed", "rpm",
-           help="ω̃f/G (with battery_sag: where the sagged torque is zero, (F2)).", equation="(FW1), (F2)"),
+    Output(
+        "range_error",
+        "Range error (heavy ball)",
+        "dimensionless",
+        "%",
+        help="Exact, for m₀·(1+e_m), with the effects and losses chosen.",
+        equation="(7), (8)",
+    ),
+    Output(
+        "range_error_linear",
+        "Range error, spreadsheet estimate",
+        "dimensionless",
+        "%",
+        help="The seed's −e_m/(m_w/(c·m₀) + 1), c exact: lossless energy model at h = 0, whatever model is chosen.",
+        equation="(9)",
+    ),
+    Output(
+        "range_spread",
+        "Range spread light to heavy",
+        "length",
+        "m",
+        help="R(m₀·(1−e_m)) − R(m₀·(1+e_m)).",
+        equation="(1), (7)",
+    ),
+    *[
+        Output(
+            f"range_error_{n}",
+            f"Range error, {n} wheel{'s' if n > 1 else ''}",
+            "dimensionless",
+            "%",
+            help="Exact (8) with n wheels, the same wheel, motor and target speed.",
+            equation="(8)",
+        )
+        for n in TABLE_WHEELS
+    ],
+    *[
+        Output(
+            f"range_error_linear_{n}",
+            f"Spreadsheet est., {n} wheel{'s' if n > 1 else ''}",
+            "dimensionless",
+            "%",
+            help="The seed's table (9): lossless energy model, h = 0, whatever model is chosen.",
+            equation="(9)",
+        )
+        for n in TABLE_WHEELS
+    ],
+    Output(
+        "free_speed",
+        "Wheel free speed",
+        "angular_speed",
+        "rpm",
+        help="ω̃f/G (with battery_sag: where the sagged torque is zero, (F2)).",
+        equation="(FW1), (F2)",
+    ),
     Output("time_constant", "Spin-up time constant", "time", "s", help="T = I·ω̃f/(G²·τ̃s).", equation="(FW1)"),
-    Output("spin_up_time", "Spin-up time", "time", "s", equation="(FW2), (F1)",
-           help="From rest to the target at full power: T·ln(ω_f/(ω_f − ω_t)); with a current limit, integrated (F1)."),
-    Output("recovery_time", "Recovery time", "time", "s", equation="(FW2), (F1)",
-           help="After one shot back to the target: T·ln((ω_f − ω₁)/(ω_f − ω_t)); under a current limit integrated (F1)."),
-    Output("slowest_ball_speed", "Slowest ball in burst", "speed", "m/s",
-           help="The slowest release over the burst (the wheel not back to speed between shots).", equation="(FW4)"),
-    Output("peak_stator_current", "Peak stator current", "current", "A",
-           help="Per motor, over the spin-up (at rest); stator_limit, supply_limit or battery_sag only.", equation="(FW5)"),
-    Output("peak_supply_current", "Peak supply current", "current", "A",
-           help="Per motor, stator current × duty, largest over the spin-up; with a limit or sag only.", equation="(FW5)"),
-    Output("min_bus_voltage", "Min bus voltage", "voltage", "V",
-           help="Battery voltage minus the sag at the peak supply current (battery_sag).", equation="(FW5)"),
+    Output(
+        "spin_up_time",
+        "Spin-up time",
+        "time",
+        "s",
+        equation="(FW2), (F1)",
+        help="From rest to the target at full power: T·ln(ω_f/(ω_f − ω_t)); with a current limit, integrated (F1).",
+    ),
+    Output(
+        "recovery_time",
+        "Recovery time",
+        "time",
+        "s",
+        equation="(FW2), (F1)",
+        help="After one shot back to the target: T·ln((ω_f − ω₁)/(ω_f − ω_t)); under a current limit integrated (F1).",
+    ),
+    Output(
+        "slowest_ball_speed",
+        "Slowest ball in burst",
+        "speed",
+        "m/s",
+        help="The slowest release over the burst (the wheel not back to speed between shots).",
+        equation="(FW4)",
+    ),
+    Output(
+        "peak_stator_current",
+        "Peak stator current",
+        "current",
+        "A",
+        help="Per motor, over the spin-up (at rest); stator_limit, supply_limit or battery_sag only.",
+        equation="(FW5)",
+    ),
+    Output(
+        "peak_supply_current",
+        "Peak supply current",
+        "current",
+        "A",
+        help="Per motor, stator current × duty, largest over the spin-up; with a limit or sag only.",
+        equation="(FW5)",
+    ),
+    Output(
+        "min_bus_voltage",
+        "Min bus voltage",
+        "voltage",
+        "V",
+        help="Battery voltage minus the sag at the peak supply current (battery_sag).",
+        equation="(FW5)",
+    ),
     *STATS_OUTPUTS,
 )
 
@@ -249,7 +546,9 @@ class Drive:
     elec: Any  # E -> (u, I)
     asm: Any  # the assembled electrical effects (their duty bounds, one by one)
     rtol: float
-    boundaries: tuple[float, ...] | None = ()  # wheel speeds where a limit lets go (kinks of τ_w); None: no limit
+    boundaries: (
+        tuple[float, ...] | None
+    ) = ()  # wheel speeds where a limit lets go (kinks of τ_w); None: no limit
     nfev: int = 0
 
     def torque(self, w: float) -> float:
@@ -303,8 +602,10 @@ def scene_from(v, rtol: float = 1e-6) -> tuple[Scene, list[str]]:
     model = v["transfer"]
     motor_on = "motor_during_shot" in effects
     if motor_on and model == "energy":
-        warnings.append("motor_during_shot is ignored by the energy model (it has no shot duration); "
-                        "use the momentum model.")
+        warnings.append(
+            "motor_during_shot is ignored by the energy model (it has no shot duration); "
+            "use the momentum model."
+        )
         motor_on = False
     system, notes = system_from(v)
     warnings += notes
@@ -315,16 +616,30 @@ def scene_from(v, rtol: float = 1e-6) -> tuple[Scene, list[str]]:
         A, free, electric = electrical_drive(v, A, free, G, rtol)
         drive = electric if electric.boundaries is not None else None
         if drive is not None and motor_on:
-            warnings.append("The current limits act on the spin-up and the recovery; the slip phase of "
-                            "motor_during_shot runs the motors at full duty (unlimited).")
+            warnings.append(
+                "The current limits act on the spin-up and the recovery; the slip phase of "
+                "motor_during_shot runs the motors at full duty (unlimited)."
+            )
     hood = v["shooter"] == "hood"
     I = v["wheel_count"] * inertia_each(v)
     if v["rotor_inertia"] > 0:
         I += rotor_reflected(v)
-    sc = Scene(r_w=v["wheel_diameter"] / 2, I=I, r_b=v["ball_diameter"] / 2,
-               k_b=v["ball_inertia_factor"], s=0.5 if hood else 1.0, sigma=1.0 if hood else 0.0,
-               f=v["loss_fraction"], model=model, motor_on=motor_on,
-               A=A, free_speed=free, grip=v["grip_force"], drive=drive, electric=electric)
+    sc = Scene(
+        r_w=v["wheel_diameter"] / 2,
+        I=I,
+        r_b=v["ball_diameter"] / 2,
+        k_b=v["ball_inertia_factor"],
+        s=0.5 if hood else 1.0,
+        sigma=1.0 if hood else 0.0,
+        f=v["loss_fraction"],
+        model=model,
+        motor_on=motor_on,
+        A=A,
+        free_speed=free,
+        grip=v["grip_force"],
+        drive=drive,
+        electric=electric,
+    )
     return sc, warnings
 
 
@@ -344,9 +659,12 @@ def electrical_drive(v, A: float, free: float, G: float, rtol: float) -> tuple[f
     if Rb > 0:
         I0 = V / (circuit.R + Rb)
         if I0 <= i_f:
-            raise InputError("battery_resistance", f"sags the bus so far that the stalled motors draw "
-                                                   f"{I0:.4g} A each, not above their free current "
-                                                   f"{i_f:.4g} A: they give no torque")
+            raise InputError(
+                "battery_resistance",
+                f"sags the bus so far that the stalled motors draw "
+                f"{I0:.4g} A each, not above their free current "
+                f"{i_f:.4g} A: they give no torque",
+            )
         A_sag = A * (I0 - i_f) / (i_s - i_f)  # (F2)
         free = circuit.Kv * (V - i_f * (circuit.R + Rb)) / G  # (F2)
     elec, asm = motor_limits.limits(EFFECTS, on, v, circuit)
@@ -400,7 +718,9 @@ def shot(sc: Scene, omega0: float, m: float, target: float, rtol: float) -> Shot
     return Shot(omega1, drop, V, spin, 0.5 * m_e * V * V, t_c, nfev)  # (3)
 
 
-def slip_phase(sc: Scene, omega0: float, m_e: float, target: float, rtol: float) -> tuple[float, float, float, int]:
+def slip_phase(
+    sc: Scene, omega0: float, m_e: float, target: float, rtol: float
+) -> tuple[float, float, float, int]:
     """Motor on while the ball slips, until it rolls (r_w·ω = V/s):
         I·dω/dt = A − B·ω − r_w·F   below the target speed (full power); at the target the
                                     controller holds it (never exceeds it)
@@ -424,8 +744,15 @@ def slip_phase(sc: Scene, omega0: float, m_e: float, target: float, rtol: float)
     if u_t > 1.0:
         events.append(Event("target", lambda t, y: y[0] - u_t, +1))
     try:
-        run = integrate(lambda t, y: [a - b * y[0], 1.0], 0.0, span, [1.0, 0.0], rtol=rtol,
-                        atol=rtol * 1e-3, events=events)
+        run = integrate(
+            lambda t, y: [a - b * y[0], 1.0],
+            0.0,
+            span,
+            [1.0, 0.0],
+            rtol=rtol,
+            atol=rtol * 1e-3,
+            events=events,
+        )
     except RuntimeError:  # beyond what a step-size controller can follow: the closed form answers
         tau, u = slip_closed_form(a, b, u_t, span)
         return u * omega0, sc.s * sc.r_w * omega0 * tau, tau * t0, 0
@@ -551,8 +878,9 @@ class LimitedRun:
         return self.pieces[0][1].at(0.0)
 
 
-def limited_run(sc: Scene, omega_from: float, omega_to: float, t_end: float | None = None,
-                dense: bool = False) -> LimitedRun:
+def limited_run(
+    sc: Scene, omega_from: float, omega_to: float, t_end: float | None = None, dense: bool = False
+) -> LimitedRun:
     """I·dω/dt = τ_w(ω) (F1) from omega_from until ω = omega_to (event "target") or t_end, one
     phase at a time: τ_w has a kink where a limit lets go (motor_limits.release_emfs, and
     E = V_b − I_sup·(R + R_bus) where the supply limit lets go to full duty), so each phase is
@@ -572,9 +900,16 @@ def limited_run(sc: Scene, omega_from: float, omega_to: float, t_end: float | No
             span = min(span, t_end - t)
         if span <= 0:
             break
-        run = integrate(lambda t_, y: [d.torque(y[0]) / I], 0.0, span, [w], rtol=d.rtol,
-                        atol=d.rtol * omega_to, events=[Event("target", lambda t_, y, w_b=w_b: y[0] - w_b, +1)],
-                        dense=dense)
+        run = integrate(
+            lambda t_, y: [d.torque(y[0]) / I],
+            0.0,
+            span,
+            [w],
+            rtol=d.rtol,
+            atol=d.rtol * omega_to,
+            events=[Event("target", lambda t_, y, w_b=w_b: y[0] - w_b, +1)],
+            dense=dense,
+        )
         d.nfev += run.nfev
         out.pieces.append((t, run))
         t, w = t + run.t[-1], run.y[-1][0]
@@ -615,8 +950,10 @@ def burst(sc: Scene, v, shots: Shots):
                 def speed(dt):
                     return run.y[-1][0] if dt >= end else run.at(dt)[0]
             else:
+
                 def speed(dt):
                     return free_run(sc, w_start, dt)
+
             for i in range(1, 25):
                 dt = reach * i / 24 if i < 24 else reach  # reach·24/24 need not round to reach
                 ts.append(t_start + dt)
@@ -629,7 +966,7 @@ def burst(sc: Scene, v, shots: Shots):
     ws.append(0.0)
     ramp(0.0, 0.0, t_spin)
     first_shot = len(ts) - 1  # the burst plot starts at the end of the spin-up (not found by time:
-    t, w = t_spin, target       # the last sample's reach·24/24 can round below t_spin)
+    t, w = t_spin, target  # the last sample's reach·24/24 can round below t_spin)
     slowest = math.inf
     for k in range(v["shots"]):
         one = shots(sc, w, m0)
@@ -658,9 +995,12 @@ def check_limits(sc: Scene, target: float) -> None:
     name = min(bounds, key=bounds.get)
     u, I = d.elec(E)
     field_name = "stator_current_limit" if name == "stator_limit" else "supply_current_limit"
-    raise InputError(field_name, f"is too low to spin the wheels up to {target / RPM:.4g} rpm: there the "
-                                 f"motors draw {I:.4g} A each (duty {u:.3g}), not above their free current "
-                                 f"{d.i_f:.4g} A, so they give no torque")
+    raise InputError(
+        field_name,
+        f"is too low to spin the wheels up to {target / RPM:.4g} rpm: there the "
+        f"motors draw {I:.4g} A each (duty {u:.3g}), not above their free current "
+        f"{d.i_f:.4g} A, so they give no torque",
+    )
 
 
 def electrical_extremes(sc: Scene, target: float, v) -> dict[str, float]:
@@ -671,22 +1011,28 @@ def electrical_extremes(sc: Scene, target: float, v) -> dict[str, float]:
     E_t = d.emf(target)
     Es = [0.0, E_t] + [E for E in motor_limits.release_emfs(d.circuit, v, v["effects"]) if 0.0 <= E <= E_t]
     peak_sup = max(u * I for u, I in map(d.elec, Es))
-    return {"peak_stator_current": d.elec(0.0)[1], "peak_supply_current": peak_sup,
-            "min_bus_voltage": d.circuit.battery_voltage - d.circuit.bus_resistance * peak_sup}
+    return {
+        "peak_stator_current": d.elec(0.0)[1],
+        "peak_supply_current": peak_sup,
+        "min_bus_voltage": d.circuit.battery_voltage - d.circuit.bus_resistance * peak_sup,
+    }
 
 
 def simulate(v, rtol: float) -> SimRun:
     sc, warnings = scene_from(v, rtol)
     target = v["target_speed"]
     if target >= sc.free_speed:
-        raise InputError("target_speed", f"the wheels cannot reach it: their free speed is "
-                                         f"{sc.free_speed / RPM:.4g} rpm with this motor and ratio")
+        raise InputError(
+            "target_speed",
+            f"the wheels cannot reach it: their free speed is "
+            f"{sc.free_speed / RPM:.4g} rpm with this motor and ratio",
+        )
     if sc.drive is not None:
         check_limits(sc, target)
     m0, e_m = v["ball_mass"], v["ball_mass_tolerance"]
     shots = Shots(target, rtol)
     first = shots(sc, target, m0)
-    E_w_after = 0.5 * sc.I * first.omega_after ** 2
+    E_w_after = 0.5 * sc.I * first.omega_after**2
     R = projectile_range(first.V, v["launch_angle"], v["release_height"])
     values = {
         "ball_speed": first.V,
@@ -705,32 +1051,48 @@ def simulate(v, rtol: float) -> SimRun:
         # the grip is constant, so the ball accelerates uniformly from rest: it slips over V·t_c/2
         slip_length = first.V / math.sqrt(1 - sc.f) * first.contact_time / 2
         if slip_length > SLIP_LENGTH_WARN:
-            warnings.append(f"The ball slips {slip_length:.3g} m before it rolls, longer than a shooter's "
-                            f"contact path: it would leave while still slipping. Raise the grip force.")
+            warnings.append(
+                f"The ball slips {slip_length:.3g} m before it rolls, longer than a shooter's "
+                f"contact path: it would leave while still slipping. Raise the grip force."
+            )
     if sc.model == "momentum":
-        warnings.append("The 'seed linear' range errors are the seed's energy model; the momentum model's "
-                        "exact range errors are about twice them (R ∝ 1/(1 + β)² instead of 1/(1 + β)).")
+        warnings.append(
+            "The 'seed linear' range errors are the seed's energy model; the momentum model's "
+            "exact range errors are about twice them (R ∝ 1/(1 + β)² instead of 1/(1 + β))."
+        )
     if v["mode"] == "radius_of_gyration":
-        values["mass_ratio_coefficient"] = (1 + sc.sigma * sc.k_b) * sc.s ** 2 / v["gyration_fraction"] ** 2  # (6)
+        values["mass_ratio_coefficient"] = (
+            (1 + sc.sigma * sc.k_b) * sc.s**2 / v["gyration_fraction"] ** 2
+        )  # (6)
     for n in TABLE_WHEELS:  # the seed's table; the free speed ω̃f/G does not depend on n
-        sc_n = sc if n == v["wheel_count"] else dataclasses.replace(sc, I=n * inertia_each(v) + rotor_reflected(v))
+        sc_n = (
+            sc
+            if n == v["wheel_count"]
+            else dataclasses.replace(sc, I=n * inertia_each(v) + rotor_reflected(v))
+        )
         values[f"range_error_{n}"] = range_change(sc_n, v, shots, m0 * e_m)
         values[f"range_error_linear_{n}"] = range_error_linear(sc_n, m0, e_m)
     trace, slowest, t_spin, first_shot = burst(sc, v, shots)
-    values.update({
-        "free_speed": sc.free_speed,
-        "time_constant": sc.T,
-        "spin_up_time": t_spin,
-        "recovery_time": recovery(sc, first.omega_after, target, first.drop),
-        "slowest_ball_speed": slowest,
-    })
+    values.update(
+        {
+            "free_speed": sc.free_speed,
+            "time_constant": sc.T,
+            "spin_up_time": t_spin,
+            "recovery_time": recovery(sc, first.omega_after, target, first.drop),
+            "slowest_ball_speed": slowest,
+        }
+    )
     if slowest == 0.0:
-        warnings.append("The shots stop the wheel and the motor cannot spin it up again between them: a later "
-                        "ball meets a wheel at rest and is not thrown (slowest ball 0 m/s). Use a heavier wheel, "
-                        "a stronger drive (motor, ratio) or a longer shot interval.")
+        warnings.append(
+            "The shots stop the wheel and the motor cannot spin it up again between them: a later "
+            "ball meets a wheel at rest and is not thrown (slowest ball 0 m/s). Use a heavier wheel, "
+            "a stronger drive (motor, ratio) or a longer shot interval."
+        )
     elif slowest < first.V * (1 - 1e-9):
-        warnings.append(f"The wheel does not recover between shots: the slowest ball leaves at "
-                        f"{slowest:.3g} m/s instead of {first.V:.3g} m/s.")
+        warnings.append(
+            f"The wheel does not recover between shots: the slowest ball leaves at "
+            f"{slowest:.3g} m/s instead of {first.V:.3g} m/s."
+        )
     series = {"wheel speed": trace, "burst": (trace[0][first_shot:], trace[1][first_shot:])}
     key = {"ball_speed": first.V, "wheel_speed_after": first.omega_after, "slowest_ball_speed": slowest}
     nfev = shots.nfev
@@ -755,6 +1117,19 @@ CALCULATOR = Calculator(
     section="seed 000",
     simulate=simulate,
     upgrade=upgrade,
-    plots=(Plot("Wheel speed over the burst", ("burst",), "time", "time", "s", "wheel speed", "angular_speed", "rpm"),
-           Plot("Spin-up and burst", ("wheel speed",), "time", "time", "s", "wheel speed", "angular_speed", "rpm")),
+    plots=(
+        Plot(
+            "Wheel speed over the burst",
+            ("burst",),
+            "time",
+            "time",
+            "s",
+            "wheel speed",
+            "angular_speed",
+            "rpm",
+        ),
+        Plot(
+            "Spin-up and burst", ("wheel speed",), "time", "time", "s", "wheel speed", "angular_speed", "rpm"
+        ),
+    ),
 )

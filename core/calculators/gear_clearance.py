@@ -25,53 +25,137 @@ from __future__ import annotations
 
 from ..model import Calculator, Field, Output, Result
 
-_WHERE = ("Gears 2 and 3 mesh. Gear 1 is on the shaft of gear 2 (shaft A); gear 4 is on the shaft "
-          "of gear 3 (shaft B).")
+_WHERE = (
+    "Gears 2 and 3 mesh. Gear 1 is on the shaft of gear 2 (shaft A); gear 4 is on the shaft "
+    "of gear 3 (shaft B)."
+)
 
 
 def _dp(name, label, help):
-    return Field(name, label, "reciprocal_length", "1/in", default=20, min=0, min_exclusive=True,
-                 help=help + " Diametral pitch: teeth per inch of pitch diameter (e.g. 20 DP, 32 DP).")
+    return Field(
+        name,
+        label,
+        "reciprocal_length",
+        "1/in",
+        default=20,
+        min=0,
+        min_exclusive=True,
+        help=help + " Diametral pitch: teeth per inch of pitch diameter (e.g. 20 DP, 32 DP).",
+    )
 
 
 FIELDS = (
-    Field("teeth_1", "Gear 1 teeth (shaft A)", integer=True, default=36, min=1, max=100000,
-          help="Gear 1 shares shaft A with gear 2; checked against shaft B and gear 4. " + _WHERE),
-    Field("teeth_2", "Gear 2 teeth (shaft A)", integer=True, default=50, min=1, max=100000,
-          help="Gear 2 on shaft A meshes gear 3 on shaft B. " + _WHERE),
-    Field("teeth_3", "Gear 3 teeth (shaft B)", integer=True, default=12, min=1, max=100000,
-          help="Gear 3 on shaft B meshes gear 2 on shaft A. " + _WHERE),
-    Field("teeth_4", "Gear 4 teeth (shaft B)", integer=True, default=20, min=1, max=100000,
-          help="Gear 4 shares shaft B with gear 3; checked against gear 1 (and shaft A). " + _WHERE),
+    Field(
+        "teeth_1",
+        "Gear 1 teeth (shaft A)",
+        integer=True,
+        default=36,
+        min=1,
+        max=100000,
+        help="Gear 1 shares shaft A with gear 2; checked against shaft B and gear 4. " + _WHERE,
+    ),
+    Field(
+        "teeth_2",
+        "Gear 2 teeth (shaft A)",
+        integer=True,
+        default=50,
+        min=1,
+        max=100000,
+        help="Gear 2 on shaft A meshes gear 3 on shaft B. " + _WHERE,
+    ),
+    Field(
+        "teeth_3",
+        "Gear 3 teeth (shaft B)",
+        integer=True,
+        default=12,
+        min=1,
+        max=100000,
+        help="Gear 3 on shaft B meshes gear 2 on shaft A. " + _WHERE,
+    ),
+    Field(
+        "teeth_4",
+        "Gear 4 teeth (shaft B)",
+        integer=True,
+        default=20,
+        min=1,
+        max=100000,
+        help="Gear 4 shares shaft B with gear 3; checked against gear 1 (and shaft A). " + _WHERE,
+    ),
     _dp("diametral_pitch_1", "Gear 1 diametral pitch", "p_1 of gear 1."),
     _dp("diametral_pitch_23", "Gears 2-3 diametral pitch", "p_23 of the meshing pair 2-3."),
     _dp("diametral_pitch_4", "Gear 4 diametral pitch", "p_4 of gear 4."),
-    Field("axle_diameter", "Axle diameter", "length", "in", default=0.5, min=0,
-          help="Diameter of the shafts (for a hex shaft use the size across corners: "
-               "1/2 in hex is 0.577 in)."),
+    Field(
+        "axle_diameter",
+        "Axle diameter",
+        "length",
+        "in",
+        default=0.5,
+        min=0,
+        help="Diameter of the shafts (for a hex shaft use the size across corners: 1/2 in hex is 0.577 in).",
+    ),
 )
 
 OUTPUTS = (
-    Output("center_distance", "Center distance A-B (gears 2-3)", "length", "in",
-           help="Meshing gears 2 and 3 sit at the sum of their pitch radii, (n_2 + n_3)/(2·p_23) (69).",
-           equation="(69)"),
-    Output("outside_diameter_1", "Gear 1 outside diameter", "length", "in",
-           help="Gear 1's tip diameter, (n_1 + 2)/p_1 (70).", equation="(70)"),
-    Output("outside_diameter_4", "Gear 4 outside diameter", "length", "in",
-           help="Gear 4's tip diameter, (n_4 + 2)/p_4 (70).", equation="(70)"),
-    Output("axle_clearance", "Gear 1 to shaft B clearance", "length", "in",
-           help="C_a: center distance − gear 1's outside radius − axle radius ((71)/(73), corrected).",
-           equation="(71), (73)"),
-    Output("gear_clearance", "Gear 1 to gear 4 clearance", "length", "in",
-           help="C_g: center distance − outside radii of gears 1 and 4, if in one plane ((72)/(74), corrected).",
-           equation="(72), (74)"),
-    Output("axle_clears", "Gear 1 clears shaft B", help="Yes when C_a > 0 ((71)/(73)).", equation="(71), (73)"),
-    Output("gear_clears", "Gear 1 clears gear 4", help="Yes when C_g > 0 ((72)/(74)).", equation="(72), (74)"),
-    Output("axle_clearance_4", "Gear 4 to shaft A clearance", "length", "in",
-           help="The mirror check: center distance − gear 4's outside radius − axle radius (GC1).",
-           equation="(GC1)"),
-    Output("axle_clears_4", "Gear 4 clears shaft A", help="Yes when the gear 4 to shaft A clearance is > 0 (GC1).",
-           equation="(GC1)"),
+    Output(
+        "center_distance",
+        "Center distance A-B (gears 2-3)",
+        "length",
+        "in",
+        help="Meshing gears 2 and 3 sit at the sum of their pitch radii, (n_2 + n_3)/(2·p_23) (69).",
+        equation="(69)",
+    ),
+    Output(
+        "outside_diameter_1",
+        "Gear 1 outside diameter",
+        "length",
+        "in",
+        help="Gear 1's tip diameter, (n_1 + 2)/p_1 (70).",
+        equation="(70)",
+    ),
+    Output(
+        "outside_diameter_4",
+        "Gear 4 outside diameter",
+        "length",
+        "in",
+        help="Gear 4's tip diameter, (n_4 + 2)/p_4 (70).",
+        equation="(70)",
+    ),
+    Output(
+        "axle_clearance",
+        "Gear 1 to shaft B clearance",
+        "length",
+        "in",
+        help="C_a: center distance − gear 1's outside radius − axle radius ((71)/(73), corrected).",
+        equation="(71), (73)",
+    ),
+    Output(
+        "gear_clearance",
+        "Gear 1 to gear 4 clearance",
+        "length",
+        "in",
+        help="C_g: center distance − outside radii of gears 1 and 4, if in one plane ((72)/(74), corrected).",
+        equation="(72), (74)",
+    ),
+    Output(
+        "axle_clears", "Gear 1 clears shaft B", help="Yes when C_a > 0 ((71)/(73)).", equation="(71), (73)"
+    ),
+    Output(
+        "gear_clears", "Gear 1 clears gear 4", help="Yes when C_g > 0 ((72)/(74)).", equation="(72), (74)"
+    ),
+    Output(
+        "axle_clearance_4",
+        "Gear 4 to shaft A clearance",
+        "length",
+        "in",
+        help="The mirror check: center distance − gear 4's outside radius − axle radius (GC1).",
+        equation="(GC1)",
+    ),
+    Output(
+        "axle_clears_4",
+        "Gear 4 clears shaft A",
+        help="Yes when the gear 4 to shaft A clearance is > 0 (GC1).",
+        equation="(GC1)",
+    ),
 )
 
 
@@ -129,7 +213,7 @@ CALCULATOR = Calculator(
     id="gear_clearance",
     title="Gear clearance",
     summary="Does a gear on one shaft clear the neighbouring shaft and its gear? Gears 2 and 3 "
-            "mesh; gear 1 rides with gear 2, gear 4 with gear 3 (seed section 8).",
+    "mesh; gear 1 rides with gear 2, gear 4 with gear 3 (seed section 8).",
     fields=FIELDS,
     outputs=OUTPUTS,
     compute=compute,

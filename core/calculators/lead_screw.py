@@ -29,55 +29,168 @@ from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
 
 FIELDS = (
-    Field("diameter", "Screw diameter", "length", "in", default=0.5, min=0, min_exclusive=True,
-          help="Major (outside) diameter d of the thread."),
-    Field("pitch", "Pitch", "length", "in", default=0.1, min=0, min_exclusive=True,
-          help="Axial distance p between neighbouring threads (1/TPI); 1/2-10 Acme has p = 0.1 in."),
-    Field("starts", "Starts", integer=True, default=1, min=1, max=16,
-          help="Number of thread starts n; the lead (travel per turn) is n·p."),
-    Field("thread_angle", "Thread angle", "angle", "deg", default=29, min=0, max=180,
-          max_exclusive=True,
-          help="Full included thread angle 2α: 29° Acme, 30° metric trapezoidal, 0° square, 60° V thread."),
-    Field("friction", "Thread friction", "dimensionless", "", default=0.15, min=0,
-          help="Coefficient of friction μ between screw and nut (≈0.1-0.2 steel on bronze or plastic)."),
-    Field("force", "Axial load", "force", "lbf", default=100, min=0,
-          help="Axial force F the nut carries (e.g. the weight being lifted)."),
-    Field("rotational_speed", "Screw speed", "angular_speed", "rpm", default=300, min=0,
-          help="Rotational speed ω of the screw (eq. 29)."),
+    Field(
+        "diameter",
+        "Screw diameter",
+        "length",
+        "in",
+        default=0.5,
+        min=0,
+        min_exclusive=True,
+        help="Major (outside) diameter d of the thread.",
+    ),
+    Field(
+        "pitch",
+        "Pitch",
+        "length",
+        "in",
+        default=0.1,
+        min=0,
+        min_exclusive=True,
+        help="Axial distance p between neighbouring threads (1/TPI); 1/2-10 Acme has p = 0.1 in.",
+    ),
+    Field(
+        "starts",
+        "Starts",
+        integer=True,
+        default=1,
+        min=1,
+        max=16,
+        help="Number of thread starts n; the lead (travel per turn) is n·p.",
+    ),
+    Field(
+        "thread_angle",
+        "Thread angle",
+        "angle",
+        "deg",
+        default=29,
+        min=0,
+        max=180,
+        max_exclusive=True,
+        help="Full included thread angle 2α: 29° Acme, 30° metric trapezoidal, 0° square, 60° V thread.",
+    ),
+    Field(
+        "friction",
+        "Thread friction",
+        "dimensionless",
+        "",
+        default=0.15,
+        min=0,
+        help="Coefficient of friction μ between screw and nut (≈0.1-0.2 steel on bronze or plastic).",
+    ),
+    Field(
+        "force",
+        "Axial load",
+        "force",
+        "lbf",
+        default=100,
+        min=0,
+        help="Axial force F the nut carries (e.g. the weight being lifted).",
+    ),
+    Field(
+        "rotational_speed",
+        "Screw speed",
+        "angular_speed",
+        "rpm",
+        default=300,
+        min=0,
+        help="Rotational speed ω of the screw (eq. 29).",
+    ),
 )
 
 OUTPUTS = (
-    Output("lead", "Lead (travel per turn)", "length", "in",
-           help="Travel of the nut per screw turn: starts × pitch, l = n·p (29).", equation="(29)"),
-    Output("mean_diameter", "Mean diameter", "length", "in",
-           help="Diameter halfway up the thread, d_m = d − p/2 (30).", equation="(30)"),
-    Output("drivable", "Can be driven to raise",
-           help="Whether any torque raises the load: the denominator of (31), π·d_m·cos α − μ·l, is positive.",
-           equation="(31)"),
-    Output("raise_torque", "Raise torque", "torque", "N*m",
-           help="Torque to raise the load against thread friction, from the force balance on the thread (31).",
-           equation="(31)"),
-    Output("lower_torque", "Lower torque", "torque", "N*m",
-           help="Torque to lower the load (32); negative means the load turns the screw by itself.",
-           equation="(32)"),
-    Output("backdrivable", "Backdrivable",
-           help="True when the load alone turns the screw: T_L < 0, i.e. μ < l·cos α/(π·d_m) (32).",
-           equation="(32)"),
-    Output("efficiency", "Efficiency", "dimensionless", "%",
-           help="Raise torque without friction ÷ raise torque with it; independent of the load (33).",
-           equation="(33)"),
-    Output("linear_speed", "Linear speed", "speed", "in/s",
-           help="Nut speed: screw speed × lead, v = ω·n·p/(2π) with ω in rad/s (29).", equation="(29)"),
-    Output("raise_power", "Power to raise", "power", "W",
-           help="Raise torque × screw speed, P = T_R·ω (LS1).", equation="(LS1)"),
-    Output("equivalent_radius", "Equivalent radius", "length", "in",
-           help="Spool radius with the same travel per turn, n·p/(2π); send it to the gear-ratio tab (34).",
-           equation="(34)"),
-    Output("equivalent_raise_load", "Equivalent raise load", "force", "lbf",
-           help="Raise torque ÷ equivalent radius: the load a spool would carry for the same work (35).",
-           equation="(35)"),
-    Output("equivalent_lower_load", "Equivalent lower load", "force", "lbf",
-           help="Lower torque ÷ equivalent radius (36).", equation="(36)"),
+    Output(
+        "lead",
+        "Lead (travel per turn)",
+        "length",
+        "in",
+        help="Travel of the nut per screw turn: starts × pitch, l = n·p (29).",
+        equation="(29)",
+    ),
+    Output(
+        "mean_diameter",
+        "Mean diameter",
+        "length",
+        "in",
+        help="Diameter halfway up the thread, d_m = d − p/2 (30).",
+        equation="(30)",
+    ),
+    Output(
+        "drivable",
+        "Can be driven to raise",
+        help="Whether any torque raises the load: the denominator of (31), π·d_m·cos α − μ·l, is positive.",
+        equation="(31)",
+    ),
+    Output(
+        "raise_torque",
+        "Raise torque",
+        "torque",
+        "N*m",
+        help="Torque to raise the load against thread friction, from the force balance on the thread (31).",
+        equation="(31)",
+    ),
+    Output(
+        "lower_torque",
+        "Lower torque",
+        "torque",
+        "N*m",
+        help="Torque to lower the load (32); negative means the load turns the screw by itself.",
+        equation="(32)",
+    ),
+    Output(
+        "backdrivable",
+        "Backdrivable",
+        help="True when the load alone turns the screw: T_L < 0, i.e. μ < l·cos α/(π·d_m) (32).",
+        equation="(32)",
+    ),
+    Output(
+        "efficiency",
+        "Efficiency",
+        "dimensionless",
+        "%",
+        help="Raise torque without friction ÷ raise torque with it; independent of the load (33).",
+        equation="(33)",
+    ),
+    Output(
+        "linear_speed",
+        "Linear speed",
+        "speed",
+        "in/s",
+        help="Nut speed: screw speed × lead, v = ω·n·p/(2π) with ω in rad/s (29).",
+        equation="(29)",
+    ),
+    Output(
+        "raise_power",
+        "Power to raise",
+        "power",
+        "W",
+        help="Raise torque × screw speed, P = T_R·ω (LS1).",
+        equation="(LS1)",
+    ),
+    Output(
+        "equivalent_radius",
+        "Equivalent radius",
+        "length",
+        "in",
+        help="Spool radius with the same travel per turn, n·p/(2π); send it to the gear-ratio tab (34).",
+        equation="(34)",
+    ),
+    Output(
+        "equivalent_raise_load",
+        "Equivalent raise load",
+        "force",
+        "lbf",
+        help="Raise torque ÷ equivalent radius: the load a spool would carry for the same work (35).",
+        equation="(35)",
+    ),
+    Output(
+        "equivalent_lower_load",
+        "Equivalent lower load",
+        "force",
+        "lbf",
+        help="Lower torque ÷ equivalent radius (36).",
+        equation="(36)",
+    ),
 )
 
 
@@ -91,7 +204,9 @@ def raise_denominator(d_m, l, mu, cos_alpha):
 
 
 def raise_torque(F, d_m, l, mu, cos_alpha):
-    return F * d_m / 2 * (math.pi * mu * d_m + l * cos_alpha) / raise_denominator(d_m, l, mu, cos_alpha)  # (31)
+    return (
+        F * d_m / 2 * (math.pi * mu * d_m + l * cos_alpha) / raise_denominator(d_m, l, mu, cos_alpha)
+    )  # (31)
 
 
 def lower_numerator(d_m, l, mu, cos_alpha):
@@ -132,8 +247,9 @@ def compute(v) -> Result:
     mu, F, omega = v["friction"], v["force"], v["rotational_speed"]
     d_m = mean_diameter(d, p)
     if d_m <= 0:
-        raise InputError("pitch", f"must be less than twice the diameter (mean diameter d − p/2 "
-                                  f"is {d_m / INCH:.4g} in)")
+        raise InputError(
+            "pitch", f"must be less than twice the diameter (mean diameter d − p/2 is {d_m / INCH:.4g} in)"
+        )
     warnings = []
     if p >= d:
         warnings.append("Pitch is at least the diameter: an Acme thread this coarse has no core left.")
@@ -152,8 +268,10 @@ def compute(v) -> Result:
         values["raise_power"] = T_R * omega
     else:
         limit = math.pi * d_m * cos_alpha / l
-        warnings.append(f"The screw cannot be driven: with friction {mu:.4g} ≥ {limit:.4g} "
-                        f"(π·dm·cos α / lead) no torque raises the load.")
+        warnings.append(
+            f"The screw cannot be driven: with friction {mu:.4g} ≥ {limit:.4g} "
+            f"(π·dm·cos α / lead) no torque raises the load."
+        )
     T_L = lower_torque(F, d_m, l, mu, cos_alpha)  # (32)
     values["lower_torque"] = T_L
     values["backdrivable"] = lower_numerator(d_m, l, mu, cos_alpha) < 0  # T_L < 0
@@ -175,9 +293,25 @@ CALCULATOR = Calculator(
     section="3",
     exports={"gear_ratio": {"load": "equivalent_raise_load", "radius": "equivalent_radius"}},
     plots=(
-        Plot("Efficiency vs friction", ("efficiency",), "friction μ", "dimensionless", "",
-             "efficiency", "dimensionless", "%"),
-        Plot("Torques vs friction", ("raise torque", "lower torque"), "friction μ", "dimensionless", "",
-             "torque", "torque", "N*m"),
+        Plot(
+            "Efficiency vs friction",
+            ("efficiency",),
+            "friction μ",
+            "dimensionless",
+            "",
+            "efficiency",
+            "dimensionless",
+            "%",
+        ),
+        Plot(
+            "Torques vs friction",
+            ("raise torque", "lower torque"),
+            "friction μ",
+            "dimensionless",
+            "",
+            "torque",
+            "torque",
+            "N*m",
+        ),
     ),
 )

@@ -21,44 +21,162 @@ from ..sim.effects import Effects
 EFFECTS = Effects(*motor_limits.electrical_effects())
 
 FIELDS = motor_fields() + (
-    Field("torque", "Operating torque", "torque", "N*m", default=0.2, min=0,
-          help="Torque τ at the gearbox output for the operating point (eqs. 8-10)."),
-    EFFECTS.field("stator_limit, supply_limit (per motor current limits of the controller); battery_sag "
-                  "(the voltage field is the battery at rest; the bus sags with the total supply current). "
-                  "The curves and the operating point are then the limited motor's."),
+    Field(
+        "torque",
+        "Operating torque",
+        "torque",
+        "N*m",
+        default=0.2,
+        min=0,
+        help="Torque τ at the gearbox output for the operating point (eqs. 8-10).",
+    ),
+    EFFECTS.field(
+        "stator_limit, supply_limit (per motor current limits of the controller); battery_sag "
+        "(the voltage field is the battery at rest; the bus sags with the total supply current). "
+        "The curves and the operating point are then the limited motor's."
+    ),
     *EFFECTS.fields(),
 )
 
 OUTPUTS = (
-    Output("free_speed", "Free speed", "angular_speed", "rpm", help="Motor free speed scaled to the voltage, ω̃f = ωf·V/V_spec (eq. 1).", equation="(1)"),
-    Output("stall_torque", "Stall torque", "torque", "N*m",
-           help="All motors together at the gearbox output, after its efficiency η (eq. 2).", equation="(2)"),
+    Output(
+        "free_speed",
+        "Free speed",
+        "angular_speed",
+        "rpm",
+        help="Motor free speed scaled to the voltage, ω̃f = ωf·V/V_spec (eq. 1).",
+        equation="(1)",
+    ),
+    Output(
+        "stall_torque",
+        "Stall torque",
+        "torque",
+        "N*m",
+        help="All motors together at the gearbox output, after its efficiency η (eq. 2).",
+        equation="(2)",
+    ),
     Output("stall_current", "Stall current", "current", "A", help="All motors together.", equation="(4)"),
     Output("free_current", "Free current", "current", "A", help="All motors together.", equation="(3)"),
-    Output("peak_power", "Peak power", "power", "W", help="At half stall torque, gearbox included (eq. 6).", equation="(6)"),
-    Output("kt", "Kt at gearbox output (after η)", "torque_constant", "N*m/A",
-           help="K_T (7) = τ̃s/(ĩs − ĩf): output torque per amp above the free current, η included (motor's own: K_T/η).",
-           equation="(7)"),
-    Output("max_efficiency", "Max efficiency", "dimensionless", "%",
-           help="Highest output power over electrical power, motors and gearbox together (Appendix A).", equation="(10), (91)"),
-    Output("max_efficiency_torque", "Torque at max efficiency", "torque", "N*m", help="τ at the efficiency peak, τ̃s·√ĩf/(√ĩf + √ĩs) (91).", equation="(91)"),
-    Output("max_efficiency_speed", "Speed at max efficiency", "angular_speed", "rpm", help="Speed (8) at the max-efficiency torque (91).", equation="(8), (91)"),
-    Output("max_efficiency_current", "Current at max efficiency", "current", "A", help="Current (9), all motors, at the max-efficiency torque (91).", equation="(9), (91)"),
-    Output("speed", "Speed at torque", "angular_speed", "rpm", help="Speed at the operating torque on the line (8); with a limit or sag, the limited curve (L1).", equation="(8)"),
-    Output("current", "Current at torque", "current", "A", help="Stator current of all motors at the operating torque (9).", equation="(9)"),
-    Output("output_power", "Output power at torque", "power", "W", help="Operating torque times its speed (8).", equation="(8)"),
-    Output("efficiency_at_torque", "Efficiency at torque", "dimensionless", "%",
-           help="Output power over electrical power at the operating torque, gearbox included (10).", equation="(10)"),
-    Output("supply_current", "Supply current at torque", "current", "A",
-           help="All motors, stator current × duty (with a limit or sag).", equation="(E4)"),
-    Output("bus_voltage", "Bus voltage at torque", "voltage", "V",
-           help="Battery voltage minus the sag at the operating point (battery_sag).", equation="(E4)"),
-    Output("limited_stall_torque", "Stall torque, limited", "torque", "N*m",
-           help="All motors at rest with the current limits and sag: K_T·(n·I(0) − ĩf) (L1).", equation="(7), (9)"),
-    Output("limited_peak_power", "Peak power, limited", "power", "W",
-           help="Largest τ(ω)·ω of the limited curve (L1).", equation="(7), (9)"),
-    Output("limit_release_speed", "Speed where the limits let go", "angular_speed", "rpm",
-           help="Above it the duty is 1: no current limit binds and the unlimited line (8) holds.", equation="(E5)"),
+    Output(
+        "peak_power",
+        "Peak power",
+        "power",
+        "W",
+        help="At half stall torque, gearbox included (eq. 6).",
+        equation="(6)",
+    ),
+    Output(
+        "kt",
+        "Kt at gearbox output (after η)",
+        "torque_constant",
+        "N*m/A",
+        help="K_T (7) = τ̃s/(ĩs − ĩf): output torque per amp above the free current, η included (motor's own: K_T/η).",
+        equation="(7)",
+    ),
+    Output(
+        "max_efficiency",
+        "Max efficiency",
+        "dimensionless",
+        "%",
+        help="Highest output power over electrical power, motors and gearbox together (Appendix A).",
+        equation="(10), (91)",
+    ),
+    Output(
+        "max_efficiency_torque",
+        "Torque at max efficiency",
+        "torque",
+        "N*m",
+        help="τ at the efficiency peak, τ̃s·√ĩf/(√ĩf + √ĩs) (91).",
+        equation="(91)",
+    ),
+    Output(
+        "max_efficiency_speed",
+        "Speed at max efficiency",
+        "angular_speed",
+        "rpm",
+        help="Speed (8) at the max-efficiency torque (91).",
+        equation="(8), (91)",
+    ),
+    Output(
+        "max_efficiency_current",
+        "Current at max efficiency",
+        "current",
+        "A",
+        help="Current (9), all motors, at the max-efficiency torque (91).",
+        equation="(9), (91)",
+    ),
+    Output(
+        "speed",
+        "Speed at torque",
+        "angular_speed",
+        "rpm",
+        help="Speed at the operating torque on the line (8); with a limit or sag, the limited curve (L1).",
+        equation="(8)",
+    ),
+    Output(
+        "current",
+        "Current at torque",
+        "current",
+        "A",
+        help="Stator current of all motors at the operating torque (9).",
+        equation="(9)",
+    ),
+    Output(
+        "output_power",
+        "Output power at torque",
+        "power",
+        "W",
+        help="Operating torque times its speed (8).",
+        equation="(8)",
+    ),
+    Output(
+        "efficiency_at_torque",
+        "Efficiency at torque",
+        "dimensionless",
+        "%",
+        help="Output power over electrical power at the operating torque, gearbox included (10).",
+        equation="(10)",
+    ),
+    Output(
+        "supply_current",
+        "Supply current at torque",
+        "current",
+        "A",
+        help="All motors, stator current × duty (with a limit or sag).",
+        equation="(E4)",
+    ),
+    Output(
+        "bus_voltage",
+        "Bus voltage at torque",
+        "voltage",
+        "V",
+        help="Battery voltage minus the sag at the operating point (battery_sag).",
+        equation="(E4)",
+    ),
+    Output(
+        "limited_stall_torque",
+        "Stall torque, limited",
+        "torque",
+        "N*m",
+        help="All motors at rest with the current limits and sag: K_T·(n·I(0) − ĩf) (L1).",
+        equation="(7), (9)",
+    ),
+    Output(
+        "limited_peak_power",
+        "Peak power, limited",
+        "power",
+        "W",
+        help="Largest τ(ω)·ω of the limited curve (L1).",
+        equation="(7), (9)",
+    ),
+    Output(
+        "limit_release_speed",
+        "Speed where the limits let go",
+        "angular_speed",
+        "rpm",
+        help="Above it the duty is 1: no current limit binds and the unlimited line (8) holds.",
+        equation="(E5)",
+    ),
 )
 
 
@@ -91,13 +209,22 @@ def compute_limited(v) -> Result:
     point, circuit, elec, w_zero = limited_curve(v, m)
     tau0, u0, I0 = point(0.0)
     if tau0 <= 0 or w_zero <= 0:
-        name = ("battery_resistance" if w_zero <= 0 or u0 >= 1 else
-                "stator_current_limit" if "stator_limit" in on and I0 >= v["stator_current_limit"] * (1 - 1e-12)
-                else "supply_current_limit")
-        raise InputError(name, f"leaves the stalled motors {I0:.4g} A each, not above their free current "
-                               f"{m.free_current / n:.4g} A: they give no torque")
+        name = (
+            "battery_resistance"
+            if w_zero <= 0 or u0 >= 1
+            else "stator_current_limit"
+            if "stator_limit" in on and I0 >= v["stator_current_limit"] * (1 - 1e-12)
+            else "supply_current_limit"
+        )
+        raise InputError(
+            name,
+            f"leaves the stalled motors {I0:.4g} A each, not above their free current "
+            f"{m.free_current / n:.4g} A: they give no torque",
+        )
     if tau > tau0:
-        raise InputError("torque", f"is above what the motors give with these limits ({tau0:.4g} N*m at stall)")
+        raise InputError(
+            "torque", f"is above what the motors give with these limits ({tau0:.4g} N*m at stall)"
+        )
     # the fastest speed with τ(ω) ≥ τ: bisection (τ never rises with ω; flat under a stator limit)
     lo, hi = 0.0, w_zero
     for _ in range(200):
@@ -117,8 +244,9 @@ def compute_limited(v) -> Result:
     from scipy.optimize import minimize_scalar
 
     a, b = ws[max(k - 1, 0)], ws[min(k + 1, len(ws) - 1)]
-    best = minimize_scalar(lambda x: -point(x)[0] * x, bounds=(a, b), method="bounded",
-                           options={"xatol": 1e-10 * w_zero})
+    best = minimize_scalar(
+        lambda x: -point(x)[0] * x, bounds=(a, b), method="bounded", options={"xatol": 1e-10 * w_zero}
+    )
     # the peak is inside a smooth phase (the optimiser) or where a limit lets go (a kink)
     kinks = [E * circuit.Kv for E in motor_limits.release_emfs(circuit, v, on) if 0 < E * circuit.Kv < w_zero]
     if "stator_limit" in on or "supply_limit" in on:
@@ -145,8 +273,10 @@ def compute_limited(v) -> Result:
         "current": (taus, [n * p[2] for p in pts]),
         "supply current": (taus, [n * p[1] * p[2] for p in pts]),
         "power": (taus, powers),
-        "efficiency": ([t for t, x in zip(taus, ws) if x > 0],
-                       [t * x / (Vb * n * p[1] * p[2]) for t, x, p in zip(taus, ws, pts) if x > 0 and p[1] * p[2] > 0]),
+        "efficiency": (
+            [t for t, x in zip(taus, ws) if x > 0],
+            [t * x / (Vb * n * p[1] * p[2]) for t, x, p in zip(taus, ws, pts) if x > 0 and p[1] * p[2] > 0],
+        ),
     }
     if len(series["efficiency"][0]) != len(series["efficiency"][1]):
         series.pop("efficiency")
@@ -181,8 +311,7 @@ def compute_free(v) -> Result:
         "current": m.current(tau),
         "output_power": tau * m.speed(tau),
         # (10); at τ = 0 with ĩf = 0 it is 0/0, and its limit is the max-efficiency value
-        "efficiency_at_torque": m.efficiency_at(tau) if (tau > 0 or m.free_current > 0)
-        else m.max_efficiency,
+        "efficiency_at_torque": m.efficiency_at(tau) if (tau > 0 or m.free_current > 0) else m.max_efficiency,
     }
     # motor curve: (8), (9), output power and (10) over the torque range, for the plots
     taus = [m.stall_torque * k / 100 for k in range(101)]
@@ -205,9 +334,26 @@ CALCULATOR = Calculator(
     section="1",
     plots=(
         Plot("Speed vs torque", ("speed",), "torque", "torque", "N*m", "speed", "angular_speed", "rpm"),
-        Plot("Current vs torque", ("current", "supply current"), "torque", "torque", "N*m", "current", "current",
-             "A"),
+        Plot(
+            "Current vs torque",
+            ("current", "supply current"),
+            "torque",
+            "torque",
+            "N*m",
+            "current",
+            "current",
+            "A",
+        ),
         Plot("Power vs torque", ("power",), "torque", "torque", "N*m", "output power", "power", "W"),
-        Plot("Efficiency vs torque", ("efficiency",), "torque", "torque", "N*m", "efficiency", "dimensionless", "%"),
+        Plot(
+            "Efficiency vs torque",
+            ("efficiency",),
+            "torque",
+            "torque",
+            "N*m",
+            "efficiency",
+            "dimensionless",
+            "%",
+        ),
     ),
 )

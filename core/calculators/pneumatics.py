@@ -32,15 +32,15 @@ from __future__ import annotations
 
 import math
 from bisect import bisect_right
-from functools import lru_cache
+from functools import cache
 
+from ..constants import PSI
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
 from ..sim.effects import Effect, Effects, Part, Slot
 from ..sim.integrate import Event, integrate
 from ..sim.scene import SOLVE_NFEV, STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats
 
-from ..constants import PSI
 P_ATM = 101325.0  # Pa
 CFM = 0.028316846592 / 60  # m^3/s per ft^3/min
 RELIEF = 125 * PSI  # FRC relief valve
@@ -48,23 +48,26 @@ SLACK = 1 + 1e-12  # field bounds: a value typed exactly at a bound parses a bit
 GROUPS = 3
 MIN_PERIOD = 0.1  # s; a valve cannot cycle faster, and it bounds the work of a match
 MAX_FIRINGS = SOLVE_NFEV // 30  # with the compressor on: 2 runs × ≥ 15 evaluations per firing
-ADVICE = ("match_length", "the match is too long for this accuracy and firing rate (every firing restarts "
-                          "the integration): try a shorter match, longer firing periods, or a coarser accuracy")
+ADVICE = (
+    "match_length",
+    "the match is too long for this accuracy and firing rate (every firing restarts "
+    "the integration): try a shorter match, longer firing periods, or a coarser accuracy",
+)
 
 # Free-air flow (CFM) at 0, 20, ..., 120 psi (ReCalc compressor data, REFERENCE_DATA.md).
 COMPRESSORS: dict[str, tuple[float, ...]] = {
-    "VIAIR 90C 12 V": (.880, .425, .302, .251, .237, .224, .210),
-    "VIAIR 90C 13.8 V": (1.030, .670, .599, .530, .450, .390, .340),
-    "VIAIR 250C-IG 13.8 V": (.879, .771, .684, .597, .519, .451, .386),
-    "Thomas 215 12 V": (.972, .764, .594, .469, .379, .297, .219),
-    "AndyMark 1.1 12 V": (1.100, .602, .502, .406, .331, .312, .300),
+    "VIAIR 90C 12 V": (0.880, 0.425, 0.302, 0.251, 0.237, 0.224, 0.210),
+    "VIAIR 90C 13.8 V": (1.030, 0.670, 0.599, 0.530, 0.450, 0.390, 0.340),
+    "VIAIR 250C-IG 13.8 V": (0.879, 0.771, 0.684, 0.597, 0.519, 0.451, 0.386),
+    "Thomas 215 12 V": (0.972, 0.764, 0.594, 0.469, 0.379, 0.297, 0.219),
+    "AndyMark 1.1 12 V": (1.100, 0.602, 0.502, 0.406, 0.331, 0.312, 0.300),
 }
 CURVE_PSI = (0, 20, 40, 60, 80, 100, 120)
 PRESSURE_MODELS = ("gauge", "absolute")
 SLOTS = (Slot("inflow", "sum", "dP/dt of the storage (Pa/s), of its gauge pressure P"),)
 
 
-@lru_cache(maxsize=None)
+@cache
 def flow_fit(name: str) -> tuple[float, ...]:
     """4th-degree fit of V̇(P): coefficients (highest first) in SI, m^3/s of free air vs Pa gauge."""
     import numpy as np
@@ -73,7 +76,7 @@ def flow_fit(name: str) -> tuple[float, ...]:
     return tuple(float(c) for c in coeffs)
 
 
-@lru_cache(maxsize=None)
+@cache
 def flow_curve(name: str) -> tuple[tuple[float, ...], tuple[float, ...], tuple[float, ...]]:
     """PCHIP through the vendor points: (P_k in Pa, V̇_k in m^3/s, slopes dV̇/dP at P_k).
 
@@ -109,8 +112,12 @@ def flow_through(curve, P: float) -> float:
     k = min(max(bisect_right(x, P) - 1, 0), len(x) - 2)
     h = x[k + 1] - x[k]
     t = (P - x[k]) / h
-    q = ((2 * t - 3) * t * t + 1) * y[k] + ((t - 2) * t + 1) * t * h * d[k] \
-        + (3 - 2 * t) * t * t * y[k + 1] + (t - 1) * t * t * h * d[k + 1]
+    q = (
+        ((2 * t - 3) * t * t + 1) * y[k]
+        + ((t - 2) * t + 1) * t * h * d[k]
+        + (3 - 2 * t) * t * t * y[k + 1]
+        + (t - 1) * t * t * h * d[k + 1]
+    )
     return q if q > 0 else 0.0
 
 
@@ -124,6 +131,7 @@ def flow(coeffs, P: float) -> float:
 
 # --- the effects ---------------------------------------------------------------------------------
 
+
 def _compressor(values, V: float) -> Part:
     """(N1): dP/dt = P_atm·V̇(P)/V on the vendor curve."""
     curve = flow_curve(values["compressor_model"])
@@ -136,23 +144,63 @@ def _switch(values, V: float) -> Part:
     on_at, off_at = values["switch_on"], values["switch_off"]
     if on_at >= off_at:
         raise InputError("switch_on", "must be below the switch-off pressure")
-    return Part(events=(Event("switch_off", lambda t, y: y[0] - off_at, +1),),
-                params={"switch_on": on_at, "top": off_at})
+    return Part(
+        events=(Event("switch_off", lambda t, y: y[0] - off_at, +1),),
+        params={"switch_on": on_at, "top": off_at},
+    )
 
 
 EFFECTS = Effects(
-    Effect("compressor", "the compressor fills the storage (N1)", _compressor, default_on=True,
-           fields=(Field("compressor_model", "Compressor", choices=tuple(COMPRESSORS), default="VIAIR 90C 13.8 V",
-                         help="Compressor flow curve: vendor data, followed through every point (shape-"
-                              "preserving PCHIP); the seed's 1 s comparison uses its 4th-degree fit."),)),
-    Effect("pressure_switch", "stops the compressor at switch_off, restarts it at or below switch_on",
-           _switch, default_on=True,
-           fields=(Field("switch_on", "Switch on at", "pressure", "psi", default=95, min=0, max=125 * SLACK,
-                         help="Pressure switch closes (compressor on) at or below this."),
-                   Field("switch_off", "Switch off at", "pressure", "psi", default=120, min=0, max=125 * SLACK,
-                         help="Pressure switch opens (compressor off) at this."),)),
-    Effect("regulator", "cylinders get min(setting, storage pressure)",
-           lambda values, V: Part(params={"regulated": True}), default_on=True),
+    Effect(
+        "compressor",
+        "the compressor fills the storage (N1)",
+        _compressor,
+        default_on=True,
+        fields=(
+            Field(
+                "compressor_model",
+                "Compressor",
+                choices=tuple(COMPRESSORS),
+                default="VIAIR 90C 13.8 V",
+                help="Compressor flow curve: vendor data, followed through every point (shape-"
+                "preserving PCHIP); the seed's 1 s comparison uses its 4th-degree fit.",
+            ),
+        ),
+    ),
+    Effect(
+        "pressure_switch",
+        "stops the compressor at switch_off, restarts it at or below switch_on",
+        _switch,
+        default_on=True,
+        fields=(
+            Field(
+                "switch_on",
+                "Switch on at",
+                "pressure",
+                "psi",
+                default=95,
+                min=0,
+                max=125 * SLACK,
+                help="Pressure switch closes (compressor on) at or below this.",
+            ),
+            Field(
+                "switch_off",
+                "Switch off at",
+                "pressure",
+                "psi",
+                default=120,
+                min=0,
+                max=125 * SLACK,
+                help="Pressure switch opens (compressor off) at this.",
+            ),
+        ),
+    ),
+    Effect(
+        "regulator",
+        "cylinders get min(setting, storage pressure)",
+        lambda values, V: Part(params={"regulated": True}),
+        default_on=True,
+    ),
 )
 _EFFECT_FIELDS = {f.name: f for f in EFFECTS.fields()}
 # once an effect, now a model choice: a preset or --set naming it still means the choice (with a notice)
@@ -163,71 +211,235 @@ def _group_fields(i: int):
     on = i == 1
     g = f"Cylinder group {i}: "
     return (
-        Field(f"c{i}_count", f"Cyl {i}: count", integer=True, default=2 if on else 0, min=0, max=50,
-              help=g + "number of identical cylinders firing together (0: group unused)."),
-        Field(f"c{i}_bore", f"Cyl {i}: bore", "length", "in", default=1.5, min=0, min_exclusive=True,
-              max=19, help=g + "bore D."),
-        Field(f"c{i}_rod", f"Cyl {i}: rod", "length", "in", default=0.4375, min=0, max=19,
-              help=g + "rod diameter d (smaller than the bore)."),
-        Field(f"c{i}_stroke", f"Cyl {i}: stroke", "length", "in", default=6 if on else 4, min=0,
-              min_exclusive=True, max=190, help=g + "stroke L."),
-        Field(f"c{i}_push_pressure", f"Cyl {i}: push pressure", "pressure", "psi", default=60, min=0,
-              max=200 * SLACK, help=g + "pressure on the extend stroke (its regulator setting)."),
-        Field(f"c{i}_pull_pressure", f"Cyl {i}: pull pressure", "pressure", "psi", default=60, min=0,
-              max=200 * SLACK, help=g + "pressure on the retract stroke."),
-        Field(f"c{i}_period", f"Cyl {i}: firing period", "time", "s", default=10 if on else 5, min=0,
-              max=1000, help=g + "time between actuations (extend + retract); 0 fires once."),
-        Field(f"c{i}_start", f"Cyl {i}: first firing", "time", "s", default=5 if on else 0, min=0,
-              max=1000, help=g + "time of the first actuation."),
+        Field(
+            f"c{i}_count",
+            f"Cyl {i}: count",
+            integer=True,
+            default=2 if on else 0,
+            min=0,
+            max=50,
+            help=g + "number of identical cylinders firing together (0: group unused).",
+        ),
+        Field(
+            f"c{i}_bore",
+            f"Cyl {i}: bore",
+            "length",
+            "in",
+            default=1.5,
+            min=0,
+            min_exclusive=True,
+            max=19,
+            help=g + "bore D.",
+        ),
+        Field(
+            f"c{i}_rod",
+            f"Cyl {i}: rod",
+            "length",
+            "in",
+            default=0.4375,
+            min=0,
+            max=19,
+            help=g + "rod diameter d (smaller than the bore).",
+        ),
+        Field(
+            f"c{i}_stroke",
+            f"Cyl {i}: stroke",
+            "length",
+            "in",
+            default=6 if on else 4,
+            min=0,
+            min_exclusive=True,
+            max=190,
+            help=g + "stroke L.",
+        ),
+        Field(
+            f"c{i}_push_pressure",
+            f"Cyl {i}: push pressure",
+            "pressure",
+            "psi",
+            default=60,
+            min=0,
+            max=200 * SLACK,
+            help=g + "pressure on the extend stroke (its regulator setting).",
+        ),
+        Field(
+            f"c{i}_pull_pressure",
+            f"Cyl {i}: pull pressure",
+            "pressure",
+            "psi",
+            default=60,
+            min=0,
+            max=200 * SLACK,
+            help=g + "pressure on the retract stroke.",
+        ),
+        Field(
+            f"c{i}_period",
+            f"Cyl {i}: firing period",
+            "time",
+            "s",
+            default=10 if on else 5,
+            min=0,
+            max=1000,
+            help=g + "time between actuations (extend + retract); 0 fires once.",
+        ),
+        Field(
+            f"c{i}_start",
+            f"Cyl {i}: first firing",
+            "time",
+            "s",
+            default=5 if on else 0,
+            min=0,
+            max=1000,
+            help=g + "time of the first actuation.",
+        ),
     )
 
 
 FIELDS = (
     _EFFECT_FIELDS["compressor_model"],
-    Field("tank_volume", "Storage volume", "volume", "cc", default=1148, min=1 / SLACK, max=1e6 * SLACK,
-          help="Total storage: tanks plus tubing (two Clippard tanks: 1148 cc)."),
-    Field("start_pressure", "Start pressure", "pressure", "psi", default=120, min=0, max=125 * SLACK,
-          help="Storage pressure (gauge) when the match starts."),
+    Field(
+        "tank_volume",
+        "Storage volume",
+        "volume",
+        "cc",
+        default=1148,
+        min=1 / SLACK,
+        max=1e6 * SLACK,
+        help="Total storage: tanks plus tubing (two Clippard tanks: 1148 cc).",
+    ),
+    Field(
+        "start_pressure",
+        "Start pressure",
+        "pressure",
+        "psi",
+        default=120,
+        min=0,
+        max=125 * SLACK,
+        help="Storage pressure (gauge) when the match starts.",
+    ),
     _EFFECT_FIELDS["switch_on"],
     _EFFECT_FIELDS["switch_off"],
-    Field("match_length", "Match length", "time", "s", default=150, min=0, min_exclusive=True, max=3600,
-          help="Simulated time."),
-    EFFECTS.field("compressor, pressure_switch, regulator. (Absolute P·V bookkeeping, once the effect "
-                  "absolute_pressure, is the choice pressure_model = absolute.)", retired=RETIRED),
-    Field("pressure_model", "Air bookkeeping", choices=PRESSURE_MODELS, default="gauge",
-          choice_labels=("Gauge P·V (the seed's)", "Absolute P·V, isothermal"),
-          help="How a stroke's air leaves the storage: gauge, as the seed's (79), (81); or absolute, "
-               "isothermal (a stroke fills its chamber from empty to its absolute pressure; an "
-               "unregulated one shares the tank's air) (N2)."),
+    Field(
+        "match_length",
+        "Match length",
+        "time",
+        "s",
+        default=150,
+        min=0,
+        min_exclusive=True,
+        max=3600,
+        help="Simulated time.",
+    ),
+    EFFECTS.field(
+        "compressor, pressure_switch, regulator. (Absolute P·V bookkeeping, once the effect "
+        "absolute_pressure, is the choice pressure_model = absolute.)",
+        retired=RETIRED,
+    ),
+    Field(
+        "pressure_model",
+        "Air bookkeeping",
+        choices=PRESSURE_MODELS,
+        default="gauge",
+        choice_labels=("Gauge P·V (the seed's)", "Absolute P·V, isothermal"),
+        help="How a stroke's air leaves the storage: gauge, as the seed's (79), (81); or absolute, "
+        "isothermal (a stroke fills its chamber from empty to its absolute pressure; an "
+        "unregulated one shares the tank's air) (N2).",
+    ),
     accuracy_field(),
 ) + tuple(f for i in range(1, GROUPS + 1) for f in _group_fields(i))
 
 _MATCH = "(79)-(81)"
 OUTPUTS = (
-    Output("min_pressure", "Minimum pressure", "pressure", "psi", equation=_MATCH,
-           help="Lowest storage pressure (gauge): (N1) integrated between firings, (81) at each firing."),
-    Output("min_pressure_time", "…at time", "time", "s", equation=_MATCH,
-           help="When the storage pressure is lowest (the first time, if it is reached twice)."),
-    Output("final_pressure", "Final pressure", "pressure", "psi", equation=_MATCH,
-           help="Storage pressure (gauge) at the end of the match, as the minimum."),
-    Output("compressor_duty", "Compressor duty", "dimensionless", "%", equation="(80)",
-           help="Fraction of the match the compressor runs (switch closed, or all match without a switch)."),
-    Output("firings", "Actuations", equation="(N3)",
-           help="Firings of all groups in the match: start + k·period before its end."),
-    Output("tank_empty", "Tank emptied", equation="(81)",
-           help="Whether a stroke found the storage at atmospheric pressure (the stroke is incomplete)."),
-    *[o for i in range(1, GROUPS + 1) for o in (
-        Output(f"push_force_{i}", f"Cyl {i}: push force", "force", "lbf", equation="(82)",
-               help="π·D²/4 at its push pressure."),
-        Output(f"pull_force_{i}", f"Cyl {i}: pull force", "force", "lbf", equation="(83)",
-               help="π·(D² − d²)/4 at its pull pressure."),
-    )],
-    Output("seed_min_pressure", "Spreadsheet (1 s steps): minimum", "pressure", "psi", equation=_MATCH,
-           help="The seed's own scheme: explicit 1 s steps of (79)-(81) on its 4th-degree fit of the curve."),
-    Output("seed_final_pressure", "Spreadsheet (1 s steps): final", "pressure", "psi", equation=_MATCH,
-           help="The seed's own scheme at the end of the match."),
-    Output("seed_difference", "Spreadsheet minus accurate (final)", "pressure", "psi", equation=_MATCH,
-           help="Spreadsheet's final pressure minus the accurate one."),
+    Output(
+        "min_pressure",
+        "Minimum pressure",
+        "pressure",
+        "psi",
+        equation=_MATCH,
+        help="Lowest storage pressure (gauge): (N1) integrated between firings, (81) at each firing.",
+    ),
+    Output(
+        "min_pressure_time",
+        "…at time",
+        "time",
+        "s",
+        equation=_MATCH,
+        help="When the storage pressure is lowest (the first time, if it is reached twice).",
+    ),
+    Output(
+        "final_pressure",
+        "Final pressure",
+        "pressure",
+        "psi",
+        equation=_MATCH,
+        help="Storage pressure (gauge) at the end of the match, as the minimum.",
+    ),
+    Output(
+        "compressor_duty",
+        "Compressor duty",
+        "dimensionless",
+        "%",
+        equation="(80)",
+        help="Fraction of the match the compressor runs (switch closed, or all match without a switch).",
+    ),
+    Output(
+        "firings",
+        "Actuations",
+        equation="(N3)",
+        help="Firings of all groups in the match: start + k·period before its end.",
+    ),
+    Output(
+        "tank_empty",
+        "Tank emptied",
+        equation="(81)",
+        help="Whether a stroke found the storage at atmospheric pressure (the stroke is incomplete).",
+    ),
+    *[
+        o
+        for i in range(1, GROUPS + 1)
+        for o in (
+            Output(
+                f"push_force_{i}",
+                f"Cyl {i}: push force",
+                "force",
+                "lbf",
+                equation="(82)",
+                help="π·D²/4 at its push pressure.",
+            ),
+            Output(
+                f"pull_force_{i}",
+                f"Cyl {i}: pull force",
+                "force",
+                "lbf",
+                equation="(83)",
+                help="π·(D² − d²)/4 at its pull pressure.",
+            ),
+        )
+    ],
+    Output(
+        "seed_min_pressure",
+        "Spreadsheet (1 s steps): minimum",
+        "pressure",
+        "psi",
+        equation=_MATCH,
+        help="The seed's own scheme: explicit 1 s steps of (79)-(81) on its 4th-degree fit of the curve.",
+    ),
+    Output(
+        "seed_final_pressure",
+        "Spreadsheet (1 s steps): final",
+        "pressure",
+        "psi",
+        equation=_MATCH,
+        help="The seed's own scheme at the end of the match.",
+    ),
+    Output(
+        "seed_difference",
+        "Spreadsheet minus accurate (final)",
+        "pressure",
+        "psi",
+        equation=_MATCH,
+        help="Spreadsheet's final pressure minus the accurate one.",
+    ),
     *STATS_OUTPUTS,
 )
 
@@ -240,12 +452,19 @@ def groups(v) -> list[dict]:
         D, d = v[f"c{i}_bore"], v[f"c{i}_rod"]
         if d >= D:
             raise InputError(f"c{i}_rod", "must be smaller than the bore")
-        out.append({
-            "index": i, "count": v[f"c{i}_count"], "stroke": v[f"c{i}_stroke"],
-            "A_push": math.pi * D**2 / 4, "A_pull": math.pi * (D**2 - d**2) / 4,
-            "P_push": v[f"c{i}_push_pressure"], "P_pull": v[f"c{i}_pull_pressure"],
-            "period": v[f"c{i}_period"], "start": v[f"c{i}_start"],
-        })
+        out.append(
+            {
+                "index": i,
+                "count": v[f"c{i}_count"],
+                "stroke": v[f"c{i}_stroke"],
+                "A_push": math.pi * D**2 / 4,
+                "A_pull": math.pi * (D**2 - d**2) / 4,
+                "P_push": v[f"c{i}_push_pressure"],
+                "P_pull": v[f"c{i}_pull_pressure"],
+                "period": v[f"c{i}_period"],
+                "start": v[f"c{i}_start"],
+            }
+        )
         if 0 < v[f"c{i}_period"] < MIN_PERIOD:
             raise InputError(f"c{i}_period", f"must be 0 (fire once) or at least {MIN_PERIOD} s")
     return out
@@ -317,9 +536,12 @@ def simulate(v, rtol: float) -> SimRun:
     if has_comp and len(schedule) > MAX_FIRINGS:
         # each firing restarts the integration (at least one step, ~15 evaluations charged to the
         # solve's budget, twice with the error estimate): past this the budget cannot hold; say so now
-        raise InputError("match_length", f"{len(schedule) - 1} firings in the match, more than the {MAX_FIRINGS} "
-                                         f"one solve integrates (each restarts the integration): try a shorter "
-                                         f"match or longer firing periods")
+        raise InputError(
+            "match_length",
+            f"{len(schedule) - 1} firings in the match, more than the {MAX_FIRINGS} "
+            f"one solve integrates (each restarts the integration): try a shorter "
+            f"match or longer firing periods",
+        )
     for tf, g in schedule:
         if on and tf > t and P >= top:  # no switch, at the relief pressure: the valve vents the flow
             run_time += tf - t
@@ -376,10 +598,17 @@ def simulate(v, rtol: float) -> SimRun:
     if not has_comp:
         warnings.append("No compressor: pressure only falls; answered in closed form (no integration).")
     if gs and not regulator:
-        warnings.append("No regulator: cylinders get storage pressure, so the air used follows the tank; "
-                        "the forces shown are at the push/pull pressures entered.")
-    return SimRun(values, {"min_pressure": Ps[i_min] + P_ATM, "final_pressure": P + P_ATM}, nfev, warnings,
-                  {"pressure": (ts, Ps)})
+        warnings.append(
+            "No regulator: cylinders get storage pressure, so the air used follows the tank; "
+            "the forces shown are at the push/pull pressures entered."
+        )
+    return SimRun(
+        values,
+        {"min_pressure": Ps[i_min] + P_ATM, "final_pressure": P + P_ATM},
+        nfev,
+        warnings,
+        {"pressure": (ts, Ps)},
+    )
 
 
 def seed_step(v) -> tuple[float, float, tuple[list[float], list[float]]]:
@@ -436,5 +665,16 @@ CALCULATOR = Calculator(
     compute=compute,
     section="10",
     simulate=simulate,
-    plots=(Plot("Storage pressure", ("pressure", "spreadsheet, 1 s"), "time", "time", "s", "pressure", "pressure", "psi"),),
+    plots=(
+        Plot(
+            "Storage pressure",
+            ("pressure", "spreadsheet, 1 s"),
+            "time",
+            "time",
+            "s",
+            "pressure",
+            "pressure",
+            "psi",
+        ),
+    ),
 )

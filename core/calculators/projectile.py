@@ -41,6 +41,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from ..constants import G0 as G
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot
 from ..sim import flight
@@ -48,12 +49,13 @@ from ..sim.effects import Effect, Effects
 from ..sim.flight import Air, aim, aim_along, fly, vacuum_apex, vacuum_at, vacuum_path, vacuum_range
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stats
 
-from ..constants import G0 as G
 HALF_PI = math.pi / 2
 PATH_POINTS = 80
 MAX_STEPS = 5_000  # per flight (a real throw takes < 100): a path curled up by extreme Magnus lift is
 MAX_FLIGHTS = 150  # refused, not crawled along; the reverse root finder may try this many flights
-MAX_NFEV = 50_000  # and this much work in all, continuation included (about 0.3 s; a found root takes < 10 000)
+MAX_NFEV = (
+    50_000  # and this much work in all, continuation included (about 0.3 s; a found root takes < 10 000)
+)
 CONTINUATION_RTOL = 1e-6  # the reverse root is found with flights at most this tight, then polished at rtol
 MIN_DISTANCE = 1e-3  # m, both modes: below it a reverse answer's θ_i rounds to 90° (forward then refuses it)
 FLOOR_SLACK = 1e-9  # relative: a target on the floor (h_f = 0) is reached, not "hit the floor first"
@@ -61,91 +63,264 @@ FLOOR_SLACK = 1e-9  # relative: a target on the floor (h_f = 0) is reached, not 
 MODES = ("forward", "reverse")
 MODE_LABELS = ("Forward: where the ball goes", "Reverse: how to throw it")
 
-_MASS = Field("ball_mass", "Ball mass", "mass", "kg", default=0.27, min=1e-3, max=100,
-              help="Mass of the game piece (2022 FRC cargo: 0.27 kg).")
-_DIAMETER = Field("ball_diameter", "Ball diameter", "length", "m", default=0.24, min=1e-3, max=2,
-                  help="Diameter; the frontal area is π·D²/4 (2022 FRC cargo: 0.24 m).")
-_DENSITY = Field("air_density", "Air density", "density", "kg/m^3", default=1.204, min=0, max=2,
-                 help="ρ (1.204 kg/m³ at 20 °C and sea level; ≈ 1.0 at 1600 m).")
+_MASS = Field(
+    "ball_mass",
+    "Ball mass",
+    "mass",
+    "kg",
+    default=0.27,
+    min=1e-3,
+    max=100,
+    help="Mass of the game piece (2022 FRC cargo: 0.27 kg).",
+)
+_DIAMETER = Field(
+    "ball_diameter",
+    "Ball diameter",
+    "length",
+    "m",
+    default=0.24,
+    min=1e-3,
+    max=2,
+    help="Diameter; the frontal area is π·D²/4 (2022 FRC cargo: 0.24 m).",
+)
+_DENSITY = Field(
+    "air_density",
+    "Air density",
+    "density",
+    "kg/m^3",
+    default=1.204,
+    min=0,
+    max=2,
+    help="ρ (1.204 kg/m³ at 20 °C and sea level; ≈ 1.0 at 1600 m).",
+)
 
 
 def _magnus(values, body):
     """(F2), and the spin ratio (P1) at release: |ω|·r/v_i, r = D/2."""
     spin, D = values["spin"], values["ball_diameter"]
-    return dataclasses.replace(flight.magnus_build(values, body),
-                               report=lambda run: {"spin_ratio": abs(spin) * D / 2 / run["release_speed"]})
+    return dataclasses.replace(
+        flight.magnus_build(values, body),
+        report=lambda run: {"spin_ratio": abs(spin) * D / 2 / run["release_speed"]},
+    )
 
 
 EFFECTS = Effects(
-    Effect("air_drag", "quadratic drag", flight.drag_build,
-           fields=(_MASS, _DIAMETER,
-                   Field("drag_coefficient", "Drag coefficient", default=0.47, min=0, max=2,
-                         help="C_d for `air_drag` (smooth sphere ≈ 0.47, foam ball ≈ 0.5)."),
-                   _DENSITY)),
-    Effect("magnus", "spin lift", _magnus,
-           fields=(_MASS, _DIAMETER,
-                   Field("lift_coefficient", "Lift coefficient", default=0.2, min=0, max=1,
-                         help="C_L for `magnus`, constant over the flight. It grows with the spin ratio "
-                              "ω·r/v (shown as an output): about 0.1-0.3 for spin ratios 0.1-0.4."),
-                   Field("spin", "Spin", "angular_speed", "rpm", default=0, min=-9.5e5, max=9.5e5,
-                         help="Spin of the ball; positive is backspin (lifts), negative topspin (drops). Its "
-                              "sign sets the direction of the Magnus force, C_L sets its size; 0: no Magnus "
-                              "force."),
-                   _DENSITY),
-           outputs=(Output("spin_ratio", "Spin ratio ω·r/v", equation="(P1)",
-                           help="|ω|·r/v_i at release (r = D/2); guides the choice of C_L (magnus)."),)),
+    Effect(
+        "air_drag",
+        "quadratic drag",
+        flight.drag_build,
+        fields=(
+            _MASS,
+            _DIAMETER,
+            Field(
+                "drag_coefficient",
+                "Drag coefficient",
+                default=0.47,
+                min=0,
+                max=2,
+                help="C_d for `air_drag` (smooth sphere ≈ 0.47, foam ball ≈ 0.5).",
+            ),
+            _DENSITY,
+        ),
+    ),
+    Effect(
+        "magnus",
+        "spin lift",
+        _magnus,
+        fields=(
+            _MASS,
+            _DIAMETER,
+            Field(
+                "lift_coefficient",
+                "Lift coefficient",
+                default=0.2,
+                min=0,
+                max=1,
+                help="C_L for `magnus`, constant over the flight. It grows with the spin ratio "
+                "ω·r/v (shown as an output): about 0.1-0.3 for spin ratios 0.1-0.4.",
+            ),
+            Field(
+                "spin",
+                "Spin",
+                "angular_speed",
+                "rpm",
+                default=0,
+                min=-9.5e5,
+                max=9.5e5,
+                help="Spin of the ball; positive is backspin (lifts), negative topspin (drops). Its "
+                "sign sets the direction of the Magnus force, C_L sets its size; 0: no Magnus "
+                "force.",
+            ),
+            _DENSITY,
+        ),
+        outputs=(
+            Output(
+                "spin_ratio",
+                "Spin ratio ω·r/v",
+                equation="(P1)",
+                help="|ω|·r/v_i at release (r = D/2); guides the choice of C_L (magnus).",
+            ),
+        ),
+    ),
 )
 _EFFECT_FIELDS = {f.name: f for f in EFFECTS.fields()}
 
 FIELDS = (
-    Field("mode", "Solve", choices=MODES, choice_labels=MODE_LABELS, default="forward",
-          help="Forward: from the release to the target height and angle (6.1). "
-               "Reverse: from the target to the release angle and speed (6.2)."),
-    Field("release_height", "Release height", "length", "m", default=0.6, min=0, max=1000,
-          help="Height h_i of the ball above the floor when it leaves the mechanism."),
-    Field("release_angle", "Release angle", "angle", "deg", default=60, min=-90, max=90,
-          min_exclusive=True, max_exclusive=True, modes=("forward",),
-          help="Angle θ_i of the release velocity above the horizontal."),
-    Field("release_speed", "Release speed", "speed", "m/s", default=7.5, min=0, min_exclusive=True,
-          max=10_000, modes=("forward",), help="Speed v_i of the ball as it leaves the mechanism."),
-    Field("distance", "Distance to target", "length", "m", default=3, min=MIN_DISTANCE,
-          max=10_000, help="Horizontal distance d from the release point to the target (at least 1 mm: "
-                           "closer, the release angle of a reverse solve rounds to 90°, which no throw has)."),
-    Field("target_height", "Target height", "length", "m", default=2.64, min=0, max=1000,
-          modes=("reverse",), help="Height h_f above the floor where the ball must pass."),
-    Field("target_angle", "Target angle", "angle", "deg", default=-45, min=-90, max=90,
-          min_exclusive=True, max_exclusive=True, modes=("reverse",),
-          help="Angle θ_f of the ball's path at the target (negative: coming down). It must be "
-               "below the line from release to target: a thrown ball curves downward (only strong "
-               "backspin with `magnus` can bend it up)."),
-    EFFECTS.field("air_drag (quadratic drag), magnus (spin lift). None: the seed's closed form, no "
-                  "integration."),
+    Field(
+        "mode",
+        "Solve",
+        choices=MODES,
+        choice_labels=MODE_LABELS,
+        default="forward",
+        help="Forward: from the release to the target height and angle (6.1). "
+        "Reverse: from the target to the release angle and speed (6.2).",
+    ),
+    Field(
+        "release_height",
+        "Release height",
+        "length",
+        "m",
+        default=0.6,
+        min=0,
+        max=1000,
+        help="Height h_i of the ball above the floor when it leaves the mechanism.",
+    ),
+    Field(
+        "release_angle",
+        "Release angle",
+        "angle",
+        "deg",
+        default=60,
+        min=-90,
+        max=90,
+        min_exclusive=True,
+        max_exclusive=True,
+        modes=("forward",),
+        help="Angle θ_i of the release velocity above the horizontal.",
+    ),
+    Field(
+        "release_speed",
+        "Release speed",
+        "speed",
+        "m/s",
+        default=7.5,
+        min=0,
+        min_exclusive=True,
+        max=10_000,
+        modes=("forward",),
+        help="Speed v_i of the ball as it leaves the mechanism.",
+    ),
+    Field(
+        "distance",
+        "Distance to target",
+        "length",
+        "m",
+        default=3,
+        min=MIN_DISTANCE,
+        max=10_000,
+        help="Horizontal distance d from the release point to the target (at least 1 mm: "
+        "closer, the release angle of a reverse solve rounds to 90°, which no throw has).",
+    ),
+    Field(
+        "target_height",
+        "Target height",
+        "length",
+        "m",
+        default=2.64,
+        min=0,
+        max=1000,
+        modes=("reverse",),
+        help="Height h_f above the floor where the ball must pass.",
+    ),
+    Field(
+        "target_angle",
+        "Target angle",
+        "angle",
+        "deg",
+        default=-45,
+        min=-90,
+        max=90,
+        min_exclusive=True,
+        max_exclusive=True,
+        modes=("reverse",),
+        help="Angle θ_f of the ball's path at the target (negative: coming down). It must be "
+        "below the line from release to target: a thrown ball curves downward (only strong "
+        "backspin with `magnus` can bend it up).",
+    ),
+    EFFECTS.field(
+        "air_drag (quadratic drag), magnus (spin lift). None: the seed's closed form, no integration."
+    ),
     accuracy_field(),
-    *(_EFFECT_FIELDS[n] for n in ("ball_mass", "ball_diameter", "drag_coefficient", "lift_coefficient", "spin",
-                                  "air_density")),
+    *(
+        _EFFECT_FIELDS[n]
+        for n in ("ball_mass", "ball_diameter", "drag_coefficient", "lift_coefficient", "spin", "air_density")
+    ),
 )
 
 OUTPUTS = (
-    Output("target_height", "Target height", "length", "m", equation="(61)",
-           help="h_f: height at the target distance; (61) in vacuum, else the integrated flight."),
-    Output("target_angle", "Target angle", "angle", "deg", equation="(62)",
-           help="θ_f: path angle at the target, atan2(v_y, v_x) there; (62) = (105) in vacuum."),
-    Output("release_angle", "Release angle", "angle", "deg", equation="(63)",
-           help="θ_i; (63) in vacuum, else root finding on the integrated flight."),
-    Output("release_speed", "Release speed", "speed", "m/s", equation="(64)",
-           help="v_i; (64) corrected (no |·|) in vacuum, else root finding on the integrated flight."),
-    Output("time_of_flight", "Time of flight", "time", "s", equation="(103)",
-           help="From release to the target distance: d/(v_i·cos θ_i) in vacuum, else the integrated flight."),
-    Output("apex_height", "Apex height", "length", "m", equation="(V2)",
-           help="Highest point between release and target (the target height if still rising)."),
-    Output("target_speed", "Speed at target", "speed", "m/s", equation="(105)",
-           help="|v| at the target: hypot(v_i·cos θ_i, v_i·sin θ_i − g·t) in vacuum, else integrated."),
+    Output(
+        "target_height",
+        "Target height",
+        "length",
+        "m",
+        equation="(61)",
+        help="h_f: height at the target distance; (61) in vacuum, else the integrated flight.",
+    ),
+    Output(
+        "target_angle",
+        "Target angle",
+        "angle",
+        "deg",
+        equation="(62)",
+        help="θ_f: path angle at the target, atan2(v_y, v_x) there; (62) = (105) in vacuum.",
+    ),
+    Output(
+        "release_angle",
+        "Release angle",
+        "angle",
+        "deg",
+        equation="(63)",
+        help="θ_i; (63) in vacuum, else root finding on the integrated flight.",
+    ),
+    Output(
+        "release_speed",
+        "Release speed",
+        "speed",
+        "m/s",
+        equation="(64)",
+        help="v_i; (64) corrected (no |·|) in vacuum, else root finding on the integrated flight.",
+    ),
+    Output(
+        "time_of_flight",
+        "Time of flight",
+        "time",
+        "s",
+        equation="(103)",
+        help="From release to the target distance: d/(v_i·cos θ_i) in vacuum, else the integrated flight.",
+    ),
+    Output(
+        "apex_height",
+        "Apex height",
+        "length",
+        "m",
+        equation="(V2)",
+        help="Highest point between release and target (the target height if still rising).",
+    ),
+    Output(
+        "target_speed",
+        "Speed at target",
+        "speed",
+        "m/s",
+        equation="(105)",
+        help="|v| at the target: hypot(v_i·cos θ_i, v_i·sin θ_i − g·t) in vacuum, else integrated.",
+    ),
     *EFFECTS.outputs(),
     *STATS_OUTPUTS,
 )
 
 
 # --- closed form (no effects): core.sim.flight (V1)-(V3) ------------------------------------
+
 
 def line_angle(h_i: float, h_f: float, d: float) -> float:
     """Angle of the straight line from release to target: θ_f must lie below it."""
@@ -162,22 +337,30 @@ def reverse_vacuum(h_i: float, h_f: float, d: float, theta_f: float) -> tuple[fl
     t = math.sqrt(2 * m / G)  # (104) with (103)
     v_i = math.hypot(d, dh + m) / t  # (64), corrected (no |·|)
     if not v_i <= 10_000:
-        raise InputError("target_angle", f"is so close to the line from release to target "
-                         f"({math.degrees(line_angle(h_i, h_f, d)):.6g}°) that it needs a release speed of "
-                         f"{v_i:.3g} m/s: choose a steeper downward target angle")
+        raise InputError(
+            "target_angle",
+            f"is so close to the line from release to target "
+            f"({math.degrees(line_angle(h_i, h_f, d)):.6g}°) that it needs a release speed of "
+            f"{v_i:.3g} m/s: choose a steeper downward target angle",
+        )
     return theta_i, v_i, t
 
 
 def _too_high(h_i, h_f, d, theta_f) -> str:
     line = math.degrees(line_angle(h_i, h_f, d))
-    return (f"{math.degrees(theta_f):.6g}° cannot be reached: a thrown ball curves downward, so it must "
-            f"arrive below the straight line from release to target ({line:.6g}°); even on that line it "
-            f"would need infinite speed")
+    return (
+        f"{math.degrees(theta_f):.6g}° cannot be reached: a thrown ball curves downward, so it must "
+        f"arrive below the straight line from release to target ({line:.6g}°); even on that line it "
+        f"would need infinite speed"
+    )
 
 
 def _floor_error(x: float) -> InputError:
-    return InputError("distance", f"is beyond where the ball comes down to the floor "
-                                  f"(x = {max(x, 0.0):.4g} m): it never reaches the target distance")
+    return InputError(
+        "distance",
+        f"is beyond where the ball comes down to the floor "
+        f"(x = {max(x, 0.0):.4g} m): it never reaches the target distance",
+    )
 
 
 def _parabola(h_i, theta_i, v_i, t_end):
@@ -186,10 +369,12 @@ def _parabola(h_i, theta_i, v_i, t_end):
 
 # --- the scene ----------------------------------------------------------------------------------
 
+
 def scene_air(v) -> Air:
     """The flight effects that are on, assembled once for this solve."""
-    return flight.assemble(EFFECTS, v["effects"], v, flight.Body.of(G, v["ball_mass"], v["ball_diameter"],
-                                                                     v["air_density"]))
+    return flight.assemble(
+        EFFECTS, v["effects"], v, flight.Body.of(G, v["ball_mass"], v["ball_diameter"], v["air_density"])
+    )
 
 
 def _check_release(h_i: float, theta_i: float) -> None:
@@ -199,11 +384,23 @@ def _check_release(h_i: float, theta_i: float) -> None:
 
 def _fly(a: Air, h_i, theta_i, v_i, d, rtol, samples=0):
     try:
-        f = fly(a, h_i, theta_i, v_i, d, rtol, ground=-FLOOR_SLACK * max(1.0, d), samples=samples,
-                max_steps=MAX_STEPS)
+        f = fly(
+            a,
+            h_i,
+            theta_i,
+            v_i,
+            d,
+            rtol,
+            ground=-FLOOR_SLACK * max(1.0, d),
+            samples=samples,
+            max_steps=MAX_STEPS,
+        )
     except RuntimeError:  # step limit: a flight no solver budget covers
-        raise InputError("spin", "the flight curls up too tightly to integrate (Magnus force far "
-                                 "above gravity): lower the lift coefficient or the spin") from None
+        raise InputError(
+            "spin",
+            "the flight curls up too tightly to integrate (Magnus force far "
+            "above gravity): lower the lift coefficient or the spin",
+        ) from None
     if not f.reached:
         raise _floor_error(f.x_end)
     return f
@@ -303,11 +500,14 @@ def simulate(v, rtol: float) -> SimRun:
                 theta_i, v_i, used = _reverse_with_effects(a, h_i, h_f, d, theta_f, rtol, series)
             except (ValueError, RuntimeError):
                 line = math.degrees(line_angle(h_i, h_f, d))
-                raise InputError("target_angle", f"no release found that reaches the target arriving at "
-                                 f"{math.degrees(theta_f):.6g}° with these flight effects (drag and topspin "
-                                 f"steepen the descent, backspin flattens it; the line from release to target "
-                                 f"is at {line:.4g}°): try another target angle, less drag or a shorter "
-                                 f"distance") from None
+                raise InputError(
+                    "target_angle",
+                    f"no release found that reaches the target arriving at "
+                    f"{math.degrees(theta_f):.6g}° with these flight effects (drag and topspin "
+                    f"steepen the descent, backspin flattens it; the line from release to target "
+                    f"is at {line:.4g}°): try another target angle, less drag or a shorter "
+                    f"distance",
+                ) from None
             if not v_i <= 10_000:
                 raise InputError("target_angle", f"needs a release speed of {v_i:.3g} m/s")
             f = _fly(a, h_i, theta_i, v_i, d, rtol, samples=PATH_POINTS)
@@ -327,9 +527,12 @@ def simulate(v, rtol: float) -> SimRun:
         if v["spin"] == 0:
             warnings.append("magnus is on but the spin is 0: no Magnus force.")
     if a.vacuum:
-        warnings.append("No flight effects: the seed's closed form (section 6), no integration." if not v["effects"]
-                        else "The effects on exert no force here (zero drag coefficient, density or spin): "
-                             "closed form, no integration.")
+        warnings.append(
+            "No flight effects: the seed's closed form (section 6), no integration."
+            if not v["effects"]
+            else "The effects on exert no force here (zero drag coefficient, density or spin): "
+            "closed form, no integration."
+        )
     return SimRun(values, key, nfev, warnings, series)
 
 

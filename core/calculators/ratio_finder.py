@@ -24,68 +24,196 @@ from ..parts import BORES, FAMILIES, SHAFT_BORES, VENDORS
 STAGES = (1, 2, 3)
 
 FIELDS = (
-    Field("mode", "Find", choices=("ratio", "range"),
-          choice_labels=("Nearest to a ratio", "Any ratio in a range"), default="ratio",
-          help="A single wanted reduction (ranked by how near), or a range (every ratio inside is "
-               "as good; fewer stages and parts first)."),
-    Field("target_ratio", "Wanted ratio", default=22.5, min=0, min_exclusive=True, max=1e5,
-          modes=("ratio",), help="Reduction G*: motor turns per output turn (below 1 is a speed-up)."),
-    Field("ratio_min", "Lowest ratio", default=20, min=0, min_exclusive=True, max=1e5, modes=("range",),
-          help="Lower end of the acceptable reduction."),
-    Field("ratio_max", "Highest ratio", default=25, min=0, min_exclusive=True, max=1e5, modes=("range",),
-          help="Upper end of the acceptable reduction."),
-    Field("input_bore", "Motor shaft", choices=tuple(BORES), choice_labels=tuple(b.choice_label for b in BORES.values()),
-          default="keyed_8mm",
-          help="The bore of the first part: the motor's shaft (or a shaft you already have, e.g. "
-               "1/2 in hex out of a gearbox)."),
-    Field("output_bore", "Output shaft", choices=("any",) + SHAFT_BORES,
-          choice_labels=("any",) + tuple(BORES[b].choice_label for b in SHAFT_BORES), default="hex_half_in",
-          help="The bore of the last driven part (or the planetary output)."),
-    Field("max_stages", "Stages, at most", integer=True, default=3, min=1, max=3,
-          help="1 to 3 stages in series; a stacked planetary gearbox counts as one stage."),
-    Field("vendors", "Vendors", flags=True, choices=tuple(VENDORS), default=", ".join(VENDORS),
-          help="Buy only from these vendors."),
-    Field("families", "Families", flags=True, choices=tuple(FAMILIES),
-          choice_labels=tuple(f.label for f in FAMILIES.values()), default=", ".join(FAMILIES),
-          help="Kinds of stage allowed: spur gears by pitch, belts by profile, chains by size, "
-               "planetary gearboxes."),
-    Field("shaft_bores", "Bores on your shafts", flags=True, choices=SHAFT_BORES,
-          choice_labels=tuple(BORES[b].choice_label for b in SHAFT_BORES), default=", ".join(SHAFT_BORES),
-          help="Shaft profiles you are willing to use between the stages and at the output."),
-    Field("same_shaft_bore", "Parts on a shaft share its bore", boolean=True, default=True,
-          help="On: the driven part of one stage and the driving part of the next sit on one shaft, "
-               "so they need the same bore. Off: any allowed bores (you adapt them)."),
-    Field("min_teeth", "Fewest teeth", integer=True, default=10, min=1, max=1000,
-          help="Smallest gear, pulley or sprocket allowed (small pinions are weak and undercut)."),
-    Field("max_teeth", "Most teeth", integer=True, default=84, min=1, max=1000,
-          help="Largest gear, pulley or sprocket allowed."),
-    Field("center_limits", "Center distance limits", choices=("none", "per_stage"),
-          choice_labels=("none", "per stage"), default="none",
-          help="Limit each stage's center distance (planetary stages are coaxial and have none)."),
-    *(Field(f"center_{end}_{i}", f"Stage {i} center distance, {'least' if end == 'min' else 'most'}",
-            "length", "in", default=0 if end == "min" else 12, min=0,
+    Field(
+        "mode",
+        "Find",
+        choices=("ratio", "range"),
+        choice_labels=("Nearest to a ratio", "Any ratio in a range"),
+        default="ratio",
+        help="A single wanted reduction (ranked by how near), or a range (every ratio inside is "
+        "as good; fewer stages and parts first).",
+    ),
+    Field(
+        "target_ratio",
+        "Wanted ratio",
+        default=22.5,
+        min=0,
+        min_exclusive=True,
+        max=1e5,
+        modes=("ratio",),
+        help="Reduction G*: motor turns per output turn (below 1 is a speed-up).",
+    ),
+    Field(
+        "ratio_min",
+        "Lowest ratio",
+        default=20,
+        min=0,
+        min_exclusive=True,
+        max=1e5,
+        modes=("range",),
+        help="Lower end of the acceptable reduction.",
+    ),
+    Field(
+        "ratio_max",
+        "Highest ratio",
+        default=25,
+        min=0,
+        min_exclusive=True,
+        max=1e5,
+        modes=("range",),
+        help="Upper end of the acceptable reduction.",
+    ),
+    Field(
+        "input_bore",
+        "Motor shaft",
+        choices=tuple(BORES),
+        choice_labels=tuple(b.choice_label for b in BORES.values()),
+        default="keyed_8mm",
+        help="The bore of the first part: the motor's shaft (or a shaft you already have, e.g. "
+        "1/2 in hex out of a gearbox).",
+    ),
+    Field(
+        "output_bore",
+        "Output shaft",
+        choices=("any",) + SHAFT_BORES,
+        choice_labels=("any",) + tuple(BORES[b].choice_label for b in SHAFT_BORES),
+        default="hex_half_in",
+        help="The bore of the last driven part (or the planetary output).",
+    ),
+    Field(
+        "max_stages",
+        "Stages, at most",
+        integer=True,
+        default=3,
+        min=1,
+        max=3,
+        help="1 to 3 stages in series; a stacked planetary gearbox counts as one stage.",
+    ),
+    Field(
+        "vendors",
+        "Vendors",
+        flags=True,
+        choices=tuple(VENDORS),
+        default=", ".join(VENDORS),
+        help="Buy only from these vendors.",
+    ),
+    Field(
+        "families",
+        "Families",
+        flags=True,
+        choices=tuple(FAMILIES),
+        choice_labels=tuple(f.label for f in FAMILIES.values()),
+        default=", ".join(FAMILIES),
+        help="Kinds of stage allowed: spur gears by pitch, belts by profile, chains by size, "
+        "planetary gearboxes.",
+    ),
+    Field(
+        "shaft_bores",
+        "Bores on your shafts",
+        flags=True,
+        choices=SHAFT_BORES,
+        choice_labels=tuple(BORES[b].choice_label for b in SHAFT_BORES),
+        default=", ".join(SHAFT_BORES),
+        help="Shaft profiles you are willing to use between the stages and at the output.",
+    ),
+    Field(
+        "same_shaft_bore",
+        "Parts on a shaft share its bore",
+        boolean=True,
+        default=True,
+        help="On: the driven part of one stage and the driving part of the next sit on one shaft, "
+        "so they need the same bore. Off: any allowed bores (you adapt them).",
+    ),
+    Field(
+        "min_teeth",
+        "Fewest teeth",
+        integer=True,
+        default=10,
+        min=1,
+        max=1000,
+        help="Smallest gear, pulley or sprocket allowed (small pinions are weak and undercut).",
+    ),
+    Field(
+        "max_teeth",
+        "Most teeth",
+        integer=True,
+        default=84,
+        min=1,
+        max=1000,
+        help="Largest gear, pulley or sprocket allowed.",
+    ),
+    Field(
+        "center_limits",
+        "Center distance limits",
+        choices=("none", "per_stage"),
+        choice_labels=("none", "per stage"),
+        default="none",
+        help="Limit each stage's center distance (planetary stages are coaxial and have none).",
+    ),
+    *(
+        Field(
+            f"center_{end}_{i}",
+            f"Stage {i} center distance, {'least' if end == 'min' else 'most'}",
+            "length",
+            "in",
+            default=0 if end == "min" else 12,
+            min=0,
             when=(("center_limits", ("per_stage",)),),
             help=f"Stage {i}: {'shortest' if end == 'min' else 'longest'} center distance between its "
-                 f"two shafts{' (0: no lower limit)' if end == 'min' else ''}.")
-      for i in STAGES for end in ("min", "max")),
-    Field("results", "Combinations listed", integer=True, default=20, min=1, max=200,
-          help="How many of the best combinations the table lists."),
+            f"two shafts{' (0: no lower limit)' if end == 'min' else ''}.",
+        )
+        for i in STAGES
+        for end in ("min", "max")
+    ),
+    Field(
+        "results",
+        "Combinations listed",
+        integer=True,
+        default=20,
+        min=1,
+        max=200,
+        help="How many of the best combinations the table lists.",
+    ),
 )
 
 OUTPUTS = (
-    Output("ratio", "Best ratio", help="The best combination's reduction: the product of its stages' ratios (RF1).",
-           equation="(RF1)"),
-    Output("ratio_error", "Its error", "dimensionless", "%",
-           help="G/G* − 1; in range mode the distance outside the range (0 inside), relative (RF2).",
-           equation="(RF2)"),
-    Output("stage_count", "Stages", help="Stages in series in the best combination (a planetary stack is one)."),
-    Output("part_count", "Parts to buy",
-           help="2 per gear stage; 2 + the belt or chain per loop stage; gearbox + cartridges for a planetary."),
-    *(Output(f"stage_{i}", f"Stage {i}", help=f"Stage {i}, motor side first, driving:driven teeth (its ratio G_{i} "
-                                               "in (RF1)); parts in the table.", equation="(RF1)")
-      for i in STAGES),
-    Output("combinations", "Combinations found",
-           help="Distinct feasible combinations the search assembled (not all of them listed)."),
+    Output(
+        "ratio",
+        "Best ratio",
+        help="The best combination's reduction: the product of its stages' ratios (RF1).",
+        equation="(RF1)",
+    ),
+    Output(
+        "ratio_error",
+        "Its error",
+        "dimensionless",
+        "%",
+        help="G/G* − 1; in range mode the distance outside the range (0 inside), relative (RF2).",
+        equation="(RF2)",
+    ),
+    Output(
+        "stage_count", "Stages", help="Stages in series in the best combination (a planetary stack is one)."
+    ),
+    Output(
+        "part_count",
+        "Parts to buy",
+        help="2 per gear stage; 2 + the belt or chain per loop stage; gearbox + cartridges for a planetary.",
+    ),
+    *(
+        Output(
+            f"stage_{i}",
+            f"Stage {i}",
+            help=f"Stage {i}, motor side first, driving:driven teeth (its ratio G_{i} "
+            "in (RF1)); parts in the table.",
+            equation="(RF1)",
+        )
+        for i in STAGES
+    ),
+    Output(
+        "combinations",
+        "Combinations found",
+        help="Distinct feasible combinations the search assembled (not all of them listed).",
+    ),
 )
 
 COLUMNS = (
@@ -112,12 +240,26 @@ COLUMNS = (
 )
 
 TABLES = (
-    Table("combinations", "Combinations, best first", COLUMNS, exports={
-        "chain_belt": {"mode": "links_mode", "kind": "loop_kind", "pitch_standard": "pitch_standard",
-                       "teeth_1": "teeth_1", "teeth_2": "teeth_2", "links": "links"},
-        "ratio_distance": {"ratio": "pair_ratio", "center_distance": "center_distance",
-                           "diametral_pitch": "diametral_pitch"},
-    }),
+    Table(
+        "combinations",
+        "Combinations, best first",
+        COLUMNS,
+        exports={
+            "chain_belt": {
+                "mode": "links_mode",
+                "kind": "loop_kind",
+                "pitch_standard": "pitch_standard",
+                "teeth_1": "teeth_1",
+                "teeth_2": "teeth_2",
+                "links": "links",
+            },
+            "ratio_distance": {
+                "ratio": "pair_ratio",
+                "center_distance": "center_distance",
+                "diametral_pitch": "diametral_pitch",
+            },
+        },
+    ),
 )
 
 
@@ -147,12 +289,26 @@ def query_from(v):
             limits.append((c_min, c_max))
         else:
             limits.append(None)
-    return Query(target, lo, hi, v["input_bore"], v["output_bore"], frozenset(v["vendors"]),
-                 frozenset(v["families"]), frozenset(v["shaft_bores"]), v["min_teeth"], v["max_teeth"],
-                 v["max_stages"], v["same_shaft_bore"], tuple(limits), v["results"])
+    return Query(
+        target,
+        lo,
+        hi,
+        v["input_bore"],
+        v["output_bore"],
+        frozenset(v["vendors"]),
+        frozenset(v["families"]),
+        frozenset(v["shaft_bores"]),
+        v["min_teeth"],
+        v["max_teeth"],
+        v["max_stages"],
+        v["same_shaft_bore"],
+        tuple(limits),
+        v["results"],
+    )
 
 
 # --- describing a combination ------------------------------------------------------------------
+
 
 def shaft_choice(combo, q) -> list[str]:
     """A bore for every shaft: the motor's, then for each made shaft the first (in BORES order)
@@ -182,9 +338,9 @@ def pick(parts, bore: str):
 
 
 def stage_rows(combo, q, rank: int) -> list[dict]:
-    from ..parts import FAMILIES as fams, pitch_si
+    from ..parts import FAMILIES as fams
+    from ..parts import catalogue, pitch_si
     from ..parts.finder import belt_lengths, gear_center, loop_choice
-    from ..parts import catalogue
 
     bores = shaft_choice(combo, q)
     rows = []
@@ -214,14 +370,21 @@ def stage_rows(combo, q, rank: int) -> list[dict]:
                 row["diametral_pitch"] = pitch_si(fam.pitch)
             else:
                 small, large = sorted((s.teeth_in, s.teeth_out))
-                found = loop_choice(s.family, small, large, *(limits or (None, None)),
-                                    belt_lengths(q, catalogue()).get(s.family, ()))
+                found = loop_choice(
+                    s.family,
+                    small,
+                    large,
+                    *(limits or (None, None)),
+                    belt_lengths(q, catalogue()).get(s.family, ()),
+                )
                 if found is not None:
                     links, center = found
                     row["center_distance"] = center
                     row["links"] = links
                     row["loop"] = f"{links} links" if fam.kind == "chain" else f"{links}T belt"
-                    row.update(loop_kind=fam.kind, pitch_standard=fam.standard, links_mode="center_from_links")
+                    row.update(
+                        loop_kind=fam.kind, pitch_standard=fam.standard, links_mode="center_from_links"
+                    )
         if s.alternatives:
             shown = ", ".join(f"{a}:{b}" for a, b in s.alternatives[:4])
             row["alternatives"] = shown + (f" +{len(s.alternatives) - 4}" if len(s.alternatives) > 4 else "")
@@ -255,11 +418,15 @@ def why_not(q, combos, stats) -> list[str]:
     if not combos:
         first = table(prep, q, 0, True, False)
         if not len(first.values):
-            return [f"No allowed part fits the motor shaft ({BORES[q.input_bore].label}) with these "
-                    "vendors, families and tooth limits."]
-        return ["No combination ends on the output shaft "
-                f"({'any allowed bore' if q.output_bore == 'any' else BORES[q.output_bore].label}) with "
-                "these filters: allow more bores, families or stages."]
+            return [
+                f"No allowed part fits the motor shaft ({BORES[q.input_bore].label}) with these "
+                "vendors, families and tooth limits."
+            ]
+        return [
+            "No combination ends on the output shaft "
+            f"({'any allowed bore' if q.output_bore == 'any' else BORES[q.output_bore].label}) with "
+            "these filters: allow more bores, families or stages."
+        ]
     best = combos[0]
     if best.error == 0:
         return []
@@ -274,9 +441,11 @@ def why_not(q, combos, stats) -> list[str]:
             reach_lo = lo if reach_lo is None else min(reach_lo, lo)
     stages = f"{q.max_stages} stage{'s' if q.max_stages > 1 else ''}"
     if reach_hi is not None and q.ratio_min > reach_hi:
-        notes.append(f"Out of reach: with {stages} these parts give at most {reach_hi:.4g}:1 "
-                     f"(the largest stage at each position, bores aside); allow more stages, "
-                     "larger tooth counts or planetary stacks.")
+        notes.append(
+            f"Out of reach: with {stages} these parts give at most {reach_hi:.4g}:1 "
+            f"(the largest stage at each position, bores aside); allow more stages, "
+            "larger tooth counts or planetary stacks."
+        )
     elif reach_lo is not None and q.ratio_max < reach_lo:
         notes.append(f"Out of reach: with {stages} these parts give at least {reach_lo:.4g}:1.")
     else:
@@ -296,10 +465,14 @@ def compute(v) -> Result:
     for rank, combo in enumerate(combos, 1):
         rows.extend(stage_rows(combo, q, rank))
     best = combos[0]
-    values = {"ratio": float(best.ratio), "ratio_error": relative_error(best, q),
-              "stage_count": len(best.stages), "part_count": best.parts,
-              "combinations": stats["feasible"]}
-    for i, row in enumerate(rows[:len(best.stages)], 1):
+    values = {
+        "ratio": float(best.ratio),
+        "ratio_error": relative_error(best, q),
+        "stage_count": len(best.stages),
+        "part_count": best.parts,
+        "combinations": stats["feasible"],
+    }
+    for i, row in enumerate(rows[: len(best.stages)], 1):
         values[f"stage_{i}"] = describe(row)
     return Result(values, warnings, tables={"combinations": rows})
 
@@ -308,7 +481,7 @@ CALCULATOR = Calculator(
     id="ratio_finder",
     title="Ratio finder",
     summary="Gears, pulleys, sprockets and planetary stages you can order for a reduction: 1-3 "
-            "stages that fit your motor, shafts and output, ranked by error, stages, then parts.",
+    "stages that fit your motor, shafts and output, ranked by error, stages, then parts.",
     fields=FIELDS,
     outputs=OUTPUTS,
     compute=compute,

@@ -74,81 +74,268 @@ MODES = ("throw", "optimise")
 RETIRED = (("optimise", "mode", "optimise"),)  # once an effect; a preset naming it means the mode
 DEG = math.pi / 180
 PLOT_POINTS = 240
-ADVICE = ("accuracy", "the swing is too long or too stiff for this accuracy (a short hanger or a nearly "
-                      "balanced arm): try accuracy=coarse, a longer hanger_length or a heavier counterweight")
+ADVICE = (
+    "accuracy",
+    "the swing is too long or too stiff for this accuracy (a short hanger or a nearly "
+    "balanced arm): try accuracy=coarse, a longer hanger_length or a heavier counterweight",
+)
 # optimise: the batch (1640 throws) and up to 200 accurate throws; the built-in preset takes ~400 000
 OPTIMISE_NFEV = 3_000_000
 REFINE_NFEV = 60_000  # the polish; the built-in preset takes ~23 000
-OPTIMISE_ADVICE = ("mode", "optimise needs too much work for this machine (a short hanger or a nearly "
-                           "balanced arm makes every throw long or stiff): solve one throw instead, or "
-                           "lengthen hanger_length")
+OPTIMISE_ADVICE = (
+    "mode",
+    "optimise needs too much work for this machine (a short hanger or a nearly "
+    "balanced arm makes every throw long or stiff): solve one throw instead, or "
+    "lengthen hanger_length",
+)
 
 FIELDS = (
-    Field("mode", "Solve", choices=MODES, default="throw",
-          choice_labels=("One throw at the release angle and sling entered",
-                         "Optimise: the release angle and sling length of longest range"),
-          help="One throw, or also the release angle and sling length that throw furthest (a grid of "
-               "1640 throws, then polished on accurate throws)."),
-    Field("counterweight_mass", "Counterweight mass M", "mass", "kg", default=500, min=1e-3, max=1e7,
-          help="Counterweight mass."),
-    Field("counterweight_gyration", "Counterweight gyration k", "length", "m", default=2, min=0, max=1e3,
-          help="Radius of gyration of the counterweight about its centre (its inertia is M·k²); "
-               "unused when it is hinged at its centre (hinged_counterweight, hanger 0), since it then does not turn."),
-    Field("arm_mass", "Arm mass m", "mass", "kg", default=50, min=0, max=1e7,
-          help="Mass of the throwing arm (a uniform bar)."),
-    Field("arm_length", "Arm length L", "length", "m", default=15, min=1e-2, max=1e3,
-          help="Length of the throwing arm, counterweight hinge B to long end C."),
-    Field("short_arm_fraction", "Short-arm fraction a", default=0.25, min=0, max=1, min_exclusive=True,
-          max_exclusive=True, help="Pivot to counterweight hinge as a fraction of L (short arm aL, long arm (1−a)L)."),
-    Field("pivot_height", "Pivot height h", "length", "m", default=4, min=0, min_exclusive=True, max=1e3,
-          help="Height of the pivot A above the ground; must be below the long arm (1−a)L so C rests on the ground."),
-    Field("projectile_mass", "Projectile mass m_p", "mass", "kg", default=5, min=1e-3, max=1e7,
-          help="Projectile mass."),
-    Field("gravity", "Gravity g", "acceleration", "m/s**2", default=9.81, min=0.1, max=100,
-          help="Gravitational acceleration."),
-    Field("release_angle", "Release angle", "angle", "deg", default=45, min=0, max=89,
-          help="Release when the projectile's velocity points this far above the horizontal, toward the throw."),
-    EFFECTS.field("sling (2 DOF), ground_contact (projectile slides until lifted), hinged_counterweight "
-                  "(hinge or pendulum), air_drag (flight).", retired=RETIRED),
+    Field(
+        "mode",
+        "Solve",
+        choices=MODES,
+        default="throw",
+        choice_labels=(
+            "One throw at the release angle and sling entered",
+            "Optimise: the release angle and sling length of longest range",
+        ),
+        help="One throw, or also the release angle and sling length that throw furthest (a grid of "
+        "1640 throws, then polished on accurate throws).",
+    ),
+    Field(
+        "counterweight_mass",
+        "Counterweight mass M",
+        "mass",
+        "kg",
+        default=500,
+        min=1e-3,
+        max=1e7,
+        help="Counterweight mass.",
+    ),
+    Field(
+        "counterweight_gyration",
+        "Counterweight gyration k",
+        "length",
+        "m",
+        default=2,
+        min=0,
+        max=1e3,
+        help="Radius of gyration of the counterweight about its centre (its inertia is M·k²); "
+        "unused when it is hinged at its centre (hinged_counterweight, hanger 0), since it then does not turn.",
+    ),
+    Field(
+        "arm_mass",
+        "Arm mass m",
+        "mass",
+        "kg",
+        default=50,
+        min=0,
+        max=1e7,
+        help="Mass of the throwing arm (a uniform bar).",
+    ),
+    Field(
+        "arm_length",
+        "Arm length L",
+        "length",
+        "m",
+        default=15,
+        min=1e-2,
+        max=1e3,
+        help="Length of the throwing arm, counterweight hinge B to long end C.",
+    ),
+    Field(
+        "short_arm_fraction",
+        "Short-arm fraction a",
+        default=0.25,
+        min=0,
+        max=1,
+        min_exclusive=True,
+        max_exclusive=True,
+        help="Pivot to counterweight hinge as a fraction of L (short arm aL, long arm (1−a)L).",
+    ),
+    Field(
+        "pivot_height",
+        "Pivot height h",
+        "length",
+        "m",
+        default=4,
+        min=0,
+        min_exclusive=True,
+        max=1e3,
+        help="Height of the pivot A above the ground; must be below the long arm (1−a)L so C rests on the ground.",
+    ),
+    Field(
+        "projectile_mass",
+        "Projectile mass m_p",
+        "mass",
+        "kg",
+        default=5,
+        min=1e-3,
+        max=1e7,
+        help="Projectile mass.",
+    ),
+    Field(
+        "gravity",
+        "Gravity g",
+        "acceleration",
+        "m/s**2",
+        default=9.81,
+        min=0.1,
+        max=100,
+        help="Gravitational acceleration.",
+    ),
+    Field(
+        "release_angle",
+        "Release angle",
+        "angle",
+        "deg",
+        default=45,
+        min=0,
+        max=89,
+        help="Release when the projectile's velocity points this far above the horizontal, toward the throw.",
+    ),
+    EFFECTS.field(
+        "sling (2 DOF), ground_contact (projectile slides until lifted), hinged_counterweight "
+        "(hinge or pendulum), air_drag (flight).",
+        retired=RETIRED,
+    ),
     *EFFECTS.fields(),
-    Field("sling_min", "Optimise: shortest sling", "length", "m", default=1, min=1e-2, max=1e3,
-          help="optimise: the sling lengths searched start here.", modes=("optimise",)),
-    Field("sling_max", "Optimise: longest sling", "length", "m", default=12, min=1e-2, max=1e3,
-          help="optimise: the sling lengths searched end here.", modes=("optimise",)),
+    Field(
+        "sling_min",
+        "Optimise: shortest sling",
+        "length",
+        "m",
+        default=1,
+        min=1e-2,
+        max=1e3,
+        help="optimise: the sling lengths searched start here.",
+        modes=("optimise",),
+    ),
+    Field(
+        "sling_max",
+        "Optimise: longest sling",
+        "length",
+        "m",
+        default=12,
+        min=1e-2,
+        max=1e3,
+        help="optimise: the sling lengths searched end here.",
+        modes=("optimise",),
+    ),
     accuracy_field(),
 )
 
 OUTPUTS = (
-    Output("release_time", "Release time", "time", "s", equation="(T6), (T10)",
-           help="When the projectile's velocity first points up at the release angle toward the throw (a swing event)."),
-    Output("release_speed", "Release speed", "speed", "m/s", equation="§2.1, (T3)",
-           help="The projectile's speed at release, from the arm's and the sling's rates."),
-    Output("release_angle", "Release angle", "angle", "deg", equation="(T10)",
-           help="Of the velocity at release, above the horizontal toward the throw (the release condition)."),
-    Output("release_height", "Release height", "length", "m", equation="§2.1, (T3)",
-           help="The projectile's height above the ground at release, h + R·sin φ + l·sin γ."),
-    Output("range", "Range", "length", "m", equation="(T3), (C1)",
-           help="Pivot to landing point toward the throw: release point plus flight (vacuum, or with air_drag)."),
-    Output("max_height", "Max height", "length", "m", equation="(C1)",
-           help="Highest point of the projectile's path: over the swing, or the flight's apex."),
-    Output("efficiency", "Efficiency", "dimensionless", "%", equation="(C2), (T4)",
-           help="Projectile energy at release (kinetic + potential) over the potential energy the counterweight and arm lose."),
+    Output(
+        "release_time",
+        "Release time",
+        "time",
+        "s",
+        equation="(T6), (T10)",
+        help="When the projectile's velocity first points up at the release angle toward the throw (a swing event).",
+    ),
+    Output(
+        "release_speed",
+        "Release speed",
+        "speed",
+        "m/s",
+        equation="§2.1, (T3)",
+        help="The projectile's speed at release, from the arm's and the sling's rates.",
+    ),
+    Output(
+        "release_angle",
+        "Release angle",
+        "angle",
+        "deg",
+        equation="(T10)",
+        help="Of the velocity at release, above the horizontal toward the throw (the release condition).",
+    ),
+    Output(
+        "release_height",
+        "Release height",
+        "length",
+        "m",
+        equation="§2.1, (T3)",
+        help="The projectile's height above the ground at release, h + R·sin φ + l·sin γ.",
+    ),
+    Output(
+        "range",
+        "Range",
+        "length",
+        "m",
+        equation="(T3), (C1)",
+        help="Pivot to landing point toward the throw: release point plus flight (vacuum, or with air_drag).",
+    ),
+    Output(
+        "max_height",
+        "Max height",
+        "length",
+        "m",
+        equation="(C1)",
+        help="Highest point of the projectile's path: over the swing, or the flight's apex.",
+    ),
+    Output(
+        "efficiency",
+        "Efficiency",
+        "dimensionless",
+        "%",
+        equation="(C2), (T4)",
+        help="Projectile energy at release (kinetic + potential) over the potential energy the counterweight and arm lose.",
+    ),
     *EFFECTS.outputs(),
-    Output("arm_speed_at_vertical", "Arm speed at vertical", "angular_speed", "rad/s", equation="§1.5, (T6)",
-           help="The arm's angular speed when the long arm first points straight up (it swings on alone after release)."),
-    Output("time_to_vertical", "Time to vertical", "time", "s", equation="§1.5, (T6)",
-           help="From rest until the long arm points straight up (an event on the swing)."),
-    Output("energy_drift", "Energy drift", equation="§1.5, (T4)",
-           help="The solver's error: largest change of total energy T + V over the swing, over the largest kinetic energy."),
-    *(Output(name, label, quantity, unit, equation="(T6), (T10), (C1)", help=f"optimise: {how}")
-      for name, label, quantity, unit, how in (
-          ("best_release_angle", "Best release angle", "angle", "deg",
-           "the release angle of longest range (grid of batch throws, then Nelder–Mead on accurate throws)."),
-          ("best_sling_length", "Best sling length", "length", "m",
-           "the sling length of longest range, within the lengths searched."),
-          ("best_range", "Best range", "length", "m", "the range of the best throw, by the accurate scene."))),
-    Output("candidates", "Candidates evaluated",
-           help="optimise: throws evaluated in the batch (40 sling lengths × 41 release angles)."),
+    Output(
+        "arm_speed_at_vertical",
+        "Arm speed at vertical",
+        "angular_speed",
+        "rad/s",
+        equation="§1.5, (T6)",
+        help="The arm's angular speed when the long arm first points straight up (it swings on alone after release).",
+    ),
+    Output(
+        "time_to_vertical",
+        "Time to vertical",
+        "time",
+        "s",
+        equation="§1.5, (T6)",
+        help="From rest until the long arm points straight up (an event on the swing).",
+    ),
+    Output(
+        "energy_drift",
+        "Energy drift",
+        equation="§1.5, (T4)",
+        help="The solver's error: largest change of total energy T + V over the swing, over the largest kinetic energy.",
+    ),
+    *(
+        Output(name, label, quantity, unit, equation="(T6), (T10), (C1)", help=f"optimise: {how}")
+        for name, label, quantity, unit, how in (
+            (
+                "best_release_angle",
+                "Best release angle",
+                "angle",
+                "deg",
+                "the release angle of longest range (grid of batch throws, then Nelder–Mead on accurate throws).",
+            ),
+            (
+                "best_sling_length",
+                "Best sling length",
+                "length",
+                "m",
+                "the sling length of longest range, within the lengths searched.",
+            ),
+            (
+                "best_range",
+                "Best range",
+                "length",
+                "m",
+                "the range of the best throw, by the accurate scene.",
+            ),
+        )
+    ),
+    Output(
+        "candidates",
+        "Candidates evaluated",
+        help="optimise: throws evaluated in the batch (40 sling lengths × 41 release angles).",
+    ),
     *STATS_OUTPUTS,
 )
 
@@ -166,19 +353,35 @@ def machine(v, sling: bool | None = None, l: float | None = None) -> tb.Machine:
     effects = effects_on(v)
     a, L, h = v["short_arm_fraction"], v["arm_length"], v["pivot_height"]
     if h >= (1 - a) * L:
-        raise InputError("pivot_height", f"must be below the long arm (1−a)·L = {(1 - a) * L:.4g} m, "
-                                         "so that the long end C can rest on the ground")
+        raise InputError(
+            "pivot_height",
+            f"must be below the long arm (1−a)·L = {(1 - a) * L:.4g} m, "
+            "so that the long end C can rest on the ground",
+        )
     hinged = "hinged_counterweight" in effects
     if hinged and v["hanger_length"] > 0 and v["arm_mass"] == 0 and v["counterweight_gyration"] == 0:
         # After release the arm's own inertia about the pivot is I_arm + M·r²·k²/(d² + k²) (the
         # pendulum's block eliminated): 0 for a massless arm and a point counterweight, whenever the
         # hanger is square to the arm; the equations of motion are singular there (no unique motion).
-        raise InputError("arm_mass", "must be above 0 when the counterweight is a point mass (gyration 0) on a "
-                                     "hanger: a massless arm then has no inertia of its own after release")
-    return tb.Machine(M=v["counterweight_mass"], k=v["counterweight_gyration"], m=v["arm_mass"], L=L, a=a, h=h,
-                      m_p=v["projectile_mass"], l=v["sling_length"] if l is None else l, g=v["gravity"],
-                      rigid=not hinged, d=v["hanger_length"] if hinged else 0.0,
-                      sling=("sling" in effects) if sling is None else sling)
+        raise InputError(
+            "arm_mass",
+            "must be above 0 when the counterweight is a point mass (gyration 0) on a "
+            "hanger: a massless arm then has no inertia of its own after release",
+        )
+    return tb.Machine(
+        M=v["counterweight_mass"],
+        k=v["counterweight_gyration"],
+        m=v["arm_mass"],
+        L=L,
+        a=a,
+        h=h,
+        m_p=v["projectile_mass"],
+        l=v["sling_length"] if l is None else l,
+        g=v["gravity"],
+        rigid=not hinged,
+        d=v["hanger_length"] if hinged else 0.0,
+        sling=("sling" in effects) if sling is None else sling,
+    )
 
 
 def sample(ts: list, ys: list, n: int = PLOT_POINTS) -> tuple[list, list]:
@@ -207,17 +410,30 @@ def fly(v, g: float, z0: float, speed: float, angle: float, rtol: float):
         zs = [z0 + speed * math.sin(angle) * t - 0.5 * g * t * t for t in ts]
         zs[-1] = 0.0
         return X, apex, xs, zs, 0
-    air = flight.air(v["effects"], v["projectile_mass"], v["projectile_diameter"], v["drag_coefficient"], 0.0,
-                     v["air_density"], 0.0, g)
+    air = flight.air(
+        v["effects"],
+        v["projectile_mass"],
+        v["projectile_diameter"],
+        v["drag_coefficient"],
+        0.0,
+        v["air_density"],
+        0.0,
+        g,
+    )
     try:
         f = flight.fly(air, z0, angle, speed, 2 * X + 1.0, rtol)
     except RuntimeError as exc:
-        raise InputError("projectile_diameter", f"the flight could not be integrated ({exc}): drag far too "
-                                                "large for the projectile's mass") from None
+        raise InputError(
+            "projectile_diameter",
+            f"the flight could not be integrated ({exc}): drag far too large for the projectile's mass",
+        ) from None
     xs, zs = sample(*f.path)
     if f.t >= flight.T_MAX * (1 - 1e-9):
-        raise InputError("projectile_diameter", f"the projectile is still in the air after {flight.T_MAX:.0f} s "
-                                                "(drag far too large for its mass)")
+        raise InputError(
+            "projectile_diameter",
+            f"the projectile is still in the air after {flight.T_MAX:.0f} s "
+            "(drag far too large for its mass)",
+        )
     return f.x_end, f.apex, xs, zs, f.nfev
 
 
@@ -229,7 +445,9 @@ def simulate(v, rtol: float) -> SimRun:
     s = _swing(p, sc, v["release_angle"], rtol)
     # the results whose error is estimated; all present in every run (0 when absent), so a run at
     # a tighter tolerance that ends differently (e.g. no release) shows as a large error estimate
-    key = dict.fromkeys(("release_time", "release_speed", "range", "time_to_vertical", "arm_speed_at_vertical"), 0.0)
+    key = dict.fromkeys(
+        ("release_time", "release_speed", "range", "time_to_vertical", "arm_speed_at_vertical"), 0.0
+    )
     values: dict = {"energy_drift": s.drift}
     if s.vertical is not None:
         values["time_to_vertical"], values["arm_speed_at_vertical"] = s.vertical
@@ -238,14 +456,17 @@ def simulate(v, rtol: float) -> SimRun:
     warnings = swing_warnings(s, p, effects)
     series = {"φ arm": sample(s.t, s.phi), "ω arm": sample(s.t, s.omega)}
     if p.sling:
-        series["θ sling"] = sample(s.t[:len(s.theta)], s.theta)
+        series["θ sling"] = sample(s.t[: len(s.theta)], s.theta)
     # the projectile path, x toward the throw (−x of the seed's frame)
     path = ([-x for x in s.path[0]], list(s.path[1]))
     if not s.released:
-        why = {"stuck": "the counterweight cannot lift the arm off the ground",
-               "stopped": "the arm swings back first", "arm_ground": "the arm hits the ground first",
-               "time": f"not within {tb.T_SWING:.0f} s",
-               "bouncing": f"the projectile falls back onto the ground {tb.MAX_TOUCHDOWNS} times"}[s.ending]
+        why = {
+            "stuck": "the counterweight cannot lift the arm off the ground",
+            "stopped": "the arm swings back first",
+            "arm_ground": "the arm hits the ground first",
+            "time": f"not within {tb.T_SWING:.0f} s",
+            "bouncing": f"the projectile falls back onto the ground {tb.MAX_TOUCHDOWNS} times",
+        }[s.ending]
         warnings.append(f"The throw never releases at {v['release_angle'] / DEG:.4g}°: {why}.")
         series["projectile"] = sample(*path)
         return SimRun(values, key, s.nfev, warnings, series)
@@ -258,8 +479,10 @@ def _swing(p: tb.Machine, sc: tb.Scene, beta: float, rtol: float) -> tb.Swing:
     try:
         return tb.swing(p, beta, sc.contact is not None, rtol, scene=sc)
     except RuntimeError as exc:  # step-size underflow: a machine too stiff to resolve
-        raise InputError("sling_length" if p.sling else "projectile_mass",
-                         f"the swing could not be integrated ({exc}); the machine's proportions are too extreme") from None
+        raise InputError(
+            "sling_length" if p.sling else "projectile_mass",
+            f"the swing could not be integrated ({exc}); the machine's proportions are too extreme",
+        ) from None
 
 
 def swing_warnings(s: tb.Swing, p: tb.Machine, effects) -> list[str]:
@@ -272,22 +495,38 @@ def swing_warnings(s: tb.Swing, p: tb.Machine, effects) -> list[str]:
         warnings.append("ground_contact needs the sling (without it the projectile rides in a cup at C).")
     scale = p.L * 1e-5  # deeper than the solver's drift
     if s.min_tension < 0:
-        warnings.append(f"The sling would push (compression {-s.min_tension:.3g} N) before release: a real sling "
-                        "goes slack there, so the rigid-sling result is not valid.")
+        warnings.append(
+            f"The sling would push (compression {-s.min_tension:.3g} N) before release: a real sling "
+            "goes slack there, so the rigid-sling result is not valid."
+        )
     if s.min_projectile_height < -scale:
-        warnings.append(f"The projectile goes {-s.min_projectile_height:.3g} m below the ground before release "
-                        "(switch on ground_contact).")
+        warnings.append(
+            f"The projectile goes {-s.min_projectile_height:.3g} m below the ground before release "
+            "(switch on ground_contact)."
+        )
     if s.touchdowns:
-        warnings.append(f"The projectile falls back onto the ground {s.touchdowns} time(s) after lift-off "
-                        "(plastic landing: energy is lost, see energy drift).")
+        warnings.append(
+            f"The projectile falls back onto the ground {s.touchdowns} time(s) after lift-off "
+            "(plastic landing: energy is lost, see energy drift)."
+        )
     if s.min_counterweight_height < -scale:
-        warnings.append(f"The counterweight's centre goes {-s.min_counterweight_height:.3g} m below the ground: "
-                        "raise the pivot or shorten the short arm or hanger.")
+        warnings.append(
+            f"The counterweight's centre goes {-s.min_counterweight_height:.3g} m below the ground: "
+            "raise the pivot or shorten the short arm or hanger."
+        )
     return warnings
 
 
-def release_and_flight(v, p: tb.Machine, s: tb.Swing, rtol: float, values: dict, key: dict, warnings: list,
-                       path: tuple[list, list]) -> int:
+def release_and_flight(
+    v,
+    p: tb.Machine,
+    s: tb.Swing,
+    rtol: float,
+    values: dict,
+    key: dict,
+    warnings: list,
+    path: tuple[list, list],
+) -> int:
     """The release, the efficiency (C2) and the flight (C1, or integrated with drag) into values,
     key, warnings and the path; returns the flight's right-hand-side evaluations."""
     t_r, x_r, z_r, vx, vy = s.release
@@ -345,10 +584,21 @@ def refine(v, beta: float, l: float, lo: float, hi: float) -> tuple[float, float
     try:
         with budget(REFINE_NFEV) as spent:
             start = -miss([beta, l / scale])
-            res = minimize(miss, [beta, l / scale], method="Nelder-Mead",
-                           options={"xatol": 1e-5, "fatol": 1e-9 * scale, "maxfev": 200,
-                                    "initial_simplex": [[beta, l / scale], [beta + 2 * DEG, l / scale],
-                                                        [beta, l / scale * 1.05]]})
+            res = minimize(
+                miss,
+                [beta, l / scale],
+                method="Nelder-Mead",
+                options={
+                    "xatol": 1e-5,
+                    "fatol": 1e-9 * scale,
+                    "maxfev": 200,
+                    "initial_simplex": [
+                        [beta, l / scale],
+                        [beta + 2 * DEG, l / scale],
+                        [beta, l / scale * 1.05],
+                    ],
+                },
+            )
     except BudgetExceeded as exc:
         if exc.budget is not spent:
             raise
@@ -385,9 +635,11 @@ def _optimise(v, run: SimRun) -> None:
         beta, l, n = best
         beta, l, reach, polished = refine(v, beta, l, lo, hi)
         if not polished:
-            run.warnings.append(f"optimise: the polish of the best throw stopped after {REFINE_NFEV} evaluations "
-                                "(every accurate throw of this machine is costly): the best shown is the best "
-                                "found so far, not the optimum to the last digit.")
+            run.warnings.append(
+                f"optimise: the polish of the best throw stopped after {REFINE_NFEV} evaluations "
+                "(every accurate throw of this machine is costly): the best shown is the best "
+                "found so far, not the optimum to the last digit."
+            )
         if reach > -1e29:
             run.values.update(best_release_angle=beta, best_sling_length=l, best_range=reach, candidates=n)
             # the best throw's own validity (sling pushing, projectile through the ground, ...):
@@ -409,7 +661,9 @@ CALCULATOR = Calculator(
     section="001",
     simulate=simulate,
     plots=(
-        Plot("Projectile path", ("projectile",), "x toward the throw", "length", "m", "height", "length", "m"),
+        Plot(
+            "Projectile path", ("projectile",), "x toward the throw", "length", "m", "height", "length", "m"
+        ),
         Plot("Arm and sling angles", ("φ arm", "θ sling"), "time", "time", "s", "angle", "angle", "deg"),
         Plot("Arm speed", ("ω arm",), "time", "time", "s", "ω", "angular_speed", "rad/s"),
     ),

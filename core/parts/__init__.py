@@ -14,8 +14,10 @@ from fractions import Fraction
 from functools import lru_cache
 from pathlib import Path
 
-HERE = Path(__file__).parent
 from ..constants import INCH as IN
+
+HERE = Path(__file__).parent
+
 MM = 1e-3
 
 
@@ -69,8 +71,12 @@ BORES: dict[str, Bore] = {
 SHAFT_BORES = tuple(k for k, b in BORES.items() if not b.motor)
 
 VENDORS: dict[str, str] = {
-    "REV": "REV Robotics", "WCP": "WestCoast Products", "AndyMark": "AndyMark",
-    "Thrifty": "The Thrifty Bot (TTB)", "SDS": "Swerve Drive Specialties", "LastAnvil": "Last Anvil",
+    "REV": "REV Robotics",
+    "WCP": "WestCoast Products",
+    "AndyMark": "AndyMark",
+    "Thrifty": "The Thrifty Bot (TTB)",
+    "SDS": "Swerve Drive Specialties",
+    "LastAnvil": "Last Anvil",
     "VEX": "VEX Robotics (VEXpro)",
 }
 
@@ -150,16 +156,38 @@ def read() -> Catalogue:
             pitches[(name, vendor, family)] = group["pitch"]
             for p in group["parts"]:
                 if name == "belts":
-                    belts.append(Belt(vendor, p["part_number"], family, p["teeth"], p["url"], p.get("width_mm")))
+                    belts.append(
+                        Belt(vendor, p["part_number"], family, p["teeth"], p["url"], p.get("width_mm"))
+                    )
                 else:
-                    parts.append(Part(vendor, p["part_number"], family, p["teeth"], p["bore"], p["url"],
-                                      p.get("width_mm")))
+                    parts.append(
+                        Part(
+                            vendor,
+                            p["part_number"],
+                            family,
+                            p["teeth"],
+                            p["bore"],
+                            p["url"],
+                            p.get("width_mm"),
+                        )
+                    )
     planetaries = []
     for s in _read("planetaries").get("planetaries", []):
-        planetaries.append(PlanetarySystem(
-            s["system"], s["vendor"], s["part_number"], s["url"], s["max_cartridges"],
-            tuple(s["input_bores"]), tuple(s["output_bores"]),
-            tuple(Cartridge(c["name"], c["part_number"], Fraction(c["num"], c["den"])) for c in s["cartridges"])))
+        planetaries.append(
+            PlanetarySystem(
+                s["system"],
+                s["vendor"],
+                s["part_number"],
+                s["url"],
+                s["max_cartridges"],
+                tuple(s["input_bores"]),
+                tuple(s["output_bores"]),
+                tuple(
+                    Cartridge(c["name"], c["part_number"], Fraction(c["num"], c["den"]))
+                    for c in s["cartridges"]
+                ),
+            )
+        )
     return Catalogue(tuple(parts), tuple(belts), tuple(planetaries), pitches)
 
 
@@ -175,8 +203,12 @@ def problems(cat: Catalogue) -> list[str]:
         if kind != expected_kind:
             found.append(f"{file}: {vendor}: {family} is a {kind} family, not a {expected_kind}")
         try:
-            if abs(pitch_si(pitch) - pitch_si(FAMILIES[family].pitch)) > 1e-12 * pitch_si(FAMILIES[family].pitch):
-                found.append(f"{file}: {vendor}: {family} has pitch {pitch!r}, not {FAMILIES[family].pitch!r}")
+            if abs(pitch_si(pitch) - pitch_si(FAMILIES[family].pitch)) > 1e-12 * pitch_si(
+                FAMILIES[family].pitch
+            ):
+                found.append(
+                    f"{file}: {vendor}: {family} has pitch {pitch!r}, not {FAMILIES[family].pitch!r}"
+                )
         except (KeyError, ValueError):
             found.append(f"{file}: {vendor}: unreadable pitch {pitch!r}")
     seen_numbers: dict[tuple[str, str], object] = {}
@@ -197,8 +229,16 @@ def problems(cat: Catalogue) -> list[str]:
             found.append(f"{where}: unknown bore {item.bore!r}")
         if not item.url.startswith("https://"):
             found.append(f"{where}: url {item.url!r} is not an https address")
-        whole = (type(item).__name__, item.vendor, item.part_number, item.family, item.teeth,
-                 getattr(item, "bore", ""), item.width_mm, item.url)
+        whole = (
+            type(item).__name__,
+            item.vendor,
+            item.part_number,
+            item.family,
+            item.teeth,
+            getattr(item, "bore", ""),
+            item.width_mm,
+            item.url,
+        )
         if whole in seen_parts:
             found.append(f"{where}: listed twice")
         seen_parts.add(whole)

@@ -37,10 +37,10 @@ from __future__ import annotations
 import bisect
 import itertools
 import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cached_property, lru_cache
-from typing import Iterable, Sequence
 
 from . import BORES, FAMILIES, Catalogue, Part, PlanetarySystem, catalogue, pitch_si
 
@@ -132,8 +132,9 @@ def gear_center(family: str, n: int, N: int) -> float:
 
 
 @lru_cache(maxsize=65536)
-def loop_links(family: str, n1: int, n2: int, lo: float | None, hi: float | None,
-               belt_teeth: tuple[int, ...]) -> int | None:
+def loop_links(
+    family: str, n1: int, n2: int, lo: float | None, hi: float | None, belt_teeth: tuple[int, ...]
+) -> int | None:
     """The shortest belt (stocked lengths) or chain (even links) whose center distance is at
     least lo and at least the touching-pitch-circles distance r_1 + r_2, and at most hi: its
     links or belt teeth, or None if there is none. Only the forward length equation is needed
@@ -160,8 +161,9 @@ def loop_links(family: str, n1: int, n2: int, lo: float | None, hi: float | None
     return links
 
 
-def loop_choice(family: str, n1: int, n2: int, lo: float | None, hi: float | None,
-                belt_teeth: tuple[int, ...]) -> tuple[int, float] | None:
+def loop_choice(
+    family: str, n1: int, n2: int, lo: float | None, hi: float | None, belt_teeth: tuple[int, ...]
+) -> tuple[int, float] | None:
     """loop_links and the center distance it gives (chain_belt's inverse of (68)), or None."""
     from ..calculators.chain_belt import center_from_length, pitch_radius
 
@@ -211,10 +213,18 @@ def stage_classes(q: Query, cat: Catalogue | None = None) -> list[Stage]:
             if not positions:
                 continue
             parts = 2 if kind == "gear" else 3  # two gears; or two pulleys/sprockets and the loop
-            stage = Stage(family, n_in, n_out, Fraction(n_out, n_in), parts, drive[n_in], driven[n_out],
-                          positions,
-                          tuple(p for p in table[n_in] if BIT[p.bore] & (allowed_shaft | motor_bit)),
-                          tuple(p for p in table[n_out] if BIT[p.bore] & allowed_shaft))
+            stage = Stage(
+                family,
+                n_in,
+                n_out,
+                Fraction(n_out, n_in),
+                parts,
+                drive[n_in],
+                driven[n_out],
+                positions,
+                tuple(p for p in table[n_in] if BIT[p.bore] & (allowed_shaft | motor_bit)),
+                tuple(p for p in table[n_out] if BIT[p.bore] & allowed_shaft),
+            )
             g = math.gcd(n_in, n_out)  # the reduced ratio as ints: hashing Fractions was slow
             key = (family, n_out // g, n_in // g, parts, stage.drive_mask, stage.out_mask, positions)
             members.setdefault(key, []).append(stage)
@@ -232,8 +242,18 @@ def stage_classes(q: Query, cat: Catalogue | None = None) -> list[Stage]:
                 # largest reduction nearest the motor, as REV advises for its stacks
                 for stack in itertools.combinations_with_replacement(ordered, count):
                     ratio = math.prod((c.ratio for c in stack), start=Fraction(1))
-                    stage = Stage("planetary", 0, 0, ratio, PLANETARY_PARTS_BASE + count, inputs, outputs,
-                                  (1 << q.max_stages) - 1, cartridges=stack, system=system)
+                    stage = Stage(
+                        "planetary",
+                        0,
+                        0,
+                        ratio,
+                        PLANETARY_PARTS_BASE + count,
+                        inputs,
+                        outputs,
+                        (1 << q.max_stages) - 1,
+                        cartridges=stack,
+                        system=system,
+                    )
                     members.setdefault(("planetary", system.system, stack), []).append(stage)
 
     classes = []
@@ -271,6 +291,7 @@ def stage_fits(family: str, kind: str, n_in: int, n_out: int, limits, belt_teeth
 
 # --- searching ---------------------------------------------------------------------------------
 
+
 def exact(x: float) -> Fraction:
     """A typed number as the decimal it was written as (0.37 is 37/100, not the binary float)."""
     return Fraction(repr(x))
@@ -291,8 +312,13 @@ def ratio_error(num: int, den: int, lo: Fraction, hi: Fraction) -> float:
 def rank_key(c: Combination, q: Query) -> tuple:
     # within equal error, stages and parts: nearer the middle of a range, then a fixed order
     middle = abs(math.log(c.num / c.den / q.target))
-    return (c.error, len(c.stages), c.parts, middle,
-            tuple((-s.ratio, s.family, s.teeth_in) for s in c.stages))
+    return (
+        c.error,
+        len(c.stages),
+        c.parts,
+        middle,
+        tuple((-s.ratio, s.family, s.teeth_in) for s in c.stages),
+    )
 
 
 def chain_feasible(stages: Sequence[Stage], q: Query) -> tuple[int, ...] | None:
@@ -341,8 +367,19 @@ _PREPARED: dict = {}
 def prepare(q: Query, cat: Catalogue | None = None) -> Prepared:
     """Stage classes and value tables; they do not depend on the wanted ratio (only on whether
     it is a reduction), so typing a new ratio reuses them."""
-    key = (q.target >= 1, q.input_bore, q.output_bore, q.vendors, q.families, q.shaft_bores,
-           q.min_teeth, q.max_teeth, q.max_stages, q.center_limits, id(cat))
+    key = (
+        q.target >= 1,
+        q.input_bore,
+        q.output_bore,
+        q.vendors,
+        q.families,
+        q.shaft_bores,
+        q.min_teeth,
+        q.max_teeth,
+        q.max_stages,
+        q.center_limits,
+        id(cat),
+    )
     if key not in _PREPARED:
         if len(_PREPARED) > 16:
             _PREPARED.clear()
@@ -367,8 +404,11 @@ def table(prep: Prepared, q: Query, position: int, first: bool, last: bool) -> T
                 continue
             by_value.setdefault(s.ratio_f, []).append(s)
         ordered = sorted(by_value)
-        prep.tables[key] = Table(np.array(ordered, dtype=float), [by_value[v] for v in ordered],
-                                 np.array([min(s.parts for s in by_value[v]) for v in ordered], dtype=np.int64))
+        prep.tables[key] = Table(
+            np.array(ordered, dtype=float),
+            [by_value[v] for v in ordered],
+            np.array([min(s.parts for s in by_value[v]) for v in ordered], dtype=np.int64),
+        )
     return prep.tables[key]
 
 
@@ -401,10 +441,12 @@ def pruned_table(prep: Prepared, q: Query, position: int, k: int) -> Table:
             ordered = sorted(by_value)
             groups = [by_value[v] for v in ordered]
             prep.tables[("pruned", i, k)] = Table(
-                np.array(ordered, dtype=float), groups,
+                np.array(ordered, dtype=float),
+                groups,
                 np.array([min(s.parts for s in g) for g in groups], dtype=np.int64),
                 np.array([_union(s.drive_mask for s in g) for g in groups], dtype=np.int64),
-                np.array([_union(s.out_mask for s in g) for g in groups], dtype=np.int64))
+                np.array([_union(s.out_mask for s in g) for g in groups], dtype=np.int64),
+            )
     return prep.tables[key]
 
 
@@ -438,8 +480,9 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
         for s in stages:
             num *= s.ratio.numerator
             den *= s.ratio.denominator
-        combo = Combination(stages, num, den, ratio_error(num, den, lo_x, hi_x),
-                            sum(s.parts for s in stages), masks)
+        combo = Combination(
+            stages, num, den, ratio_error(num, den, lo_x, hi_x), sum(s.parts for s in stages), masks
+        )
         ident = tuple(sorted(s.identity for s in stages))
         old = found.get(ident)
         if old is None or rank_key(combo, q) < rank_key(old, q):
@@ -506,8 +549,12 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
             for n, j in enumerate(order):
                 if n % 32 == 0 and n:
                     limit = nth_key()
-                    if limit is not None and (int(grid[j]), k, int(parts[j]), middle[j] - 1e-9) > \
-                            (limit[3], limit[1], limit[2], limit[4]):
+                    if limit is not None and (int(grid[j]), k, int(parts[j]), middle[j] - 1e-9) > (
+                        limit[3],
+                        limit[1],
+                        limit[2],
+                        limit[4],
+                    ):
                         break
                 expand([chosen[i].members[index[i][j]] for i in range(k)])
 
@@ -536,8 +583,15 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
                     continue
                 scan(chosen, tail, [(a, b)], k)
                 now = nth_key()
-                if now is not None and now[0] == 0 and (now[1] < k or now[2] < least_parts or (
-                        now[2] == least_parts and now[4] <= math.log(rho))):
+                if (
+                    now is not None
+                    and now[0] == 0
+                    and (
+                        now[1] < k
+                        or now[2] < least_parts
+                        or (now[2] == least_parts and now[4] <= math.log(rho))
+                    )
+                ):
                     return
                 if covered:
                     if now is not None and now[0] == 0:
@@ -586,7 +640,7 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
                 wide = mid
         return wide if narrow <= eps else narrow
 
-  # float products of equal exact ratios differ by rounding only
+    # float products of equal exact ratios differ by rounding only
     for k in range(2, q.max_stages + 1):
         chosen = [table(prep, q, i, i == 0, i == k - 1) for i in range(k)]
         tables = [t.values for t in chosen]
@@ -625,7 +679,11 @@ def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], d
                 if n % 32 == 0 and n:
                     limit = nth_key()
                     # sorted by (error, fewest parts): once past the N-th best, nothing better follows
-                    if limit is not None and (int(grid[j]), k, int(parts[j])) > (limit[3], limit[1], limit[2]):
+                    if limit is not None and (int(grid[j]), k, int(parts[j])) > (
+                        limit[3],
+                        limit[1],
+                        limit[2],
+                    ):
                         break
                 lists = [chosen[i].members[index[i][j]] for i in range(k)]
                 expand(lists)

@@ -49,8 +49,9 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any
 
 from ..model import Field, Output
 
@@ -219,10 +220,18 @@ class Effects:
         presets load, but not offered (see RetiredFlags and retire)."""
         text = help or "; ".join(f"{e.name}: {e.help}" for e in self.effects)
         if retired:
-            return RetiredFlags("effects", "Effects", choices=self.names, flags=True,
-                                default=", ".join(self.defaults), help=text, retired=retired)
-        return Field("effects", "Effects", choices=self.names, flags=True,
-                     default=", ".join(self.defaults), help=text)
+            return RetiredFlags(
+                "effects",
+                "Effects",
+                choices=self.names,
+                flags=True,
+                default=", ".join(self.defaults),
+                help=text,
+                retired=retired,
+            )
+        return Field(
+            "effects", "Effects", choices=self.names, flags=True, default=", ".join(self.defaults), help=text
+        )
 
     def fields(self) -> tuple[Field, ...]:
         """Every effect's own fields, each shown only while an effect that declares it is on."""
@@ -232,8 +241,9 @@ class Effects:
             for f in e.fields:
                 owners.setdefault(f.name, []).append(e.name)
                 first.setdefault(f.name, f)
-        return tuple(dataclasses.replace(f, when=f.when + (("effects", tuple(owners[n])),))
-                     for n, f in first.items())
+        return tuple(
+            dataclasses.replace(f, when=f.when + (("effects", tuple(owners[n])),)) for n, f in first.items()
+        )
 
     def outputs(self) -> tuple[Output, ...]:
         seen: dict[str, Output] = {}
@@ -242,9 +252,15 @@ class Effects:
                 seen.setdefault(o.name, o)
         return tuple(seen.values())
 
-    def assemble(self, on: Sequence[str] | frozenset, values: Mapping[str, Any], ctx: Any,
-                 slots: Sequence[Slot], base_states: Sequence[str] = (),
-                 minimum: Callable = min) -> Assembly:
+    def assemble(
+        self,
+        on: Sequence[str] | frozenset,
+        values: Mapping[str, Any],
+        ctx: Any,
+        slots: Sequence[Slot],
+        base_states: Sequence[str] = (),
+        minimum: Callable = min,
+    ) -> Assembly:
         """Build the parts of the effects that are on (in catalogue order) and compose each slot.
         `minimum` is the two-argument min of the namespace the terms compute in (min for floats,
         numpy.minimum for arrays)."""
@@ -311,8 +327,10 @@ class RetiredFlags(Field):
     def notice(self, name: str) -> str:
         """What to tell the user who still names a retired flag."""
         _, field, value = next(r for r in self.retired if r[0] == name)
-        return (f"{self.name}: '{name}' is no longer one of the {self.name}; it is read as {field} = {value} "
-                f"(set that instead: '{name}' will stop being read in a later version)")
+        return (
+            f"{self.name}: '{name}' is no longer one of the {self.name}; it is read as {field} = {value} "
+            f"(set that instead: '{name}' will stop being read in a later version)"
+        )
 
 
 def retire(fields: Sequence[Field], inputs: Mapping[str, Any]) -> tuple[dict[str, Any], list[str]]:

@@ -21,8 +21,9 @@ Vacuum (the closed form every caller uses; seed (103)-(105), (61)-(62)):
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any, Callable, Mapping
+from typing import Any
 
 from ..constants import G0
 from .effects import Assembly, Effect, Effects, Part, Slot
@@ -30,11 +31,19 @@ from .integrate import Event, integrate
 
 T_MAX = 120.0  # s: no robot throw flies longer; bounds the work of a stalled solve
 STATES = ("x", "y", "vx", "vy")
-SLOTS = (Slot("accel", "fold", "acceleration (ax, ay): each term adds its own to the running one, "
-                              "of (a, vx, vy, |v|); the scene starts from gravity's (0, −g)", arity=3),)
+SLOTS = (
+    Slot(
+        "accel",
+        "fold",
+        "acceleration (ax, ay): each term adds its own to the running one, "
+        "of (a, vx, vy, |v|); the scene starts from gravity's (0, −g)",
+        arity=3,
+    ),
+)
 
 
 # --- the vacuum flight, in closed form ------------------------------------------------------------
+
 
 def _xp(*args):
     """math for scalars, numpy for arrays: the forward formulas run over sweeps in one call."""
@@ -85,6 +94,7 @@ def vacuum_path(h_i: float, theta_i: float, v_i: float, t_end: float, n: int, g:
 
 # --- the effects ----------------------------------------------------------------------------------
 
+
 @dataclass(frozen=True)
 class Body:
     """What the flight effects read besides their own fields (the assembly's context)."""
@@ -96,7 +106,7 @@ class Body:
     scale: float = 1.0  # continuation: every effect's coefficient times this (grown from 0 to 1)
 
     @staticmethod
-    def of(g: float, mass: float, diameter: float, density: float) -> "Body":
+    def of(g: float, mass: float, diameter: float, density: float) -> Body:
         return Body(g, mass, math.pi * diameter**2 / 4, density)
 
 
@@ -107,8 +117,9 @@ def drag_build(values: Mapping[str, Any], body: Body) -> Part:
         k = k * body.scale
     if k == 0.0:
         return Part(params={"k_drag": 0.0})
-    return Part(terms={"accel": lambda a, vx, vy, v: (a[0] - k * v * vx, a[1] - k * v * vy)},
-                params={"k_drag": k})
+    return Part(
+        terms={"accel": lambda a, vx, vy, v: (a[0] - k * v * vx, a[1] - k * v * vy)}, params={"k_drag": k}
+    )
 
 
 def magnus_build(values: Mapping[str, Any], body: Body) -> Part:
@@ -116,20 +127,24 @@ def magnus_build(values: Mapping[str, Any], body: Body) -> Part:
     no term when k_m = 0 (no spin or no lift)."""
     k = 0.0
     if values["spin"] != 0:
-        k = math.copysign(body.density * values["lift_coefficient"] * body.area / (2 * body.mass),
-                          values["spin"])
+        k = math.copysign(
+            body.density * values["lift_coefficient"] * body.area / (2 * body.mass), values["spin"]
+        )
         if body.scale != 1.0:
             k = k * body.scale
     if k == 0.0:
         return Part(params={"k_magnus": 0.0})
-    return Part(terms={"accel": lambda a, vx, vy, v: (a[0] - k * v * vy, a[1] + k * v * vx)},
-                params={"k_magnus": k})
+    return Part(
+        terms={"accel": lambda a, vx, vy, v: (a[0] - k * v * vy, a[1] + k * v * vx)}, params={"k_magnus": k}
+    )
 
 
 # The bare catalogue (no fields: each calculator declares its own, with its own field names, and
 # uses these builds); `air` below assembles from it.
-BARE = Effects(Effect("air_drag", "quadratic air drag (F1)", drag_build),
-               Effect("magnus", "Magnus lift from spin (F2)", magnus_build))
+BARE = Effects(
+    Effect("air_drag", "quadratic air drag (F1)", drag_build),
+    Effect("magnus", "Magnus lift from spin (F2)", magnus_build),
+)
 
 
 @dataclass(frozen=True)
@@ -140,14 +155,14 @@ class Air:
     accel: Callable | None = None
     k_drag: float = 0.0  # the parts' coefficients (1/m), for start guesses and messages
     k_magnus: float = 0.0
-    rebuild: Callable[[float], "Air"] | None = field(default=None, repr=False, compare=False)
+    rebuild: Callable[[float], Air] | None = field(default=None, repr=False, compare=False)
     assembly: Assembly | None = field(default=None, repr=False, compare=False)
 
     @property
     def vacuum(self) -> bool:
         return self.accel is None
 
-    def scaled(self, s: float) -> "Air":
+    def scaled(self, s: float) -> Air:
         """The same effects with every coefficient times s (continuation from vacuum)."""
         return self.rebuild(s) if self.rebuild is not None else self
 
@@ -155,12 +170,26 @@ class Air:
 def assemble(effects: Effects, on, values: Mapping[str, Any], body: Body) -> Air:
     """The effects that are on, composed once for this solve (core.sim.effects)."""
     asm = effects.assemble(on, values, body, SLOTS, STATES)
-    return Air(body.g, asm.slots["accel"], asm.params.get("k_drag", 0.0), asm.params.get("k_magnus", 0.0),
-               lambda s: assemble(effects, on, values, replace(body, scale=body.scale * s)), asm)
+    return Air(
+        body.g,
+        asm.slots["accel"],
+        asm.params.get("k_drag", 0.0),
+        asm.params.get("k_magnus", 0.0),
+        lambda s: assemble(effects, on, values, replace(body, scale=body.scale * s)),
+        asm,
+    )
 
 
-def air(effects, mass: float, diameter: float, drag_coefficient: float, lift_coefficient: float,
-        density: float, spin: float, g: float) -> Air:
+def air(
+    effects,
+    mass: float,
+    diameter: float,
+    drag_coefficient: float,
+    lift_coefficient: float,
+    density: float,
+    spin: float,
+    g: float,
+) -> Air:
     """The Air of the bare effects named in `effects` (for a caller without an Effects catalogue)."""
     values = {"drag_coefficient": drag_coefficient, "lift_coefficient": lift_coefficient, "spin": spin}
     return assemble(BARE, frozenset(effects) & set(BARE.names), values, Body.of(g, mass, diameter, density))
@@ -177,13 +206,16 @@ def rhs_for(a: Air):
     g, accel = a.g, a.accel
     gravity = (0.0, -g)
     if accel is None:
+
         def rhs(t, s):
             return [s[2], s[3], 0.0, -g]
     else:
+
         def rhs(t, s):
             vx, vy = s[2], s[3]
             ax, ay = accel(gravity, vx, vy, math.hypot(vx, vy))
             return [vx, vy, ax, ay]
+
     return rhs
 
 
@@ -200,33 +232,71 @@ class Flight:
     path: tuple[list[float], list[float]] = field(default_factory=lambda: ([], []))
 
 
-def fly(a: Air, h_i: float, theta_i: float, v_i: float, d: float, rtol: float,
-        ground: float = 0.0, samples: int = 0, max_steps: int = 100_000) -> Flight:
+def fly(
+    a: Air,
+    h_i: float,
+    theta_i: float,
+    v_i: float,
+    d: float,
+    rtol: float,
+    ground: float = 0.0,
+    samples: int = 0,
+    max_steps: int = 100_000,
+) -> Flight:
     """Integrate from release to the target distance d (terminal event), the ground, or T_MAX.
 
     The path is the step points, or `samples` points evenly spaced in time on the dense output.
     The apex is the highest point flown: a ball still rising at the target peaks there."""
     s0 = [0.0, h_i, v_i * math.cos(theta_i), v_i * math.sin(theta_i)]
     scale = max(abs(h_i), d, v_i, 1.0)
-    events = [Event("target", lambda t, s: s[0] - d, +1),
-              Event("ground", lambda t, s: s[1] - ground, -1),
-              Event("apex", lambda t, s: s[3], -1, terminal=False)]
-    run = integrate(rhs_for(a), 0.0, T_MAX, s0, rtol=rtol, atol=rtol * scale * 1e-3, events=events,
-                    dense=samples > 0, max_steps=max_steps)
+    events = [
+        Event("target", lambda t, s: s[0] - d, +1),
+        Event("ground", lambda t, s: s[1] - ground, -1),
+        Event("apex", lambda t, s: s[3], -1, terminal=False),
+    ]
+    run = integrate(
+        rhs_for(a),
+        0.0,
+        T_MAX,
+        s0,
+        rtol=rtol,
+        atol=rtol * scale * 1e-3,
+        events=events,
+        dense=samples > 0,
+        max_steps=max_steps,
+    )
     end = run.y[-1]
     apex = max([h_i, end[1]] + [c[2][1] for c in run.crossings if c[0] == "apex"])
     points = run.y
     if samples > 0 and run.dense:
         t_end = run.t[-1]
         points = [run.at(min(t_end * i / samples, t_end)) for i in range(samples)] + [end]
-    return Flight(run.event == "target", run.t[-1], end[1], math.atan2(end[3], end[2]),
-                  math.hypot(end[2], end[3]), apex, end[0], run.nfev,
-                  ([s[0] for s in points], [s[1] for s in points]))
+    return Flight(
+        run.event == "target",
+        run.t[-1],
+        end[1],
+        math.atan2(end[3], end[2]),
+        math.hypot(end[2], end[3]),
+        apex,
+        end[0],
+        run.nfev,
+        ([s[0] for s in points], [s[1] for s in points]),
+    )
 
 
-def aim(a: Air, h_i: float, h_f: float, d: float, theta_f: float, rtol: float,
-        guess: tuple[float, float], max_flights: int = 400, max_steps: int = 100_000,
-        max_nfev: int | None = None, spent: list[int] | None = None) -> tuple[float, float, int]:
+def aim(
+    a: Air,
+    h_i: float,
+    h_f: float,
+    d: float,
+    theta_f: float,
+    rtol: float,
+    guess: tuple[float, float],
+    max_flights: int = 400,
+    max_steps: int = 100_000,
+    max_nfev: int | None = None,
+    spent: list[int] | None = None,
+) -> tuple[float, float, int]:
     """Release angle and speed that reach (d, h_f) arriving at angle theta_f, by root finding
     (scipy.optimize.root, hybrid Powell) from the vacuum solution. Returns (θ_i, v_i, nfev).
     ValueError when there is none, or when the flights tried exceed max_nfev evaluations.
@@ -247,16 +317,29 @@ def aim(a: Air, h_i: float, h_f: float, d: float, theta_f: float, rtol: float,
             return [f.height - h_f - 1e3 * (d - f.x_end), f.angle - theta_f]
         return [(f.height - h_f) / max(d, 1.0), f.angle - theta_f]
 
-    sol = root(residual, [guess[0], math.log(guess[1])], method="hybr",
-               options={"xtol": 1e-11, "maxfev": max_flights, "eps": rtol})  # FD step above the flight noise
+    sol = root(
+        residual,
+        [guess[0], math.log(guess[1])],
+        method="hybr",
+        options={"xtol": 1e-11, "maxfev": max_flights, "eps": rtol},
+    )  # FD step above the flight noise
     res = residual(sol.x)
     if not sol.success or max(abs(r) for r in res) > 1e-6:  # includes a root outside any throw
         raise ValueError("no release reaches that target with these flight effects")
     return float(sol.x[0]), float(math.exp(sol.x[1])), count[0]
 
 
-def aim_along(path, h_i: float, h_f: float, d: float, rtol: float, guess: tuple[float, float],
-              spent: list[int], max_halvings: int = 6, **limits) -> tuple[float, float]:
+def aim_along(
+    path,
+    h_i: float,
+    h_f: float,
+    d: float,
+    rtol: float,
+    guess: tuple[float, float],
+    spent: list[int],
+    max_halvings: int = 6,
+    **limits,
+) -> tuple[float, float]:
     """Continuation: follow the root of `aim` from path(0), where `guess` is (nearly) the answer, to
     path(1). path(s) -> (Air, θ_f). Hybrid Powell from the vacuum answer can miss when the effects
     bend the path far from the parabola; small steps in s keep each start close to its root.

@@ -16,10 +16,10 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
-from typing import Callable, Iterator, Sequence
 
 Vector = list[float]
 RHS = Callable[[float, Vector], Vector]
@@ -36,11 +36,19 @@ _A = (
     (35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84),
 )
 _E = (71 / 57600, 0.0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40)
-_D = (-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799, -10690763975 / 1880347072,
-      701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423)
+_D = (
+    -12715105075 / 11282082432,
+    0.0,
+    87487479700 / 32700410799,
+    -10690763975 / 1880347072,
+    701980252875 / 199316789632,
+    -1453857185 / 822651844,
+    69997945 / 29380423,
+)
 
 
 # ---- the per-solve guard: a budget of work and wall time, and a way to cancel ------------------
+
 
 class Stopped(Exception):
     """Integration stopped from outside the equations (not a RuntimeError, so the fallbacks that
@@ -48,7 +56,7 @@ class Stopped(Exception):
 
 
 class BudgetExceeded(Stopped):
-    def __init__(self, budget: "Budget", what: str):
+    def __init__(self, budget: Budget, what: str):
         self.budget = budget
         super().__init__(what)
 
@@ -83,8 +91,9 @@ _budgets: ContextVar[tuple[Budget, ...]] = ContextVar("gearhead_budgets", defaul
 
 
 @contextmanager
-def budget(max_nfev: int | None = None, max_seconds: float | None = None,
-           cancel: Callable[[], bool] | None = None) -> Iterator[Budget]:
+def budget(
+    max_nfev: int | None = None, max_seconds: float | None = None, cancel: Callable[[], bool] | None = None
+) -> Iterator[Budget]:
     """Everything integrated inside is charged to this budget (and to any enclosing one).
     Context variables are per thread: a solve in the app's worker thread has its own."""
     b = Budget(max_nfev, max_seconds, cancel)
@@ -137,14 +146,35 @@ def _interp(rc, theta: float) -> Vector:
     return [a + theta * (b + one * (c + theta * (d + one * e))) for a, b, c, d, e in zip(r1, r2, r3, r4, r5)]
 
 
-def integrate(rhs: RHS, t0: float, t1: float, y0: Sequence[float], rtol: float = 1e-6,
-              atol: float = 1e-9, events: Sequence[Event] = (), max_steps: int = 100_000, first_step: float | None = None, dense: bool = False,
-              restart: Sequence[str] = ()) -> Run:
+def integrate(
+    rhs: RHS,
+    t0: float,
+    t1: float,
+    y0: Sequence[float],
+    rtol: float = 1e-6,
+    atol: float = 1e-9,
+    events: Sequence[Event] = (),
+    max_steps: int = 100_000,
+    first_step: float | None = None,
+    dense: bool = False,
+    restart: Sequence[str] = (),
+) -> Run:
     """`restart`: names of events that were located at t0 and handled by the caller (a restart at an
     event). A crossing of one of them found again at t0 itself (within 1e-10 of the first step) is
     that same event, not a new one: it is not reported, so a caller that restarts cannot loop."""
-    return _dp54(rhs, t0, t1, list(map(float, y0)), rtol, atol, events, max_steps, first_step, dense,
-                 frozenset(restart))
+    return _dp54(
+        rhs,
+        t0,
+        t1,
+        list(map(float, y0)),
+        rtol,
+        atol,
+        events,
+        max_steps,
+        first_step,
+        dense,
+        frozenset(restart),
+    )
 
 
 def _norm(v, y0, y1, rtol, atol) -> float:
@@ -225,7 +255,9 @@ def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense,
             for idx, ev in enumerate(events):
                 g_new = ev.g(t_new, y_new)
                 g_old = g_prev[idx]
-                crossed = (g_old < 0 <= g_new and ev.direction >= 0) or (g_old > 0 >= g_new and ev.direction <= 0)
+                crossed = (g_old < 0 <= g_new and ev.direction >= 0) or (
+                    g_old > 0 >= g_new and ev.direction <= 0
+                )
                 if crossed:
                     te = _locate(ev, rc, t, hs, g_old, g_new)
                     if steps == 0 and ev.name in restart and abs(te - t0) <= 1e-10 * abs(hs):
@@ -250,11 +282,11 @@ def _dp54(rhs, t0, t1, y, rtol, atol, events, max_steps, first_step, keep_dense,
             ys.append(y)
             if last:
                 return Run(ts, ys, nfev, steps, rejected, None, dense, crossings)
-            fac = 0.9 * err ** -0.2 if err > 0 else 10.0
+            fac = 0.9 * err**-0.2 if err > 0 else 10.0
             h = h * min(10.0, max(0.2, fac))
         else:
             rejected += 1
-            h = h * max(0.1, 0.9 * err ** -0.2)
+            h = h * max(0.1, 0.9 * err**-0.2)
             # only a rejected step can underflow: an accepted tiny step (a tiny first_step handed on
             # from a previous segment) grows by up to 10x per step and is not a failure
             if h < 1e-14 * max(1.0, abs(t)):

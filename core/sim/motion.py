@@ -36,16 +36,17 @@ State (scaled to O(1) so one tolerance fits all): p/d, w/v_ref, energy/E_ref.
 from __future__ import annotations
 
 import math
-from functools import lru_cache
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any, Mapping
+from functools import lru_cache
+from typing import Any
 
 from ..errors import InputError
 from ..model import Field, Output, Plot
 from ..motors import Motor, motor_fields
 from .effects import Effect, Effects, Part, Slot
-from .motor_limits import _Array, SCALAR, bus_resistance_of, electrical, electrical_effects, release_emfs  # noqa: F401 (shared)
 from .integrate import Event, integrate
+from .motor_limits import SCALAR, _Array, bus_resistance_of, electrical, electrical_effects, release_emfs  # noqa: F401 (shared)
 from .scene import SimRun
 
 T_MAX = 3600.0  # s: a move longer than an hour is not a mechanism, it is an error
@@ -57,8 +58,6 @@ SLOTS = (
     Slot("friction", "sum", "constant force or torque against the motion (N or N·m)"),
     Slot("duty", "min", "upper bound on the motor duty from a current limit, given the back-EMF E"),
 )
-
-
 
 
 @dataclass(frozen=True)
@@ -116,17 +115,30 @@ class Mechanism:
 def friction_effect(quantity: str, unit: str, name: str, help: str, default: float) -> Effect:
     def build(values, mech):
         F = values[name]
-        return Part(terms={"friction": lambda: F},
-                    report=lambda run: {"kS": F / mech.force_per_volt})
-    return Effect("friction", help, build,
-                  fields=(Field(name, "Friction", quantity, unit, default=default, min=0, max=2.2e5,
-                                help="Constant force or torque against the motion (Coulomb friction), "
-                                     "reported as kS."),),
-                  outputs=(Output("kS", "kS", "voltage", "V",
-                                  help="Voltage to overcome the friction (WPILib kS)."),))
+        return Part(terms={"friction": lambda: F}, report=lambda run: {"kS": F / mech.force_per_volt})
+
+    return Effect(
+        "friction",
+        help,
+        build,
+        fields=(
+            Field(
+                name,
+                "Friction",
+                quantity,
+                unit,
+                default=default,
+                min=0,
+                max=2.2e5,
+                help="Constant force or torque against the motion (Coulomb friction), reported as kS.",
+            ),
+        ),
+        outputs=(Output("kS", "kS", "voltage", "V", help="Voltage to overcome the friction (WPILib kS)."),),
+    )
 
 
 # --- the assembled right-hand side ---------------------------------------------------------------
+
 
 @dataclass
 class Setup:
@@ -157,7 +169,7 @@ def build_rhs(setup: Setup):
     v_ref = m.free_speed
     # energy: a quadrature that may cross zero (regeneration moving down); scaled small so that
     # the relative tolerance, not the absolute one, governs it
-    e_ref = 1e-3 * m.count * m.battery_voltage ** 2 / m.R * d / v_ref
+    e_ref = 1e-3 * m.count * m.battery_voltage**2 / m.R * d / v_ref
     k_emf = v_ref * m.n / m.Kv  # E per unit of scaled speed
     k_force = m.force_per_amp
     M = m.inertia
@@ -174,6 +186,7 @@ def build_rhs(setup: Setup):
             u, I = elec(k_emf * wh)
             return (k_force * I + F_const) * a_scale, u * I
     else:
+
         def accel(ph, wh):
             u, I = elec(k_emf * wh)
             return (k_force * I + s * force(q0 + s * d * ph) - F_fric) * a_scale, u * I
@@ -209,23 +222,38 @@ def check_can_move(setup: Setup) -> None:
             field_name = "stator_current_limit"
             if "supply_limit" in setup.asm.on:
                 sup = setup.asm.parts["supply_limit"].terms["duty"](0.0)
-                st = setup.asm.parts["stator_limit"].terms["duty"](0.0) if "stator_limit" in setup.asm.on else math.inf
+                st = (
+                    setup.asm.parts["stator_limit"].terms["duty"](0.0)
+                    if "stator_limit" in setup.asm.on
+                    else math.inf
+                )
                 if sup <= st:
                     field_name = "supply_current_limit"
-            raise InputError(field_name, f"is too low to move it: at rest the motors give {F0:.4g} {unit} "
-                                         f"({I0:.4g} A each), and the load{where} needs more than {load:.4g} {unit} "
-                                         f"({need_I:.4g} A each)")
+            raise InputError(
+                field_name,
+                f"is too low to move it: at rest the motors give {F0:.4g} {unit} "
+                f"({I0:.4g} A each), and the load{where} needs more than {load:.4g} {unit} "
+                f"({need_I:.4g} A each)",
+            )
     if m.bus_resistance > 0:
         _, I_nosag = electrical(replace(m, bus_resistance=0.0), None)(0.0)
         if m.force_per_amp * I_nosag > load:
-            raise InputError("battery_resistance", f"sags the battery so far at stall that the motors give only "
-                                                   f"{F0:.4g} {unit}; the load{where} needs {load:.4g} {unit}")
+            raise InputError(
+                "battery_resistance",
+                f"sags the battery so far at stall that the motors give only "
+                f"{F0:.4g} {unit}; the load{where} needs {load:.4g} {unit}",
+            )
     if F_fric > 0 and F0 > load - F_fric:
-        raise InputError(names.get("friction", "friction"), f"({F_fric:.4g} {unit}) with the load is more than "
-                                                             f"the motors' stall force {F0:.4g} {unit}")
-    raise InputError("ratio", f"is too low: the motors stall at {F0:.4g} {unit} and the load{where} needs "
-                              f"{load:.4g} {unit} ({need_I:.4g} A each, more than the stall current): raise "
-                              f"the ratio or the motor count, or lighten the load")
+        raise InputError(
+            names.get("friction", "friction"),
+            f"({F_fric:.4g} {unit}) with the load is more than the motors' stall force {F0:.4g} {unit}",
+        )
+    raise InputError(
+        "ratio",
+        f"is too low: the motors stall at {F0:.4g} {unit} and the load{where} needs "
+        f"{load:.4g} {unit} ({need_I:.4g} A each, more than the stall current): raise "
+        f"the ratio or the motor count, or lighten the load",
+    )
 
 
 @dataclass
@@ -290,15 +318,19 @@ def move(setup: Setup, rtol: float, dense: bool = False, method: str | None = No
         method = "DP54" if estimated_time(setup) / time_constant(m) < STIFF else "LSODA"
     if method == "DP54":
         try:
-            run = integrate(rhs, 0.0, T_MAX, y0, rtol=rtol, atol=rtol, events=events, max_steps=DP54_STEPS,
-                            dense=dense)
+            run = integrate(
+                rhs, 0.0, T_MAX, y0, rtol=rtol, atol=rtol, events=events, max_steps=DP54_STEPS, dense=dense
+            )
         except RuntimeError:  # stiffer than estimated (explicit steps held at ≈ 3τ): hand it on
             run, method = _lsoda(rhs, y0, rtol, events), "LSODA after DP54"
     else:
         run = _lsoda(rhs, y0, rtol, events)
     if run.event != "goal":
-        raise InputError("ratio", f"the mechanism does not reach the goal within {T_MAX:.0f} s "
-                                  f"(it only just beats the load): raise the ratio or the motors")
+        raise InputError(
+            "ratio",
+            f"the mechanism does not reach the goal within {T_MAX:.0f} s "
+            f"(it only just beats the load): raise the ratio or the motors",
+        )
     end = run.y[-1]
     peak_w = max([end[1]] + [c[2][1] for c in run.crossings if c[0] == "peak"])
     return Move(run.t[-1], peak_w * v_ref, end[2] * e_ref, run.nfev, run, scales, method)
@@ -309,12 +341,20 @@ def _lsoda(rhs, y0, rtol, events, peak_from_steps: bool = False) -> _Stiff:
 
     fns = []
     for ev in events:
-        fn = (lambda e: (lambda t, y: e.g(t, y)))(ev)
+        fn = (lambda e: lambda t, y: e.g(t, y))(ev)
         fn.terminal, fn.direction = ev.terminal, ev.direction
         fns.append(fn)
     try:
-        sol = solve_ivp(lambda t, y: rhs(t, y), (0.0, T_MAX), y0, method="LSODA", rtol=rtol, atol=rtol,
-                        events=fns, dense_output=True)
+        sol = solve_ivp(
+            lambda t, y: rhs(t, y),
+            (0.0, T_MAX),
+            y0,
+            method="LSODA",
+            rtol=rtol,
+            atol=rtol,
+            events=fns,
+            dense_output=True,
+        )
     except ValueError:
         # scipy's event root finder found no sign change on its own dense output (a peak event on
         # a step the interpolant smooths over, e.g. a feather-light arm): run without the
@@ -354,8 +394,11 @@ def extremes(setup: Setup, w_max: float) -> dict[str, float]:
     u0, I0 = elec(0.0)
     _, I_end = elec(E_max)  # negative when the load drives the motor past free speed (regeneration)
     peak_sup = max(sup)
-    return {"peak_stator_current": max(I0, -I_end), "peak_supply_current": peak_sup,
-            "min_bus_voltage": m.battery_voltage - m.bus_resistance * peak_sup}
+    return {
+        "peak_stator_current": max(I0, -I_end),
+        "peak_supply_current": peak_sup,
+        "min_bus_voltage": m.battery_voltage - m.bus_resistance * peak_sup,
+    }
 
 
 def samples(setup: Setup, mv: Move, count: int = SAMPLES) -> dict[str, tuple[list[float], list[float]]]:
@@ -376,11 +419,17 @@ def samples(setup: Setup, mv: Move, count: int = SAMPLES) -> dict[str, tuple[lis
         i_st.append(I)
         i_sup.append(u * I)
         bus.append(m.battery_voltage - m.bus_resistance * u * I)
-    return {"position": (ts, q), "speed": (ts, v), "stator_current": (ts, i_st),
-            "supply_current": (ts, i_sup), "bus_voltage": (ts, bus)}
+    return {
+        "position": (ts, q),
+        "speed": (ts, v),
+        "stator_current": (ts, i_st),
+        "supply_current": (ts, i_sup),
+        "bus_voltage": (ts, bus),
+    }
 
 
 # --- feedforward and feedback (WPILib conventions) -----------------------------------------------
+
 
 def feedforward(setup: Setup, q_hold: float) -> dict[str, float]:
     """kG, kV, kA in volts per unit of q: V = kS·sgn(q̇) + kG + kV·q̇ + kA·q̈ from (M2)-(M4) at
@@ -391,8 +440,9 @@ def feedforward(setup: Setup, q_hold: float) -> dict[str, float]:
 
 
 @lru_cache(maxsize=256)
-def lqr(kV: float, kA: float, q_position: float, q_velocity: float, r_volts: float, dt: float,
-        delay: float) -> tuple[float, float]:
+def lqr(
+    kV: float, kA: float, q_position: float, q_velocity: float, r_volts: float, dt: float, delay: float
+) -> tuple[float, float]:
     """kP, kD as WPILib's LinearQuadraticRegulator computes them (LinearQuadraticRegulator.java):
     plant ẋ = [[0, 1], [0, −kV/kA]]·x + [0, 1/kA]·u, discretised with a zero-order hold over dt;
     Q = diag(1/q_pos², 1/q_vel²), R = 1/r²; S from the discrete algebraic Riccati equation;
@@ -417,6 +467,7 @@ def lqr(kV: float, kA: float, q_position: float, q_velocity: float, r_volts: flo
 
 
 # --- one move, as a scene run --------------------------------------------------------------------
+
 
 class _ClosedRun:
     """The closed-form move, answering `at(t)` and `y[-1]` in the scaled state like a solver run."""
@@ -488,20 +539,33 @@ def run_move(setup: Setup, rtol: float, hold_q: float | None = None) -> SimRun:
     values.update(setup.asm.report(mv))
     v = setup.values
     try:
-        kP, kD = lqr(ff["kV"], ff["kA"], v["q_position"], v["q_velocity"], v["r_volts"],
-                     v["control_period"], v["sensor_delay"])
+        kP, kD = lqr(
+            ff["kV"],
+            ff["kA"],
+            v["q_position"],
+            v["q_velocity"],
+            v["r_volts"],
+            v["control_period"],
+            v["sensor_delay"],
+        )
     except (ValueError, ArithmeticError, Exception) as exc:  # noqa: BLE001 - scipy raises LinAlgError
-        raise InputError("q_position", f"no LQR solution for these tolerances ({type(exc).__name__})") from None
+        raise InputError(
+            "q_position", f"no LQR solution for these tolerances ({type(exc).__name__})"
+        ) from None
     if not (math.isfinite(kP) and math.isfinite(kD)):
         raise InputError("q_position", "the LQR gains are not finite for these tolerances")
     values.update(kP=kP, kD=kD)
     warnings: list[str] = []
     if mv.method == "closed form":
-        warnings.append("Nothing in this move needs integrating (a constant load, no current limit): "
-                        "closed form, no integration.")
+        warnings.append(
+            "Nothing in this move needs integrating (a constant load, no current limit): "
+            "closed form, no integration."
+        )
     if "stator_limit" in setup.asm.on and values["hold_current"] > v["stator_current_limit"]:
-        warnings.append("The stator current limit is below the current needed to hold at the goal: "
-                        "it arrives, but cannot stay there.")
+        warnings.append(
+            "The stator current limit is below the current needed to hold at the goal: "
+            "it arrives, but cannot stay there."
+        )
     key = {"time_to_goal": mv.time, "max_speed": mv.max_speed, "energy": abs(mv.energy)}
     return SimRun(values, key, mv.nfev, warnings, samples(setup, mv))
 
@@ -514,59 +578,168 @@ MODE_LABELS = ("One move at the given ratio", "Optimise: the ratio that arrives 
 
 def battery_motor_fields(default_motor: str, default_count: int) -> tuple[Field, ...]:
     """The motor fields, the voltage being the battery's at rest (a move runs at full voltage)."""
-    return tuple(replace(f, label="Battery voltage", default=12,
-                         help="Battery voltage at rest (open circuit); full voltage toward the goal.")
-                 if f.name == "voltage" else f
-                 for f in motor_fields(default_motor=default_motor, default_count=default_count))
-
-
-def mode_field() -> Field:
-    return Field("mode", "Solve", choices=MODES, choice_labels=MODE_LABELS, default="move",
-                 help="One move at the ratio you give, or the ratio that reaches the goal fastest "
-                      "(time against ratio plotted).")
-
-
-def feedback_fields(position_quantity: str, position_unit: str, q_pos: float, speed_quantity: str,
-                    speed_unit: str, q_vel: float) -> tuple[Field, ...]:
-    return (
-        Field("q_position", "LQR position tolerance", position_quantity, position_unit, default=q_pos,
-              min=0, min_exclusive=True, max=3.9e4,
-              help="LQR state tolerance on position (WPILib qelms[0]): the error you accept."),
-        Field("q_velocity", "LQR velocity tolerance", speed_quantity, speed_unit, default=q_vel,
-              min=0, min_exclusive=True, max=3.9e5,
-              help="LQR state tolerance on velocity (WPILib qelms[1])."),
-        Field("r_volts", "LQR control effort", "voltage", "V", default=12, min=0, min_exclusive=True, max=100,
-              help="LQR input tolerance (WPILib relms): the voltage you are willing to apply."),
-        Field("control_period", "Control period", "time", "ms", default=20, min=0.1, max=1000,
-              help="Loop period dt the gains are discretised for (roboRIO: 20 ms; on a motor "
-                   "controller: 1 ms)."),
-        Field("sensor_delay", "Sensor delay", "time", "ms", default=0, min=0, max=1000,
-              help="Measurement latency; the gains are latency-compensated as WPILib's "
-                   "LinearQuadraticRegulator.latencyCompensate does (0: none)."),
+    return tuple(
+        replace(
+            f,
+            label="Battery voltage",
+            default=12,
+            help="Battery voltage at rest (open circuit); full voltage toward the goal.",
+        )
+        if f.name == "voltage"
+        else f
+        for f in motor_fields(default_motor=default_motor, default_count=default_count)
     )
 
 
-def common_outputs(position_q: str, position_u: str, speed_q: str, speed_u: str, per_speed_u: str,
-                   per_accel_u: str, per_pos_u: str, kg_help: str) -> tuple[Output, ...]:
+def mode_field() -> Field:
+    return Field(
+        "mode",
+        "Solve",
+        choices=MODES,
+        choice_labels=MODE_LABELS,
+        default="move",
+        help="One move at the ratio you give, or the ratio that reaches the goal fastest "
+        "(time against ratio plotted).",
+    )
+
+
+def feedback_fields(
+    position_quantity: str,
+    position_unit: str,
+    q_pos: float,
+    speed_quantity: str,
+    speed_unit: str,
+    q_vel: float,
+) -> tuple[Field, ...]:
     return (
-        Output("time_to_goal", "Time to goal", "time", "s", help="First arrival at the goal, from rest at "
-               "full voltage (an event located on the solver's dense output, not a step grid)."),
+        Field(
+            "q_position",
+            "LQR position tolerance",
+            position_quantity,
+            position_unit,
+            default=q_pos,
+            min=0,
+            min_exclusive=True,
+            max=3.9e4,
+            help="LQR state tolerance on position (WPILib qelms[0]): the error you accept.",
+        ),
+        Field(
+            "q_velocity",
+            "LQR velocity tolerance",
+            speed_quantity,
+            speed_unit,
+            default=q_vel,
+            min=0,
+            min_exclusive=True,
+            max=3.9e5,
+            help="LQR state tolerance on velocity (WPILib qelms[1]).",
+        ),
+        Field(
+            "r_volts",
+            "LQR control effort",
+            "voltage",
+            "V",
+            default=12,
+            min=0,
+            min_exclusive=True,
+            max=100,
+            help="LQR input tolerance (WPILib relms): the voltage you are willing to apply.",
+        ),
+        Field(
+            "control_period",
+            "Control period",
+            "time",
+            "ms",
+            default=20,
+            min=0.1,
+            max=1000,
+            help="Loop period dt the gains are discretised for (roboRIO: 20 ms; on a motor "
+            "controller: 1 ms).",
+        ),
+        Field(
+            "sensor_delay",
+            "Sensor delay",
+            "time",
+            "ms",
+            default=0,
+            min=0,
+            max=1000,
+            help="Measurement latency; the gains are latency-compensated as WPILib's "
+            "LinearQuadraticRegulator.latencyCompensate does (0: none).",
+        ),
+    )
+
+
+def common_outputs(
+    position_q: str,
+    position_u: str,
+    speed_q: str,
+    speed_u: str,
+    per_speed_u: str,
+    per_accel_u: str,
+    per_pos_u: str,
+    kg_help: str,
+) -> tuple[Output, ...]:
+    return (
+        Output(
+            "time_to_goal",
+            "Time to goal",
+            "time",
+            "s",
+            help="First arrival at the goal, from rest at "
+            "full voltage (an event located on the solver's dense output, not a step grid).",
+        ),
         Output("max_speed", "Max speed", speed_q, speed_u),
         Output("free_speed", "Free speed", speed_q, speed_u, help="At the battery voltage, no load."),
-        Output("peak_stator_current", "Peak stator current", "current", "A", help="Per motor (at the start)."),
-        Output("peak_supply_current", "Peak supply current", "current", "A", help="Per motor: stator current × duty."),
+        Output(
+            "peak_stator_current", "Peak stator current", "current", "A", help="Per motor (at the start)."
+        ),
+        Output(
+            "peak_supply_current",
+            "Peak supply current",
+            "current",
+            "A",
+            help="Per motor: stator current × duty.",
+        ),
         Output("peak_battery_current", "Peak battery current", "current", "A", help="All motors."),
-        Output("min_bus_voltage", "Min bus voltage", "voltage", "V", help="Battery voltage minus the sag "
-               "(battery_sag); the battery voltage when that effect is off."),
-        Output("energy", "Energy", "energy", "J", help="Drawn from the battery over the move (its EMF × current)."),
-        Output("hold_current", "Hold current", "current", "A", help="Per motor, to hold at the goal "
-               "against the field (gravity, counterbalance); friction not counted on."),
+        Output(
+            "min_bus_voltage",
+            "Min bus voltage",
+            "voltage",
+            "V",
+            help="Battery voltage minus the sag (battery_sag); the battery voltage when that effect is off.",
+        ),
+        Output(
+            "energy",
+            "Energy",
+            "energy",
+            "J",
+            help="Drawn from the battery over the move (its EMF × current).",
+        ),
+        Output(
+            "hold_current",
+            "Hold current",
+            "current",
+            "A",
+            help="Per motor, to hold at the goal "
+            "against the field (gravity, counterbalance); friction not counted on.",
+        ),
         Output("kG", "kG", "voltage", "V", help=kg_help),
         Output("kV", "kV", f"voltage_per_{speed_q}", per_speed_u, help="WPILib kV: volts per unit of speed."),
-        Output("kA", "kA", f"voltage_per_{'angular_' if speed_q == 'angular_speed' else ''}acceleration",
-               per_accel_u, help="WPILib kA: volts per unit of acceleration."),
-        Output("kP", "kP", f"voltage_per_{position_q}", per_pos_u, help="LQR position gain (WPILib "
-               "LinearQuadraticRegulator, latency-compensated)."),
+        Output(
+            "kA",
+            "kA",
+            f"voltage_per_{'angular_' if speed_q == 'angular_speed' else ''}acceleration",
+            per_accel_u,
+            help="WPILib kA: volts per unit of acceleration.",
+        ),
+        Output(
+            "kP",
+            "kP",
+            f"voltage_per_{position_q}",
+            per_pos_u,
+            help="LQR position gain (WPILib LinearQuadraticRegulator, latency-compensated).",
+        ),
         Output("kD", "kD", f"voltage_per_{speed_q}", per_speed_u, help="LQR velocity gain."),
     )
 
@@ -577,16 +750,43 @@ CANDIDATES = 240
 BATCH_STEPS = 150  # steps per candidate over its estimated move time (0.3 % on the time: a screen)
 
 
-def plots(position_label: str, position_q: str, position_u: str, speed_q: str, speed_u: str) -> tuple[Plot, ...]:
+def plots(
+    position_label: str, position_q: str, position_u: str, speed_q: str, speed_u: str
+) -> tuple[Plot, ...]:
     """The charts of a move (position, speed, currents, bus voltage over time) and of optimise."""
     return (
-        Plot(position_label.capitalize(), ("position",), "time", "time", "s", position_label, position_q, position_u),
+        Plot(
+            position_label.capitalize(),
+            ("position",),
+            "time",
+            "time",
+            "s",
+            position_label,
+            position_q,
+            position_u,
+        ),
         Plot("Speed", ("speed",), "time", "time", "s", "speed", speed_q, speed_u),
-        Plot("Current (per motor)", ("stator_current", "supply_current"), "time", "time", "s", "current",
-             "current", "A"),
+        Plot(
+            "Current (per motor)",
+            ("stator_current", "supply_current"),
+            "time",
+            "time",
+            "s",
+            "current",
+            "current",
+            "A",
+        ),
         Plot("Bus voltage", ("bus_voltage",), "time", "time", "s", "voltage", "voltage", "V"),
-        Plot("Time vs ratio (optimise)", ("time_vs_ratio",), "ratio", "dimensionless", "", "time to goal",
-             "time", "s"),
+        Plot(
+            "Time vs ratio (optimise)",
+            ("time_vs_ratio",),
+            "ratio",
+            "dimensionless",
+            "",
+            "time to goal",
+            "time",
+            "s",
+        ),
     )
 
 
@@ -594,7 +794,9 @@ def characteristic_n(m: Mechanism) -> float:
     """The transmission n at which the move's distance equals free speed × time constant:
     d = (V·Kv/n)·(M·R·Kv/(η·N·Kt·n²)) ⇒ n = (V·Kv²·M·R/(η·N·Kt·d))^(1/3). The fastest ratio lies
     within a decade or so of it (short moves gear down, long moves gear up)."""
-    return (m.battery_voltage * m.Kv**2 * m.inertia * m.R / (m.efficiency * m.count * m.Kt * m.distance)) ** (1 / 3)
+    return (m.battery_voltage * m.Kv**2 * m.inertia * m.R / (m.efficiency * m.count * m.Kt * m.distance)) ** (
+        1 / 3
+    )
 
 
 def batch_times(setup: Setup) -> Any:
@@ -655,11 +857,19 @@ def batch_times(setup: Setup) -> Any:
             # cubic Hermite p(θ) on [t, t + h] through (p, w) and (p1, w1): solve p(θ) = d by Newton
             th = np.clip((d - p) / np.maximum(p1 - p, 1e-300), 0.0, 1.0)
             for _ in range(6):
-                h00, h10, h01, h11 = (2 * th**3 - 3 * th**2 + 1, th**3 - 2 * th**2 + th, -2 * th**3 + 3 * th**2,
-                                      th**3 - th**2)
+                h00, h10, h01, h11 = (
+                    2 * th**3 - 3 * th**2 + 1,
+                    th**3 - 2 * th**2 + th,
+                    -2 * th**3 + 3 * th**2,
+                    th**3 - th**2,
+                )
                 f = h00 * p + h10 * h * w + h01 * p1 + h11 * h * w1 - d
-                df = ((6 * th**2 - 6 * th) * p + (3 * th**2 - 4 * th + 1) * h * w + (-6 * th**2 + 6 * th) * p1
-                      + (3 * th**2 - 2 * th) * h * w1)
+                df = (
+                    (6 * th**2 - 6 * th) * p
+                    + (3 * th**2 - 4 * th + 1) * h * w
+                    + (-6 * th**2 + 6 * th) * p1
+                    + (3 * th**2 - 2 * th) * h * w1
+                )
                 th = np.clip(th - f / np.where(np.abs(df) > 1e-300, df, 1e-300), 0.0, 1.0)
             arrival = np.where(arrived, t + th * h, arrival)
             done = done | arrived
@@ -670,8 +880,9 @@ def batch_times(setup: Setup) -> Any:
     return arrival
 
 
-def optimise(make_setup, ratio_hint: float, rtol: float, length_scale: float,
-             hold_q: float | None = None) -> SimRun:
+def optimise(
+    make_setup, ratio_hint: float, rtol: float, length_scale: float, hold_q: float | None = None
+) -> SimRun:
     """The reduction G that reaches the goal first: a batch of CANDIDATES ratios (log-spaced over
     two and a half decades each side of the characteristic ratio, numpy over candidates), then the
     best one refined with scipy's bounded Brent on the accurate move, and the full move there.
@@ -720,6 +931,7 @@ def optimise(make_setup, ratio_hint: float, rtol: float, length_scale: float,
     run.key["best_ratio"] = G_best
     run.series["time_vs_ratio"] = ([float(r) for r in ratios[ok]], [float(x) for x in times[ok]])
     if i in (0, CANDIDATES - 1):
-        run.warnings.append("The fastest ratio is at the edge of the range searched "
-                            f"({ratios[0]:.3g} to {ratios[-1]:.3g}).")
+        run.warnings.append(
+            f"The fastest ratio is at the edge of the range searched ({ratios[0]:.3g} to {ratios[-1]:.3g})."
+        )
     return run

@@ -29,8 +29,9 @@ math namespace): core.sim.motion.Mechanism, or `Circuit` here.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 from ..model import Field
 from .effects import Effect, Effects, Part, Slot, nothing
@@ -69,8 +70,15 @@ SCALAR = _Scalar()
 
 
 def _stator_build(values: Mapping[str, Any], mech: Any) -> Part:
-    I_st, R, Vb, Rb, xp = values["stator_current_limit"], mech.R, mech.battery_voltage, mech.bus_resistance, mech.xp
+    I_st, R, Vb, Rb, xp = (
+        values["stator_current_limit"],
+        mech.R,
+        mech.battery_voltage,
+        mech.bus_resistance,
+        mech.xp,
+    )
     if Rb == 0:
+
         def bound(E):
             return (E + R * I_st) / Vb  # (E2) without sag
     else:
@@ -80,11 +88,18 @@ def _stator_build(values: Mapping[str, Any], mech: Any) -> Part:
             W = E + R * I_st
             disc = Vb * Vb - a * W
             return xp.where(disc >= 0, 2 * W / (Vb + xp.sqrt(xp.maximum(disc, 0.0))), math.inf)  # (E2)
+
     return Part(terms={"duty": bound})
 
 
 def _supply_build(values: Mapping[str, Any], mech: Any) -> Part:
-    I_sup, R, Vb, Rb, xp = values["supply_current_limit"], mech.R, mech.battery_voltage, mech.bus_resistance, mech.xp
+    I_sup, R, Vb, Rb, xp = (
+        values["supply_current_limit"],
+        mech.R,
+        mech.battery_voltage,
+        mech.bus_resistance,
+        mech.xp,
+    )
     a = Vb - I_sup * Rb  # the bus voltage while the supply limit holds
     c = I_sup * R
     if not a > 0:  # the battery cannot deliver I_sup through its resistance: never binds
@@ -93,31 +108,68 @@ def _supply_build(values: Mapping[str, Any], mech: Any) -> Part:
     def bound(E):  # (E3), the positive root written without cancellation for either sign of E
         root = xp.sqrt(E * E + 4 * a * c)
         return xp.where(E >= 0, (E + root) / (2 * a), 2 * c / xp.maximum(root - E, 1e-300))
+
     return Part(terms={"duty": bound})
 
 
 def electrical_effects(limit_default: float = 40.0, supply_default: float = 30.0) -> tuple[Effect, ...]:
     return (
-        Effect("stator_limit", "stator current limit per motor (|I| clipped; the duty drops to hold it)",
-               _stator_build,
-               fields=(Field("stator_current_limit", "Stator current limit", "current", "A",
-                             default=limit_default, min=0, max=2000,
-                             help="Per motor: the controller lowers the duty so the motor current "
-                                  "never exceeds this (e.g. TalonFX StatorCurrentLimit, SPARK smart "
-                                  "current limit)."),)),
-        Effect("supply_limit", "supply current limit per motor (supply current = stator current × duty)",
-               _supply_build,
-               fields=(Field("supply_current_limit", "Supply current limit", "current", "A",
-                             default=supply_default, min=0, max=2000,
-                             help="Per motor: the current drawn from the battery, stator current × "
-                                  "duty, is held at or below this by lowering the duty."),)),
-        Effect("battery_sag", "battery and wiring resistance: the bus sags with the total supply current",
-               nothing,
-               fields=(Field("battery_resistance", "Battery + wiring resistance", "resistance", "ohm",
-                             default=0.02, min=0, max=10,
-                             help="Total of the battery's internal resistance and the wiring to the "
-                                  "controllers (FRC battery ≈ 0.015-0.020 Ω, plus ≈ 0.005 Ω of "
-                                  "wiring). V_bus = V_b − R·(total supply current), solved exactly."),)),
+        Effect(
+            "stator_limit",
+            "stator current limit per motor (|I| clipped; the duty drops to hold it)",
+            _stator_build,
+            fields=(
+                Field(
+                    "stator_current_limit",
+                    "Stator current limit",
+                    "current",
+                    "A",
+                    default=limit_default,
+                    min=0,
+                    max=2000,
+                    help="Per motor: the controller lowers the duty so the motor current "
+                    "never exceeds this (e.g. TalonFX StatorCurrentLimit, SPARK smart "
+                    "current limit).",
+                ),
+            ),
+        ),
+        Effect(
+            "supply_limit",
+            "supply current limit per motor (supply current = stator current × duty)",
+            _supply_build,
+            fields=(
+                Field(
+                    "supply_current_limit",
+                    "Supply current limit",
+                    "current",
+                    "A",
+                    default=supply_default,
+                    min=0,
+                    max=2000,
+                    help="Per motor: the current drawn from the battery, stator current × "
+                    "duty, is held at or below this by lowering the duty.",
+                ),
+            ),
+        ),
+        Effect(
+            "battery_sag",
+            "battery and wiring resistance: the bus sags with the total supply current",
+            nothing,
+            fields=(
+                Field(
+                    "battery_resistance",
+                    "Battery + wiring resistance",
+                    "resistance",
+                    "ohm",
+                    default=0.02,
+                    min=0,
+                    max=10,
+                    help="Total of the battery's internal resistance and the wiring to the "
+                    "controllers (FRC battery ≈ 0.015-0.020 Ω, plus ≈ 0.005 Ω of "
+                    "wiring). V_bus = V_b − R·(total supply current), solved exactly.",
+                ),
+            ),
+        ),
     )
 
 
@@ -135,17 +187,18 @@ def electrical(mech: Any, duty):
         return lambda E: (1.0, (Vb - E) / R1)
     minimum = mech.xp.minimum
     if Rb == 0:
+
         def f(E):
             u = minimum(duty(E), 1.0)
             return u, (u * Vb - E) / R
+
         return f
 
     def f(E):
         u = minimum(duty(E), 1.0)
         return u, (u * Vb - E) / (R + u * u * Rb)  # (E1)
+
     return f
-
-
 
 
 @dataclass(frozen=True)
@@ -162,7 +215,9 @@ class Circuit:
 def circuit_of(motor: Any, battery_voltage: float, bus_resistance: float = 0.0) -> Circuit:
     """(M1) from a core.motors.Motor's data at its specification voltage."""
     R = motor.v_spec / motor.stall_current
-    return Circuit(R, motor.free_speed / (motor.v_spec - R * motor.free_current), battery_voltage, bus_resistance)
+    return Circuit(
+        R, motor.free_speed / (motor.v_spec - R * motor.free_current), battery_voltage, bus_resistance
+    )
 
 
 DUTY = (Slot("duty", "min", "upper bound on the motor duty from a current limit, given the back-EMF E"),)

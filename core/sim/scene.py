@@ -9,10 +9,11 @@ last bit), and builds the accuracy ladder.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterator, Mapping
+from typing import Any
 
 from ..errors import InputError
 from ..model import Field, Output
@@ -31,8 +32,9 @@ DEFAULT_ADVICE = ("accuracy", "try accuracy=coarse, or inputs that make the simu
 
 
 @contextmanager
-def solve_budget(advice: tuple[str, str] = DEFAULT_ADVICE, max_nfev: int = SOLVE_NFEV,
-                 max_seconds: float = SOLVE_SECONDS) -> Iterator[None]:
+def solve_budget(
+    advice: tuple[str, str] = DEFAULT_ADVICE, max_nfev: int = SOLVE_NFEV, max_seconds: float = SOLVE_SECONDS
+) -> Iterator[None]:
     """Run one solve within the budget; past it, an InputError naming the field to change and how
     (never a hang). `advice` = (field, what to change), from the calculator: it knows what is long."""
     try:
@@ -46,10 +48,15 @@ def solve_budget(advice: tuple[str, str] = DEFAULT_ADVICE, max_nfev: int = SOLVE
 
 
 def accuracy_field(default: str = "default") -> Field:
-    return Field("accuracy", "Accuracy", choices=tuple(LEVELS), default=default,
-                 choice_labels=tuple(f"{k} (±{v:.0e})" for k, v in LEVELS.items()),
-                 help="Solver tolerance. Each result shows its error estimate, wall time and "
-                      "right-hand-side evaluations; ctrl+r runs the accuracy-vs-time ladder.")
+    return Field(
+        "accuracy",
+        "Accuracy",
+        choices=tuple(LEVELS),
+        default=default,
+        choice_labels=tuple(f"{k} (±{v:.0e})" for k, v in LEVELS.items()),
+        help="Solver tolerance. Each result shows its error estimate, wall time and "
+        "right-hand-side evaluations; ctrl+r runs the accuracy-vs-time ladder.",
+    )
 
 
 def effects_field(choices: tuple[str, ...], default: tuple[str, ...], help: str) -> Field:
@@ -57,10 +64,18 @@ def effects_field(choices: tuple[str, ...], default: tuple[str, ...], help: str)
 
 
 STATS_OUTPUTS = (
-    Output("error_estimate", "Error estimate", help="Largest relative difference of the key results from a "
-           "run at 100x tighter tolerance (10 000x if equal)."),
-    Output("rhs_evaluations", "Solver work (evaluations)", help="Right-hand-side evaluations of the main run."),
-    Output("wall_time", "Time of one run", "time", "ms", help="Wall time of the main run (not the estimate)."),
+    Output(
+        "error_estimate",
+        "Error estimate",
+        help="Largest relative difference of the key results from a "
+        "run at 100x tighter tolerance (10 000x if equal).",
+    ),
+    Output(
+        "rhs_evaluations", "Solver work (evaluations)", help="Right-hand-side evaluations of the main run."
+    ),
+    Output(
+        "wall_time", "Time of one run", "time", "ms", help="Wall time of the main run (not the estimate)."
+    ),
 )
 VOLATILE = frozenset({"wall_time"})  # differs run to run: hidden from snapshots
 
@@ -94,8 +109,9 @@ def relative_difference(a: Mapping[str, float], b: Mapping[str, float]) -> float
     return worst
 
 
-def run_with_stats(simulate: Simulate, values: Mapping[str, Any],
-                   advice: tuple[str, str] = DEFAULT_ADVICE) -> SimRun:
+def run_with_stats(
+    simulate: Simulate, values: Mapping[str, Any], advice: tuple[str, str] = DEFAULT_ADVICE
+) -> SimRun:
     """The run at the chosen accuracy, with error estimate, evaluations and wall time added, all
     within one solve's budget (`advice` says what to change when it is not enough)."""
     with solve_budget(advice):
@@ -123,8 +139,9 @@ def deferred_estimate() -> Iterator[list[Callable[[], float]]]:
         _DEFERRED.reset(token)
 
 
-def _run_with_stats(simulate: Simulate, values: Mapping[str, Any],
-                    advice: tuple[str, str] = DEFAULT_ADVICE) -> SimRun:
+def _run_with_stats(
+    simulate: Simulate, values: Mapping[str, Any], advice: tuple[str, str] = DEFAULT_ADVICE
+) -> SimRun:
     rtol = LEVELS[values["accuracy"]]
     pending = _DEFERRED.get()
     defer = pending is not None and not pending and simulate in _WARMED
@@ -136,6 +153,7 @@ def _run_with_stats(simulate: Simulate, values: Mapping[str, Any],
     if not run.nfev:
         run.values["error_estimate"] = 0.0  # closed form: nothing was integrated
     elif defer:
+
         def later() -> float:
             with solve_budget(advice):
                 return _estimate(simulate, values, rtol, run.key)
@@ -148,8 +166,13 @@ def _run_with_stats(simulate: Simulate, values: Mapping[str, Any],
     return run
 
 
-def _estimate(simulate: Simulate, values: Mapping[str, Any], rtol: float, key: Mapping[str, float],
-              check_key: Mapping[str, float] | None = None) -> float:
+def _estimate(
+    simulate: Simulate,
+    values: Mapping[str, Any],
+    rtol: float,
+    key: Mapping[str, float],
+    check_key: Mapping[str, float] | None = None,
+) -> float:
     """The largest relative difference of the key results to a run at rtol / 100 (`check_key`
     when that run is done already)."""
     check_rtol = rtol / ESTIMATE_FACTOR
@@ -184,8 +207,9 @@ class Rung:
     nfev: int
 
 
-def ladder(simulate: Simulate, values: Mapping[str, Any], repeats: int = 3,
-           advice: tuple[str, str] = DEFAULT_ADVICE) -> tuple[list[Rung], SimRun]:
+def ladder(
+    simulate: Simulate, values: Mapping[str, Any], repeats: int = 3, advice: tuple[str, str] = DEFAULT_ADVICE
+) -> tuple[list[Rung], SimRun]:
     """Each accuracy level against a reference at REFERENCE_RTOL: error, wall time, evaluations.
     Each run has one solve's budget (the reference, 25x the default's work, is the one that needs it)."""
     with solve_budget(advice, max_nfev=4 * SOLVE_NFEV, max_seconds=4 * SOLVE_SECONDS):

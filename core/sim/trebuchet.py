@@ -48,8 +48,9 @@ arrays): each part takes its `sin`, `cos` from the context's namespace.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from typing import Any, Callable
+from typing import Any
 
 from ..model import Field, Output
 from .effects import Assembly, Effect, Effects, Part, Slot, nothing
@@ -104,7 +105,7 @@ class Machine:
     def phi0(self) -> float:
         return math.asin(-self.h / self.R)  # (T2), seed 1.3: sin φ0 = −h/((1−a)L), C on the ground
 
-    def released(self) -> "Machine":
+    def released(self) -> Machine:
         """The machine after the projectile has left: no projectile, no sling."""
         return replace(self, m_p=0.0, sling=False)
 
@@ -124,6 +125,7 @@ class Machine:
 # from C (T3). The arithmetic is written in the order of the equations above (the golden outputs
 # are kept to the last bit).
 
+
 @dataclass(frozen=True)
 class Ctx:
     """What the parts are built from: the machine and the math namespace (math, or numpy)."""
@@ -133,7 +135,11 @@ class Ctx:
 
 
 SLOTS = (
-    Slot("coupling", "each", "(φ, ω, q, q̇) -> (M1j, Mjj, f1 term, fj): a degree of freedom coupled to the arm (T5)"),
+    Slot(
+        "coupling",
+        "each",
+        "(φ, ω, q, q̇) -> (M1j, Mjj, f1 term, fj): a degree of freedom coupled to the arm (T5)",
+    ),
     Slot("energy", "each", "(φ, ω, q, q̇) -> (T, V): its share of the energy (T4)"),
     Slot("tip", "each", "(q, q̇) -> (Δx, Δz, Δvx, Δvy): the projectile's offset from C (T3)"),
     Slot("hanger", "each", "(q) -> Δz: the counterweight centre below its hinge (T3)"),
@@ -161,8 +167,10 @@ def _sling(values, ctx: Ctx) -> Part:
         sg, cg = sin(gam), cos(gam)
         return l * cg, l * sg, -(l * gd * sg), l * gd * cg  # (T3)
 
-    return Part(states=(("gamma", math.pi), ("gamma_dot", 0.0)),  # the sling lies flat toward the pivot
-                terms={"coupling": coupling, "energy": energy, "tip": tip})
+    return Part(
+        states=(("gamma", math.pi), ("gamma_dot", 0.0)),  # the sling lies flat toward the pivot
+        terms={"coupling": coupling, "energy": energy, "tip": tip},
+    )
 
 
 def _hinged(values, ctx: Ctx) -> Part:
@@ -188,8 +196,10 @@ def _hinged(values, ctx: Ctx) -> Part:
     def hanger(psi):
         return d_ * cos(psi)
 
-    return Part(states=(("psi", 0.0), ("psi_dot", 0.0)),  # hanging straight down
-                terms={"coupling": coupling, "energy": energy, "hanger": hanger})
+    return Part(
+        states=(("psi", 0.0), ("psi_dot", 0.0)),  # hanging straight down
+        terms={"coupling": coupling, "energy": energy, "hanger": hanger},
+    )
 
 
 def _ground(values, ctx: Ctx) -> Part:
@@ -207,27 +217,89 @@ def _ground(values, ctx: Ctx) -> Part:
 
 
 EFFECTS = Effects(
-    Effect("sling", "2 DOF: the projectile on a sling of length l (seed section 2)", _sling,
-           fields=(Field("sling_length", "Sling length l", "length", "m", default=5, min=1e-2, max=1e3,
-                         help="Sling length, C to the projectile."),),
-           default_on=True),
-    Effect("ground_contact", "the projectile starts on the ground and slides until the sling lifts it",
-           _ground,
-           outputs=(Output("liftoff_time", "Lift-off time", "time", "s", equation="(T7)",
-                           help="When the ground's push λ on the projectile falls to zero (an event "
-                                "on the constrained swing)."),),
-           default_on=True),
-    Effect("hinged_counterweight", "hinged counterweight: at its centre (hanger 0) or a pendulum", _hinged,
-           fields=(Field("hanger_length", "Hanger length d", "length", "m", default=0, min=0, max=1e3,
-                         help="Hinge to counterweight centre. 0: hinged at its centre of mass (the seed's "
-                              "hinged case); > 0: a pendulum."),)),
-    Effect("air_drag", "quadratic drag on the flight after release", nothing,
-           fields=(Field("projectile_diameter", "Projectile diameter", "length", "m", default=0.2, min=1e-3,
-                         max=5, help="For the drag area."),
-                   Field("drag_coefficient", "Drag coefficient", default=0.47, min=0, max=2,
-                         help="C_d (sphere 0.47)."),
-                   Field("air_density", "Air density", "density", "kg/m**3", default=1.225, min=0, max=20,
-                         help="Density of air."))),
+    Effect(
+        "sling",
+        "2 DOF: the projectile on a sling of length l (seed section 2)",
+        _sling,
+        fields=(
+            Field(
+                "sling_length",
+                "Sling length l",
+                "length",
+                "m",
+                default=5,
+                min=1e-2,
+                max=1e3,
+                help="Sling length, C to the projectile.",
+            ),
+        ),
+        default_on=True,
+    ),
+    Effect(
+        "ground_contact",
+        "the projectile starts on the ground and slides until the sling lifts it",
+        _ground,
+        outputs=(
+            Output(
+                "liftoff_time",
+                "Lift-off time",
+                "time",
+                "s",
+                equation="(T7)",
+                help="When the ground's push λ on the projectile falls to zero (an event "
+                "on the constrained swing).",
+            ),
+        ),
+        default_on=True,
+    ),
+    Effect(
+        "hinged_counterweight",
+        "hinged counterweight: at its centre (hanger 0) or a pendulum",
+        _hinged,
+        fields=(
+            Field(
+                "hanger_length",
+                "Hanger length d",
+                "length",
+                "m",
+                default=0,
+                min=0,
+                max=1e3,
+                help="Hinge to counterweight centre. 0: hinged at its centre of mass (the seed's "
+                "hinged case); > 0: a pendulum.",
+            ),
+        ),
+    ),
+    Effect(
+        "air_drag",
+        "quadratic drag on the flight after release",
+        nothing,
+        fields=(
+            Field(
+                "projectile_diameter",
+                "Projectile diameter",
+                "length",
+                "m",
+                default=0.2,
+                min=1e-3,
+                max=5,
+                help="For the drag area.",
+            ),
+            Field(
+                "drag_coefficient", "Drag coefficient", default=0.47, min=0, max=2, help="C_d (sphere 0.47)."
+            ),
+            Field(
+                "air_density",
+                "Air density",
+                "density",
+                "kg/m**3",
+                default=1.225,
+                min=0,
+                max=20,
+                help="Density of air.",
+            ),
+        ),
+    ),
 )
 BASE_STATES = ("phi", "omega")
 
@@ -240,6 +312,7 @@ def assemble(p: Machine, ground_contact: bool, xp: Any = math) -> Assembly:
 # ---- the assembled scene -----------------------------------------------------------------------
 # State vector: [φ, ω] + the states of the effects on, in catalogue order ([γ, γ̇] with the sling,
 # [ψ, ψ̇] with a pendulum counterweight).
+
 
 @dataclass
 class Scene:
@@ -347,9 +420,11 @@ def _interleave(accel, n_dof: int):
     if n_dof == 1:
         return lambda t, y: [y[1], accel(y)[0]]
     if n_dof == 2:
+
         def rhs2(t, y):
             a = accel(y)
             return [y[1], a[0], y[3], a[1]]
+
         return rhs2
     vel = tuple(range(1, 2 * n_dof, 2))
 
@@ -358,6 +433,7 @@ def _interleave(accel, n_dof: int):
         for i, a in zip(vel, accel(y)):
             out += (y[i], a)
         return out
+
     return rhs
 
 
@@ -372,9 +448,11 @@ def build(p: Machine, ground_contact: bool, xp: Any = math) -> Scene:
 
     solve = _elimination(m11, K1, cos, dofs)
     if not dofs:
+
         def free(phi, w, y):
             return [K1 * cos(phi) / m11]
     else:
+
         def free(phi, w, y):
             return solve(phi, w, y)[0]
 
@@ -401,8 +479,17 @@ def build(p: Machine, ground_contact: bool, xp: Any = math) -> Scene:
             lam = gate * (c - J1 * xs[0] - J2 * xs[1]) / Jy
             return [x + lam * yj for x, yj in zip(xs, ys)], lam
 
-    return Scene(p, asm, free, contact, solve, mobility, asm.with_state("energy"), asm.with_state("tip"),
-                 asm.with_state("hanger"))
+    return Scene(
+        p,
+        asm,
+        free,
+        contact,
+        solve,
+        mobility,
+        asm.with_state("energy"),
+        asm.with_state("tip"),
+        asm.with_state("hanger"),
+    )
 
 
 def _elimination(m11, K1, cos, dofs):
@@ -418,6 +505,7 @@ def _elimination(m11, K1, cos, dofs):
             den = m11 - m12 * m12 / m22
             x1 = (K1 * cos(phi) + f12 - m12 * f2 / m22) / den
             return [x1, (f2 - m12 * x1) / m22], (b,), den
+
         return solve1
     if len(dofs) == 2:
         (i1, c1), (i2, c2) = dofs
@@ -429,6 +517,7 @@ def _elimination(m11, K1, cos, dofs):
             den = m11 - m12 * m12 / m22 - m13 * m13 / m33
             x1 = (K1 * cos(phi) + f12 + f13 - m12 * f2 / m22 - m13 * f3 / m33) / den
             return [x1, (f2 - m12 * x1) / m22, (f3 - m13 * x1) / m33], (b, e), den
+
         return solve2
 
     def solve(phi, w, y):
@@ -443,6 +532,7 @@ def _elimination(m11, K1, cos, dofs):
             b1 = b1 - m1j * fj / mjj
         x1 = b1 / den
         return [x1] + [(fj - m1j * x1) / mjj for m1j, mjj, _, fj in blocks], blocks, den
+
     return solve
 
 
@@ -481,6 +571,7 @@ def _numpy():
 
 
 # the scene's readings as functions of a machine and a state (tests, one-off calls)
+
 
 def energy(p: Machine, y) -> tuple[float, float]:
     return build(p, False).energy(y)
@@ -580,7 +671,9 @@ class Trace:
     min_tension: float = math.inf
     min_height: float = math.inf  # of the projectile off the ground
 
-    def record(self, sc: Scene, run, skip_first: bool, flying: bool, contact: bool, lost: float = 0.0) -> None:
+    def record(
+        self, sc: Scene, run, skip_first: bool, flying: bool, contact: bool, lost: float = 0.0
+    ) -> None:
         from .integrate import _interp
 
         end = run.t[-1]
@@ -662,10 +755,12 @@ def _events(sc: Scene, beta: float):
         _, _, vx, vy = projectile(s)
         return gauge(vx, vy)
 
-    events = [Event("release", release_g, +1),
-              Event("stopped", lambda t, s: s[1], -1),
-              Event("arm_ground", lambda t, s: p.h + p.R * sin(s[0]), -1),
-              Event("vertical", lambda t, s: s[0] - math.pi / 2, +1, terminal=False)]
+    events = [
+        Event("release", release_g, +1),
+        Event("stopped", lambda t, s: s[1], -1),
+        Event("arm_ground", lambda t, s: p.h + p.R * sin(s[0]), -1),
+        Event("vertical", lambda t, s: s[0] - math.pi / 2, +1, terminal=False),
+    ]
     if sc.contact is None:
         return events, None, None
     contact = sc.contact
@@ -685,8 +780,18 @@ def _to_release(sc: Scene, pr: Progress, trace: Trace, beta: float, rtol: float)
     first = True
     while True:
         evs = events + ([lift] if pr.contact else [touch] if touch is not None else [])
-        run = integrate(rhs[pr.contact], pr.t, T_SWING, pr.y, rtol=rtol, atol=rtol, events=evs, dense=True,
-                        max_steps=MAX_STEPS, restart=pr.restart)
+        run = integrate(
+            rhs[pr.contact],
+            pr.t,
+            T_SWING,
+            pr.y,
+            rtol=rtol,
+            atol=rtol,
+            events=evs,
+            dense=True,
+            max_steps=MAX_STEPS,
+            restart=pr.restart,
+        )
         pr.nfev += run.nfev
         trace.record(sc, run, not first, True, pr.contact, pr.lost)
         first = False
@@ -703,7 +808,9 @@ def _to_release(sc: Scene, pr: Progress, trace: Trace, beta: float, rtol: float)
         if run.event == "liftoff":
             pr.contact = False
             pr.liftoff = pr.t
-            pr.y = onto_ground(sc.p, pr.y)  # remove the constraint's drift, so the touchdown gauge starts at 0
+            pr.y = onto_ground(
+                sc.p, pr.y
+            )  # remove the constraint's drift, so the touchdown gauge starts at 0
             continue
         if run.event == "touchdown":
             if pr.touchdowns == MAX_TOUCHDOWNS:
@@ -737,10 +844,10 @@ def _on_to_vertical(sc: Scene, pr: Progress, trace: Trace, rtol: float, KE_max: 
     yq = [y[0], y[1]] + ([y[-2], y[-1]] if p.pendulum else [])
     E0 = sum(q.energy(yq))
     T0 = q.energy(yq)[0]
-    ev = [Event("vertical", lambda t, s: s[0] - math.pi / 2, +1),
-          Event("stopped", lambda t, s: s[1], -1)]
-    run = integrate(q.rhs(False), pr.t, T_SWING, yq, rtol=rtol, atol=rtol, events=ev, dense=True,
-                    max_steps=MAX_STEPS)
+    ev = [Event("vertical", lambda t, s: s[0] - math.pi / 2, +1), Event("stopped", lambda t, s: s[1], -1)]
+    run = integrate(
+        q.rhs(False), pr.t, T_SWING, yq, rtol=rtol, atol=rtol, events=ev, dense=True, max_steps=MAX_STEPS
+    )
     pr.nfev += run.nfev
     trace.record(q, run, True, False, False)
     pr.cw_min = min(pr.cw_min, min(q.counterweight_height(s) for s in run.y))
@@ -762,8 +869,24 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float, scene: Sce
         from .integrate import Run
 
         trace.record(sc, Run([0.0], [pr.y], 0, 0, 0), False, True, pr.contact)
-        return Swing(False, "stuck", trace.t, trace.phi, trace.omega, trace.theta, (trace.x, trace.z), None,
-                     0.0, 0.0, 0.0, None, trace.min_tension, 0.0, cw0, 0)
+        return Swing(
+            False,
+            "stuck",
+            trace.t,
+            trace.phi,
+            trace.omega,
+            trace.theta,
+            (trace.x, trace.z),
+            None,
+            0.0,
+            0.0,
+            0.0,
+            None,
+            trace.min_tension,
+            0.0,
+            cw0,
+            0,
+        )
     _to_release(sc, pr, trace, beta, rtol)
     released = pr.ending == "release"
     release = (pr.t, *sc.projectile(pr.y)) if released else None
@@ -772,9 +895,26 @@ def swing(p: Machine, beta: float, ground_contact: bool, rtol: float, scene: Sce
     drift, KE_max = trace.drift()
     if released and pr.vertical is None and pr.y[1] > 0:
         drift = max(drift, _on_to_vertical(sc, pr, trace, rtol, KE_max))
-    return Swing(released, pr.ending, trace.t, trace.phi, trace.omega, trace.theta, (trace.x, trace.z), release,
-                 cw_drop, arm_drop, drift, pr.vertical, trace.min_tension, min(trace.min_height, 0.0), pr.cw_min,
-                 pr.nfev, pr.liftoff, pr.touchdowns)
+    return Swing(
+        released,
+        pr.ending,
+        trace.t,
+        trace.phi,
+        trace.omega,
+        trace.theta,
+        (trace.x, trace.z),
+        release,
+        cw_drop,
+        arm_drop,
+        drift,
+        pr.vertical,
+        trace.min_tension,
+        min(trace.min_height, 0.0),
+        pr.cw_min,
+        pr.nfev,
+        pr.liftoff,
+        pr.touchdowns,
+    )
 
 
 # ---- many throws at once (numpy): the optimiser's batch ------------------------------------------
@@ -928,8 +1068,9 @@ def optimise(p: Machine, v, lo: float, hi: float):
     if "air_drag" in effects:
         from .flight import air
 
-        k_drag = air(effects, p.m_p, v["projectile_diameter"], v["drag_coefficient"], 0.0, v["air_density"],
-                     0.0, p.g).k_drag
+        k_drag = air(
+            effects, p.m_p, v["projectile_diameter"], v["drag_coefficient"], 0.0, v["air_density"], 0.0, p.g
+        ).k_drag
     # A fixed step can be unstable for an extreme machine: such candidates turn non-finite and drop out
     # (the winner is re-run with the adaptive solver anyway).
     with np.errstate(all="ignore"):

@@ -32,9 +32,13 @@ class AccuracyScreen(ModalScreen[None]):
             yield Label(Text(f"{self.calculator.title}: accuracy vs time"), classes="dialog-title")
             table = DataTable(cursor_type="none", id="ladder")
             # fixed widths: columns sized from the header alone clipped "coarse" and "1e-03"
-            for key, label, width in (("level", "Level", 8), ("rtol", "rtol", 6),
-                                      ("error", "Error vs reference", 18), ("time", "Wall time", 10),
-                                      ("nfev", "RHS evaluations", 15)):
+            for key, label, width in (
+                ("level", "Level", 8),
+                ("rtol", "rtol", 6),
+                ("error", "Error vs reference", 18),
+                ("time", "Wall time", 10),
+                ("nfev", "RHS evaluations", 15),
+            ):
                 table.add_column(label, key=key, width=width)
             yield table
             yield Static(Text("running…", style="dim"), id="ladder-status")
@@ -59,19 +63,29 @@ class AccuracyScreen(ModalScreen[None]):
         status = self.query_one("#ladder-status", Static)
         if all(r.nfev == 0 for r in rungs) and ref_nfev == 0:
             # a plot of identical points on a log axis would only show rounding noise
-            status.update(Text("Nothing is integrated: with these effects the scene has a closed form, "
-                               "so every accuracy level gives the same exact result.", style="yellow"))
+            status.update(
+                Text(
+                    "Nothing is integrated: with these effects the scene has a closed form, "
+                    "so every accuracy level gives the same exact result.",
+                    style="yellow",
+                )
+            )
             return
-        status.update(Text(
-            f"reference: rtol {ref_rtol:.0e}, {ref_nfev} RHS evaluations; wall time is the best of 3 runs",
-            style="dim"))
+        status.update(
+            Text(
+                f"reference: rtol {ref_rtol:.0e}, {ref_nfev} RHS evaluations; wall time is the best of 3 runs",
+                style="dim",
+            )
+        )
         from textual_plot import PlotWidget
 
         plot = PlotWidget(allow_pan_and_zoom=False)
         await self.query_one("#ladder-plot").mount(plot)
         floor = 1e-17  # an exact hit still needs a place on a log axis
-        xs = [math.log10(max(r.wall_time, 1e-9) * 1e3) if not self.hide_timings else math.log10(r.nfev)
-              for r in rungs]
+        xs = [
+            math.log10(max(r.wall_time, 1e-9) * 1e3) if not self.hide_timings else math.log10(r.nfev)
+            for r in rungs
+        ]
         ys = [math.log10(max(r.error, floor)) for r in rungs]
         from textual_plot import HiResMode
 

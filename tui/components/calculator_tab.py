@@ -34,6 +34,7 @@ class Form(VerticalScroll, can_focus=False):
     """The field list: scrolls, but is not a Tab stop of its own (Tab goes field to field;
     the form scrolls to the focused field)."""
 
+
 BUSY_AFTER_S = 0.1  # a solve running longer than this shows '… solving'
 
 
@@ -46,8 +47,12 @@ class FieldRow(Horizontal):
         # "Rectangular tube" is not cut at 120 columns
         self.widget_spec = field.kind.widget(field)
         shape = self.widget_spec.shape
-        super().__init__(classes="field-row" + (" flags-row" if shape == "checkboxes" else "")
-                         + (" unitless" if self.widget_spec.unit is None else ""), id=f"row-{field.name}")
+        super().__init__(
+            classes="field-row"
+            + (" flags-row" if shape == "checkboxes" else "")
+            + (" unitless" if self.widget_spec.unit is None else ""),
+            id=f"row-{field.name}",
+        )
         self.field = field
         self.initial = value
         self.blink = blink
@@ -58,20 +63,39 @@ class FieldRow(Horizontal):
         yield Label(Text(f.label), classes="field-label")
         if spec.shape == "select":
             options = [(Text(label), value) for value, label in spec.options]
-            yield Select(options, value=self.initial, allow_blank=False, id=f"in-{f.name}",
-                         classes="field-input", tooltip=tip, compact=True)
+            yield Select(
+                options,
+                value=self.initial,
+                allow_blank=False,
+                id=f"in-{f.name}",
+                classes="field-input",
+                tooltip=tip,
+                compact=True,
+            )
         elif spec.shape == "checkboxes":
             chosen = set(x for x in str(self.initial).replace(",", " ").split() if x)
             with Vertical(classes="field-input flags", id=f"in-{f.name}"):
                 for value, label in spec.options:
-                    yield Checkbox(Content(label), value=value in chosen, id=f"flag-{f.name}--{value}",
-                                   compact=True, tooltip=tip)
+                    yield Checkbox(
+                        Content(label),
+                        value=value in chosen,
+                        id=f"flag-{f.name}--{value}",
+                        compact=True,
+                        tooltip=tip,
+                    )
         elif spec.shape == "checkbox":
-            yield Checkbox(value=bool(self.initial), id=f"in-{f.name}", classes="field-input",
-                           tooltip=tip, compact=True)
+            yield Checkbox(
+                value=bool(self.initial), id=f"in-{f.name}", classes="field-input", tooltip=tip, compact=True
+            )
         else:
-            entry = FieldInput(value=str(self.initial), id=f"in-{f.name}", classes="field-input",
-                          tooltip=tip, select_on_focus=False, compact=True)
+            entry = FieldInput(
+                value=str(self.initial),
+                id=f"in-{f.name}",
+                classes="field-input",
+                tooltip=tip,
+                select_on_focus=False,
+                compact=True,
+            )
             entry.cursor_blink = self.blink
             yield entry
         if spec.unit is not None:
@@ -84,8 +108,9 @@ class CalculatorTab(Widget):
     # a var, not a reactive: a reactive repaints the whole card on every key
     entries: var[dict[str, Any]] = var(dict, init=False, always_update=True)
 
-    def __init__(self, calculator: Calculator, blink: bool = True, hide_timings: bool = False,
-                 **kwargs) -> None:
+    def __init__(
+        self, calculator: Calculator, blink: bool = True, hide_timings: bool = False, **kwargs
+    ) -> None:
         super().__init__(**kwargs)
         self.calculator = calculator
         self.blink = blink
@@ -122,8 +147,14 @@ class CalculatorTab(Widget):
                     for f in calc.fields:
                         yield FieldRow(f, self.entries[f.name], self.blink)
                         yield Static("", classes="field-error", id=f"err-{f.name}")
-                yield Static(Text("F1–F5 then a digit opens any calculator; Tab moves between fields; type any unit (3.5 in, 60 psi); Enter on a result changes its unit; "
-                                  "ctrl+s saves, ctrl+o loads a preset.", style="dim"), classes="help-line")
+                yield Static(
+                    Text(
+                        "F1–F5 then a digit opens any calculator; Tab moves between fields; type any unit (3.5 in, 60 psi); Enter on a result changes its unit; "
+                        "ctrl+s saves, ctrl+o loads a preset.",
+                        style="dim",
+                    ),
+                    classes="help-line",
+                )
             with Vertical(classes="results-pane"):
                 table = DataTable(classes="results", cursor_type="row", zebra_stripes=True)
                 table.tooltip = "Enter or click on a result shows it in another unit"
@@ -187,11 +218,15 @@ class CalculatorTab(Widget):
         from types import SimpleNamespace
 
         self._parts = SimpleNamespace(
-            table=self.query_one(".results", DataTable), status=self.query_one(".status", Static),
-            glance=self.query_one(".glance", Static), warnings=self.query_one(".warnings", Static),
-            warnings_box=self.query_one(".warnings-box"), help_line=self.query_one(".help-line", Static),
+            table=self.query_one(".results", DataTable),
+            status=self.query_one(".status", Static),
+            glance=self.query_one(".glance", Static),
+            warnings=self.query_one(".warnings", Static),
+            warnings_box=self.query_one(".warnings-box"),
+            help_line=self.query_one(".help-line", Static),
             plot=self.query_one(PlotPanel) if self.calculator.plots else None,
-            dimmed=list(self.query(".results, .plot-panel, .result-table")))
+            dimmed=list(self.query(".results, .plot-panel, .result-table")),
+        )
         self._field_names = {f.name for f in self.calculator.fields}
         self._bad_field: str | None = None  # the field whose error line is shown
         self._warnings_text: str | None = None
@@ -215,8 +250,7 @@ class CalculatorTab(Widget):
         if wid.startswith("flag-"):
             name = wid[5:].split("--")[0]
             f = self.calculator.field(name)
-            value = ", ".join(c for c in f.choices
-                              if self.query_one(f"#flag-{name}--{c}", Checkbox).value)
+            value = ", ".join(c for c in f.choices if self.query_one(f"#flag-{name}--{c}", Checkbox).value)
         else:
             name = self._name_of(event.control)
             value = event.value
@@ -231,7 +265,10 @@ class CalculatorTab(Widget):
         # (the loop over every field row cost ~1 ms a key on the long forms)
         from gearhead.core.model import choice_values
 
-        shown_by = (self.entries.get("mode"), tuple(sorted(choice_values(self.calculator, self.entries).items())))
+        shown_by = (
+            self.entries.get("mode"),
+            tuple(sorted(choice_values(self.calculator, self.entries).items())),
+        )
         if shown_by != getattr(self, "_shown_by", None):
             self._shown_by = shown_by
             self._apply_mode()
@@ -249,8 +286,10 @@ class CalculatorTab(Widget):
             line = Text(f.label + ": ", style="bold")
             line.append(f.help or "")
             if f.type == "quantity":
-                line.append(f"  (bare number = {f.unit or 'plain number'}; any compatible unit may be typed)",
-                            style="dim")
+                line.append(
+                    f"  (bare number = {f.unit or 'plain number'}; any compatible unit may be typed)",
+                    style="dim",
+                )
             self.query_one(".help-line", Static).update(line)
 
     @on(DataTable.RowHighlighted, ".results")
@@ -352,12 +391,14 @@ class CalculatorTab(Widget):
 
     @work(thread=True, group="solve")
     def _solve_in_thread(self, entries: dict[str, Any], display_units: dict[str, str], system: str) -> None:
+        from time import perf_counter
+
         from gearhead.core import unit_systems
         from gearhead.core.sim.integrate import Cancelled, budget
         from gearhead.core.sim.scene import deferred_estimate
-        from gearhead.core.tolerance import solve_entries  # entries may carry '± tolerance' (core/tolerance.py)
-
-        from time import perf_counter
+        from gearhead.core.tolerance import (
+            solve_entries,  # entries may carry '± tolerance' (core/tolerance.py)
+        )
 
         started = perf_counter()
         pending: list = []
@@ -367,7 +408,9 @@ class CalculatorTab(Widget):
             self._preferred_units = preferred
             # a simulation polls this between steps: keys typed meanwhile drop it (latest wins at once)
             with budget(cancel=lambda: self._dirty), deferred_estimate() as pending:
-                solution, self.spread = solve_entries(self.calculator.id, entries, {**preferred, **display_units})
+                solution, self.spread = solve_entries(
+                    self.calculator.id, entries, {**preferred, **display_units}
+                )
             if pending and self.spread is None:
                 # shown first with "…" in its row; computed below, after the results are on screen
                 solution = self._estimate_pending(solution)
@@ -386,8 +429,14 @@ class CalculatorTab(Widget):
             from ..bug_log import record
 
             path = record(exc, f"{self.calculator.id} {entries!r}")
-            solution, error = None, InputError("(result)", f"internal error: {type(exc).__name__}: {exc}"
-                                               + (f" (traceback in {path})" if path else ""))
+            solution, error = (
+                None,
+                InputError(
+                    "(result)",
+                    f"internal error: {type(exc).__name__}: {exc}"
+                    + (f" (traceback in {path})" if path else ""),
+                ),
+            )
         self._solve_seconds = perf_counter() - started  # the whole solve (an optimiser's search too)
         try:
             self.app.call_from_thread(self._solve_done, solution, error)
@@ -396,7 +445,9 @@ class CalculatorTab(Widget):
                 drawn = Event()
                 self.app.call_from_thread(self.call_after_refresh, drawn.set)
                 drawn.wait(1.0)
-                self.app.call_from_thread(self._estimate_done, solution, self._run_estimate(pending[0], solution))
+                self.app.call_from_thread(
+                    self._estimate_done, solution, self._run_estimate(pending[0], solution)
+                )
         except RuntimeError:  # the app closed while this solve ran
             pass
         finally:
@@ -436,7 +487,9 @@ class CalculatorTab(Widget):
         except InputError:
             return Value(None, "", "— (over one solve's budget)")
         o = self.calculator.output(self.ESTIMATE)
-        return format_value(value, o.quantity, self.display_units.get(o.name) or self._preferred_units.get(o.name, o.unit))
+        return format_value(
+            value, o.quantity, self.display_units.get(o.name) or self._preferred_units.get(o.name, o.unit)
+        )
 
     def _estimate_done(self, solution: Solution, value) -> None:
         if value is None or solution is not self.solution or self._parts is None:
@@ -490,8 +543,10 @@ class CalculatorTab(Widget):
                 where = self.calculator.field(error.field).label
             except KeyError:
                 where = error.field
-            status.update(Text(f"✗ {where}: {error.message} (results show the last valid inputs)",
-                               style="red"), layout=False)
+            status.update(
+                Text(f"✗ {where}: {error.message} (results show the last valid inputs)", style="red"),
+                layout=False,
+            )
             parts.glance.update(Text(f"✗ {where}: {error.message}", style="red"), layout=False)
             return
         self.error = None
@@ -508,8 +563,13 @@ class CalculatorTab(Widget):
             self._warnings_text = warnings
             parts.warnings.update(Text(warnings, style="yellow"))
             parts.warnings_box.display = bool(solution.warnings)
-        status.update(Text("✓ solved" if self.hide_timings else
-                           f"✓ solved in {_duration(self._solve_seconds)}", style="green"), layout=False)
+        status.update(
+            Text(
+                "✓ solved" if self.hide_timings else f"✓ solved in {_duration(self._solve_seconds)}",
+                style="green",
+            ),
+            layout=False,
+        )
         parts.glance.update(self._glance_text(solution), layout=False)
         self._show_spread(solution, table, status)
 
@@ -538,7 +598,9 @@ class CalculatorTab(Widget):
             equations = "equation" in {key.value for key in table.columns}
             for name, text in rows:
                 out = self.calculator.output(name)
-                cells = [Text(out.label), Text(text)] + ([Text(out.equation, style="dim")] if equations else [])
+                cells = [Text(out.label), Text(text)] + (
+                    [Text(out.equation, style="dim")] if equations else []
+                )
                 table.add_row(*cells, key=name, height=None if cell_len(out.label) > label_width else 1)
             if 0 < cursor < table.row_count:
                 table.move_cursor(row=cursor, animate=False)
@@ -571,13 +633,19 @@ class CalculatorTab(Widget):
             if s and s.main_input and s.low != s.high and len(result.tolerances) > 1:
                 text += f"  {s.main_input}"
             table.update_cell(name, "spread", Text(text, style="dim" if text == "unaffected" else ""))
-        worst = "optimiser" if any("optimiser" in s.worst_case_method for s in result.outputs.values()) else "corners"
+        worst = (
+            "optimiser"
+            if any("optimiser" in s.worst_case_method for s in result.outputs.values())
+            else "corners"
+        )
         line = Text(f"✓ solved; tolerances: worst case by {worst}, σ first-order", style="green")
         if result.samples:
             line.append(f" (* Monte Carlo, {result.samples} samples, seed {result.seed})")
         wall = "(hidden)" if self.hide_timings else f"{result.cost.wall_time * 1e3:.0f} ms"
-        line.append(f"; {result.cost.solves} solves, {result.cost.rhs_evaluations} RHS evaluations, {wall}",
-                    style="dim")
+        line.append(
+            f"; {result.cost.solves} solves, {result.cost.rhs_evaluations} RHS evaluations, {wall}",
+            style="dim",
+        )
         status.update(line)
         if result.notes:  # e.g. 'backdrivable changes within the tolerances', samples left out
             lines = [f"! {w}" for w in solution.warnings] + [f"± {n}" for n in result.notes]
@@ -588,18 +656,20 @@ class CalculatorTab(Widget):
     def _append_spread(self, name: str, line: Text) -> None:
         """With tolerances, the help line of a result also gives its spread in full: worst case and
         how it was found, σ and how, and the input that contributes most."""
-        from gearhead.core.tolerance import shown_unit, short_method
         from gearhead.core import units
+        from gearhead.core.tolerance import short_method, shown_unit
 
         s = self.spread.outputs.get(name) if self.spread is not None and self.solution is not None else None
         if s is None or name not in self.solution.outputs:
             return
         o = self.calculator.output(name)
         unit = shown_unit(self.calculator, self.solution, name)
-        q = lambda v: f"{units.format_number(units.to_unit(v, unit, o.quantity))} {unit}".rstrip()
+
+        def q(v):
+            return f"{units.format_number(units.to_unit(v, unit, o.quantity))} {unit}".rstrip()
+
         worst, stat = short_method(s)
-        line.append(f"\nWorst case {q(s.low)} .. {q(s.high)} ({s.worst_case_method}); "
-                    f"σ {q(s.std)} ({stat})")
+        line.append(f"\nWorst case {q(s.low)} .. {q(s.high)} ({s.worst_case_method}); σ {q(s.std)} ({stat})")
         if s.main_input and s.low != s.high:
             line.append(f"; mostly {s.main_input} ({s.shares[s.main_input] * 100:.0f} % of the variance)")
 
@@ -608,9 +678,12 @@ class CalculatorTab(Widget):
         """A scrollable table per declared Table, its header holding each column's unit."""
         for t in self.calculator.tables:
             yield Static(Text(t.title, style="bold"), classes="result-table-title")
-            grid = DataTable(classes="result-table", id=f"table-{t.name}", cursor_type="row",
-                             zebra_stripes=True)
-            grid.tooltip = "ctrl+g sends the row under the cursor to the calculator it feeds" if t.exports else None
+            grid = DataTable(
+                classes="result-table", id=f"table-{t.name}", cursor_type="row", zebra_stripes=True
+            )
+            grid.tooltip = (
+                "ctrl+g sends the row under the cursor to the calculator it feeds" if t.exports else None
+            )
             for c in t.columns:
                 if not c.hidden:
                     head = f"{c.label} [{pretty_unit(c.unit)}]" if c.unit else c.label
@@ -623,8 +696,14 @@ class CalculatorTab(Widget):
             cursor = grid.cursor_row
             grid.clear()
             for n, row in enumerate(solution.tables.get(t.name, [])):
-                grid.add_row(*(Text(pretty_quantity(row[c.name].text)) if c.name in row else Text("")
-                               for c in t.columns if not c.hidden), key=str(n))
+                grid.add_row(
+                    *(
+                        Text(pretty_quantity(row[c.name].text)) if c.name in row else Text("")
+                        for c in t.columns
+                        if not c.hidden
+                    ),
+                    key=str(n),
+                )
             if 0 < cursor < grid.row_count:
                 grid.move_cursor(row=cursor, animate=False)
 
@@ -643,7 +722,7 @@ class CalculatorTab(Widget):
 
     def _glance_text(self, solution: Solution) -> Text:
         line = Text("✓ ", style="green")
-        for i, (name, value) in enumerate(list(solution.outputs.items())[:self.GLANCE_RESULTS]):
+        for i, (name, value) in enumerate(list(solution.outputs.items())[: self.GLANCE_RESULTS]):
             if i:
                 line.append("  ·  ", style="dim")
             line.append(self.calculator.output(name).label + " ", style="dim")

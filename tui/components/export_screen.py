@@ -25,8 +25,9 @@ class ExportScreen(ModalScreen[str | None]):
 
     BINDINGS = [Binding("escape", "dismiss(None)", "Cancel")]
 
-    def __init__(self, calculator: Calculator, solution: Solution, plot: Plot | None,
-                 blink: bool = True) -> None:
+    def __init__(
+        self, calculator: Calculator, solution: Solution, plot: Plot | None, blink: bool = True
+    ) -> None:
         super().__init__()
         self.calculator = calculator
         self.solution = solution
@@ -34,18 +35,24 @@ class ExportScreen(ModalScreen[str | None]):
         # (label, file suffix, text builder)
         self.formats = [
             ("Results table as Markdown", "md", lambda: export.results_markdown(calculator, solution)),
-            ("Results table as CSV (shown and full-precision SI values)", "csv",
-             lambda: export.results_csv(calculator, solution)),
+            (
+                "Results table as CSV (shown and full-precision SI values)",
+                "csv",
+                lambda: export.results_csv(calculator, solution),
+            ),
         ]
         if plot is not None and any(solution.series.get(s, ([], []))[0] for s in plot.series):
-            self.formats.append((f"Plot data as CSV: {plot.title}", "csv",
-                                 lambda: export.plot_csv(plot, solution)))
+            self.formats.append(
+                (f"Plot data as CSV: {plot.title}", "csv", lambda: export.plot_csv(plot, solution))
+            )
 
     def compose(self) -> ComposeResult:
         with Vertical(classes="dialog"):
             yield Label(Text(f"Export {self.calculator.title}"), classes="dialog-title")
-            yield OptionList(*(Option(Text(label), id=str(i)) for i, (label, _, _) in enumerate(self.formats)),
-                             id="export-format")
+            yield OptionList(
+                *(Option(Text(label), id=str(i)) for i, (label, _, _) in enumerate(self.formats)),
+                id="export-format",
+            )
             path = FieldInput(value=self._default_name(0), id="export-path")
             path.cursor_blink = self.blink
             yield path

@@ -31,8 +31,13 @@ class PlotPanel(Vertical):
     def compose(self) -> ComposeResult:
         if len(self.plots) > 1:
             # Text, not str: a Select prompt is markup, and a title like "Force [N]" would lose "[N]"
-            yield Select([(Text(p.title), i) for i, p in enumerate(self.plots)], value=0, allow_blank=False,
-                         compact=True, id="plot-choice")
+            yield Select(
+                [(Text(p.title), i) for i, p in enumerate(self.plots)],
+                value=0,
+                allow_blank=False,
+                compact=True,
+                id="plot-choice",
+            )
         yield Static(Text("No data to plot for these inputs.", style="dim"), id="plot-empty")
         # the PlotWidget itself is mounted on first use: textual-plot and numpy load after the first frame
 
@@ -56,8 +61,11 @@ class PlotPanel(Vertical):
 
         self.solution = solution
         spec = self.current
-        spec = replace(spec, x_unit=system_unit(spec.x_unit, self.unit_system),
-                       y_unit=system_unit(spec.y_unit, self.unit_system))
+        spec = replace(
+            spec,
+            x_unit=system_unit(spec.x_unit, self.unit_system),
+            y_unit=system_unit(spec.y_unit, self.unit_system),
+        )
         from textual_plot import HiResMode, PlotWidget
 
         plots = self.query(PlotWidget)
@@ -75,8 +83,13 @@ class PlotPanel(Vertical):
             xs, ys = solution.series[name]
             fx = units.factor(spec.x_unit, spec.x_quantity)
             fy = units.factor(spec.y_unit, spec.y_quantity)
-            plot.plot([x / fx for x in xs], [y / fy for y in ys], line_style=colour,
-                      hires_mode=HiResMode.BRAILLE, label=escape(name) if len(spec.series) > 1 else None)
+            plot.plot(
+                [x / fx for x in xs],
+                [y / fy for y in ys],
+                line_style=colour,
+                hires_mode=HiResMode.BRAILLE,
+                label=escape(name) if len(spec.series) > 1 else None,
+            )
         # an empty frame with an empty legend box looks like a drawing bug: say there is no data
         self.query_one("#plot-empty", Static).display = drawn == 0
         plot.display = drawn > 0

@@ -8,8 +8,8 @@ from rich.text import Text
 from textual import events, on
 from textual.app import ComposeResult
 from textual.binding import Binding
-from textual.message import Message
 from textual.containers import Horizontal, Vertical
+from textual.message import Message
 from textual.screen import ModalScreen
 from textual.widgets import Button, Checkbox, Input, Label, OptionList, Static
 from textual.widgets.option_list import Option
@@ -25,8 +25,9 @@ class SavePresetScreen(ModalScreen[Path | None]):
 
     BINDINGS = [Binding("escape", "dismiss(None)", "Cancel")]
 
-    def __init__(self, calc_id: str, inputs: dict, blink: bool = True, name: str = "",
-                 description: str = "") -> None:
+    def __init__(
+        self, calc_id: str, inputs: dict, blink: bool = True, name: str = "", description: str = ""
+    ) -> None:
         super().__init__()
         self.calc_id = calc_id
         self.inputs = inputs
@@ -78,8 +79,9 @@ class SavePresetScreen(ModalScreen[Path | None]):
         if not name:
             error.update(Text("name: enter a name for the preset", style="bold red"))
             return
-        preset = presets.Preset(self.calc_id, name, self.query_one("#preset-description", Input).value.strip(),
-                                dict(self.inputs))
+        preset = presets.Preset(
+            self.calc_id, name, self.query_one("#preset-description", Input).value.strip(), dict(self.inputs)
+        )
         try:
             path = presets.save(preset, overwrite=self.query_one("#overwrite", Checkbox).value)
         except InputError as exc:
@@ -106,8 +108,10 @@ def preview(preset: presets.Preset) -> Text:
         return str(v)
 
     out = Text(preset.description or "(no description)", style="italic")
-    shown = [f"{fields[k].label if k in fields else k} {shown_value(fields.get(k), v)}"
-             for k, v in preset.inputs.items()]
+    shown = [
+        f"{fields[k].label if k in fields else k} {shown_value(fields.get(k), v)}"
+        for k, v in preset.inputs.items()
+    ]
     line = "  ·  ".join(shown)
     out.append("\n" + (line if len(line) <= 300 else line[:299] + "…"), style="dim")
     return out
@@ -146,13 +150,16 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
     def compose(self) -> ComposeResult:
         with Vertical(classes="dialog load-dialog"):
             yield Label(Text(f"Load {self.calc_id} preset"), classes="dialog-title")
-            options = [Option(Text(f"{p.name}  ({'built-in' if p.builtin else 'yours'})"), id=str(i))
-                       for i, p in enumerate(self.found)]
+            options = [
+                Option(Text(f"{p.name}  ({'built-in' if p.builtin else 'yours'})"), id=str(i))
+                for i, p in enumerate(self.found)
+            ]
             yield OptionList(*options, id="preset-list")
             # what the highlighted preset holds, before loading it
             yield Static("", id="preset-preview")
-            path = PresetPathInput(placeholder="…or a preset file path, then Enter (or paste a preset's text)",
-                                   id="preset-path")
+            path = PresetPathInput(
+                placeholder="…or a preset file path, then Enter (or paste a preset's text)", id="preset-path"
+            )
             path.cursor_blink = self.blink
             yield path
             yield Static("", id="load-error", classes="field-error")
@@ -180,9 +187,11 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
         start = presets.user_dir() / self.calc_id
         if not start.is_dir():
             start = Path.cwd()
-        dialog = FileOpen(start, title=f"Open a {self.calc_id} preset",
-                          filters=Filters(("*.toml", lambda p: p.suffix.lower() == ".toml"),
-                                          ("Any file", lambda _: True)))
+        dialog = FileOpen(
+            start,
+            title=f"Open a {self.calc_id} preset",
+            filters=Filters(("*.toml", lambda p: p.suffix.lower() == ".toml"), ("Any file", lambda _: True)),
+        )
 
         def chosen(path: Path | None) -> None:
             if path is not None:
@@ -201,12 +210,18 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
             try:
                 data = tomllib.loads(event.text.lstrip("\ufeff"))
             except (tomllib.TOMLDecodeError, RecursionError) as exc:
-                raise InputError("preset", f"pasted text is not a preset (malformed TOML: "
-                                           f"{str(exc).splitlines()[0][:80] if str(exc) else 'too deeply nested'})") from None
+                raise InputError(
+                    "preset",
+                    f"pasted text is not a preset (malformed TOML: "
+                    f"{str(exc).splitlines()[0][:80] if str(exc) else 'too deeply nested'})",
+                ) from None
             preset = presets.from_dict(data, "<pasted preset>")
             if preset.calculator != self.calc_id:
-                raise InputError("calculator", f"preset is for {preset.calculator!r}, not {self.calc_id!r}",
-                                 "<pasted preset>")
+                raise InputError(
+                    "calculator",
+                    f"preset is for {preset.calculator!r}, not {self.calc_id!r}",
+                    "<pasted preset>",
+                )
         except InputError as exc:
             self.query_one("#load-error", Static).update(Text(str(exc), style="bold red"))
             return
@@ -225,8 +240,9 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
             except (ValueError, RuntimeError) as exc:  # an unusable path ('~nosuchuser/x')
                 raise InputError("preset", f"not a usable file path ({exc})", text[:80]) from None
             if preset.calculator != self.calc_id:
-                raise InputError("calculator", f"preset is for {preset.calculator!r}, not {self.calc_id!r}",
-                                 text)
+                raise InputError(
+                    "calculator", f"preset is for {preset.calculator!r}, not {self.calc_id!r}", text
+                )
         except InputError as exc:
             self.query_one("#load-error", Static).update(Text(str(exc), style="bold red"))
             return

@@ -86,8 +86,15 @@ class SweepScreen(ModalScreen[None]):
         Binding("ctrl+e", "export", "Export CSV"),
     ]
 
-    def __init__(self, calculator: Calculator, entries: dict[str, Any], field_name: str | None = None,
-                 blink: bool = True, hide_timings: bool = False, shown: tuple[str, ...] = ()) -> None:
+    def __init__(
+        self,
+        calculator: Calculator,
+        entries: dict[str, Any],
+        field_name: str | None = None,
+        blink: bool = True,
+        hide_timings: bool = False,
+        shown: tuple[str, ...] = (),
+    ) -> None:
         super().__init__()
         self.shown = shown  # the outputs the card shows now: the first is plotted at first
         self.calculator = calculator
@@ -112,22 +119,37 @@ class SweepScreen(ModalScreen[None]):
             f = calc.field(self.field_name)
             start, stop = default_range(f, self.entries.get(f.name, f.default))
             with Horizontal(classes="sweep-form"):
-                yield Select([(Text(x.label), x.name) for x in self.fields], value=f.name, allow_blank=False,
-                             compact=True, id="sweep-field")
-                for wid, value, tip in (("sweep-start", start, "from (any unit)"), ("sweep-stop", stop, "to"),
-                                        ("sweep-points", str(DEFAULT_POINTS), "points")):
+                yield Select(
+                    [(Text(x.label), x.name) for x in self.fields],
+                    value=f.name,
+                    allow_blank=False,
+                    compact=True,
+                    id="sweep-field",
+                )
+                for wid, value, tip in (
+                    ("sweep-start", start, "from (any unit)"),
+                    ("sweep-stop", stop, "to"),
+                    ("sweep-points", str(DEFAULT_POINTS), "points"),
+                ):
                     entry = FieldInput(value=value, id=wid, compact=True, tooltip=tip, select_on_focus=False)
                     entry.cursor_blink = self.blink
                     yield entry
                 yield Label(Text(pretty_unit(f.unit)), id="sweep-unit")
                 yield Checkbox("log", id="sweep-log", compact=True)
             with Horizontal(classes="sweep-body"):
-                outputs = [o for o in calc.outputs if o.name not in ("error_estimate", "rhs_evaluations", "wall_time")]
+                outputs = [
+                    o
+                    for o in calc.outputs
+                    if o.name not in ("error_estimate", "rhs_evaluations", "wall_time")
+                ]
                 # the first output this mode produces (the elevator's first, its optimise-only
                 # 'Fastest ratio', gave an empty plot and table in a move)
-                first = next((o.name for o in outputs if o.name in self.shown), outputs[0].name if outputs else None)
-                yield SelectionList[str](*[(Text(o.label), o.name, o.name == first) for o in outputs],
-                                         id="sweep-outputs")
+                first = next(
+                    (o.name for o in outputs if o.name in self.shown), outputs[0].name if outputs else None
+                )
+                yield SelectionList[str](
+                    *[(Text(o.label), o.name, o.name == first) for o in outputs], id="sweep-outputs"
+                )
                 yield Vertical(id="sweep-plot")
             yield ProgressBar(total=100, show_eta=False, id="sweep-progress")
             yield DataTable(cursor_type="row", zebra_stripes=True, id="sweep-table")
@@ -186,8 +208,9 @@ class SweepScreen(ModalScreen[None]):
 
         try:
             raw, tolerances = tolerance.split_inputs(self.calculator, self.entries)
-            result = sweep.run(self.calculator.id, raw, [spec], progress=progress,
-                               cancelled=lambda: worker.is_cancelled)
+            result = sweep.run(
+                self.calculator.id, raw, [spec], progress=progress, cancelled=lambda: worker.is_cancelled
+            )
             if tolerances:
                 result.notes.append(f"tolerances on {', '.join(tolerances)} not swept: nominal values used")
             error = None
@@ -276,8 +299,13 @@ class SweepScreen(ModalScreen[None]):
                     xs.append(x if f.type == "int" else units.to_unit(x, vary.unit, f.quantity))
                     ys.append(units.to_unit(float(y), o.unit, o.quantity))
             if xs:
-                plot.plot(xs, ys, line_style=colour, hires_mode=HiResMode.BRAILLE,
-                          label=escape(axis_label(o.label, pretty_unit(o.unit))) if len(names) > 1 else None)
+                plot.plot(
+                    xs,
+                    ys,
+                    line_style=colour,
+                    hires_mode=HiResMode.BRAILLE,
+                    label=escape(axis_label(o.label, pretty_unit(o.unit))) if len(names) > 1 else None,
+                )
         if len(names) > 1:
             plot.show_legend()
         plot.set_xlabel(escape(axis_label(f.label, pretty_unit(vary.unit))))
@@ -309,8 +337,11 @@ class SweepScreen(ModalScreen[None]):
         bad = sum(1 for p in result.points if p.error)
         cost = result.cost
         wall = "(hidden)" if self.hide_timings else f"{cost.wall_time * 1e3:.1f} ms"
-        line = Text(f"{len(result.points)} points: {cost.solves} solves, {cost.rhs_evaluations} RHS evaluations, "
-                    f"{wall}", style="dim")
+        line = Text(
+            f"{len(result.points)} points: {cost.solves} solves, {cost.rhs_evaluations} RHS evaluations, "
+            f"{wall}",
+            style="dim",
+        )
         if bad:
             line.append(f"   {bad} infeasible (reason in the row)", style="yellow")
         if result.cancelled:
@@ -340,9 +371,10 @@ class SweepScreen(ModalScreen[None]):
             except FileExistsError:
                 continue
             except OSError as exc:
-                self.notify(f"Copied to the clipboard; cannot write a file ({exc.strerror or type(exc).__name__})",
-                            severity="warning", markup=False)
+                self.notify(
+                    f"Copied to the clipboard; cannot write a file ({exc.strerror or type(exc).__name__})",
+                    severity="warning",
+                    markup=False,
+                )
                 return
         self.notify(f"Sweep copied to the clipboard and saved to {path}", title="Exported", markup=False)
-
-
