@@ -384,3 +384,27 @@ def test_reverse_from_1000_m_straight_down_is_an_input_error_not_an_overflow():
         assert e.field in {"target_angle", "spin", "distance"}
     else:
         assert all(math.isfinite(x) for x in o.values() if isinstance(x, float))
+
+
+def test_reverse_with_drag_at_tight_accuracy_accepts_a_root_at_the_noise_floor():
+    """Found by hypothesis (CI): the error estimate of a tight reverse solve runs at rtol 1e-13, where
+    hybrid Powell stops with "not making good progress" at a residual of 1e-14; that is a root, and
+    the solve must not be refused (it was: 'no release found')."""
+    common = {
+        "effects": "air_drag",
+        "spin": 0,
+        "accuracy": "tight",
+        "release_height": 0.918770134558996,
+        "distance": 1.0,
+    }
+    fwd = out({**common, "release_angle": 20.0, "release_speed": 6.0})
+    back = out(
+        {
+            **common,
+            "mode": "reverse",
+            "target_height": fwd["target_height"],
+            "target_angle": f"{fwd['target_angle']!r} rad",
+        }
+    )
+    assert math.degrees(back["release_angle"]) == pytest.approx(20.0, abs=1e-6)
+    assert back["release_speed"] == pytest.approx(6.0, rel=1e-7)

@@ -323,8 +323,10 @@ def aim(
         method="hybr",
         options={"xtol": 1e-11, "maxfev": max_flights, "eps": rtol},
     )  # FD step above the flight noise
-    res = residual(sol.x)
-    if not sol.success or max(abs(r) for r in res) > 1e-6:  # includes a root outside any throw
+    miss = max(abs(r) for r in residual(sol.x))
+    # hybr may report "not making good progress" once the residual is down at the flights' own noise
+    # (a polish at rtol 1e-13 stalls at 1e-14): a root that close is a root
+    if miss > 1e-6 or (not sol.success and miss > max(1e-12, 100 * rtol)):  # incl. outside any throw
         raise ValueError("no release reaches that target with these flight effects")
     return float(sol.x[0]), float(math.exp(sol.x[1])), count[0]
 
