@@ -8,6 +8,7 @@ never waits for pint or scipy.
 from __future__ import annotations
 
 from threading import Event, get_ident
+from types import SimpleNamespace
 from typing import Any
 
 from rich.cells import cell_len
@@ -27,6 +28,7 @@ from gearhead.core.sim.scene import VOLATILE
 
 from .field_input import FieldInput
 from .plot_panel import PlotPanel
+from .result_table import ResultTable
 from .unit_text import pretty_quantity, pretty_unit
 
 
@@ -156,7 +158,7 @@ class CalculatorTab(Widget):
                     classes="help-line",
                 )
             with Vertical(classes="results-pane"):
-                table = DataTable(classes="results", cursor_type="row", zebra_stripes=True)
+                table = ResultTable(classes="results", cursor_type="row", zebra_stripes=True)
                 table.tooltip = "Enter or click on a result shows it in another unit"
                 # fixed widths from the description: no re-measuring on idle, so the
                 # layout is the same every time (snapshots) and never jumps while typing. The
@@ -215,8 +217,6 @@ class CalculatorTab(Widget):
                 table.refresh()
 
     def on_mount(self) -> None:
-        from types import SimpleNamespace
-
         self._parts = SimpleNamespace(
             table=self.query_one(".results", DataTable),
             status=self.query_one(".status", Static),
@@ -228,6 +228,8 @@ class CalculatorTab(Widget):
             dimmed=list(self.query(".results, .plot-panel, .result-table")),
         )
         self._field_names = {f.name for f in self.calculator.fields}
+        for entry in self.query(FieldInput):
+            entry.edited = self._typed
         self._bad_field: str | None = None  # the field whose error line is shown
         self._warnings_text: str | None = None
         self._shown_by = None
@@ -254,6 +256,13 @@ class CalculatorTab(Widget):
         else:
             name = self._name_of(event.control)
             value = event.value
+        self._take_entry(name, value)
+
+    def _typed(self, entry: FieldInput) -> None:
+        """A key changed an entry (FieldInput.edited): taken at once, before its Changed arrives."""
+        self._take_entry(self._name_of(entry), entry.value)
+
+    def _take_entry(self, name: str | None, value: Any) -> None:
         if name is None:
             return
         if self.entries.get(name) == value:
@@ -372,14 +381,9 @@ class CalculatorTab(Widget):
     @property
     def busy(self) -> bool:
         """A solve is running or waiting to run, or a shown solve's error estimate is being
-        computed (tests wait for this to clear)."""
-        return self._solving or self._dirty or bool(self._estimating)
-
-    def _start_solve(self) -> None:
-        self._dirty = False
-        self._solving = True
-        self.set_timer(BUSY_AFTER_S, self._mark_busy)
-        self._solve_in_thread(dict(self.entries), dict(self.display_units), self.unit_system)
+        computed, or its chart is waiting to be drawn (tests wait for this to clear)."""
+        plot = self._parts.plot if self._parts is not None else None
+        return self._solving or self._dirty or bool(self._estimating) or (plot is not None and plot.pending)
 
     def set_unit_system(self, system: str) -> None:
         """Show results in a units preference; units chosen with Enter give way to it."""
@@ -389,8 +393,52 @@ class CalculatorTab(Widget):
             self.query_one(PlotPanel).unit_system = system
         self.solve()
 
-    @work(thread=True, group="solve")
-    def _solve_in_thread(self, entries: dict[str, Any], display_units: dict[str, str], system: str) -> None:
+    def _start_solve(self) -> None:
+        self._dirty = False
+        self._solving = True
+        args = (dict(self.entries), dict(self.display_units), self.unit_system)
+        if self.calculator.simulate is None and self._solve_seconds < self.QUICK_S:
+            self._solve_quick(args)
+            return
+        self.set_timer(BUSY_AFTER_S, self._mark_busy)
+        self._solve_in_thread(*args)
+
+    QUICK_S = 0.003  # a closed-form solve that took less than this last time (typ. 0.1-0.3 ms)...
+    WAIT_S = 0.008  # ...is waited for this long on the UI thread, half a frame
+
+    def _solve_quick(self, args) -> None:
+        """Solve in a thread and wait up to WAIT_S for it: a result in time is shown in the frame
+        that echoes the key (a result arriving from a worker waits for the next frame, 17 ms
+        later); a solve that turns out slow (a new beam section, a long ratio search, pint's
+        registry built on a first unit) goes on in its thread and shows when done, as any other."""
+        from threading import Lock, Thread
+
+        handoff = SimpleNamespace(waiting=True, result=None, lock=Lock(), done=Event())
+
+        def run() -> None:
+            result = self._solve_entries(*args)[:2]
+            with handoff.lock:
+                if handoff.waiting:
+                    handoff.result = result
+                    handoff.done.set()
+                    return
+            try:
+                self.app.call_from_thread(self._solve_done, *result)
+            except RuntimeError:  # the app closed while this solve ran
+                pass
+
+        Thread(target=run, name="gearhead-solve", daemon=True).start()
+        handoff.done.wait(self.WAIT_S)
+        with handoff.lock:
+            handoff.waiting = False
+            result = handoff.result
+        if result is not None:
+            self._solve_done(*result)
+        else:
+            self.set_timer(BUSY_AFTER_S, self._mark_busy)
+
+    def _solve_entries(self, entries: dict[str, Any], display_units: dict[str, str], system: str):
+        """(solution, error, pending error estimate) of these entries; never raises."""
         from time import perf_counter
 
         from gearhead.core import unit_systems
@@ -403,7 +451,7 @@ class CalculatorTab(Widget):
         started = perf_counter()
         pending: list = []
         try:
-            # in the thread: "as entered" reads units with pint, which must not load on the UI thread
+            # "as entered" reads units with pint: in a worker until its registry is built
             preferred = unit_systems.display_units(self.calculator, system, entries)
             self._preferred_units = preferred
             # a simulation polls this between steps: keys typed meanwhile drop it (latest wins at once)
@@ -438,6 +486,11 @@ class CalculatorTab(Widget):
                 ),
             )
         self._solve_seconds = perf_counter() - started  # the whole solve (an optimiser's search too)
+        return solution, error, pending
+
+    @work(thread=True, group="solve")
+    def _solve_in_thread(self, entries: dict[str, Any], display_units: dict[str, str], system: str) -> None:
+        solution, error, pending = self._solve_entries(entries, display_units, system)
         try:
             self.app.call_from_thread(self._solve_done, solution, error)
             if pending and self.solution is solution:  # shown: now its error estimate
@@ -556,13 +609,9 @@ class CalculatorTab(Widget):
         table = parts.table
         self._fill_results(table, solution)
         if parts.plot is not None:
-            self.call_later(parts.plot.show, solution)
+            parts.plot.show_soon(solution)
         self._show_tables(solution)
-        warnings = "\n".join("! " + w for w in solution.warnings)
-        if warnings != self._warnings_text:  # its box grows with it: a layout, only when it changes
-            self._warnings_text = warnings
-            parts.warnings.update(Text(warnings, style="yellow"))
-            parts.warnings_box.display = bool(solution.warnings)
+        self._show_warnings(solution.warnings)
         status.update(
             Text(
                 "✓ solved" if self.hide_timings else f"✓ solved in {_duration(self._solve_seconds)}",
@@ -572,6 +621,25 @@ class CalculatorTab(Widget):
         )
         parts.glance.update(self._glance_text(solution), layout=False)
         self._show_spread(solution, table, status)
+
+    def _show_warnings(self, warnings: list[str]) -> None:
+        """The warnings box grows with its text: laying the screen out again repaints every field
+        (25 ms on the drivetrain card, whose warnings quote numbers that change with each key),
+        so only a text that takes a different number of lines asks for a layout."""
+        parts = self._parts
+        text = "\n".join("! " + w for w in warnings)
+        if text == self._warnings_text:
+            return
+        content = Text(text, style="yellow")
+        width = parts.warnings.content_region.width
+        lines = len(content.wrap(self.app.console, width)) if text and width else 0
+        same_height = lines == self._warnings_lines and parts.warnings_box.display == bool(text)
+        self._warnings_text, self._warnings_lines = text, lines
+        parts.warnings.update(content, layout=not same_height)
+        if parts.warnings_box.display != bool(text):
+            parts.warnings_box.display = bool(text)
+
+    _warnings_lines = -1  # lines the warnings took when last shown (-1: unknown, lay out)
 
     def _fill_results(self, table: DataTable, solution: Solution) -> None:
         """The results table: the same outputs as shown now get their changed cells updated in
@@ -652,6 +720,7 @@ class CalculatorTab(Widget):
             self._parts.warnings.update(Text("\n".join(lines), style="yellow"))
             self._parts.warnings_box.display = True
             self._warnings_text = None  # not the solution's own: the next _show rewrites it
+            self._warnings_lines = -1
 
     def _append_spread(self, name: str, line: Text) -> None:
         """With tolerances, the help line of a result also gives its spread in full: worst case and

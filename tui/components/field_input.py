@@ -14,6 +14,8 @@ checked by the app before the key reaches the widget, exactly as before.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from textual import events
 from textual.geometry import Size
 from textual.reactive import Reactive
@@ -27,13 +29,21 @@ class FieldInput(Input):
     # value directly: a repaint is enough.
     virtual_size = Reactive(Size(0, 0), layout=False)
 
+    # Called with this entry, in its key handler, when a key changed its value: the owner can
+    # show the key's result in the frame that echoes the key (Input.Changed arrives after that
+    # frame has been drawn, and the result a frame later, 17 ms)
+    edited: Callable[[FieldInput], None] | None = None
+
     async def _on_key(self, event: events.Key) -> None:
+        before = self.value
         if not event.is_printable and await self._run_own_binding(event.key):
             event.stop()
             event.prevent_default()
             self._restart_blink()
-            return
-        await super()._on_key(event)
+        else:
+            await super()._on_key(event)
+        if self.value != before and self.edited is not None:
+            self.edited(self)
 
     async def _run_own_binding(self, key: str) -> bool:
         """Run the action this widget binds to `key` now; False if it binds none (the key

@@ -47,6 +47,28 @@ class PlotPanel(Vertical):
         if self.solution is not None:
             self.call_later(self.show, self.solution)
 
+    # A chart costs more than a frame to draw (textual-plot redraws every series on each render:
+    # 10-30 ms on the motor tab, pilot), so it follows the results once typing pauses: the frame
+    # that shows a key's results is never held up by it, and a burst of keys draws it once.
+    QUIET_S = 0.08
+    _pending = None  # the timer of a show_soon not yet done
+
+    def show_soon(self, solution: Solution) -> None:
+        self.solution = solution
+        if self._pending is not None:
+            self._pending.stop()
+        self._pending = self.set_timer(self.QUIET_S, self._show_pending)
+
+    @property
+    def pending(self) -> bool:
+        """A chart is waiting to be drawn (tests wait for it)."""
+        return self._pending is not None
+
+    async def _show_pending(self) -> None:
+        self._pending = None
+        if self.solution is not None:
+            await self.show(self.solution)
+
     @property
     def current(self) -> Plot:
         """The plot on screen (the one the selector shows)."""
