@@ -13,7 +13,7 @@ from typing import Any
 
 from rich.cells import cell_len
 from rich.text import Text
-from textual import on, work
+from textual import on
 from textual.app import ComposeResult
 from textual.containers import Horizontal, Vertical, VerticalScroll
 from textual.content import Content
@@ -393,42 +393,24 @@ class CalculatorTab(Widget):
             self.query_one(PlotPanel).unit_system = system
         self.solve()
 
+    # Every solve runs in a thread (a slow one must not freeze typing, and a new key cancels a
+    # running simulation). One that was quick last time is also waited for, up to WAIT_S: a
+    # result in time is shown in the frame that echoes the key, where a result arriving from a
+    # thread waits for the next frame (17 ms later). One that turns out slow (a new beam section,
+    # a long ratio search, pint's registry built for a first unit) shows when done, as any other.
+    QUICK_S = 0.006  # the last solve took less than this (closed form 0.1-0.5 ms, a scene's main run 0.4-4 ms)
+    WAIT_S = 0.008  # half a frame
+
     def _start_solve(self) -> None:
+        from threading import Lock, Thread
+
         self._dirty = False
         self._solving = True
         args = (dict(self.entries), dict(self.display_units), self.unit_system)
-        if self.calculator.simulate is None and self._solve_seconds < self.QUICK_S:
-            self._solve_quick(args)
-            return
-        self.set_timer(BUSY_AFTER_S, self._mark_busy)
-        self._solve_in_thread(*args)
-
-    QUICK_S = 0.003  # a closed-form solve that took less than this last time (typ. 0.1-0.3 ms)...
-    WAIT_S = 0.008  # ...is waited for this long on the UI thread, half a frame
-
-    def _solve_quick(self, args) -> None:
-        """Solve in a thread and wait up to WAIT_S for it: a result in time is shown in the frame
-        that echoes the key (a result arriving from a worker waits for the next frame, 17 ms
-        later); a solve that turns out slow (a new beam section, a long ratio search, pint's
-        registry built on a first unit) goes on in its thread and shows when done, as any other."""
-        from threading import Lock, Thread
-
         handoff = SimpleNamespace(waiting=True, result=None, lock=Lock(), done=Event())
-
-        def run() -> None:
-            result = self._solve_entries(*args)[:2]
-            with handoff.lock:
-                if handoff.waiting:
-                    handoff.result = result
-                    handoff.done.set()
-                    return
-            try:
-                self.app.call_from_thread(self._solve_done, *result)
-            except RuntimeError:  # the app closed while this solve ran
-                pass
-
-        Thread(target=run, name="gearhead-solve", daemon=True).start()
-        handoff.done.wait(self.WAIT_S)
+        Thread(target=self._solve_in_thread, args=(args, handoff), name="gearhead-solve", daemon=True).start()
+        if self._solve_seconds < self.QUICK_S:
+            handoff.done.wait(self.WAIT_S)
         with handoff.lock:
             handoff.waiting = False
             result = handoff.result
@@ -436,6 +418,31 @@ class CalculatorTab(Widget):
             self._solve_done(*result)
         else:
             self.set_timer(BUSY_AFTER_S, self._mark_busy)
+
+    def _solve_in_thread(self, args: tuple, handoff: SimpleNamespace) -> None:
+        solution, error, pending = self._solve_entries(*args)
+        try:
+            with handoff.lock:
+                in_time = handoff.waiting
+                if in_time:  # _start_solve is waiting: it shows the result itself
+                    handoff.result = (solution, error)
+                    handoff.done.set()
+            if not in_time:
+                self.app.call_from_thread(self._solve_done, solution, error)
+            if pending:
+                # once the frame with the results is drawn (this thread would hold the GIL from
+                # it), and only if they are the ones on screen: now their error estimate
+                drawn = Event()
+                self.app.call_from_thread(self.call_after_refresh, drawn.set)
+                drawn.wait(1.0)
+                if self.solution is solution:
+                    self.app.call_from_thread(
+                        self._estimate_done, solution, self._run_estimate(pending[0], solution)
+                    )
+        except RuntimeError:  # the app closed while this solve ran
+            pass
+        finally:
+            self._estimating.discard(get_ident())
 
     def _solve_entries(self, entries: dict[str, Any], display_units: dict[str, str], system: str):
         """(solution, error, pending error estimate) of these entries; never raises."""
@@ -487,24 +494,6 @@ class CalculatorTab(Widget):
             )
         self._solve_seconds = perf_counter() - started  # the whole solve (an optimiser's search too)
         return solution, error, pending
-
-    @work(thread=True, group="solve")
-    def _solve_in_thread(self, entries: dict[str, Any], display_units: dict[str, str], system: str) -> None:
-        solution, error, pending = self._solve_entries(entries, display_units, system)
-        try:
-            self.app.call_from_thread(self._solve_done, solution, error)
-            if pending and self.solution is solution:  # shown: now its error estimate
-                # once the frame with the results is drawn: this thread would hold the GIL from it
-                drawn = Event()
-                self.app.call_from_thread(self.call_after_refresh, drawn.set)
-                drawn.wait(1.0)
-                self.app.call_from_thread(
-                    self._estimate_done, solution, self._run_estimate(pending[0], solution)
-                )
-        except RuntimeError:  # the app closed while this solve ran
-            pass
-        finally:
-            self._estimating.discard(get_ident())
 
     # ---- the error estimate of a scene, after its results (core/sim/scene.py deferred_estimate) ----
     # self._estimating (__init__): the threads computing a shown solution's estimate
