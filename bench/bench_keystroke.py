@@ -43,7 +43,7 @@ def typing_field(calc_id: str) -> str:
 
     for f in get(calc_id).fields:
         text = f.default_text()
-        if f.type != "quantity" or not text[-1:].isdigit() or len(text) < 2:
+        if not f.kind.numeric or not text[-1:].isdigit() or len(text) < 2:
             continue
         try:
             solve(calc_id, {f.name: text[:-1]})

@@ -114,6 +114,10 @@ class Kind:
     def widget(self, f: Field) -> Widget:
         return Widget("input", unit=f.unit)
 
+    def entry_hint(self, f: Field) -> str:
+        """How an entry of this kind may be written, for the help line under the form."""
+        return ""
+
     def initial_entry(self, f: Field) -> Any:
         """The default as the widget holds it."""
         return self.default_text(f)
@@ -137,6 +141,9 @@ class Quantity(Kind):
 
     name = "quantity"
     numeric = True
+
+    def entry_hint(self, f):
+        return f"bare number = {f.unit or 'plain number'}; any compatible unit may be typed"
 
     def parse(self, f, raw):
         return self.checked(f, units.parse(raw, f.unit, f.quantity, f.name), str(raw))

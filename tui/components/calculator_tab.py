@@ -294,11 +294,9 @@ class CalculatorTab(Widget):
             f = self.calculator.field(name)
             line = Text(f.label + ": ", style="bold")
             line.append(f.help or "")
-            if f.type == "quantity":
-                line.append(
-                    f"  (bare number = {f.unit or 'plain number'}; any compatible unit may be typed)",
-                    style="dim",
-                )
+            hint = f.kind.entry_hint(f)
+            if hint:
+                line.append(f"  ({hint})", style="dim")
             self.query_one(".help-line", Static).update(line)
 
     @on(DataTable.RowHighlighted, ".results")
@@ -398,7 +396,9 @@ class CalculatorTab(Widget):
     # result in time is shown in the frame that echoes the key, where a result arriving from a
     # thread waits for the next frame (17 ms later). One that turns out slow (a new beam section,
     # a long ratio search, pint's registry built for a first unit) shows when done, as any other.
-    QUICK_S = 0.006  # the last solve took less than this (closed form 0.1-0.5 ms, a scene's main run 0.4-4 ms)
+    QUICK_S = (
+        0.006  # the last solve took less than this (closed form 0.1-0.5 ms, a scene's main run 0.4-4 ms)
+    )
     WAIT_S = 0.008  # half a frame
 
     def _start_solve(self) -> None:
@@ -621,8 +621,11 @@ class CalculatorTab(Widget):
             return
         content = Text(text, style="yellow")
         width = parts.warnings.content_region.width
-        lines = len(content.wrap(self.app.console, width)) if text and width else 0
-        same_height = lines == self._warnings_lines and parts.warnings_box.display == bool(text)
+        # a hidden box has no width yet: its height is known once it has been laid out
+        lines = (len(content.wrap(self.app.console, width)) if width else -1) if text else 0
+        same_height = (
+            lines >= 0 and lines == self._warnings_lines and parts.warnings_box.display == bool(text)
+        )
         self._warnings_text, self._warnings_lines = text, lines
         parts.warnings.update(content, layout=not same_height)
         if parts.warnings_box.display != bool(text):

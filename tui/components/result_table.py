@@ -4,7 +4,7 @@ DataTable.update_cell bumps a counter that is part of every render cache's key, 
 value re-renders every cell of the table: 30 ms of a 45 ms frame on the gear ratio tab (11 rows,
 pilot, profiled). A keystroke changes a few values; here only their rows' cache entries are
 dropped and only their rows' region is repainted. This reaches into DataTable's caches (textual
-is pinned in pyproject.toml); tests/test_result_table.py checks the repaint against a fresh table.
+is pinned in pyproject.toml); tests/test_key_render.py checks the repaint against a fresh table.
 """
 
 from __future__ import annotations
