@@ -30,53 +30,60 @@ class ResultTable(DataTable):
             return
         self._data[row_key][column_key] = value
         row_index = self._row_locations.get(row_key)
-        # the caches keyed by this row: its cells (key[0] is the row key), its lines (key[0]), its
-        # renderables (key (update count, row index)); assembled lines are keyed by y: all dropped,
-        # rebuilding them from the cached cells costs little
-        for cache in (self._cell_render_cache, self._row_render_cache):
-            for key in [k for k in cache.keys() if k[0] == row_key]:
-                cache.discard(key)
+        # what holds this cell: its rendering (key[:2] is the row and column key; the row's other
+        # cells stay cached), the row's lines (key[0] is the row key) and renderables (key (update
+        # count, row index)); assembled lines are keyed by y: all dropped, rebuilt from the
+        # cached cells at little cost
+        for key in [k for k in self._cell_render_cache.keys() if k[0] == row_key and k[1] == column_key]:
+            self._cell_render_cache.discard(key)
+        for key in [k for k in self._row_render_cache.keys() if k[0] == row_key]:
+            self._row_render_cache.discard(key)
         for key in [k for k in self._row_renderable_cache.keys() if k[1] == row_index]:
             self._row_renderable_cache.discard(key)
         self._line_cache.clear()
         self.refresh_row(row_index)
 
-    # DataTable asks a row's style from its component styles for every row it renders, and each
-    # ask walks the DOM up to the screen (61 walks and ~35 % of a full table render, cProfile).
-    # Textual caches component rich styles the same way (Widget.get_component_rich_style), and
-    # drops them when styles change (notify_style_update).
-    _row_styles: dict[str, object] | None = None
-
-    def notify_style_update(self) -> None:
-        self._row_styles = None
-        super().notify_style_update()
-
-    def _get_row_style(self, row_index: int, base_style):
-        if row_index == -1:
-            name = "datatable--header"
-        elif row_index < self.fixed_rows:
-            name = "datatable--fixed"
-        elif self.zebra_stripes:
-            name = "datatable--odd-row" if row_index % 2 else "datatable--even-row"
-        else:
-            return base_style
-        if self._row_styles is None:
-            self._row_styles = {}
-        if name not in self._row_styles:
-            self._row_styles[name] = self.get_component_styles(name).rich_style
-        return self._row_styles[name]
-
-    # render_line asks the table's own rich style (another walk to the screen) for every line;
-    # it cannot change within one render, so it is asked once per render_lines call
-    _base_style = None
-
-    @property
-    def rich_style(self):
-        return self._base_style if self._base_style is not None else super().rich_style
+    # Within one render nothing changes the table's styles or size, yet DataTable asks them per
+    # line or per row, and each ask walks the DOM up to the screen: its own rich style and size
+    # for every line, a component's styles (header, even/odd row) for every row (~35 % of a table
+    # render, cProfile). While render_lines runs, each is asked once; outside it, as Textual does.
+    _memo: dict | None = None
 
     def render_lines(self, crop):
-        self._base_style = super().rich_style
+        self._memo = {}
         try:
             return super().render_lines(crop)
         finally:
-            self._base_style = None
+            self._memo = None
+
+    def _remembered(self, key, compute):
+        memo = self._memo
+        if memo is None:
+            return compute()
+        if key not in memo:
+            memo[key] = compute()
+        return memo[key]
+
+    @property
+    def rich_style(self):
+        return self._remembered("rich_style", lambda: DataTable.rich_style.fget(self))
+
+    @property
+    def size(self):
+        return self._remembered("size", lambda: DataTable.size.fget(self))
+
+    def get_component_styles(self, *names):
+        return self._remembered(
+            names, lambda: _RenderedStyles(super(ResultTable, self).get_component_styles(*names))
+        )
+
+
+class _RenderedStyles:
+    """A component's styles within one render: its rich style computed once."""
+
+    def __init__(self, styles) -> None:
+        self._styles = styles
+        self.rich_style = styles.rich_style
+
+    def __getattr__(self, name):
+        return getattr(self._styles, name)
