@@ -182,6 +182,82 @@ def test_reverse_of_forward_returns_the_ratio(motor, n, V, eta, d, W, mu, G, V_m
     assert m.free_speed * d / 2 / fwd["free_speed"] == pytest.approx(G, rel=1e-12)
 
 
+@settings(max_examples=100, deadline=None)
+@given(
+    motor=motor_names,
+    n=st.integers(1, 8),
+    V=st.floats(6, 13),
+    d=st.floats(0.03, 0.2),
+    W=st.floats(10, 3000),
+    mu=st.floats(0.2, 1.6),
+    G=st.floats(1, 40),
+    V_min=st.floats(3, 9),
+    R_br=st.one_of(st.just(0.0), st.floats(1e-5, 0.05)),
+    stator=st.one_of(st.none(), st.floats(5, 200)),
+    supply=st.one_of(st.none(), st.floats(5, 150)),
+    sag=st.booleans(),
+    V_batt=st.floats(10, 13.5),
+)
+def test_reverse_of_forward_returns_the_ratio_with_limits_and_sag(
+    motor, n, V, d, W, mu, G, V_min, R_br, stator, supply, sag, V_batt
+):
+    """The round trip above with stator_limit, supply_limit and battery_sag: forward mode at G slips
+    the wheels drawing a battery current i_b (D2); a budget allowing exactly i_b (41) (with sag: the
+    minimum voltage set to forward's voltage at the controllers, the same thing) gives G back when
+    the budget is what binds; in every case the ratio reverse finds, fed to forward mode with the
+    same effects, slips the wheels (pushing force = traction) within the budget."""
+    on = [e for e, x in (("stator_limit", stator), ("supply_limit", supply), ("battery_sag", sag)) if x]
+    assume(on)
+    R_batt, R_main = 0.015, 0.002
+    R41 = R_batt + R_main + R_br / n
+    base = dict(
+        motor=motor,
+        motor_count=n,
+        voltage=f"{V!r} V",
+        wheel_diameter=f"{d!r} m",
+        weight=f"{W!r} N",
+        friction=mu,
+        effects=", ".join(on),
+        stator_current_limit=f"{(stator or 40)!r} A",
+        supply_current_limit=f"{(supply or 30)!r} A",
+        battery_resistance=R_batt,
+        main_resistance=R_main,
+        branch_resistance=f"{R_br!r} ohm",
+    )
+    try:
+        fwd = out(**base, ratio=G, battery_voltage=f"{V_batt!r} V")
+    except InputError:  # limits too low to push at all (tests in test_limits_drivetrain.py)
+        assume(False)
+    assume(fwd["pushing_force"] == pytest.approx(W * mu, rel=1e-12))  # forward slips the wheels at G
+    i_b = fwd["push_battery_current"]
+    if sag:  # (D2): the controllers' voltage while pushing is (41) at i_b
+        assert fwd["push_bus_voltage"] == pytest.approx(V_batt - i_b * R41, rel=1e-12)
+        V_min = fwd["push_bus_voltage"]
+        assume(V_min > 0.5)
+    supply_held = supply is not None and fwd["push_supply_current"] < fwd["push_current"] * (1 - 1e-12)
+    if supply_held:  # a budget of exactly n·I_sup is the edge where any ratio keeps within it; just above
+        i_b *= 1 + 1e-6
+        if sag:
+            V_min = V_batt - i_b * R41
+    if not sag:
+        V_batt = V_min + i_b * R41  # (41) solved for V_batt
+    m = motors.system(motors.lookup(motor, "wpilib")[0], n, V, 1.0)
+    i_c = V_batt / (R41 + V / m.stall_current)  # stalled through the wiring (no sag: reverse's cap)
+    # (without sag a battery that stalled through the wiring gives no more than the free current is
+    # refused, naming battery_voltage: test_reverse_battery_too_weak_to_push_names_a_field)
+    assume(sag or i_c > m.free_current * (1 + 1e-9))
+    rev = out(**base, mode="reverse", battery_voltage=f"{V_batt!r} V", min_voltage=f"{V_min!r} V")
+    assert rev["total_current"] == pytest.approx(i_b, rel=1e-9)
+    back = out(**base, ratio=repr(rev["max_ratio"]), battery_voltage=f"{V_batt!r} V")
+    assert back["pushing_force"] == pytest.approx(W * mu, rel=1e-12)
+    assert back["push_battery_current"] <= i_b * (1 + 1e-9)
+    if sag or i_c >= fwd["slip_current_total"]:  # (else the wiring caps reverse's stall current)
+        if not supply_held:  # the budget binds at G: reverse finds G, the fastest ratio within it
+            assert rev["max_ratio"] == pytest.approx(G, rel=1e-8)
+        else:  # the supply limit holds the battery current at n·I_sup: any faster ratio that still
+            assert rev["max_ratio"] <= G * (1 + 1e-9)  # slips is within the budget
+
+
 @settings(max_examples=150, deadline=None)
 @given(
     motor=motor_names, n=st.integers(1, 8), d=st.floats(0.03, 0.2), G1=st.floats(1, 40), G2=st.floats(1, 40)

@@ -140,7 +140,77 @@ def test_limits_too_low_name_the_field(kw, field):
     assert e.value.field == field
 
 
-def test_effects_do_nothing_in_reverse_mode():
-    a, _ = out(mode="reverse")
-    b, _ = out(mode="reverse", effects="stator_limit", stator_current_limit="10 A")
-    assert a == b
+def test_reverse_stator_limit_sets_the_ratio_by_hand():
+    """Reverse defaults (150 lbf, μ 1.1, 4 in, 4 Krakens at 12 V): i_tot (41) = 5.7/0.0185 = 308.108 A,
+    but a 60 A stator limit holds the stalled motors at 4·60 = 240 A. The fastest ratio that slips:
+    (42) with 240 A: μ·W̃·r/(K_T·(240 − 8)) = 733.957·0.0508/(0.0194780·232) = 37.2850/4.51890 = 8.2509
+    (the old code ignored the limit and gave 6.3784, where forward mode with the limit pushes only
+    0.0194780·232·6.3784/0.0508 = 567.4 N < 734 N)."""
+    o, w = out(
+        mode="reverse", weight="150 lbf", friction=1.1, effects="stator_limit", stator_current_limit="60 A"
+    )
+    assert o["max_ratio"] == pytest.approx(8.2509, rel=1e-4)
+    assert o["slip_current_total"] == pytest.approx(240, rel=1e-12)
+    assert any("stator current limit holds each stalled motor at 60 A" in x for x in w)
+    f, fw = out(
+        weight="150 lbf",
+        friction=1.1,
+        effects="stator_limit",
+        stator_current_limit="60 A",
+        ratio=repr(o["max_ratio"]),
+    )
+    assert f["pushing_force"] == pytest.approx(1.1 * 150 * LBF, rel=1e-12)
+    assert not any("cap the pushing force" in x or "stall before" in x for x in fw)
+
+
+def test_reverse_with_sag_ends_at_the_minimum_voltage():
+    """battery_sag in reverse mode: the ratio found, fed to forward mode with the same sag, pushes at
+    exactly V_min at the controllers (D2) = (41): 12.7 − 0.074·308.108/4 = 7 V."""
+    o, w = out(mode="reverse", weight="150 lbf", friction=1.1, effects="battery_sag")
+    assert o["push_bus_voltage"] == pytest.approx(7.0, rel=1e-12)
+    assert o["max_ratio"] == pytest.approx(6.3784, rel=1e-4)  # as without sag: i_c = 1287 A > i_tot
+
+
+def test_reverse_supply_limit_keeps_the_voltage_up_at_any_ratio():
+    """Supply limit 40 A with sag: the battery never gives more than 4·40 = 160 A < i_tot = 308.1 A,
+    so the budget never binds. Stalled (E = 0), (E3): u² = I_sup·R/(V_b − I_sup·R_bus) with
+    R = 12/366, R_bus = 4·0.017 + 0.006 = 0.074: u = √(1.31148/9.74) = 0.366944, I₀ = 40/u = 109.008 A;
+    G = 37.2850/(0.0194780·(436.033 − 8)) = 4.4721; forward there: supply 40 A, bus 12.7 − 0.074·40 = 9.74 V."""
+    o, w = out(
+        mode="reverse",
+        weight="150 lbf",
+        friction=1.1,
+        effects="supply_limit, battery_sag",
+        supply_current_limit="40 A",
+    )
+    u = math.sqrt(40 * R / (12.7 - 40 * 0.074))
+    assert u == pytest.approx(0.366944, abs=1e-6)
+    assert o["slip_current_total"] == pytest.approx(4 * 40 / u, rel=1e-12)
+    assert o["max_ratio"] == pytest.approx(1.1 * 150 * LBF * r / (KT * (4 * 40 / u - 8)), rel=1e-12)
+    assert o["max_ratio"] == pytest.approx(4.4721, rel=1e-4)
+    assert o["push_bus_voltage"] == pytest.approx(9.74, rel=1e-12)
+    assert any("supply current limit keeps the battery current" in x for x in w)
+
+
+@pytest.mark.parametrize(
+    "kw,field",
+    [
+        ({"effects": "stator_limit", "stator_current_limit": "2 A"}, "stator_current_limit"),
+        ({"effects": "supply_limit", "supply_current_limit": "0.01 A"}, "supply_current_limit"),
+        # i_tot = 12.7/1.58 = 8.04 A > ĩf = 8 A, but stalled through 1.58 Ω: 12.7/1.5882 = 7.997 A
+        (
+            {
+                "effects": "battery_sag",
+                "battery_resistance": "1.58 ohm",
+                "main_resistance": 0,
+                "branch_resistance": 0,
+                "min_voltage": 0,
+            },
+            "battery_resistance",
+        ),
+    ],
+)
+def test_reverse_limits_too_low_name_the_field(kw, field):
+    with pytest.raises(InputError) as e:
+        out(mode="reverse", **kw)
+    assert e.value.field == field and "\n" not in e.value.message

@@ -237,3 +237,129 @@ def test_rotor_inertia_is_wheel_inertia_reflected_by_the_ratio_squared():
         ):
             assert a[k] == pytest.approx(b[k], rel=1e-12), k
     assert out(rotor_inertia=0)["spin_up_time"] == out()["spin_up_time"]
+
+
+# motor_during_shot under the limits: the slip phase (FW3) with the limited torque (F1). The shot at
+# the target ω₀: I_w·dω/dt = τ_w(ω) − r_w·F, m_e·s·dV/dt = F, until r_w·ω = V/s (hood: s = 1/2,
+# m_e = m·(1 + k_b)).
+R_WH, S, M_E = 0.0508, 0.5, 0.2268 * 1.4
+
+
+def test_slip_phase_under_a_stator_limit_is_the_constant_torque_closed_form():
+    """40 A stator limit, no sag, 12 V: at the target the back-EMF 622·G/Kv = 7.88 V is below
+    V − R·I_st = 10.69 V, and it only falls during the slip, so the current is I_st throughout and
+    the torque the constant τ_c = A·(I_st − i_f)/(i_s − i_f) = 9.4538·38/364 = 0.98694 N·m (the old
+    code used the full duty torque A·(1 − ω/ω_f) = 9.4538·(1 − 622/942.4) = 3.214 N·m). With c = (τ_c − r_w·F)/I_w, ω = ω₀ + c·t and
+    V = F·t/(m_e·s), rolling at t_c = r_w·ω₀/(F/(m_e·s²) − r_w·c); the ball leaves at s·r_w·ω(t_c)."""
+    F, w0 = 100.0, 622.0
+    R, Kv, A, i_s, i_f = motor()
+    assert w0 * G / Kv < 12 - R * 40
+    tau_c = A * (40 - i_f) / (i_s - i_f)
+    assert tau_c == pytest.approx(0.98694, abs=1e-5)
+    c = (tau_c - R_WH * F) / I_W
+    t_c = R_WH * w0 / (F / (M_E * S * S) - R_WH * c)
+    w1 = w0 + c * t_c
+    sol = solve(
+        "flywheel",
+        raw(effects="stator_limit, motor_during_shot", stator_current_limit="40 A", grip_force=f"{F} N"),
+    )
+    o = {k: v.value for k, v in sol.outputs.items()}
+    assert o["contact_time"] == pytest.approx(t_c, rel=1e-8)
+    assert o["wheel_speed_after"] == pytest.approx(w1, rel=1e-8)
+    assert o["ball_speed"] == pytest.approx(S * R_WH * w1, rel=1e-8)
+    assert not any("full duty" in w for w in sol.warnings)
+
+
+def _limited_current(E, V, R, Rb, I_st, I_sup):
+    """Independent of core.sim.motor_limits: the controller raises the duty u from 0 until the
+    stator current (u·V − E)/(R + u²·R_bus) reaches I_st or the supply current u·I reaches I_sup
+    (the first crossing on a fine grid, refined by brentq), else u = 1."""
+    import numpy as np
+    from scipy.optimize import brentq
+
+    def stator(u):
+        return (u * V - E) / (R + u * u * Rb)
+
+    u_end = 1.0
+    for g in (lambda u: stator(u) - I_st, lambda u: u * stator(u) - I_sup):
+        us = np.linspace(max(E / V, 0.0), 1.0, 4001)
+        vals = [g(u) for u in us]
+        for k in range(1, len(us)):
+            if vals[k - 1] < 0 <= vals[k]:
+                u_end = min(u_end, brentq(g, us[k - 1], us[k], xtol=1e-15, rtol=1e-15))
+                break
+    return stator(u_end)
+
+
+def test_slip_phase_under_stator_supply_and_sag_against_solve_ivp():
+    """40 A stator, 15 A supply, 0.02 Ω battery (R_bus = 2·0.02 per motor), 12.5 V, grip 300 N: the
+    ODE above integrated by scipy's DOP853 (rtol 1e-12) with the current found by _limited_current."""
+    from scipy.integrate import solve_ivp
+
+    F, w0, V = 300.0, 622.0, 12.5
+    R, Kv, A, i_s, i_f = motor(V)
+    Rb = N * 0.02
+
+    def rhs(t, y):
+        I = _limited_current(G * y[0] / Kv, V, R, Rb, 40.0, 15.0)
+        return [(A * (I - i_f) / (i_s - i_f) - R_WH * F) / I_W, F / (M_E * S)]
+
+    def rolling(t, y):
+        return R_WH * y[0] - y[1] / S
+
+    rolling.terminal, rolling.direction = True, -1
+    ref = solve_ivp(rhs, (0, 1.0), [w0, 0.0], method="DOP853", rtol=1e-12, atol=1e-12, events=rolling)
+    t_c, (w1, Vb) = ref.t_events[0][0], ref.y_events[0][0]
+    # the supply limit binds during the slip (else this would test the stator phase only)
+    E0 = G * w0 / Kv
+    assert _limited_current(E0, V, R, Rb, 40.0, 15.0) < 40 * (1 - 1e-6)
+    sol = solve(
+        "flywheel",
+        raw(
+            effects="stator_limit, supply_limit, battery_sag, motor_during_shot",
+            voltage="12.5 V",
+            stator_current_limit="40 A",
+            supply_current_limit="15 A",
+            battery_resistance="0.02 ohm",
+            grip_force=f"{F} N",
+        ),
+    )
+    o = {k: v.value for k, v in sol.outputs.items()}
+    assert o["contact_time"] == pytest.approx(t_c, rel=1e-7)
+    assert o["wheel_speed_after"] == pytest.approx(w1, rel=1e-7)
+    assert o["ball_speed"] == pytest.approx(Vb, rel=1e-7)
+    assert not any("full duty" in w for w in sol.warnings)
+
+
+def test_stiff_slip_under_a_limit_that_does_not_bind_in_the_slip_is_the_unlimited_closed_form():
+    """A wheel of 1e-9 lb·in² (time constant ~1e-10 s against a slip of ms): stiff, so scipy's Radau
+    integrates it. Grip 100 N: the wheel falls at once to where A·(1 − ω/ω_f) = r_w·F,
+    ω* = 942.4·(1 − 5.08/9.4538) = 436 rad/s, above where a 250 A stator limit lets go
+    (Kv·(12 − R·250)/G = 300 rad/s): the limit never binds in the slip, so the shot is the unlimited
+    one, which the module answers by its closed form. (The shot alone: the limited spin-up of such
+    a wheel is a separate matter.)"""
+    from gearhead.core.calculators import flywheel as fw
+    from gearhead.core.model import parse_inputs
+    from gearhead.core.registry import get
+
+    R, Kv, A, i_s, i_f = motor()
+    assert Kv * (12 - R * 250) / G < 942.4 * (1 - R_WH * 100 / A)
+    shots = []
+    for effects in ("stator_limit, motor_during_shot", "motor_during_shot"):
+        v = parse_inputs(
+            get("flywheel"),
+            raw(
+                wheel_inertia="1e-9 lb*in**2",
+                grip_force="100 N",
+                effects=effects,
+                stator_current_limit="250 A",
+            ),
+        )[0]
+        sc = fw.scene_from(v, 1e-10)[0]
+        assert (sc.drive is not None) == ("stator_limit" in effects)
+        shots.append(fw.shot(sc, 622.0, 0.2268, 622.0, 1e-10))
+    lim, free = shots
+    assert lim.nfev > 0 and free.nfev == 0  # Radau integrated; the closed form answered
+    for k in ("contact_time", "omega_after", "V"):
+        assert math.isfinite(getattr(lim, k))
+        assert getattr(lim, k) == pytest.approx(getattr(free, k), rel=1e-6), k

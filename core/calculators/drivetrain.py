@@ -44,6 +44,17 @@ controllers while pushing (D2). See `pushing`:
     supply current u·I per motor, battery n·u·I, V_controllers = V_b − R_bus·u·I             (D2)
 with I the operating current per motor (ĩ_slip/n (39) if the wheels slip, else I₀) and u its duty.
 Reverse mode's "fastest that slips at all" (the motors cannot draw i_tot) is (42) with i_max, as above.
+
+Reverse mode with the same effects inverts (D1)-(D2) (derived with sympy): I₀ does not depend on G,
+so F_stall ≥ μ·W̃ ⇔ G ≥ μ·W̃·r/(K_T·(n·I₀ − ĩf)), (42) with n·I₀; the battery current while
+slipping is n·min(ĩ_slip/n, I_sup) (supply_limit) or ĩ_slip, and V_b − R_bus·(that)/n ≥ V_min ⇔
+(that) ≤ i_tot of (41) (R_bus = n·R₄₁). So
+    budget binds unless supply_limit is on with n·I_sup ≤ i_tot (then V ≥ V_min at any ratio)     (R1)
+    i_max = n·I₀ with battery_sag (it is i_c at full duty), else min(n·I₀, i_c)                   (R2)
+    G = (42) with min(i_tot, i_max) if the budget binds, else with i_max                          (R3)
+The ratio fed to forward mode with the same effects slips the wheels (pushing force = traction)
+with the battery current within i_tot (with sag: the controllers at V_min when the budget binds).
+n·I₀ ≤ ĩf (no ratio pushes) is refused naming the limit's field.
 """
 
 from __future__ import annotations
@@ -244,9 +255,9 @@ FIELDS = FIELDS + (
             "pushing force); battery_sag (the motors are fed from the battery "
             "voltage through the battery, main and branch resistances)."
         ),
-        modes=("forward",),
+        modes=("forward", "reverse"),
     ),
-    *[dataclasses.replace(f, modes=("forward",)) for f in EFFECTS.fields()],
+    *[dataclasses.replace(f, modes=("forward", "reverse")) for f in EFFECTS.fields()],
 )
 
 OUTPUTS = (
@@ -384,6 +395,37 @@ def total_current(V_batt, V_min, R_batt, R_main, R_br, n):
     return (V_batt - V_min) / (R_batt + R_main + R_br / n)  # (41)
 
 
+def electrical(v, m: MotorSystem):
+    """One motor's circuit for the effects that are on (core.sim.motor_limits), the same in forward
+    and reverse mode: per motor R = V_spec/i_s (M1), fed the Voltage field, or with battery_sag the
+    battery voltage through R_bus = n·(R_batt + R_main) + R_br (the circuit of (41)).
+    Returns (E -> (u, I) per motor (E1)-(E3), circuit, V_b, R_bus)."""
+    n = m.count
+    sag = "battery_sag" in v["effects"]
+    Vb = v["battery_voltage"] if sag else m.voltage
+    Rb = n * (v["battery_resistance"] + v["main_resistance"]) + v["branch_resistance"] if sag else 0.0
+    circuit = motor_limits.circuit_of(m.motor, Vb, Rb)
+    elec, _ = motor_limits.limits(EFFECTS, v["effects"], v, circuit)
+    return elec, circuit, Vb, Rb
+
+
+def binding_field(v, u0, I0) -> str:
+    """The field of the effect that holds the stalled motors' current I0 (at duty u0)."""
+    on = v["effects"]
+    if "stator_limit" in on and I0 >= v["stator_current_limit"] * (1 - 1e-12):
+        return "stator_current_limit"
+    if "supply_limit" in on and u0 < 1:
+        return "supply_current_limit"
+    return "battery_resistance"
+
+
+def cannot_push(m: MotorSystem, I0) -> str:
+    return (
+        f"leaves the stalled motors {I0:.4g} A each, not above their free current "
+        f"{m.free_current / m.count:.4g} A: they cannot push"
+    )
+
+
 def pushing(v, m: MotorSystem, G, d, i_slip, traction) -> dict:
     """Forward mode with stator_limit, supply_limit or battery_sag: the stall current per motor
     through core.sim.motor_limits (E1)-(E3) at E = 0, per motor R = V_spec/i_s (M1), fed the Voltage
@@ -394,27 +436,12 @@ def pushing(v, m: MotorSystem, G, d, i_slip, traction) -> dict:
     u = min(1, I_sup/I) (the stator limit, at or above it, does not bind); else I₀ at its duty u₀.
         supply current u·I per motor, battery n·u·I, V_controllers = V_b − R_bus·u·I             (D2)"""
     on, n = v["effects"], m.count
-    motor = m.motor
+    elec, circuit, Vb, Rb = electrical(v, m)
     sag = "battery_sag" in on
-    Vb = v["battery_voltage"] if sag else m.voltage
-    Rb = n * (v["battery_resistance"] + v["main_resistance"]) + v["branch_resistance"] if sag else 0.0
-    circuit = motor_limits.circuit_of(motor, Vb, Rb)
-    elec, _ = motor_limits.limits(EFFECTS, on, v, circuit)
     u0, I0 = elec(0.0)
     F_stall = m.kt * (n * I0 - m.free_current) * G / (d / 2)  # (D1)
     if F_stall <= 0:
-        name = (
-            "stator_current_limit"
-            if "stator_limit" in on and I0 >= v["stator_current_limit"] * (1 - 1e-12)
-            else "supply_current_limit"
-            if "supply_limit" in on and u0 < 1
-            else "battery_resistance"
-        )
-        raise InputError(
-            name,
-            f"leaves the stalled motors {I0:.4g} A each, not above their free current "
-            f"{m.free_current / n:.4g} A: they cannot push",
-        )
+        raise InputError(binding_field(v, u0, I0), cannot_push(m, I0))
     if n * I0 >= i_slip:  # the wheels slip
         I = i_slip / n
         u = min(1.0, v["supply_current_limit"] / I) if "supply_limit" in on else 1.0
@@ -483,7 +510,11 @@ def compute(v) -> Result:
         i_tot = total_current(
             V_batt, V_min, v["battery_resistance"], v["main_resistance"], v["branch_resistance"], n
         )
-        if i_tot <= m.free_current:
+        on = v["effects"]
+        # (R1): with supply_limit the battery current while slipping is n·min(ĩ_slip/n, I_sup), so
+        # when n·I_sup ≤ i_tot the controllers never drop below V_min, whatever the ratio
+        budget = not ("supply_limit" in on and n * v["supply_current_limit"] <= i_tot)
+        if budget and i_tot <= m.free_current:
             raise InputError(
                 "min_voltage",
                 f"the allowed current {i_tot:.4g} A is not above the motors' "
@@ -492,6 +523,21 @@ def compute(v) -> Result:
             )
         i_c = circuit_stall_current(m, V_batt, R)
         i_max = min(m.stall_current, i_c)  # most the stalled motors draw (module docstring)
+        held = ""  # what holds the stalled motors' current, when a current limit or the sag does
+        if on:  # forward mode's limited stall current (D1), all motors (R2)
+            u0, I0 = electrical(v, m)[0](0.0)
+            if n * I0 <= m.free_current:
+                raise InputError(binding_field(v, u0, I0), cannot_push(m, I0))
+            sag = "battery_sag" in on
+            # with sag n·I₀ is the stall current through the wiring (i_c at full duty); without,
+            # the limits only lower ĩs(V) and the wiring's cap i_c stays
+            i_max = n * I0 if sag else min(n * I0, i_c)
+            if i_max == n * I0 and (u0 < 1 or sag):
+                held = (
+                    f"the {binding_field(v, u0, I0).replace('_', ' ')} holds each stalled motor at {I0:.4g} A"
+                    if u0 < 1
+                    else f"fed the battery through the wiring (battery_sag) each stalled motor draws {I0:.4g} A"
+                )
         if i_max <= m.free_current:
             raise InputError(
                 "battery_voltage",
@@ -499,26 +545,33 @@ def compute(v) -> Result:
                 f"{i_c:.4g} A, not above their free current "
                 f"{m.free_current:.4g} A: they cannot push",
             )
-        if i_tot <= i_max:
-            G = max_ratio(m, W, mu, d, i_tot)  # (42)
+        if held:
+            limit = held
+        elif m.stall_current <= i_c:
+            limit = (
+                f"at {m.voltage:.3g} V (the Voltage field) the stalled motors draw at most "
+                f"{m.stall_current:.4g} A"
+            )
         else:
-            # The motors cannot draw i_tot: (42)'s ratio stalls them before the wheels slip. The
-            # fastest ratio that slips at all has the most they draw stalled producing the traction.
-            G = max_ratio(m, W, mu, d, i_max)  # (42) with i_max
-            if m.stall_current <= i_c:
-                limit = (
-                    f"at {m.voltage:.3g} V (the Voltage field) the stalled motors draw at most "
-                    f"{m.stall_current:.4g} A"
-                )
-            else:
-                limit = (
-                    f"stalled through this wiring they draw at most {i_c:.4g} A and the voltage "
-                    f"at the controllers stays above {V_batt - i_c * R:.3g} V"
-                )
+            limit = (
+                f"stalled through this wiring they draw at most {i_c:.4g} A and the voltage "
+                f"at the controllers stays above {V_batt - i_c * R:.3g} V"
+            )
+        if budget and i_tot <= i_max:
+            G = max_ratio(m, W, mu, d, i_tot)  # (42): the wheels slip at the allowed current
+        else:
+            # The motors cannot draw i_tot (or, supply-limited, never exceed it): (42)'s ratio
+            # stalls them before the wheels slip. The fastest ratio that slips at all has the most
+            # they draw stalled producing the traction.
+            G = max_ratio(m, W, mu, d, i_max)  # (42) with i_max (R3)
             warnings.append(
-                f"The motors cannot draw the allowed {i_tot:.4g} A at the minimum voltage: "
-                f"{limit}. The ratio shown is the fastest at which that current still "
-                f"slips the wheels."
+                (
+                    f"The motors cannot draw the allowed {i_tot:.4g} A at the minimum voltage: "
+                    if budget
+                    else f"The supply current limit keeps the battery current within the allowed "
+                    f"{i_tot:.4g} A at any ratio: "
+                )
+                + f"{limit}. The ratio shown is the fastest at which that current still slips the wheels."
             )
         if m.voltage > V_batt:
             warnings.append(
@@ -535,7 +588,7 @@ def compute(v) -> Result:
     v_free = free_speed(m, d, G)
     stall_force = stall_torque * G / (d / 2)  # (98) at stall
     limited = None
-    if mode == "forward" and v["effects"]:
+    if v["effects"]:  # forward, or reverse at the ratio it found (the same model: (D1), (D2))
         limited = pushing(v, m, G, d, i_slip, traction)
         stall_force = limited.pop("stall_force")
         series["limited motor force"] = limited.pop("curve")

@@ -49,6 +49,8 @@ The motor side, labelled here (A = G·τ̃s the wheel torque at stall, B = A/ω_
     t(ω₁ → ω_t) = T·ln((ω_f,w − ω₁)/(ω_f,w − ω_t))    full power: spin-up ω₁ = 0, recovery (FW2)
     I·dω/dt = A − B·ω − r_w·F,  m_e·s·dV/dt = F  until r_w·ω = V/s:  the slip phase of
         motor_during_shot, its duration the contact time                                   (FW3)
+    under a current limit A − B·ω is the limited τ_w(ω) of (F1), integrated (scipy's Radau
+        when stiff)                                                                        (FW3')
     ω(t) = ω_f,w − (ω_f,w − ω)·e^(−t/T) between shots ((F1) integrated under a limit), each
         shot by (5) or the momentum model; the slowest ball is the least V of the burst    (FW4)
     τ_w(ω) = A·(I(E) − i_f)/(i_s − i_f),  E = G·ω/Kv  under a current limit, I(E) by
@@ -615,11 +617,6 @@ def scene_from(v, rtol: float = 1e-6) -> tuple[Scene, list[str]]:
     if any(n in effects for n in ELECTRICAL):
         A, free, electric = electrical_drive(v, A, free, G, rtol)
         drive = electric if electric.boundaries is not None else None
-        if drive is not None and motor_on:
-            warnings.append(
-                "The current limits act on the spin-up and the recovery; the slip phase of "
-                "motor_during_shot runs the motors at full duty (unlimited)."
-            )
     hood = v["shooter"] == "hood"
     I = v["wheel_count"] * inertia_each(v)
     if v["rotor_inertia"] > 0:
@@ -735,6 +732,8 @@ def slip_phase(
     b = t0 * sc.B / sc.I
     u_t = target / omega0  # ≥ 1: a shot starts at or below the target
     span = max(1.0, u_t) * (1 + 1e-9) + 1e-12  # u stays in [0, u_t], so u = τ happens before this
+    if sc.drive is not None:  # a current limit: the torque is (F1), not linear in ω
+        return slip_phase_limited(sc, omega0, t0, b, u_t, span, rtol)
     if u_t <= 1.0 and a - b >= 0:  # at the target and the motor can hold it: no slip of the wheel
         return omega0, sc.s * sc.r_w * omega0, t0, 0
     if b * span > STIFF:
@@ -762,6 +761,65 @@ def slip_phase(
     elif run.event != "rolling":  # cannot happen by the bound on span; the end point is the answer
         u = v_end = min(u, v_end)
     return u * omega0, sc.s * sc.r_w * omega0 * v_end, v_end * t0, run.nfev
+
+
+def slip_phase_limited(
+    sc: Scene, omega0: float, t0: float, b: float, u_t: float, span: float, rtol: float
+) -> tuple[float, float, float, int]:
+    """(FW3) under a current limit: the motor torque is the limited τ_w(ω) of (F1) (core.sim.
+    motor_limits (E1)-(E5), the same as the spin-up and the recovery), in slip_phase's scaling:
+        du/dτ = t₀/(I·ω₀)·(τ_w(u·ω₀) − r_w·F),  dv/dτ = 1,  until u = v (rolling)          (FW3')
+    held at u_t once there (the torque there exceeds r_w·F, as it got there). τ_w is continuous
+    with kinks where a limit lets go; the integrator's step control takes them. Stiff (b·span
+    beyond STIFF, b the full-duty slope), scipy's Radau integrates it instead."""
+    d = sc.drive
+    k = t0 / (sc.I * omega0)
+    rw_F = sc.r_w * sc.grip
+
+    def rhs(t, y):
+        return [k * (d.torque(y[0] * omega0) - rw_F), 1.0]
+
+    if u_t <= 1.0 and rhs(0.0, [u_t, 0.0])[0] >= 0:  # at the target and the motor can hold it
+        return omega0, sc.s * sc.r_w * omega0, t0, 0
+    run = None
+    if b * span <= STIFF:
+        events = [Event("rolling", lambda t, y: y[0] - y[1], -1)]
+        if u_t > 1.0:
+            events.append(Event("target", lambda t, y: y[0] - u_t, +1))
+        try:
+            run = integrate(rhs, 0.0, span, [1.0, 0.0], rtol=rtol, atol=rtol * 1e-3, events=events)
+            (u, v_end), event, nfev = run.y[-1], run.event, run.nfev
+        except RuntimeError:  # beyond what a step-size controller can follow: Radau below
+            run = None
+    if run is None:
+        from scipy.integrate import solve_ivp
+
+        def rolling(t, y):
+            return y[0] - y[1]
+
+        def at_target(t, y):
+            return y[0] - u_t
+
+        rolling.terminal, rolling.direction = True, -1
+        at_target.terminal, at_target.direction = True, +1
+        sol = solve_ivp(
+            rhs,
+            (0.0, span),
+            [1.0, 0.0],
+            method="Radau",
+            rtol=max(rtol, 1e-12),
+            atol=max(rtol, 1e-12) * 1e-3,
+            events=[rolling, at_target] if u_t > 1.0 else [rolling],
+        )
+        u, v_end = sol.y[0][-1], sol.y[1][-1]
+        hit = [i for i, ts in enumerate(sol.t_events) if len(ts)]
+        event = ("rolling", "target")[hit[0]] if hit else None
+        nfev = sol.nfev
+    if event == "target":  # held at the target until the ball catches up: v = τ = u_t
+        u = v_end = u_t
+    elif event != "rolling":  # cannot happen by the bound on span; the end point is the answer
+        u = v_end = min(u, v_end)
+    return u * omega0, sc.s * sc.r_w * omega0 * v_end, v_end * t0, nfev
 
 
 def slip_closed_form(a: float, b: float, u_t: float, span: float) -> tuple[float, float]:
