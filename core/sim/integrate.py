@@ -20,6 +20,7 @@ from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
+from typing import Any
 
 Vector = list[float]
 RHS = Callable[[float, Vector], Vector]
@@ -175,6 +176,76 @@ def integrate(
         dense,
         frozenset(restart),
     )
+
+
+@dataclass
+class StiffRun:
+    """What a Run offers (t, y, nfev, event, crossings, at), from one of scipy's stiff solvers."""
+
+    t: list
+    y: list
+    nfev: int
+    event: str | None
+    crossings: list
+    sol: Any
+    status: int = 0  # scipy's: -1 when the solver failed
+    message: str = ""
+
+    def at(self, t: float) -> list:
+        return [float(x) for x in self.sol(t)]
+
+
+def integrate_stiff(
+    rhs: RHS,
+    t0: float,
+    t1: float,
+    y0: Sequence[float],
+    rtol: float,
+    atol: float,
+    events: Sequence[Event] = (),
+    method: str = "LSODA",
+    peak_from_steps: str | None = None,
+) -> StiffRun:
+    """The same problem as integrate, by scipy's solve_ivp with a stiff-capable method (LSODA,
+    Radau, BDF), for a scene whose explicit steps are held far below its time scale. Our events
+    map to solve_ivp's; dense output always. If scipy's event root finder finds no sign change on
+    its own interpolant (a non-terminal event on a step the interpolant smooths over), the run is
+    repeated without the non-terminal events and, when `peak_from_steps` names one, every step
+    point is reported as its crossing instead."""
+    from scipy.integrate import solve_ivp
+
+    fns = []
+    for ev in events:
+        fn = (lambda e: lambda t, y: e.g(t, y))(ev)
+        fn.terminal, fn.direction = ev.terminal, ev.direction
+        fns.append(fn)
+    try:
+        sol = solve_ivp(
+            lambda t, y: rhs(t, y),
+            (t0, t1),
+            y0,
+            method=method,
+            rtol=rtol,
+            atol=atol,
+            events=fns,
+            dense_output=True,
+        )
+    except ValueError:
+        if peak_from_steps is None:
+            raise
+        kept = [ev for ev in events if ev.terminal]
+        run = integrate_stiff(rhs, t0, t1, y0, rtol, atol, kept, method, None)
+        run.crossings = [(peak_from_steps, t, y) for t, y in zip(run.t, run.y)]
+        return run
+    name, crossings = None, []
+    for ev, te, ye in zip(events, sol.t_events, sol.y_events):
+        if ev.terminal and len(te):
+            name = ev.name
+        elif not ev.terminal:
+            crossings += [(ev.name, float(t), [float(x) for x in y]) for t, y in zip(te, ye)]
+    ts = [float(x) for x in sol.t]
+    ys = [[float(x) for x in col] for col in sol.y.T]
+    return StiffRun(ts, ys, int(sol.nfev), name, crossings, sol.sol, int(sol.status), str(sol.message))
 
 
 def _norm(v, y0, y1, rtol, atol) -> float:

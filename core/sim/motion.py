@@ -45,7 +45,7 @@ from ..errors import InputError
 from ..model import Field, Output, Plot
 from ..motors import Motor, motor_fields
 from .effects import Effect, Effects, Part, Slot
-from .integrate import Event, integrate
+from .integrate import Event, StiffRun, integrate, integrate_stiff
 from .motor_limits import SCALAR, _Array, bus_resistance_of, electrical, electrical_effects, release_emfs  # noqa: F401 (shared)
 from .scene import SimRun
 
@@ -270,21 +270,6 @@ class Move:
 STIFF = 60.0  # move time over the mechanical time constant above which LSODA is used (see move)
 
 
-@dataclass
-class _Stiff:
-    """The parts of core.sim.integrate.Run that a move reads, from scipy's LSODA."""
-
-    t: list
-    y: list
-    nfev: int
-    event: str | None
-    crossings: list
-    sol: Any
-
-    def at(self, t: float) -> list:
-        return [float(x) for x in self.sol(t)]
-
-
 def time_constant(m: Mechanism) -> float:
     """τ = kA/kV = M·R·Kv/(η·N·Kt·n²): how fast the speed settles (the stiffness of the move)."""
     return m.inertia * m.R * m.Kv / (m.force_per_amp * m.n)
@@ -336,44 +321,13 @@ def move(setup: Setup, rtol: float, dense: bool = False, method: str | None = No
     return Move(run.t[-1], peak_w * v_ref, end[2] * e_ref, run.nfev, run, scales, method)
 
 
-def _lsoda(rhs, y0, rtol, events, peak_from_steps: bool = False) -> _Stiff:
-    from scipy.integrate import solve_ivp
-
-    fns = []
-    for ev in events:
-        fn = (lambda e: lambda t, y: e.g(t, y))(ev)
-        fn.terminal, fn.direction = ev.terminal, ev.direction
-        fns.append(fn)
-    try:
-        sol = solve_ivp(
-            lambda t, y: rhs(t, y),
-            (0.0, T_MAX),
-            y0,
-            method="LSODA",
-            rtol=rtol,
-            atol=rtol,
-            events=fns,
-            dense_output=True,
-        )
-    except ValueError:
-        # scipy's event root finder found no sign change on its own dense output (a peak event on
-        # a step the interpolant smooths over, e.g. a feather-light arm): run without the
-        # non-terminal events; the peak speed is then the largest at the step points
-        events = [ev for ev in events if ev.terminal]
-        return _lsoda(rhs, y0, rtol, events, peak_from_steps=True)
-    if sol.status == -1:
-        raise InputError("ratio", f"the move could not be integrated ({sol.message})")
-    name, crossings = None, []
-    for ev, te, ye in zip(events, sol.t_events, sol.y_events):
-        if ev.terminal and len(te):
-            name = ev.name
-        elif not ev.terminal:
-            crossings += [(ev.name, float(t), [float(x) for x in y]) for t, y in zip(te, ye)]
-    ts = [float(x) for x in sol.t]
-    ys = [[float(x) for x in col] for col in sol.y.T]
-    if peak_from_steps:
-        crossings = [("peak", t, y) for t, y in zip(ts, ys)]
-    return _Stiff(ts, ys, int(sol.nfev), name, crossings, sol.sol)
+def _lsoda(rhs, y0, rtol, events) -> StiffRun:
+    # a peak event on a step LSODA's interpolant smooths over (a feather-light arm): the peak
+    # speed is then the largest at the step points
+    run = integrate_stiff(rhs, 0.0, T_MAX, y0, rtol, rtol, events, "LSODA", peak_from_steps="peak")
+    if run.status == -1:
+        raise InputError("ratio", f"the move could not be integrated ({run.message})")
+    return run
 
 
 def extremes(setup: Setup, w_max: float) -> dict[str, float]:
