@@ -30,6 +30,20 @@ strictly better to rank above them) and as the N-th best of the nearest last val
 windows' value tuples are expanded into classes and checked for bores; if fewer than N feasible
 combinations result, ε grows and the search repeats. tests/test_ratio_finder.py checks it
 against brute-force enumeration; bench/bench_ratio_finder.py times it.
+
+Bounded mode (capped() in search). When a window would hold more than WINDOW_CAP value tuples (an
+out-of-reach target, where bores make most tuples unbuildable, or a wide range), the k-stage
+search restarts on bore-pruned tables (pruned_table: only classes on some feasible bore chain,
+exact per class) and drops each tuple in which no class of one value chains to the next. What
+stays exhaustive: every tuple inside the windows searched is still tried, in slices of at most
+WINDOW_CAP tuples, each sorted by the rank's own order and cut once it passes the N-th best; the
+same stop rule as above (the N-th best error within ε, or ε past the largest possible error)
+keeps the result that of brute force. What bounds growth: ε grows at most fourfold per step
+(plus 10⁻⁶·G*) and, by bisection (grown()), only as far as 4× the tuples of the last window +
+64·N, so memory is set by WINDOW_CAP and time by how far the N best lie; a range is searched
+outward from its geometric middle, stopping once the N-th best is in range and nothing farther
+out could rank above it (no fewer stages or parts, no nearer the middle).
+reach() gives the ratios these filters can reach at all, for the "Out of reach" warning.
 """
 
 from __future__ import annotations
