@@ -61,6 +61,10 @@ def test_catalogue_is_consistent():
     }
     systems = {s.system: s for s in cat.planetaries}
     assert set(systems) == {"MAXPlanetary", "UltraPlanetary", "VersaPlanetary"}
+    # ReCalc's versaplanetaries.json (the source planetaries.toml cites): six stages, two hex outputs
+    versa = systems["VersaPlanetary"]
+    assert [c.ratio for c in versa.cartridges] == [3, 4, 5, 7, 9, 10] and versa.max_cartridges == 3
+    assert {"hex_half_in", "hex_3_8_in"} <= set(versa.output_bores)
     # REV's actual UltraPlanetary ratios, not the nominal 3, 4, 5
     assert [c.ratio for c in systems["UltraPlanetary"].cartridges] == [
         Fraction(84, 29),
