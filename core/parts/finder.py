@@ -51,11 +51,10 @@ from __future__ import annotations
 import bisect
 import itertools
 import math
-import operator
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
-from functools import cached_property, lru_cache, reduce
+from functools import cached_property, lru_cache
 
 from . import BORES, FAMILIES, Catalogue, Part, PlanetarySystem, catalogue, pitch_si
 
@@ -132,7 +131,10 @@ BIT = {name: 1 << i for i, name in enumerate(BORES)}
 
 def _union(masks: Iterable[int]) -> int:
     """The bitwise or of bore masks (0 for none)."""
-    return reduce(operator.or_, masks, 0)
+    m = 0
+    for x in masks:
+        m |= x
+    return m
 
 
 def mask_of(bores: Iterable[str]) -> int:
