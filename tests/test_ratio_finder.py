@@ -61,6 +61,10 @@ def test_catalogue_is_consistent():
     }
     systems = {s.system: s for s in cat.planetaries}
     assert set(systems) == {"MAXPlanetary", "UltraPlanetary", "VersaPlanetary"}
+    # ReCalc's versaplanetaries.json (the source planetaries.toml cites): six stages, two hex outputs
+    versa = systems["VersaPlanetary"]
+    assert [c.ratio for c in versa.cartridges] == [3, 4, 5, 7, 9, 10] and versa.max_cartridges == 3
+    assert {"hex_half_in", "hex_3_8_in"} <= set(versa.output_bores)
     # REV's actual UltraPlanetary ratios, not the nominal 3, 4, 5
     assert [c.ratio for c in systems["UltraPlanetary"].cartridges] == [
         Fraction(84, 29),
@@ -584,3 +588,100 @@ def test_out_of_reach_and_wide_targets_search_in_bounded_memory(kw):
         assert all(c.ratio <= top for c in combos)
     keys = [finder.rank_key(c, q) for c in combos]
     assert keys == sorted(keys)
+
+
+# --- what the filters can reach: the "Out of reach" warning against brute force ------------------
+
+
+def brute_reach(q):
+    """The least and greatest ratio of every assemblable combination of 1 to q.max_stages stages,
+    by enumerating each one (depth first over raw_stages, a branch dropped once its bores fail)."""
+    raw = raw_stages(q)
+    out_bores = set(q.shaft_bores) if q.output_bore == "any" else {q.output_bore}
+    ratios = []
+
+    def down(depth, shaft, ratio):
+        if depth and shaft & out_bores:
+            ratios.append(ratio)
+        if depth == q.max_stages:
+            return
+        fits = shaft if (depth == 0 or q.same_shaft_bore) else set(q.shaft_bores)
+        for st in raw:
+            if st[3] & fits:
+                down(depth + 1, st[4], ratio * st[1])
+
+    down(0, {q.input_bore}, Fraction(1))
+    return (min(ratios), max(ratios)) if ratios else None
+
+
+REACH_CASES = [
+    # only the motor pinions (8 mm keyed) go down to 10 teeth: bores aside 3 stages give (30/10)^3
+    dict(vendors="REV", families="gear_20dp", min_teeth=10, max_teeth=30, max_stages=3),
+    dict(vendors="REV", families="gear_20dp, planetary", min_teeth=10, max_teeth=24, max_stages=1),
+    dict(
+        vendors="WCP", families="gear_20dp", min_teeth=12, max_teeth=30, max_stages=2, same_shaft_bore=False
+    ),
+    dict(
+        vendors="WCP, Thrifty",
+        families="gear_20dp, htd_5mm",
+        input_bore="falcon",
+        output_bore="any",
+        min_teeth=10,
+        max_teeth=36,
+        max_stages=2,
+    ),
+]
+
+
+def reach_query(target, inputs):
+    kw = {k: v for k, v in inputs.items() if k not in ("vendors", "families")}
+    return query(
+        target,
+        vendors=frozenset(s.strip() for s in inputs["vendors"].split(",")),
+        families=frozenset(s.strip() for s in inputs["families"].split(",")),
+        **kw,
+    )
+
+
+@pytest.mark.parametrize(
+    "inputs,target",
+    [(c, 5.0) for c in REACH_CASES]
+    + [(REACH_CASES[2], 0.5)]
+    + [
+        (
+            dict(
+                vendors=", ".join(VENDORS), families="gear_20dp, htd_5mm", input_bore="falcon", max_stages=2
+            ),
+            0.5,
+        )
+    ],
+)
+def test_reach_is_what_brute_force_can_assemble(inputs, target):
+    q = reach_query(target, inputs)
+    want = brute_reach(q)
+    assert want is not None, "the brute force found nothing: the case tests nothing"
+    assert finder.reach(finder.prepare(q), q) == want
+
+
+@pytest.mark.parametrize("inputs", REACH_CASES)
+def test_out_of_reach_quotes_what_the_parts_and_bores_can_reach(inputs):
+    lo, hi = brute_reach(reach_query(5.0, inputs))
+    for target, side in (
+        (float(hi) * 3, f"at most {float(hi):.4g}:1"),
+        (1 + (float(lo) - 1) / 3, "at least"),
+    ):
+        sol = solve("ratio_finder", {**inputs, "target_ratio": target})
+        notes = [w for w in sol.warnings if "Out of reach" in w]
+        assert len(notes) == 1, sol.warnings
+        assert side in notes[0] and f"{float(lo):.4g}:1 to {float(hi):.4g}:1" in notes[0], notes[0]
+        # the nearest combination listed is the reachable end itself
+        assert sol.outputs["ratio"].value == pytest.approx(float(hi if target > hi else lo), rel=1e-12)
+
+
+def test_reach_first_case_differs_from_the_bore_blind_bound():
+    """The first case above is one the old warning got wrong (largest value per position, bores
+    aside), so the test above can tell the two apart."""
+    q = reach_query(5.0, REACH_CASES[0])
+    prep = finder.prepare(q)
+    blind = math.prod(float(finder.table(prep, q, i, i == 0, i == 2).values[-1]) for i in range(3))
+    assert blind > float(brute_reach(q)[1]) * 1.5

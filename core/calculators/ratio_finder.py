@@ -412,7 +412,7 @@ def describe(row) -> str:
 
 def why_not(q, combos, stats) -> list[str]:
     """Why the best is not on target (or why nothing was found)."""
-    from ..parts.finder import prepare, table
+    from ..parts.finder import exact, prepare, reach, table
 
     prep = prepare(q)
     if not combos:
@@ -431,23 +431,20 @@ def why_not(q, combos, stats) -> list[str]:
     if best.error == 0:
         return []
     notes = []
-    reach_hi = reach_lo = None
-    for k in range(1, q.max_stages + 1):
-        tabs = [table(prep, q, i, i == 0, i == k - 1) for i in range(k)]
-        if all(len(t.values) for t in tabs):
-            hi = math.prod(float(t.values[-1]) for t in tabs)
-            lo = math.prod(float(t.values[0]) for t in tabs)
-            reach_hi = hi if reach_hi is None else max(reach_hi, hi)
-            reach_lo = lo if reach_lo is None else min(reach_lo, lo)
-    stages = f"{q.max_stages} stage{'s' if q.max_stages > 1 else ''}"
-    if reach_hi is not None and q.ratio_min > reach_hi:
+    lo, hi = reach(prep, q)  # not None: a combination was found
+    stages = f"up to {q.max_stages} stages" if q.max_stages > 1 else "1 stage"
+    span = f"{float(lo):.4g}:1 to {float(hi):.4g}:1"
+    if exact(q.ratio_min) > hi:  # as the search measures errors: the decimals typed
         notes.append(
-            f"Out of reach: with {stages} these parts give at most {reach_hi:.4g}:1 "
-            f"(the largest stage at each position, bores aside); allow more stages, "
-            "larger tooth counts or planetary stacks."
+            f"Out of reach: with {stages} these parts give at most {float(hi):.4g}:1 (all they give: "
+            f"{span}, bores included); allow more stages, larger tooth counts, more bores or "
+            "planetary stacks."
         )
-    elif reach_lo is not None and q.ratio_max < reach_lo:
-        notes.append(f"Out of reach: with {stages} these parts give at least {reach_lo:.4g}:1.")
+    elif exact(q.ratio_max) < lo:
+        notes.append(
+            f"Out of reach: with {stages} these parts give at least {float(lo):.4g}:1 (all they give: "
+            f"{span}, bores included); allow more stages, other tooth counts or more bores."
+        )
     else:
         notes.append(f"No exact combination: the nearest is off by {relative_error(best, q):+.3%}.")
     return notes

@@ -30,6 +30,20 @@ strictly better to rank above them) and as the N-th best of the nearest last val
 windows' value tuples are expanded into classes and checked for bores; if fewer than N feasible
 combinations result, ε grows and the search repeats. tests/test_ratio_finder.py checks it
 against brute-force enumeration; bench/bench_ratio_finder.py times it.
+
+Bounded mode (capped() in search). When a window would hold more than WINDOW_CAP value tuples (an
+out-of-reach target, where bores make most tuples unbuildable, or a wide range), the k-stage
+search restarts on bore-pruned tables (pruned_table: only classes on some feasible bore chain,
+exact per class) and drops each tuple in which no class of one value chains to the next. What
+stays exhaustive: every tuple inside the windows searched is still tried, in slices of at most
+WINDOW_CAP tuples, each sorted by the rank's own order and cut once it passes the N-th best; the
+same stop rule as above (the N-th best error within ε, or ε past the largest possible error)
+keeps the result that of brute force. What bounds growth: ε grows at most fourfold per step
+(plus 10⁻⁶·G*) and, by bisection (grown()), only as far as 4× the tuples of the last window +
+64·N, so memory is set by WINDOW_CAP and time by how far the N best lie; a range is searched
+outward from its geometric middle, stopping once the N-th best is in range and nothing farther
+out could rank above it (no fewer stages or parts, no nearer the middle).
+reach() gives the ratios these filters can reach at all, for the "Out of reach" warning.
 """
 
 from __future__ import annotations
@@ -115,11 +129,16 @@ class Combination:
 BIT = {name: 1 << i for i, name in enumerate(BORES)}
 
 
-def mask_of(bores: Iterable[str]) -> int:
+def _union(masks: Iterable[int]) -> int:
+    """The bitwise or of bore masks (0 for none)."""
     m = 0
-    for b in bores:
-        m |= BIT[b]
+    for x in masks:
+        m |= x
     return m
+
+
+def mask_of(bores: Iterable[str]) -> int:
+    return _union(BIT[b] for b in bores)
 
 
 def bores_in(mask: int) -> list[str]:
@@ -450,11 +469,56 @@ def pruned_table(prep: Prepared, q: Query, position: int, k: int) -> Table:
     return prep.tables[key]
 
 
-def _union(masks: Iterable[int]) -> int:
-    m = 0
-    for x in masks:
-        m |= x
-    return m
+def reach(prep: Prepared, q: Query) -> tuple[Fraction, Fraction] | None:
+    """The smallest and the largest ratio of any combination of 1 to q.max_stages stages that can
+    be assembled (bores, stage positions and the output included), exactly; None if there is none.
+
+    Dynamic programming over the bore of each shaft: with one bore chosen per shaft, the extreme
+    ratio that reaches a shaft in bore b after stage i is the extreme over the classes whose driven
+    part comes in b of (their ratio) × (the extreme reaching a bore their driving part comes in);
+    every ratio is positive, so extremes multiply. Classes alike in bores and position are taken
+    together (their least and greatest ratio), which keeps this to a few dozen groups per stage.
+    (Tables of the largest value per position ignore how bores chain: 20 DP gears alone reach
+    592.7:1 that way, 302.4:1 in fact, since only motor pinions go down to 10 teeth.)"""
+    key = ("reach",)
+    if key not in prep.tables:
+        all_shafts = mask_of(q.shaft_bores)
+        out_mask = BIT[q.output_bore] if q.output_bore != "any" else all_shafts
+        # (drive mask, out mask, positions) -> [least, greatest ratio] of the classes alike in them
+        extremes: dict[tuple[int, int, int], list[Fraction]] = {}
+        for s in prep.classes:
+            g = extremes.get((s.drive_mask, s.out_mask, s.positions))
+            if g is None:
+                extremes[(s.drive_mask, s.out_mask, s.positions)] = [s.ratio, s.ratio]
+            elif s.ratio_f <= float(g[0]) or s.ratio_f >= float(g[1]):  # exact only when it may matter
+                g[0], g[1] = min(g[0], s.ratio), max(g[1], s.ratio)
+        state = {BIT[q.input_bore]: (Fraction(1), Fraction(1))}  # bore bit -> (least, greatest)
+        least = most = None
+        for i in range(q.max_stages):
+            after: dict[int, tuple[Fraction, Fraction]] = {}
+            for (drive, out, positions), (low, high) in extremes.items():
+                if not positions >> i & 1:
+                    continue
+                if i == 0 or q.same_shaft_bore:
+                    came = [v for bit, v in state.items() if bit & drive]
+                else:  # any made shaft is adapted to the next part
+                    came = list(state.values()) if drive & all_shafts else []
+                if not came:
+                    continue
+                a = min(v[0] for v in came) * low
+                b = max(v[1] for v in came) * high
+                for bit in (BIT[x] for x in bores_in(out)):
+                    old = after.get(bit)
+                    after[bit] = (a, b) if old is None else (min(old[0], a), max(old[1], b))
+            state = after
+            for bit, (a, b) in state.items():
+                if bit & out_mask:
+                    least = a if least is None else min(least, a)
+                    most = b if most is None else max(most, b)
+            if not state:
+                break
+        prep.tables[key] = None if least is None else (least, most)
+    return prep.tables[key]
 
 
 def search(q: Query, cat: Catalogue | None = None) -> tuple[list[Combination], dict]:
