@@ -66,6 +66,8 @@ class Kind:
 
     name = ""  # Field.type: what `gearhead calculators --json` and messages call the kind
     numeric = False  # has bounds and may be swept
+    whole = False  # numeric values are whole numbers (a sweep steps through whole numbers)
+    with_unit = False  # typed in any unit of f.quantity (a bare number: f.unit), SI inside; may carry ±
 
     # ---- reading ------------------------------------------------------------------------
     def parse(self, f: Field, raw: Any) -> Any:
@@ -137,6 +139,7 @@ class Quantity(Kind):
 
     name = "quantity"
     numeric = True
+    with_unit = True
 
     def parse(self, f, raw):
         return self.checked(f, units.parse(raw, f.unit, f.quantity, f.name), str(raw))
@@ -181,6 +184,7 @@ class Integer(Kind):
 
     name = "int"
     numeric = True
+    whole = True
 
     def parse(self, f, raw):
         if isinstance(raw, bool):
