@@ -354,6 +354,9 @@ def run(
         raise InputError("--vary", f"sweep one input (a table) or two (a grid), not {len(specs)}")
     if len(specs) == 2 and specs[0].name == specs[1].name:
         raise InputError(specs[0].name, "is varied twice")
+    from .sim.effects import retire
+
+    raw, notes = retire(calc.fields, raw)  # an old name among a flags field: noted once, not per point
     base, _ = parse_inputs(calc, raw)
     mode = base.get("mode")
     from .model import choice_values
@@ -411,7 +414,7 @@ def run(
         sample = next((p.outputs for p in points if p.error is None), None)
         chosen = numeric_outputs(calc, sample)
     cost.wall_time = time.perf_counter() - t0
-    return Sweep(calc, specs, chosen, points, cost, stopped, display_units=display_units)
+    return Sweep(calc, specs, chosen, points, cost, stopped, notes, display_units=display_units)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -346,7 +346,7 @@ def effects_on(v) -> frozenset:
 
 
 def optimising(v) -> bool:
-    return v["mode"] == "optimise" or "optimise" in v["effects"]
+    return v["mode"] == "optimise"  # an old 'optimise' among the effects is read as the mode (retire)
 
 
 def machine(v, sling: bool | None = None, l: float | None = None) -> tb.Machine:
@@ -603,9 +603,6 @@ def refine(v, beta: float, l: float, lo: float, hi: float) -> tuple[float, float
 
 def compute(v) -> Result:
     run = run_with_stats(simulate, v, ADVICE)
-    for name, _, _ in RETIRED:
-        if name in v["effects"]:
-            run.warnings.append(FIELDS_BY_NAME["effects"].notice(name))
     if optimising(v):
         with solve_budget(OPTIMISE_ADVICE, max_nfev=OPTIMISE_NFEV):
             _optimise(v, run)
@@ -639,8 +636,6 @@ def _optimise(v, run: SimRun) -> None:
             best_run = simulate(dict(v, release_angle=beta, sling_length=l, effects=effects), 1e-8)
             run.warnings += [f"optimise, best throw: {w}" for w in best_run.warnings if w not in run.warnings]
 
-
-FIELDS_BY_NAME = {f.name: f for f in FIELDS}
 
 CALCULATOR = Calculator(
     id="trebuchet",
