@@ -76,7 +76,7 @@ def check(calc: Calculator) -> None:
             raise DeclarationError(
                 cid, part, f"{len(f.choice_labels)} choice labels for {len(f.choices)} choices"
             )
-        if f.type == "quantity":
+        if f.kind.with_unit:
             _check_unit(cid, part, f.unit, f.quantity)
         for word in ("min", "max"):
             bound = getattr(f, word)

@@ -66,6 +66,8 @@ class Kind:
 
     name = ""  # Field.type: what `gearhead calculators --json` and messages call the kind
     numeric = False  # has bounds and may be swept
+    whole = False  # numeric values are whole numbers (a sweep steps through whole numbers)
+    with_unit = False  # typed in any unit of f.quantity (a bare number: f.unit), SI inside; may carry ±
 
     # ---- reading ------------------------------------------------------------------------
     def parse(self, f: Field, raw: Any) -> Any:
@@ -141,6 +143,7 @@ class Quantity(Kind):
 
     name = "quantity"
     numeric = True
+    with_unit = True
 
     def entry_hint(self, f):
         return f"bare number = {f.unit or 'plain number'}; any compatible unit may be typed"
@@ -188,6 +191,7 @@ class Integer(Kind):
 
     name = "int"
     numeric = True
+    whole = True
 
     def parse(self, f, raw):
         if isinstance(raw, bool):

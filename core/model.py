@@ -199,8 +199,6 @@ class Calculator:
     tables: tuple[Table, ...] = ()
     # Simulated calculators: simulate(values, rtol) -> core.sim.scene.SimRun (for the accuracy ladder)
     simulate: Callable[[Mapping[str, Any], float], Any] | None = None
-    # raw inputs of an older preset -> today's (e.g. a choice that used to be an effect flag), or None
-    upgrade: Callable[[Mapping[str, Any]], Mapping[str, Any]] | None = None
 
     def field(self, name: str) -> Field:
         for f in self.fields:
@@ -267,8 +265,9 @@ def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, An
     Fields the current mode does not use never block a solve: a bad entry there falls back
     to its default, so switching modes never loses or is blocked by what was typed.
     """
-    if calc.upgrade is not None:
-        raw = calc.upgrade(raw)
+    from .sim.effects import retire  # a name retired from a flags field: what replaced it
+
+    raw, _ = retire(calc.fields, raw)
     known = {f.name for f in calc.fields}
     for name in raw:
         if name not in known:
@@ -293,7 +292,14 @@ def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, An
 
 
 def choice_values(calc: Calculator, raw: Mapping[str, Any]) -> dict[str, Any]:
-    """The choice fields that other fields' `when` depends on, parsed (default if unreadable)."""
+    """The choice fields that other fields' `when` depends on, parsed (default if unreadable); an old
+    name among a flags field counts as what replaced it (core.sim.effects.retire)."""
+    from .sim.effects import retire
+
+    try:
+        raw, _ = retire(calc.fields, raw)
+    except InputError:  # two old names at odds: parse_inputs says so; here the defaults serve
+        pass
     names = {name for f in calc.fields for name, _ in f.when}
     out = {}
     for name in names:
@@ -332,9 +338,11 @@ def solve(
 ) -> Solution:
     """Parse, compute and format one calculator. Raises InputError on any bad entry."""
     from .registry import get
+    from .sim.effects import retire
 
     calc = get(calc_id)
-    values, texts = parse_inputs(calc, raw or {})
+    raw, notices = retire(calc.fields, raw or {})  # (parse_inputs finds nothing left to retire)
+    values, texts = parse_inputs(calc, raw)
     try:
         result = calc.compute(values)
     except InputError:
@@ -374,4 +382,4 @@ def solve(
                 cells[c.name] = format_value(v, c.quantity, c.unit)
             rows.append(cells)
         tables[t.name] = rows
-    return Solution(calc.id, inputs, outputs, list(result.warnings), dict(result.series), tables)
+    return Solution(calc.id, inputs, outputs, notices + list(result.warnings), dict(result.series), tables)

@@ -167,10 +167,8 @@ def from_dict(
     calc = calculators()[calc_id]
     from .sim.effects import retire  # a flag retired since the preset was written: what replaced it
 
-    inputs, notices = retire(calc.fields, inputs)
     try:
-        if calc.upgrade is not None:  # an older preset's inputs, in today's fields
-            inputs = dict(calc.upgrade(inputs))
+        inputs, notices = retire(calc.fields, inputs)  # stored in today's fields
         tolerance.parse(calc, inputs)  # unknown field, bad unit, out of bounds, bad ± tolerance
     except InputError as exc:
         raise InputError(exc.field, exc.message, src) from None

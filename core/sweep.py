@@ -13,6 +13,7 @@ row carrying the reason (the message `solve` would give), never a gap and never 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import numbers
 import re
@@ -45,7 +46,7 @@ class Vary:
 
     def values(self, f: Field) -> list[float] | list[int]:
         n = self.points
-        if f.type == "int":
+        if f.kind.whole:
             lo, hi = sorted((self.start, self.stop))
             whole = range(math.ceil(lo), math.floor(hi) + 1)
             if n >= len(whole):
@@ -77,9 +78,9 @@ def parse_vary(calc: Calculator, text: str) -> Vary:
     try:
         f = calc.field(name)
     except KeyError:
-        numeric = ", ".join(x.name for x in calc.fields if x.type in ("quantity", "int"))
+        numeric = ", ".join(x.name for x in calc.fields if x.kind.numeric)
         raise InputError(name, f"is not an input of {calc.id} (numeric inputs: {numeric})") from None
-    if f.type not in ("quantity", "int"):
+    if not f.kind.numeric:
         raise InputError(name, f"is a {f.type} input; only numbers can be swept")
     parts = [p.strip() for p in spec.split(":")]
     rng, options = parts[0], parts[1:]
@@ -102,16 +103,16 @@ def parse_vary(calc: Calculator, text: str) -> Vary:
             raise InputError(
                 name, f"{opt!r} is neither a point count nor 'log' (expected NAME=START..STOP[:N][:log])"
             )
-    if f.type == "int":
-        start, stop = (_whole(t, name) for t in (start_text, stop_text))  # bounds: per point, as rows
-        shown = ""
-    else:
+    if f.kind.with_unit:
         start, stop = (units.parse(t, f.unit, f.quantity, name) for t in (start_text, stop_text))
         shown = _typed_unit(start_text, f)
+    else:  # as the kind reads an entry (bounds: per point, as rows)
+        start, stop = (_endpoint(f, t) for t in (start_text, stop_text))
+        shown = ""
     if start == stop:
         raise InputError(name, f"the range {rng!r} is empty (start equals stop)")
     if points is None:
-        points = abs(int(stop) - int(start)) + 1 if f.type == "int" else DEFAULT_POINTS
+        points = abs(int(stop) - int(start)) + 1 if f.kind.whole else DEFAULT_POINTS
     if points < 2:
         raise InputError(name, f"needs at least 2 points, got {points}")
     if points > MAX_POINTS:
@@ -121,14 +122,11 @@ def parse_vary(calc: Calculator, text: str) -> Vary:
     return Vary(name, start, stop, points, log, shown)
 
 
-def _whole(text: str, name: str) -> int:
-    try:
-        x = float(text)
-    except ValueError:
-        raise InputError(name, f"{text!r} is not a whole number") from None
-    if not math.isfinite(x) or x != int(x):
-        raise InputError(name, f"{text!r} is not a whole number")
-    return int(x)
+def _endpoint(f: Field, text: str) -> float | int:
+    """One end of a range typed for a field without a unit, read by the field's kind but not held
+    to its bounds (each point is checked, as rows)."""
+    unbounded = dataclasses.replace(f, min=None, max=None, min_exclusive=False, max_exclusive=False)
+    return unbounded.kind.parse(unbounded, text)
 
 
 def _typed_unit(text: str, f: Field) -> str:
@@ -158,12 +156,13 @@ class Outcome:
 
 def checked(f: Field, value: float | int) -> float | int:
     """A varied SI value through the field's own bounds check (what Field.parse applies)."""
-    if f.type == "int":
+    if f.kind.whole:
         if value != int(value):
             raise InputError(f.name, f"{value!r} is not a whole number")
         value = int(value)
-        return f._check_bounds(value, str(value))
-    return f._check_bounds(float(value), units.format_quantity(float(value), f.unit, f.quantity))
+    else:
+        value = float(value)
+    return f._check_bounds(value, f.kind.bound_text(f, value))
 
 
 def evaluate(calc: Calculator, values: Mapping[str, Any]) -> Outcome:
@@ -244,7 +243,7 @@ class Sweep:
         cols = []
         for v in self.varies:
             f = self.calculator.field(v.name)
-            cols.append((v.name, f.quantity if f.type == "quantity" else "dimensionless", v.unit))
+            cols.append((v.name, f.quantity if f.kind.with_unit else "dimensionless", v.unit))
         for name in self.outputs:
             o = self.calculator.output(name)
             cols.append((name, o.quantity, self.output_unit(name)))
@@ -256,7 +255,7 @@ class Sweep:
         for v in self.varies:
             x = point.inputs[v.name]
             f = self.calculator.field(v.name)
-            row.append(x if f.type == "int" else units.to_unit(x, v.unit, f.quantity))
+            row.append(units.to_unit(x, v.unit, f.quantity) if f.kind.with_unit else x)
         for name in self.outputs:
             row.append(
                 _display(
@@ -290,9 +289,7 @@ class Sweep:
                     "stop": v.stop,
                     "points": v.points,
                     "log": v.log,
-                    "unit": units.SI_UNITS[calc.field(v.name).quantity]
-                    if calc.field(v.name).type == "quantity"
-                    else "",
+                    "unit": calc.field(v.name).kind.reported(calc.field(v.name), v.start)[1],
                 }
                 for v in self.varies
             ],
@@ -357,6 +354,9 @@ def run(
         raise InputError("--vary", f"sweep one input (a table) or two (a grid), not {len(specs)}")
     if len(specs) == 2 and specs[0].name == specs[1].name:
         raise InputError(specs[0].name, "is varied twice")
+    from .sim.effects import retire
+
+    raw, notes = retire(calc.fields, raw)  # an old name among a flags field: noted once, not per point
     base, _ = parse_inputs(calc, raw)
     mode = base.get("mode")
     from .model import choice_values
@@ -414,7 +414,7 @@ def run(
         sample = next((p.outputs for p in points if p.error is None), None)
         chosen = numeric_outputs(calc, sample)
     cost.wall_time = time.perf_counter() - t0
-    return Sweep(calc, specs, chosen, points, cost, stopped, display_units=display_units)
+    return Sweep(calc, specs, chosen, points, cost, stopped, notes, display_units=display_units)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -499,7 +499,9 @@ def _matrix(sweep: Sweep, name: str) -> list[str]:
     fx = calc.field(vx.name)
 
     def show_in(f: Field, v: Vary, x):
-        return str(x) if f.type == "int" else units.format_number(units.to_unit(x, v.unit, f.quantity))
+        if f.kind.with_unit:
+            return units.format_number(units.to_unit(x, v.unit, f.quantity))
+        return f.kind.bound_text(f, x)
 
     corner = f"{vx.name} \\ {vy.name}"
     head = [corner] + [show_in(fy, vy, y) for y in ys]

@@ -94,10 +94,10 @@ def split_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, An
                 f = calc.field(name)
             except KeyError:
                 raise InputError(name, f"unknown field for {calc.id}") from None
-            if f.type != "quantity":
+            if not f.kind.with_unit:  # the tolerance is read in a unit of the field's quantity
                 raise InputError(
                     name,
-                    f"a {'whole number' if f.type == 'int' else f.type} cannot carry a "
+                    f"a {'whole number' if f.kind.whole else f.type} cannot carry a "
                     f"tolerance; only quantities can",
                 )
             tols[name] = tol

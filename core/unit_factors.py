@@ -39,7 +39,7 @@ def declared_units() -> set[tuple[str, str]]:
     found = set()
     for calc in calculators().values():
         for f in calc.fields:
-            if f.type == "quantity" and f.unit:
+            if f.kind.with_unit and f.unit:
                 found.add((f.unit, f.quantity))
         for o in calc.outputs:
             if o.unit:

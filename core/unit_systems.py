@@ -106,7 +106,7 @@ def typed_units(fields, entries: Mapping[str, Any]) -> dict[str, str]:
 
     found: dict[str, str] = {}
     for f in fields:
-        if f.type != "quantity" or f.quantity in found or f.quantity == "dimensionless":
+        if not f.kind.with_unit or f.quantity in found or f.quantity == "dimensionless":
             continue
         match = _TYPED.match(str(entries.get(f.name, "")))
         if not match:

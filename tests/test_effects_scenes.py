@@ -283,3 +283,43 @@ def test_the_retired_absolute_pressure_effect_still_means_the_absolute_model(tmp
     assert (
         loaded.inputs["pressure_model"] == "absolute" and "absolute_pressure" not in loaded.inputs["effects"]
     )
+
+
+def test_the_flywheels_transfer_models_named_among_the_effects_mean_the_transfer_choice():
+    """'energy' and 'momentum' were effects of the flywheel; they are the choice `transfer` now, read
+    by the same mechanism as every retired flag (core.sim.effects.retire): a preset naming one loads
+    as the choice with the notice, a direct entry solves as the choice does with the notice, the old
+    name wins over a `transfer` beside it, and naming both is refused on the effects field."""
+    from pathlib import Path
+
+    from gearhead.core.errors import InputError
+    from gearhead.core.model import solve
+    from gearhead.core.presets import from_dict, load
+
+    base = load(Path(__file__).parents[1] / "presets" / "flywheel" / "nbn_seed_single_wheel.toml").inputs
+    assert base["transfer"] == "energy"
+
+    def values(sol):
+        return {k: v.value for k, v in sol.outputs.items() if k != "wall_time"}
+
+    new = solve("flywheel", {**base, "transfer": "momentum", "effects": "motor_during_shot"})
+    energy = solve("flywheel", {**base, "effects": "motor_during_shot"})
+    assert values(new) != values(energy)
+    old = solve("flywheel", {**base, "effects": "momentum, motor_during_shot"})  # transfer = energy beside
+    assert values(old) == values(new)
+    assert any("transfer = momentum" in w for w in old.warnings)
+    assert not any("transfer =" in w for w in new.warnings)
+    written = {k: v for k, v in base.items() if k != "transfer"}  # as a preset of that time stored it
+    loaded = from_dict(
+        {
+            "calculator": "flywheel",
+            "format": 1,
+            "inputs": {**written, "effects": "momentum, motor_during_shot"},
+        }
+    )
+    assert loaded.inputs["transfer"] == "momentum" and loaded.inputs["effects"] == "motor_during_shot"
+    assert any("transfer = momentum" in w for w in loaded.warnings)
+    assert values(solve("flywheel", loaded.inputs)) == values(new)
+    with pytest.raises(InputError) as err:
+        solve("flywheel", {**base, "effects": "energy, momentum"})
+    assert err.value.field == "effects" and "transfer" in err.value.message

@@ -61,3 +61,23 @@ def test_aim_inverts_fly(th, v, kd, km):
         return
     th2, v2, _ = aim(a, 0.6, f.height, 4.0, f.angle, 1e-11, (th + 0.05, v * 1.05))
     assert th2 == pytest.approx(th, abs=1e-7) and v2 == pytest.approx(v, rel=1e-7)
+
+
+def test_landing_time_over_a_batch_is_the_scalar_one_element_by_element():
+    """The batch (trebuchet's 1640 throws) and a single throw use one (V3): each element of the array
+    form takes the branch the scalar takes, bit for bit, falling throws included (there the textbook
+    (q + √(q² + 2gh))/g cancels: q = −100 m/s from 1 µm up lands after 1e-8 s, not after 0)."""
+    import numpy as np
+
+    from gearhead.core.sim.flight import landing_time
+
+    q = np.array([30.0, 0.0, -0.5, -100.0, -100.0, 3.0])
+    h = np.array([2.0, 1.0, 0.25, 1e-6, 50.0, 0.0])
+    batch = landing_time(q, h, 9.81)
+    for k in range(len(q)):
+        assert batch[k] == landing_time(float(q[k]), float(h[k]), 9.81)
+    # the falling throw from 1 µm: t = h/|q| to first order (t = 2h/(√(q² + 2gh) − q))
+    assert batch[3] == pytest.approx(1e-8, rel=1e-9)
+    # and a throw up lands when y(t) = h + q·t − g·t²/2 = 0
+    t = batch[0]
+    assert 2.0 + 30.0 * t - 9.81 * t * t / 2 == pytest.approx(0.0, abs=1e-12)

@@ -75,6 +75,7 @@ def _hex_kind():
     class Hex(Kind):
         name = "hex"
         numeric = True
+        whole = True
 
         def parse(self, f, raw):
             text = str(raw).strip().lower()
@@ -156,6 +157,39 @@ def test_a_new_field_kind_is_one_class(monkeypatch, tmp_path):
         parse_once(code, text)  # a value the kind holds, or a one-line message naming the field
 
     hostile()
+
+
+def test_a_new_numeric_kind_sweeps_and_a_new_quantity_kind_carries_a_tolerance(monkeypatch):
+    """Sweeps, tolerances and the units preference ask the kind (numeric, whole, with_unit), never
+    its name: the toy hex kind is swept through whole numbers (its ends typed as it reads them, each
+    point held to its bounds), and a quantity kind of another name reads '30 deg ± 1 deg'."""
+    import dataclasses
+
+    from gearhead.core import registry, sweep, tolerance
+    from gearhead.core.fields import Quantity
+    from gearhead.core.model import Field
+    from gearhead.core.unit_systems import typed_units
+
+    calc = _toy_calculator()
+    monkeypatch.setitem(registry.calculators(), "toy_hex", calc)
+    vary = sweep.parse_vary(calc, "code=0xfffe..0x10001")
+    assert (vary.start, vary.stop, vary.points) == (0xFFFE, 0x10001, 4)
+    study = sweep.run("toy_hex", {}, [vary])
+    assert [p.inputs["code"] for p in study.points] == [0xFFFE, 0xFFFF, 0x10000, 0x10001]
+    assert [p.outputs.get("double") for p in study.points] == [2 * 0xFFFE, 2 * 0xFFFF, None, None]
+    assert "too large: must be at most 65535" in study.points[2].error
+    assert study.display_row(study.points[0])[0] == 0xFFFE and study.as_json()["vary"][0]["unit"] == ""
+    with pytest.raises(InputError, match="no tolerance|cannot carry a tolerance"):
+        tolerance.split_inputs(calc, {"code": "0x10 ± 0x1"})
+
+    class Angle(Quantity):
+        name = "angle"
+
+    tilt = Field("tilt", "Tilt", "angle", "deg", kind=Angle(), default=30, min=0, max=90, help="Tilt.")
+    toy = dataclasses.replace(calc, id="toy_tilt", fields=(*calc.fields, tilt))
+    nominal, tols = tolerance.split_inputs(toy, {"tilt": "30 deg ± 1 deg"})
+    assert tols == {"tilt": "1 deg"}
+    assert typed_units(toy.fields, {"tilt": "0.5 rad"}) == {"angle": "rad"}
 
 
 async def test_a_new_field_kind_renders_in_the_generic_tab(monkeypatch):

@@ -180,3 +180,19 @@ def test_cli_sweep_text_and_bad_input(capsys):
     assert err.count("\n") == 1 and err.startswith("gearhead: radius:")
     assert main(["sweep", "gear_ratio", "--vary", "radius=1..2", "--output", "nope"]) == 2
     assert "nope" in capsys.readouterr().err
+
+
+def test_a_retired_flag_is_read_once_for_the_whole_sweep_with_its_notice():
+    """An old name among the effects (the flywheel's 'momentum', now the choice `transfer`) means
+    what replaced it at every point, and the notice is the sweep's, once."""
+    base = load(ROOT / "presets" / "flywheel" / "nbn_seed_single_wheel.toml").inputs
+    vary = ["ball_mass=0.05 kg..0.07 kg:3"]
+    old = sweep.run("flywheel", {**base, "effects": "momentum"}, vary, ["ball_speed", "wheel_speed_after"])
+    new = sweep.run("flywheel", {**base, "transfer": "momentum"}, vary, ["ball_speed", "wheel_speed_after"])
+    energy = sweep.run("flywheel", base, vary, ["ball_speed", "wheel_speed_after"])
+
+    def values(study):
+        return [{k: v for k, v in p.outputs.items() if k not in VOLATILE} for p in study.points]
+
+    assert values(old) == values(new) != values(energy)
+    assert len(old.notes) == 1 and "transfer = momentum" in old.notes[0] and not new.notes

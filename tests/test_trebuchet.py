@@ -11,7 +11,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gearhead.core import presets
-from gearhead.core.calculators import trebuchet as calc
 from gearhead.core.errors import InputError
 from gearhead.core.model import parse_inputs, solve
 from gearhead.core.registry import get
@@ -375,7 +374,7 @@ def test_batch_throws_agree_with_the_accurate_scene(kw, contact):
     for beta, r in zip(betas, batch):
         s = tb.swing(p, beta, contact, 1e-10)
         t, xr, zr, vxr, vyr = s.release
-        X = calc.vacuum_flight(9.81, zr, math.hypot(vxr, vyr), math.atan2(vyr, -vxr))[0]
+        X = flight.vacuum_range(zr, math.atan2(vyr, -vxr), math.hypot(vxr, vyr), 9.81)
         assert r == pytest.approx(-xr + X, rel=2e-3)
 
 
@@ -464,7 +463,7 @@ def test_batch_drag_ranges_agree_with_the_accurate_flight():
         a = lambda q: np.array([[q]])  # noqa: E731
         batch = tb.batch_ranges(np.array([[True]]), a(x), a(z), a(vx), a(vy), 9.81, air.k_drag)[0, 0]
         f = flight.fly(air, z, math.atan2(vy, -vx), math.hypot(vx, vy), 1e5, 1e-11)
-        vac = -x + calc.vacuum_flight(9.81, z, math.hypot(vx, vy), math.atan2(vy, -vx))[0]
+        vac = -x + flight.vacuum_range(z, math.atan2(vy, -vx), math.hypot(vx, vy), 9.81)
         assert batch == pytest.approx(-x + f.x_end, rel=1e-5)
         assert batch < 0.9 * vac  # the drag is not negligible here
 

@@ -378,7 +378,7 @@ def _calculators(args) -> int:
                         "name": f.name,
                         "type": f.type,
                         "unit": f.unit,
-                        "si_unit": SI_UNITS[f.quantity] if f.type == "quantity" else "",
+                        "si_unit": SI_UNITS[f.quantity] if f.kind.with_unit else "",
                         "default": f.default,
                         "choices": list(f.choices),
                         "modes": list(f.modes),

@@ -86,6 +86,8 @@ TABLE_WHEELS = range(1, 7)
 STIFF = 200.0
 SLIP_LENGTH_WARN = 0.5  # m: longer than the contact path of any hood or wheel pair
 TRANSFERS = ("energy", "momentum")
+# Once effects; an entry or preset naming one among the effects means that transfer (effects.retire)
+RETIRED = tuple((t, "transfer", t) for t in TRANSFERS)
 TRANSFER_LABELS = (
     "Energy (seed: energy conservation, translation + spin)",
     "Momentum (angular impulse with slip, Team 449)",
@@ -337,36 +339,12 @@ FIELDS = (
     EFFECTS.field(
         "motor_during_shot (momentum model only): the motor drives during the slip; stator_limit, "
         "supply_limit (per motor current limits) and battery_sag (bus = battery − R × total supply "
-        "current) act on the spin-up and the recovery between shots."
+        "current) act on the spin-up and the recovery between shots.",
+        retired=RETIRED,
     ),
     *EFFECTS.fields(),
     accuracy_field(),
 )
-
-
-def upgrade(raw):
-    """Presets written before the transfer model was a choice named it among the effects
-    (`effects = "momentum, motor_during_shot"`): move it to `transfer` (it wins over a `transfer`
-    beside it: that is a default filled in, or the newer field an old name is written over)."""
-    eff = raw.get("effects")
-    if isinstance(eff, str):
-        items = [x for x in eff.replace(",", " ").split() if x]
-    elif isinstance(eff, (list, tuple, set, frozenset)) and all(isinstance(x, str) for x in eff):
-        items = list(eff)
-    else:
-        return raw
-    named = [x for x in items if x in TRANSFERS]
-    if not named:
-        return raw
-    if len(set(named)) > 1:
-        raise InputError(
-            "effects", "names both transfer models (energy and momentum): choose one as `transfer`"
-        )
-    rest = [x for x in items if x not in TRANSFERS]
-    out = dict(raw)
-    out["effects"] = ", ".join(rest) if isinstance(eff, str) else rest
-    out["transfer"] = named[0]
-    return out
 
 
 OUTPUTS = (
@@ -1174,7 +1152,6 @@ CALCULATOR = Calculator(
     compute=compute,
     section="seed 000",
     simulate=simulate,
-    upgrade=upgrade,
     plots=(
         Plot(
             "Wheel speed over the burst",

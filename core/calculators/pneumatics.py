@@ -641,13 +641,7 @@ def seed_step(v) -> tuple[float, float, tuple[list[float], list[float]]]:
 
 
 def compute(v) -> Result:
-    notices = []
-    for name, field, value in RETIRED:  # an older entry naming a retired effect: what replaced it
-        if name in v["effects"]:
-            v = {**v, "effects": v["effects"] - {name}, field: value}
-            notices.append(FIELDS[[f.name for f in FIELDS].index("effects")].notice(name))
-    run = run_with_stats(simulate, v, ADVICE)
-    run.warnings[:0] = notices
+    run = run_with_stats(simulate, v, ADVICE)  # a retired effect is read before (effects.retire)
     seed_min, seed_final, seed_trace = seed_step(v)
     run.series["spreadsheet, 1 s"] = seed_trace
     run.values["seed_min_pressure"] = seed_min

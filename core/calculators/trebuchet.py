@@ -346,7 +346,7 @@ def effects_on(v) -> frozenset:
 
 
 def optimising(v) -> bool:
-    return v["mode"] == "optimise" or "optimise" in v["effects"]
+    return v["mode"] == "optimise"  # an old 'optimise' among the effects is read as the mode (retire)
 
 
 def machine(v, sling: bool | None = None, l: float | None = None) -> tb.Machine:
@@ -393,23 +393,14 @@ def sample(ts: list, ys: list, n: int = PLOT_POINTS) -> tuple[list, list]:
     return [ts[i] for i in idx], [ys[i] for i in idx]
 
 
-def vacuum_flight(g: float, z0: float, speed: float, angle: float):
-    """Distance, apex, flight time of the parabola from height z0 > 0 (closed form)."""
-    vc, vs = speed * math.cos(angle), speed * math.sin(angle)
-    t_land = (vs + math.sqrt(vs * vs + 2 * g * z0)) / g
-    apex = z0 + vs * vs / (2 * g) if vs > 0 else z0
-    return vc * t_land, apex, t_land
-
-
 def fly(v, g: float, z0: float, speed: float, angle: float, rtol: float):
     """(distance from the release point toward the throw, apex, path xs, path zs, nfev)."""
-    X, apex, t_land = vacuum_flight(g, z0, speed, angle)
+    t_land = flight.vacuum_landing_time(z0, angle, speed, g)  # (V3), from z0 > 0
+    X = flight.vacuum_range(z0, angle, speed, g)
     if "air_drag" not in v["effects"]:
-        ts = [t_land * i / (PLOT_POINTS - 1) for i in range(PLOT_POINTS)]
-        xs = [speed * math.cos(angle) * t for t in ts]
-        zs = [z0 + speed * math.sin(angle) * t - 0.5 * g * t * t for t in ts]
+        xs, zs = flight.vacuum_path(z0, angle, speed, t_land, PLOT_POINTS - 1, g)
         zs[-1] = 0.0
-        return X, apex, xs, zs, 0
+        return X, flight.vacuum_apex(z0, angle, speed, t_land, 0.0, g), xs, zs, 0  # (V2)
     air = flight.air(
         v["effects"],
         v["projectile_mass"],
@@ -612,9 +603,6 @@ def refine(v, beta: float, l: float, lo: float, hi: float) -> tuple[float, float
 
 def compute(v) -> Result:
     run = run_with_stats(simulate, v, ADVICE)
-    for name, _, _ in RETIRED:
-        if name in v["effects"]:
-            run.warnings.append(FIELDS_BY_NAME["effects"].notice(name))
     if optimising(v):
         with solve_budget(OPTIMISE_ADVICE, max_nfev=OPTIMISE_NFEV):
             _optimise(v, run)
@@ -648,8 +636,6 @@ def _optimise(v, run: SimRun) -> None:
             best_run = simulate(dict(v, release_angle=beta, sling_length=l, effects=effects), 1e-8)
             run.warnings += [f"optimise, best throw: {w}" for w in best_run.warnings if w not in run.warnings]
 
-
-FIELDS_BY_NAME = {f.name: f for f in FIELDS}
 
 CALCULATOR = Calculator(
     id="trebuchet",

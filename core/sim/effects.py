@@ -53,6 +53,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..errors import InputError
 from ..model import Field, Output
 
 Term = Callable[..., Any]
@@ -304,9 +305,11 @@ class Effects:
 
 @dataclass(frozen=True)
 class RetiredFlags(Field):
-    """A flags field that still reads names retired from its choices (kept in the parsed set, so
-    the calculator can honour them), without offering them. `retired`: (old name, field, value):
-    what replaced each, e.g. ("optimise", "mode", "optimise")."""
+    """A flags field that still reads names retired from its choices, without offering them: the one
+    way a calculator keeps an old entry or preset meaning what it meant (`retire` rewrites the
+    inputs, with a notice). `retired`: (old name, field, value): what replaced each, e.g.
+    ("optimise", "mode", "optimise") or the flywheel's ("momentum", "transfer", "momentum").
+    Its parse still accepts a retired name (kept in the set) for a caller that parses by hand."""
 
     retired: tuple[tuple[str, str, str], ...] = ()
 
@@ -334,8 +337,14 @@ class RetiredFlags(Field):
 
 
 def retire(fields: Sequence[Field], inputs: Mapping[str, Any]) -> tuple[dict[str, Any], list[str]]:
-    """Inputs as typed with each retired flag replaced by what replaced it (a preset written before
-    the flag was retired), and one notice per flag replaced. A field the inputs already set is kept."""
+    """Inputs as typed with each retired flag replaced by what replaced it (an entry or a preset
+    written before the flag was retired), and one notice per flag replaced.
+
+    The one place retired names are read: core.model.parse_inputs (every solve, sweep and tolerance
+    study) and core.presets.from_dict (a preset is stored in today's fields) call it; a calculator's
+    compute never sees a retired name. The old name wins over its field given beside it (that is a
+    default filled in, or the newer field an old name was written over); two retired names meaning
+    different values of one field are an error naming the flags field."""
     out = dict(inputs)
     notes: list[str] = []
     for f in fields:
@@ -344,19 +353,28 @@ def retire(fields: Sequence[Field], inputs: Mapping[str, Any]) -> tuple[dict[str
         raw = out[f.name]
         if isinstance(raw, str):
             items = [x for x in raw.replace(",", " ").split() if x]
-        elif isinstance(raw, (list, tuple)) and all(isinstance(x, str) for x in raw):
+        elif isinstance(raw, (list, tuple, set, frozenset)) and all(isinstance(x, str) for x in raw):
             items = list(raw)
         else:
+            continue  # the field's parse gives its own message
+        named = [r for r in f.retired if r[0] in items]
+        if not named:
             continue
-        kept = items
-        for name, field_name, value in f.retired:
-            if name in kept and out.get(field_name, value) == value:  # set otherwise by hand: left as typed
-                kept = [x for x in kept if x != name]
-                out[field_name] = value
-                notes.append(f.notice(name))
-        if kept != items:
-            items = kept
-            out[f.name] = ", ".join(items) if isinstance(raw, str) else items
+        meant: dict[str, tuple[str, str]] = {}
+        for name, field_name, value in named:
+            other = meant.setdefault(field_name, (name, value))
+            if other[1] != value:
+                raise InputError(
+                    f.name,
+                    f"names both '{other[0]}' and '{name}' (retired: {field_name} = {other[1]} and "
+                    f"{field_name} = {value}): choose one as `{field_name}`",
+                )
+        for name, field_name, value in named:
+            out[field_name] = value
+            notes.append(f.notice(name))
+        old = {name for name, _, _ in named}
+        kept = [x for x in items if x not in old]
+        out[f.name] = ", ".join(kept) if isinstance(raw, str) else kept
     return out, notes
 
 

@@ -75,9 +75,20 @@ def vacuum_apex(h_i: float, theta_i: float, v_i: float, t: float, h_f: float, g:
 
 def vacuum_landing_time(h_i: float, theta_i: float, v_i: float, g: float = G0) -> float:
     """When the vacuum arc from height h_i ≥ 0 comes down to 0, (V3), without cancellation."""
-    q = v_i * math.sin(theta_i)
-    root = math.sqrt(q * q + 2 * g * h_i)
-    return (q + root) / g if q >= 0 else (2 * h_i / (root - q) if root - q > 0 else 0.0)
+    return landing_time(v_i * math.sin(theta_i), h_i, g)
+
+
+def landing_time(q, h_i, g: float = G0):
+    """(V3) from the vertical release speed q (up positive) and height h_i ≥ 0; accepts numpy arrays
+    (a batch of throws: each element takes the branch a scalar would)."""
+    xp, _ = _xp(q, h_i)
+    if xp is math:
+        root = math.sqrt(q * q + 2 * g * h_i)
+        return (q + root) / g if q >= 0 else (2 * h_i / (root - q) if root - q > 0 else 0.0)
+    with xp.errstate(divide="ignore", invalid="ignore"):  # each branch is kept only where it is sound
+        root = xp.sqrt(q * q + 2 * g * h_i)
+        falling = xp.where(root - q > 0, 2 * h_i / (root - q), 0.0)
+        return xp.where(q >= 0, (q + root) / g, falling)
 
 
 def vacuum_range(h_i: float, theta_i: float, v_i: float, g: float = G0) -> float:

@@ -1016,12 +1016,13 @@ def batch_ranges(released, x, z, vx, vy, g: float, k_drag: float):
     form, with drag a fixed-step RK4 (rk4_step) over all candidates together."""
     import numpy as np
 
+    from .flight import landing_time
     from .integrate import charge
 
     ux, uy = -vx, vy  # toward the throw
     ok = released & (z > 0)
     z0 = np.where(ok, z, 1.0)
-    t_vac = (uy + np.sqrt(np.maximum(uy * uy + 2 * g * z0, 0.0))) / g
+    t_vac = landing_time(uy, z0, g)  # (V3), every candidate at once
     X = ux * t_vac
     if k_drag > 0 and ok.any():
         T = float(np.max(np.where(ok, t_vac, 0.0)))

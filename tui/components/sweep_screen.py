@@ -37,7 +37,7 @@ def sweepable(calc: Calculator, entries: dict[str, Any]) -> list[Field]:
 
     mode = entries.get("mode")
     choices = choice_values(calc, entries)
-    return [f for f in calc.fields if f.type in ("quantity", "int") and f.active(mode, choices)]
+    return [f for f in calc.fields if f.kind.numeric and f.active(mode, choices)]
 
 
 def default_range(f: Field, entry: Any) -> tuple[str, str]:
@@ -49,11 +49,11 @@ def default_range(f: Field, entry: Any) -> tuple[str, str]:
         x = f.parse(nominal)
     except InputError:
         x = f.parse(f.default)
-    if f.type == "int":
+    if f.kind.whole:
         lo = max(int(f.min) if f.min is not None else x - 3, x - 3)
         hi = min(int(f.max) if f.max is not None else x + 3, x + 3)
         return str(lo), str(hi if hi > lo else lo + 1)
-    shown = units.to_unit(x, f.unit, f.quantity)
+    shown = units.to_unit(x, f.unit, f.quantity) if f.kind.with_unit else x
     if shown == 0:
         lo, hi = 0.0, 1.0
     else:
@@ -296,7 +296,7 @@ class SweepScreen(ModalScreen[None]):
                 y = p.outputs.get(name)
                 if p.error is None and isinstance(y, (int, float)) and not isinstance(y, bool):
                     x = p.inputs[vary.name]
-                    xs.append(x if f.type == "int" else units.to_unit(x, vary.unit, f.quantity))
+                    xs.append(units.to_unit(x, vary.unit, f.quantity) if f.kind.with_unit else x)
                     ys.append(units.to_unit(float(y), o.unit, o.quantity))
             if xs:
                 plot.plot(
