@@ -118,6 +118,8 @@ class Kind:
 
     def entry_hint(self, f: Field) -> str:
         """How an entry of this kind may be written, for the help line under the form."""
+        if self.with_unit:
+            return f"bare number = {f.unit or 'plain number'}; any compatible unit may be typed"
         return ""
 
     def initial_entry(self, f: Field) -> Any:
@@ -144,9 +146,6 @@ class Quantity(Kind):
     name = "quantity"
     numeric = True
     with_unit = True
-
-    def entry_hint(self, f):
-        return f"bare number = {f.unit or 'plain number'}; any compatible unit may be typed"
 
     def parse(self, f, raw):
         return self.checked(f, units.parse(raw, f.unit, f.quantity, f.name), str(raw))
