@@ -65,6 +65,48 @@ async def test_result_table_update_repaints_one_cell_and_matches_a_fresh_table()
         assert any("9.9 N·m" in line for line in after)
 
 
+async def test_result_table_keeps_its_cells_when_only_its_height_changes():
+    """The warnings box under the results comes and goes with the values typed: the table gets
+    shorter or taller, which re-rendered every cell (26 ms on the pneumatics card); a new width
+    may wrap cells differently and still renders them again."""
+    rendered: list[str] = []
+
+    class Cell(Text):
+        def __rich_console__(self, console, options):
+            rendered.append(self.plain)
+            return super().__rich_console__(console, options)
+
+    class Sized(App):
+        CSS = "ResultTable { height: 10; width: 40; }"
+
+        def compose(self):
+            table = ResultTable()
+            table.add_column("Result", key="label", width=10)
+            table.add_column("Value", key="value", width=12)
+            yield table
+
+    app = Sized()
+    async with app.run_test(size=(60, 20)) as pilot:
+        table = app.query_one(ResultTable)
+        for name, value in ROWS:
+            table.add_row(Cell(name), Cell(value), key=name)
+        await pilot.pause()
+        table.refresh()
+        await pilot.pause()
+        rendered.clear()
+        table.styles.height = 8
+        await pilot.pause()
+        assert table.size.height == 8
+        table._styles_cache.clear()  # the lines drawn again, as after a layout
+        _text(table)
+        assert rendered == []
+        table.styles.width = 36
+        await pilot.pause()
+        table._styles_cache.clear()
+        _text(table)
+        assert sorted(rendered) == sorted(text for row in ROWS for text in row)
+
+
 async def test_result_table_styles_follow_a_class_change():
     """Styles are remembered within one render only: a class the stylesheet colours shows in
     the next render's row style."""

@@ -43,6 +43,17 @@ class ResultTable(DataTable):
         self._line_cache.clear()
         self.refresh_row(row_index)
 
+    # DataTable renews every cache key on any resize; only a new width can change a cell (it may
+    # wrap). A new height (the warnings box under the table came or went: a layout) keeps them.
+    _cells_width: int | None = None
+
+    def _on_resize(self, event) -> None:
+        # Textual runs every class's handler along the MRO: DataTable's (the bump) runs unless
+        # the default is prevented
+        if event.size.width == self._cells_width:
+            event.prevent_default()
+        self._cells_width = event.size.width
+
     # Within one render nothing changes the table's styles or size, yet DataTable asks them per
     # line or per row, and each ask walks the DOM up to the screen: its own rich style and size
     # for every line, a component's styles (header, even/odd row) for every row (~35 % of a table
