@@ -392,14 +392,12 @@ class CalculatorTab(Widget):
         self.solve()
 
     # Every solve runs in a thread (a slow one must not freeze typing, and a new key cancels a
-    # running simulation). One that was quick last time is also waited for, up to WAIT_S: a
+    # running simulation). One that took less than WAIT_S last time is also waited for, that long: a
     # result in time is shown in the frame that echoes the key, where a result arriving from a
     # thread waits for the next frame (17 ms later). One that turns out slow (a new beam section,
     # a long ratio search, pint's registry built for a first unit) shows when done, as any other.
-    QUICK_S = (
-        0.006  # the last solve took less than this (closed form 0.1-0.5 ms, a scene's main run 0.4-4 ms)
-    )
-    WAIT_S = 0.008  # half a frame
+    # (closed form 0.1-0.5 ms, a scene's main run 0.4-4 ms; the last solve predicts the next)
+    WAIT_S = 0.008  # half a frame: waited for when the last solve took less
 
     def _start_solve(self) -> None:
         from threading import Lock, Thread
@@ -409,7 +407,7 @@ class CalculatorTab(Widget):
         args = (dict(self.entries), dict(self.display_units), self.unit_system)
         handoff = SimpleNamespace(waiting=True, result=None, lock=Lock(), done=Event())
         Thread(target=self._solve_in_thread, args=(args, handoff), name="gearhead-solve", daemon=True).start()
-        if self._solve_seconds < self.QUICK_S:
+        if self._solve_seconds < self.WAIT_S:
             handoff.done.wait(self.WAIT_S)
         with handoff.lock:
             handoff.waiting = False
