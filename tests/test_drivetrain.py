@@ -133,12 +133,11 @@ def test_reverse_impossible_budgets_name_a_field(raw, field):
 motor_names = st.sampled_from(["CIM", "NEO", "Kraken X60", "Falcon 500", "NEO Vortex", "V5 200 rpm (green)"])
 
 
-@settings(max_examples=150, deadline=None)
-@given(
+# a drivetrain of any motor, size and wiring: what both round trips below draw from
+DRIVETRAINS = dict(
     motor=motor_names,
     n=st.integers(1, 8),
     V=st.floats(6, 13),
-    eta=st.floats(0.5, 1),
     d=st.floats(0.03, 0.2),
     W=st.floats(10, 3000),
     mu=st.floats(0.2, 1.6),
@@ -146,6 +145,10 @@ motor_names = st.sampled_from(["CIM", "NEO", "Kraken X60", "Falcon 500", "NEO Vo
     V_min=st.floats(3, 9),
     R_br=st.one_of(st.just(0.0), st.floats(1e-5, 0.05)),
 )
+
+
+@settings(max_examples=150, deadline=None)
+@given(**DRIVETRAINS, eta=st.floats(0.5, 1))
 def test_reverse_of_forward_returns_the_ratio(motor, n, V, eta, d, W, mu, G, V_min, R_br):
     """Forward slip current at G; a battery budget allowing exactly that current gives G back."""
     base = dict(
@@ -184,15 +187,7 @@ def test_reverse_of_forward_returns_the_ratio(motor, n, V, eta, d, W, mu, G, V_m
 
 @settings(max_examples=100, deadline=None)
 @given(
-    motor=motor_names,
-    n=st.integers(1, 8),
-    V=st.floats(6, 13),
-    d=st.floats(0.03, 0.2),
-    W=st.floats(10, 3000),
-    mu=st.floats(0.2, 1.6),
-    G=st.floats(1, 40),
-    V_min=st.floats(3, 9),
-    R_br=st.one_of(st.just(0.0), st.floats(1e-5, 0.05)),
+    **DRIVETRAINS,
     stator=st.one_of(st.none(), st.floats(5, 200)),
     supply=st.one_of(st.none(), st.floats(5, 150)),
     sag=st.booleans(),
