@@ -226,3 +226,28 @@ async def test_warnings_of_the_same_height_do_not_lay_the_screen_out():
         tab._show_warnings([])
         await asyncio.sleep(0)
     assert calls == [True, True, False, True, True]
+
+
+async def test_closing_while_a_chart_is_pending_or_mounting_is_quiet():
+    """A chart is drawn 80 ms after the results, so the app may close meanwhile (ctrl+q right
+    after a key, or a card warmed up in idle time): the pending chart is dropped, and one whose
+    widget was still mounting draws nothing, instead of a traceback on the way out."""
+    from gearhead.core.model import Plot, Solution
+    from gearhead.tui.components.plot_panel import PlotPanel
+
+    plots = (Plot("Force", ("a",), "x", "length", "m", "F", "force", "N"),)
+    solution = Solution("x", {}, {}, [], {"a": ([0.0, 1.0], [0.0, 1.0])})
+
+    class Harness(App):
+        def compose(self):
+            yield PlotPanel(plots)
+
+    for wait in (0.0, 0.002, 0.005, 0.01, 0.02):
+        app = Harness()
+        async with app.run_test(size=(80, 24)):
+            panel = app.query_one(PlotPanel)
+            panel.QUIET_S = 0.005
+            panel.show_soon(solution)
+            await asyncio.sleep(wait)
+        # leaving run_test raised if a task of the app failed
+        assert app.return_code in (None, 0)

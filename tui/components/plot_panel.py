@@ -66,8 +66,13 @@ class PlotPanel(Vertical):
 
     async def _show_pending(self) -> None:
         self._pending = None
-        if self.solution is not None:
+        if self.solution is not None and self.is_attached and self.app.is_running:
             await self.show(self.solution)
+
+    def on_unmount(self) -> None:
+        if self._pending is not None:  # the card (or the app) is going: no chart to draw
+            self._pending.stop()
+            self._pending = None
 
     @property
     def current(self) -> Plot:
@@ -94,8 +99,12 @@ class PlotPanel(Vertical):
         if plots:
             plot = plots.first()
         else:
-            plot = PlotWidget(allow_pan_and_zoom=False)
+            if not self.app.is_running:  # closing: a widget mounted now would never be composed
+                return
+            plot = _quiet_plot_widget()(allow_pan_and_zoom=False)
             await self.mount(plot)
+            if not plot.children:  # the app closed while it mounted: nothing to draw into
+                return
         plot.clear()
         drawn = 0
         for colour, name in zip(COLOURS, spec.series):
@@ -120,3 +129,27 @@ class PlotPanel(Vertical):
         # Textual markup would swallow "[psi]": escape every label (DESIGN.md pitfall)
         plot.set_xlabel(escape(axis_label(spec.x_label, spec.x_unit)))
         plot.set_ylabel(escape(axis_label(spec.y_label, spec.y_unit)))
+
+
+_QuietPlotWidget = None
+
+
+def _quiet_plot_widget():
+    """textual-plot's PlotWidget, quiet when the app closes while it is being mounted: its
+    children are then never composed, and its on_mount and margin watchers query them (a
+    traceback on the way out). Built on first use: textual-plot loads after the first frame."""
+    global _QuietPlotWidget
+    if _QuietPlotWidget is None:
+        from textual_plot import PlotWidget
+
+        class QuietPlotWidget(PlotWidget):
+            def on_mount(self, event) -> None:
+                if not self.children:  # Textual runs PlotWidget.on_mount next unless prevented
+                    event.prevent_default()
+
+            def _update_margin_sizes(self) -> None:
+                if self.children:
+                    super()._update_margin_sizes()
+
+        _QuietPlotWidget = QuietPlotWidget
+    return _QuietPlotWidget
