@@ -109,6 +109,18 @@ class GearheadApp(App):
         """The screen with the strips and cards (a dialog or the palette may be on top of it)."""
         return self.screen_stack[0]
 
+    _areas_found: TabbedContent | None = None
+
+    def _areas(self) -> TabbedContent | None:
+        """The area strip on the home screen; None while the app is closing. Found once: a query
+        walks every widget of every card built (0.6 s of a 1.8 s first visit went to
+        check_action asking it for the footer's bindings)."""
+        areas = self._areas_found
+        if areas is None or not areas.is_attached:
+            found = self.home.query("#areas") if self._screen_stack else ()
+            areas = self._areas_found = found.first(TabbedContent) if found else None
+        return areas if areas is not None and areas.is_attached else None
+
     async def strip(self, area: str) -> TabbedContent:
         """An area's calculator strip, built on the area's first visit."""
         if area not in self._mounting:
@@ -149,7 +161,8 @@ class GearheadApp(App):
     async def _build_next(self) -> None:
         if not self.warm_up or not self.is_running or not self._screen_stack:  # off, or closed
             return
-        if not self.screen.query("#areas"):  # closing, or a dialog is up: later
+        areas = self._areas()
+        if areas is None or areas.screen is not self.screen:  # closing, or a dialog is up: later
             if self.is_running:
                 self.set_timer(self.IDLE_BEFORE_BUILD_S, self._build_next)
             return
@@ -222,7 +235,7 @@ class GearheadApp(App):
             self._area_active[strip_id.removeprefix("calcs-")] = event.pane.id.removeprefix("tab-")
         if not self._started:  # start-up: on_ready builds the first card, after the first frame
             return
-        if not self._screen_stack or not self.home.query("#areas"):  # the app is closing
+        if self._areas() is None:  # the app is closing
             return
         await self.strip(self.current_area)
         await self.card(self.current_calculator)
@@ -234,7 +247,7 @@ class GearheadApp(App):
         if action in ("send", "accuracy"):
             tab = (
                 self._cards.get(self.current_calculator)
-                if self._screen_stack and self.home.query("#areas")
+                if self._areas() is not None
                 else None
             )
             if tab is None:  # not built yet (start-up): shown once the card is there
@@ -248,7 +261,7 @@ class GearheadApp(App):
     # ---- navigation ---------------------------------------------------------------------
     @property
     def current_area(self) -> str:
-        return self.home.query_one("#areas", TabbedContent).active.removeprefix("area-")
+        return self._areas().active.removeprefix("area-")
 
     @property
     def current_calculator(self) -> str:
@@ -268,7 +281,7 @@ class GearheadApp(App):
         self._area_active[area] = calc_id
         for strip in self.home.query(f"#calcs-{area}"):  # not there yet: built with this tab active
             strip.active = f"tab-{calc_id}"
-        self.home.query_one("#areas", TabbedContent).active = f"area-{area}"
+        self._areas().active = f"area-{area}"
         self.call_after_refresh(self._focus_strip, area)
 
     def action_area(self, area: str) -> None:
