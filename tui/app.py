@@ -245,11 +245,7 @@ class GearheadApp(App):
         if action == "sweep":  # on the card only: in a dialog's entry ctrl+w deletes a word as usual
             return self.screen is self.screen_stack[0]
         if action in ("send", "accuracy"):
-            tab = (
-                self._cards.get(self.current_calculator)
-                if self._areas() is not None
-                else None
-            )
+            tab = self._cards.get(self.current_calculator) if self._areas() is not None else None
             if tab is None:  # not built yet (start-up): shown once the card is there
                 return False
             calc = tab.calculator
