@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from functools import cache
+
 from rich.markup import escape
 from rich.text import Text
 from textual import on
@@ -131,25 +133,20 @@ class PlotPanel(Vertical):
         plot.set_ylabel(escape(axis_label(spec.y_label, spec.y_unit)))
 
 
-_QuietPlotWidget = None
-
-
+@cache
 def _quiet_plot_widget():
     """textual-plot's PlotWidget, quiet when the app closes while it is being mounted: its
     children are then never composed, and its on_mount and margin watchers query them (a
     traceback on the way out). Built on first use: textual-plot loads after the first frame."""
-    global _QuietPlotWidget
-    if _QuietPlotWidget is None:
-        from textual_plot import PlotWidget
+    from textual_plot import PlotWidget
 
-        class QuietPlotWidget(PlotWidget):
-            def on_mount(self, event) -> None:
-                if not self.children:  # Textual runs PlotWidget.on_mount next unless prevented
-                    event.prevent_default()
+    class QuietPlotWidget(PlotWidget):
+        def on_mount(self, event) -> None:
+            if not self.children:  # Textual runs PlotWidget.on_mount next unless prevented
+                event.prevent_default()
 
-            def _update_margin_sizes(self) -> None:
-                if self.children:
-                    super()._update_margin_sizes()
+        def _update_margin_sizes(self) -> None:
+            if self.children:
+                super()._update_margin_sizes()
 
-        _QuietPlotWidget = QuietPlotWidget
-    return _QuietPlotWidget
+    return QuietPlotWidget
