@@ -4,8 +4,9 @@ processes (medians; the machine is shared, so read the ratios):
 - CLI: `gearhead solve gear_ratio --json` (bare numbers) vs `python -c "import numpy"`;
 - first frame: the app's first screen vs a minimal Textual app with 13 empty tab panes.
 
-- first visit: a few seconds after start, open the beam (another area) until its card is on
-  screen, vs a pane's first visit in the minimal app.
+- first visit: 8 s after start, F3 opens the beam (another area): key -> the first frame that
+  shows its card, and the longest stall of the UI thread in the 2 s after the key, vs F3 showing
+  a pane for the first time in the minimal app.
 
 Run alone:  .venv/bin/python bench/bench_startup.py [--app-only] [--root DIR] [--runs N] [--only 'first visit']
 """
@@ -19,8 +20,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-# --root DIR: time the app of another checkout (e.g. `git archive cd298d1 | tar -x -C DIR`), with
-# this venv; the scripts run in DIR, so its tui/ and core/ are the ones imported
+# --root DIR: run the probe scripts in DIR (an installed checkout is imported from its own venv:
+# to time another commit, run this file with that checkout's .venv/bin/python instead)
 APP_ROOT = Path(sys.argv[sys.argv.index("--root") + 1]).resolve() if "--root" in sys.argv else ROOT
 RUNS = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 7
 
@@ -63,55 +64,92 @@ asyncio.run(main())
 """
 
 # A first visit as a user makes it: the app has been on screen for a few seconds (the user reads
-# the first card), then they open the beam (another area); timed until its card is on screen
-# (the UI thread's part: its results follow from a solve thread).
-FIRST_VISIT = r"""
+# the first card), then they press F3 (Structure: the beam, another area). Two figures, printed
+# as "drawn stall" in ms:
+# - drawn: key -> the end of the first frame that shows the card (its results follow from a
+#   solve thread);
+# - stall: the longest the UI thread was busy without a break in the 2 s after the key (a probe
+#   task asks for a 5 ms sleep and records how late it wakes): a key typed then waits that long.
+# Keys go in as the terminal driver delivers them (pilot.press would also wait for every widget).
+VISIT_PROBE = r"""
 import time, asyncio
+from textual.screen import Screen
+drawn = []
+def watch(widget_of):  # the end of the first frame in which widget_of() is on screen
+    refresh = Screen._compositor_refresh
+    def hooked(self):
+        refresh(self)
+        w = widget_of(self.app)
+        if not drawn and w is not None and w.region.height:
+            drawn.append(time.perf_counter())
+    Screen._compositor_refresh = hooked
+async def stalls(into):
+    while True:
+        t = time.perf_counter()
+        await asyncio.sleep(0.005)
+        into.append(time.perf_counter() - t - 0.005)
+async def visit(app, press, pilot):
+    await pilot.pause(READ_S)
+    late = []
+    probe = asyncio.create_task(stalls(late))
+    await asyncio.sleep(0.05)
+    late.clear()
+    t0 = time.perf_counter()
+    await press()
+    while not drawn and time.perf_counter() - t0 < 20:
+        await asyncio.sleep(0.002)
+    await asyncio.sleep(max(0.0, t0 + 2.0 - time.perf_counter()))
+    probe.cancel()
+    print((drawn[0] - t0) * 1e3, max(late) * 1e3)
+"""
+
+FIRST_VISIT = (
+    VISIT_PROBE
+    + r"""
 from gearhead.tui.app import GearheadApp
+def card(app):
+    found = app.query("#calc-beam")
+    return found.first() if found else None
+watch(card)
 async def main():
     try:
         app = GearheadApp(blink=False, warm_up=True)  # as run() starts it
     except TypeError:  # before the warm-up existed
         app = GearheadApp(blink=False)
     async with app.run_test(size=(140, 45)) as pilot:
-        await pilot.pause(READ_S)
-        t0 = time.perf_counter()
-        app.show_calculator("beam")
-        while True:
-            await pilot.pause()
-            card = app.query("#calc-beam")
-            # the card on screen with its fields (its results come from a solve thread)
-            if card and card.first().region.height and card.first().query("#in-length"):
-                break
-        shown = time.perf_counter() - t0
+        await visit(app, lambda: app._press_keys(["f3"]), pilot)
         app.warm_up = False  # closing mid-mount trips Textual: stop building, let mounts end
         await pilot.pause(1.0)
-    print(shown)
 asyncio.run(main())
 """
+)
 
-# the same in a minimal app: the first visit of an empty tab pane
-MINIMAL_VISIT = r"""
-import time, asyncio
+# the same in a minimal app: F3 shows an empty tab pane for the first time
+MINIMAL_VISIT = (
+    VISIT_PROBE
+    + r"""
 from textual.app import App
 from textual.widgets import Footer, Label, TabbedContent, TabPane
 class Minimal(App):
+    BINDINGS = [("f3", "pane", "")]
     def compose(self):
         with TabbedContent():
             for i in range(13):
                 yield TabPane(f"Tab {i}", Label(f"pane {i}", id=f"l{i}"), id=f"p{i}")
         yield Footer()
+    def action_pane(self):
+        self.query_one(TabbedContent).active = "p12"
+def label(app):
+    found = app.query("#l12")
+    return found.first() if found else None
+watch(label)
 async def main():
     app = Minimal()
     async with app.run_test(size=(140, 45)) as pilot:
-        await pilot.pause(READ_S)
-        t0 = time.perf_counter()
-        app.query_one(TabbedContent).active = "p12"
-        while not app.query_one("#l12").region.height:
-            await pilot.pause()
-        print(time.perf_counter() - t0)
+        await visit(app, lambda: app._press_keys(["f3"]), pilot)
 asyncio.run(main())
 """
+)
 READ_S = 8.0  # seconds the user spends on the first card before switching
 
 MINIMAL_APP = r"""
@@ -144,22 +182,36 @@ def wall(cmd: list[str]) -> float:
 
 
 def reported(code: str) -> float:
+    return reported_all(code)[0]
+
+
+def reported_all(code: str) -> list[float]:
+    """The figures a script prints on its last line (seconds, or ms for the visit probe)."""
     code = code.replace("READ_S", repr(READ_S))
     out = subprocess.run([sys.executable, "-c", code], cwd=APP_ROOT, capture_output=True, text=True)
     if out.returncode:
         raise RuntimeError(out.stderr[-2000:])
-    return float(out.stdout.strip().splitlines()[-1])
+    return [float(x) for x in out.stdout.strip().splitlines()[-1].split()]
 
 
-def pair(name: str, ours, baseline, base_name: str) -> None:
+def pair(name: str, ours, baseline, base_name: str, names: tuple[str, ...] = ("",), scale=1e3) -> None:
+    """Medians of `ours` and `baseline`, run alternately; each may return several figures (one
+    row per name)."""
     if "--only" in sys.argv and sys.argv[sys.argv.index("--only") + 1] not in name:
         return
     a, b = [], []
     for _ in range(RUNS):  # alternate, so load on the machine hits both alike
         a.append(ours())
         b.append(baseline())
-    ma, mb = statistics.median(a), statistics.median(b)
-    print(f"  {name:<38} {ma * 1e3:7.1f} ms   {base_name:<34} {mb * 1e3:7.1f} ms   ratio {ma / mb:4.2f}")
+    for i, part in enumerate(names):
+        if len(names) == 1:
+            ma, mb = statistics.median(a), statistics.median(b)
+        else:
+            ma, mb = statistics.median(x[i] for x in a), statistics.median(x[i] for x in b)
+        label = f"{name}{part}"
+        print(
+            f"  {label:<38} {ma * scale:7.1f} ms   {base_name:<34} {mb * scale:7.1f} ms   ratio {ma / mb:4.2f}"
+        )
 
 
 def main() -> None:
@@ -188,10 +240,12 @@ def main() -> None:
     )
     pair("app: first results on screen", lambda: reported(FIRST_RESULT), minimal, "same")
     pair(
-        "app: first visit of another tab",
-        lambda: reported(FIRST_VISIT),
-        lambda: reported(MINIMAL_VISIT),
-        "minimal app, first visit of a pane",
+        "app: first visit (F3), ",
+        lambda: reported_all(FIRST_VISIT),
+        lambda: reported_all(MINIMAL_VISIT),
+        "minimal app, F3 shows a new pane",
+        names=("key -> drawn", "longest stall"),
+        scale=1,
     )
 
 

@@ -196,6 +196,33 @@ async def test_idle_builds_every_card_and_a_key_postpones_it():
         assert app.query_one("#calc-trebuchet", CalculatorTab).solution is not None
 
 
+async def test_the_real_app_freezes_its_heap_and_releases_it_on_exit():
+    """With the warm-up (the real app) everything alive once a card is built is moved out of the
+    garbage collector's walk, so a full collection no longer stalls the UI for the whole heap;
+    the app releases it when it closes. A test app (no warm-up) leaves the collector alone, and
+    a card built out of sight does not recompose the footer."""
+    import gc
+
+    assert gc.get_freeze_count() == 0
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True, warm_up=True)
+    app.IDLE_BEFORE_BUILD_S = 60.0  # no warm-up builds: only the first card
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        assert app.card_ready("motor")
+        frozen = gc.get_freeze_count()
+        assert frozen > 10_000  # the first card's widgets and the imported modules at least
+        refreshed = []
+        app.refresh_bindings = lambda: refreshed.append(1)
+        await app.card("beam")  # out of sight: the footer's bindings are the motor card's
+        assert refreshed == []
+    assert gc.get_freeze_count() == 0
+
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        assert app.card_ready("motor") and gc.get_freeze_count() == 0
+
+
 async def test_tabs_are_built_on_first_visit_and_work():
     app = GearheadApp(blink=False, initial="motor", warm_up=False)
     async with app.run_test(size=SIZE) as pilot:
