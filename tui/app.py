@@ -13,10 +13,12 @@ from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.content import Content
 from textual.screen import Screen
-from textual.widgets import Footer, Tab, TabbedContent, TabPane, Tabs
+from textual.widgets import Tab, TabbedContent, TabPane, Tabs
 
 from gearhead.core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
 from gearhead.core.unit_systems import SYSTEM_LABELS, SYSTEMS
+
+from .components.footer import KeyFooter
 
 if TYPE_CHECKING:
     from .components.calculator_tab import CalculatorTab
@@ -80,6 +82,9 @@ class GearheadApp(App):
         self._last_key = 0.0  # monotonic time of the last key or click (warm-up waits for a pause)
         self._started = False  # the first frame is on screen
         self._area_active: dict[str, str] = {}  # area -> the calculator shown there
+        # area -> its calculator strip, once created: found without a query (a query walks every
+        # widget of every card built: 60-80 ms per switch once the cards are up)
+        self._strips: dict[str, TabbedContent] = {}
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def compose(self) -> ComposeResult:
@@ -95,7 +100,7 @@ class GearheadApp(App):
                 with TabPane(Content(f"F{n} {title}"), id=f"area-{area}"):
                     if area == area_of(first):
                         yield self._strip(area)
-        yield Footer()
+        yield KeyFooter()
 
     def _strip(self, area: str) -> TabbedContent:
         strip = TabbedContent(
@@ -103,6 +108,7 @@ class GearheadApp(App):
         )
         for i, cid in enumerate(AREAS[area][1], 1):
             strip.compose_add_child(TabPane(Content(f"{i} {TITLES[cid]}"), id=f"tab-{cid}"))
+        self._strips[area] = strip
         return strip
 
     @property
@@ -125,14 +131,14 @@ class GearheadApp(App):
     async def strip(self, area: str) -> TabbedContent:
         """An area's calculator strip, built on the area's first visit."""
         if area not in self._mounting:
-            found = self.home.query(f"#calcs-{area}")
-            if found:  # composed with the app (the first area)
-                return found.first(TabbedContent)
-            self._mounting[area] = self.home.query_one(f"#area-{area}", TabPane).mount(self._strip(area))
+            composed = self._strips.get(area)
+            if composed is not None:  # composed with the app (the first area)
+                return composed
+            self._mounting[area] = self._areas().get_pane(f"area-{area}").mount(self._strip(area))
         # a strip being mounted by another caller (the warm-up, a tab switch) is in the DOM before
         # its panes are: wait for the whole mount
         await self._mounting[area]
-        return self.home.query_one(f"#calcs-{area}", TabbedContent)
+        return self._strips[area]
 
     async def on_ready(self) -> None:
         self._started = True
@@ -246,7 +252,8 @@ class GearheadApp(App):
             # recorded before the await: a second caller meanwhile (tab activation and on_ready
             # at start-up, the warm-up) waits for this mount instead of mounting a duplicate
             tab = self._cards[calc_id] = self._card(calc_id)
-            self._mounting[calc_id] = self.home.query_one(f"#tab-{calc_id}", TabPane).mount(tab)
+            pane = self._strips[area_of(calc_id)].get_pane(f"tab-{calc_id}")
+            self._mounting[calc_id] = pane.mount(tab)
         await self._mounting[calc_id]
         self._built.add(calc_id)
         if calc_id == self.current_calculator:  # the footer shows ctrl+g / ctrl+r where they apply;
@@ -306,7 +313,8 @@ class GearheadApp(App):
         area = area_of(calc_id)
         self.screen.set_focus(None)
         self._area_active[area] = calc_id
-        for strip in self.home.query(f"#calcs-{area}"):  # not there yet: built with this tab active
+        strip = self._strips.get(area)
+        if strip is not None and strip.is_attached:  # not there yet: built with this tab active
             strip.active = f"tab-{calc_id}"
         self._areas().active = f"area-{area}"
         self.call_after_refresh(self._focus_strip, area)
