@@ -241,3 +241,31 @@ async def test_key_bursts_kept_in_every_tab(calc_id):
         for _ in range(5):
             await pilot.pause()
         assert entry.value == "78"
+
+
+def test_focus_moves_leave_no_stale_cells(terminal):
+    """The home screen does not repaint itself whole when focus moves (HomeScreen): the widgets
+    gaining and losing focus repaint themselves. What the terminal shows after Tab through the
+    fields (drawn piece by piece) must equal a full redraw (forced by a resize), colours and
+    attributes included, except the focused entry's row (its cursor blinks)."""
+    terminal.keys("F1")
+    time.sleep(0.3)
+    terminal.keys("1")
+    terminal.wait_for(lambda screen: "Free speed" in screen, "F1 1 to open the motor tab")
+    _tab_to(terminal, "Operating torque", most=10)  # strip, Motor, Motor data, Motors, …
+    time.sleep(1.0)
+
+    def rows() -> list[str]:
+        screen = terminal.tmux("capture-pane", "-e", "-p", "-t", "app").splitlines()
+        plain = terminal.screen().splitlines()
+        return [row for row, text in zip(screen, plain) if not text.startswith("│ Operating torque")]
+
+    drawn = rows()
+    terminal.tmux("resize-window", "-t", "app", "-x", "139")
+    time.sleep(0.5)
+    terminal.tmux("resize-window", "-t", "app", "-x", "140")
+    time.sleep(1.0)
+    redrawn = rows()
+    assert len(redrawn) >= 40 and any("Free speed" in row for row in redrawn)
+    stale = [i for i, (a, b) in enumerate(zip(drawn, redrawn)) if a != b]
+    assert drawn == redrawn, f"rows differing from a full redraw: {stale}"
