@@ -185,10 +185,11 @@ class GearheadApp(App):
     # A card is built on the UI thread (Textual widgets must be); importing its calculator
     # module (and the widget modules) is the larger part of a first visit. So once the first
     # card is up, a thread imports every calculator, then the other strips and cards are built
-    # one per idle moment (never while keys are arriving): a first visit later finds its card
-    # ready, and the work was done while the user was reading, not while they switched.
+    # one after another while no key arrives (a card mounts in many small steps, the longest
+    # about 35 ms once the heap is frozen: a key arriving meanwhile waits at most that). A first
+    # visit later finds its card ready, built while the user was reading, not while they switched.
     AREA_DIGIT_S = 2.0  # a digit this soon after an F-key picks in that area, focused or not
-    IDLE_BEFORE_BUILD_S = 1.5  # no key for this long: the user is reading, build one card
+    IDLE_BEFORE_BUILD_S = 0.75  # no key for this long: the user is reading, build the next card
     BUSY_RETRY_S = 0.1  # a card is solving or drawing its chart: build the next after it
 
     @work(thread=True, group="warm-up", exit_on_error=False)

@@ -26,7 +26,7 @@ from gearhead.core.errors import InputError
 from gearhead.core.model import Calculator, Field, Solution
 from gearhead.core.sim.scene import VOLATILE
 
-from .field_input import FieldInput
+from .field_input import FieldCheckbox, FieldInput, FieldSelect
 from .plot_panel import PlotPanel
 from .result_table import ResultTable
 from .unit_text import pretty_quantity, pretty_unit
@@ -65,7 +65,7 @@ class FieldRow(Horizontal):
         yield Label(Text(f.label), classes="field-label")
         if spec.shape == "select":
             options = [(Text(label), value) for value, label in spec.options]
-            yield Select(
+            yield FieldSelect(
                 options,
                 value=self.initial,
                 allow_blank=False,
@@ -78,7 +78,7 @@ class FieldRow(Horizontal):
             chosen = set(x for x in str(self.initial).replace(",", " ").split() if x)
             with Vertical(classes="field-input flags", id=f"in-{f.name}"):
                 for value, label in spec.options:
-                    yield Checkbox(
+                    yield FieldCheckbox(
                         Content(label),
                         value=value in chosen,
                         id=f"flag-{f.name}--{value}",
@@ -86,7 +86,7 @@ class FieldRow(Horizontal):
                         tooltip=tip,
                     )
         elif spec.shape == "checkbox":
-            yield Checkbox(
+            yield FieldCheckbox(
                 value=bool(self.initial), id=f"in-{f.name}", classes="field-input", tooltip=tip, compact=True
             )
         else:
