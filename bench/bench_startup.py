@@ -8,7 +8,9 @@ processes (medians; the machine is shared, so read the ratios):
   shows its card, and the longest stall of the UI thread in the 2 s after the key, vs F3 showing
   a pane for the first time in the minimal app.
 
-Run alone:  .venv/bin/python bench/bench_startup.py [--app-only] [--root DIR] [--runs N] [--only 'first visit']
+Run alone:  .venv/bin/python bench/bench_startup.py [--app-only] [--runs N] [--only 'first visit']
+Before/after: run this file with another checkout's .venv/bin/python (its editable install imports
+that checkout's app).
 """
 
 from __future__ import annotations
@@ -20,9 +22,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-# --root DIR: run the probe scripts in DIR (an installed checkout is imported from its own venv:
-# to time another commit, run this file with that checkout's .venv/bin/python instead)
-APP_ROOT = Path(sys.argv[sys.argv.index("--root") + 1]).resolve() if "--root" in sys.argv else ROOT
+APP_ROOT = ROOT  # the scripts run here; `gearhead` is whatever the running venv installed
 RUNS = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 7
 
 FIRST_FRAME = r"""
