@@ -102,6 +102,10 @@ class Kind:
     def default_text(self, f: Field) -> str:
         return str(f.default)
 
+    def preview_text(self, f: Field, saved: Any) -> str:
+        """A value as a preset saved it, for a person to read (the load dialog's preview)."""
+        return str(saved)
+
     def entry_text(self, f: Field, entered: Any) -> str:
         """The text shown (and reported in JSON) for what was entered."""
         if isinstance(entered, bool):
@@ -244,6 +248,9 @@ class Choice(Kind):
 
     def holds(self, f, value):
         return value in f.choices
+
+    def preview_text(self, f, saved):
+        return f.label_of(saved) if saved in f.choices else str(saved)  # a stale name as saved
 
     def widget(self, f):
         return Widget("select", tuple((c, f.label_of(c)) for c in f.choices), f.unit or None)

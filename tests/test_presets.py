@@ -286,3 +286,18 @@ def test_long_names_save_under_a_capped_distinct_file_name(tmp_path, monkeypatch
         paths.append(presets.save(p))
         assert len(paths[-1].name.encode()) <= 255 and presets.load(paths[-1]).name == name
     assert len(set(paths)) == 3
+
+
+def test_load_preview_shows_choices_by_their_labels():
+    """The load dialog's preview reads like the form: a choice by its label (asked of the field's
+    kind), a stale name as it was saved, other values as saved."""
+    from gearhead.tui.components.preset_screens import preview
+
+    preset = presets.Preset(
+        "pneumatics",
+        "probe",
+        inputs={"pressure_model": "absolute", "accuracy": "retired_level", "tank_volume": "3.5 l"},
+    )
+    text = preview(preset).plain
+    assert "Absolute P·V, isothermal" in text and "absolute" not in text.replace("Absolute", "")
+    assert "retired_level" in text and "3.5 l" in text

@@ -100,12 +100,7 @@ def preview(preset: presets.Preset) -> Text:
     fields = {f.name: f for f in get(preset.calculator).fields}
 
     def shown_value(f, v) -> str:
-        if f is not None and f.type == "choice":
-            try:
-                return f.label_of(v)
-            except (KeyError, ValueError):
-                pass
-        return str(v)
+        return f.kind.preview_text(f, v) if f is not None else str(v)
 
     out = Text(preset.description or "(no description)", style="italic")
     shown = [
