@@ -78,3 +78,29 @@ async def test_entries_are_styled_once_mounted_not_while_built():
             assert entry.has_class("-textual-compact")
             assert entry.styles.border_top[0] in ("", "none")  # the compact rule applied
         assert entries[0].styles.height.value == 1
+
+
+async def test_a_focus_move_does_not_repaint_the_whole_screen():
+    """Textual's Screen repaints itself whole when focus moves; HomeScreen leaves it to the two
+    widgets concerned (tests/test_keystrokes.py checks in tmux that nothing is left stale)."""
+    from gearhead.tui.app import HomeScreen
+
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        screen = app.screen
+        assert isinstance(screen, HomeScreen)
+        whole = []
+        refresh = screen.refresh
+
+        def counting(*regions, **kwargs):
+            if not regions:
+                whole.append(kwargs)
+            return refresh(*regions, **kwargs)
+
+        screen.refresh = counting
+        for entry in ("#in-voltage", "#in-efficiency", "#in-torque"):
+            app.query_one(entry).focus()
+            await settle(pilot)
+        assert app.focused.id == "in-torque"
+        assert whole == []

@@ -223,6 +223,31 @@ async def test_the_real_app_freezes_its_heap_and_releases_it_on_exit():
         assert app.card_ready("motor") and gc.get_freeze_count() == 0
 
 
+async def test_a_calculator_picked_while_its_strip_is_mounting_is_shown():
+    """The warm-up mounts an area's strip out of sight; a key that opens a calculator of that area
+    before the strip's tabs exist used to raise (NoMatches, then "No Tab with id"). The pick is
+    kept and shown once the strip is built."""
+    import asyncio
+
+    from gearhead.core.registry import AREAS, area_of
+
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        area = area_of("beam")
+        other = [cid for cid in AREAS[area][1] if cid != "beam"][0]  # not the strip's first tab
+        mounting = asyncio.ensure_future(app.strip(area))  # as the warm-up does
+        await asyncio.sleep(0)
+        assert area in app._mounting and area not in app._strips_built  # the gap a key can fall in
+        app.show_calculator(other)
+        await mounting
+        await settle(pilot)
+        assert app.current_calculator == other
+        assert app._strips[area].active == f"tab-{other}"
+        assert app.card_ready(other)
+    assert app.return_code in (0, None) and app._exception is None
+
+
 async def test_tabs_are_built_on_first_visit_and_work():
     app = GearheadApp(blink=False, initial="motor", warm_up=False)
     async with app.run_test(size=SIZE) as pilot:

@@ -96,6 +96,8 @@ class GearheadApp(App):
         # area -> its calculator strip, once created: found without a query (a query walks every
         # widget of every card built: 60-80 ms per switch once the cards are up)
         self._strips: dict[str, TabbedContent] = {}
+        self._strips_built: set[str] = set()  # strips whose tabs are composed (a pick can be shown)
+        self._picked: dict[str, str] = {}  # area -> calculator picked while its strip was mounting
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def get_default_screen(self) -> Screen:
@@ -147,12 +149,19 @@ class GearheadApp(App):
         if area not in self._mounting:
             composed = self._strips.get(area)
             if composed is not None:  # composed with the app (the first area)
+                self._strips_built.add(area)
                 return composed
             self._mounting[area] = self._areas().get_pane(f"area-{area}").mount(self._strip(area))
         # a strip being mounted by another caller (the warm-up, a tab switch) is in the DOM before
         # its panes are: wait for the whole mount
         await self._mounting[area]
-        return self._strips[area]
+        strip = self._strips[area]
+        self._strips_built.add(area)
+        picked = self._picked.pop(area, None)
+        if picked is not None:  # a key chose a calculator there while the strip was mounting
+            self._area_active[area] = picked
+            strip.active = f"tab-{picked}"
+        return strip
 
     async def on_ready(self) -> None:
         self._started = True
@@ -172,6 +181,8 @@ class GearheadApp(App):
     _frozen = False
 
     def _freeze_heap(self) -> None:
+        if not self.is_running:  # closing: on_unmount may already have released the heap
+            return
         gc.collect(1)
         gc.freeze()
         self._frozen = True
@@ -271,8 +282,8 @@ class GearheadApp(App):
             self._mounting[calc_id] = pane.mount(tab)
         await self._mounting[calc_id]
         self._built.add(calc_id)
-        if calc_id == self.current_calculator:  # the footer shows ctrl+g / ctrl+r where they apply;
-            self.refresh_bindings()  # a card built out of sight changes none (recomposing it did)
+        if self._areas() is not None and calc_id == self.current_calculator:  # the footer shows ctrl+g /
+            self.refresh_bindings()  # ctrl+r where they apply; a card built out of sight changes none
         return tab
 
     def card_ready(self, calc_id: str) -> bool:
@@ -329,8 +340,11 @@ class GearheadApp(App):
         self.screen.set_focus(None)
         self._area_active[area] = calc_id
         strip = self._strips.get(area)
-        if strip is not None and strip.is_attached:  # not there yet: built with this tab active
+        if area in self._strips_built or (strip is not None and area not in self._mounting):
             strip.active = f"tab-{calc_id}"
+        elif strip is not None:  # mounting (the warm-up): its tabs are not there yet (a traceback)
+            self._picked[area] = calc_id
+        # else not built yet: it is built with this tab active
         self._areas().active = f"area-{area}"
         self.call_after_refresh(self._focus_strip, area)
 

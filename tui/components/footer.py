@@ -7,12 +7,24 @@ from textual.widgets import Footer
 
 
 def _shown(screen: Screen) -> tuple:
-    """What the footer shows of a screen's bindings: each key, its label and whether it is
-    enabled (Footer.compose draws from the same fields)."""
+    """What the footer draws of a screen's bindings, read as Footer.compose reads them: each shown
+    key with its display, label, action, group, tooltip and whether it is enabled, and the
+    command palette's key."""
+    app = screen.app
+    bindings = screen.active_bindings
+    palette = bindings.get(app.COMMAND_PALETTE_BINDING)
     return tuple(
-        (binding.key, binding.action, binding.description, binding.key_display, enabled, tooltip)
-        for _, binding, enabled, tooltip in screen.active_bindings.values()
-        if binding.show
+        (
+            binding.key,
+            app.get_key_display(binding),
+            binding.description,
+            binding.action,
+            binding.group,
+            enabled,
+            tooltip,
+        )
+        for _, binding, enabled, tooltip in [*bindings.values(), *([palette] if palette else [])]
+        if binding.show or (palette is not None and binding is palette[1])
     )
 
 
