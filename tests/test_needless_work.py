@@ -104,3 +104,121 @@ async def test_a_focus_move_does_not_repaint_the_whole_screen():
             await settle(pilot)
         assert app.focused.id == "in-torque"
         assert whole == []
+
+
+def count_card_renders(monkeypatch, card_id: str) -> list[int]:
+    """Counts content renders of the widgets inside one card (Textual's per-widget render)."""
+    from textual.widget import Widget
+
+    count = [0]
+    render = Widget._render_content
+
+    def counting(self, *args):
+        if any(node.id == card_id for node in self.ancestors_with_self):
+            count[0] += 1
+        return render(self, *args)
+
+    monkeypatch.setattr(Widget, "_render_content", counting)
+    return count
+
+
+def screen_cells(app) -> list[list[tuple[str, str]]]:
+    """What the terminal shows: each cell's character and style. (A screenshot would differ where
+    only the cuts between segments do: the compositor cuts lines at covered widgets' edges too.)"""
+    return [
+        [(char, str(segment.style)) for segment in strip for char in segment.text]
+        for strip in app.screen._compositor.render_strips()
+    ]
+
+
+async def first_visit_renders(monkeypatch, rehearse: bool) -> tuple[int, bool]:
+    """Content renders inside the beam card during its first visit (built out of sight before),
+    and whether the screen stayed as it was while the card was rehearsed beneath it."""
+    import asyncio
+
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        await app.card("beam")
+        await settle(pilot)
+        before = screen_cells(app)
+        unchanged = True
+        if rehearse:
+            app.REHEARSAL_S = 3.0  # long enough to look at the screen meanwhile
+            rehearsal = asyncio.create_task(app._rehearse("beam"))
+            await pilot.pause(0.5)  # the rehearsal's layout and first frames are done
+            assert app._rehearsal  # under way
+            unchanged = screen_cells(app) == before
+            await rehearsal
+            await settle(pilot)
+            assert "beam" in app._drawn
+            area = app._areas().get_pane("area-structure")
+            assert not area.display and not area.styles.has_rule("layer")  # hidden as before
+            unchanged = unchanged and screen_cells(app) == before
+        count = count_card_renders(monkeypatch, "calc-beam")
+        app.show_calculator("beam")
+        await settle(pilot)
+        assert app.current_calculator == "beam" and app._cards["beam"].region.height
+        monkeypatch.undo()
+        return count[0], unchanged
+
+
+async def test_a_rehearsed_card_is_drawn_beneath_the_screen_and_its_first_visit_draws_little(monkeypatch):
+    """A card shown once beneath the card on screen (the warm-up's rehearsal) leaves the screen
+    as it was, and its first visit finds its widgets sized and drawn: a handful of content
+    renders instead of every widget's (two layouts, the table and chart redrawn)."""
+    cold, _ = await first_visit_renders(monkeypatch, rehearse=False)
+    warm, unchanged = await first_visit_renders(monkeypatch, rehearse=True)
+    assert unchanged
+    assert cold > 40  # every label, entry, selector, the table and chart (67 when written)
+    assert warm < cold / 4  # 7 when written
+
+
+async def test_a_key_ends_a_rehearsal_at_once_and_goes_where_it_asked():
+    """A rehearsal yields the screen to the user: F3 during the beam's rehearsal shows the beam
+    card (the pane the key asked for stays shown, no longer beneath)."""
+    import asyncio
+    from time import monotonic
+
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        await app.card("beam")
+        await settle(pilot)
+        app.REHEARSAL_S = 30.0  # only the key can end it
+        started = monotonic()
+        rehearsal = asyncio.create_task(app._rehearse("beam"))
+        await pilot.pause(0.2)
+        assert app._rehearsal
+        await pilot.press("f3")
+        await asyncio.wait_for(rehearsal, 5.0)
+        assert monotonic() - started < 10
+        await settle(pilot)
+        assert app._rehearsal == []
+        assert app.current_calculator == "beam" and app._cards["beam"].region.height
+        assert not app._areas().get_pane("area-structure").styles.has_rule("layer")
+        await pilot.press("f1")  # and back: the area it left is hidden as usual
+        await settle(pilot)
+        assert app.current_calculator == "motor" and not app._cards["beam"].region.height
+
+
+async def test_a_card_built_out_of_sight_sizes_its_table_for_the_width_it_will_have():
+    """Its results table is as wide as the one on screen, so its first visit keeps the rows it
+    has instead of re-filling the table and measuring it again (an extra layout and frame)."""
+    from textual.widgets._data_table import ColumnKey
+
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        await app.card("beam")
+        await settle(pilot)
+        table = app._cards["beam"]._parts.table
+        width = table.columns[ColumnKey("label")].width
+        on_screen = app._cards["motor"].results_width
+        cleared = []
+        original = table.clear
+        table.clear = lambda *a, **k: (cleared.append(1), original(*a, **k))[1]
+        app.show_calculator("beam")
+        await settle(pilot)
+        assert table.size.width == on_screen > 0
+        assert table.columns[ColumnKey("label")].width == width and cleared == []

@@ -223,6 +223,36 @@ async def test_the_real_app_freezes_its_heap_and_releases_it_on_exit():
         assert app.card_ready("motor") and gc.get_freeze_count() == 0
 
 
+async def test_a_pause_collects_what_came_after_the_freeze_before_freezing_it():
+    """What a visit leaves behind is tidied in a pause: garbage promoted to the oldest generation
+    since the last freeze is collected, not frozen with the rest (it would stay until exit), and
+    full collections are rarer meanwhile; the collector's own settings come back at exit."""
+    import gc
+    import weakref
+
+    class Node:
+        pass
+
+    threshold = gc.get_threshold()
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True, warm_up=True)
+    app.IDLE_BEFORE_BUILD_S = 60.0  # no warm-up builds
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        assert gc.get_threshold()[2] == app.FULL_COLLECTION_EVERY
+        cycle = Node()
+        cycle.me = cycle
+        alive = weakref.ref(cycle)
+        gc.collect(1)  # it survives a young collection: promoted to the oldest generation
+        assert gc.get_count()[2] and cycle in gc.get_objects(2)
+        del cycle
+        assert alive() is not None  # a cycle: only the collector frees it
+        frozen = gc.get_freeze_count()
+        app._tidy_heap()
+        assert alive() is None
+        assert gc.get_freeze_count() >= frozen * 0.9  # the rest stays frozen
+    assert gc.get_threshold() == threshold and gc.get_freeze_count() == 0
+
+
 async def test_a_calculator_picked_while_its_strip_is_mounting_is_shown():
     """The warm-up mounts an area's strip out of sight; a key that opens a calculator of that area
     before the strip's tabs exist used to raise (NoMatches, then "No Tab with id"). The pick is

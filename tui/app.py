@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import gc
+from asyncio import sleep
 from collections.abc import Iterable
 from pathlib import Path
 from time import monotonic
@@ -98,6 +99,8 @@ class GearheadApp(App):
         self._strips: dict[str, TabbedContent] = {}
         self._strips_built: set[str] = set()  # strips whose tabs are composed (a pick can be shown)
         self._picked: dict[str, str] = {}  # area -> calculator picked while its strip was mounting
+        self._drawn: set[str] = set()  # calculators whose card has been on screen or rehearsed
+        self._rehearsal: list[TabPane] = []  # panes shown beneath the screen's card right now
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def get_default_screen(self) -> Screen:
@@ -166,6 +169,7 @@ class GearheadApp(App):
     async def on_ready(self) -> None:
         self._started = True
         await self.card(self.current_calculator)
+        self._drawn_now()
         if self.warm_up:
             self._freeze_heap()
             self._import_the_rest()
@@ -175,22 +179,40 @@ class GearheadApp(App):
     # with every card built (gc.collect, 428 000 objects), a stall wherever it falls (a key,
     # a first visit: two of them in a 1.5 s first visit of the beam). The cards and modules live
     # as long as the app, so once each is built the heap is frozen (gc.freeze): collections
-    # then walk only what came after. Young garbage is collected first (gen 0-1, about a
-    # millisecond) so it is not kept; a cycle that dies among frozen objects stays until exit.
-    # Only with the warm-up (the real app): test apps come and go in one process.
+    # then walk only what came after. Showing a card leaves its drawing caches behind (60 000
+    # objects on a first visit: a 67 ms full collection 0.4 s after the key), so pauses are
+    # used to collect and freeze again, and full collections are made 10x rarer meanwhile
+    # (they then come in pauses, not in a burst of keys). The first freeze collects the young
+    # generations only (a full pass over the start-up heap is the 90 ms above); a cycle that
+    # dies among frozen objects stays until exit. Only with the warm-up (the real app): test
+    # apps come and go in one process.
     _frozen = False
+    _thresholds: tuple[int, int, int] | None = None  # the collector's own, restored at exit
+    FULL_COLLECTION_EVERY = 100  # young collections per full one (Python's default: 10)
 
-    def _freeze_heap(self) -> None:
+    def _freeze_heap(self, full: bool = False) -> None:
         if not self.is_running:  # closing: on_unmount may already have released the heap
             return
-        gc.collect(1)
+        if self._thresholds is None:
+            self._thresholds = gc.get_threshold()
+            young, middle, _ = self._thresholds
+            gc.set_threshold(young, middle, self.FULL_COLLECTION_EVERY)
+        gc.collect(2 if full else 1)
         gc.freeze()
         self._frozen = True
+
+    def _tidy_heap(self) -> None:
+        """In a pause: collect what was promoted since the last freeze, and freeze the rest."""
+        if gc.get_count()[2]:  # young collections since the last full one promoted objects
+            self._freeze_heap(full=True)
 
     def on_unmount(self) -> None:
         if self._frozen:  # the app's objects can be collected again once it is gone
             gc.unfreeze()
             self._frozen = False
+        if self._thresholds is not None:
+            gc.set_threshold(*self._thresholds)
+            self._thresholds = None
 
     # ---- warming up after the first card ------------------------------------------------
     # A card is built on the UI thread (Textual widgets must be); importing its calculator
@@ -202,6 +224,10 @@ class GearheadApp(App):
     AREA_DIGIT_S = 2.0  # a digit this soon after an F-key picks in that area, focused or not
     IDLE_BEFORE_BUILD_S = 0.75  # no key for this long: the user is reading, build the next card
     BUSY_RETRY_S = 0.1  # a card is solving or drawing its chart: build the next after it
+    TIDY_EVERY_S = 1.0  # once every card is built: look for a pause to tidy the heap this often
+    # a tidy after a first visit walks ~75 000 objects (73 ms): wait for a pause a key is
+    # unlikely to end soon, not the first lull after the card is drawn
+    IDLE_BEFORE_TIDY_S = 2.0
 
     @work(thread=True, group="warm-up", exit_on_error=False)
     def _import_the_rest(self) -> None:
@@ -229,15 +255,65 @@ class GearheadApp(App):
             self.set_timer(self.BUSY_RETRY_S, self._build_next)
             return
         todo = [cid for cid in ORDER if cid not in self._cards]
-        if not todo:
+        unseen = [cid for cid in ORDER if cid not in self._drawn]
+        if not todo and unseen:
+            await self._rehearse(unseen[0])
+            self._freeze_heap()
+            self.set_timer(0.05, self._build_next)
+            return
+        if not todo:  # every card built and drawn: keep the heap tidy in longer pauses
+            if idle >= self.IDLE_BEFORE_TIDY_S:
+                self._tidy_heap()
+            self.set_timer(self.TIDY_EVERY_S, self._build_next)
             return
         await self.card(todo[0])
         self._freeze_heap()
         self.set_timer(0.05, self._build_next)
 
+    # ---- rehearsals: each card drawn once before its first visit ---------------------------
+    # A card shown for the first time has no size and nothing drawn: Textual lays it out, draws
+    # every widget, then lays it out again as the new sizes come in, and the results table and
+    # chart redraw at their size (beam: frames of 250, 120 and 30 ms). A card drawn before is
+    # one frame of about 60 ms. So once every card is built, each is shown once while the user
+    # reads, beneath the card on screen (a lower layer of the same switcher, gearhead.tcss): laid
+    # out at the size it will have, drawn, covered, then hidden again. A key ends a rehearsal at
+    # once (it waits at most for a frame in flight).
+    REHEARSAL_S = 0.5  # a first show's frames: the layout, the relayout with sizes, the chart
+
+    def _drawn_now(self) -> None:
+        """The calculator on screen has been drawn: no rehearsal needed."""
+        if self._areas() is not None:
+            self._drawn.add(self.current_calculator)
+
+    async def _rehearse(self, calc_id: str) -> None:
+        area = area_of(calc_id)
+        panes = [self._areas().get_pane(f"area-{area}"), self._strips[area].get_pane(f"tab-{calc_id}")]
+        self._rehearsal = [p for p in panes if not p.display]
+        if not self._rehearsal:  # on screen now
+            self._drawn.add(calc_id)
+            return
+        for pane in self._rehearsal:  # inline: a class would restyle the card (tables clear caches)
+            pane.styles.layer = "rehearsal"  # beneath: the switchers' layers (gearhead.tcss)
+            pane.display = True
+        until = monotonic() + self.REHEARSAL_S
+        while self._rehearsal and monotonic() < until:
+            await sleep(0.05)
+        if self._rehearsal:  # not cut short by a key
+            self._drawn.add(calc_id)
+            self._end_rehearsal()
+
+    def _end_rehearsal(self) -> None:
+        for pane in self._rehearsal:
+            pane.styles.clear_rule("layer")
+            if pane.parent is not None and pane.parent.current != pane.id:  # not shown meanwhile
+                pane.display = False
+        self._rehearsal = []
+
     async def on_event(self, event: events.Event) -> None:
         if isinstance(event, (events.Key, events.MouseDown)):
             self._last_key = monotonic()
+            if self._rehearsal:  # the user is back: the screen is theirs
+                self._end_rehearsal()
         await super().on_event(event)
 
     def _card(self, calc_id: str) -> CalculatorTab:
@@ -247,6 +323,9 @@ class GearheadApp(App):
             get(calc_id), blink=self.blink, hide_timings=self.hide_timings, id=f"calc-{calc_id}"
         )
         tab.unit_system = self.unit_system
+        shown = self._cards.get(self.current_calculator) if self._areas() is not None else None
+        if shown is not None:  # built out of sight: its table will be as wide as the one on screen
+            tab.table_width_hint = shown.results_width
         return tab
 
     def set_unit_system(self, system: str, remember: bool = True) -> None:
@@ -357,6 +436,7 @@ class GearheadApp(App):
     async def _focus_strip(self, area: str) -> None:
         strip = await self.strip(area)
         await self.card(self._area_active[area])
+        self._drawn_now()
         self.screen.set_focus(strip.query_one(Tabs))
 
     def on_key(self, event: events.Key) -> None:
