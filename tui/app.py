@@ -309,8 +309,11 @@ class GearheadApp(App):
                 pane.display = False
         self._rehearsal = []
 
+    # what counts as the user acting (the warm-up waits for a pause in these; a rehearsal ends)
+    USER_ACTS = (events.Key, events.MouseDown, events.MouseScrollDown, events.MouseScrollUp)
+
     async def on_event(self, event: events.Event) -> None:
-        if isinstance(event, (events.Key, events.MouseDown)):
+        if isinstance(event, self.USER_ACTS):
             self._last_key = monotonic()
             if self._rehearsal:  # the user is back: the screen is theirs
                 self._end_rehearsal()
