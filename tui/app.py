@@ -202,8 +202,9 @@ class GearheadApp(App):
         self._frozen = True
 
     def _tidy_heap(self) -> None:
-        """In a pause: collect what was promoted since the last freeze, and freeze the rest."""
-        if gc.get_count()[2]:  # young collections since the last full one promoted objects
+        """In a pause: collect what was promoted since the last freeze, and freeze the rest. Not
+        while a notification shows: it dies in seconds, and frozen its cycles would stay."""
+        if gc.get_count()[2] and not len(self._notifications):  # objects were promoted since
             self._freeze_heap(full=True)
 
     def on_unmount(self) -> None:
@@ -239,7 +240,14 @@ class GearheadApp(App):
         except RuntimeError:  # the app closed meanwhile
             pass
 
-    async def _build_next(self) -> None:
+    def _build_next(self) -> None:
+        """The warm-up's next step, run as a task of its own: a timer's callback runs inside the
+        app's message loop, so awaiting a mount or a rehearsal there held every key back until
+        it ended (a key waited for a whole card's mount)."""
+        if self.is_running:
+            self.run_worker(self._warm_up_step(), group="warm-up", exit_on_error=False)
+
+    async def _warm_up_step(self) -> None:
         if not self.warm_up or not self.is_running or not self._screen_stack:  # off, or closed
             return
         areas = self._areas()
@@ -310,7 +318,15 @@ class GearheadApp(App):
         self._rehearsal = []
 
     # what counts as the user acting (the warm-up waits for a pause in these; a rehearsal ends)
-    USER_ACTS = (events.Key, events.MouseDown, events.MouseScrollDown, events.MouseScrollUp)
+    USER_ACTS = (
+        events.Key,
+        events.Paste,
+        events.MouseDown,
+        events.MouseScrollDown,
+        events.MouseScrollUp,
+        events.MouseScrollLeft,
+        events.MouseScrollRight,
+    )
 
     async def on_event(self, event: events.Event) -> None:
         if isinstance(event, self.USER_ACTS):
@@ -385,6 +401,7 @@ class GearheadApp(App):
             return
         await self.strip(self.current_area)
         await self.card(self.current_calculator)
+        self._drawn_now()
         self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r only where they do something
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
