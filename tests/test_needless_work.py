@@ -228,3 +228,30 @@ async def test_a_card_built_out_of_sight_sizes_its_table_for_the_width_it_will_h
         await settle(pilot)
         assert table.size.width == on_screen > 0
         assert table.columns[ColumnKey("label")].width == width and cleared == []
+
+
+async def test_a_rehearsal_in_another_area_sets_that_strips_card_aside_and_back():
+    """Rehearsing the chain/belt card (Structure, whose strip shows the beam) shows only it
+    beneath the screen: the beam's pane is set aside meanwhile (or it would be drawn as well)
+    and is the Structure card again after, as F3 then shows."""
+    import asyncio
+
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        await app.card("beam")
+        await app.card("chain_belt")
+        await settle(pilot)
+        beam_pane = app._strips["structure"].get_pane("tab-beam")
+        assert beam_pane.display
+        app.REHEARSAL_S = 3.0
+        rehearsal = asyncio.create_task(app._rehearse("chain_belt"))
+        await pilot.pause(0.5)
+        assert app._rehearsal and not beam_pane.display
+        assert app._cards["chain_belt"].region.height and not app._cards["beam"].region.height
+        await rehearsal
+        await settle(pilot)
+        assert beam_pane.display and "chain_belt" in app._drawn
+        await pilot.press("f3")
+        await settle(pilot)
+        assert app.current_calculator == "beam" and app._cards["beam"].region.height

@@ -101,6 +101,7 @@ class GearheadApp(App):
         self._picked: dict[str, str] = {}  # area -> calculator picked while its strip was mounting
         self._drawn: set[str] = set()  # calculators whose card has been on screen or rehearsed
         self._rehearsal: list[TabPane] = []  # panes shown beneath the screen's card right now
+        self._set_aside: list[TabPane] = []  # a strip's own card, hidden while another rehearses
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def get_default_screen(self) -> Screen:
@@ -286,7 +287,7 @@ class GearheadApp(App):
     # reads, beneath the card on screen (a lower layer of the same switcher, gearhead.tcss): laid
     # out at the size it will have, drawn, covered, then hidden again. A key ends a rehearsal at
     # once (it waits at most for a frame in flight).
-    REHEARSAL_S = 0.5  # a first show's frames: the layout, the relayout with sizes, the chart
+    REHEARSAL_S = 0.5  # after the first frame: the relayout with the sizes, the table, the chart
 
     def _drawn_now(self) -> None:
         """The calculator on screen has been drawn: no rehearsal needed."""
@@ -295,19 +296,30 @@ class GearheadApp(App):
 
     async def _rehearse(self, calc_id: str) -> None:
         area = area_of(calc_id)
-        panes = [self._areas().get_pane(f"area-{area}"), self._strips[area].get_pane(f"tab-{calc_id}")]
+        strip = self._strips[area]
+        panes = [self._areas().get_pane(f"area-{area}"), strip.get_pane(f"tab-{calc_id}")]
         self._rehearsal = [p for p in panes if not p.display]
         if not self._rehearsal:  # on screen now
             self._drawn.add(calc_id)
             return
+        if len(self._rehearsal) == 2 and strip.active:  # another area, another of its cards:
+            own = strip.get_pane(strip.active)  # set that one aside, or it is drawn as well
+            if own is not None and own.display:
+                own.display = False
+                self._set_aside = [own]
         for pane in self._rehearsal:  # inline: a class would restyle the card (tables clear caches)
             pane.styles.layer = "rehearsal"  # beneath: the switchers' layers (gearhead.tcss)
             pane.display = True
-        until = monotonic() + self.REHEARSAL_S
+        card = panes[1]
+        until = monotonic() + 3.0  # the first frame: the card laid out (0.25 s; more if loaded)
+        while self._rehearsal and not card.region.height and monotonic() < until:
+            await sleep(0.02)
+        until = monotonic() + self.REHEARSAL_S  # then the frames that follow it
         while self._rehearsal and monotonic() < until:
             await sleep(0.05)
         if self._rehearsal:  # not cut short by a key
-            self._drawn.add(calc_id)
+            if card.region.height:
+                self._drawn.add(calc_id)
             self._end_rehearsal()
 
     def _end_rehearsal(self) -> None:
@@ -315,7 +327,11 @@ class GearheadApp(App):
             pane.styles.clear_rule("layer")
             if pane.parent is not None and pane.parent.current != pane.id:  # not shown meanwhile
                 pane.display = False
+        for pane in self._set_aside:
+            if pane.parent is not None and pane.parent.current == pane.id:  # still its strip's card
+                pane.display = True
         self._rehearsal = []
+        self._set_aside = []
 
     # what counts as the user acting (the warm-up waits for a pause in these; a rehearsal ends)
     USER_ACTS = (
