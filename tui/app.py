@@ -317,9 +317,8 @@ class GearheadApp(App):
         until = monotonic() + self.REHEARSAL_S  # then the frames that follow it
         while self._rehearsal and monotonic() < until:
             await sleep(0.05)
-        if self._rehearsal:  # not cut short by a key
-            if card.region.height:
-                self._drawn.add(calc_id)
+        if self._rehearsal:  # not cut short by a key (laid out or not: a tiny terminal may leave
+            self._drawn.add(calc_id)  # it no room; it is not tried again)
             self._end_rehearsal()
 
     def _end_rehearsal(self) -> None:
