@@ -93,9 +93,9 @@ async def stalls(app, into):  # a key typed at t waits as long: the loop's stall
         t = time.perf_counter()
         await asyncio.sleep(0.005)
         handled = asyncio.Event()
-        app.call_later(handled.set)
+        # the time the app takes it (the probe itself may resume a frame later)
+        app.call_later(lambda: (into.append(time.perf_counter() - t - 0.005), handled.set()))
         await handled.wait()
-        into.append(time.perf_counter() - t - 0.005)
 async def visit(app, press, pilot, read_s):
     await pilot.pause(read_s)
     late = []
@@ -171,9 +171,9 @@ async def stalls(app, into):  # a key typed at t waits as long: the loop's stall
         t = time.perf_counter()
         await asyncio.sleep(0.005)
         handled = asyncio.Event()
-        app.call_later(handled.set)
+        # the time the app takes it (the probe itself may resume a frame later)
+        app.call_later(lambda: (into.append(time.perf_counter() - t - 0.005), handled.set()))
         await handled.wait()
-        into.append(time.perf_counter() - t - 0.005)
 APP
 async def main():
     app = make()
