@@ -74,6 +74,18 @@ asyncio.run(main())
 # - stall: the longest a message posted to the app waited to be handled in the 2 s after the key
 #   (a probe posts one every 5 ms): a key typed then waits that long.
 # Keys go in as the terminal driver delivers them (pilot.press would also wait for every widget).
+# the stall probe, shared by the visit and warm-up scripts
+STALLS = r"""
+async def stalls(app, into):  # a key typed at t waits as long: the loop's stall, then the queue
+    while True:
+        t = time.perf_counter()
+        await asyncio.sleep(0.005)
+        handled = asyncio.Event()
+        # the time the app takes it (the probe itself may resume a frame later)
+        app.call_later(lambda: (into.append(time.perf_counter() - t - 0.005), handled.set()))
+        await handled.wait()
+""".strip()
+
 VISIT_PROBE = r"""
 import time, asyncio
 from textual.screen import Screen
@@ -88,14 +100,7 @@ def watch(widget_of):  # the end of the first frame in which widget_of() is on s
         if w is not None and w.region.height:
             drawn.append(time.perf_counter())
     Screen._compositor_refresh = hooked
-async def stalls(app, into):  # a key typed at t waits as long: the loop's stall, then the queue
-    while True:
-        t = time.perf_counter()
-        await asyncio.sleep(0.005)
-        handled = asyncio.Event()
-        # the time the app takes it (the probe itself may resume a frame later)
-        app.call_later(lambda: (into.append(time.perf_counter() - t - 0.005), handled.set()))
-        await handled.wait()
+STALLS
 async def visit(app, press, pilot, read_s):
     await pilot.pause(read_s)
     late = []
@@ -166,14 +171,7 @@ WARMED_S = 25.0  # by then every card is built and rehearsed (about 21 s with 2 
 # the first WARMED_S seconds (a key typed then waits that long), printed in ms.
 WARM_UP_STALL = r"""
 import time, asyncio
-async def stalls(app, into):  # a key typed at t waits as long: the loop's stall, then the queue
-    while True:
-        t = time.perf_counter()
-        await asyncio.sleep(0.005)
-        handled = asyncio.Event()
-        # the time the app takes it (the probe itself may resume a frame later)
-        app.call_later(lambda: (into.append(time.perf_counter() - t - 0.005), handled.set()))
-        await handled.wait()
+STALLS
 APP
 async def main():
     app = make()
@@ -244,7 +242,7 @@ def reported(code: str) -> float:
 
 def reported_all(code: str, read_s: float = READ_S) -> list[float]:
     """The figures a script prints on its last line (seconds, or ms for the visit probe)."""
-    code = code.replace("READ_S", repr(read_s))
+    code = code.replace("STALLS", STALLS).replace("READ_S", repr(read_s))
     out = subprocess.run([sys.executable, "-c", code], cwd=APP_ROOT, capture_output=True, text=True)
     if out.returncode:
         raise RuntimeError(out.stderr[-2000:])
