@@ -630,3 +630,24 @@ async def test_result_under_the_cursor_is_explained():
         line = str(tab.query_one(".help-line", Static).render())
         assert line.startswith(tab.calculator.output("ratio").label)
         assert tab.calculator.output("ratio").help in line
+
+
+async def test_a_stale_chart_draws_before_its_canvas_has_a_size():
+    """A chart whose results went stale (a bad entry) still draws while its canvases have no size
+    yet (a card shown for the first time): with opacity, Textual raised AttributeError on the
+    canvas's unstyled blank line and the app closed (typing fast while a card first showed)."""
+    from textual.geometry import Region, Size
+    from textual_hires_canvas import Canvas
+
+    app = GearheadApp(blink=False, initial="beam", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = app._cards["beam"]
+        tab._mark_stale(True)
+        await settle(pilot)
+        canvases = list(tab.query(Canvas))
+        assert canvases
+        for canvas in canvases:
+            canvas._canvas_size = Size(0, 0)  # as before its first resize
+            canvas._styles_cache.clear()
+            assert len(canvas.render_lines(Region(0, 0, 10, 1))) == 1
