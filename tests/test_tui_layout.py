@@ -213,3 +213,36 @@ async def test_long_warnings_scroll_and_keep_the_status_line_in_the_pane(monkeyp
         assert box.display and box.region.bottom <= status.y
         assert status.height and status.bottom <= pane.bottom - 1  # inside the border
         assert box.max_scroll_y > 0  # the rest is a scroll away, not cut off
+
+
+async def test_result_labels_keep_their_room_when_equation_numbers_are_long():
+    """The beam's equation numbers run to 34 cells ("(43), (45), (47), (49), (51)…"); they took
+    the room and left the labels 8 cells, wrapped onto four lines ("Thin-wal / l J /
+    (estimat / e)"). The labels now keep LABEL_MIN cells and the numbers are cut with "…"."""
+
+    from gearhead.tui.components.calculator_tab import LABEL_MIN
+
+    app = GearheadApp(blink=False, initial="beam", hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-beam", CalculatorTab)
+        table = tab.query_one(".results", DataTable)
+        widths = {key.value: column.width for key, column in table.columns.items()}
+        assert widths["label"] >= LABEL_MIN
+        room = table.size.width - 2 - 2 * table.cell_padding * len(table.columns)
+        assert sum(widths.values()) <= room
+        assert max(row.height for row in table.rows.values()) <= 2
+        rendered = "\n".join(strip.text for strip in table.render_lines(table.region.reset_offset))
+        assert "Area moment of" in rendered and "(43), (45)" in rendered and "…" in rendered
+
+
+def test_column_widths_give_labels_their_room_first():
+    """Hand-worked splits of a results table's room."""
+    from gearhead.tui.components.calculator_tab import column_widths
+
+    # room, others (value), longest label, widest equations -> (label, equations)
+    assert column_widths(48, 18, 29, 34) == (16, 14)  # beam at 140 columns: the numbers give way
+    assert column_widths(48, 20, 30, 10) == (18, 10)  # motor: the numbers fit beside 18 cells
+    assert column_widths(48, 20, 12, 10) == (12, 10)  # short labels: everything fits
+    assert column_widths(30, 18, 29, 34) == (9, 3)  # narrow: "(4…", the label the rest
+    assert column_widths(48, 18, 29, 0) == (29, 0)  # no equation column

@@ -207,18 +207,21 @@ class CalculatorTab(Widget):
         return self._parts.table.size.width if self._parts is not None else 0
 
     def _size_columns(self) -> None:
-        """The label column takes the room the value (and equation) columns leave in the pane, at
-        most its longest label; a label longer than that wraps onto a second line."""
+        """Columns for the table's width (column_widths); labels longer than theirs wrap."""
         table = self._parts.table if self._parts is not None else None
         table_width = (table.size.width or self.table_width_hint) if table is not None else 0
         if not table_width:
             return
         room = table_width - 2 - 2 * table.cell_padding * len(table.columns)  # 2: the scrollbar
-        others = sum(c.width for key, c in table.columns.items() if key.value != "label")
-        width = max(8, min(self._label_longest, room - others))  # 8: labels wrap by word
-        column = table.columns[ColumnKey("label")]
-        if column.width != width:
-            column.width = width
+        widths = {"label": 0, "equation": 0}
+        others = sum(c.width for key, c in table.columns.items() if key.value not in widths)
+        widths["label"], widths["equation"] = column_widths(
+            room, others, self._label_longest, self._equation_width
+        )
+        columns = [c for key, c in table.columns.items() if key.value in widths]
+        if any(c.width != widths[c.key.value] for c in columns):
+            for c in columns:
+                c.width = widths[c.key.value]
             self._rows_shown = None  # rows are re-added: the wrapped ones get their height
             if self.solution is not None and self.error is None:
                 self._fill_results(table, self.solution)
@@ -670,7 +673,7 @@ class CalculatorTab(Widget):
             for name, text in rows:
                 out = self.calculator.output(name)
                 cells = [Text(out.label), Text(text)] + (
-                    [Text(out.equation, style="dim")] if equations else []
+                    [Text(out.equation, style="dim", no_wrap=True, overflow="ellipsis")] if equations else []
                 )
                 table.add_row(*cells, key=name, height=None if cell_len(out.label) > label_width else 1)
             if 0 < cursor < table.row_count:
@@ -800,6 +803,24 @@ class CalculatorTab(Widget):
             line.append(self.calculator.output(name).label + " ", style="dim")
             line.append(pretty_quantity(value.text), style="bold")
         return line
+
+
+# A result label narrower than this wraps onto three or four lines ("Thin-wal / l J"): the
+# equation numbers, a reference, are cut first (with "…") to keep the labels readable.
+LABEL_MIN = 16
+
+
+def column_widths(room: int, others: int, longest: int, equations: int) -> tuple[int, int]:
+    """(label, equation) column widths of a results table sharing `room` cells with its other
+    columns (value, spread: never cut), `others` cells wide. The label takes what the equation
+    numbers (`equations` wide, 0: no column) leave, up to its `longest` label; when that is
+    under LABEL_MIN, the numbers give way, down to 3 cells ("(4…")."""
+    left = room - others
+    label = min(longest, left - equations)
+    if label < min(longest, LABEL_MIN) and equations:
+        label = min(longest, LABEL_MIN, left - 3)
+    label = max(8, label)  # 8: labels wrap by word
+    return label, (max(3, min(equations, left - label)) if equations else 0)
 
 
 def value_width(calc: Calculator) -> int:
