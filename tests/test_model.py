@@ -199,7 +199,7 @@ async def test_a_new_field_kind_renders_in_the_generic_tab(monkeypatch):
     from textual.widgets import Input
 
     from gearhead.core import registry
-    from gearhead.tui.components.calculator_tab import CalculatorTab
+    from gearhead.tui.components.calculator_tab import CalculatorTab, FieldRow
 
     calc = _toy_calculator()
     monkeypatch.setitem(registry.calculators(), "toy_hex", calc)
@@ -221,7 +221,8 @@ async def test_a_new_field_kind_renders_in_the_generic_tab(monkeypatch):
 
         await solved()
         assert app.query_one("#in-code", Input).value == "0x10"
-        assert len(tab.query("#row-code .field-unit")) == 1  # an input: the unit column is kept
+        row = tab.query_one("#row-code", FieldRow)
+        assert row.unit_text == "" and not row.has_class("unitless")  # an input: its unit column stays
         assert tab.solution.outputs["double"].value == 32
         tab.set_entries({"code": "0xFF"})
         await solved()

@@ -103,7 +103,9 @@ async def test_accuracy_view_of_a_closed_form_scene_says_so_instead_of_a_flat_pl
 async def test_long_field_help_and_labels_are_shown_whole():
     """Projectile's target angle help is ~270 characters; the help line had room for two lines.
     Flywheel's 'Grip force μ·N (motor during shot)' is longer than the label column."""
-    from textual.widgets import Input, Label, Static
+    from textual.widgets import Input, Static
+
+    from gearhead.tui.components.calculator_tab import LABEL_CELLS, FieldRow
 
     app = GearheadApp(blink=False, initial="projectile", hide_timings=True)
     async with app.run_test(size=(120, 35)) as pilot:
@@ -119,8 +121,9 @@ async def test_long_field_help_and_labels_are_shown_whole():
         await settle(pilot)
         app.query_one("#calc-flywheel #flag-effects--motor_during_shot").value = True
         await settle(pilot)
-        label = app.query_one("#calc-flywheel #row-grip_force .field-label", Label)
-        assert label.size.height * label.size.width >= len("Grip force μ·N (motor during shot)")
+        row = app.query_one("#calc-flywheel #row-grip_force", FieldRow)
+        shown = [line[:LABEL_CELLS].rstrip() for line in str(row.render()).splitlines()]
+        assert " ".join(shown[: row.size.height]).startswith("Grip force μ·N (motor during shot)")
 
 
 async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_series():

@@ -19,7 +19,7 @@ from textual.containers import Horizontal, Vertical, VerticalScroll
 from textual.content import Content
 from textual.reactive import var
 from textual.widget import Widget
-from textual.widgets import Checkbox, DataTable, Input, Label, Select, Static
+from textual.widgets import Checkbox, DataTable, Input, Select, Static
 from textual.widgets.data_table import ColumnKey
 
 from gearhead.core.errors import InputError
@@ -40,8 +40,18 @@ class Form(VerticalScroll, can_focus=False):
 BUSY_AFTER_S = 0.1  # a solve running longer than this shows '… solving'
 
 
-class FieldRow(Horizontal):
-    """Label, entry widget and unit for one field; an error line appears under it when needed."""
+LABEL_CELLS = 32  # a field's label column; longer labels wrap by word
+UNIT_CELLS = 10  # its unit column, a space and the unit
+
+
+class FieldRow(Widget):
+    """One field: its label, its entry widget and its unit; an error line appears under it when
+    needed. The row draws the label and the unit itself, around its one child, the entry: a
+    Label each for them were two of the five widgets a field cost, and every widget is paid for
+    in a card's build, its layouts and the compositing of every frame it is on screen (the beam
+    card had 126 widgets, and a first show took 3 frames of 100-250 ms)."""
+
+    COMPONENT_CLASSES = {"field-row--unit"}
 
     def __init__(self, field: Field, value: Any, blink: bool) -> None:
         # the field's kind describes the widget (core.fields.Widget); a widget without a unit
@@ -58,11 +68,12 @@ class FieldRow(Horizontal):
         self.field = field
         self.initial = value
         self.blink = blink
+        self.label_lines = Content(field.label).wrap(LABEL_CELLS)  # as a Label of that width
+        self.unit_text = pretty_unit(self.widget_spec.unit) if self.widget_spec.unit is not None else None
 
     def compose(self) -> ComposeResult:
         f, spec = self.field, self.widget_spec
         tip = Text(f.help) if f.help else None  # a str tooltip is markup: "[psi]" would vanish
-        yield Label(Text(f.label), classes="field-label")
         if spec.shape == "select":
             options = [(Text(label), value) for value, label in spec.options]
             yield FieldSelect(
@@ -100,8 +111,23 @@ class FieldRow(Horizontal):
             )
             entry.cursor_blink = self.blink
             yield entry
-        if spec.unit is not None:
-            yield Label(Text(pretty_unit(spec.unit)), classes="field-unit")
+
+    def get_content_height(self, container, viewport, width: int) -> int:
+        return max(super().get_content_height(container, viewport, width), len(self.label_lines))
+
+    def render(self) -> Content:
+        """The label's lines, and the unit one cell after the entry (drawn over the middle)."""
+        lines = [line.pad_right(LABEL_CELLS - line.cell_length) for line in self.label_lines]
+        lines += [Content()] * (self.size.height - len(lines))
+        if self.unit_text is not None and self.children and lines:
+            entry_right = self.children[0].region.right - self.content_region.x
+            unit_style = self.get_visual_style("field-row--unit", partial=True)
+            lines[0] = Content.assemble(
+                lines[0],
+                " " * max(0, entry_right - LABEL_CELLS + 1),
+                Content(self.unit_text).stylize(unit_style),
+            )
+        return Content("\n").join(lines)
 
 
 class CalculatorTab(Widget):
@@ -148,7 +174,6 @@ class CalculatorTab(Widget):
                 with Form(classes="form"):
                     for f in calc.fields:
                         yield FieldRow(f, self.entries[f.name], self.blink)
-                        yield Static("", classes="field-error", id=f"err-{f.name}")
                 yield Static(
                     Text(
                         "F1–F5 then a digit opens any calculator; Tab moves between fields; type any unit (3.5 in, 60 psi); Enter on a result changes its unit; "
@@ -582,10 +607,17 @@ class CalculatorTab(Widget):
     def _show_field_error(self, error: InputError | None) -> None:
         bad = error.field if error is not None and error.field in self._field_names else None
         for name in {self._bad_field, bad} - {None}:
-            err = self.query_one(f"#err-{name}", Static)
-            err.update(Text("⚠ " + error.message, style="bold red") if name == bad else "")
-            err.display = name == bad
-            self.query_one(f"#row-{name}").set_class(name == bad, "invalid")
+            row = self.query_one(f"#row-{name}", FieldRow)
+            message = Text("⚠ " + error.message, style="bold red") if name == bad else ""
+            errors = self.query(f"#err-{name}")
+            if errors:
+                errors.first(Static).update(message)
+                errors.first().display = name == bad
+            elif name == bad:  # a field's first error: its line is made now (a card has 17-35)
+                line = Static(message, classes="field-error", id=f"err-{name}")
+                line.display = True
+                row.parent.mount(line, after=row)
+            row.set_class(name == bad, "invalid")
         self._bad_field = bad
 
     def _show(self, solution: Solution | None, error: InputError | None) -> None:
