@@ -279,15 +279,18 @@ class GearheadApp(App):
         self._freeze_heap()
         self.set_timer(0.05, self._build_next)
 
-    # ---- rehearsals: each card drawn once before its first visit ---------------------------
+    # ---- rehearsals: each card laid out and drawn once before its first visit ---------------
     # A card shown for the first time has no size and nothing drawn: Textual lays it out, draws
     # every widget, then lays it out again as the new sizes come in, and the results table and
-    # chart redraw at their size (beam: frames of 250, 120 and 30 ms). A card drawn before is
-    # one frame of about 60 ms. So once every card is built, each is shown once while the user
-    # reads, beneath the card on screen (a lower layer of the same switcher, gearhead.tcss): laid
-    # out at the size it will have, drawn, covered, then hidden again. A key ends a rehearsal at
-    # once (it waits at most for a frame in flight).
-    REHEARSAL_S = 0.5  # after the first frame: the relayout with the sizes, the table, the chart
+    # chart redraw at their size (beam: frames of 250, 120 and 30 ms). A card laid out and drawn
+    # before is one frame of about 60 ms. So once every card is built, each is shown once while
+    # the user reads: in a lower layer of its switcher (gearhead.tcss), so it gets the size it
+    # will have, and below the screen (an offset), so it is laid out but never composited (drawn
+    # beneath the card on screen it doubled every frame's compositing: stalls of 110-465 ms).
+    # Then its widgets draw their lines into their caches, a few at a time, and it is hidden
+    # again. A key ends a rehearsal at once (it waits at most for a frame or a step in flight).
+    REHEARSAL_S = 0.5  # after the first layout: the relayout with the sizes, the table, the chart
+    DRAW_STEP_S = 0.008  # widgets drawn per step: about this long, then the app takes a turn
 
     def _drawn_now(self) -> None:
         """The calculator on screen has been drawn: no rehearsal needed."""
@@ -308,22 +311,46 @@ class GearheadApp(App):
                 own.display = False
                 self._set_aside = [own]
         for pane in self._rehearsal:  # inline: a class would restyle the card (tables clear caches)
-            pane.styles.layer = "rehearsal"  # beneath: the switchers' layers (gearhead.tcss)
+            pane.styles.layer = "rehearsal"  # its own layer: the switchers' layers (gearhead.tcss)
             pane.display = True
+        self._rehearsal[0].styles.offset = (0, self.screen.size.height)  # below the screen
         card = panes[1]
-        until = monotonic() + 3.0  # the first frame: the card laid out (0.25 s; more if loaded)
+        until = monotonic() + 3.0  # the first layout (0.1 s; more if loaded)
         while self._rehearsal and not card.region.height and monotonic() < until:
             await sleep(0.02)
-        until = monotonic() + self.REHEARSAL_S  # then the frames that follow it
+        until = monotonic() + self.REHEARSAL_S  # then the layouts that follow it
         while self._rehearsal and monotonic() < until:
             await sleep(0.05)
+        if self._rehearsal:
+            await self._draw_into_caches(self._rehearsal[0])
         if self._rehearsal:  # not cut short by a key (laid out or not: a tiny terminal may leave
             self._drawn.add(calc_id)  # it no room; it is not tried again)
             self._end_rehearsal()
 
+    async def _draw_into_caches(self, pane: Widget) -> None:
+        """Each widget of a pane laid out off the screen draws its lines as the compositor would
+        ask for them (Widget.render_lines, whole), kept in its line cache for the first visit."""
+        from time import perf_counter
+
+        from textual.geometry import Region
+
+        step_began = perf_counter()
+        for widget in list(pane.walk_children(with_self=True)):
+            if not self._rehearsal:  # a key: the screen is the user's
+                return
+            if not widget.display or not widget.is_attached:
+                continue
+            region = widget.region
+            if region.width and region.height:
+                widget.render_lines(Region(0, 0, region.width, region.height))
+            if perf_counter() - step_began > self.DRAW_STEP_S:
+                await sleep(0.005)
+                step_began = perf_counter()
+
     def _end_rehearsal(self) -> None:
         for pane in self._rehearsal:
             pane.styles.clear_rule("layer")
+            pane.styles.clear_rule("offset")
             if pane.parent is not None and pane.parent.current != pane.id:  # not shown meanwhile
                 pane.display = False
         for pane in self._set_aside:
