@@ -263,3 +263,44 @@ async def test_a_rehearsal_in_another_area_sets_that_strips_card_aside_and_back(
         await pilot.press("f3")
         await settle(pilot)
         assert app.current_calculator == "beam" and app._cards["beam"].region.height
+
+
+async def test_a_card_built_in_steps_lets_a_key_through_and_ends_as_one_built_at_once(monkeypatch):
+    """The warm-up builds a card's field rows a few at a time (a key waited for a whole card's
+    mount, 90-230 ms): a key pressed meanwhile is handled before the build ends, and the card
+    then has the same rows, shown or hidden alike, wired to its solve, as one built at once."""
+    import asyncio
+
+    from gearhead.tui.components.calculator_tab import CalculatorTab, FieldRow
+
+    def rows(tab):
+        return [(row.id, row.display) for row in tab.query(FieldRow)]
+
+    app = GearheadApp(blink=False, initial="elevator", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        at_once = app._cards["elevator"]
+        monkeypatch.setattr(CalculatorTab, "STEP_PAUSE_S", 0.3)  # slow steps: time for a key
+        build = asyncio.create_task(app.card("arm", in_steps=True))
+        await asyncio.sleep(0.2)
+        assert not build.done()
+        # (pilot.press waits for every widget's queue, the card's too: the key as a terminal's)
+        await app._press_keys(["f3"])
+        for _ in range(50):
+            if app.current_area == "structure":
+                break
+            await asyncio.sleep(0.01)
+        assert app.current_area == "structure" and not build.done()  # taken in the build
+        stepped = await asyncio.wait_for(build, 10.0)
+        await settle(pilot)
+        assert stepped.in_steps and not at_once.in_steps
+        assert len(rows(stepped)) == len(stepped.calculator.fields) > 2 * CalculatorTab.ROWS_PER_STEP
+        assert stepped.solution is not None and stepped.solution.outputs
+        assert all(entry.edited is not None for entry in stepped.query(FieldInput))
+        # the same calculator built at once, out of sight too: the same rows, shown alike
+        monkeypatch.setattr("gearhead.tui.app.get", lambda cid: stepped.calculator)
+        twin = app._card("arm")
+        app._strips["mechanisms"].get_pane("tab-elevator").mount(twin)
+        await settle(pilot)
+        assert rows(twin) == rows(stepped)
+        assert twin.solution.outputs.keys() == stepped.solution.outputs.keys()

@@ -275,7 +275,7 @@ class GearheadApp(App):
                 self._tidy_heap()
             self.set_timer(self.TIDY_EVERY_S, self._build_next)
             return
-        await self.card(todo[0])
+        await self.card(todo[0], in_steps=True)
         self._freeze_heap()
         self.set_timer(0.05, self._build_next)
 
@@ -377,11 +377,15 @@ class GearheadApp(App):
                 self._end_rehearsal()
         await super().on_event(event)
 
-    def _card(self, calc_id: str) -> CalculatorTab:
+    def _card(self, calc_id: str, in_steps: bool = False) -> CalculatorTab:
         from .components.calculator_tab import CalculatorTab
 
         tab = CalculatorTab(
-            get(calc_id), blink=self.blink, hide_timings=self.hide_timings, id=f"calc-{calc_id}"
+            get(calc_id),
+            blink=self.blink,
+            hide_timings=self.hide_timings,
+            in_steps=in_steps,
+            id=f"calc-{calc_id}",
         )
         tab.unit_system = self.unit_system
         shown = self._cards.get(self.current_calculator) if self._areas() is not None else None
@@ -408,8 +412,9 @@ class GearheadApp(App):
                     markup=False,
                 )
 
-    async def card(self, calc_id: str) -> CalculatorTab:
-        """The tab of a calculator, built if it has not been visited yet."""
+    async def card(self, calc_id: str, in_steps: bool = False) -> CalculatorTab:
+        """The tab of a calculator, built if it has not been visited yet (`in_steps`: out of
+        sight, its field rows a few at a time, CalculatorTab.ROWS_PER_STEP)."""
         tab = self._cards.get(calc_id)
         if tab is None:
             await self.strip(area_of(calc_id))
@@ -417,7 +422,7 @@ class GearheadApp(App):
         if tab is None:
             # recorded before the await: a second caller meanwhile (tab activation and on_ready
             # at start-up, the warm-up) waits for this mount instead of mounting a duplicate
-            tab = self._cards[calc_id] = self._card(calc_id)
+            tab = self._cards[calc_id] = self._card(calc_id, in_steps)
             pane = self._strips[area_of(calc_id)].get_pane(f"tab-{calc_id}")
             self._mounting[calc_id] = pane.mount(tab)
         await self._mounting[calc_id]

@@ -113,7 +113,15 @@ class FieldRow(Widget):
             yield entry
 
     def get_content_height(self, container, viewport, width: int) -> int:
-        return max(super().get_content_height(container, viewport, width), len(self.label_lines))
+        # an entry is one line (compact: an input or a yes/no), flags one line each: known here,
+        # where asking the layout arranged the row's children once more for every row in every
+        # layout (a third of a card's first layout, cProfile). A choice list's text wraps.
+        spec = self.widget_spec
+        if spec.shape == "select":
+            entry_lines = super().get_content_height(container, viewport, width)
+        else:
+            entry_lines = len(spec.options) if spec.shape == "checkboxes" else 1
+        return max(entry_lines, len(self.label_lines))
 
     def render(self) -> Content:
         """The label's lines, and the unit one cell after the entry (drawn over the middle)."""
@@ -137,10 +145,16 @@ class CalculatorTab(Widget):
     entries: var[dict[str, Any]] = var(dict, init=False, always_update=True)
 
     def __init__(
-        self, calculator: Calculator, blink: bool = True, hide_timings: bool = False, **kwargs
+        self,
+        calculator: Calculator,
+        blink: bool = True,
+        hide_timings: bool = False,
+        in_steps: bool = False,
+        **kwargs,
     ) -> None:
         super().__init__(**kwargs)
         self.calculator = calculator
+        self.in_steps = in_steps  # built out of sight: field rows mounted a few at a time
         self.blink = blink
         self.hide_timings = hide_timings  # snapshot tests: no wall-clock figures on screen
         self.solution: Solution | None = None
@@ -172,8 +186,9 @@ class CalculatorTab(Widget):
             with Vertical(classes="inputs-pane"):
                 yield Static(Text(calc.summary), classes="summary")
                 with Form(classes="form"):
-                    for f in calc.fields:
-                        yield FieldRow(f, self.entries[f.name], self.blink)
+                    if not self.in_steps:
+                        for f in calc.fields:
+                            yield FieldRow(f, self.entries[f.name], self.blink)
                 yield Static(
                     Text(
                         "F1–F5 then a digit opens any calculator; Tab moves between fields; type any unit (3.5 in, 60 psi); Enter on a result changes its unit; "
@@ -256,7 +271,24 @@ class CalculatorTab(Widget):
                 table._require_update_dimensions = True
                 table.refresh()
 
-    def on_mount(self) -> None:
+    # A card built while the user reads another (the app's warm-up) mounts its field rows a few
+    # at a time: a mount's steps all run before the app takes its next message, so a key waited
+    # for the whole card (90-230 ms); now for a few rows.
+    ROWS_PER_STEP = 4
+    STEP_PAUSE_S = 0.01  # between steps: a key's messages pass from the app to the widget
+
+    async def _mount_rows_in_steps(self) -> None:
+        from asyncio import sleep
+
+        form = self.query_one(Form)
+        rows = [FieldRow(f, self.entries[f.name], self.blink) for f in self.calculator.fields]
+        for start in range(0, len(rows), self.ROWS_PER_STEP):
+            await form.mount_all(rows[start : start + self.ROWS_PER_STEP])
+            await sleep(self.STEP_PAUSE_S)
+
+    async def on_mount(self) -> None:
+        if self.in_steps:
+            await self._mount_rows_in_steps()
         self._parts = SimpleNamespace(
             table=self.query_one(".results", DataTable),
             status=self.query_one(".status", Static),
