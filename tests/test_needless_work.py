@@ -211,6 +211,8 @@ async def test_a_key_ends_a_rehearsal_at_once_and_goes_where_it_asked(monkeypatc
         assert app._rehearsal == []
         assert app.current_calculator == "beam" and app._cards["beam"].region.height
         assert not app._areas().get_pane("area-structure").styles.has_rule("layer")
+        assert not app._areas().get_pane("area-structure").styles.has_rule("offset")
+        assert app._cards["beam"] in app.screen._compositor.visible_widgets  # on screen, not below
         await pilot.press("f1")  # and back: the area it left is hidden as usual
         await settle(pilot)
         assert app.current_calculator == "motor" and not app._cards["beam"].region.height
@@ -304,3 +306,26 @@ async def test_a_card_built_in_steps_lets_a_key_through_and_ends_as_one_built_at
         await settle(pilot)
         assert rows(twin) == rows(stepped)
         assert twin.solution.outputs.keys() == stepped.solution.outputs.keys()
+
+
+async def test_a_card_half_built_takes_no_card_action_until_it_is_built(monkeypatch):
+    """A preset loaded into a card whose rows were still being mounted raised NoMatches: the
+    card's keys (save, load, export…) wait for it to be built."""
+    import asyncio
+
+    from gearhead.tui.components.calculator_tab import CalculatorTab
+
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        monkeypatch.setattr(CalculatorTab, "STEP_PAUSE_S", 0.3)
+        build = asyncio.create_task(app.card("arm", in_steps=True))
+        await asyncio.sleep(0.2)
+        app.show_calculator("arm")
+        await asyncio.sleep(0.1)
+        assert app.current_calculator == "arm" and not build.done()
+        for action in ("load_preset", "save_preset", "export"):
+            assert app.check_action(action, ()) is False
+        await asyncio.wait_for(build, 10.0)
+        await settle(pilot)
+        assert all(app.check_action(action, ()) for action in ("load_preset", "save_preset", "export"))

@@ -122,7 +122,13 @@ async def test_long_field_help_and_labels_are_shown_whole():
         app.query_one("#calc-flywheel #flag-effects--motor_during_shot").value = True
         await settle(pilot)
         row = app.query_one("#calc-flywheel #row-grip_force", FieldRow)
+        # the entry starts where the row's label column ends (LABEL_CELLS; its margin in the
+        # stylesheet), and the unit one cell after the entry
+        entry = row.children[0]
+        assert entry.region.x - row.content_region.x == LABEL_CELLS
         shown = [line[:LABEL_CELLS].rstrip() for line in str(row.render()).splitlines()]
+        unit_at = entry.region.right - row.content_region.x + 1
+        assert str(row.render()).splitlines()[0][unit_at:].startswith(row.unit_text)
         assert " ".join(shown[: row.size.height]).startswith("Grip force μ·N (motor during shot)")
 
 

@@ -266,9 +266,12 @@ class GearheadApp(App):
         todo = [cid for cid in ORDER if cid not in self._cards]
         unseen = [cid for cid in ORDER if cid not in self._drawn]
         if not todo and unseen:
-            await self._rehearse(unseen[0])
-            self._freeze_heap()
-            self.set_timer(0.05, self._build_next)
+            try:
+                await self._rehearse(unseen[0])
+            finally:  # the warm-up goes on (the worker swallows an error, and its timer with it)
+                self._freeze_heap()
+                if self.is_running:
+                    self.set_timer(0.05, self._build_next)
             return
         if not todo:  # every card built and drawn: keep the heap tidy in longer pauses
             if idle >= self.IDLE_BEFORE_TIDY_S:
@@ -321,11 +324,13 @@ class GearheadApp(App):
         until = monotonic() + self.REHEARSAL_S  # then the layouts that follow it
         while self._rehearsal and monotonic() < until:
             await sleep(0.05)
-        if self._rehearsal:
-            await self._draw_into_caches(self._rehearsal[0])
-        if self._rehearsal:  # not cut short by a key (laid out or not: a tiny terminal may leave
-            self._drawn.add(calc_id)  # it no room; it is not tried again)
-            self._end_rehearsal()
+        try:
+            if self._rehearsal:
+                await self._draw_into_caches(self._rehearsal[0])
+        finally:  # a widget that fails to draw must not leave the card shown below the screen
+            if self._rehearsal:  # not cut short by a key (laid out or not: a tiny terminal may
+                self._drawn.add(calc_id)  # leave it no room; it is not tried again)
+                self._end_rehearsal()
 
     async def _draw_into_caches(self, pane: Widget) -> None:
         """Each widget of a pane laid out off the screen draws its lines as the compositor would
@@ -451,7 +456,15 @@ class GearheadApp(App):
         self._drawn_now()
         self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r only where they do something
 
+    # what acts on the card on screen: only once it is built (a preset loaded into a card whose
+    # rows the warm-up was still mounting raised NoMatches)
+    CARD_ACTIONS = ("save_preset", "load_preset", "copy_preset", "export", "send", "accuracy", "sweep")
+
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        if action in self.CARD_ACTIONS:
+            shown = self.current_calculator if self._areas() is not None else None
+            if shown not in self._built:  # shown once the card is there (card() refreshes the keys)
+                return False
         if action == "sweep":  # on the card only: in a dialog's entry ctrl+w deletes a word as usual
             return self.screen is self.screen_stack[0]
         if action in ("send", "accuracy"):

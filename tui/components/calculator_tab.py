@@ -40,8 +40,7 @@ class Form(VerticalScroll, can_focus=False):
 BUSY_AFTER_S = 0.1  # a solve running longer than this shows '… solving'
 
 
-LABEL_CELLS = 32  # a field's label column; longer labels wrap by word
-UNIT_CELLS = 10  # its unit column, a space and the unit
+LABEL_CELLS = 32  # a field's label column (the entry's margin in gearhead.tcss); labels wrap by word
 
 
 class FieldRow(Widget):
@@ -124,11 +123,12 @@ class FieldRow(Widget):
         return max(entry_lines, len(self.label_lines))
 
     def render(self) -> Content:
-        """The label's lines, and the unit one cell after the entry (drawn over the middle)."""
+        """The label's lines, and the unit one cell after the entry (which covers the middle)."""
         lines = [line.pad_right(LABEL_CELLS - line.cell_length) for line in self.label_lines]
         lines += [Content()] * (self.size.height - len(lines))
         if self.unit_text is not None and self.children and lines:
-            entry_right = self.children[0].region.right - self.content_region.x
+            entry = self.children[0].region
+            entry_right = entry.right - self.content_region.x if entry else LABEL_CELLS
             unit_style = self.get_visual_style("field-row--unit", partial=True)
             lines[0] = Content.assemble(
                 lines[0],
@@ -277,18 +277,22 @@ class CalculatorTab(Widget):
     ROWS_PER_STEP = 4
     STEP_PAUSE_S = 0.01  # between steps: a key's messages pass from the app to the widget
 
-    async def _mount_rows_in_steps(self) -> None:
+    async def _mount_rows_in_steps(self) -> bool:
+        """False if the app closed meanwhile (the card's widgets are gone)."""
         from asyncio import sleep
 
         form = self.query_one(Form)
         rows = [FieldRow(f, self.entries[f.name], self.blink) for f in self.calculator.fields]
         for start in range(0, len(rows), self.ROWS_PER_STEP):
+            if not (self.is_attached and self.app.is_running):
+                return False
             await form.mount_all(rows[start : start + self.ROWS_PER_STEP])
             await sleep(self.STEP_PAUSE_S)
+        return self.is_attached and self.app.is_running
 
     async def on_mount(self) -> None:
-        if self.in_steps:
-            await self._mount_rows_in_steps()
+        if self.in_steps and not await self._mount_rows_in_steps():
+            return
         self._parts = SimpleNamespace(
             table=self.query_one(".results", DataTable),
             status=self.query_one(".status", Static),
