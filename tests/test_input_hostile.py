@@ -460,3 +460,37 @@ async def test_the_app_answers_a_power_tower_and_opens_presets_past_hostile_file
         options = app.screen.query_one(OptionList)
         names = [str(options.get_option_at_index(i).prompt) for i in range(options.option_count)]
         assert any("Mine" in n for n in names) and any("Elevator" in n for n in names)
+
+
+def test_a_garbage_collection_meanwhile_does_not_count_against_an_entry(monkeypatch):
+    """The entry budget is this thread's CPU time, and a garbage collection set off while an
+    entry is read runs in this thread: a full one in a large heap (a long test run) made '8 in'
+    "take too long to work out" (seen in CI). Here a collection costs twice the budget."""
+    import gc
+
+    monkeypatch.setattr(units, "PARSE_BUDGET_S", 0.05)
+    getattr(units, "_collector_time", lambda: None)()  # the budget's clock first, as in the app
+    spun = []
+
+    def slow_collection(phase, info):
+        if phase == "start":
+            spun.append(True)
+            began = time.thread_time()
+            while time.thread_time() - began < 2 * units.PARSE_BUDGET_S:
+                pass
+
+    ureg = units.registry()
+    get_name = ureg.get_name
+
+    def collecting_get_name(*args, **kwargs):  # a unit name is looked up mid-evaluation
+        gc.callbacks.append(slow_collection)
+        try:
+            gc.collect(0)
+        finally:
+            gc.callbacks.remove(slow_collection)
+        return get_name(*args, **kwargs)
+
+    monkeypatch.setattr(ureg, "get_name", collecting_get_name)
+    value = units._evaluate("8 in", "stroke", "length")
+    assert spun  # the slow collection did run
+    assert value.to("m").magnitude == pytest.approx(0.2032)
