@@ -335,11 +335,9 @@ class GearheadApp(App):
     async def _draw_into_caches(self, pane: Widget) -> None:
         """Each widget of a pane laid out off the screen draws its lines as the compositor would
         ask for them (Widget.render_lines, whole), kept in its line cache for the first visit."""
-        from time import perf_counter
-
         from textual.geometry import Region
 
-        step_began = perf_counter()
+        step_began = monotonic()
         for widget in list(pane.walk_children(with_self=True)):
             if not self._rehearsal:  # a key: the screen is the user's
                 return
@@ -348,9 +346,9 @@ class GearheadApp(App):
             region = widget.region
             if region.width and region.height:
                 widget.render_lines(Region(0, 0, region.width, region.height))
-            if perf_counter() - step_began > self.DRAW_STEP_S:
+            if monotonic() - step_began > self.DRAW_STEP_S:
                 await sleep(0.005)
-                step_began = perf_counter()
+                step_began = monotonic()
 
     def _end_rehearsal(self) -> None:
         for pane in self._rehearsal:

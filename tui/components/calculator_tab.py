@@ -187,8 +187,7 @@ class CalculatorTab(Widget):
                 yield Static(Text(calc.summary), classes="summary")
                 with Form(classes="form"):
                     if not self.in_steps:
-                        for f in calc.fields:
-                            yield FieldRow(f, self.entries[f.name], self.blink)
+                        yield from self._field_rows()
                 yield Static(
                     Text(
                         "F1–F5 then a digit opens any calculator; Tab moves between fields; type any unit (3.5 in, 60 psi); Enter on a result changes its unit; "
@@ -277,12 +276,15 @@ class CalculatorTab(Widget):
     ROWS_PER_STEP = 4
     STEP_PAUSE_S = 0.01  # between steps: a key's messages pass from the app to the widget
 
+    def _field_rows(self) -> list[FieldRow]:
+        return [FieldRow(f, self.entries[f.name], self.blink) for f in self.calculator.fields]
+
     async def _mount_rows_in_steps(self) -> bool:
         """False if the app closed meanwhile (the card's widgets are gone)."""
         from asyncio import sleep
 
         form = self.query_one(Form)
-        rows = [FieldRow(f, self.entries[f.name], self.blink) for f in self.calculator.fields]
+        rows = self._field_rows()
         for start in range(0, len(rows), self.ROWS_PER_STEP):
             if not (self.is_attached and self.app.is_running):
                 return False
@@ -645,10 +647,11 @@ class CalculatorTab(Widget):
         for name in {self._bad_field, bad} - {None}:
             row = self.query_one(f"#row-{name}", FieldRow)
             message = Text("⚠ " + error.message, style="bold red") if name == bad else ""
-            errors = self.query(f"#err-{name}")
-            if errors:
-                errors.first(Static).update(message)
-                errors.first().display = name == bad
+            lines = self.query(f"#err-{name}")
+            if lines:
+                line = lines.first(Static)
+                line.update(message)
+                line.display = name == bad
             elif name == bad:  # a field's first error: its line is made now (a card has 17-35)
                 line = Static(message, classes="field-error", id=f"err-{name}")
                 line.display = True
