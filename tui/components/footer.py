@@ -32,9 +32,10 @@ class KeyFooter(Footer):
     """Textual's Footer recomposes every key whenever a screen's bindings are refreshed: on each
     focus move (twice per Tab between fields, about 20 ms each) and on each card switch, though
     the keys shown are almost always the same. This one recomposes only when they differ from
-    the ones it drew."""
+    the ones it drew or is about to draw: a card switch refreshes the bindings three times before
+    the recompose it asked for runs, and each queued one more (and a layout each)."""
 
-    _drawn: tuple | None = None  # _shown() when last composed
+    _drawn: tuple | None = None  # _shown() when last composed, or when a recompose was queued
 
     def compose(self):
         if self._bindings_ready:
@@ -42,11 +43,10 @@ class KeyFooter(Footer):
         return super().compose()
 
     def bindings_changed(self, screen: Screen) -> None:
-        if (
-            self._drawn is not None
-            and self.is_attached
-            and screen is self.screen
-            and _shown(screen) == self._drawn
-        ):
-            return
+        if self._drawn is not None and self.is_attached and screen is self.screen:
+            shown = _shown(screen)
+            if shown == self._drawn:
+                return
+            if screen.app.app_focus:  # Footer queues its recompose only then
+                self._drawn = shown
         super().bindings_changed(screen)
