@@ -165,7 +165,7 @@ asyncio.run(main())
 """
 )
 READ_S = 8.0  # seconds the user spends on the first card before switching
-WARMED_S = 25.0  # by then every card is built and rehearsed (about 21 s with 2 busy cores)
+WARMED_S = 25.0  # by then every card is built and rehearsed (about 18 s idle; 21 s before the F-key cards came first)
 
 # The warm-up as a user who reads meets it: the longest a message posted to the app waited in
 # the first WARMED_S seconds (a key typed then waits that long), printed in ms.

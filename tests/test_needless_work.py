@@ -3,8 +3,11 @@ once mounted rather than while built (StyledWhenMounted)."""
 
 from __future__ import annotations
 
+from time import monotonic
+
 from textual.widgets._footer import FooterKey
 
+from gearhead.core.registry import ORDER
 from gearhead.tui.app import GearheadApp
 from gearhead.tui.components.field_input import FieldInput
 from gearhead.tui.components.footer import KeyFooter
@@ -148,7 +151,7 @@ async def first_visit_renders(monkeypatch, rehearse: bool) -> tuple[int, bool]:
         before = screen_cells(app)
         unchanged = True
         if rehearse:
-            app.REHEARSAL_S = 3.0  # long enough to look at the screen meanwhile
+            app.REHEARSAL_SETTLED_S = app.REHEARSAL_MAX_S = 3.0  # long enough to look at the screen meanwhile
             rehearsal = asyncio.create_task(app._rehearse("beam"))
             await pilot.pause(0.5)  # the rehearsal's layout and first frames are done
             assert app._rehearsal  # under way
@@ -200,7 +203,7 @@ async def test_a_key_ends_a_rehearsal_at_once_and_goes_where_it_asked(monkeypatc
         await settle(pilot)
         await app.card("beam")
         await settle(pilot)
-        app.REHEARSAL_S = 30.0  # only the key can end it
+        app.REHEARSAL_SETTLED_S = app.REHEARSAL_MAX_S = 30.0  # only the key can end it
         app.IDLE_BEFORE_BUILD_S = 0.0
         app.warm_up = True
         app._build_next()  # as its timer calls it: everything built, the beam not yet drawn
@@ -258,7 +261,7 @@ async def test_a_rehearsal_in_another_area_sets_that_strips_card_aside_and_back(
         await settle(pilot)
         beam_pane = app._strips["structure"].get_pane("tab-beam")
         assert beam_pane.display
-        app.REHEARSAL_S = 3.0
+        app.REHEARSAL_SETTLED_S = app.REHEARSAL_MAX_S = 3.0
         rehearsal = asyncio.create_task(app._rehearse("chain_belt"))
         await pilot.pause(0.5)
         assert app._rehearsal and not beam_pane.display
@@ -333,3 +336,50 @@ async def test_a_card_half_built_takes_no_card_action_until_it_is_built(monkeypa
         await asyncio.wait_for(build, 10.0)
         await settle(pilot)
         assert all(app.check_action(action, ()) for action in ("load_preset", "save_preset", "export"))
+
+
+async def test_the_warm_up_readies_the_cards_the_f_keys_show_first():
+    """What F2-F5 would show is built and rehearsed first, one card at a time (at 8 s the beam
+    was built but not yet rehearsed: a 240 ms first visit); then every other card is built
+    before any is rehearsed (a visit to a card not built is the longest). A calculator picked in
+    an area moves up with it."""
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        app._area_active["mechanisms"] = "elevator"  # as if picked there earlier
+        cards, drawn = dict(app._cards), set(app._drawn)
+        steps = []
+        try:
+            while (step := app._warm_up_next()) is not None and len(steps) < 40:
+                steps.append(step)
+                what, calc_id = step
+                if what == "build":
+                    app._cards[calc_id] = None  # the choice reads only which are there
+                else:
+                    app._drawn.add(calc_id)
+        finally:
+            app._cards, app._drawn = cards, drawn
+    first = ["elevator", "beam", "pneumatics", "projectile"]
+    assert steps[:8] == [(what, c) for c in first for what in ("build", "rehearse")]
+    rest = steps[8:]
+    others = [c for c in ORDER if c not in first and c != "motor"]
+    assert rest == [("build", c) for c in others] + [("rehearse", c) for c in others]
+
+
+async def test_a_rehearsal_ends_once_its_layouts_settle():
+    """A rehearsal waits for the layouts that follow the card's first (the sizes, the table,
+    the chart) and ends once none came for REHEARSAL_SETTLED_S, not after a fixed wait."""
+    import asyncio
+
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        await app.card("beam")
+        await settle(pilot)
+        app.REHEARSAL_MAX_S = 60.0  # the old fixed wait: would outlast the 20 s below
+        quiet = []  # how long the screen had gone without a layout when the drawing began
+        draw = app._draw_into_caches
+        app._draw_into_caches = lambda pane: (quiet.append(monotonic() - app._laid_out_at), draw(pane))[1]
+        await asyncio.wait_for(app._rehearse("beam"), 20.0)
+        assert "beam" in app._drawn and app._rehearsal == []
+        assert len(quiet) == 1 and quiet[0] >= app.REHEARSAL_SETTLED_S

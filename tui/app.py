@@ -102,6 +102,7 @@ class GearheadApp(App):
         self._drawn: set[str] = set()  # calculators whose card has been on screen or rehearsed
         self._rehearsal: list[TabPane] = []  # panes shown beneath the screen's card right now
         self._set_aside: list[TabPane] = []  # a strip's own card, hidden while another rehearses
+        self._laid_out_at = 0.0  # monotonic time of the home screen's last layout
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def get_default_screen(self) -> Screen:
@@ -169,6 +170,7 @@ class GearheadApp(App):
 
     async def on_ready(self) -> None:
         self._started = True
+        self.home.screen_layout_refresh_signal.subscribe(self, self._laid_out, immediate=True)
         await self.card(self.current_calculator)
         self._drawn_now()
         if self.warm_up:
@@ -263,37 +265,58 @@ class GearheadApp(App):
         if any(c.busy for c in self._cards.values()):  # a solve or chart first (a new card's own)
             self.set_timer(self.BUSY_RETRY_S, self._build_next)
             return
-        todo = [cid for cid in ORDER if cid not in self._cards]
-        unseen = [cid for cid in ORDER if cid not in self._drawn]
-        if not todo and unseen:
-            try:
-                await self._rehearse(unseen[0])
-            finally:  # the warm-up goes on (the worker swallows an error, and its timer with it)
-                self._freeze_heap()
-                if self.is_running:
-                    self.set_timer(0.05, self._build_next)
-            return
-        if not todo:  # every card built and drawn: keep the heap tidy in longer pauses
+        step = self._warm_up_next()
+        if step is None:  # every card built and drawn: keep the heap tidy in longer pauses
             if idle >= self.IDLE_BEFORE_TIDY_S:
                 self._tidy_heap()
             self.set_timer(self.TIDY_EVERY_S, self._build_next)
             return
-        await self.card(todo[0], in_steps=True)
-        self._freeze_heap()
-        self.set_timer(0.05, self._build_next)
+        what, calc_id = step
+        try:
+            if what == "build":
+                await self.card(calc_id, in_steps=True)
+            else:
+                await self._rehearse(calc_id)
+        finally:  # the warm-up goes on (the worker swallows an error, and its timer with it)
+            self._freeze_heap()
+            if self.is_running:
+                self.set_timer(0.05, self._build_next)
+
+    def _warm_up_next(self) -> tuple[str, str] | None:
+        """The warm-up's next step: ("build" or "rehearse", calculator), None once all are done.
+        First the card each F-key shows, built and rehearsed (the likeliest first visits: at 8 s
+        the beam was built but not rehearsed, a 240 ms visit); then every other card built (a
+        visit to a card not built is the longest), then rehearsed."""
+        shown_by_keys = set(self._area_active.values())
+        for calc_id in (c for c in ORDER if c in shown_by_keys):
+            if calc_id not in self._cards:
+                return "build", calc_id
+            if calc_id not in self._drawn:
+                return "rehearse", calc_id
+        for calc_id in ORDER:
+            if calc_id not in self._cards:
+                return "build", calc_id
+        for calc_id in ORDER:
+            if calc_id not in self._drawn:
+                return "rehearse", calc_id
+        return None
 
     # ---- rehearsals: each card laid out and drawn once before its first visit ---------------
     # A card shown for the first time has no size and nothing drawn: Textual lays it out, draws
     # every widget, then lays it out again as the new sizes come in, and the results table and
     # chart redraw at their size (beam: frames of 250, 120 and 30 ms). A card laid out and drawn
-    # before is one frame of about 60 ms. So once every card is built, each is shown once while
+    # before is one frame of about 60 ms. So once a card is built (_warm_up_next), it is shown once while
     # the user reads: in a lower layer of its switcher (gearhead.tcss), so it gets the size it
     # will have, and below the screen (an offset), so it is laid out but never composited (drawn
     # beneath the card on screen it doubled every frame's compositing: stalls of 110-465 ms).
     # Then its widgets draw their lines into their caches, a few at a time, and it is hidden
     # again. A key ends a rehearsal at once (it waits at most for a frame or a step in flight).
-    REHEARSAL_S = 0.5  # after the first layout: the relayout with the sizes, the table, the chart
+    REHEARSAL_SETTLED_S = 0.15  # no layout of the screen for this long: the card is laid out
+    REHEARSAL_MAX_S = 1.0  # after the first layout, at most (a chart that keeps redrawing)
     DRAW_STEP_S = 0.008  # widgets drawn per step: about this long, then the app takes a turn
+
+    def _laid_out(self, screen: Screen) -> None:
+        self._laid_out_at = monotonic()
 
     def _drawn_now(self) -> None:
         """The calculator on screen has been drawn: no rehearsal needed."""
@@ -321,9 +344,14 @@ class GearheadApp(App):
         until = monotonic() + 3.0  # the first layout (0.1 s; more if loaded)
         while self._rehearsal and not card.region.height and monotonic() < until:
             await sleep(0.02)
-        until = monotonic() + self.REHEARSAL_S  # then the layouts that follow it
+        # then the layouts that follow it, as the sizes come in (the table, the chart): 2-3 in
+        # 60-230 ms. Settled once none came for a while (a fixed 0.5 s wait idled 0.3-0.45 s)
+        until = monotonic() + self.REHEARSAL_MAX_S
+        tab = self._cards[calc_id]
         while self._rehearsal and monotonic() < until:
-            await sleep(0.05)
+            if monotonic() - self._laid_out_at >= self.REHEARSAL_SETTLED_S and not tab.busy:
+                break
+            await sleep(0.03)
         try:
             if self._rehearsal:
                 await self._draw_into_caches(self._rehearsal[0])
