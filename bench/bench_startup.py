@@ -8,6 +8,8 @@ processes (medians; the machine is shared, so read the ratios):
   25 s after start (warm-up done): key -> the first frame that shows its card, and the longest
   stall of the UI thread in the 2 s after the key, vs F3 showing a pane for the first time in
   the minimal app;
+- repeat visit: the same F3 at 25 s after the beam was shown once (F3, F1): what any switch
+  costs, the floor a first visit can reach;
 - warm-up: the longest stall of the UI thread in the first 25 s without a key (the longest a
   key typed while the user reads can wait), vs the minimal app sitting idle.
 
@@ -132,7 +134,12 @@ async def main():
     except TypeError:  # before the warm-up existed
         app = GearheadApp(blink=False)
     async with app.run_test(size=(140, 45)) as pilot:
-        await visit(app, lambda: app._press_keys(["f3"]), pilot, READ_S)
+        if REPEAT:  # the beam seen once already: F3, back with F1, then the F3 measured
+            await pilot.pause(READ_S)
+            for key in ("f3", "f1"):
+                await app._press_keys([key])
+                await pilot.pause(1.5)
+        await visit(app, lambda: app._press_keys(["f3"]), pilot, 0.5 if REPEAT else READ_S)
         app.warm_up = False  # closing mid-mount trips Textual: stop building, let mounts end
         await pilot.pause(1.0)
 asyncio.run(main())
@@ -240,9 +247,9 @@ def reported(code: str) -> float:
     return reported_all(code)[0]
 
 
-def reported_all(code: str, read_s: float = READ_S) -> list[float]:
+def reported_all(code: str, read_s: float = READ_S, repeat: bool = False) -> list[float]:
     """The figures a script prints on its last line (seconds, or ms for the visit probe)."""
-    code = code.replace("STALLS", STALLS).replace("READ_S", repr(read_s))
+    code = code.replace("STALLS", STALLS).replace("READ_S", repr(read_s)).replace("REPEAT", repr(repeat))
     out = subprocess.run([sys.executable, "-c", code], cwd=APP_ROOT, capture_output=True, text=True)
     if out.returncode:
         raise RuntimeError(out.stderr[-2000:])
@@ -303,6 +310,14 @@ def main() -> None:
             names=("key -> drawn", "longest stall"),
             scale=1,
         )
+    pair(  # what any switch costs: the floor for a first visit
+        f"app: repeat visit (F3 F1 F3) at {WARMED_S:.0f} s, ",
+        lambda: reported_all(FIRST_VISIT, WARMED_S, repeat=True),
+        lambda: reported_all(MINIMAL_VISIT),
+        "minimal app, F3 shows a new pane",
+        names=("key -> drawn", "longest stall"),
+        scale=1,
+    )
     pair(
         f"app: warm-up, longest stall in {WARMED_S:.0f} s",
         lambda: reported(WARM_UP_STALL.replace("APP", WARM_UP_APP).replace("WAIT_S", repr(WARMED_S - 1))),
