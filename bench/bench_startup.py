@@ -20,6 +20,7 @@ that checkout's app).
 
 from __future__ import annotations
 
+import os
 import statistics
 import subprocess
 import sys
@@ -29,6 +30,15 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 APP_ROOT = ROOT  # the scripts run here; `gearhead` is whatever the running venv installed
 RUNS = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 7
+# as a user runs it: with bytecode caches (pip writes them at install). A shell that sets
+# PYTHONDONTWRITEBYTECODE (this machine's does) made every start compile gearhead's modules from
+# source, ~45 ms that the baselines (installed packages, compiled) never paid
+ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+WRITE_CACHES = """
+import compileall, os, gearhead.core, gearhead.tui
+for package in (gearhead.core, gearhead.tui):
+    compileall.compile_dir(os.path.dirname(package.__file__), quiet=1)
+"""
 
 FIRST_FRAME = r"""
 import time, asyncio
@@ -239,7 +249,7 @@ asyncio.run(main())
 
 def wall(cmd: list[str]) -> float:
     t0 = time.perf_counter()
-    subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True)
+    subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True, env=ENV)
     return time.perf_counter() - t0
 
 
@@ -250,7 +260,7 @@ def reported(code: str) -> float:
 def reported_all(code: str, read_s: float = READ_S, repeat: bool = False) -> list[float]:
     """The figures a script prints on its last line (seconds, or ms for the visit probe)."""
     code = code.replace("STALLS", STALLS).replace("READ_S", repr(read_s)).replace("REPEAT", repr(repeat))
-    out = subprocess.run([sys.executable, "-c", code], cwd=APP_ROOT, capture_output=True, text=True)
+    out = subprocess.run([sys.executable, "-c", code], cwd=APP_ROOT, capture_output=True, text=True, env=ENV)
     if out.returncode:
         raise RuntimeError(out.stderr[-2000:])
     return [float(x) for x in out.stdout.strip().splitlines()[-1].split()]
@@ -277,6 +287,7 @@ def pair(name: str, ours, baseline, base_name: str, names: tuple[str, ...] = (""
 
 
 def main() -> None:
+    subprocess.run([sys.executable, "-c", WRITE_CACHES], cwd=APP_ROOT, check=True, env=ENV)
     print(f"start-up (median of {RUNS} fresh processes, alternating with the baseline):")
     gearhead = str(Path(sys.executable).with_name("gearhead"))
     numpy = lambda: wall([sys.executable, "-c", "import numpy"])  # noqa: E731
