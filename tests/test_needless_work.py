@@ -338,12 +338,11 @@ async def test_a_card_half_built_takes_no_card_action_until_it_is_built(monkeypa
         assert all(app.check_action(action, ()) for action in ("load_preset", "save_preset", "export"))
 
 
-async def test_the_warm_up_readies_the_cards_the_f_keys_show_first():
-    """What F2-F5 would show is built and rehearsed first, one card at a time (at 8 s the beam
-    was built but not yet rehearsed: a 240 ms first visit); then every other card is built
-    before any is rehearsed (a visit to a card not built is the longest). A calculator picked in
-    an area moves up with it."""
-    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+async def test_the_warm_up_builds_every_card_then_rehearses_the_likeliest_visits_first():
+    """Every card is built before any is rehearsed (a visit to a card not built is the longest),
+    each in order of the likeliest first visits: the cards of the area on screen (a digit away),
+    then what F2-F5 would show (a calculator picked in an area moves up with it), then the rest."""
+    app = GearheadApp(blink=False, initial="gear_ratio", hide_timings=True)
     async with app.run_test(size=SIZE) as pilot:
         await settle(pilot)
         app._area_active["mechanisms"] = "elevator"  # as if picked there earlier
@@ -359,11 +358,10 @@ async def test_the_warm_up_readies_the_cards_the_f_keys_show_first():
                     app._drawn.add(calc_id)
         finally:
             app._cards, app._drawn = cards, drawn
-    first = ["elevator", "beam", "pneumatics", "projectile"]
-    assert steps[:8] == [(what, c) for c in first for what in ("build", "rehearse")]
-    rest = steps[8:]
-    others = [c for c in ORDER if c not in first and c != "motor"]
-    assert rest == [("build", c) for c in others] + [("rehearse", c) for c in others]
+    # gear_ratio is on screen (built and drawn at start)
+    likely = ["motor", "ratio_distance", "ratio_finder", "elevator", "beam", "pneumatics", "projectile"]
+    likely += [c for c in ORDER if c not in likely and c != "gear_ratio"]
+    assert steps == [("build", c) for c in likely] + [("rehearse", c) for c in likely]
 
 
 async def test_a_rehearsal_ends_once_its_layouts_settle():
