@@ -328,14 +328,43 @@ async def test_a_card_half_built_takes_no_card_action_until_it_is_built(monkeypa
         monkeypatch.setattr(CalculatorTab, "STEP_PAUSE_S", 0.3)
         build = asyncio.create_task(app.card("arm", in_steps=True))
         await asyncio.sleep(0.2)
-        app.show_calculator("arm")
-        await asyncio.sleep(0.1)
+        app.show_calculator("arm")  # (its visit then hurries the build: looked at before that)
         assert app.current_calculator == "arm" and not build.done()
         for action in ("load_preset", "save_preset", "export"):
             assert app.check_action(action, ()) is False
         await asyncio.wait_for(build, 10.0)
         await settle(pilot)
         assert all(app.check_action(action, ()) for action in ("load_preset", "save_preset", "export"))
+
+
+async def test_a_visit_to_a_card_built_in_steps_mounts_its_remaining_rows_at_once(monkeypatch):
+    """The warm-up pauses between a card's row steps so a key gets through; once the user comes
+    to that card, the pauses only keep them waiting: the rows left are mounted in one step."""
+    import asyncio
+
+    from gearhead.tui.components.calculator_tab import CalculatorTab, Form
+
+    app = GearheadApp(blink=False, initial="motor", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        monkeypatch.setattr(CalculatorTab, "STEP_PAUSE_S", 0.3)
+        steps = []
+        mount_all = Form.mount_all
+        monkeypatch.setattr(
+            Form,
+            "mount_all",
+            lambda self, rows, **kw: (steps.append(len(rows)), mount_all(self, rows, **kw))[1],
+        )
+        build = asyncio.create_task(app.card("arm", in_steps=True))
+        await asyncio.sleep(0.2)  # the first step mounted, pausing
+        assert steps == [CalculatorTab.ROWS_PER_STEP]
+        app.show_calculator("arm")
+        await asyncio.wait_for(build, 10.0)
+        await settle(pilot)
+        fields = len(app._cards["arm"].calculator.fields)
+        assert fields > 2 * CalculatorTab.ROWS_PER_STEP  # more than two steps' worth were left
+        assert steps == [CalculatorTab.ROWS_PER_STEP, fields - CalculatorTab.ROWS_PER_STEP]
+        assert app.current_calculator == "arm" and app._cards["arm"].region.height
 
 
 async def test_the_warm_up_builds_every_card_then_rehearses_the_likeliest_visits_first():

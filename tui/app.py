@@ -454,6 +454,8 @@ class GearheadApp(App):
             tab = self._cards[calc_id] = self._card(calc_id, in_steps)
             pane = self._strips[area_of(calc_id)].get_pane(f"tab-{calc_id}")
             self._mounting[calc_id] = pane.mount(tab)
+        elif not in_steps and calc_id not in self._built:  # wanted now: the warm-up is building it
+            tab.hurry()
         await self._mounting[calc_id]
         self._built.add(calc_id)
         if self._areas() is not None and calc_id == self.current_calculator:  # the footer shows ctrl+g /

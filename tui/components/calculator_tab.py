@@ -285,12 +285,23 @@ class CalculatorTab(Widget):
 
         form = self.query_one(Form)
         rows = self._field_rows()
-        for start in range(0, len(rows), self.ROWS_PER_STEP):
+        start = 0
+        while start < len(rows):
             if not (self.is_attached and self.app.is_running):
                 return False
-            await form.mount_all(rows[start : start + self.ROWS_PER_STEP])
-            await sleep(self.STEP_PAUSE_S)
+            # the user came to this card meanwhile (hurry()): the rest at once, no pauses
+            step = len(rows) if self._hurried else self.ROWS_PER_STEP
+            await form.mount_all(rows[start : start + step])
+            start += step
+            if not self._hurried:
+                await sleep(self.STEP_PAUSE_S)
         return self.is_attached and self.app.is_running
+
+    _hurried = False
+
+    def hurry(self) -> None:
+        """A card being built in steps is wanted on screen: mount its remaining rows at once."""
+        self._hurried = True
 
     async def on_mount(self) -> None:
         if self.in_steps and not await self._mount_rows_in_steps():
