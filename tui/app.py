@@ -303,12 +303,13 @@ class GearheadApp(App):
     # A card shown for the first time has no size and nothing drawn: Textual lays it out, draws
     # every widget, then lays it out again as the new sizes come in, and the results table and
     # chart redraw at their size (beam: frames of 250, 120 and 30 ms). A card laid out and drawn
-    # before is one frame of about 60 ms. So once a card is built (_warm_up_next), it is shown once while
-    # the user reads: in a lower layer of its switcher (gearhead.tcss), so it gets the size it
-    # will have, and below the screen (an offset), so it is laid out but never composited (drawn
-    # beneath the card on screen it doubled every frame's compositing: stalls of 110-465 ms).
-    # Then its widgets draw their lines into their caches, a few at a time, and it is hidden
-    # again. A key ends a rehearsal at once (it waits at most for a frame or a step in flight).
+    # before is one frame of about 60 ms. So once every card is built (_warm_up_next), each is
+    # shown once while the user reads: in a lower layer of its switcher (gearhead.tcss), so it
+    # gets the size it will have, and below the screen (an offset), so it is laid out but never
+    # composited (drawn beneath the card on screen it doubled every frame's compositing: stalls
+    # of 110-465 ms). Once its layouts settle, its widgets draw their lines into their caches, a
+    # few at a time, and it is hidden again. A key ends a rehearsal at once (it waits at most for
+    # a frame or a step in flight).
     REHEARSAL_SETTLED_S = 0.15  # no layout of the screen for this long: the card is laid out
     REHEARSAL_MAX_S = 1.0  # after the first layout, at most (a chart that keeps redrawing)
     DRAW_STEP_S = 0.008  # widgets drawn per step: about this long, then the app takes a turn
