@@ -5,6 +5,7 @@ from __future__ import annotations
 import gc
 from asyncio import sleep
 from collections.abc import Iterable
+from functools import wraps
 from pathlib import Path
 from time import monotonic
 from typing import TYPE_CHECKING
@@ -48,6 +49,24 @@ def exact_text(value, output) -> str:
         return value.text
     shown = units.to_unit(value.value, output.unit, output.quantity)
     return f"{shown!r} {output.unit}".rstrip()
+
+
+class Closing(Exception):
+    """The app is closing: a strip or card awaited (built on a key, by the warm-up) is gone or
+    going (F2 then ctrl+q in one burst printed a traceback from the strip's pruned panes)."""
+
+
+def until_closing(handler):
+    """An async handler that awaits a strip or card ends quietly if the app closes meanwhile."""
+
+    @wraps(handler)
+    async def run(*args, **kwargs):
+        try:
+            return await handler(*args, **kwargs)
+        except Closing:
+            return None
+
+    return run
 
 
 class GearheadApp(App):
@@ -156,10 +175,11 @@ class GearheadApp(App):
             if composed is not None:  # composed with the app (the first area)
                 self._strips_built.add(area)
                 return composed
-            self._mounting[area] = self._areas().get_pane(f"area-{area}").mount(self._strip(area))
+            self._mounting[area] = self._area_pane(area).mount(self._strip(area))
         # a strip being mounted by another caller (the warm-up, a tab switch) is in the DOM before
         # its panes are: wait for the whole mount
         await self._mounting[area]
+        self._check_open()
         strip = self._strips[area]
         self._strips_built.add(area)
         picked = self._picked.pop(area, None)
@@ -168,6 +188,16 @@ class GearheadApp(App):
             strip.active = f"tab-{picked}"
         return strip
 
+    def _check_open(self) -> None:
+        """Raises Closing once the app is closing (exit() called: its widgets are being pruned)."""
+        if self._exit or not self.is_running or self._areas() is None:
+            raise Closing
+
+    def _area_pane(self, area: str) -> TabPane:
+        self._check_open()
+        return self._areas().get_pane(f"area-{area}")
+
+    @until_closing
     async def on_ready(self) -> None:
         self._started = True
         self.home.screen_layout_refresh_signal.subscribe(self, self._laid_out, immediate=True)
@@ -250,6 +280,7 @@ class GearheadApp(App):
         if self.is_running:
             self.run_worker(self._warm_up_step(), group="warm-up", exit_on_error=False)
 
+    @until_closing
     async def _warm_up_step(self) -> None:
         if not self.warm_up or not self.is_running or not self._screen_stack:  # off, or closed
             return
@@ -325,7 +356,7 @@ class GearheadApp(App):
     async def _rehearse(self, calc_id: str) -> None:
         area = area_of(calc_id)
         strip = self._strips[area]
-        panes = [self._areas().get_pane(f"area-{area}"), strip.get_pane(f"tab-{calc_id}")]
+        panes = [self._area_pane(area), strip.get_pane(f"tab-{calc_id}")]
         self._rehearsal = [p for p in panes if not p.display]
         if not self._rehearsal:  # on screen now
             self._drawn.add(calc_id)
@@ -449,6 +480,7 @@ class GearheadApp(App):
         if tab is None:
             await self.strip(area_of(calc_id))
             tab = self._cards.get(calc_id)
+        self._check_open()
         if tab is None:
             # recorded before the await: a second caller meanwhile (tab activation and on_ready
             # at start-up, the warm-up) waits for this mount instead of mounting a duplicate
@@ -458,6 +490,7 @@ class GearheadApp(App):
         elif not in_steps and calc_id not in self._built:  # wanted now: the warm-up is building it
             tab.hurry()
         await self._mounting[calc_id]
+        self._check_open()
         self._built.add(calc_id)
         if self._areas() is not None and calc_id == self.current_calculator:  # the footer shows ctrl+g /
             self.refresh_bindings()  # ctrl+r where they apply; a card built out of sight changes none
@@ -467,6 +500,7 @@ class GearheadApp(App):
         """The calculator's card is on its pane, its fields and results composed."""
         return calc_id in self._built
 
+    @until_closing
     async def on_tabbed_content_tab_activated(self, event: TabbedContent.TabActivated) -> None:
         strip_id = event.tabbed_content.id or ""
         area = strip_id.removeprefix("calcs-") if strip_id.startswith("calcs-") else None
@@ -534,12 +568,28 @@ class GearheadApp(App):
         self._areas().active = f"area-{area}"
         self.call_after_refresh(self._focus_strip, area)
 
+    async def action_quit(self) -> None:
+        """Quit once the strips and cards being mounted are (a strip still mounting when the app
+        closes trips Textual: its tab bar looks for tabs already pruned, a traceback). A card the
+        warm-up builds in steps is hurried: a quit waits tens of milliseconds, not its pauses."""
+        for calc_id, tab in list(self._cards.items()):
+            if calc_id not in self._built:
+                tab.hurry()
+        awaited = 0
+        while awaited < len(self._mounting):  # a mount awaited may let a handler start another
+            mounting = list(self._mounting.values())
+            awaited = len(mounting)
+            for mount in mounting:
+                await mount
+        self.call_after_refresh(self.exit)  # after the mounted widgets' own mount handlers
+
     def action_area(self, area: str) -> None:
         """F1-F5: show an area at the calculator last used there; its strip takes focus, so a
         digit then picks a calculator (two keys to any calculator)."""
         self._area_pressed = (area, monotonic())
         self.show_calculator(self._area_active[area])
 
+    @until_closing
     async def _focus_strip(self, area: str) -> None:
         strip = await self.strip(area)
         await self.card(self._area_active[area])
@@ -635,6 +685,7 @@ class GearheadApp(App):
 
         self.push_screen(ExportScreen(tab.calculator, tab.solution, plot, self.blink), done)
 
+    @until_closing
     async def action_send(self) -> None:
         """Send this tab's results into the calculator it feeds (e.g. lead screw → gear ratio)."""
         tab = self.current_tab
@@ -755,6 +806,7 @@ class GearheadApp(App):
                     lambda cid=calc.id: self._send_from(cid),
                 )
 
+    @until_closing
     async def _send_from(self, calc_id: str) -> None:
         self.show_calculator(calc_id)
         await self.card(calc_id)
