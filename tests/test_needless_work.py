@@ -356,7 +356,10 @@ async def test_a_visit_to_a_card_built_in_steps_mounts_its_remaining_rows_at_onc
             lambda self, rows, **kw: (steps.append(len(rows)), mount_all(self, rows, **kw))[1],
         )
         build = asyncio.create_task(app.card("arm", in_steps=True))
-        await asyncio.sleep(0.2)  # the first step mounted, pausing
+        for _ in range(500):  # the first step mounted (then a 0.3 s pause)
+            if steps:
+                break
+            await asyncio.sleep(0.01)
         assert steps == [CalculatorTab.ROWS_PER_STEP]
         app.show_calculator("arm")
         await asyncio.wait_for(build, 10.0)
@@ -404,9 +407,17 @@ async def test_a_rehearsal_ends_once_its_layouts_settle():
         await app.card("beam")
         await settle(pilot)
         app.REHEARSAL_MAX_S = 60.0  # the old fixed wait: would outlast the 20 s below
-        quiet = []  # how long the screen had gone without a layout when the drawing began
+        layouts, drawing = [], []  # when the screen was laid out; when the drawing began
+        app.home.screen_layout_refresh_signal.subscribe(
+            app._cards["beam"], lambda screen: layouts.append(monotonic()), immediate=True
+        )
         draw = app._draw_into_caches
-        app._draw_into_caches = lambda pane: (quiet.append(monotonic() - app._laid_out_at), draw(pane))[1]
+        app._draw_into_caches = lambda pane: (drawing.append(monotonic()), draw(pane))[1]
+        began = monotonic()
         await asyncio.wait_for(app._rehearse("beam"), 20.0)
         assert "beam" in app._drawn and app._rehearsal == []
-        assert len(quiet) == 1 and quiet[0] >= app.REHEARSAL_SETTLED_S
+        before = [t for t in layouts if began <= t <= drawing[0]]
+        # the card's first layout and the ones its sizes brought (the table, the chart), then
+        # quiet: drawn right after the first layout, the card would be drawn half laid out
+        assert len(drawing) == 1 and len(before) >= 2
+        assert drawing[0] - before[-1] >= app.REHEARSAL_SETTLED_S

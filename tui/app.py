@@ -122,6 +122,7 @@ class GearheadApp(App):
         self._rehearsal: list[TabPane] = []  # panes shown beneath the screen's card right now
         self._set_aside: list[TabPane] = []  # a strip's own card, hidden while another rehearses
         self._laid_out_at = 0.0  # monotonic time of the home screen's last layout
+        self._quitting = False  # ctrl+q taken: nothing new is built or shown meanwhile
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def get_default_screen(self) -> Screen:
@@ -190,7 +191,7 @@ class GearheadApp(App):
 
     def _check_open(self) -> None:
         """Raises Closing once the app is closing (exit() called: its widgets are being pruned)."""
-        if self._exit or not self.is_running or self._areas() is None:
+        if self._quitting or self._exit or not self.is_running or self._areas() is None:
             raise Closing
 
     def _area_pane(self, area: str) -> TabPane:
@@ -522,6 +523,8 @@ class GearheadApp(App):
     CARD_ACTIONS = ("save_preset", "load_preset", "copy_preset", "export", "send", "accuracy", "sweep")
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        if self._quitting:  # the F-keys are priority bindings: one after ctrl+q found no strips
+            return action == "quit"
         if action in self.CARD_ACTIONS:
             shown = self.current_calculator if self._areas() is not None else None
             if shown not in self._built:  # shown once the card is there (card() refreshes the keys)
@@ -557,6 +560,8 @@ class GearheadApp(App):
         the old pane: a checkbox or chart selector left focused there pulled the old tab back
         (Textual's TabbedContent activates the pane of a focused widget), so "Open …" did nothing."""
         area = area_of(calc_id)
+        if self._quitting or self._areas() is None:  # closing: the strips are going
+            return
         self.screen.set_focus(None)
         self._area_active[area] = calc_id
         strip = self._strips.get(area)
@@ -572,6 +577,7 @@ class GearheadApp(App):
         """Quit once the strips and cards being mounted are (a strip still mounting when the app
         closes trips Textual: its tab bar looks for tabs already pruned, a traceback). A card the
         warm-up builds in steps is hurried: a quit waits tens of milliseconds, not its pauses."""
+        self._quitting = True
         for calc_id, tab in list(self._cards.items()):
             if calc_id not in self._built:
                 tab.hurry()

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from time import monotonic
+
 from textual.screen import Screen
 from textual.widgets import Footer
 
@@ -35,18 +37,25 @@ class KeyFooter(Footer):
     the ones it drew or is about to draw: a card switch refreshes the bindings three times before
     the recompose it asked for runs, and each queued one more (and a layout each)."""
 
-    _drawn: tuple | None = None  # _shown() when last composed, or when a recompose was queued
+    _drawn: tuple | None = None  # _shown() when last composed
+    _queued: tuple | None = None  # _shown() when a recompose was queued (None: composed since)
+    _queued_at = 0.0
+    # a queued recompose runs after the next refresh; Textual drops it if the screen it was queued
+    # on closes first (a dialog): after this long, the same keys are queued again, not skipped
+    QUEUED_FOR_S = 0.5
 
     def compose(self):
         if self._bindings_ready:
             self._drawn = _shown(self.screen)
+            self._queued = None
         return super().compose()
 
     def bindings_changed(self, screen: Screen) -> None:
         if self._drawn is not None and self.is_attached and screen is self.screen:
             shown = _shown(screen)
-            if shown == self._drawn:
+            pending = self._queued is not None and monotonic() - self._queued_at < self.QUEUED_FOR_S
+            if shown == (self._queued if pending else self._drawn):
                 return
             if screen.app.app_focus:  # Footer queues its recompose only then
-                self._drawn = shown
+                self._queued, self._queued_at = shown, monotonic()
         super().bindings_changed(screen)
