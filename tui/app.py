@@ -581,12 +581,8 @@ class GearheadApp(App):
         for calc_id, tab in list(self._cards.items()):
             if calc_id not in self._built:
                 tab.hurry()
-        awaited = 0
-        while awaited < len(self._mounting):  # a mount awaited may let a handler start another
-            mounting = list(self._mounting.values())
-            awaited = len(mounting)
-            for mount in mounting:
-                await mount
+        for mount in list(self._mounting.values()):  # none starts now (_check_open)
+            await mount
         self.call_after_refresh(self.exit)  # after the mounted widgets' own mount handlers
 
     def action_area(self, area: str) -> None:
