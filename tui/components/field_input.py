@@ -8,7 +8,10 @@ bubbling, and they then delete it: `12` became `1`, and ctrl+u then `12` left th
 (Textual issue #6605, fix proposed in PR #6631, not released in the version we pin.)
 
 FieldInput runs its own non-priority bindings inline, in its key handler, so a bound key takes
-effect before the next key is read. Priority bindings (the app's ctrl+q, ctrl+s…) are still
+effect before the next key is read. It reads the widget's bindings and the app's keymap through
+`_bindings` and `_keymap`: the one private use kept in tui/, to be deleted when Textual ships the fix.
+The card's sheet needs none of this: it handles its keys in its own handler (sheet.py). Dialogs
+(the preset name and path, the sweep range, the export file) use this entry. Priority bindings (the app's ctrl+q, ctrl+s…) are still
 checked by the app before the key reaches the widget, exactly as before.
 """
 
@@ -19,23 +22,10 @@ from collections.abc import Callable
 from textual import events
 from textual.geometry import Size
 from textual.reactive import Reactive
-from textual.widgets import Checkbox, Input, Select
+from textual.widgets import Input
 
 
-class StyledWhenMounted:
-    """A widget that skips style updates while it is not in the DOM yet. Textual re-applies the
-    whole stylesheet to a widget on every class change, mounted or not, and Input, Select and
-    Checkbox change classes as they are constructed (compact, -valid): about 4 ms each with all
-    cards built, 20-35 entries a card. Mounting applies the stylesheet with the classes it then
-    has, so nothing is lost."""
-
-    def update_node_styles(self, animate: bool = True) -> None:
-        if self.parent is None:  # being constructed: styled when it is mounted
-            return
-        super().update_node_styles(animate)
-
-
-class FieldInput(StyledWhenMounted, Input):
+class FieldInput(Input):
     # Input sets its virtual size (the text's width) on every key, and Widget's virtual_size asks
     # for a layout of the whole screen (~3 ms a key on a card). An entry's size is fixed by the
     # stylesheet (Input lays out again itself when it is auto-sized), and scrolling reads the
@@ -79,11 +69,3 @@ class FieldInput(StyledWhenMounted, Input):
             if await self.app.run_action(binding.action, self):
                 return True
         return False
-
-
-class FieldSelect(StyledWhenMounted, Select):
-    """A field's choice list (styled when mounted, see StyledWhenMounted)."""
-
-
-class FieldCheckbox(StyledWhenMounted, Checkbox):
-    """A yes/no field or one of a field's flags (styled when mounted, see StyledWhenMounted)."""

@@ -14,7 +14,6 @@ from textual.widgets import Select, Static
 from gearhead.core import units
 from gearhead.core.model import Plot, Solution
 
-from .field_input import FieldSelect
 from .unit_text import pretty_unit
 
 COLOURS = ("cyan", "magenta", "yellow", "green", "red")
@@ -34,7 +33,7 @@ class PlotPanel(Vertical):
     def compose(self) -> ComposeResult:
         if len(self.plots) > 1:
             # Text, not str: a Select prompt is markup, and a title like "Force [N]" would lose "[N]"
-            yield FieldSelect(
+            yield Select(
                 [(Text(p.title), i) for i, p in enumerate(self.plots)],
                 value=0,
                 allow_blank=False,

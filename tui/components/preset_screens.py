@@ -123,12 +123,14 @@ class PresetPathInput(FieldInput):
             super().__init__()
             self.text = text
 
-    def _on_paste(self, event: events.Paste) -> None:
-        if "\n" in event.text.strip():
+    def on_paste(self, event: events.Paste) -> None:
+        """A paste with a line break (LF, CRLF or a lone CR, as some terminals send it) is a
+        preset's text; one line is a path, inserted by Input as usual (once: this handler runs
+        before Input's own and leaves it alone)."""
+        if "\n" in event.text.strip() or "\r" in event.text.strip():
             event.stop()
-            self.post_message(self.PresetPasted(event.text))
-            return
-        super()._on_paste(event)
+            event.prevent_default()
+            self.post_message(self.PresetPasted(event.text.replace("\r\n", "\n").replace("\r", "\n")))
 
 
 class LoadPresetScreen(ModalScreen[presets.Preset | None]):
@@ -210,13 +212,7 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
                     f"pasted text is not a preset (malformed TOML: "
                     f"{str(exc).splitlines()[0][:80] if str(exc) else 'too deeply nested'})",
                 ) from None
-            preset = presets.from_dict(data, "<pasted preset>")
-            if preset.calculator != self.calc_id:
-                raise InputError(
-                    "calculator",
-                    f"preset is for {preset.calculator!r}, not {self.calc_id!r}",
-                    "<pasted preset>",
-                )
+            preset = presets.from_dict(data, "<pasted preset>")  # another calculator's: the app opens it
         except InputError as exc:
             self.query_one("#load-error", Static).update(Text(str(exc), style="bold red"))
             return
@@ -234,10 +230,6 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
                 preset = presets.load(Path(text).expanduser())
             except (ValueError, RuntimeError) as exc:  # an unusable path ('~nosuchuser/x')
                 raise InputError("preset", f"not a usable file path ({exc})", text[:80]) from None
-            if preset.calculator != self.calc_id:
-                raise InputError(
-                    "calculator", f"preset is for {preset.calculator!r}, not {self.calc_id!r}", text
-                )
         except InputError as exc:
             self.query_one("#load-error", Static).update(Text(str(exc), style="bold red"))
             return
