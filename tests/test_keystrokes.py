@@ -1,15 +1,16 @@
-"""Every keystroke is kept, in order, however fast it comes and whatever the app is doing.
+"""Every keystroke lands where the user sees it, in order, however fast it comes.
 
-In a real terminal a burst of keys arrives in one read. Textual's Input used to insert printable
-keys at once while its bound keys (backspace, ctrl+u…) bubbled to the app first, so they were
-applied late: Backspace, Backspace, 3 on `12` gave `1`. The pilot test posts keys the way the
-terminal driver does (no waiting between them); the tmux test types into the real app.
+In a real terminal a burst of keys arrives in one read. Textual runs a non-priority binding (Tab,
+Backspace in an Input…) only once its key has bubbled to the app, after the keys read with it:
+Tab then 11 put 11 in the field just left, Backspace Backspace 3 on `12` gave `1`. The card's
+sheet handles every key in its own handler, in the order typed (tui/components/sheet.py). The
+pilot tests post keys the way the terminal driver does (no waiting between them); the tmux tests
+type into the real app.
 """
 
 from __future__ import annotations
 
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -19,37 +20,93 @@ from pathlib import Path
 
 import pytest
 from textual import events
-from textual.widgets import Input
 
+from gearhead.core.registry import calculators, get
 from gearhead.tui.app import GearheadApp
-from tests.tui_helpers import started
+from gearhead.tui.components.sheet import GAP, LABEL_CELLS, VALUE_CELLS
+from tests.tui_helpers import card, settle, started
 
 ROOT = Path(__file__).resolve().parents[1]
+VALUE_COLUMN = 1 + 1 + LABEL_CELLS + GAP + 1  # border, padding, label, gap, the cell's space
 
+PRINTABLE = {" ": ("space", " ")}
+
+
+def key(k: str) -> events.Key:
+    """A key as the driver posts it: printable characters carry themselves."""
+    if k in PRINTABLE:
+        return events.Key(*PRINTABLE[k])
+    if len(k) == 1:
+        return events.Key(k, k)
+    chars = {
+        "backspace": "\x7f",
+        "tab": "\t",
+        "enter": "\r",
+        "escape": "\x1b",
+        "ctrl+u": "\x15",
+        "ctrl+a": "\x01",
+    }
+    return events.Key(k, chars.get(k))
+
+
+async def burst(pilot, keys: list[str]) -> None:
+    for k in keys:  # posted back to back, as the driver does for one read
+        pilot.app.post_message(key(k))
+    await settle(pilot)
+
+
+# (keys from the Motors row of the motor card, expected Motors, expected Voltage)
 BURSTS = [
-    # (start text, keys as (key, character), expected text)
-    ("12", [("backspace", "\x7f"), ("backspace", "\x7f"), ("3", "3")], "3"),
-    ("12", [("ctrl+u", "\x15"), ("1", "1"), ("2", "2")], "12"),
-    ("12", [("left", None), ("left", None), ("9", "9")], "912"),
-    ("19.05", [("home", None), ("delete", None), ("8", "8"), ("end", None), ("backspace", "\x7f")], "89.0"),
+    (["3", "tab", "1", "1"], "3", "11"),  # Tab then type: 11 goes to the row Tab moved to
+    (["enter", "3", "enter", "5"], "13", "5"),  # Enter edits at the end, then commits down
+    (["enter", "backspace", "4", "tab", "5"], "4", "5"),
+    (["2", "escape", "tab", "9"], "1", "9"),  # Esc cancels the edit
+    (["enter", "ctrl+a", "4", "shift+tab", "down", "down", "6"], "4", "6"),  # ctrl+a selects the cell
+    (["8", "down", "backspace", "7", "up", "up", "down", "2"], "2", "7"),
+    (["enter", "ctrl+u", "1", "2", "backspace", "backspace", "7", "tab", "tab", "shift+tab", "3"], "7", "3"),
 ]
 
 
-@pytest.mark.parametrize("start,keys,expected", BURSTS)
-async def test_key_burst_applied_in_order(start, keys, expected):
-    app = GearheadApp(blink=False, hide_timings=True)
+@pytest.mark.parametrize("keys,motors,voltage", BURSTS)
+async def test_key_burst_lands_where_the_cursor_is(keys, motors, voltage):
+    app = GearheadApp(blink=False, hide_timings=True, initial="motor")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = card(app)
+        tab.sheet.focus()
+        tab.sheet.move_to_field("motor_count")
+        await pilot.pause()
+        await burst(pilot, keys)
+        assert (tab.entries["motor_count"], tab.entries["voltage"]) == (motors, voltage)
+        assert tab.solution.inputs["motor_count"].value == int(motors)
+        assert tab.solution.inputs["voltage"].value == pytest.approx(float(voltage))
+
+
+@pytest.mark.parametrize("calc_id", sorted(calculators()))
+async def test_tab_then_type_in_every_card(calc_id):
+    """On every card: the first two numeric rows, each typed right after the Tab that reaches it,
+    in one burst, while the card solves."""
+    numeric = [f for f in get(calc_id).fields if f.type in ("quantity", "int")]
+    app = GearheadApp(blink=False, initial=calc_id, hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:
         await started(pilot)
-        entry = app.query_one("#in-voltage", Input)
-        entry.focus()
-        entry.value = start
-        entry.cursor_position = len(start)
-        await pilot.pause()
-        for key, char in keys:  # posted back to back, as the driver does for one read
-            app.post_message(events.Key(key, char))
-        for _ in range(5):
-            await pilot.pause()
-        assert entry.value == expected
+        tab = card(app)
+        shown = [f for f in tab.sheet.shown_fields if f in numeric][:2]
+        first = shown[0]
+        tab.sheet.focus()
+        tab.sheet.move_to_field(first.name)
+        keys = ["enter", "ctrl+u", "1", "2", "backspace", "7"]
+        second = None
+        if len(shown) > 1:
+            stops = [s.field.name for s in tab.sheet.stops]
+            hops = stops.index(shown[1].name) - stops.index(first.name)
+            keys += ["enter"] + ["tab"] * (hops - 1) + ["8"]
+            second = shown[1].name
+        await burst(pilot, keys)
+        assert tab.entries[first.name] == "17"
+        if second:
+            assert tab.entries[second] == "8"
+        assert tab.sheet.current_field.name == (second or first.name)
 
 
 # ---- the real terminal ---------------------------------------------------------------------
@@ -60,7 +117,7 @@ TMUX = shutil.which("tmux")
 class Terminal:
     """The app running in a tmux pane of its own server (never the user's tmux)."""
 
-    def __init__(self, tmp: Path) -> None:
+    def __init__(self, tmp: Path, **env_extra: str) -> None:
         self.socket = f"gearhead-test-{uuid.uuid4().hex[:8]}"
         # COLUMNS/LINES (set under pytest-xdist) would override the pane's size in Textual
         env = {
@@ -69,6 +126,7 @@ class Terminal:
             if k not in ("NO_COLOR", "TEXTUAL_THEME", "TMUX", "COLUMNS", "LINES")
         }
         env["XDG_CONFIG_HOME"] = str(tmp / "config")
+        env.update(env_extra)
         self.env = env
         self.tmux(
             "new-session",
@@ -105,11 +163,11 @@ class Terminal:
         raise AssertionError(f"timed out waiting for {what}; screen:\n{self.screen()}")
 
     def field(self, label: str) -> str:
-        """The text in the entry after `label` on the form."""
+        """The value the sheet shows after `label` (its value column: the label's 32 cells, a gap
+        and the cell's leading space; the unit follows after a gap)."""
         for line in self.screen().splitlines():
             if line.startswith(f"│ {label} "):
-                # the entry, then a wide gap before the unit label
-                return re.split(r"\s{3,}", line[len(label) + 2 :].split("│")[0].strip())[0]
+                return line[VALUE_COLUMN : VALUE_COLUMN + VALUE_CELLS - 1].strip()
         raise AssertionError(f"no field {label!r} on screen")
 
     def close(self) -> None:
@@ -137,8 +195,10 @@ def _settle(term: Terminal, label: str, expected: str) -> str:
     return term.field(label)
 
 
-def _help_label(screen: str) -> str | None:
-    """The field the line under the form explains (the focused one), from 'Label: help'."""
+def _cursor_label(screen: str) -> str | None:
+    """The field the line under the form explains (the cursor's row), from 'Label: help'."""
+    import re
+
     lines = screen.splitlines()
     for i, line in enumerate(lines[:-1]):
         if line.startswith("│──"):
@@ -147,125 +207,67 @@ def _help_label(screen: str) -> str | None:
     return None
 
 
-def _tab_to(term: Terminal, label: str, most: int = 6) -> None:
-    """Tab until focus is on the field `label`, each Tab seen to land before the next is sent
-    (the line under the form names the focused field). A fixed pause per Tab was too short on a
-    loaded machine; and the F-key's focus on the strip, when it comes after the first Tab, puts
-    focus back on the strip: the next Tab then starts over, so Tab on until the field is reached."""
-    for _ in range(most):
-        before = _help_label(term.screen())
-        term.keys("Tab")
-        try:
-            term.wait_for(
-                lambda screen, before=before: _help_label(screen) != before, "the focus to move", timeout=3
-            )
-        except AssertionError:
-            pass  # focus went to the strip (no help line of its own), or from it to the same field
-        if _help_label(term.screen()) == label:
-            return
-    raise AssertionError(f"Tab never reached the {label} field; screen:\n{term.screen()}")
-
-
-def test_keys_kept_in_a_real_terminal(terminal):
-    # F1 1 puts focus on the calculator strip at Motor; Tab then walks motor, motor data, motors.
-    # This also proves the two-key navigation in a real terminal. Then prove we are there.
-    terminal.keys("F5")
+def _open(term: Terminal, fkey: str, digit: str, seen: str) -> None:
+    term.keys(fkey)
     time.sleep(0.3)
-    terminal.keys("2")
-    terminal.wait_for(lambda screen: "Wheel diameter" in screen, "F5 2 to open the flywheel")
-    terminal.keys("F1")
-    time.sleep(0.3)
-    terminal.keys("1")
-    terminal.wait_for(lambda screen: "Free speed" in screen, "F1 1 to open the motor tab")
-    _tab_to(terminal, "Motors")
-    terminal.keys("C-u")
-    terminal.keys("7")
-    assert _settle(terminal, "Motors", "7") == "7", "focus is not on the Motors field"
+    term.keys(digit)
+    term.wait_for(lambda screen: seen in screen, f"{fkey} {digit} to open the card with {seen!r}")
+    term.keys("Tab")  # from the strip into the sheet
+    term.wait_for(lambda screen: _cursor_label(screen) is not None, "the sheet to take focus", timeout=5)
 
+
+def _type(term: Terminal, keys: list[str], gap: float) -> None:
+    for k in keys:
+        term.keys(k)
+        time.sleep(gap)
+
+
+@pytest.mark.parametrize("gap", [0.03, 0.1])
+def test_tab_then_type_in_a_real_terminal(terminal, gap):
+    """Tab then a value, at 30 and 100 ms a key, on two cards: right after start, and later."""
     failures = []
-    for trial in range(4):
-        # Backspace, Backspace, 3 in one burst on "12" (was "1" or "" every time)
-        terminal.keys("C-u")
-        _settle(terminal, "Motors", "")
-        terminal.keys("1", "2")
-        _settle(terminal, "Motors", "12")
-        terminal.keys("BSpace", "BSpace", "3")
-        if (got := _settle(terminal, "Motors", "3")) != "3":
-            failures.append(f"burst {trial}: {got!r}")
-        # ctrl+u then 2 4 in one burst (the field used to be left empty)
-        terminal.keys("C-u", "2", "4")
-        if (got := _settle(terminal, "Motors", "24")) != "24":
-            failures.append(f"ctrl+u burst {trial}: {got!r}")
-
-    # human speed, 100 ms a key, while each key starts a solve: the Voltage entry on the next row
-    _tab_to(terminal, "Voltage")
-    for text in ("11 V", "-3 V", "9.05 V"):
-        terminal.keys("C-u")
-        for ch in text:
-            terminal.keys("-l", ch)
-            time.sleep(0.1)
-        if (got := _settle(terminal, "Voltage", text)) != text:
-            failures.append(f"typed {text!r}: {got!r}")
+    # right after start: the motor card, cursor on its first row (Motor)
+    _open(terminal, "F1", "1", "Free speed")
+    _type(terminal, ["Tab", "Tab", "3", "Tab", "1", "1", "Tab"], gap)  # Motor data, Motors=3, Voltage=11
+    for label, want in (("Motors", "3"), ("Voltage", "11")):
+        if (got := _settle(terminal, label, want)) != want:
+            failures.append(f"motor {label}: {got!r} (want {want!r})")
+    # later, another card: the flywheel's wheel diameter and the next rows
+    _open(terminal, "F5", "2", "Wheel diameter")
+    screen = terminal.screen()
+    assert "Wheel diameter" in screen
+    for _ in range(12):
+        if _cursor_label(terminal.screen()) == "Wheel diameter":
+            break
+        terminal.keys("Tab")
+        time.sleep(0.15)
+    assert _cursor_label(terminal.screen()) == "Wheel diameter", terminal.screen()
+    _type(terminal, ["4", "Tab", "5", "Enter", "Up", "Up", "6"], gap)
+    want = {"Wheel diameter": "6"}
+    for label, value in want.items():
+        if (got := _settle(terminal, label, value)) != value:
+            failures.append(f"flywheel {label}: {got!r} (want {value!r})")
     assert not failures, failures
 
 
-@pytest.mark.parametrize(
-    "calc_id", sorted(__import__("gearhead.core.registry", fromlist=["x"]).calculators())
-)
-async def test_key_bursts_kept_in_every_tab(calc_id):
-    """Every entry of every tab is a FieldInput: a burst typed while the tab solves is kept."""
-    from gearhead.core.registry import get
-    from gearhead.tui.components.field_input import FieldInput
-
-    app = GearheadApp(blink=False, initial=calc_id, hide_timings=True)
-    async with app.run_test(size=(140, 45)) as pilot:
-        await started(pilot)
-        tab = app.query_one(f"#calc-{calc_id}")
-        entries = list(tab.query(Input))
-        assert entries and all(isinstance(e, FieldInput) for e in entries)
-        field = next(f for f in get(calc_id).fields if f.type in ("quantity", "int"))
-        entry = tab.query_one(f"#in-{field.name}", Input)
-        entry.focus()
-        await pilot.pause()
-        # ctrl+u, "12", backspace, backspace, "7", "8" in one burst, while the tab is solving
-        for key, char in [
-            ("ctrl+u", "\x15"),
-            ("1", "1"),
-            ("2", "2"),
-            ("backspace", "\x7f"),
-            ("backspace", "\x7f"),
-            ("7", "7"),
-            ("8", "8"),
-        ]:
-            app.post_message(events.Key(key, char))
-        for _ in range(5):
-            await pilot.pause()
-        assert entry.value == "78"
-
-
-def test_focus_moves_leave_no_stale_cells(terminal):
-    """The home screen does not repaint itself whole when focus moves (HomeScreen): the widgets
-    gaining and losing focus repaint themselves. What the terminal shows after Tab through the
-    fields (drawn piece by piece) must equal a full redraw (forced by a resize), colours and
-    attributes included, except the focused entry's row (its cursor blinks)."""
-    terminal.keys("F1")
-    time.sleep(0.3)
-    terminal.keys("1")
-    terminal.wait_for(lambda screen: "Free speed" in screen, "F1 1 to open the motor tab")
-    _tab_to(terminal, "Operating torque", most=10)  # strip, Motor, Motor data, Motors, …
-    time.sleep(1.0)
-
-    def rows() -> list[str]:
-        screen = terminal.tmux("capture-pane", "-e", "-p", "-t", "app").splitlines()
-        plain = terminal.screen().splitlines()
-        return [row for row, text in zip(screen, plain) if not text.startswith("│ Operating torque")]
-
-    drawn = rows()
-    terminal.tmux("resize-window", "-t", "app", "-x", "139")
-    time.sleep(0.5)
-    terminal.tmux("resize-window", "-t", "app", "-x", "140")
-    time.sleep(1.0)
-    redrawn = rows()
-    assert len(redrawn) >= 40 and any("Free speed" in row for row in redrawn)
-    stale = [i for i, (a, b) in enumerate(zip(drawn, redrawn)) if a != b]
-    assert drawn == redrawn, f"rows differing from a full redraw: {stale}"
+def test_no_color_starts_and_shows_flags_without_colour(tmp_path):
+    if TMUX is None:
+        pytest.skip("tmux is not installed (.ci/run installs it)")
+    term = Terminal(tmp_path, NO_COLOR="1")
+    try:
+        screen = term.screen()
+        assert "Free speed" in screen and "[ ] stator limit" in screen
+        term.keys("F1")
+        time.sleep(0.3)
+        term.keys("1")
+        term.keys("Tab")
+        for _ in range(8):
+            if _cursor_label(term.screen()) == "Effects":
+                break
+            term.keys("Down")
+            time.sleep(0.15)
+        term.keys("Space")
+        term.wait_for(lambda s: "[x] stator limit" in s, "Space to tick the flag under the cursor")
+        assert "[ ] supply limit" in term.screen()
+    finally:
+        term.close()

@@ -1,8 +1,7 @@
-"""What pilot tests share: waiting until the app has finished solving and drawing."""
+"""What pilot tests share: waiting until the app has finished solving and drawing, and reaching
+a card's sheet (the form) and results list the way a user does."""
 
 from __future__ import annotations
-
-from textual.widgets import DataTable
 
 from gearhead.tui.components.calculator_tab import CalculatorTab
 
@@ -19,8 +18,7 @@ async def started(pilot) -> None:
 
 
 async def settle(pilot) -> None:
-    """Wait until every tab has solved its latest entries and tables and plots are drawn
-    (DataTable sizes its columns on idle; under load that can come late)."""
+    """Wait until every card has solved its latest entries and its chart is drawn."""
     app = pilot.app
     await started(pilot)
     for _ in range(200):
@@ -29,12 +27,40 @@ async def settle(pilot) -> None:
         await pilot.pause()
         if not any(tab.busy for tab in app.query(CalculatorTab)):
             break
-    for _ in range(50):
-        await pilot.pause()
-        await pilot.wait_for_scheduled_animations()
-        if not any(
-            t._require_update_dimensions or t._updated_cells or t._new_rows for t in app.query(DataTable)
-        ):
-            break
     await pilot.pause()  # plots draw after the results land
     await pilot.pause()
+
+
+def card(app, calc_id: str | None = None) -> CalculatorTab:
+    return app.query_one(f"#calc-{calc_id or app.current_calculator}", CalculatorTab)
+
+
+KEY_NAMES = {" ": "space", ".": "full_stop", "-": "minus", "+": "plus", "/": "slash", "*": "asterisk"}
+
+
+def keys_of(text: str) -> list[str]:
+    """The keys that type `text` (pilot.press takes key names)."""
+    return [KEY_NAMES.get(ch, ch) for ch in text]
+
+
+async def type_into(pilot, name: str, text: str, calc_id: str | None = None, commit: bool = True) -> None:
+    """Put the sheet's cursor on a field and type `text` over its value, as a user does (typing
+    replaces a value), then Enter (commits and moves down) unless `commit` is False."""
+    tab = card(pilot.app, calc_id)
+    tab.sheet.focus()
+    await pilot.pause()
+    if tab.sheet.editing:
+        tab.sheet.commit()
+    assert tab.sheet.move_to_field(name), f"{name} is not a row shown on the {tab.calculator.id} sheet"
+    if text:
+        await pilot.press(*keys_of(text))
+    else:
+        await pilot.press("delete")
+    if commit:
+        await pilot.press("enter")
+    await settle(pilot)
+
+
+def shown_rows(tab: CalculatorTab) -> list[str]:
+    """Names of the fields the sheet shows (the mode's and choices')."""
+    return [f.name for f in tab.sheet.shown_fields]
