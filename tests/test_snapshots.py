@@ -19,11 +19,28 @@ def test_tab_snapshot(snap_compare, calc_id):
 def test_invalid_entry_snapshot(snap_compare):
     async def type_bad_radius(pilot):
         await settle(pilot)
-        pilot.app.query_one("#calc-gear_ratio #in-radius").value = "3 kg"
+        pilot.app.current_tab._take_entry("radius", "3 kg")  # as pasted into the row
         await settle(pilot)
 
     assert snap_compare(
         GearheadApp(blink=False, initial="gear_ratio", hide_timings=True),
         terminal_size=SIZE,
         run_before=type_bad_radius,
+    )
+
+
+def test_no_color_snapshot(snap_compare, monkeypatch):
+    """NO_COLOR: the flags read [x] / [ ] and the cursor row is still marked, without colour."""
+    monkeypatch.setenv("NO_COLOR", "1")
+
+    async def tick_a_flag(pilot):
+        await settle(pilot)
+        tab = pilot.app.current_tab
+        tab.sheet.focus()
+        tab.sheet.move_to_field("effects")
+        await pilot.press("space")
+        await settle(pilot)
+
+    assert snap_compare(
+        GearheadApp(blink=False, initial="motor", hide_timings=True), terminal_size=SIZE, run_before=tick_a_flag
     )

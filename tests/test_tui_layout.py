@@ -1,27 +1,25 @@
 """Pilot tests from the acceptance pass: small terminals, preset loading, dialogs that must fit."""
 
 import pytest
-from rich.text import Text
-from textual.widgets import DataTable
 
 from gearhead.tui.app import GearheadApp
 from gearhead.tui.components.calculator_tab import CalculatorTab
-from tests.tui_helpers import settle
+from tests.tui_helpers import settle, toggle
 
 
 @pytest.mark.parametrize("calc_id", ["flywheel", "ratio_distance"])
 async def test_results_are_reachable_on_an_80x24_terminal(calc_id):
     """At 80 columns the panes stack (they used to sit side by side and push the results off
-    screen entirely); focusing the results table scrolls it into view, columns not clipped."""
+    screen entirely); focusing the results list scrolls it into view, columns not clipped."""
     app = GearheadApp(blink=False, initial=calc_id, hide_timings=True)
     async with app.run_test(size=(80, 24)) as pilot:
         await settle(pilot)
         tab = app.query_one(f"#calc-{calc_id}", CalculatorTab)
-        table = tab.query_one(".results", DataTable)
+        table = tab.results
         table.focus()
         await settle(pilot)
         region = table.region
-        assert region.height > 0 and region.right <= 80
+        assert region.height > 0 and region.right <= 80 and region.y < 24
         assert table.virtual_size.width <= table.size.width  # no sideways scrolling of values
         assert tab.query_one(".inputs-pane").region.right <= 80
 
@@ -31,7 +29,7 @@ async def test_results_columns_fit_side_by_side_at_120_columns():
     app = GearheadApp(blink=False, initial="ratio_distance", hide_timings=True)
     async with app.run_test(size=(120, 35)) as pilot:
         await settle(pilot)
-        table = app.query_one("#calc-ratio_distance .results", DataTable)
+        table = app.query_one("#calc-ratio_distance", CalculatorTab).results
         assert (
             table.region.y == app.query_one("#calc-ratio_distance .inputs-pane").region.y + 1
         )  # side by side
@@ -41,7 +39,7 @@ async def test_results_columns_fit_side_by_side_at_120_columns():
 async def test_loading_a_preset_resets_the_fields_it_omits():
     """'Pumpkin chunker' omits gravity: after typing moon gravity, loading it must solve exactly
     what the CLI solves for that preset (it used to keep 1.62 and show a different range)."""
-    from textual.widgets import Input, OptionList
+    from textual.widgets import OptionList
 
     from gearhead.core import presets
     from gearhead.core.model import solve
@@ -52,8 +50,9 @@ async def test_loading_a_preset_resets_the_fields_it_omits():
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
         tab = app.query_one("#calc-trebuchet", CalculatorTab)
-        tab.query_one("#in-gravity", Input).value = "1.62"
+        tab._take_entry("gravity", "1.62")
         await settle(pilot)
+        assert tab.solution.inputs["gravity"].value == pytest.approx(1.62)
         await pilot.press("ctrl+o")
         await pilot.pause()
         options = app.screen.query_one(OptionList)
@@ -64,7 +63,8 @@ async def test_loading_a_preset_resets_the_fields_it_omits():
         )
         await pilot.press("enter")
         await settle(pilot)
-        assert tab.query_one("#in-gravity", Input).value == "9.81"
+        assert tab.entries["gravity"] == tab.initial_entry(tab.calculator.field("gravity"))
+        assert tab.sheet.value_text(tab.sheet.stops[[s.field.name for s in tab.sheet.stops].index("gravity")]) == "9.81"
         expected = solve("trebuchet", preset.inputs).outputs["range"].value
         assert tab.solution.outputs["range"].value == pytest.approx(expected, rel=1e-12)
 
@@ -103,33 +103,64 @@ async def test_accuracy_view_of_a_closed_form_scene_says_so_instead_of_a_flat_pl
 async def test_long_field_help_and_labels_are_shown_whole():
     """Projectile's target angle help is ~270 characters; the help line had room for two lines.
     Flywheel's 'Grip force μ·N (motor during shot)' is longer than the label column."""
-    from textual.widgets import Input, Static
+    from textual.widgets import Static
 
-    from gearhead.tui.components.calculator_tab import LABEL_CELLS, FieldRow
+    from gearhead.tui.components.sheet import GAP, LABEL_CELLS
 
     app = GearheadApp(blink=False, initial="projectile", hide_timings=True)
     async with app.run_test(size=(120, 35)) as pilot:
         await settle(pilot)
         tab = app.query_one("#calc-projectile", CalculatorTab)
-        tab.query_one("#in-target_angle", Input).focus()
+        tab._take_entry("mode", "reverse")  # the target angle is a reverse-mode field
+        await settle(pilot)
+        tab.sheet.focus()
+        assert tab.sheet.move_to_field("target_angle")
         await settle(pilot)
         help_line = tab.query_one(".help-line", Static)
         text = str(help_line.render())
         lines_needed = -(-len(text) // help_line.content_size.width)
         assert help_line.content_size.height >= lines_needed
+        assert tab.calculator.field("target_angle").help in text
         app.show_calculator("flywheel")
         await settle(pilot)
-        app.query_one("#calc-flywheel #flag-effects--motor_during_shot").value = True
+        await toggle(pilot, "effects", "motor_during_shot")
+        sheet = app.query_one("#calc-flywheel", CalculatorTab).sheet
+        sheet.move_to_field("grip_force")
         await settle(pilot)
-        row = app.query_one("#calc-flywheel #row-grip_force", FieldRow)
-        # the entry starts where the row's label column ends (LABEL_CELLS; its margin in the
-        # stylesheet), and the unit one cell after the entry
-        entry = row.children[0]
-        assert entry.region.x - row.content_region.x == LABEL_CELLS
-        shown = [line[:LABEL_CELLS].rstrip() for line in str(row.render()).splitlines()]
-        unit_at = entry.region.right - row.content_region.x + 1
-        assert str(row.render()).splitlines()[0][unit_at:].startswith(row.unit_text)
-        assert " ".join(shown[: row.size.height]).startswith("Grip force μ·N (motor during shot)")
+        first = sheet._first_line[sheet.cursor]
+        drawn = [sheet.render_line(y).text for y in range(sheet.size.height)]
+        y = first - sheet.scroll_offset.y
+        assert 0 <= y < sheet.size.height  # on screen
+        # the label wraps within its column, the value follows it
+        labels = [drawn[y][1 : 1 + LABEL_CELLS].rstrip()]
+        while y + len(labels) < len(drawn) and sheet.lines[first + len(labels)].stop == sheet.cursor:
+            labels.append(drawn[y + len(labels)][1 : 1 + LABEL_CELLS].rstrip())
+        assert " ".join(labels).startswith("Grip force μ·N (motor during shot)")
+        value_at = 1 + LABEL_CELLS + GAP
+        stop = sheet.current_stop
+        assert drawn[y][value_at + 1 :].startswith(sheet.value_text(stop))
+
+
+@pytest.mark.parametrize("size", [(120, 35), (140, 45), (80, 24)])
+async def test_every_unit_is_in_sight(size):
+    """The unit sits one cell after the value column, on screen, at the narrowest side-by-side
+    width (120), the usual one, and stacked at 80 columns."""
+    from gearhead.tui.components.sheet import GAP, LABEL_CELLS, VALUE_CELLS
+    from gearhead.tui.components.unit_text import pretty_unit
+
+    app = GearheadApp(blink=False, initial="flywheel", hide_timings=True)
+    async with app.run_test(size=size) as pilot:
+        await settle(pilot)
+        sheet = app.query_one("#calc-flywheel", CalculatorTab).sheet
+        unit_at = 1 + LABEL_CELLS + GAP + VALUE_CELLS + GAP
+        for y in range(sheet.size.height):
+            line = sheet.lines[y + sheet.scroll_offset.y] if y + sheet.scroll_offset.y < len(sheet.lines) else None
+            if line is None or line.stop is None or not line.first:
+                continue
+            unit = sheet.stops[line.stop].spec.unit
+            if unit:
+                drawn = sheet.render_line(y).text
+                assert drawn[unit_at:].startswith(pretty_unit(unit)), (sheet.size, drawn)
 
 
 async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_series():
@@ -169,32 +200,37 @@ async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_ser
         assert not empty.display
 
 
-async def test_field_help_tooltips_keep_brackets():
-    """Tooltips are markup when given a str: help mentioning "[psi]" must keep it."""
+async def test_field_help_keeps_brackets():
+    """Help and labels are not markup: help mentioning "[psi]" must keep it on the help line (it
+    was a tooltip), and a label "[x]" its brackets on the sheet."""
     from textual.app import App
+    from textual.widgets import Static
 
-    from gearhead.core.model import Field
-    from gearhead.tui.components.calculator_tab import FieldRow
+    from gearhead.core.model import Calculator, Field, Output, Result
 
-    fields = [
-        Field("p", "Pressure", "pressure", "psi", default=60, help="gauge pressure [psi]"),
+    fields = (
+        Field("p", "Pressure [gauge]", "pressure", "psi", default=60, help="gauge pressure [psi]"),
         Field("n", "Count", integer=True, default=1, help="how many [each]"),
         Field("c", "Kind", choices=("a", "b"), default="a", help="pick one [a/b]"),
         Field("e", "Effects", choices=("x", "y"), flags=True, default=(), help="switch [on]"),
-    ]
+    )
+    calc = Calculator("toy_brackets", "Toy", "Brackets [b]", fields, (Output("z", "Z"),), lambda v: Result({"z": 1}))
 
     class Harness(App):
         def compose(self):
-            for f in fields:
-                yield FieldRow(f, f.default_text() if f.type != "choice" else f.default, blink=False)
+            yield CalculatorTab(calc, blink=False, hide_timings=True)
 
     app = Harness()
-    async with app.run_test(size=(100, 30)) as pilot:
+    async with app.run_test(size=(120, 30)) as pilot:
         await pilot.pause()
+        tab = app.query_one(CalculatorTab)
+        tab.sheet.focus()
         for f in fields:
-            widgets = app.query(f"#flag-{f.name}--x") if f.type == "flags" else app.query(f"#in-{f.name}")
-            tooltip = widgets.first().tooltip
-            assert isinstance(tooltip, Text) and str(tooltip) == f.help
+            tab.sheet.move_to_field(f.name)
+            await pilot.pause()
+            line = str(tab.query_one(".help-line", Static).render())
+            assert line.startswith(f"{f.label}: {f.help}")
+        assert tab.sheet.render_line(0).text.startswith(" Pressure [gauge] ")
 
 
 async def test_long_warnings_scroll_and_keep_the_status_line_in_the_pane(monkeypatch):
@@ -227,31 +263,17 @@ async def test_long_warnings_scroll_and_keep_the_status_line_in_the_pane(monkeyp
 async def test_result_labels_keep_their_room_when_equation_numbers_are_long():
     """The beam's equation numbers run to 34 cells ("(43), (45), (47), (49), (51)…"); they took
     the room and left the labels 8 cells, wrapped onto four lines ("Thin-wal / l J /
-    (estimat / e)"). The labels now keep LABEL_MIN cells and the numbers are cut with "…"."""
-
-    from gearhead.tui.components.calculator_tab import LABEL_MIN
+    (estimat / e)"). The labels now keep 16 cells and the numbers are cut with "…"."""
 
     app = GearheadApp(blink=False, initial="beam", hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
         tab = app.query_one("#calc-beam", CalculatorTab)
-        table = tab.query_one(".results", DataTable)
-        widths = {key.value: column.width for key, column in table.columns.items()}
-        assert widths["label"] >= LABEL_MIN
-        room = table.size.width - 2 - 2 * table.cell_padding * len(table.columns)
-        assert sum(widths.values()) <= room
-        assert max(row.height for row in table.rows.values()) <= 2
-        rendered = "\n".join(strip.text for strip in table.render_lines(table.region.reset_offset))
+        table = tab.results
+        label, value, equation, spread = table._widths
+        assert label >= 16 and equation >= 3
+        gaps = 1 + 3  # the leading cell and one after each column
+        assert label + value + equation + gaps <= table.size.width
+        assert max(len(lines) for lines in table._label_lines) <= 2
+        rendered = "\n".join(table.render_line(y).text for y in range(table.size.height))
         assert "Area moment of" in rendered and "(43), (45)" in rendered and "…" in rendered
-
-
-def test_column_widths_give_labels_their_room_first():
-    """Hand-worked splits of a results table's room."""
-    from gearhead.tui.components.calculator_tab import column_widths
-
-    # room, others (value), longest label, widest equations -> (label, equations)
-    assert column_widths(48, 18, 29, 34) == (16, 14)  # beam at 140 columns: the numbers give way
-    assert column_widths(48, 20, 30, 10) == (18, 10)  # motor: the numbers fit beside 18 cells
-    assert column_widths(48, 20, 12, 10) == (12, 10)  # short labels: everything fits
-    assert column_widths(30, 18, 29, 34) == (9, 3)  # narrow: "(4…", the label the rest
-    assert column_widths(48, 18, 29, 0) == (29, 0)  # no equation column

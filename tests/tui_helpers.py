@@ -64,3 +64,19 @@ async def type_into(pilot, name: str, text: str, calc_id: str | None = None, com
 def shown_rows(tab: CalculatorTab) -> list[str]:
     """Names of the fields the sheet shows (the mode's and choices')."""
     return [f.name for f in tab.sheet.shown_fields]
+
+
+async def toggle(pilot, name: str, option: str | None = None, calc_id: str | None = None) -> None:
+    """Put the sheet's cursor on a yes/no row, or on one flag of a flags row (↓ from its first),
+    and press Space, as a user does."""
+    tab = card(pilot.app, calc_id)
+    tab.sheet.focus()
+    await pilot.pause()
+    assert tab.sheet.move_to_field(name), f"{name} is not a row shown on the {tab.calculator.id} sheet"
+    for _ in range(len(tab.sheet.stops)):
+        if option is None or tab.sheet.current_stop.option == option:
+            break
+        await pilot.press("down")
+    assert tab.sheet.current_stop.option == option, f"{name} has no flag {option}"
+    await pilot.press("space")
+    await settle(pilot)

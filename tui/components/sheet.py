@@ -92,7 +92,7 @@ def shown_entry(field: Field, text: str) -> str:
     digits = len(re.sub(r"[^0-9]", "", number.split("e")[0].split("E")[0]).lstrip("0"))
     if digits > SHOWN_DIGITS:
         number = units.format_number(x, SHOWN_DIGITS)
-    if unit == (field.unit or ""):
+    if not unit or unit == field.unit:
         return number
     return f"{number} {unit}"
 
