@@ -41,8 +41,14 @@ def typing_field(calc_id: str) -> str:
     from gearhead.core.model import solve
     from gearhead.core.registry import get
 
-    for f in get(calc_id).fields:
+    from gearhead.core.model import choice_values
+
+    calc = get(calc_id)
+    mode = calc.field("mode").default if any(f.name == "mode" for f in calc.fields) else None
+    for f in calc.fields:
         text = f.default_text()
+        if not f.active(mode, choice_values(calc, {})):
+            continue  # a row the default mode hides
         if not f.kind.numeric or not text[-1:].isdigit() or len(text) < 2:
             continue
         try:
@@ -105,20 +111,29 @@ async def _latencies(calc_id: str, field: str) -> tuple[list[float], list[float]
         tab = app.query_one(f"#calc-{calc_id}", CalculatorTab)
         show = tab._show
 
-        def timed_show(solution, error):
-            show(solution, error)
+        def timed_show(*args):
+            show(*args)
             shown_at.append(time.perf_counter())
 
         tab._show = timed_show
         drawn = _frames(app)
-        entry = tab.query_one(f"#in-{field}", Input)
-        entry.focus()
-        entry.cursor_position = len(entry.value)
+        sheet = getattr(tab, "sheet", None)
+        if sheet is not None:  # the sheet (issue 27): the row's value edited with the caret at its end
+            sheet.focus()
+            if not sheet.move_to_field(field):  # a row this mode hides (its Input existed before)
+                raise LookupError(f"{field} is not shown on the {calc_id} card")
+            await pilot.pause()
+            last = str(tab.entries[field])[-1]
+            await type_key(app, "enter")
+        else:  # before it: one Input per field
+            entry = tab.query_one(f"#in-{field}", Input)
+            entry.focus()
+            entry.cursor_position = len(entry.value)
+            last = entry.value[-1]
         while tab.busy:
             await asyncio.sleep(0.001)
         await pilot.pause()
         out, painted, cpu = [], [], []
-        last = entry.value[-1]
         for i in range(KEYS):
             # delete the last digit then type it again: every keystroke is a new valid value
             key = "backspace" if i % 2 == 0 else last
