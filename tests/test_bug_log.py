@@ -60,7 +60,7 @@ async def test_a_bug_in_the_app_is_a_status_line_and_a_logged_traceback(state_ho
     from gearhead.tui.app import GearheadApp
     from tests.tui_helpers import settle
 
-    app = GearheadApp(blink=False, initial="gear_ratio", warm_up=False)
+    app = GearheadApp(blink=False, initial="gear_ratio")
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
         monkeypatch.setattr("gearhead.core.tolerance.solve_entries", _boom)

@@ -331,19 +331,17 @@ def test_reverse_at_the_wrap_minimum(method, factor):
 async def test_switching_to_a_chain_standard_in_the_app_solves_as_a_chain():
     """Picking #25 chain used to leave 'Chain or belt' at belt and show an error until changed by
     hand; the kind now follows the standard and half links appear for a chain."""
-    from textual.widgets import Select
-
     from gearhead.tui.app import GearheadApp
     from gearhead.tui.components.calculator_tab import CalculatorTab
-    from tests.tui_helpers import settle
+    from tests.tui_helpers import settle, shown_rows
 
     app = GearheadApp(blink=False, initial="chain_belt")
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
         tab = app.query_one("#calc-chain_belt", CalculatorTab)
-        assert not tab.query_one("#row-kind").display and not tab.query_one("#row-half_links").display
-        tab.query_one("#in-pitch_standard", Select).value = "chain_25"
+        assert "kind" not in shown_rows(tab) and "half_links" not in shown_rows(tab)
+        tab._take_entry("pitch_standard", "chain_25")
         await settle(pilot)
         assert tab.solution is not None and tab.solution.inputs["pitch_standard"].value == "chain_25"
-        assert tab.query_one("#row-half_links").display and not tab.query_one("#row-kind").display
+        assert "half_links" in shown_rows(tab) and "kind" not in shown_rows(tab)
         assert tab.solution.outputs["minimum_links"].value % 2 == 0

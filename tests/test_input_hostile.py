@@ -434,12 +434,12 @@ def test_cli_messages_quote_only_the_start_of_what_was_typed(capsys, args):
 
 async def test_the_app_answers_a_power_tower_and_opens_presets_past_hostile_files(tmp_path):
     """9**9**9 froze the app; a deeply nested user preset crashed ctrl+o, a FIFO hung it."""
-    from textual.widgets import Input, OptionList
+    from textual.widgets import OptionList
 
     from gearhead.core import presets
     from gearhead.tui.app import GearheadApp
     from gearhead.tui.components.calculator_tab import CalculatorTab
-    from tests.tui_helpers import settle
+    from tests.tui_helpers import settle, type_into
 
     d = presets.user_dir() / "gear_ratio"
     d.mkdir(parents=True)
@@ -450,10 +450,8 @@ async def test_the_app_answers_a_power_tower_and_opens_presets_past_hostile_file
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
         tab = app.query_one("#calc-gear_ratio", CalculatorTab)
-        field = tab.query_one("#in-load", Input)
-        field.focus()
-        field.value = "9**9**9"
-        await settle(pilot)
+        await type_into(pilot, "load", "9**9**9")
+        assert tab.entries["load"] == "9**9**9"
         assert tab.error is not None and tab.error.field == "load" and "exponent" in tab.error.message
         await pilot.press("ctrl+o")
         await settle(pilot)

@@ -242,6 +242,12 @@ async def test_ctrl_g_sends_equivalent_load_and_radius_to_gear_ratio():
         assert gear.solution.inputs["radius"].value == pytest.approx(
             screw_out["equivalent_radius"].value, rel=1e-14
         )
+        # the sheet shows them with at most 6 significant digits, in the field's unit
+        for stop in gear.sheet.stops:
+            if stop.field.name in ("load", "radius"):
+                shown = gear.sheet.value_text(stop)
+                assert len(shown.replace(".", "").lstrip("0")) <= 6 and " " not in shown, shown
+        assert gear.results.state == "fresh"  # the results of exactly those entries
         # at the default ratio G the gearbox input sees T_R/G
         G = gear.solution.outputs["ratio"].value
         assert gear.solution.outputs["motor_torque"].value == pytest.approx(

@@ -196,10 +196,10 @@ async def test_a_new_field_kind_renders_in_the_generic_tab(monkeypatch):
     """The tab draws the toy kind from its widget description (an input, no unit label), puts a
     preset's value into it, and hands it back as a preset stores it."""
     from textual.app import App
-    from textual.widgets import Input
 
     from gearhead.core import registry
-    from gearhead.tui.components.calculator_tab import CalculatorTab, FieldRow
+    from gearhead.tui.components.calculator_tab import CalculatorTab
+    from gearhead.tui.components.sheet import GAP, LABEL_CELLS
 
     calc = _toy_calculator()
     monkeypatch.setitem(registry.calculators(), "toy_hex", calc)
@@ -220,13 +220,16 @@ async def test_a_new_field_kind_renders_in_the_generic_tab(monkeypatch):
                     return
 
         await solved()
-        assert app.query_one("#in-code", Input).value == "0x10"
-        row = tab.query_one("#row-code", FieldRow)
-        assert row.unit_text == "" and not row.has_class("unitless")  # an input: its unit column stays
+        assert tab.entries["code"] == "0x10"
+        (stop,) = tab.sheet.stops
+        assert stop.shape == "input" and stop.spec.unit == ""  # an input, no unit label
+        value_at = 1 + LABEL_CELLS + GAP
+        assert tab.sheet.render_line(0).text[value_at:].strip() == "0x10"  # drawn as entered
         assert tab.solution.outputs["double"].value == 32
         tab.set_entries({"code": "0xFF"})
         await solved()
-        assert app.query_one("#in-code", Input).value == "0xFF"
+        assert tab.entries["code"] == "0xFF"
+        assert tab.sheet.render_line(0).text[value_at:].strip() == "0xFF"
         assert tab.current_inputs() == {"code": "0xff"}
         assert tab.solution.outputs["double"].value == 510
 

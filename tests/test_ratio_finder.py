@@ -511,6 +511,9 @@ async def test_gear_ratio_sends_its_ratio_to_the_finder():
         assert app.current_calculator == "ratio_finder"
         assert float(app.current_tab.entries["target_ratio"]) == pytest.approx(ratio, rel=1e-15)
         assert app.current_tab.solution is not None
+        # what the list shows is the result of the entries sent, not of the finder's defaults
+        assert app.current_tab.results.state == "fresh"
+        assert app.current_tab.solution.inputs["target_ratio"].value == pytest.approx(ratio, rel=1e-15)
 
 
 def test_markdown_export_lists_the_combinations_and_part_numbers():

@@ -10,7 +10,7 @@ import threading
 
 import pytest
 from rich.cells import cell_len
-from textual.widgets import DataTable, Static
+from textual.widgets import Static
 
 import gearhead.tui.app as app_module
 from gearhead.core import export
@@ -42,8 +42,17 @@ def gear_ratio_numbered(monkeypatch):
     return calc
 
 
-def cell(table: DataTable, row: str, column: str) -> str:
-    return str(table.get_cell(row, column))
+def cell(tab: CalculatorTab, row: str, column: str) -> str:
+    """A cell of the results list: "value" as shown ("…" while pending), or "equation"."""
+    if column == "value":
+        return tab.shown_values()[row]
+    return next(getattr(r, column) for r in tab.results.rows if r.name == row)
+
+
+def drawn(tab: CalculatorTab) -> list[str]:
+    """The results list's lines as drawn (the part on screen)."""
+    results = tab.results
+    return [results.render_line(y).text for y in range(results.size.height)]
 
 
 async def test_each_result_row_shows_its_equation_number(gear_ratio_numbered):
@@ -52,10 +61,20 @@ async def test_each_result_row_shows_its_equation_number(gear_ratio_numbered):
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
         tab = app.query_one(f"#calc-{calc.id}", CalculatorTab)
-        table = tab.query_one(".results", DataTable)
         assert tab.solution.outputs
         for name in tab.solution.outputs:
-            assert cell(table, name, "equation") == calc.output(name).equation
+            assert cell(tab, name, "equation") == calc.output(name).equation
+        lines = drawn(tab)
+        assert "Eq." in lines[0]
+        for i, name in enumerate(tab.solution.outputs):  # each row's line ends with its number
+            line = next(
+                lines[n - tab.results.scroll_offset.y]
+                for n, (row, k) in enumerate(tab.results._lines)
+                if row == i and k == 0
+            )
+            assert line.rstrip().endswith(calc.output(name).equation)
+            if i > 5:
+                break
 
 
 async def test_the_row_under_the_cursor_says_how_with_its_equation(gear_ratio_numbered):
@@ -64,11 +83,11 @@ async def test_the_row_under_the_cursor_says_how_with_its_equation(gear_ratio_nu
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
         tab = app.query_one(f"#calc-{calc.id}", CalculatorTab)
-        table = tab.query_one(".results", DataTable)
+        table = tab.results
         table.focus()
         await pilot.pause()
         for name in list(tab.solution.outputs)[1:3]:
-            table.move_cursor(row=list(tab.solution.outputs).index(name))
+            table.move_to(list(tab.solution.outputs).index(name))
             await settle(pilot)
             out = calc.output(name)
             line = str(tab.query_one(".help-line", Static).render())
@@ -88,17 +107,20 @@ def test_export_carries_the_equation_numbers():
 
 
 def shown_cut(tab: CalculatorTab) -> list[str]:
-    """Values or units that do not fit their column, or columns that do not fit the table."""
-    table = tab.query_one(".results", DataTable)
-    value = table.columns[next(k for k in table.columns if k.value == "value")]
-    cut = [
-        text
-        for text in (str(table.get_cell(name, "value")) for name in tab.solution.outputs)
-        if cell_len(text) > value.width
-    ]
-    used = sum(c.get_render_width(table) for c in table.columns.values()) + 2  # + the scrollbar
+    """Values or units that do not fit their column, or columns that do not fit the list, or a
+    value on screen not drawn whole."""
+    table = tab.results
+    label, value, equation, spread = table._widths
+    values = tab.shown_values()
+    cut = [text for text in (values[name] for name in tab.solution.outputs) if cell_len(text) > value]
+    used = 1 + label + 1 + value + (1 + equation if equation else 0) + (1 + spread if spread else 0)
     if used > table.size.width:
         cut.append(f"columns need {used} of {table.size.width}")
+    lines = drawn(tab)
+    for n, (row, k) in enumerate(table._lines):
+        y = n - table.scroll_offset.y
+        if row >= 0 and k == 0 and 0 <= y < len(lines) and table.rows[row].value not in lines[y]:
+            cut.append(f"{table.rows[row].value!r} drawn as {lines[y]!r}")
     return cut
 
 
@@ -147,21 +169,23 @@ async def test_scene_results_come_before_their_error_estimate(monkeypatch):
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
         tab = app.query_one("#calc-pneumatics", CalculatorTab)
-        table = tab.query_one(".results", DataTable)
         monkeypatch.setattr(scene, "_estimate", held)
         entries = {**tab.entries, "tank_volume": "1.5 L"}
         tab.set_entries({"tank_volume": "1.5 L"})
         for _ in range(200):
             await pilot.pause()
-            if tab.solution is not None and tab.solution.inputs["tank_volume"].text == "1.5 L":
+            if tab.solution is not None and tab.solution.inputs["tank_volume"].value == pytest.approx(1.5e-3):
                 break
+        else:
+            raise AssertionError("the new entries were never solved")
         assert tab.busy  # the estimate is still running
-        assert cell(table, "error_estimate", "value") == "…"
-        assert cell(table, "final_pressure", "value") == tab.solution.outputs["final_pressure"].text
+        assert cell(tab, "error_estimate", "value") == "…"
+        assert tab.results.state == "fresh"  # the results of these entries, only the estimate to come
+        assert cell(tab, "final_pressure", "value") == tab.solution.outputs["final_pressure"].text
         release.set()
         await settle(pilot)
         expected = solve("pneumatics", entries).outputs["error_estimate"].text  # as the CLI computes it
-        assert cell(table, "error_estimate", "value") == expected
+        assert cell(tab, "error_estimate", "value") == expected
 
 
 async def test_a_key_drops_the_pending_error_estimate(monkeypatch):
@@ -194,12 +218,17 @@ async def test_a_key_drops_the_pending_error_estimate(monkeypatch):
         tab.set_entries({"tank_volume": "2 L"})  # the next key, while the first estimate runs
         release.set()
         await settle(pilot)
-        assert tab.solution is not first and tab.solution.inputs["tank_volume"].text == "2 L"
+        assert tab.solution is not first and tab.solution.inputs["tank_volume"].value == pytest.approx(2e-3)
+        assert (
+            tab.sheet.value_text(
+                tab.sheet.stops[[s.field.name for s in tab.sheet.stops].index("tank_volume")]
+            )
+            == "2000"
+        )
         # the first estimate was dropped (cancelled, or computed and not shown): its row kept "…"
         assert first.outputs["error_estimate"].text == "…"
         assert any(solution is tab.solution and value is not None for solution, value in shown)
-        table = tab.query_one(".results", DataTable)
         assert (
-            cell(table, "error_estimate", "value")
+            cell(tab, "error_estimate", "value")
             == solve("pneumatics", {**tab.entries}).outputs["error_estimate"].text
         )

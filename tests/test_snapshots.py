@@ -42,5 +42,7 @@ def test_no_color_snapshot(snap_compare, monkeypatch):
         await settle(pilot)
 
     assert snap_compare(
-        GearheadApp(blink=False, initial="motor", hide_timings=True), terminal_size=SIZE, run_before=tick_a_flag
+        GearheadApp(blink=False, initial="motor", hide_timings=True),
+        terminal_size=SIZE,
+        run_before=tick_a_flag,
     )

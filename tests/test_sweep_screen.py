@@ -6,15 +6,17 @@ import pytest
 from gearhead.core import sweep
 from gearhead.tui.app import GearheadApp
 from gearhead.tui.components.sweep_screen import SweepScreen, default_range
-from tests.tui_helpers import settle
+from tests.tui_helpers import card, settle, type_into
 
 SIZE = (140, 45)
 
 
 async def open_sweep(pilot, calc_id: str, field: str) -> SweepScreen:
     await settle(pilot)
-    pilot.app.query_one(f"#calc-{calc_id} #in-{field}").focus()
+    sheet = card(pilot.app, calc_id).sheet
+    sheet.focus()
     await pilot.pause()
+    assert sheet.move_to_field(field)  # the row under the sheet's cursor
     await pilot.press("ctrl+w")
     return await finished(pilot)
 
@@ -91,8 +93,7 @@ async def test_escape_cancels_a_running_sweep_and_the_card_stays_usable():
         await settle(pilot)
         assert not isinstance(app.screen, SweepScreen)
         tab = app.query_one("#calc-trebuchet")
-        app.query_one("#calc-trebuchet #in-arm_mass").value = "60 kg"
-        await settle(pilot)
+        await type_into(pilot, "arm_mass", "60 kg")
         assert tab.solution is not None and tab.solution.inputs["arm_mass"].value == 60.0
 
 
@@ -138,35 +139,33 @@ async def test_tolerance_in_a_field_shows_spreads_and_goes_away():
     async with app.run_test(size=SIZE) as pilot:
         await settle(pilot)
         tab = app.query_one("#calc-lead_screw")
-        app.query_one("#calc-lead_screw #in-force").value = "50 N +- 10 %"
-        await settle(pilot)
-        table = tab.query_one(".results")
+        await type_into(pilot, "force", "50 N +- 10 %")
+        table = tab.results
         assert tab.error is None and tab.spread is not None
         _, want, _ = tolerance.solve("lead_screw", tab.entries)
         s = want.outputs["raise_torque"]
-        assert str(table.get_cell("raise_torque", "spread")) == tolerance.spread_text(
-            tab.calculator, tab.solution, s
-        )
-        assert str(table.get_cell("lead", "spread")) == "unaffected"
+        spreads = {row.name: row.spread for row in table.rows}
+        assert spreads["raise_torque"] == tolerance.spread_text(tab.calculator, tab.solution, s)
+        assert spreads["lead"] == "unaffected"
+        drawn = "\n".join(table.render_line(y).text for y in range(table.size.height))
+        assert "Worst case  σ" in drawn and "unaffected" in drawn  # the column is on screen
         assert "tolerances: worst case by corners" in str(tab.query_one(".status").render())
         table.focus()
         await pilot.pause()
-        table.move_cursor(
-            row=list(table.rows).index(next(k for k in table.rows if k.value == "raise_torque"))
-        )
+        table.move_to([row.name for row in table.rows].index("raise_torque"))
         await settle(pilot)
         help_line = str(tab.query_one(".help-line").render())
         assert "Worst case" in help_line and "mostly force" in help_line, help_line
-        app.query_one("#calc-lead_screw #in-force").value = "50 N"
-        await settle(pilot)
-        assert tab.spread is None and "spread" not in table.columns
-        app.query_one("#calc-lead_screw #in-friction").value = "0.2 ± 0.19"
+        await type_into(pilot, "force", "50 N")
+        assert tab.spread is None and not any(row.spread for row in table.rows)
+        assert table._widths[3] == 0  # no spread column
+        tab._take_entry("friction", "0.2 ± 0.19")  # pasted (pilot cannot type "±")
         await settle(pilot)
         notes = tolerance.solve("lead_screw", tab.entries)[1].notes
         assert any("backdrivable changes" in n for n in notes)
         shown = str(tab.query_one(".warnings").render())
         assert all(f"± {n}" in shown for n in notes) and tab.query_one(".warnings-box").display
-        app.query_one("#calc-lead_screw #in-force").value = "50 N ± 5 lbf*in"
+        tab._take_entry("force", "50 N ± 5 lbf*in")
         await settle(pilot)
         assert tab.error is not None and tab.error.field == "force"
 
@@ -175,7 +174,7 @@ async def test_tolerance_in_a_field_shows_spreads_and_goes_away():
 async def test_the_first_output_plotted_is_one_this_mode_produces():
     """The elevator's first output, 'Fastest ratio', exists only in optimise mode: a sweep of a move
     plotted it and showed an empty chart and a table with no result column (found in tmux)."""
-    app = GearheadApp(blink=False, initial="elevator", hide_timings=True, warm_up=False)
+    app = GearheadApp(blink=False, initial="elevator", hide_timings=True)
     async with app.run_test(size=SIZE) as pilot:
         screen = await open_sweep(pilot, "elevator", "ratio")
         picked = screen.query_one("#sweep-outputs").selected

@@ -388,10 +388,9 @@ async def test_any_calculator_in_two_keys_from_anywhere():
                 tab = app.current_tab
                 tab.sheet.focus()  # typing in a field: its edit open
                 await pilot.pause()
-                tab.sheet.move_to(0)
-                if tab.sheet.current_stop.shape == "input":
-                    await pilot.press("enter")
-                    assert tab.sheet.editing
+                tab.sheet.move_to(next(n for n, s in enumerate(tab.sheet.stops) if s.shape == "input"))
+                await pilot.press("enter")
+                assert tab.sheet.editing
                 await pilot.press(f"f{n}", str(i))
                 await settle(pilot)
                 assert app.current_calculator == calc_id

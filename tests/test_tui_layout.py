@@ -64,7 +64,10 @@ async def test_loading_a_preset_resets_the_fields_it_omits():
         await pilot.press("enter")
         await settle(pilot)
         assert tab.entries["gravity"] == tab.initial_entry(tab.calculator.field("gravity"))
-        assert tab.sheet.value_text(tab.sheet.stops[[s.field.name for s in tab.sheet.stops].index("gravity")]) == "9.81"
+        assert (
+            tab.sheet.value_text(tab.sheet.stops[[s.field.name for s in tab.sheet.stops].index("gravity")])
+            == "9.81"
+        )
         expected = solve("trebuchet", preset.inputs).outputs["range"].value
         assert tab.solution.outputs["range"].value == pytest.approx(expected, rel=1e-12)
 
@@ -154,7 +157,11 @@ async def test_every_unit_is_in_sight(size):
         sheet = app.query_one("#calc-flywheel", CalculatorTab).sheet
         unit_at = 1 + LABEL_CELLS + GAP + VALUE_CELLS + GAP
         for y in range(sheet.size.height):
-            line = sheet.lines[y + sheet.scroll_offset.y] if y + sheet.scroll_offset.y < len(sheet.lines) else None
+            line = (
+                sheet.lines[y + sheet.scroll_offset.y]
+                if y + sheet.scroll_offset.y < len(sheet.lines)
+                else None
+            )
             if line is None or line.stop is None or not line.first:
                 continue
             unit = sheet.stops[line.stop].spec.unit
@@ -214,7 +221,9 @@ async def test_field_help_keeps_brackets():
         Field("c", "Kind", choices=("a", "b"), default="a", help="pick one [a/b]"),
         Field("e", "Effects", choices=("x", "y"), flags=True, default=(), help="switch [on]"),
     )
-    calc = Calculator("toy_brackets", "Toy", "Brackets [b]", fields, (Output("z", "Z"),), lambda v: Result({"z": 1}))
+    calc = Calculator(
+        "toy_brackets", "Toy", "Brackets [b]", fields, (Output("z", "Z"),), lambda v: Result({"z": 1})
+    )
 
     class Harness(App):
         def compose(self):

@@ -58,6 +58,9 @@ async def test_units_preference_in_the_app_is_remembered(tmp_path):
         after = tab.solution.outputs
         assert {k: v.value for k, v in after.items()} == before
         assert all(not v.text.endswith((" in", " lbf", " psi", " in**4")) for v in after.values())
+        shown = tab.shown_values()  # and the list on screen says so
+        assert tab.results.state == "fresh" and shown
+        assert all(not text.endswith((" in", " lbf", " psi", " in⁴")) for text in shown.values()), shown
     assert settings.load() == {"units": "metric"}
     again = GearheadApp(blink=False, initial="beam", settings_file=settings.load())
     async with again.run_test(size=(140, 45)) as pilot:
