@@ -82,6 +82,22 @@ async def test_key_burst_lands_where_the_cursor_is(keys, motors, voltage):
         assert tab.solution.inputs["voltage"].value == pytest.approx(float(voltage))
 
 
+@pytest.mark.parametrize("gap", [0.0, 0.02, 0.15])
+async def test_f_key_digit_then_tab_goes_into_the_card_picked(gap):
+    """F5 2 Tab 7: the flywheel card, its first row typed into (Tab's focus chain, taken while
+    the card switched, reached the projectile card being left: it was shown again)."""
+    app = GearheadApp(blink=False, hide_timings=True, initial="motor")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        for k in ["f5", "2", "tab"]:
+            app.post_message(key(k))
+            if gap:
+                await pilot.pause(gap)
+        await settle(pilot)
+        assert app.current_calculator == "flywheel"
+        assert app.focused is card(app).sheet
+
+
 @pytest.mark.parametrize("calc_id", sorted(calculators()))
 async def test_tab_then_type_in_every_card(calc_id):
     """On every card: the first two numeric rows, each typed right after the Tab that reaches it,

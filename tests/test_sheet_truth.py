@@ -24,7 +24,7 @@ from gearhead.core.tolerance import solve_entries
 from gearhead.core.unit_systems import display_units
 from gearhead.tui.app import GearheadApp
 from gearhead.tui.components.results import FRESH, STALE
-from gearhead.tui.components.sheet import GAP, LABEL_CELLS, VALUE_CELLS
+from gearhead.tui.components.sheet import GAP, LABEL_CELLS
 from gearhead.tui.components.unit_text import pretty_quantity
 from tests.tui_helpers import settle
 
@@ -62,7 +62,7 @@ def check_card(tab) -> None:
         )
         if drawn is not None:
             want = sheet.value_text(stop)
-            width = VALUE_CELLS if stop.spec.unit else VALUE_CELLS + 10
+            width = sheet.value_cells(stop)
             cell = drawn[1 + LABEL_CELLS + GAP + 1 : 1 + LABEL_CELLS + GAP + width].rstrip()
             same = cell == want or (cell.endswith("…") and want.startswith(cell[:-1]))
             assert same, (stop.field.name, want, drawn)

@@ -148,14 +148,13 @@ async def test_long_field_help_and_labels_are_shown_whole():
 async def test_every_unit_is_in_sight(size):
     """The unit sits one cell after the value column, on screen, at the narrowest side-by-side
     width (120), the usual one, and stacked at 80 columns."""
-    from gearhead.tui.components.sheet import GAP, LABEL_CELLS, VALUE_CELLS
+    from gearhead.tui.components.sheet import GAP, LABEL_CELLS
     from gearhead.tui.components.unit_text import pretty_unit
 
     app = GearheadApp(blink=False, initial="flywheel", hide_timings=True)
     async with app.run_test(size=size) as pilot:
         await settle(pilot)
         sheet = app.query_one("#calc-flywheel", CalculatorTab).sheet
-        unit_at = 1 + LABEL_CELLS + GAP + VALUE_CELLS + GAP
         for y in range(sheet.size.height):
             line = (
                 sheet.lines[y + sheet.scroll_offset.y]
@@ -164,8 +163,11 @@ async def test_every_unit_is_in_sight(size):
             )
             if line is None or line.stop is None or not line.first:
                 continue
-            unit = sheet.stops[line.stop].spec.unit
+            stop = sheet.stops[line.stop]
+            unit = stop.spec.unit
             if unit:
+                unit_at = 1 + LABEL_CELLS + GAP + sheet.value_cells(stop) + GAP
+                assert unit_at + len(pretty_unit(unit)) <= sheet.size.width, (sheet.size, unit)
                 drawn = sheet.render_line(y).text
                 assert drawn[unit_at:].startswith(pretty_unit(unit)), (sheet.size, drawn)
 

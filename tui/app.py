@@ -179,8 +179,20 @@ class GearheadApp(App):
 
     def _focus_strip(self, area: str) -> None:
         strips = self.home.query(f"#calcs-{area} Tabs")
-        if strips:
+        if strips and self.home.focused is None:  # not if a Tab went into the card meanwhile
             self.home.set_focus(strips.first(Tabs))
+
+    async def action_focus_next(self) -> None:
+        """Tab on a calculator strip goes into the card it shows (its sheet). Textual's focus
+        chain, taken while a card switches (F5 2 Tab in a burst), reached the card being left and
+        TabbedContent then showed that one again."""
+        strip = self.focused
+        on_strip = isinstance(strip, Tabs) and (strip.parent.id or "").startswith("calcs-")
+        if self.screen is self.home and (on_strip or strip is None):  # None: an F-key's strip to come
+            tab = await self.card(self.current_calculator)
+            tab.sheet.focus()
+            return
+        super().action_focus_next()
 
     def action_area(self, area: str) -> None:
         """F1-F5: show an area at the calculator last used there; its strip takes focus, so a

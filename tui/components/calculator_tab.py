@@ -93,7 +93,7 @@ class CalculatorTab(Widget):
                 yield self.sheet
                 yield Static(
                     Text(
-                        "Type to replace a value, Enter or F2 to edit it, Space to toggle; Tab and ↑↓ move. "
+                        "Type to replace a value, Enter to edit it, Space to toggle; Tab and ↑↓ move. "
                         "F1–F5 then a digit opens any calculator; ctrl+s saves, ctrl+o loads a preset.",
                         style="dim",
                     ),
@@ -435,9 +435,19 @@ class CalculatorTab(Widget):
             text = "\n".join([text] * bool(text) + [f"± {n}" for n in self.spread.notes])
         if text == self._warnings_text:
             return
-        self._warnings_text = text
-        self.warnings.update(Text(text, style="yellow"))
-        self.warnings_box.display = bool(text)
+        # the box grows with its text: a layout repaints every widget of the screen, so only a
+        # text that takes another number of lines asks for one (drivetrain's warnings quote
+        # numbers that change with each key)
+        content = Text(text, style="yellow")
+        width = self.warnings.content_region.width
+        lines = len(content.wrap(self.app.console, width)) if width and text else (0 if not text else -1)
+        same_height = lines >= 0 and lines == self._warnings_lines and self.warnings_box.display == bool(text)
+        self._warnings_text, self._warnings_lines = text, lines
+        self.warnings.update(content, layout=not same_height)
+        if self.warnings_box.display != bool(text):
+            self.warnings_box.display = bool(text)
+
+    _warnings_lines = -1  # lines the warnings took when last shown (-1: unknown, lay out)
 
     # ---- tolerances (core/tolerance.py): a worst-case column while any entry carries '±' --------
     def _spread_status(self) -> Text:

@@ -4,7 +4,7 @@ The sheet is a Line-API widget (as Textual's DataTable): it draws its rows from 
 field declarations and the card's entries, and holds a cursor that Tab, shift+Tab and the arrows
 move without moving Textual's focus. It keeps the keys of a spreadsheet cell:
 
-- typing on a row replaces its value; Enter or F2 edits it in place (cursor at the end), Esc
+- typing on a row replaces its value; Enter edits it in place (cursor at the end), Esc
   cancels the edit, Enter commits and moves down, Tab and the arrows commit and move;
 - Space toggles a yes/no row or a flag (one line each), and only the row under the cursor;
 - Enter on a choice row opens its list; typing on it picks the next choice starting with what
@@ -78,18 +78,24 @@ class Line:
 _ENTRY = re.compile(r"^\s*([-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?)\s*(.*?)\s*$")
 
 
+_UNIT_WORD = re.compile(r"^[^\W\d_][^\s+\-()]*$")  # a unit as typed: "in", "lbf*in", "m/s²", "%"
+
+
 def shown_entry(field: Field, text: str) -> str:
     """An entry as the sheet shows it: a number with at most the digits typed or 6 significant,
-    and no unit when it is the one beside the value (`1.5999999999999999 in` → `1.6`)."""
+    and no unit when it is the one beside the value (`1.5999999999999999 in` → `1.6`). Anything
+    else (an expression, `0x10`, a tolerance, a bad entry) is shown as typed."""
     match = _ENTRY.match(text)
     if match is None:
         return text
     number, unit = match.groups()
+    if unit and (unit == "%" or not _UNIT_WORD.match(unit) or re.match(r"^x[0-9a-fA-F]", unit)):
+        return text if unit != "%" else text.strip()
     try:
         x = float(number)
     except ValueError:
         return text
-    digits = len(re.sub(r"[^0-9]", "", number.split("e")[0].split("E")[0]).lstrip("0"))
+    digits = len(re.sub(r"[^0-9]", "", re.split(r"[eE]", number)[0]).lstrip("0"))
     if digits > SHOWN_DIGITS:
         number = units.format_number(x, SHOWN_DIGITS)
     if not unit or unit == field.unit:
@@ -171,6 +177,8 @@ class Sheet(ScrollView, can_focus=True):
         self._typed = ("", 0.0)  # type-ahead on a choice row: letters and when
         self._laid_out_width = -1
         self._specs = {f.name: f.kind.widget(f) for f in calculator.fields}
+        units_shown = [pretty_unit(spec.unit) for spec in self._specs.values() if spec.unit]
+        self._unit_cells = max((cell_len(u) for u in units_shown), default=0)
         self._build()
 
     # ---- what is drawn ----------------------------------------------------------------
@@ -245,6 +253,14 @@ class Sheet(ScrollView, can_focus=True):
             return f"{dict(stop.spec.options).get(entry, str(entry))} ▾"
         return shown_entry(stop.field, str(entry))
 
+    def value_cells(self, stop: Stop) -> int:
+        """The value cell's width: VALUE_CELLS, less on a narrow sheet so the widest unit of the
+        card stays in sight (at 120 columns the form is 59 cells wide); a row without a unit (a
+        choice, a flag, a yes/no) takes the unit's column too."""
+        room = self.size.width - (1 + LABEL_CELLS + GAP) - 1
+        cells = max(10, min(VALUE_CELLS, room - GAP - self._unit_cells))
+        return cells if stop.spec.unit else max(cells, min(VALUE_CELLS + 10, room))
+
     def render_line(self, y: int) -> Strip:
         width = self.size.width
         index = y + self.scroll_offset.y
@@ -281,8 +297,7 @@ class Sheet(ScrollView, can_focus=True):
             cell += style("sheet--invalid")
         if on_cursor:
             cell += style("sheet--editing" if self.editing else "sheet--cursor")
-        # a row without a unit (a choice, a flag, a yes/no) takes the unit's column too
-        width = VALUE_CELLS if stop.spec.unit else VALUE_CELLS + 10
+        width = self.value_cells(stop)
         if not (on_cursor and self.editing):
             return [Segment(" " + _fit(self.value_text(stop), width - 1), cell)]
         # the edit: the buffer scrolled so the caret is in sight, the caret drawn reversed
@@ -376,7 +391,7 @@ class Sheet(ScrollView, can_focus=True):
             else:
                 self.begin_edit()
             return True
-        if key in ("enter", "f2"):
+        if key == "enter":  # (a spreadsheet's F2 is the app's F-key to the Mechanisms area)
             if shape == "select":
                 self.on_choose(stop.field)
             elif shape == "input":
