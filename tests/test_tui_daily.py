@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import pytest
 from textual.widgets import Input, OptionList, Static
 
 from gearhead.core import presets
@@ -157,20 +158,38 @@ async def test_f_key_then_digit_typed_at_once_opens_the_calculator():
     from textual import events
 
     app = GearheadApp(blink=False, initial="motor")
-    focus_strip = app._focus_strip
-    held: list[str] = []
-
-    def late_focus(area):  # the strip gets focus only after the digit has arrived
-        held.append(area)
-
-    app._focus_strip = late_focus
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
-        app.post_message(events.Key("f5", None))
+        app.post_message(events.Key("f5", None))  # in one burst, as a terminal delivers them
         app.post_message(events.Key("3", "3"))
-        await settle(pilot)
-        for area in held:
-            focus_strip(area)
         await settle(pilot)
         assert app.current_calculator == "trebuchet"
         assert app.query_one("#calc-trebuchet", CalculatorTab).solution is not None
+
+
+@pytest.mark.parametrize("character", ["²", "³", "①", "٣"])
+async def test_a_digit_like_character_on_a_strip_is_ignored(character):
+    """'²' passes str.isdigit() and int() refuses it: on a tab strip it killed the app."""
+    from textual import events
+
+    app = GearheadApp(blink=False, initial="motor")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        app.post_message(events.Key("f1", None))
+        app.post_message(events.Key(character, character))
+        app.post_message(events.Key("2", "2"))
+        await settle(pilot)
+        assert app.current_calculator == "gear_ratio"  # the real digit after it still picks
+
+
+async def test_an_f_key_under_a_dialog_leaves_the_card_alone():
+    app = GearheadApp(blink=False, initial="motor")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        await pilot.press("ctrl+o")
+        await pilot.pause()
+        dialog = app.screen
+        assert dialog is not app.home
+        await pilot.press("f3")
+        await pilot.pause()
+        assert app.screen is dialog and app.current_calculator == "motor"

@@ -5,7 +5,6 @@ from __future__ import annotations
 import os
 from collections.abc import Iterable
 from pathlib import Path
-from time import monotonic
 from typing import TYPE_CHECKING
 
 from textual import events
@@ -75,7 +74,6 @@ class GearheadApp(App):
         self.initial = initial
         self._cards: dict[str, CalculatorTab] = {}
         self._mounting: dict[str, object] = {}  # calc_id -> its AwaitMount, while mounting
-        self._area_pressed = ("", 0.0)  # the last F-key's area and when: a digit may follow it
         self._area_active: dict[str, str] = {}  # area -> the calculator shown there
         self._started = False  # the first frame is on screen
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
@@ -125,6 +123,16 @@ class GearheadApp(App):
                 self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r where they apply
         return tab
 
+    _quitting = False  # ctrl+q taken: no card is mounted meanwhile, no other key acts
+
+    async def action_quit(self) -> None:
+        """Quit once the cards being mounted are: a quit pruned a pane a card was mounting into
+        (F2 then ctrl+q in one burst: a MountError on the way out)."""
+        self._quitting = True
+        for mount in list(self._mounting.values()):
+            await mount
+        self.exit()
+
     def card_ready(self, calc_id: str) -> bool:
         """The calculator's card is on its pane, its sheet and results composed."""
         return calc_id in self._cards and calc_id not in self._mounting
@@ -133,12 +141,14 @@ class GearheadApp(App):
         strip_id = event.tabbed_content.id or ""
         if strip_id.startswith("calcs-"):
             self._area_active[strip_id.removeprefix("calcs-")] = event.pane.id.removeprefix("tab-")
-        if not self._started:  # start-up: on_ready builds the first card, after the first frame
+        if not self._started or self._quitting:  # start-up: on_ready builds the first card
             return
         await self.card(self.current_calculator)
         self.refresh_bindings()
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        if self._quitting:  # the F-keys are priority bindings: one after ctrl+q would mount a card
+            return action == "quit"
         on_home = self.screen is self.home
         if action in ("area", "sweep"):  # not under a dialog: the card would change behind it
             return on_home
@@ -168,19 +178,15 @@ class GearheadApp(App):
 
     def show_calculator(self, calc_id: str) -> None:
         """Switch to a calculator's card and put focus on its area's tab strip (a digit then
-        picks another). Focus leaves the old card first: Textual's TabbedContent shows the pane
-        of a focused widget, and a sheet left focused there pulled the old card back."""
+        picks another), in one focus change: the strip is focused as the panes switch, so no
+        widget of the card left keeps focus (Textual's TabbedContent shows the pane of a focused
+        widget: a sheet left focused there pulled the old card back)."""
         area = area_of(calc_id)
-        self.screen.set_focus(None)
         self._area_active[area] = calc_id
-        self.home.query_one(f"#calcs-{area}", TabbedContent).active = f"tab-{calc_id}"
+        strip = self.home.query_one(f"#calcs-{area}", TabbedContent)
+        strip.active = f"tab-{calc_id}"
         self.home.query_one("#areas", TabbedContent).active = f"area-{area}"
-        self.call_after_refresh(self._focus_strip, area)
-
-    def _focus_strip(self, area: str) -> None:
-        strips = self.home.query(f"#calcs-{area} Tabs")
-        if strips and self.home.focused is None:  # not if a Tab went into the card meanwhile
-            self.home.set_focus(strips.first(Tabs))
+        self.home.set_focus(strip.query_one(Tabs))
 
     async def action_focus_next(self) -> None:
         """Tab on a calculator strip goes into the card it shows (its sheet). Textual's focus
@@ -197,35 +203,30 @@ class GearheadApp(App):
     def action_area(self, area: str) -> None:
         """F1-F5: show an area at the calculator last used there; its strip takes focus, so a
         digit then picks a calculator (two keys to any calculator)."""
-        self._area_pressed = (area, monotonic())
         self.show_calculator(self._area_active[area])
 
-    AREA_DIGIT_S = 2.0  # a digit this soon after an F-key picks in that area, focused or not
     DIGITS = "123456789"  # ASCII only: '²' or '①' pass str.isdigit() and int() refuses them
 
     def on_key(self, event: events.Key) -> None:
         """A digit on a focused tab strip picks its n-th tab (the sheet never sees it: a strip is
-        focused, not the sheet)."""
+        focused, not the sheet). The pick is made here, at once (show_calculator), not by the
+        strip's TabActivated message: a Tab typed right after the digit would find the card left
+        still recorded as shown."""
         character = event.character or ""
         if len(character) != 1 or character not in self.DIGITS:
             return
         n = int(character)
         strip = self.focused
-        if isinstance(strip, Tabs):
-            tabs = list(strip.query("Tab"))
-            if n <= len(tabs) and tabs[n - 1].id:
-                event.stop()
-                strip.active = tabs[n - 1].id
-            return
-        # F-key then a digit typed at once: the strip may not have focus yet (it is focused after
-        # the next refresh); the digit still counts
-        area, pressed = self._area_pressed
-        if strip is None and area and monotonic() - pressed < self.AREA_DIGIT_S:
-            ids = AREAS[area][1]
+        owner = (strip.parent.id or "") if isinstance(strip, Tabs) and strip.parent is not None else ""
+        if owner.startswith("calcs-"):
+            ids = AREAS[owner.removeprefix("calcs-")][1]
             if n <= len(ids):
                 event.stop()
-                self._area_pressed = ("", 0.0)
                 self.show_calculator(ids[n - 1])
+        elif owner == "areas":
+            if n <= len(AREAS):
+                event.stop()
+                self.action_area(list(AREAS)[n - 1])
 
     def set_unit_system(self, system: str, remember: bool = True) -> None:
         """The units preference for every card (each built card solves and redraws), kept in the
