@@ -575,3 +575,39 @@ async def test_quitting_while_a_strip_or_card_is_mounting_ends_cleanly():
                         break
                     await asyncio.sleep(0.01)
             assert app.return_code == 0, (keys, delay)
+
+
+@pytest.mark.parametrize("newline", ["\n", "\r\n", "\r"])
+async def test_a_pasted_preset_loads_whatever_its_line_breaks(newline):
+    """Some terminals deliver a paste's line breaks as CR: the text became one line and was
+    taken for a path."""
+    from textual import events
+
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        text = newline.join(
+            ['calculator = "gear_ratio"', 'name = "pasted"', "[inputs]", 'load = "44 lbf"', ""]
+        )
+        await pilot.press("ctrl+o")
+        await settle(pilot)
+        app.screen.query_one("#preset-path").post_message(events.Paste(text))
+        await settle(pilot)
+        assert app.screen is app.home
+        assert card(app).entries["load"] == "44 lbf"
+
+
+async def test_a_one_line_paste_into_the_path_box_is_inserted_once():
+    from textual import events
+
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        await pilot.press("ctrl+o")
+        await settle(pilot)
+        path = app.screen.query_one("#preset-path", Input)
+        path.focus()
+        await pilot.pause()
+        path.post_message(events.Paste("/tmp/robot.toml"))
+        await settle(pilot)
+        assert path.value == "/tmp/robot.toml"
