@@ -287,3 +287,32 @@ def test_no_color_starts_and_shows_flags_without_colour(tmp_path):
         assert "[ ] supply limit" in term.screen()
     finally:
         term.close()
+
+
+async def test_a_click_selects_a_row_and_a_click_on_its_value_edits_or_toggles_it():
+    app = GearheadApp(blink=False, hide_timings=True, initial="motor")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = card(app)
+        sheet = tab.sheet
+
+        def line_of(name, option=None):
+            return next(
+                y
+                for y, line in enumerate(sheet.lines)
+                if line.first
+                and sheet.stops[line.stop].field.name == name
+                and sheet.stops[line.stop].option in (option, None)
+            )
+
+        await pilot.click(sheet, offset=(3, line_of("voltage")))  # on the label: selects
+        assert sheet.current_field.name == "voltage" and not sheet.editing
+        await pilot.click(sheet, offset=(1 + LABEL_CELLS + GAP + 2, line_of("motor_count")))  # on the value
+        assert sheet.current_field.name == "motor_count" and sheet.editing
+        await pilot.press("5")
+        await pilot.press("enter")
+        await settle(pilot)
+        assert tab.entries["motor_count"] == "15"
+        await pilot.click(sheet, offset=(1 + LABEL_CELLS + GAP + 2, line_of("effects", "supply_limit")))
+        await settle(pilot)
+        assert "supply_limit" in tab.entries["effects"] and "stator_limit" not in tab.entries["effects"]

@@ -22,6 +22,8 @@ from textual.geometry import Region, Size
 from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
+from .unit_text import fit_cells
+
 FRESH, STALE, PENDING = "fresh", "stale", "pending"
 
 
@@ -125,7 +127,7 @@ class ResultsList(ScrollView, can_focus=True):
             header = base + style("results--header")
             segments = [Segment(" ", base)]
             for text, w in cells:
-                segments += [Segment(_fit(text, w), header), Segment(" ", base)]
+                segments += [Segment(fit_cells(text, w), header), Segment(" ", base)]
             return Strip(segments).adjust_cell_length(width, base)
         r = self.rows[row]
         line_style = base
@@ -139,16 +141,16 @@ class ResultsList(ScrollView, can_focus=True):
         value = (r.value if self.state != PENDING else "…") if k == 0 else ""
         segments = [
             Segment(" ", line_style),
-            Segment(_fit(label, label_w), label_style),
+            Segment(fit_cells(label, label_w), label_style),
             Segment(" ", line_style),
-            Segment(_fit(value, value_w), value_style + Style(bold=k == 0 and self.state == FRESH)),
+            Segment(fit_cells(value, value_w), value_style + Style(bold=k == 0 and self.state == FRESH)),
         ]
         if eq_w:
-            eq = _fit(r.equation if k == 0 else "", eq_w)
+            eq = fit_cells(r.equation if k == 0 else "", eq_w)
             segments += [Segment(" ", line_style), Segment(eq, line_style + style("results--equation"))]
         if spread_w:
             spread = r.spread if k == 0 and self.state == FRESH else ""
-            segments += [Segment(" ", line_style), Segment(_fit(spread, spread_w), value_style)]
+            segments += [Segment(" ", line_style), Segment(fit_cells(spread, spread_w), value_style)]
         return Strip(segments).adjust_cell_length(width, line_style)
 
     # ---- the cursor ---------------------------------------------------------------------
@@ -198,17 +200,3 @@ class ResultsList(ScrollView, can_focus=True):
     def action_next_unit(self) -> None:
         if self.current is not None:
             self.on_select(self.current)
-
-
-def _fit(text: str, width: int) -> str:
-    length = cell_len(text)
-    if length <= width:
-        return text + " " * (width - length)
-    out, used = [], 0
-    for ch in text:
-        w = cell_len(ch)
-        if used + w > width - 1:
-            break
-        out.append(ch)
-        used += w
-    return "".join(out) + "…" + " " * (width - 1 - used)

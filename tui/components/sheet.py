@@ -43,7 +43,7 @@ from gearhead.core import units
 from gearhead.core.fields import Widget as FieldWidget
 from gearhead.core.model import Calculator, Field
 
-from .unit_text import pretty_unit
+from .unit_text import fit_cells, pretty_unit
 
 LABEL_CELLS = 32  # the label column; longer labels wrap by word
 VALUE_CELLS = 26  # the value column (an entry scrolls inside it while edited)
@@ -278,7 +278,7 @@ class Sheet(ScrollView, can_focus=True):
         on_cursor = line.stop == self.cursor
         stop = self.stops[line.stop]
         label_style = base + style("sheet--label-cursor" if on_cursor else "sheet--label")
-        segments = [Segment(" ", base), Segment(_fit(line.label, LABEL_CELLS), label_style)]
+        segments = [Segment(" ", base), Segment(fit_cells(line.label, LABEL_CELLS), label_style)]
         if line.first:
             segments.append(Segment(" " * GAP, base))
             segments += self._value_segments(stop, on_cursor, base)
@@ -299,7 +299,7 @@ class Sheet(ScrollView, can_focus=True):
             cell += style("sheet--editing" if self.editing else "sheet--cursor")
         width = self.value_cells(stop)
         if not (on_cursor and self.editing):
-            return [Segment(" " + _fit(self.value_text(stop), width - 1), cell)]
+            return [Segment(" " + fit_cells(self.value_text(stop), width - 1), cell)]
         # the edit: the buffer scrolled so the caret is in sight, the caret drawn reversed
         text, caret = self.buffer.replace("\n", "⏎").replace("\r", "⏎"), self.caret
         room = width - 2
@@ -309,7 +309,7 @@ class Sheet(ScrollView, can_focus=True):
         caret_style = cell + Style(reverse=True)
         before, under, after = shown[:at], (shown[at : at + 1] or " "), shown[at + 1 :]
         if self._all_selected:
-            return [Segment(" ", cell), Segment(_fit(shown, width - 1), caret_style)]
+            return [Segment(" ", cell), Segment(fit_cells(shown, width - 1), caret_style)]
         pad = width - 1 - cell_len(before) - cell_len(under) - cell_len(after)
         return [
             Segment(" " + before, cell),
@@ -588,18 +588,3 @@ class Sheet(ScrollView, can_focus=True):
 
     def action_toggle(self) -> None:
         self.toggle()
-
-
-def _fit(text: str, width: int) -> str:
-    """`text` in exactly `width` cells: padded, or cut with an ellipsis."""
-    length = cell_len(text)
-    if length <= width:
-        return text + " " * (width - length)
-    out, used = [], 0
-    for ch in text:
-        w = cell_len(ch)
-        if used + w > width - 1:
-            break
-        out.append(ch)
-        used += w
-    return "".join(out) + "…" + " " * (width - 1 - used)

@@ -20,3 +20,21 @@ def pretty_quantity(text: str) -> str:
     """'77425 mm**4' -> '77425 mm⁴': the unit is everything after the number."""
     number, sep, unit = text.partition(" ")
     return f"{number}{sep}{pretty_unit(unit)}" if sep else text
+
+
+def fit_cells(text: str, width: int) -> str:
+    """`text` in exactly `width` terminal cells: padded, or cut with an ellipsis (a wide character
+    counts two cells; rich's own cropping pads but does not mark the cut)."""
+    from rich.cells import cell_len
+
+    length = cell_len(text)
+    if length <= width:
+        return text + " " * (width - length)
+    out, used = [], 0
+    for ch in text:
+        w = cell_len(ch)
+        if used + w > width - 1:
+            break
+        out.append(ch)
+        used += w
+    return "".join(out) + "…" + " " * (width - 1 - used)
