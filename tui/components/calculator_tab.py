@@ -137,9 +137,10 @@ class CalculatorTab(Widget):
         if self.entries.get(name) == value:
             return
         self.entries = {**self.entries, name: value}
-        self._entries_changed()
+        self._entries_changed(name)
 
-    def _entries_changed(self) -> None:
+    def _entries_changed(self, name: str | None = None) -> None:
+        """`name`: the one entry changed (its row alone is repainted); None: any of them."""
         from gearhead.core.model import choice_values
 
         # a typed number cannot show or hide a field: only a mode or choice change re-applies
@@ -149,7 +150,11 @@ class CalculatorTab(Widget):
         )
         if shown_by != self._shown_by:
             self._apply_mode()
-        self.sheet.refresh()
+            self.sheet.refresh()
+        elif name is not None:
+            self.sheet.refresh_field(name)
+        else:
+            self.sheet.refresh()
         self.solve()
 
     def _apply_mode(self) -> None:
@@ -389,8 +394,8 @@ class CalculatorTab(Widget):
                 layout=False,
             )
             self.glance.update(Text(f"✗ {where}: {error.message}", style="red"), layout=False)
-            if self.plot is not None:
-                self.plot.set_class(True, "stale")
+            if self.plot is not None and not self.plot.has_class("stale"):
+                self.plot.add_class("stale")
             return
         self.error = self.error_key = None
         self.sheet.set_errors({})
@@ -399,7 +404,8 @@ class CalculatorTab(Widget):
         self._show_generation += 1
         self.results.show(self._rows(solution), FRESH)
         if self.plot is not None:
-            self.plot.set_class(False, "stale")
+            if self.plot.has_class("stale"):
+                self.plot.remove_class("stale")
             self.plot.show_soon(solution)
         self._show_tables(solution)
         self._show_warnings(solution.warnings)

@@ -76,11 +76,20 @@ class ResultsList(ScrollView, can_focus=True):
         same_shape = [r.name for r in rows] == [r.name for r in self.rows] and (
             any(r.spread for r in rows) == any(r.spread for r in self.rows)
         )
+        before, was = self.rows, self.state
         self.rows, self.state = rows, state
         if not same_shape or any(cell_len(r.value) > self._widths[1] for r in rows):
             self._layout()
-        self.cursor = min(self.cursor, max(0, len(rows) - 1))
-        self.refresh()
+            self.cursor = min(self.cursor, max(0, len(rows) - 1))
+            self.refresh()
+        elif state != was:
+            self.refresh()
+        else:  # the same rows: repaint the lines of those whose text changed
+            changed = {i for i, (a, b) in enumerate(zip(before, rows)) if a != b}
+            top = self.scroll_offset.y
+            for y, (row, _) in enumerate(self._lines):
+                if row in changed:
+                    self.refresh(Region(0, y - top, self.size.width, 1))
 
     @property
     def current(self) -> str | None:
@@ -109,9 +118,18 @@ class ResultsList(ScrollView, can_focus=True):
         self._layout()
 
     # ---- drawing ------------------------------------------------------------------------
+    _base_style: Style | None = None  # the widget's own style, asked once per render_lines
+
+    def render_lines(self, crop: Region) -> list[Strip]:
+        self._base_style = self.rich_style  # (walks the DOM: once per render, not per line)
+        try:
+            return super().render_lines(crop)
+        finally:
+            self._base_style = None
+
     def render_line(self, y: int) -> Strip:
         width = self.size.width
-        base = self.rich_style
+        base = self._base_style or self.rich_style
         index = y + self.scroll_offset.y
         if not (0 <= index < len(self._lines)):
             return Strip.blank(width, base)

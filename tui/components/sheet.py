@@ -261,10 +261,20 @@ class Sheet(ScrollView, can_focus=True):
         cells = max(10, min(VALUE_CELLS, room - GAP - self._unit_cells))
         return cells if stop.spec.unit else max(cells, min(VALUE_CELLS + 10, room))
 
+    _base_style: Style | None = None  # the widget's own style, asked once per render_lines
+
+    def render_lines(self, crop: Region) -> list[Strip]:
+        # rich_style walks the DOM up to the screen: asked per line it was most of a key's frame
+        self._base_style = self.rich_style
+        try:
+            return super().render_lines(crop)
+        finally:
+            self._base_style = None
+
     def render_line(self, y: int) -> Strip:
         width = self.size.width
         index = y + self.scroll_offset.y
-        base = self.rich_style
+        base = self._base_style or self.rich_style
         if not (0 <= index < len(self.lines)):
             return Strip.blank(width, base)
         line = self.lines[index]
@@ -317,17 +327,32 @@ class Sheet(ScrollView, can_focus=True):
             Segment(after + " " * max(0, pad), cell),
         ]
 
+    def refresh_stop(self, stop: int) -> None:
+        """Repaint the lines of one stop (a key changes one row: the screen repaints that row)."""
+        if not 0 <= stop < len(self.stops):
+            return
+        first = self._first_line[stop]
+        last = first + 1
+        while last < len(self.lines) and self.lines[last].stop == stop and not self.lines[last].first:
+            last += 1
+        self.refresh(Region(0, first - self.scroll_offset.y, self.size.width, last - first))
+
+    def refresh_field(self, name: str) -> None:
+        for i, s in enumerate(self.stops):
+            if s.field.name == name:
+                self.refresh_stop(i)
+
     # ---- the cursor -------------------------------------------------------------------
     def move_to(self, stop: int) -> None:
         if not self.stops:
             return
         stop = max(0, min(stop, len(self.stops) - 1))
-        changed = stop != self.cursor
+        left = self.cursor
         self.cursor = stop
-        self.refresh()
+        self.refresh_stop(left)
+        self.refresh_stop(stop)
         self.scroll_to_cursor()
-        if changed or True:
-            self.on_cursor(self.stops[stop].field)
+        self.on_cursor(self.stops[stop].field)
 
     def move_to_field(self, name: str) -> bool:
         for i, s in enumerate(self.stops):
@@ -492,7 +517,7 @@ class Sheet(ScrollView, can_focus=True):
     def _set_buffer(self, text: str, caret: int, take: bool = True) -> None:
         changed = text != self.buffer
         self.buffer, self.caret = text, caret
-        self.refresh()
+        self.refresh_stop(self.cursor)
         stop = self.current_stop
         if take and changed and stop is not None:
             # the shown text of an entry kept at full precision (a sent value) is that entry
@@ -502,7 +527,7 @@ class Sheet(ScrollView, can_focus=True):
     def commit(self) -> None:
         self.editing = False
         self._all_selected = False
-        self.refresh()
+        self.refresh_stop(self.cursor)
 
     def cancel(self) -> None:
         stop = self.current_stop
@@ -510,7 +535,7 @@ class Sheet(ScrollView, can_focus=True):
         self._all_selected = False
         if stop is not None and self._entries().get(stop.field.name) != self._before_edit:
             self.on_entry(stop.field.name, self._before_edit)
-        self.refresh()
+        self.refresh_stop(self.cursor)
 
     # ---- toggles and choices ----------------------------------------------------------
     def toggle(self) -> None:
