@@ -89,7 +89,8 @@ def shown_entry(field: Field, text: str) -> str:
     if match is None:
         return text
     number, unit = match.groups()
-    if unit and (unit == "%" or not _UNIT_WORD.match(unit) or re.match(r"^x[0-9a-fA-F]", unit)):
+    odd_unit = unit != field.unit and (not _UNIT_WORD.match(unit) or re.match(r"^x[0-9a-fA-F]", unit))
+    if unit and (unit == "%" or odd_unit):
         return text if unit != "%" else text.strip()
     try:
         x = float(number)
