@@ -316,3 +316,56 @@ async def test_a_click_selects_a_row_and_a_click_on_its_value_edits_or_toggles_i
         await pilot.click(sheet, offset=(1 + LABEL_CELLS + GAP + 2, line_of("effects", "supply_limit")))
         await settle(pilot)
         assert "supply_limit" in tab.entries["effects"] and "stator_limit" not in tab.entries["effects"]
+
+
+TMUX_NAMES = {
+    "tab": "Tab",
+    "shift+tab": "BTab",
+    "enter": "Enter",
+    "escape": "Escape",
+    "backspace": "BSpace",
+    "space": "Space",
+    "up": "Up",
+    "down": "Down",
+}
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_the_real_terminal_shows_what_the_model_holds(terminal, seed):
+    """Screen truth in a real terminal: a seeded random sequence typed into the motor card at
+    30-60 ms a key; the same keys replayed in a pilot app give the card's entries; every row
+    value the terminal shows must be the one the model holds."""
+    import asyncio
+    import random
+
+    rng = random.Random(seed)
+    # no shift+tab: from the first row it leaves the sheet for the strip, where digits open cards
+    pool = list("0123456789.") + ["tab", "enter", "escape", "backspace", "space", "up", "down"]
+    keys = ["tab"] + [rng.choice(pool) for _ in range(40)] + ["escape"]
+    _open(terminal, "F1", "1", "Free speed")
+    for k in keys[1:]:
+        terminal.keys(TMUX_NAMES.get(k, k))
+        time.sleep(rng.uniform(0.03, 0.06))
+    time.sleep(1.5)
+
+    async def replay() -> dict[str, str]:
+        app = GearheadApp(blink=False, hide_timings=True, initial="motor")
+        async with app.run_test(size=(140, 45)) as pilot:
+            await settle(pilot)
+            app.current_tab.sheet.focus()
+            for k in keys[1:]:
+                app.post_message(key(k))
+                await pilot.pause()
+            await settle(pilot)
+            sheet = card(app).sheet
+            return {
+                stop.field.label: sheet.value_text(stop).split(" ▾")[0]
+                for stop in sheet.stops
+                if stop.shape == "input"
+            }
+
+    held = asyncio.run(replay())
+    screen = terminal.screen()
+    shown = {label: terminal.field(label) for label in held if f"│ {label} " in screen}
+    assert shown, screen
+    assert shown == {label: held[label] for label in shown}, (keys, screen)
