@@ -18,6 +18,8 @@ async def main() -> None:
     app = GearheadApp(blink=False, initial="trebuchet", hide_timings=True)
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
+        app.current_tab.sheet.focus()  # the sheet's cursor on its first row, the key bar its keys
+        await settle(pilot)
         app.save_screenshot(str(ROOT / "docs" / "screenshot.svg"))
 
 

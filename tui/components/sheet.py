@@ -260,7 +260,7 @@ class Sheet(ScrollView, can_focus=True):
         choice, a flag, a yes/no) takes the unit's column too."""
         room = self.size.width - (1 + LABEL_CELLS + GAP) - 1
         cells = max(10, min(VALUE_CELLS, room - GAP - self._unit_cells))
-        return cells if stop.spec.unit else max(cells, min(VALUE_CELLS + 10, room))
+        return cells if stop.spec.unit else max(cells, room)
 
     _base_style: Style | None = None  # the widget's own style, asked once per render_lines
 
