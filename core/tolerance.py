@@ -3,7 +3,8 @@
 Reading. An entry is split at '±' (or ASCII '+-', '+/-'); the nominal is read by Field.parse as any
 entry is, the tolerance by the same unit parser:
     3.5 in ± 0.01 in     absolute, any unit of the field's kind
-    3.5 in ± 0.01        a bare tolerance is in the nominal's unit (here inches)
+    3.5 in ± 0.01        a bare tolerance is in the nominal's unit (here inches); after an
+                         expression ('2 ft + 3 in ± 1') it is refused: it needs its unit
     12 V ± 5 %           a tolerance in % is relative to the nominal...
     10 % ± 2 %           ...unless the nominal is itself in % (then it is percentage points)
 The whole box nominal ± tolerance must lie inside the field's bounds.
@@ -128,6 +129,9 @@ def parse(
             notes.append(f"tolerance on {name} is zero")
             continue
         low, high = nominal - half, nominal + half
+        if not low < nominal < high:  # '25 lbf ± 1e-20 lbf': below the nominal's last digit
+            notes.append(f"tolerance on {name} is too small to change the value (treated as zero)")
+            continue
         for end, word in ((low, "low"), (high, "high")):
             shown = units.format_quantity(end, f.unit, f.quantity)
             try:
@@ -140,9 +144,24 @@ def parse(
     return nominal_raw, values, out, notes
 
 
+_EXPONENT = re.compile(r"(\*\*|\^)\s*(\(\s*[-+]?\d+\s*\)|[-+]?\d+)")
+
+
+def _plain_unit(unit: str, m: re.Match | None) -> bool:
+    """Whether a nominal is a number then one unit ('3.5 in', '2 m/s**2', '20 1/in'): then a bare
+    tolerance is in that unit. An expression ('2 ft + 3 in', '3.5 in * 2', '(2 ft)') is not."""
+    if m is None or not unit:
+        return m is not None
+    rest = _EXPONENT.sub("", unit)
+    rest = re.sub(r"^1\s*/", "", rest)
+    return not re.search(r"[\d+\-()]", rest)
+
+
 def _half_width(f, nominal_text: str, tol_text: str, nominal: float) -> float:
     m = _NUMBER_THEN_UNIT.match(nominal_text)
     nominal_unit = (m.group("unit") if m else "") or ""
+    if not re.search(r"[^\W\d_%]", nominal_text):  # plain numbers ('10*5'): in the field's unit
+        m, nominal_unit = _NUMBER_THEN_UNIT.match("0"), ""
     in_percent = nominal_unit == "%" or (not nominal_unit and f.unit == "%")
     if tol_text.endswith("%") and not in_percent:
         number = tol_text[:-1].strip()
@@ -150,6 +169,13 @@ def _half_width(f, nominal_text: str, tol_text: str, nominal: float) -> float:
             raise InputError(f.name, f"cannot read the tolerance {tol_text!r} (expected e.g. '5 %')")
         half = float(number) / 100 * abs(nominal)  # relative to the nominal
     else:
+        if _NUMBER.match(tol_text) and not _NUMBER.match(nominal_text) and not _plain_unit(nominal_unit, m):
+            # '2 ft + 3 in ± 1' took "ft + 3 in" as the unit (± 15 in), '3.5 in * 2 ± 0.1' "in * 2"
+            raise InputError(
+                f.name,
+                f"the tolerance {tol_text!r} has no unit and {nominal_text!r} is an expression: "
+                f"give the tolerance its unit (± {tol_text.strip()} {f.unit or '%'})",
+            )
         if _NUMBER.match(tol_text) and nominal_unit:
             tol_text = f"{tol_text.strip()} {nominal_unit}"  # a bare tolerance is in the nominal's unit
         half = units.parse(tol_text, f.unit, f.quantity, f.name)

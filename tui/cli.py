@@ -166,9 +166,11 @@ def _solve(args) -> int:
     if any(isinstance(v, str) and ("±" in v or "+-" in v or "+/-" in v) for v in raw.values()):
         from gearhead.core import tolerance  # only then: a plain solve starts as fast as before
 
-        solution, spread, _ = tolerance.solve(
+        solution, spread, notes = tolerance.solve(
             calc.id, raw, display_units, args.spread, args.samples, args.seed
         )
+        if spread is None:  # every tolerance dropped (zero, unused field): the notes say why
+            solution.warnings.extend(notes)
     else:
         solution = solve(calc.id, raw, display_units)  # a bad input exits 2 before any preset is written
     if args.preset_out:
