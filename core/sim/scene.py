@@ -27,7 +27,9 @@ ESTIMATE_FACTOR = 100.0  # the error estimate compares with a run at rtol / 100
 # The per-solve guard (core.sim.integrate.budget): the work one solve may do, error estimate
 # included. The built-in presets take < 2 000 evaluations; 400 000 is about 1 s of the integrator.
 SOLVE_NFEV = 400_000
-SOLVE_SECONDS = 30.0  # backstop for work the evaluation count does not see (root finders, numpy)
+# backstop for work the evaluation count does not see (root finders, numpy): CPU seconds of the
+# solving thread, so a busy machine does not refuse a solve that needs little
+SOLVE_SECONDS = 30.0
 DEFAULT_ADVICE = ("accuracy", "try accuracy=coarse, or inputs that make the simulated motion shorter")
 
 
