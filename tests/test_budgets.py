@@ -36,3 +36,27 @@ def test_the_backstop_still_stops_a_solve_that_computes_too_long(monkeypatch):
     with pytest.raises(InputError) as exc:
         solve("projectile", DRAG.inputs)
     assert "computing" in exc.value.message and exc.value.field != "(result)"
+
+
+# ---- preset parsing --------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "a" + ".a" * 20_000 + " = 1\n",  # 40 KB: 7.6 s of tomllib, quadratic in the key's length
+        "[" + "a" + ".a" * 40_000 + "]\n",  # 80 KB (1 MB, the cap, would take hours)
+        'calculator = "beam"\n[inputs]\nx = {' + "a" + '."a"' * 20_000 + " = 1}\n",
+    ],
+    ids=["key-40KB", "header-80KB", "inline-quoted-100KB"],
+)
+def test_a_long_dotted_key_is_refused_before_tomllib_reads_it(text):
+    with pytest.raises(InputError) as exc:
+        presets.parse_text(text, "deep.toml")
+    assert exc.value.field == "preset" and "dotted name" in exc.value.message
+    assert "line 1" in exc.value.message or "line 3" in exc.value.message
+
+
+def test_dotted_keys_a_preset_may_use_still_read():
+    text = 'calculator = "beam"\nname = "x"\ninputs.wall = "0.1 in"\n"inputs"."force" = "5 lbf"\n'
+    assert presets.parse_text(text)["inputs"] == {"wall": "0.1 in", "force": "5 lbf"}
