@@ -60,3 +60,89 @@ def test_a_long_dotted_key_is_refused_before_tomllib_reads_it(text):
 def test_dotted_keys_a_preset_may_use_still_read():
     text = 'calculator = "beam"\nname = "x"\ninputs.wall = "0.1 in"\n"inputs"."force" = "5 lbf"\n'
     assert presets.parse_text(text)["inputs"] == {"wall": "0.1 in", "force": "5 lbf"}
+
+
+# ---- tolerance spreads ---------------------------------------------------------------------------
+
+VACUUM = presets.load(presets.builtin_dir() / "projectile" / "vacuum_closed_form.toml").inputs
+
+
+def _slow_clock(monkeypatch, seconds_per_look: float):
+    """Each look at the thread's CPU clock finds it `seconds_per_look` later: a calculator as slow
+    as a default beam's rectangular tube (0.23 s a solve), without the wait."""
+    real, looks = integrate.cpu_clock, itertools.count()
+    monkeypatch.setattr(integrate, "cpu_clock", lambda: real() + seconds_per_look * next(looks))
+
+
+def test_a_spread_of_slow_solves_stops_at_its_budget_and_says_so(monkeypatch):
+    """The default beam with wall=0.0625 in ± 5 % ran 202 s CPU (1000 Monte Carlo samples and a
+    Powell search per output, at 0.23 s a solve). The spread now stops within its budget: the
+    optimiser at half of it, Monte Carlo at the rest, each with a note naming the limit."""
+    from gearhead.core import tolerance
+
+    _slow_clock(monkeypatch, 0.25)
+    entries = dict(VACUUM, release_angle="45 deg ± 10 deg", release_speed="8 m/s ± 30 %")
+    solution, result, notes = tolerance.solve("projectile", entries)
+    assert result.cost.solves <= tolerance.SPREAD_SECONDS / 0.25 + 2
+    assert any("stopped at" in n and "s of computing" in n for n in notes), notes
+    assert all(s.low <= s.nominal <= s.high for s in result.outputs.values())
+
+
+def test_a_spread_whose_corners_alone_pass_the_budget_is_refused_naming_a_field(monkeypatch):
+    """Without the corners there is no worst case to show: an InputError naming a toleranced
+    field and what to change, not a solve that runs for minutes."""
+    from gearhead.core import tolerance
+
+    _slow_clock(monkeypatch, 10.0)
+    entries = dict(VACUUM, release_angle="45 deg ± 10 deg", release_speed="8 m/s ± 30 %")
+    with pytest.raises(InputError) as exc:
+        tolerance.solve("projectile", entries)
+    assert exc.value.field == "release_angle"
+    assert "limit of one spread" in exc.value.message and "fewer inputs" in exc.value.message
+
+
+def test_a_spread_counts_its_solves(monkeypatch):
+    from gearhead.core import tolerance
+
+    monkeypatch.setattr(tolerance, "SPREAD_SOLVES", 60)
+    entries = dict(VACUUM, release_angle="45 deg ± 10 deg")
+    _, result, notes = tolerance.solve("projectile", entries)
+    assert result.cost.solves <= 60 and any("more than 60 solves" in n for n in notes), notes
+
+
+@pytest.mark.parametrize("samples", [10**12, 100_001])
+def test_more_monte_carlo_samples_than_the_limit_are_refused_at_once(samples):
+    """--samples had no limit: 4.4 GB in 120 s."""
+    from gearhead.tui.cli import main
+
+    args = ["solve", "lead_screw", "--set", "force=50 N ± 40 %", "--spread", "monte-carlo"]
+    assert main([*args, "--samples", str(samples)]) == 2
+
+
+def test_monte_carlo_memory_does_not_grow_with_the_samples():
+    """The samples were drawn at once (samples × inputs floats, then a list of lists): 4.4 GB."""
+    import tracemalloc
+
+    from gearhead.core import tolerance
+
+    entries = {"force": "50 N ± 40 %", "friction": "0.2 ± 0.19", "diameter": "0.5 in ± 10 %"}
+    tolerance.solve("lead_screw", entries)  # caches filled (units, the registry) before measuring
+    tracemalloc.start()
+    try:
+        _, result, _ = tolerance.solve("lead_screw", entries, method="monte-carlo", samples=2_000)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert result.samples == 2_000
+    # about 120 bytes a sample now (14 outputs in arrays of doubles); 520 before (lists of floats)
+    assert peak < 0.7e6, f"{peak / 1e6:.2f} MB"
+
+
+@pytest.mark.parametrize("seed", [-1, -(2**70)])
+def test_a_negative_seed_is_an_input_error(capsys, seed):
+    """--seed -1 exited 70 (numpy's ValueError, an internal error)."""
+    from gearhead.tui.cli import main
+
+    args = ["solve", "lead_screw", "--set", "force=50 N ± 40 %", "--spread", "monte-carlo"]
+    assert main([*args, "--seed", str(seed)]) == 2
+    assert "seed:" in capsys.readouterr().err
