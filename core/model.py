@@ -259,11 +259,15 @@ class Solution:
         return out
 
 
-def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, str]]:
+def parse_inputs(
+    calc: Calculator, raw: Mapping[str, Any], ignored: list[str] | None = None
+) -> tuple[dict[str, Any], dict[str, str]]:
     """SI values for every field (defaults fill gaps) and the text shown for each.
 
     Fields the current mode does not use never block a solve: a bad entry there falls back
-    to its default, so switching modes never loses or is blocked by what was typed.
+    to its default, so switching modes never loses or is blocked by what was typed. Each such
+    fallback is one line appended to `ignored` (when given), and its text is the default's, so
+    a report never shows "banana" beside the default's value.
     """
     from .sim.effects import retire  # a name retired from a flags field: what replaced it
 
@@ -285,8 +289,14 @@ def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, An
         else:
             try:
                 values[f.name] = f.parse(entered)
-            except InputError:
+            except InputError as exc:
                 values[f.name] = f.parse(f.default)
+                entered = f.default
+                if ignored is not None:
+                    ignored.append(
+                        f"{f.name}: ignored (not used with these choices), and not valid: {exc.message}; "
+                        f"the default {f.entry_text(f.default)} stands"
+                    )
         texts[f.name] = f.entry_text(entered)
     return values, texts
 
@@ -342,7 +352,7 @@ def solve(
 
     calc = get(calc_id)
     raw, notices = retire(calc.fields, raw or {})  # (parse_inputs finds nothing left to retire)
-    values, texts = parse_inputs(calc, raw)
+    values, texts = parse_inputs(calc, raw, notices)
     try:
         result = calc.compute(values)
     except InputError:
