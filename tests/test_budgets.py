@@ -146,3 +146,66 @@ def test_a_negative_seed_is_an_input_error(capsys, seed):
     args = ["solve", "lead_screw", "--set", "force=50 N ± 40 %", "--spread", "monte-carlo"]
     assert main([*args, "--seed", str(seed)]) == 2
     assert "seed:" in capsys.readouterr().err
+
+
+# ---- every integration is charged ----------------------------------------------------------------
+
+# Found by the fuzz: an arm's optimise with extreme, accepted entries ran scipy's LSODA (the stiff
+# path, which charged nothing) for minutes, its dense output growing past 800 MB.
+STIFF_ARM = {
+    "mode": "optimise",
+    "motor": "Kraken X44",
+    "motor_count": 16,
+    "voltage": "0.1 V",
+    "efficiency": "1.0",
+    "arm_mass": "0.0997903214 kg",
+    "inertia_model": "entered",
+    "start_angle": "-6.276902121872407 rad",
+    "goal_angle": "6.283185307179586 rad",
+    "effects": "stator_limit, supply_limit, battery_sag, friction, counterbalance",
+    "stator_current_limit": "0.002 A",
+    "supply_current_limit": "0.002 A",
+    "battery_resistance": "10.0 ohm",
+    "counterbalance_torque": "0.0 N*m",
+    "r_volts": "99.9 V",
+    "control_period": "1.0 s",
+    "sensor_delay": "1.0 s",
+}
+
+_LIMITED = """
+import json, resource, sys
+resource.setrlimit(resource.RLIMIT_CPU, (60, 60))  # the old code ran on: killed here, not hung
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
+from gearhead.core.sim import scene
+scene.SOLVE_NFEV = 40_000  # a tenth of the budget: the same paths, a tenth of the time
+try:
+    solve(sys.argv[1], json.loads(sys.argv[2]))
+    print("solved")
+except InputError as exc:
+    print("field", exc.field)
+print("peak MB", resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024)
+"""
+
+
+def _solve_limited(calc_id: str, entries: dict) -> list[str]:
+    import json
+    import subprocess
+    import sys
+
+    out = subprocess.run(
+        [sys.executable, "-c", _LIMITED, calc_id, json.dumps(entries)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert out.returncode == 0, out.stderr[-500:]
+    return out.stdout.split("\n")
+
+
+def test_a_stiff_move_is_charged_to_the_solves_budget():
+    """LSODA's evaluations now count against the solve's budget like DP54's: the optimise stops
+    with a message naming what to change (and its memory stays bounded)."""
+    result, peak, _ = _solve_limited("arm", STIFF_ARM)
+    assert result.startswith("field ") and result != "field (result)"
+    assert int(peak.split()[-1]) < 500

@@ -780,8 +780,10 @@ def slip_phase_limited(
 
         rolling.terminal, rolling.direction = True, -1
         at_target.terminal, at_target.direction = True, +1
+        from ..sim.integrate import charged
+
         sol = solve_ivp(
-            rhs,
+            charged(rhs),  # within the solve's budget, as every integration
             (0.0, span),
             [1.0, 0.0],
             method="Radau",

@@ -187,6 +187,39 @@ def integrate(
     )
 
 
+# One stiff run's evaluations, whatever budget encloses it (the accuracy ladder's is 4 solves'):
+# scipy's dense output keeps about 1 KB a step, two evaluations a step, so this caps it near 200 MB.
+STIFF_NFEV = 400_000
+
+
+def charged(rhs: RHS, cap: int = STIFF_NFEV) -> RHS:
+    """`rhs` with every evaluation charged to the active budgets, as _dp54 charges its own, for a
+    scipy solver (solve_ivp's loop has no other exit: an arm's optimise ran LSODA for minutes, its
+    dense output to gigabytes); at most `cap` evaluations in this run. Charged 8 at a time: a
+    budget's checks cost about what a small rhs does."""
+    budgets = _budgets.get()
+    calls = [0]
+
+    def f(t, y):
+        calls[0] += 1
+        if calls[0] % 8 == 0:
+            for b in budgets:
+                b.charge(8)
+            if calls[0] > cap:
+                _over(budgets, f"more than {cap} right-hand-side evaluations in one stiff run")
+        return rhs(t, y)
+
+    return f
+
+
+def _over(budgets: tuple[Budget, ...], what: str) -> None:
+    """Stop a run past a cap of its own: charged to the innermost budget, whose solve names what to
+    change (core.sim.scene.solve_budget); a RuntimeError when no budget is active."""
+    if budgets:
+        raise BudgetExceeded(budgets[-1], what)
+    raise RuntimeError(what)
+
+
 @dataclass
 class StiffRun:
     """What a Run offers (t, y, nfev, event, crossings, at), from one of scipy's stiff solvers."""
@@ -230,7 +263,7 @@ def integrate_stiff(
         fns.append(fn)
     try:
         sol = solve_ivp(
-            lambda t, y: rhs(t, y),
+            charged(rhs),
             (t0, t1),
             y0,
             method=method,

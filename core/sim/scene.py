@@ -35,10 +35,13 @@ DEFAULT_ADVICE = ("accuracy", "try accuracy=coarse, or inputs that make the simu
 
 @contextmanager
 def solve_budget(
-    advice: tuple[str, str] = DEFAULT_ADVICE, max_nfev: int = SOLVE_NFEV, max_seconds: float = SOLVE_SECONDS
+    advice: tuple[str, str] = DEFAULT_ADVICE, max_nfev: int | None = None, max_seconds: float | None = None
 ) -> Iterator[None]:
-    """Run one solve within the budget; past it, an InputError naming the field to change and how
-    (never a hang). `advice` = (field, what to change), from the calculator: it knows what is long."""
+    """Run one solve within the budget (SOLVE_NFEV and SOLVE_SECONDS unless given, read when the
+    solve starts); past it, an InputError naming the field to change and how (never a hang).
+    `advice` = (field, what to change), from the calculator: it knows what is long."""
+    max_nfev = SOLVE_NFEV if max_nfev is None else max_nfev
+    max_seconds = SOLVE_SECONDS if max_seconds is None else max_seconds
     try:
         with budget(max_nfev, max_seconds) as b:
             yield
