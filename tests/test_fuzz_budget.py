@@ -2,7 +2,8 @@
 InputError naming one of the calculator's fields, within the solve's budget, the process under
 500 MB. The entries are what a user may type: each numeric field at its bounds, just inside them,
 at the smallest magnitudes a field takes, or between (geometric), every choice and set of effects;
-half the examples start from a built-in preset and push one to four fields, half draw every field.
+half the examples start from a built-in preset (or the defaults), draw any of its settings (mode,
+effects, accuracy...) and push one to six numbers, half draw every field.
 
 The solve's budget is cut to a tenth here (scene.SOLVE_NFEV): the same paths are bounded, in a
 tenth of the time. Seeded (hypothesis, derandomized); set GEARHEAD_FUZZ_EXAMPLES (per calculator)
@@ -77,14 +78,20 @@ def _entry(f):
 def _entries(calc):
     every = st.fixed_dictionaries({f.name: _entry(f) for f in calc.fields})
     bases = [p.inputs for p in presets.listing(calc.id)] + [{}]
+    settings_ = [f.name for f in calc.fields if f.type in ("choice", "flags", "bool")]
+    numeric = [f.name for f in calc.fields if f.kind.numeric]
 
     def pushed(base, drawn, names):
         return {**base, **{n: drawn[n] for n in names}}
 
+    # a preset, each setting (mode, effects, accuracy, ...) kept or drawn, one to six numbers pushed
     near = st.tuples(st.sampled_from(bases), every).flatmap(
-        lambda bd: st.lists(st.sampled_from(list(bd[1])), min_size=1, max_size=4, unique=True).map(
-            lambda names: pushed(bd[0], bd[1], names)
-        )
+        lambda bd: st.tuples(
+            st.lists(st.sampled_from(numeric), min_size=1, max_size=6, unique=True)
+            if numeric
+            else st.just([]),
+            st.lists(st.sampled_from(settings_), unique=True) if settings_ else st.just([]),
+        ).map(lambda chosen: pushed(bd[0], bd[1], chosen[0] + chosen[1]))
     )
     return st.one_of(near, every)
 
