@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
 from dataclasses import dataclass
 from dataclasses import field as dc_field
 from typing import Any
@@ -201,16 +202,23 @@ class Calculator:
     simulate: Callable[[Mapping[str, Any], float], Any] | None = None
 
     def field(self, name: str) -> Field:
-        for f in self.fields:
-            if f.name == name:
-                return f
-        raise KeyError(name)
+        return self._index("fields")[name]  # KeyError(name) when there is none
 
     def output(self, name: str) -> Output:
-        for o in self.outputs:
-            if o.name == name:
-                return o
-        raise KeyError(name)
+        return self._index("outputs")[name]
+
+    def _index(self, what: str) -> dict[str, Any]:
+        """{name: field} or {name: output}, built on first use: lookups run per key and per point."""
+        key = f"_{what}_by_name"
+        try:
+            return self.__dict__[key]
+        except KeyError:
+            pass
+        index: dict[str, Any] = {}
+        for item in getattr(self, what):
+            index.setdefault(item.name, item)  # the first of a name, as a scan would find
+        object.__setattr__(self, key, index)
+        return index
 
     @property
     def modes(self) -> tuple[str, ...]:
@@ -218,9 +226,6 @@ class Calculator:
             return self.field("mode").choices
         except KeyError:
             return ()
-
-    def defaults(self) -> dict[str, Any]:
-        return {f.name: f.default for f in self.fields}
 
 
 @dataclass(frozen=True)
@@ -331,6 +336,27 @@ def format_value(value: Any, quantity: str, unit: str) -> Value:
     return Value(value, units.SI_UNITS[quantity], units.format_quantity(value, unit, quantity))
 
 
+UNCOMPUTABLE = (ArithmeticError, ValueError, RuntimeError)  # what the last-resort guard turns into a message
+
+
+def uncomputable(exc: BaseException) -> InputError:
+    """The last-resort message for a failure a calculator did not foresee ("(result)" names no
+    field: the robustness tests fail if it is ever given)."""
+    return InputError("(result)", f"could not be computed from these inputs ({type(exc).__name__}: {exc})")
+
+
+@contextmanager
+def last_resort() -> Iterator[None]:
+    """Last-resort guard, like the NaN one in `solve`: the user gets a message, never a traceback
+    (an InputError passes through as it is)."""
+    try:
+        yield
+    except InputError:
+        raise
+    except UNCOMPUTABLE as exc:
+        raise uncomputable(exc) from exc
+
+
 def check_display_units(calc: Calculator, display_units: Mapping[str, str] | None) -> dict[str, str]:
     """{output: unit} the user asked for, each a real output and a unit that can show it."""
     display_units = dict(display_units or {})
@@ -353,16 +379,8 @@ def solve(
     calc = get(calc_id)
     raw, notices = retire(calc.fields, raw or {})  # (parse_inputs finds nothing left to retire)
     values, texts = parse_inputs(calc, raw, notices)
-    try:
+    with last_resort():
         result = calc.compute(values)
-    except InputError:
-        raise
-    except (ArithmeticError, ValueError, RuntimeError) as exc:
-        # Last-resort guard, like the NaN one below: the user gets a message, never a traceback.
-        # The robustness tests fail if it ever fires, since "(result)" names no field.
-        raise InputError(
-            "(result)", f"could not be computed from these inputs ({type(exc).__name__}: {exc})"
-        ) from exc
     display_units = check_display_units(calc, display_units)
     inputs = {}
     for f in calc.fields:

@@ -25,7 +25,7 @@ from typing import Any
 
 from . import units
 from .errors import InputError
-from .model import Calculator, Field, check_display_units, parse_inputs
+from .model import UNCOMPUTABLE, Calculator, Field, check_display_units, parse_inputs, uncomputable
 
 DEFAULT_POINTS = 21
 MAX_POINTS = 20_000  # a grid larger than this is a typo (a missing ':'), not a study
@@ -172,10 +172,8 @@ def evaluate(calc: Calculator, values: Mapping[str, Any]) -> Outcome:
         result = calc.compute(values)
     except InputError as exc:
         return Outcome({}, [], str(exc))
-    except (ArithmeticError, ValueError, RuntimeError) as exc:
-        return Outcome(
-            {}, [], f"(result): could not be computed from these inputs ({type(exc).__name__}: {exc})"
-        )
+    except UNCOMPUTABLE as exc:  # core.model.solve's last-resort guard, as the point's error
+        return Outcome({}, [], str(uncomputable(exc)))
     out = {}
     for o in calc.outputs:
         if o.name not in result.values:

@@ -351,7 +351,7 @@ def _preset_out(args, calc, raw: dict, solution) -> int:
 
 
 def _accuracy(args) -> int:
-    from gearhead.core.model import parse_inputs
+    from gearhead.core.model import last_resort, parse_inputs
     from gearhead.core.registry import calculators, get
     from gearhead.core.sim.scene import DEFAULT_ADVICE, REFERENCE_RTOL, ladder
 
@@ -362,15 +362,8 @@ def _accuracy(args) -> int:
     values, _ = parse_inputs(calc, _raw_inputs(args, calc))
     # what to change when a run needs more than one solve's budget: the calculator module's ADVICE
     advice = getattr(sys.modules.get(calc.simulate.__module__), "ADVICE", DEFAULT_ADVICE)
-    try:
+    with last_resort():  # the same guard as core.model.solve: a message, never a traceback
         rungs, reference = ladder(calc.simulate, values, advice=advice)
-    except InputError:
-        raise
-    except (ArithmeticError, ValueError, RuntimeError) as exc:
-        # the same last-resort guard as core.model.solve: a message, never a traceback
-        raise InputError(
-            "(result)", f"could not be computed from these inputs ({type(exc).__name__}: {exc})"
-        ) from exc
     if args.json:
         print(
             json.dumps(

@@ -64,10 +64,6 @@ def accuracy_field(default: str = "default") -> Field:
     )
 
 
-def effects_field(choices: tuple[str, ...], default: tuple[str, ...], help: str) -> Field:
-    return Field("effects", "Effects", choices=choices, flags=True, default=", ".join(default), help=help)
-
-
 STATS_OUTPUTS = (
     Output(
         "error_estimate",
