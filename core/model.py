@@ -265,18 +265,20 @@ class Solution:
 
 
 def parse_inputs(
-    calc: Calculator, raw: Mapping[str, Any], ignored: list[str] | None = None
+    calc: Calculator, raw: Mapping[str, Any], ignored: list[str] | None = None, *, retired: bool = False
 ) -> tuple[dict[str, Any], dict[str, str]]:
     """SI values for every field (defaults fill gaps) and the text shown for each.
 
     Fields the current mode does not use never block a solve: a bad entry there falls back
     to its default, so switching modes never loses or is blocked by what was typed. Each such
     fallback is one line appended to `ignored` (when given), and its text is the default's, so
-    a report never shows "banana" beside the default's value.
+    a report never shows "banana" beside the default's value. `retired`: the caller has already
+    replaced retired names (core.sim.effects.retire), once for the whole solve.
     """
-    from .sim.effects import retire  # a name retired from a flags field: what replaced it
+    if not retired:
+        from .sim.effects import retire  # a name retired from a flags field: what replaced it
 
-    raw, _ = retire(calc.fields, raw)
+        raw, _ = retire(calc.fields, raw)
     known = {f.name for f in calc.fields}
     for name in raw:
         if name not in known:
@@ -284,7 +286,7 @@ def parse_inputs(
     mode = None
     if "mode" in known:
         mode = calc.field("mode").parse(raw.get("mode", calc.field("mode").default))
-    choices = choice_values(calc, raw)
+    choices = choice_values(calc, raw, retired=True)
     values: dict[str, Any] = {}
     texts: dict[str, str] = {}
     for f in calc.fields:
@@ -306,15 +308,17 @@ def parse_inputs(
     return values, texts
 
 
-def choice_values(calc: Calculator, raw: Mapping[str, Any]) -> dict[str, Any]:
+def choice_values(calc: Calculator, raw: Mapping[str, Any], *, retired: bool = False) -> dict[str, Any]:
     """The choice fields that other fields' `when` depends on, parsed (default if unreadable); an old
-    name among a flags field counts as what replaced it (core.sim.effects.retire)."""
-    from .sim.effects import retire
+    name among a flags field counts as what replaced it (core.sim.effects.retire, unless `retired`
+    says the caller has done it)."""
+    if not retired:
+        from .sim.effects import retire
 
-    try:
-        raw, _ = retire(calc.fields, raw)
-    except InputError:  # two old names at odds: parse_inputs says so; here the defaults serve
-        pass
+        try:
+            raw, _ = retire(calc.fields, raw)
+        except InputError:  # two old names at odds: parse_inputs says so; here the defaults serve
+            pass
     names = {name for f in calc.fields for name, _ in f.when}
     out = {}
     for name in names:
@@ -377,8 +381,8 @@ def solve(
     from .sim.effects import retire
 
     calc = get(calc_id)
-    raw, notices = retire(calc.fields, raw or {})  # (parse_inputs finds nothing left to retire)
-    values, texts = parse_inputs(calc, raw, notices)
+    raw, notices = retire(calc.fields, raw or {})  # once per solve: parse_inputs is told so
+    values, texts = parse_inputs(calc, raw, notices, retired=True)
     with last_resort():
         result = calc.compute(values)
     display_units = check_display_units(calc, display_units)

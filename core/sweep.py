@@ -355,11 +355,11 @@ def run(
     from .sim.effects import retire
 
     raw, notes = retire(calc.fields, raw)  # an old name among a flags field: noted once, not per point
-    base, _ = parse_inputs(calc, raw)
+    base, _ = parse_inputs(calc, raw, retired=True)
     mode = base.get("mode")
     from .model import choice_values
 
-    choices = choice_values(calc, raw)
+    choices = choice_values(calc, raw, retired=True)
     for v in specs:
         if not calc.field(v.name).active(mode, choices):
             raise InputError(
