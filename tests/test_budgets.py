@@ -209,3 +209,14 @@ def test_a_stiff_move_is_charged_to_the_solves_budget():
     result, peak, _ = _solve_limited("arm", STIFF_ARM)
     assert result.startswith("field ") and result != "field (result)"
     assert int(peak.split()[-1]) < 500
+
+
+def test_a_sweep_of_slow_solves_stops_at_its_budget_and_says_so(monkeypatch):
+    """20 000 points of a default beam (0.23 s a solve) would run 77 minutes: a sweep has a CPU
+    budget, and past it keeps the points it has with a note saying why and what to change."""
+    from gearhead.core import sweep
+
+    _slow_clock(monkeypatch, 20.0)  # 20 s of computing per look: the budget is spent by point 16
+    result = sweep.run("motor", {}, ["voltage=6..12:200"])
+    assert 10 <= len(result.points) < 200
+    assert any("sweep's budget" in n and "fewer points" in n for n in result.notes), result.notes
