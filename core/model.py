@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
 from dataclasses import dataclass
 from dataclasses import field as dc_field
 from typing import Any
@@ -201,16 +202,23 @@ class Calculator:
     simulate: Callable[[Mapping[str, Any], float], Any] | None = None
 
     def field(self, name: str) -> Field:
-        for f in self.fields:
-            if f.name == name:
-                return f
-        raise KeyError(name)
+        return self._index("fields")[name]  # KeyError(name) when there is none
 
     def output(self, name: str) -> Output:
-        for o in self.outputs:
-            if o.name == name:
-                return o
-        raise KeyError(name)
+        return self._index("outputs")[name]
+
+    def _index(self, what: str) -> dict[str, Any]:
+        """{name: field} or {name: output}, built on first use: lookups run per key and per point."""
+        key = f"_{what}_by_name"
+        try:
+            return self.__dict__[key]
+        except KeyError:
+            pass
+        index: dict[str, Any] = {}
+        for item in getattr(self, what):
+            index.setdefault(item.name, item)  # the first of a name, as a scan would find
+        object.__setattr__(self, key, index)
+        return index
 
     @property
     def modes(self) -> tuple[str, ...]:
@@ -218,9 +226,6 @@ class Calculator:
             return self.field("mode").choices
         except KeyError:
             return ()
-
-    def defaults(self) -> dict[str, Any]:
-        return {f.name: f.default for f in self.fields}
 
 
 @dataclass(frozen=True)
@@ -259,15 +264,21 @@ class Solution:
         return out
 
 
-def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, str]]:
+def parse_inputs(
+    calc: Calculator, raw: Mapping[str, Any], ignored: list[str] | None = None, *, retired: bool = False
+) -> tuple[dict[str, Any], dict[str, str]]:
     """SI values for every field (defaults fill gaps) and the text shown for each.
 
     Fields the current mode does not use never block a solve: a bad entry there falls back
-    to its default, so switching modes never loses or is blocked by what was typed.
+    to its default, so switching modes never loses or is blocked by what was typed. Each such
+    fallback is one line appended to `ignored` (when given), and its text is the default's, so
+    a report never shows "banana" beside the default's value. `retired`: the caller has already
+    replaced retired names (core.sim.effects.retire), once for the whole solve.
     """
-    from .sim.effects import retire  # a name retired from a flags field: what replaced it
+    if not retired:
+        from .sim.effects import retire  # a name retired from a flags field: what replaced it
 
-    raw, _ = retire(calc.fields, raw)
+        raw, _ = retire(calc.fields, raw)
     known = {f.name for f in calc.fields}
     for name in raw:
         if name not in known:
@@ -275,7 +286,7 @@ def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, An
     mode = None
     if "mode" in known:
         mode = calc.field("mode").parse(raw.get("mode", calc.field("mode").default))
-    choices = choice_values(calc, raw)
+    choices = choice_values(calc, raw, retired=True)
     values: dict[str, Any] = {}
     texts: dict[str, str] = {}
     for f in calc.fields:
@@ -285,21 +296,29 @@ def parse_inputs(calc: Calculator, raw: Mapping[str, Any]) -> tuple[dict[str, An
         else:
             try:
                 values[f.name] = f.parse(entered)
-            except InputError:
+            except InputError as exc:
                 values[f.name] = f.parse(f.default)
+                entered = f.default
+                if ignored is not None:
+                    ignored.append(
+                        f"{f.name}: ignored (not used with these choices), and not valid: {exc.message}; "
+                        f"the default {f.entry_text(f.default)} stands"
+                    )
         texts[f.name] = f.entry_text(entered)
     return values, texts
 
 
-def choice_values(calc: Calculator, raw: Mapping[str, Any]) -> dict[str, Any]:
+def choice_values(calc: Calculator, raw: Mapping[str, Any], *, retired: bool = False) -> dict[str, Any]:
     """The choice fields that other fields' `when` depends on, parsed (default if unreadable); an old
-    name among a flags field counts as what replaced it (core.sim.effects.retire)."""
-    from .sim.effects import retire
+    name among a flags field counts as what replaced it (core.sim.effects.retire, unless `retired`
+    says the caller has done it)."""
+    if not retired:
+        from .sim.effects import retire
 
-    try:
-        raw, _ = retire(calc.fields, raw)
-    except InputError:  # two old names at odds: parse_inputs says so; here the defaults serve
-        pass
+        try:
+            raw, _ = retire(calc.fields, raw)
+        except InputError:  # two old names at odds: parse_inputs says so; here the defaults serve
+            pass
     names = {name for f in calc.fields for name, _ in f.when}
     out = {}
     for name in names:
@@ -319,6 +338,27 @@ def format_value(value: Any, quantity: str, unit: str) -> Value:
         return Value(int(value), "", str(int(value)))
     value = float(value)
     return Value(value, units.SI_UNITS[quantity], units.format_quantity(value, unit, quantity))
+
+
+UNCOMPUTABLE = (ArithmeticError, ValueError, RuntimeError)  # what the last-resort guard turns into a message
+
+
+def uncomputable(exc: BaseException) -> InputError:
+    """The last-resort message for a failure a calculator did not foresee ("(result)" names no
+    field: the robustness tests fail if it is ever given)."""
+    return InputError("(result)", f"could not be computed from these inputs ({type(exc).__name__}: {exc})")
+
+
+@contextmanager
+def last_resort() -> Iterator[None]:
+    """Last-resort guard, like the NaN one in `solve`: the user gets a message, never a traceback
+    (an InputError passes through as it is)."""
+    try:
+        yield
+    except InputError:
+        raise
+    except UNCOMPUTABLE as exc:
+        raise uncomputable(exc) from exc
 
 
 def check_display_units(calc: Calculator, display_units: Mapping[str, str] | None) -> dict[str, str]:
@@ -341,18 +381,10 @@ def solve(
     from .sim.effects import retire
 
     calc = get(calc_id)
-    raw, notices = retire(calc.fields, raw or {})  # (parse_inputs finds nothing left to retire)
-    values, texts = parse_inputs(calc, raw)
-    try:
+    raw, notices = retire(calc.fields, raw or {})  # once per solve: parse_inputs is told so
+    values, texts = parse_inputs(calc, raw, notices, retired=True)
+    with last_resort():
         result = calc.compute(values)
-    except InputError:
-        raise
-    except (ArithmeticError, ValueError, RuntimeError) as exc:
-        # Last-resort guard, like the NaN one below: the user gets a message, never a traceback.
-        # The robustness tests fail if it ever fires, since "(result)" names no field.
-        raise InputError(
-            "(result)", f"could not be computed from these inputs ({type(exc).__name__}: {exc})"
-        ) from exc
     display_units = check_display_units(calc, display_units)
     inputs = {}
     for f in calc.fields:

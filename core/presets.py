@@ -108,8 +108,27 @@ def read_text(path: str | Path) -> str:
         raise InputError("preset", f"is not UTF-8 text (byte {exc.start})", src) from None
 
 
+# tomllib's time grows with the square of a dotted key's length (a 40 KB key 'a.a.a…' took 7.6 s,
+# 1 MB would take hours); a preset's keys have two parts ('inputs.load'). Searched for before
+# parsing, in one pass: a run of MAX_KEY_PARTS names joined by dots, bare or quoted, starting at
+# a name's beginning (so a long word is not re-scanned from each of its letters).
+MAX_KEY_PARTS = 32
+_LONG_DOTTED_KEY = re.compile(
+    r"(?<![\w-])(?:(?:[\w-]++|\"[^\"\n]*+\"|'[^'\n]*+')[ \t]*+\.[ \t]*+)" + f"{{{MAX_KEY_PARTS - 1}}}"
+)
+
+
 def parse_text(text: str, src: str = "<preset>") -> dict[str, Any]:
     """The TOML table of a preset's text, or an InputError naming `src`."""
+    deep = _LONG_DOTTED_KEY.search(text)
+    if deep:
+        line = text.count("\n", 0, deep.start()) + 1
+        raise InputError(
+            "preset",
+            f"a dotted name of {MAX_KEY_PARTS} or more parts on line {line} ({shown(deep.group(), 20)}); "
+            f"a preset's keys are plain names under [inputs]",
+            src,
+        )
     try:
         return tomllib.loads(text.lstrip("\ufeff"))
     except tomllib.TOMLDecodeError as exc:

@@ -3,7 +3,8 @@
 Reading. An entry is split at '±' (or ASCII '+-', '+/-'); the nominal is read by Field.parse as any
 entry is, the tolerance by the same unit parser:
     3.5 in ± 0.01 in     absolute, any unit of the field's kind
-    3.5 in ± 0.01        a bare tolerance is in the nominal's unit (here inches)
+    3.5 in ± 0.01        a bare tolerance is in the nominal's unit (here inches); after an
+                         expression ('2 ft + 3 in ± 1') it is refused: it needs its unit
     12 V ± 5 %           a tolerance in % is relative to the nominal...
     10 % ± 2 %           ...unless the nominal is itself in % (then it is percentage points)
 The whole box nominal ± tolerance must lie inside the field's bounds.
@@ -48,6 +49,13 @@ DEFAULT_SAMPLES = 1000
 DEFAULT_SEED = 0
 MIN_SAMPLES = 100  # a time budget never cuts Monte Carlo below this
 APP_BUDGET_S = 2.0  # a card's solve: Monte Carlo stops here (a slow scene would keep the card busy)
+# The budget of one spread, whatever the calculator costs per solve (a default beam's rectangular
+# tube is 0.23 s a solve: its spread took 202 s CPU). Counted across every phase (the points along
+# each input, the corners, the optimiser, Monte Carlo); the optimiser may use half of it.
+SPREAD_SOLVES = 110_000  # calculator solves (Monte Carlo at its most, and the points before it)
+SPREAD_SECONDS = 30.0  # CPU seconds of the spreading thread (core.sim.integrate.cpu_clock)
+SPREAD_RHS_EVALUATIONS = 4_000_000  # a simulation's right-hand-side evaluations, main runs
+MAX_SAMPLES = 100_000  # --samples: σ's 95 % interval is ±0.4 % there; more only costs memory
 Z95 = 1.959963984540054  # two-sided 95 % normal quantile
 
 
@@ -128,6 +136,9 @@ def parse(
             notes.append(f"tolerance on {name} is zero")
             continue
         low, high = nominal - half, nominal + half
+        if not low < nominal < high:  # '25 lbf ± 1e-20 lbf': below the nominal's last digit
+            notes.append(f"tolerance on {name} is too small to change the value (treated as zero)")
+            continue
         for end, word in ((low, "low"), (high, "high")):
             shown = units.format_quantity(end, f.unit, f.quantity)
             try:
@@ -140,9 +151,24 @@ def parse(
     return nominal_raw, values, out, notes
 
 
+_EXPONENT = re.compile(r"(\*\*|\^)\s*(\(\s*[-+]?\d+\s*\)|[-+]?\d+)")
+
+
+def _plain_unit(unit: str, m: re.Match | None) -> bool:
+    """Whether a nominal is a number then one unit ('3.5 in', '2 m/s**2', '20 1/in'): then a bare
+    tolerance is in that unit. An expression ('2 ft + 3 in', '3.5 in * 2', '(2 ft)') is not."""
+    if m is None or not unit:
+        return m is not None
+    rest = _EXPONENT.sub("", unit)
+    rest = re.sub(r"^1\s*/", "", rest)
+    return not re.search(r"[\d+\-()]", rest)
+
+
 def _half_width(f, nominal_text: str, tol_text: str, nominal: float) -> float:
     m = _NUMBER_THEN_UNIT.match(nominal_text)
     nominal_unit = (m.group("unit") if m else "") or ""
+    if not re.search(r"[^\W\d_%]", nominal_text):  # plain numbers ('10*5'): in the field's unit
+        m, nominal_unit = _NUMBER_THEN_UNIT.match("0"), ""
     in_percent = nominal_unit == "%" or (not nominal_unit and f.unit == "%")
     if tol_text.endswith("%") and not in_percent:
         number = tol_text[:-1].strip()
@@ -150,6 +176,13 @@ def _half_width(f, nominal_text: str, tol_text: str, nominal: float) -> float:
             raise InputError(f.name, f"cannot read the tolerance {tol_text!r} (expected e.g. '5 %')")
         half = float(number) / 100 * abs(nominal)  # relative to the nominal
     else:
+        if _NUMBER.match(tol_text) and not _NUMBER.match(nominal_text) and not _plain_unit(nominal_unit, m):
+            # '2 ft + 3 in ± 1' took "ft + 3 in" as the unit (± 15 in), '3.5 in * 2 ± 0.1' "in * 2"
+            raise InputError(
+                f.name,
+                f"the tolerance {tol_text!r} has no unit and {nominal_text!r} is an expression: "
+                f"give the tolerance its unit (± {tol_text.strip()} {f.unit or '%'})",
+            )
         if _NUMBER.match(tol_text) and nominal_unit:
             tol_text = f"{tol_text.strip()} {nominal_unit}"  # a bare tolerance is in the nominal's unit
         half = units.parse(tol_text, f.unit, f.quantity, f.name)
@@ -206,8 +239,13 @@ class Spread:
     seed: int | None = None
 
 
+class _Spent(Exception):
+    """The spread's budget (or the share of it a phase may use) is spent; says which limit."""
+
+
 class _Probe:
-    """Evaluates the calculator at points of the box (a dict of the toleranced SI values)."""
+    """Evaluates the calculator at points of the box (a dict of the toleranced SI values), within
+    the spread's budget: `share` (0-1] is the part of it the current phase may reach."""
 
     def __init__(
         self,
@@ -217,12 +255,27 @@ class _Probe:
         cost: Cost,
         cancelled: Callable[[], bool] | None,
     ):
+        from .sim.integrate import cpu_clock
+
         self.calc, self.base, self.tols, self.cost = calc, dict(values), tolerances, cost
         self.cancelled = cancelled
+        self.clock = cpu_clock
+        self.started = cpu_clock()
+        self.share = 1.0
+
+    def check(self) -> None:
+        """Raise _Spent when the next solve would pass the budget (a solve is itself bounded)."""
+        if self.cost.solves >= self.share * SPREAD_SOLVES:
+            raise _Spent(f"more than {self.share * SPREAD_SOLVES:.0f} solves")
+        if self.cost.rhs_evaluations > self.share * SPREAD_RHS_EVALUATIONS:
+            raise _Spent(f"more than {self.share * SPREAD_RHS_EVALUATIONS:.0f} right-hand-side evaluations")
+        if self.clock() - self.started > self.share * SPREAD_SECONDS:
+            raise _Spent(f"more than {self.share * SPREAD_SECONDS:g} s of computing")
 
     def __call__(self, xs: tuple[float, ...]) -> Outcome:
         if self.cancelled is not None and self.cancelled():
             raise Cancelled
+        self.check()
         values = dict(self.base)
         for t, x in zip(self.tols, xs):
             values[t.name] = x
@@ -267,9 +320,26 @@ def spread(
         raise InputError("method", f"{method!r} is not auto, first-order or monte-carlo")
     if samples < 2:
         raise InputError("samples", f"needs at least 2 samples, got {samples}")
+    if samples > MAX_SAMPLES:  # 4.4 GB in 120 s for a number typed with a few zeros too many
+        raise InputError(
+            "samples", f"at most {MAX_SAMPLES} samples (got {samples}); σ is within ±0.4 % there"
+        )
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise InputError("seed", f"a seed is a whole number, 0 or more (got {seed!r})")
     t0 = time.perf_counter()
     cost = Cost()
     probe = _Probe(calc, values, tolerances, cost, cancelled)
+    try:
+        return _spread(calc, tolerances, outputs, method, samples, seed, budget_s, t0, cost, probe)
+    except _Spent as spent:  # in the points every answer needs: no answer within the budget
+        raise InputError(
+            tolerances[0].name,
+            f"the tolerance spread needs {spent} (the limit of one spread): give fewer inputs a "
+            f"tolerance, or choose entries that solve faster (e.g. accuracy=coarse)",
+        ) from None
+
+
+def _spread(calc, tolerances, outputs, method, samples, seed, budget_s, t0, cost, probe) -> Spread:
     k = len(tolerances)
     nominal_x = tuple(t.nominal for t in tolerances)
     center = probe(nominal_x)
@@ -350,37 +420,58 @@ def spread(
 
     # Optimiser for outputs that are not monotone along some input: corners may miss the extremes.
     optimised: dict[str, tuple[float, float]] = {}
+    cut_short: list[str] = []  # outputs whose optimiser search the budget stopped
+    probe.share = 0.5
     for n in names:
         if bends[n]:
-            optimised[n] = _optimise(at, tolerances, seen, n)
+            try:
+                optimised[n] = _optimise(at, tolerances, seen, n)
+            except _Spent as spent:
+                cut_short.append(n)
+                why = str(spent)
+    probe.share = 1.0
 
     mc: dict[str, Any] = {}
-    mc_bad: list[str] = []
+    mc_bad: list[str] = []  # the first failure's message (a count is kept, not every message)
+    bad_count = 0
     stopped_at = samples
+    spent_on = ""  # why Monte Carlo stopped early, when the spread's budget stopped it
     if need_mc:
+        from array import array
+
         import numpy as np
 
         rng = np.random.default_rng(seed)
         lows = np.array([t.low for t in tolerances])
         highs = np.array([t.high for t in tolerances])
-        xs = lows + (highs - lows) * rng.random((samples, k))
-        ys = {n: [] for n in names}
-        for i, row in enumerate(xs.tolist()):
-            if budget_s is not None and i >= MIN_SAMPLES and time.perf_counter() - t0 > budget_s:
-                stopped_at = i  # the first i samples of the seeded sequence: still reproducible
-                break
-            o = probe(tuple(row))
-            if o.error is not None:
-                mc_bad.append(o.error)
-                continue
-            for n in names:
-                v = _number(o.outputs.get(n))
-                if v is not None:
-                    ys[n].append(v)
+        ys = {n: array("d") for n in names}  # 8 bytes a value: 100 000 samples of 30 outputs, 24 MB
+        i = 0
+        while i < samples and not spent_on:
+            # drawn in chunks (the same seeded sequence as one draw): memory does not grow with samples
+            chunk = lows + (highs - lows) * rng.random((min(1000, samples - i), k))
+            for row in chunk.tolist():
+                if budget_s is not None and i >= MIN_SAMPLES and time.perf_counter() - t0 > budget_s:
+                    spent_on = f"time budget {budget_s:g} s"
+                    break
+                try:
+                    o = probe(tuple(row))
+                except _Spent as spent:
+                    spent_on = f"the spread's budget: {spent}"
+                    break
+                i += 1
+                if o.error is not None:
+                    bad_count += 1
+                    mc_bad[:] = mc_bad or [o.error]
+                    continue
+                for n in names:
+                    v = _number(o.outputs.get(n))
+                    if v is not None:
+                        ys[n].append(v)
+        stopped_at = i  # the first i samples of the seeded sequence: still reproducible
         for n in names:
             arr = np.array(ys[n])
-            if len(arr) < 2:
-                continue
+            if len(arr) < 2 or (spent_on and stopped_at < MIN_SAMPLES):
+                continue  # too few samples to stand for the spread: first-order is shown instead
             mean = float(arr.mean())
             var = float(arr.var(ddof=1))
             m4 = float(((arr - mean) ** 4).mean())
@@ -400,6 +491,9 @@ def spread(
         if n in optimised:
             lo, hi = min(lo, optimised[n][0]), max(hi, optimised[n][1])
             how = f"{corner_note} and a bounded optimiser (not monotone in {', '.join(bends[n])})"
+        elif n in cut_short:  # every point the stopped searches tried (all lie in the box)
+            lo, hi = _extremes(seen, n)
+            how = f"{corner_note} and an optimiser stopped at the budget (not monotone in {', '.join(bends[n])})"
         total = sum(sigma2[n].values())
         shares = {name: (v / total if total > 0 else 0.0) for name, v in sigma2[n].items()}
         main = max(shares, key=shares.get) if total > 0 else None
@@ -430,11 +524,17 @@ def spread(
             )
     if mc_bad:
         notes.append(
-            f"{len(mc_bad)} of {stopped_at} Monte Carlo samples could not be solved "
+            f"{bad_count} of {stopped_at} Monte Carlo samples could not be solved "
             f"(left out), e.g. {mc_bad[0]}"
         )
-    if stopped_at < samples:
-        notes.append(f"Monte Carlo stopped at {stopped_at} of {samples} samples (time budget {budget_s:g} s)")
+    if need_mc and stopped_at < samples:
+        shown = "; σ is first-order" if stopped_at < MIN_SAMPLES and spent_on.startswith("the") else ""
+        notes.append(f"Monte Carlo stopped at {stopped_at} of {samples} samples ({spent_on}){shown}")
+    if cut_short:
+        notes.append(
+            f"worst case of {', '.join(cut_short)} is over the points tried: the optimiser stopped at "
+            f"half the spread's budget ({why}); fewer tolerances give a full search"
+        )
     return Spread(
         list(tolerances), result, cost, notes, stopped_at if need_mc else 0, seed if need_mc else None
     )

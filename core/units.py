@@ -141,7 +141,9 @@ def parse(text: str | float | int, unit: str, kind: str, field: str) -> float:
     else:
         s = normalise(text, field, kind)
         if _NUMBER.match(s):
-            value = float(s) * factor(unit, kind)
+            value = _literal(s, s, field) * factor(unit, kind)
+            if value == 0 and float(s) != 0:  # a tiny number in a unit smaller than SI's
+                raise InputError(field, f"{shown(s)} {_UNDERFLOW}")
         else:
             q = _evaluate(s, field, kind)
             if isinstance(q, float):  # plain numbers only: in the display unit, like a bare number
@@ -150,6 +152,18 @@ def parse(text: str | float | int, unit: str, kind: str, field: str) -> float:
                 value = _to_si(q, s, field, kind)
     if not math.isfinite(value):
         raise InputError(field, f"{shown(text)} is not a finite number")
+    return value
+
+
+_UNDERFLOW = "is too small to hold (it would read as 0); enter 0, or a size above 1e-300"
+
+
+def _literal(number: str, typed: str, field: str) -> float:
+    """float(number), or an InputError when a number with a non-zero digit would read as 0
+    (5e-400: below the smallest float)."""
+    value = float(number)
+    if value == 0 and re.search(r"[1-9]", number.split("e")[0].split("E")[0]):
+        raise InputError(field, f"{shown(typed)} {_UNDERFLOW}")
     return value
 
 
@@ -172,6 +186,7 @@ _ALLOWED_MARKS = set(" .+-*/()^%_°")
 # and a unit
 _TWO_NUMBERS = re.compile(r"[0-9.]\s+(?!1\s*/\s*[^\W\d])[0-9.]")
 _UNDERSCORED_NUMBER = re.compile(r"[0-9]_|_[0-9]")
+_TWO_SIGNS = re.compile(r"[-+]\s*[-+]")  # "--5", "+ -5"; "-(-5)" is written out and stays
 
 
 def normalise(text: object, field: str, kind: str = "dimensionless") -> str:
@@ -208,6 +223,17 @@ def normalise(text: object, field: str, kind: str = "dimensionless") -> str:
         )
     if _UNDERSCORED_NUMBER.search(s):
         raise InputError(field, f"{shown(s)}: write numbers without '_' (1000, not 1_000)")
+    signs = _TWO_SIGNS.search(s)
+    if signs:  # "--5" read as +5: a doubled sign reverses what was meant as often as not
+        raise InputError(
+            field, f"{shown(s)} has two signs in a row ({signs.group()!r}); write one sign (-5, not --5)"
+        )
+    for m in re.finditer("%", s):
+        before = s[: m.start()].rstrip()
+        if before.endswith("%"):  # "50 %%" read as 0.005
+            raise InputError(field, f"{shown(s)} has % twice; write it once (50 %)")
+        if not before or before[-1] not in "0123456789.)":  # "%" alone read as 1 %
+            raise InputError(field, f"{shown(s)}: % needs a number before it (50 %)")
     return s
 
 
@@ -279,6 +305,7 @@ def _evaluate(s: str, field: str, kind: str):
     collecting = _collector_time()
     deadline = time.thread_time() - collecting.spent() + PARSE_BUDGET_S
     typed = shown(s)
+    s_typed = s
 
     def fail(why: str):
         raise InputError(field, f"{typed} {why}")
@@ -296,10 +323,15 @@ def _evaluate(s: str, field: str, kind: str):
             fail("is not a finite number")
         return x
 
+    def kept(x, *operands):  # a product or quotient of non-zero numbers that rounds to 0
+        if magnitude(x) == 0 and all(magnitude(o) != 0 for o in operands):
+            fail(_UNDERFLOW)
+        return x
+
     def define(token):
         tick()
         if token.type == tokenize_number:
-            return checked(float(token.string))
+            return checked(_literal(token.string, s_typed, field))
         name = token.string
         if name.lower() in ("inf", "infinity", "nan"):
             fail("is not a finite number")
@@ -326,7 +358,7 @@ def _evaluate(s: str, field: str, kind: str):
         if b == 0 and exponent < 0:
             fail("divides by zero")
         try:
-            return checked(base**exponent)
+            return kept(checked(base**exponent), base)
         except (OverflowError, ZeroDivisionError):
             fail("is not a finite number")
 
@@ -334,11 +366,11 @@ def _evaluate(s: str, field: str, kind: str):
         tick()
         if magnitude(b) == 0:
             fail("divides by zero")
-        return checked(a / b)
+        return kept(checked(a / b), a)
 
     def multiply(a, b):
         tick()
-        return checked(a * b)
+        return kept(checked(a * b), a, b)
 
     def add(sign):
         def op(a, b):
@@ -379,6 +411,8 @@ def _to_si(q, s: str, field: str, kind: str) -> float:
     target = SI_UNITS[kind] or "dimensionless"
     try:
         value = float(q.to(target).magnitude)
+        if value == 0 and q.magnitude != 0:  # 1e-300 nm: a size no float holds in metres
+            raise InputError(field, f"{shown(s)} {_UNDERFLOW}")
     except pint.errors.DimensionalityError:
         raise InputError(
             field, f"{shown(s)} is not {_a(kind)} (expected units like {example_unit(kind)})"

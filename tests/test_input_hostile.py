@@ -154,6 +154,45 @@ def test_entries_that_were_misread_are_refused_with_a_hint(entry, words):
 
 
 @pytest.mark.parametrize(
+    "call,entry,words",
+    [
+        (mm, "5e-400 m", ("too small", "read as 0")),
+        (mm, "5e-400", ("too small",)),
+        (mm, "1e-200*1e-200 m", ("too small",)),
+        (mm, "1e-320 m/1e10", ("too small",)),
+        (mm, "--5", ("two signs", "-5")),
+        (mm, "- -5 in", ("two signs",)),
+        (mm, "+ -5", ("two signs",)),
+        (mm, "3 - -2", ("two signs",)),
+        (percent, "50 %%", ("% twice",)),
+        (percent, "50 % %", ("% twice",)),
+        (percent, "%", ("number before it",)),
+        (percent, " % ", ("number before it",)),
+    ],
+)
+def test_entries_read_silently_wrong_are_refused_with_a_hint(call, entry, words):
+    """`5e-400 m` read as 0 (while 1e-16 m is refused), `--5` as +5 (a doubled sign reversed an
+    elevator's move), `50 %%` as 0.005 and `%` alone as 1 % (issue 34)."""
+    refused(call, entry, *words)
+
+
+@pytest.mark.parametrize(
+    "call,entry,si",
+    [
+        (mm, "-(-5)", 0.005),  # a sign written out with its parentheses is not a slip
+        (mm, "0e-400", 0.0),
+        (mm, "-5", -0.005),
+        (mm, "1e-5 m", 1e-5),
+        (percent, "50 %", 0.5),
+        (percent, "(5+5) %", 0.1),
+        (percent, "5.%", 0.05),
+    ],
+)
+def test_near_misses_of_the_refused_forms_still_read(call, entry, si):
+    assert call(entry) == pytest.approx(si, rel=1e-12)
+
+
+@pytest.mark.parametrize(
     "entry,si",
     [
         ("６ ㎜", 0.006),
@@ -357,7 +396,7 @@ def spellings(f, x):
         f"{t}+0",
         f"{t}*1",
         f"1*{t}",
-        f"+{t}",
+        f"+({t})" if t.startswith("-") else f"+{t}",  # "+-1.0" is two signs in a row: refused
         f"{t}/1",
         f"0.5*{t}*2",
         _fullwidth(t),

@@ -251,3 +251,14 @@ def test_bounds_are_in_the_display_unit_and_messages_quote_them_there():
     assert pct.parse("100") == 1.0 and pct.parse("1") == 0.01
     with pytest.raises(InputError, match=r"at most 100 %"):
         pct.parse("150")
+
+
+def test_retired_names_are_replaced_once_per_solve(monkeypatch):
+    """retire() ran three times per solve (solve, parse_inputs, choice_values) (issue 34 item 7)."""
+    from gearhead.core.model import solve
+    from gearhead.core.sim import effects
+
+    calls, real = [], effects.retire
+    monkeypatch.setattr(effects, "retire", lambda *a, **k: calls.append(1) or real(*a, **k))
+    solve("beam", {"section": "round_tube"})
+    assert len(calls) == 1

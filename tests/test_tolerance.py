@@ -83,6 +83,47 @@ def test_bad_tolerances_name_the_field(calc_id, entries, words):
     assert exc.value.field == next(iter(entries))
 
 
+@pytest.mark.parametrize(
+    "entry",
+    ["2 ft + 3 in ± 1", "3.5 in * 2 ± 0.1", "(3.5 in) ± 0.1", "3.5 in + 0 in ± 0.1", "7 in/1 ± 0.1"],
+)
+def test_a_bare_tolerance_after_an_expression_is_refused_with_a_hint(entry):
+    """'2 ft + 3 in ± 1' read the expression's tail "ft + 3 in" as the unit (± 15 in), and
+    '3.5 in * 2 ± 0.1' "in * 2" (± 0.2 in) (issue 34)."""
+    with pytest.raises(InputError) as exc:
+        tolerance.parse(get("beam"), {"outer_size": entry, "section": "hex"})
+    assert exc.value.field == "outer_size"
+    assert "give the tolerance its unit" in exc.value.message and "± " in exc.value.message
+
+
+@pytest.mark.parametrize(
+    "entry,nominal_in,half_in",
+    [
+        ("2 ft + 3 in ± 1 in", 27, 1),
+        ("3.5 in * 2 ± 0.1 in", 7, 0.1),
+        ("3.5 in * 2 ± 1 %", 7, 0.07),
+        ("3 * 2 ± 0.1", 6, 0.1),  # plain numbers: the field's unit (in), as a bare nominal
+        ("6 in ± 0.1", 6, 0.1),
+        ("0.5 ft ± 0.1", 6, 1.2),
+        ("6 in**2/in ± 0.1", 6, 0.1),
+    ],
+)
+def test_tolerances_with_their_unit_or_after_a_plain_nominal_still_read(entry, nominal_in, half_in):
+    _, _, (t,), _ = tolerance.parse(get("beam"), {"outer_size": entry, "section": "hex"})
+    assert t.nominal == pytest.approx(nominal_in * 0.0254, rel=1e-12)
+    assert t.high - t.nominal == pytest.approx(half_in * 0.0254, rel=1e-9)
+
+
+def test_a_tolerance_below_the_nominals_last_digit_is_a_note_not_a_crash(capsys):
+    """'25 lbf ± 1e-20 lbf' divided by the box's zero width: ZeroDivisionError, exit 70."""
+    from gearhead.tui.cli import main
+
+    _, _, tols, notes = tolerance.parse(get("lead_screw"), {"force": "25 lbf ± 1e-20 lbf"})
+    assert tols == [] and any("force" in n and "too small" in n for n in notes)
+    assert main(["solve", "lead_screw", "--set", "force=25 lbf ± 1e-20 lbf"]) == 0
+    assert "too small to change the value" in capsys.readouterr().out
+
+
 def test_preset_with_a_tolerance_loads():
     p = from_dict({"calculator": "flywheel", "inputs": {"ball_mass": "60 g ± 10 %"}})
     assert p.inputs["ball_mass"] == "60 g ± 10 %"

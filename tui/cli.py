@@ -13,6 +13,7 @@ EXIT_BAD_INPUT = 2
 EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for a writer whose reader left
 EXIT_INTERNAL = 70  # EX_SOFTWARE: a bug, not the user's input
 EXIT_INTERRUPTED = 130  # 128 + SIGINT, as a shell reports a command stopped by Ctrl+C
+EXIT_IO = 74  # EX_IOERR: the results could not be written (standard output closed or full)
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -69,20 +70,23 @@ def _parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     if args.command is None:
+        if not _terminal():  # with no terminal the app waited for keys that never come
+            _complain(
+                "the app needs a terminal (standard input and output); from a script use "
+                "`gearhead solve CALC ...` (see gearhead --help)"
+            )
+            return EXIT_BAD_INPUT
         from .app import run
 
         run()
         return 0
+    if sys.stdout is None:  # closed (`>&-`): the results would vanish and the exit code say 0
+        _complain("cannot write the results: standard output is closed")
+        return EXIT_IO
     try:
-        if args.command == "solve":
-            return _solve(args)
-        if args.command == "presets":
-            return _presets(args)
-        if args.command == "accuracy":
-            return _accuracy(args)
-        if args.command == "sweep":
-            return _sweep(args)
-        return _calculators(args)
+        code = _command(args)
+        sys.stdout.flush()  # a full disk (/dev/full) shows here, not after the exit code is set
+        return code
     except InputError as exc:
         _complain(str(exc) + _logged(exc, argv))
         return EXIT_BAD_INPUT
@@ -90,13 +94,58 @@ def main(argv: Sequence[str] | None = None) -> int:
         print("gearhead: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     except BrokenPipeError:  # the reader left (`gearhead sweep ... | head`): stop quietly, as cat does
-        import os
-
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error at exit
+        _silence_stdout()
         return EXIT_BROKEN_PIPE
+    except OSError as exc:
+        if not _stdout_failed(exc):
+            return _internal(exc, argv)
+        _silence_stdout()
+        _complain(f"cannot write the results ({exc.strerror or exc})")
+        return EXIT_IO
     except Exception as exc:  # a bug: one line for the user, the traceback in the log for us
-        _complain(f"internal error ({type(exc).__name__}: {exc})" + _logged(exc, argv))
-        return EXIT_INTERNAL
+        return _internal(exc, argv)
+
+
+def _internal(exc: Exception, argv) -> int:
+    _complain(f"internal error ({type(exc).__name__}: {exc})" + _logged(exc, argv))
+    return EXIT_INTERNAL
+
+
+def _command(args) -> int:
+    if args.command == "solve":
+        return _solve(args)
+    if args.command == "presets":
+        return _presets(args)
+    if args.command == "accuracy":
+        return _accuracy(args)
+    if args.command == "sweep":
+        return _sweep(args)
+    return _calculators(args)
+
+
+def _terminal() -> bool:
+    """Whether standard input and output are a terminal the app can run in."""
+    try:
+        return sys.stdin is not None and sys.stdout is not None and sys.stdin.isatty() and sys.stdout.isatty()
+    except (OSError, ValueError):  # a closed stream
+        return False
+
+
+def _stdout_failed(exc: OSError) -> bool:
+    """Whether an OSError came from writing the results (a full disk, a closed descriptor)."""
+    import errno
+
+    return exc.errno in (errno.ENOSPC, errno.EBADF, errno.EIO, errno.EDQUOT) and exc.filename is None
+
+
+def _silence_stdout() -> None:
+    """Point standard output at the null device, so the interpreter's flush at exit says nothing."""
+    import os
+
+    try:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass
 
 
 def _logged(exc: BaseException, argv) -> str:
@@ -121,7 +170,9 @@ def _raw_inputs(args, calc) -> dict:
     from gearhead.core import presets
 
     raw: dict = {}
-    if args.preset:
+    if args.preset is not None:
+        if not args.preset.strip():  # `--preset ""` (an unset shell variable) was ignored
+            raise InputError("--preset", "is empty; give a preset file")
         preset = presets.load(args.preset)
         if preset.calculator != calc.id:
             raise InputError(
@@ -160,18 +211,22 @@ def _solve(args) -> int:
     from gearhead.core.registry import get
 
     calc = get(args.calculator)
+    if args.preset_out is not None and not args.preset_out.strip():  # was ignored: no preset written
+        raise InputError("--preset-out", "is empty; give a file name, or - to print the preset")
     display_units = _display_units(args)
     raw = _raw_inputs(args, calc)
     spread = None
     if any(isinstance(v, str) and ("±" in v or "+-" in v or "+/-" in v) for v in raw.values()):
         from gearhead.core import tolerance  # only then: a plain solve starts as fast as before
 
-        solution, spread, _ = tolerance.solve(
+        solution, spread, notes = tolerance.solve(
             calc.id, raw, display_units, args.spread, args.samples, args.seed
         )
+        if spread is None:  # every tolerance dropped (zero, unused field): the notes say why
+            solution.warnings.extend(notes)
     else:
         solution = solve(calc.id, raw, display_units)  # a bad input exits 2 before any preset is written
-    if args.preset_out:
+    if args.preset_out is not None:
         return _preset_out(args, calc, raw, solution)
     if args.json:
         data = solution.as_json() if spread is None else tolerance.as_json(solution, spread)
@@ -296,7 +351,7 @@ def _preset_out(args, calc, raw: dict, solution) -> int:
 
 
 def _accuracy(args) -> int:
-    from gearhead.core.model import parse_inputs
+    from gearhead.core.model import last_resort, parse_inputs
     from gearhead.core.registry import calculators, get
     from gearhead.core.sim.scene import DEFAULT_ADVICE, REFERENCE_RTOL, ladder
 
@@ -307,15 +362,8 @@ def _accuracy(args) -> int:
     values, _ = parse_inputs(calc, _raw_inputs(args, calc))
     # what to change when a run needs more than one solve's budget: the calculator module's ADVICE
     advice = getattr(sys.modules.get(calc.simulate.__module__), "ADVICE", DEFAULT_ADVICE)
-    try:
+    with last_resort():  # the same guard as core.model.solve: a message, never a traceback
         rungs, reference = ladder(calc.simulate, values, advice=advice)
-    except InputError:
-        raise
-    except (ArithmeticError, ValueError, RuntimeError) as exc:
-        # the same last-resort guard as core.model.solve: a message, never a traceback
-        raise InputError(
-            "(result)", f"could not be computed from these inputs ({type(exc).__name__}: {exc})"
-        ) from exc
     if args.json:
         print(
             json.dumps(
@@ -356,10 +404,34 @@ def _presets(args) -> int:
         get(args.calculator)
     for p in presets.listing(args.calculator):
         kind = "built-in" if p.builtin else "user"
-        print(f"{p.calculator:<18} {kind:<8} {p.name:<28} {p.path}")
+        # a name or path may hold terminal escape sequences: shown escaped, never sent raw
+        print(f"{p.calculator:<18} {kind:<8} {_printable(p.name):<28} {_printable(str(p.path))}")
     for problem in presets.problems(args.calculator):
         _complain(str(problem), "skipped ")
     return 0
+
+
+def _bounds(f) -> dict:
+    """A numeric field's bounds for `calculators --json`: as declared (display unit) and in SI,
+    null where unbounded; nothing for a field that is not a number."""
+    if not f.kind.numeric:
+        return {}
+    lo, hi = f.bounds_si()
+    return {
+        "min": f.min,
+        "max": f.max,
+        "min_si": lo,
+        "max_si": hi,
+        "min_exclusive": f.min_exclusive,
+        "max_exclusive": f.max_exclusive,
+    }
+
+
+def _printable(text: str) -> str:
+    """`text` with control and other invisible characters escaped (ESC as \\x1b)."""
+    if text.isprintable():
+        return text
+    return "".join(ch if ch.isprintable() else ascii(ch)[1:-1] for ch in text)
 
 
 def _calculators(args) -> int:
@@ -383,6 +455,7 @@ def _calculators(args) -> int:
                         "choices": list(f.choices),
                         "modes": list(f.modes),
                         "help": f.help,
+                        **_bounds(f),
                     }
                     for f in calc.fields
                 ],
@@ -392,7 +465,7 @@ def _calculators(args) -> int:
             }
         )
     if args.json:
-        print(json.dumps(described))
+        print(json.dumps(described, allow_nan=False))
         return 0
     for d in described:
         print(f"{d['id']}: {d['title']}")

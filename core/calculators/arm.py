@@ -48,6 +48,7 @@ from ..model import Calculator, Field, Output
 from ..motors import lookup
 from ..sim import motion
 from ..sim.effects import Effect, Effects, Part
+from ..sim.motor_limits import braking_warning
 from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
 
 INERTIA_MODELS = ("uniform_bar", "entered")
@@ -312,6 +313,7 @@ def simulate(v, rtol: float):
     else:
         run = motion.run_move(setup(v), rtol, hold_q=0.0)
     run.values["moment_of_inertia"] = inertia(v)
+    braking_warning(v, run)
     if note:
         run.warnings.insert(0, note)
     return run

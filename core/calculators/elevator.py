@@ -48,6 +48,7 @@ from ..model import Calculator, Field, Output
 from ..motors import lookup
 from ..sim import motion
 from ..sim.effects import Effect, Effects, Part
+from ..sim.motor_limits import braking_warning
 from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
 
 RIGGINGS = ("continuous", "cascade")
@@ -275,6 +276,7 @@ def simulate(v, rtol: float):
         )
     else:
         run = motion.run_move(setup(v), rtol)
+    braking_warning(v, run)
     if note:
         run.warnings.insert(0, note)
     return run

@@ -780,8 +780,10 @@ def slip_phase_limited(
 
         rolling.terminal, rolling.direction = True, -1
         at_target.terminal, at_target.direction = True, +1
+        from ..sim.integrate import charged
+
         sol = solve_ivp(
-            rhs,
+            charged(rhs),  # within the solve's budget, as every integration
             (0.0, span),
             [1.0, 0.0],
             method="Radau",
@@ -936,16 +938,19 @@ def limited_run(
             span = min(span, t_end - t)
         if span <= 0:
             break
-        run = integrate(
-            lambda t_, y: [d.torque(y[0]) / I],
-            0.0,
-            span,
-            [w],
-            rtol=d.rtol,
-            atol=d.rtol * omega_to,
-            events=[Event("target", lambda t_, y, w_b=w_b: y[0] - w_b, +1)],
-            dense=dense,
-        )
+        try:
+            run = integrate(
+                lambda t_, y: [d.torque(y[0]) / I],
+                0.0,
+                span,
+                [w],
+                rtol=d.rtol,
+                atol=d.rtol * omega_to,
+                events=[Event("target", lambda t_, y, w_b=w_b: y[0] - w_b, +1)],
+                dense=dense,
+            )
+        except RuntimeError as exc:  # a phase of ~1e-10 s: steps below the integrator's floor
+            raise TooFast(f"a phase of {span:.3g} s: {exc}") from None
         d.nfev += run.nfev
         out.pieces.append((t, run))
         t, w = t + run.t[-1], run.y[-1][0]
@@ -1054,7 +1059,25 @@ def electrical_extremes(sc: Scene, target: float, v) -> dict[str, float]:
     }
 
 
+class TooFast(Exception):
+    """A spin-up phase too short for the integrator to resolve (a wheel of almost no inertia)."""
+
+
 def simulate(v, rtol: float) -> SimRun:
+    try:
+        return _simulate(v, rtol)
+    except TooFast as exc:  # was "(result): step size underflow", naming no field
+        name = "wheel_inertia" if v["mode"] == "moment_of_inertia" else "wheel_mass"
+        raise InputError(
+            name,
+            f"the wheels' inertia ({inertia_each(v) * v['wheel_count'] + rotor_reflected(v):.3g} kg·m², "
+            f"the motors' rotors included) is too small to simulate the spin-up with current limits "
+            f"({exc}); enter the wheel's real {'moment of inertia' if name == 'wheel_inertia' else 'mass'} "
+            f"(or the rotor_inertia)",
+        ) from None
+
+
+def _simulate(v, rtol: float) -> SimRun:
     sc, warnings = scene_from(v, rtol)
     target = v["target_speed"]
     if target >= sc.free_speed:

@@ -533,6 +533,11 @@ def release_and_flight(
     supplied = p.g * (p.M * s.cw_drop + p.m * s.arm_drop)
     if supplied > 0:
         values["efficiency"] = max(E_p, 0.0) / supplied  # (C2)
+        if values["efficiency"] > 1:  # the energy balance cannot give more: it is the solver's error
+            warnings.append(
+                f"The efficiency ({values['efficiency'] * 100:.4g} %) is above 100 %: that is the "
+                f"simulation's error at this accuracy (rtol {rtol:.0e}); choose a finer accuracy."
+            )
     n_fly = 0
     if z_r > 0:
         X, apex, fx, fz, n_fly = fly(v, p.g, z_r, speed, angle, rtol)

@@ -51,7 +51,7 @@ from __future__ import annotations
 import bisect
 import itertools
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cached_property, lru_cache
@@ -338,25 +338,6 @@ def rank_key(c: Combination, q: Query) -> tuple:
         middle,
         tuple((-s.ratio, s.family, s.teeth_in) for s in c.stages),
     )
-
-
-def chain_feasible(stages: Sequence[Stage], q: Query) -> tuple[int, ...] | None:
-    """The bore masks on each shaft after each stage, or None if the parts cannot be assembled."""
-    shaft = BIT[q.input_bore]
-    out_mask = BIT[q.output_bore] if q.output_bore != "any" else mask_of(q.shaft_bores)
-    masks = []
-    for i, s in enumerate(stages):
-        if not s.positions >> i & 1:
-            return None
-        if i > 0 and not q.same_shaft_bore:
-            shaft = mask_of(q.shaft_bores)  # any made shaft can be adapted to the next part
-        if not s.drive_mask & shaft:
-            return None
-        shaft = s.out_mask
-        masks.append(shaft)
-    if not shaft & out_mask:
-        return None
-    return tuple(masks)
 
 
 @dataclass

@@ -48,7 +48,6 @@ plain closures (our DP54 in core.sim.integrate runs on plain floats for speed).
 from __future__ import annotations
 
 import dataclasses
-import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -381,6 +380,3 @@ def retire(fields: Sequence[Field], inputs: Mapping[str, Any]) -> tuple[dict[str
 def nothing(values: Mapping[str, Any], ctx: Any) -> Part:
     """The build of an effect whose whole contribution is read elsewhere (e.g. a parameter)."""
     return Part()
-
-
-INF = math.inf

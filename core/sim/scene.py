@@ -27,16 +27,21 @@ ESTIMATE_FACTOR = 100.0  # the error estimate compares with a run at rtol / 100
 # The per-solve guard (core.sim.integrate.budget): the work one solve may do, error estimate
 # included. The built-in presets take < 2 000 evaluations; 400 000 is about 1 s of the integrator.
 SOLVE_NFEV = 400_000
-SOLVE_SECONDS = 30.0  # backstop for work the evaluation count does not see (root finders, numpy)
+# backstop for work the evaluation count does not see (root finders, numpy): CPU seconds of the
+# solving thread, so a busy machine does not refuse a solve that needs little
+SOLVE_SECONDS = 30.0
 DEFAULT_ADVICE = ("accuracy", "try accuracy=coarse, or inputs that make the simulated motion shorter")
 
 
 @contextmanager
 def solve_budget(
-    advice: tuple[str, str] = DEFAULT_ADVICE, max_nfev: int = SOLVE_NFEV, max_seconds: float = SOLVE_SECONDS
+    advice: tuple[str, str] = DEFAULT_ADVICE, max_nfev: int | None = None, max_seconds: float | None = None
 ) -> Iterator[None]:
-    """Run one solve within the budget; past it, an InputError naming the field to change and how
-    (never a hang). `advice` = (field, what to change), from the calculator: it knows what is long."""
+    """Run one solve within the budget (SOLVE_NFEV and SOLVE_SECONDS unless given, read when the
+    solve starts); past it, an InputError naming the field to change and how (never a hang).
+    `advice` = (field, what to change), from the calculator: it knows what is long."""
+    max_nfev = SOLVE_NFEV if max_nfev is None else max_nfev
+    max_seconds = SOLVE_SECONDS if max_seconds is None else max_seconds
     try:
         with budget(max_nfev, max_seconds) as b:
             yield
@@ -57,10 +62,6 @@ def accuracy_field(default: str = "default") -> Field:
         help="Solver tolerance. Each result shows its error estimate, wall time and "
         "right-hand-side evaluations; ctrl+r runs the accuracy-vs-time ladder.",
     )
-
-
-def effects_field(choices: tuple[str, ...], default: tuple[str, ...], help: str) -> Field:
-    return Field("effects", "Effects", choices=choices, flags=True, default=", ".join(default), help=help)
 
 
 STATS_OUTPUTS = (
