@@ -611,3 +611,26 @@ async def test_a_one_line_paste_into_the_path_box_is_inserted_once():
         path.post_message(events.Paste("/tmp/robot.toml"))
         await settle(pilot)
         assert path.value == "/tmp/robot.toml"
+
+
+async def test_the_key_bar_names_the_keys_that_act_now():
+    """The key bar draws the sheet's keys while the sheet has focus, ctrl+g only where a card
+    sends, and a click on a key runs it."""
+    from gearhead.tui.components.key_bar import KeyBar
+
+    app = GearheadApp(blink=False, initial="lead_screw")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        bar = app.query_one(KeyBar)
+        card(app).sheet.focus()
+        await settle(pilot)
+        drawn = bar.render_line(0).text
+        assert "Edit" in drawn and "Toggle" in drawn and "Send to" in drawn and "Sweep row" in drawn
+        app.show_calculator("beam")
+        await settle(pilot)
+        drawn = bar.render_line(0).text
+        assert "Send to" not in drawn and "Edit" not in drawn  # the strip has focus on a switch
+        start = drawn.index("^o")
+        await pilot.click(KeyBar, offset=(start + 1, 0))
+        await settle(pilot)
+        assert app.screen is not app.home  # the load dialog

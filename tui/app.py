@@ -12,10 +12,12 @@ from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.content import Content
 from textual.screen import Screen
-from textual.widgets import Footer, TabbedContent, TabPane, Tabs
+from textual.widgets import TabbedContent, TabPane, Tabs
 
 from gearhead.core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
 from gearhead.core.unit_systems import SYSTEM_LABELS, SYSTEMS
+
+from .components.key_bar import KeyBar
 
 if TYPE_CHECKING:
     from .components.calculator_tab import CalculatorTab
@@ -91,7 +93,7 @@ class GearheadApp(App):
                     ):
                         for i, cid in enumerate(ids, 1):
                             yield TabPane(Content(f"{i} {TITLES[cid]}"), id=f"tab-{cid}")
-        yield Footer()
+        yield KeyBar()
 
     @property
     def home(self) -> Screen:
@@ -153,7 +155,7 @@ class GearheadApp(App):
         if action in ("area", "sweep"):  # not under a dialog: the card would change behind it
             return on_home
         if action in ("send", "accuracy"):
-            tab = self._cards.get(self.current_calculator)
+            tab = self._cards.get(self._area_active.get(self.current_area, ""))
             if tab is None:  # not built yet (start-up): shown once the card is there
                 return False
             calc = tab.calculator
