@@ -52,7 +52,9 @@ _WPILIB = [
     ("Kraken X44", 4.11, 279, 2, 7758),
     ("Kraken X44 FOC", 5.01, 329, 2, 7368),
     ("Minion", 3.17, 211, 2, 7704),
-    ("NEO Vortex", 3.60, 211, 3.6, 6784),
+    # free current 3.615 A as WPILib's DCMotor (robotpy-wpimath 2026.2.2: DCMotor.neoVortex(1).freeCurrent;
+    # REFERENCE_DATA.md's table rounds it to 3.6), so every Vortex result matches WPILib's
+    ("NEO Vortex", 3.60, 211, 3.615, 6784),
 ]
 
 # ReCalc: ωf rpm, τs N*m, is A, if A, mass lb (electrical figures checked against Motor.ts at tervay/recalc

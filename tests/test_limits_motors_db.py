@@ -42,3 +42,12 @@ def test_minion_in_both_sources():
         (3.17, 211, 2, 7704 * RPM), rel=1e-12
     )
     assert r.stall_torque == pytest.approx(3.173, rel=1e-12)
+
+
+def test_neo_vortex_free_current_is_wpilibs():
+    """WPILib's DCMotor.getNeoVortex has 3.615 A free (REFERENCE_DATA.md's table shows 3.6): with
+    3.6 every Vortex result was off WPILib's by up to 7e-5 (kP/kD 3.7e-4, issue 28)."""
+    m, _ = motors.lookup("NEO Vortex", "wpilib")
+    assert (m.stall_torque, m.stall_current, m.free_current, m.free_speed) == pytest.approx(
+        (3.60, 211, 3.615, 6784 * RPM), rel=1e-12
+    )

@@ -1047,10 +1047,12 @@ def check_limits(sc: Scene, target: float) -> None:
 def electrical_extremes(sc: Scene, target: float, v) -> dict[str, float]:
     """Peak stator and supply current per motor and the lowest bus voltage over a spin-up from rest
     to the target: the stator current never rises with speed (peak at rest); the supply current's
-    peak is at rest, at the target or where a limit lets go (core.sim.motor_limits.release_emfs)."""
+    peak is at rest, at the target or at a branch point of the duty rule (core.sim.motor_limits
+    .branch_emfs, (E5)-(E7): with strong sag the duty jumps to full where (E2)'s roots merge, E6)."""
     d = sc.electric
     E_t = d.emf(target)
-    Es = [0.0, E_t] + [E for E in motor_limits.release_emfs(d.circuit, v, v["effects"]) if 0.0 <= E <= E_t]
+    branch = motor_limits.branch_emfs(d.circuit, v, v["effects"])
+    Es = [0.0] + [E for E in [E_t, *branch] if 0.0 < E <= E_t]
     peak_sup = max(u * I for u, I in map(d.elec, Es))
     return {
         "peak_stator_current": d.elec(0.0)[1],

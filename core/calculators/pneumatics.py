@@ -34,7 +34,7 @@ import math
 from bisect import bisect_right
 from functools import cache
 
-from ..constants import PSI
+from ..constants import LBF, PSI
 from ..errors import InputError
 from ..model import Calculator, Field, Output, Plot, Result
 from ..sim.effects import Effect, Effects, Part, Slot
@@ -485,12 +485,16 @@ def firing_times(gs: list[dict], T: float) -> list[tuple[float, dict]]:
     return times
 
 
-def fire(P: float, g: dict, V: float, regulator: bool, absolute: bool) -> float:
+def fire(P: float, g: dict, V: float, regulator: bool, absolute: bool, chambers: list | None = None) -> float:
     """Storage pressure (gauge) after one actuation of group g: extend, then retract; (81), or (N2)
-    when `absolute`."""
+    when `absolute`. `chambers`, if given, gets (storage pressure before the stroke, the gauge pressure
+    the stroke's chamber ends at) for the push then the pull stroke: the force of a stroke is its
+    area times the latter, (82)/(83); it is the regulator's setting, or the storage pressure when
+    that is lower or there is no regulator ((N2) in the absolute model)                        (N4)"""
     for A, setting in ((g["A_push"], g["P_push"]), (g["A_pull"], g["P_pull"])):
         Vc = A * g["stroke"] * g["count"]
         regulated = regulator and setting < P
+        P_before = P
         if not absolute:
             P_cyl = setting if regulated else P
             P = P - P_cyl * Vc / V  # (81) into (79), gauge as in the seed
@@ -498,11 +502,37 @@ def fire(P: float, g: dict, V: float, regulator: bool, absolute: bool) -> float:
             P_abs = P + P_ATM
             if regulated and P_abs - (setting + P_ATM) * Vc / V >= setting + P_ATM:
                 P_abs -= (setting + P_ATM) * Vc / V
+                P_cyl = setting
             else:  # no regulator, or it opens fully: the chamber shares the tank's air
                 P_abs = P_abs * V / (V + Vc)
+                P_cyl = P_abs - P_ATM  # (N2): the chamber ends at the shared pressure
             P = P_abs - P_ATM
         P = max(P, 0.0)  # a tank cannot go below atmospheric: the stroke is incomplete
+        if chambers is not None:
+            chambers.append((P_before, max(P_cyl, 0.0)))
     return P
+
+
+def short_of_pressure(gs: list[dict], lows: dict[int, list]) -> list[str]:
+    """A warning per group that fired with a chamber below the push or pull pressure entered (N4):
+    the first such stroke, its time and the storage pressure then, and the lowest push and pull
+    forces over the match, at the chamber pressures actually reached ((82), (83) at them)."""
+    out = []
+    for g in gs:
+        low = lows.get(g["index"])
+        if low is None or low[2] is None:
+            continue
+        t, stroke, P_storage, P_cyl, setting = low[2]
+        push, pull = g["A_push"] * low[0] / LBF, g["A_pull"] * low[1] / LBF
+        out.append(
+            f"Cylinder group {g['index']} is short of air from t = {t:.4g} s: its {stroke} stroke there "
+            f"ends at {P_cyl / PSI:.4g} psi, below its {setting / PSI:.4g} psi working pressure (storage "
+            f"{P_storage / PSI:.4g} psi before the stroke). At the pressures available its lowest "
+            f"forces in the match are {push:.4g} lbf push and {pull:.4g} lbf pull; the push and pull "
+            f"forces shown are at the pressures entered ({g['A_push'] * g['P_push'] / LBF:.4g} and "
+            f"{g['A_pull'] * g['P_pull'] / LBF:.4g} lbf)."
+        )
+    return out
 
 
 def assemble(v):
@@ -532,6 +562,7 @@ def simulate(v, rtol: float) -> SimRun:
     h = None
     empty = False
     warnings = []
+    lows: dict[int, list] = {}  # group -> [lowest push chamber, lowest pull chamber, first short firing]
     schedule = firing_times(gs, T) + [(T, None)]
     if has_comp and len(schedule) > MAX_FIRINGS:
         # each firing restarts the integration (at least one step, ~15 evaluations charged to the
@@ -573,7 +604,13 @@ def simulate(v, rtol: float) -> SimRun:
         if g is None:
             break
         P_before = P
-        P = fire(P, g, V, regulator, absolute)
+        chambers: list[tuple[float, float]] = []
+        P = fire(P, g, V, regulator, absolute, chambers)
+        low = lows.setdefault(g["index"], [math.inf, math.inf, None])
+        for k, ((P_storage, P_cyl), setting) in enumerate(zip(chambers, (g["P_push"], g["P_pull"]))):
+            low[k] = min(low[k], P_cyl)
+            if low[2] is None and P_cyl < setting:  # (N4): the first stroke short of its pressure
+                low[2] = (tf, ("push", "pull")[k], P_storage, P_cyl, setting)
         if P == 0.0 and not empty:
             empty = True
             warnings.append(f"The tank empties at t = {tf:.3g} s: strokes after that are incomplete.")
@@ -595,6 +632,7 @@ def simulate(v, rtol: float) -> SimRun:
     for g in gs:
         values[f"push_force_{g['index']}"] = g["A_push"] * g["P_push"]  # (82)
         values[f"pull_force_{g['index']}"] = g["A_pull"] * g["P_pull"]  # (83)
+    warnings += short_of_pressure(gs, lows)
     if not has_comp:
         warnings.append("No compressor: pressure only falls; answered in closed form (no integration).")
     if gs and not regulator:

@@ -26,7 +26,8 @@ Electrical effects (all per motor, solved exactly at each evaluation, no lag):
 All derived again with sympy (tests/test_motion.py checks (E1)-(E3) against a direct solve).
 The stator current depends on speed only and never rises with speed, so its peak is at rest; the
 supply current rises while the stator limit holds and falls after, so its peak (and the bus
-minimum) is at a phase boundary, found in closed form. The motion is monotone toward the goal
+minimum) is at a branch point of the duty rule, each in closed form (core.sim.motor_limits (E5)-(E7):
+with strong sag the duty jumps to 1 where the roots of (E2) merge, (E6), and the peak is there). The motion is monotone toward the goal
 (checked before the run: the force at rest beats the load everywhere on the path), so friction
 is a constant against it. Energy drawn from the battery: ∫ V_b·N·u·I dt (the battery's EMF times
 its current; what the battery's own resistance burns is included).
@@ -46,7 +47,15 @@ from ..model import Field, Output, Plot
 from ..motors import Motor, motor_fields
 from .effects import Effect, Effects, Part, Slot
 from .integrate import Event, StiffRun, integrate, integrate_stiff
-from .motor_limits import SCALAR, _Array, bus_resistance_of, electrical, electrical_effects, release_emfs  # noqa: F401 (shared)
+from .motor_limits import (  # noqa: F401 (shared)
+    SCALAR,
+    _Array,
+    branch_emfs,
+    bus_resistance_of,
+    electrical,
+    electrical_effects,
+    release_emfs,
+)
 from .scene import SimRun
 
 T_MAX = 3600.0  # s: a move longer than an hour is not a mechanism, it is an error
@@ -334,13 +343,15 @@ def extremes(setup: Setup, w_max: float) -> dict[str, float]:
     """Peak stator and supply current per motor and the lowest bus voltage over speeds 0..w_max
     (every speed in between is visited: the motion starts at rest). The stator current never
     rises with speed (its largest magnitude is at rest, or at top speed when a load moving down
-    drives the motor past free speed and it brakes); the supply current peaks where the stator limit lets go (E = V_b −
-    I_st·(R + R_bus) toward full duty, or u = I_sup/I_st toward the supply limit)."""
+    drives the motor past free speed and it brakes); the supply current peaks at a branch point of
+    the duty rule (motor_limits.branch_emfs: where the stator limit lets go toward full duty or
+    the supply limit (E5), where with strong sag the duty jumps to full (E6), or (E7))."""
     m = setup.mech
     elec = electrical(m, setup.asm.slots["duty"])
     E_max = w_max * m.n / m.Kv
-    Es = [0.0, E_max] + release_emfs(m, setup.values, setup.asm.on)
-    Es = [E for E in Es if 0.0 <= E <= E_max]
+    if not (E_max >= 0 and math.isfinite(E_max)):  # never from a move that reached its goal
+        raise InputError("ratio", "the move's top speed is not a number at this ratio: change the ratio")
+    Es = [0.0] + [E for E in [E_max] + branch_emfs(m, setup.values, setup.asm.on) if 0.0 < E <= E_max]
     sup = []
     for E in Es:
         u, I = elec(E)
@@ -438,6 +449,41 @@ class _ClosedRun:
         return [p / d, w / v_ref, self.energy_of(t, p) / e_ref]
 
 
+SERIES_BELOW = 0.1  # x below which g(x) = x + e^{−x} − 1 is summed as its series (C4)
+
+
+def _g(x: float) -> float:
+    """x + e^{−x} − 1 (C2), as the series (C4) below SERIES_BELOW (20 terms: 0.1²⁰/20! ≪ 1e-16 of
+    x²/2), where the direct form loses the digits x²/2 has (relative error ~2e-16/x)."""
+    if x >= SERIES_BELOW:
+        return x + math.expm1(-x)
+    term, total = x * x / 2, 0.0
+    for k in range(3, 23):
+        total += term
+        term *= -x / k
+    return total
+
+
+def close_time(D: float, lambert) -> float:
+    """x = T/τ with g(x) = D (C2): from (C4) for D < 0.01 (W₀ near its branch point cancels there),
+    else from lambert(D) (C2); then Newton on g (convex and increasing: it converges from either
+    side, quadratically; 4 steps polish either start to rounding)."""
+    if D < 0.01:
+        s = math.sqrt(2 * D)
+        x = s * (1 + s / 6)  # (C4)
+    else:
+        x = lambert(D)
+    for _ in range(4):
+        slope = -math.expm1(-x)
+        if not slope > 0:
+            break
+        step = (_g(x) - D) / slope
+        x -= step
+        if abs(step) <= 1e-16 * x:
+            break
+    return x
+
+
 def closed_form(setup: Setup) -> Move | None:
     """The move in closed form when nothing in it needs integrating: a force independent of
     position (elevator: gravity, friction, counterbalance) and no current limit (the motor force
@@ -447,7 +493,10 @@ def closed_form(setup: Setup) -> Move | None:
         w = w_f·(1 − e^{−t/τ}),  p = w_f·(t − τ·(1 − e^{−t/τ}))                              (C1)
         p(T) = d ⇔ T/τ − 1 + e^{−T/τ} = D = d/(w_f·τ) ⇔ T/τ = D + 1 + W₀(−e^{−(D+1)})           (C2)
         energy = N·V_b·∫I dt = N·V_b·(V_b·t − n·p/Kv)/R_eff                                     (C3)
-    (C2) is polished by one Newton step on T/τ + expm1(−T/τ) − D (exact for tiny D, where W₀ cancels).
+    (C2) is polished by Newton steps on g(x) = x + expm1(−x) = D, x = T/τ (close_time). For small D
+    (a mechanism geared so high that it never nears its free speed) W₀ cancels to nothing and g
+    itself cancels (x ≈ √(2D)), so there x starts from the series and g is summed as one:
+        g(x) = Σ_{k≥2} (−x)^k/k! = D  ⇒  x = s + s²/6 + O(s³),  s = √(2D)                      (C4)
     None when the scene must be integrated."""
     if setup.varying or setup.asm.slots["duty"] is not None:
         return None
@@ -459,10 +508,17 @@ def closed_form(setup: Setup) -> Move | None:
     F_c = m.s * field_force(setup)(m.q0) - friction_of(setup)
     w_f = (m.battery_voltage + F_c * R_eff / fpa) * m.Kv / m.n
     tau = m.inertia * R_eff * m.Kv / (fpa * m.n)
-    D = m.distance / (w_f * tau)
-    u = D + 1 + float(lambertw(-math.exp(-(D + 1))).real)  # (C2)
-    u -= (u + math.expm1(-u) - D) / -math.expm1(-u)  # Newton on (C2)
+    D = m.distance / w_f / tau
+    u = close_time(D, lambda D: D + 1 + float(lambertw(-math.exp(-(D + 1))).real))  # (C2)
     T = u * tau
+    if not (T > 0 and math.isfinite(T) and math.isfinite(-w_f * math.expm1(-u))):
+        raise InputError("ratio", "the move is out of floating-point range at this ratio: change the ratio")
+    if T > T_MAX:  # as move(): an integrated move stops there
+        raise InputError(
+            "ratio",
+            f"the mechanism does not reach the goal within {T_MAX:.0f} s "
+            f"(it only just beats the load): raise the ratio or the motors",
+        )
     _, _, scales = build_rhs(setup)
     n_kv = m.n / m.Kv
 

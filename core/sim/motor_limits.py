@@ -22,6 +22,14 @@ Per motor, the supply current drawn from the bus, and the bus voltage (R_bus the
 The limits let go (u = 1 from there on as the motor speeds up) at the back-EMF
       E_free = min{E ≥ 0 : min(1, u_st(E), u_sup(E)) = 1},  speed ω = Kv·E_free          (E5)
   (the limits that are on), found by bisection (`full_duty_emf`: with strong sag no closed form covers every case).
+With sag, I(u) (E1) peaks at a duty below 1 when I_st·R_bus > V_b/2, and the two roots of (E2) merge
+where its discriminant V_b² − 4·I_st·R_bus·W vanishes (derived with sympy):
+      E_merge = V_b²/(4·I_st·R_bus) − R·I_st,  u_st(E_merge) = V_b/(2·I_st·R_bus)              (E6)
+  Past E_merge the current cannot reach the limit at any duty: when u_st(E_merge) < 1 the duty
+  jumps there from u_st to min(1, u_sup), the supply current u·I jumps up (to its peak) and the
+  bus voltage down. The supply current's extremes over a run lie at rest, at top speed or at a
+  branch point of the duty rule (branch_emfs): release_emfs, E6 (on both sides of the jump) and
+  the supply limit's release u_sup = 1, E = V_b − I_sup·(R + R_bus) (E3 at u = 1)          (E7)
 The context an effect is built with (`ctx`) needs R, battery_voltage, bus_resistance and xp (the
 math namespace): core.sim.motion.Mechanism, or `Circuit` here.
 """
@@ -244,6 +252,27 @@ def release_emfs(circuit: Any, values: Mapping[str, Any], on) -> list[float]:
             u = values["supply_current_limit"] / I_st
             if u <= 1:
                 Es.append(u * Vb - I_st * (R + u * u * Rb))
+    return Es
+
+
+MERGE_STEP = 1e-12  # relative: past E6 by this, (E2)'s discriminant is < 0 whatever its rounding
+
+
+def branch_emfs(circuit: Any, values: Mapping[str, Any], on) -> list[float]:
+    """Every back-EMF where the duty rule min(1, u_st, u_sup) changes branch: release_emfs, the
+    stator limit's merge point (E6) and, just past it, the jump's far side (MERGE_STEP: the duty
+    there is min(1, u_sup), evaluated to ~1e-12 of the jump's right-hand limit), and the supply
+    limit's release (E7). The supply current and bus voltage have their extremes at these points
+    (or at rest or top speed): between them both are monotone in E."""
+    Vb, R, Rb = circuit.battery_voltage, circuit.R, circuit.bus_resistance
+    Es = list(release_emfs(circuit, values, on))
+    if "stator_limit" in on and Rb > 0:
+        I_st = values["stator_current_limit"]
+        if I_st > 0:
+            E_merge = Vb * Vb / (4 * I_st * Rb) - R * I_st  # (E6)
+            Es += [E_merge, E_merge + MERGE_STEP * max(abs(E_merge), Vb)]
+    if "supply_limit" in on:
+        Es.append(Vb - values["supply_current_limit"] * (R + Rb))  # (E7)
     return Es
 
 
