@@ -38,10 +38,8 @@ def typing_field(calc_id: str) -> str:
     """The first quantity field whose default stays valid with its last digit deleted, so every
     keystroke of the benchmark (delete, retype) is a new valid value, never an error."""
     from gearhead.core.errors import InputError
-    from gearhead.core.model import solve
+    from gearhead.core.model import choice_values, solve
     from gearhead.core.registry import get
-
-    from gearhead.core.model import choice_values
 
     calc = get(calc_id)
     mode = calc.field("mode").default if any(f.name == "mode" for f in calc.fields) else None
