@@ -31,6 +31,7 @@ from gearhead.core.sim import scene
 EXAMPLES = int(os.environ.get("GEARHEAD_FUZZ_EXAMPLES", "12"))
 MEMORY_LIMIT_MB = 500
 
+
 def _numbers(f) -> list:
     """Values (SI; whole numbers for a whole-number field) at and near a numeric field's bounds."""
     lo, hi = f.bounds_si()
