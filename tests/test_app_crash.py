@@ -178,3 +178,29 @@ def test_an_exception_that_reaches_textual_is_one_line_and_exit_70(pane, tmp_pat
     assert lines[1] == f"EXIT={cli.EXIT_INTERNAL}"
     log = next((tmp_path / "state").rglob("gearhead.log")).read_text()
     assert "render_line" in log and INJECTED in log
+
+
+async def test_a_bug_in_a_solve_thread_is_a_notice_and_a_logged_traceback(state_home, monkeypatch):
+    """The error estimate of a simulation runs in the solve thread after the results are shown:
+    before, an exception there ended the thread silently (the row kept its '…', nothing logged)."""
+    app = GearheadApp(blink=False, initial="pneumatics")
+    notices = []
+    notify = app.notify
+
+    def keep(message, *args, **kwargs):
+        notices.append((str(message), kwargs.get("severity")))
+        return notify(message, *args, **kwargs)
+
+    app.notify = keep
+    monkeypatch.setattr(CalculatorTab, "_run_estimate", _boom)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        app.current_tab.set_entries({})  # solved again: a warm simulation defers its estimate
+        await settle(pilot)
+        for _ in range(100):
+            if notices:
+                break
+            await pilot.pause(0.05)
+        assert [severity for _, severity in notices] == ["error"]
+        assert notices[0][0].startswith(f"internal error (TypeError: {INJECTED}) (traceback in ")
+    assert "_solve_in_thread" in next(state_home.rglob("gearhead.log")).read_text()

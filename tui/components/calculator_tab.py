@@ -316,6 +316,15 @@ class CalculatorTab(Widget):
                     )
         except RuntimeError:  # the app closed while this solve ran
             pass
+        except Exception as exc:  # a bug in the error estimate: logged and said, as a handler's
+            from ..guard import report
+
+            try:
+                self.app.call_from_thread(report, self, exc, "CalculatorTab._solve_in_thread")
+            except RuntimeError:  # the app closed meanwhile: the log alone
+                from ..bug_log import record
+
+                record(exc, "gearhead (the app) CalculatorTab._solve_in_thread")
         finally:
             self._estimating.discard(get_ident())
 
