@@ -184,7 +184,6 @@ class GearheadApp(App):
     def current_tab(self) -> CalculatorTab:
         return self._cards[self.current_calculator]
 
-    @guarded
     def show_calculator(self, calc_id: str) -> None:
         """Switch to a calculator's card and put focus on its area's tab strip (a digit then
         picks another), in one focus change: the strip is focused as the panes switch, so no
@@ -240,7 +239,6 @@ class GearheadApp(App):
                 event.stop()
                 self.action_area(list(AREAS)[n - 1])
 
-    @guarded
     def set_unit_system(self, system: str, remember: bool = True) -> None:
         """The units preference for every card (each built card solves and redraws), kept in the
         user's config.toml."""
@@ -422,6 +420,7 @@ class GearheadApp(App):
         )
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
+        # each command's callback is guarded (the actions by their decorator, the lambdas here)
         yield from super().get_system_commands(screen)
         yield SystemCommand(
             "Save preset", "Save the current tab's inputs as a TOML preset", self.action_save_preset
@@ -439,7 +438,7 @@ class GearheadApp(App):
             yield SystemCommand(
                 f"Units: {SYSTEM_LABELS[system]}",
                 "Show every result in these units (remembered)",
-                lambda s=system: self.set_unit_system(s),
+                guard(self, lambda s=system: self.set_unit_system(s)),
             )
         yield SystemCommand(
             "Accuracy vs time", "Run the current simulation at every accuracy level", self.action_accuracy
@@ -449,7 +448,7 @@ class GearheadApp(App):
         )
         for calc in calculators().values():
             yield SystemCommand(
-                f"Open {calc.title}", calc.summary, lambda cid=calc.id: self.show_calculator(cid)
+                f"Open {calc.title}", calc.summary, guard(self, lambda cid=calc.id: self.show_calculator(cid))
             )
             if calc.exports:
                 targets = ", ".join(calculators()[t].title for t in calc.exports if t in calculators())
