@@ -204,3 +204,14 @@ async def test_a_bug_in_a_solve_thread_is_a_notice_and_a_logged_traceback(state_
         assert [severity for _, severity in notices] == ["error"]
         assert notices[0][0].startswith(f"internal error (TypeError: {INJECTED}) (traceback in ")
     assert "_solve_in_thread" in next(state_home.rglob("gearhead.log")).read_text()
+
+
+def test_a_bug_before_the_app_starts_is_the_same_one_line(state_home, monkeypatch, capsys):
+    """`gearhead` with no arguments, failing before the app is built (reading its settings):
+    before, a Python traceback."""
+    monkeypatch.setattr(cli, "_terminal", lambda: True)
+    monkeypatch.setattr("gearhead.tui.settings.load", _boom)
+    assert cli.main([]) == cli.EXIT_INTERNAL
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"gearhead: internal error (TypeError: {INJECTED})")
+    assert INJECTED in next(state_home.rglob("gearhead.log")).read_text()
