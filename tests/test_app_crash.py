@@ -201,8 +201,9 @@ async def test_a_bug_in_a_solve_thread_is_a_notice_and_a_logged_traceback(state_
             if notices:
                 break
             await pilot.pause(0.05)
-        assert [severity for _, severity in notices] == ["error"]
-        assert notices[0][0].startswith(f"internal error (TypeError: {INJECTED}) (traceback in ")
+        # one per solve whose estimate was deferred (the first too, if an earlier test warmed it)
+        assert notices and all(severity == "error" for _, severity in notices)
+        assert all(m.startswith(f"internal error (TypeError: {INJECTED}) (traceback in ") for m, _ in notices)
     assert "_solve_in_thread" in next(state_home.rglob("gearhead.log")).read_text()
 
 
