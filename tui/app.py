@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import sys
 from collections.abc import Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -18,6 +19,7 @@ from gearhead.core.registry import AREAS, ORDER, TITLES, area_of, calculators, g
 from gearhead.core.unit_systems import SYSTEM_LABELS, SYSTEMS
 
 from .components.key_bar import KeyBar
+from .guard import guard, guarded
 
 if TYPE_CHECKING:
     from .components.calculator_tab import CalculatorTab
@@ -100,6 +102,7 @@ class GearheadApp(App):
         """The screen with the strips and cards (a dialog or the palette may be on top of it)."""
         return self.screen_stack[0]
 
+    @guarded
     async def on_ready(self) -> None:
         self._started = True
         await self.card(self.current_calculator)
@@ -127,18 +130,22 @@ class GearheadApp(App):
 
     _quitting = False  # ctrl+q taken: no card is mounted meanwhile, no other key acts
 
+    @guarded
     async def action_quit(self) -> None:
         """Quit once the cards being mounted are: a quit pruned a pane a card was mounting into
         (F2 then ctrl+q in one burst: a MountError on the way out)."""
         self._quitting = True
-        for mount in list(self._mounting.values()):
-            await mount
-        self.exit()
+        try:
+            for mount in list(self._mounting.values()):
+                await mount
+        finally:  # a failed mount is logged (guarded), and the app quits all the same
+            self.exit()
 
     def card_ready(self, calc_id: str) -> bool:
         """The calculator's card is on its pane, its sheet and results composed."""
         return calc_id in self._cards and calc_id not in self._mounting
 
+    @guarded
     async def on_tabbed_content_tab_activated(self, event: TabbedContent.TabActivated) -> None:
         strip_id = event.tabbed_content.id or ""
         if strip_id.startswith("calcs-"):
@@ -190,6 +197,7 @@ class GearheadApp(App):
         self.home.query_one("#areas", TabbedContent).active = f"area-{area}"
         self.home.set_focus(strip.query_one(Tabs))
 
+    @guarded
     async def action_focus_next(self) -> None:
         """Tab on a calculator strip goes into the card it shows (its sheet). Textual's focus
         chain, taken while a card switches (F5 2 Tab in a burst), reached the card being left and
@@ -202,6 +210,7 @@ class GearheadApp(App):
             return
         super().action_focus_next()
 
+    @guarded
     def action_area(self, area: str) -> None:
         """F1-F5: show an area at the calculator last used there; its strip takes focus, so a
         digit then picks a calculator (two keys to any calculator)."""
@@ -209,6 +218,7 @@ class GearheadApp(App):
 
     DIGITS = "123456789"  # ASCII only: '²' or '①' pass str.isdigit() and int() refuses them
 
+    @guarded
     def on_key(self, event: events.Key) -> None:
         """A digit on a focused tab strip picks its n-th tab (the sheet never sees it: a strip is
         focused, not the sheet). The pick is made here, at once (show_calculator), not by the
@@ -251,6 +261,7 @@ class GearheadApp(App):
                 )
 
     # ---- actions ------------------------------------------------------------------------
+    @guarded
     async def action_save_preset(self) -> None:
         tab = await self.card(self.current_calculator)  # a key on a card still being built waits for it
 
@@ -265,9 +276,10 @@ class GearheadApp(App):
             SavePresetScreen(
                 tab.calculator.id, tab.current_inputs(), self.blink, name=name, description=description
             ),
-            saved,
+            guard(self, saved),
         )
 
+    @guarded
     async def action_load_preset(self) -> None:
         tab = await self.card(self.current_calculator)  # a key on a card still being built waits for it
 
@@ -289,8 +301,9 @@ class GearheadApp(App):
 
         from .components.preset_screens import LoadPresetScreen
 
-        self.push_screen(LoadPresetScreen(tab.calculator.id, self.blink), loaded)
+        self.push_screen(LoadPresetScreen(tab.calculator.id, self.blink), guard(self, loaded))
 
+    @guarded
     async def action_copy_preset(self) -> None:
         """ctrl+y: the tab as preset TOML on the clipboard (OSC 52), to paste in a chat or file."""
         from gearhead.core.export import preset_toml
@@ -305,6 +318,7 @@ class GearheadApp(App):
             markup=False,
         )
 
+    @guarded
     async def action_export(self) -> None:
         tab = await self.card(self.current_calculator)  # a key on a card still being built waits for it
         if tab.solution is None:
@@ -318,8 +332,9 @@ class GearheadApp(App):
             if message:
                 self.notify(message, title="Exported", markup=False)
 
-        self.push_screen(ExportScreen(tab.calculator, tab.solution, plot, self.blink), done)
+        self.push_screen(ExportScreen(tab.calculator, tab.solution, plot, self.blink), guard(self, done))
 
+    @guarded
     async def action_send(self) -> None:
         """Send this tab's results into the calculator it feeds (e.g. lead screw → gear ratio)."""
         tab = await self.card(self.current_calculator)  # a key on a card still being built waits for it
@@ -375,6 +390,7 @@ class GearheadApp(App):
             markup=False,
         )
 
+    @guarded
     async def action_accuracy(self) -> None:
         """Run the current simulation at every accuracy level (the accuracy-vs-time view)."""
         tab = await self.card(self.current_calculator)  # a key on a card still being built waits for it
@@ -391,6 +407,7 @@ class GearheadApp(App):
 
         self.push_screen(AccuracyScreen(tab.calculator, values, self.hide_timings))
 
+    @guarded
     async def action_sweep(self) -> None:
         """The sweep view over the focused input (or the first numeric one): core.sweep in a thread."""
         from .components.sweep_screen import SweepScreen
@@ -404,6 +421,7 @@ class GearheadApp(App):
         )
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
+        # each command's callback is guarded (the actions by their decorator, the lambdas here)
         yield from super().get_system_commands(screen)
         yield SystemCommand(
             "Save preset", "Save the current tab's inputs as a TOML preset", self.action_save_preset
@@ -421,7 +439,7 @@ class GearheadApp(App):
             yield SystemCommand(
                 f"Units: {SYSTEM_LABELS[system]}",
                 "Show every result in these units (remembered)",
-                lambda s=system: self.set_unit_system(s),
+                guard(self, lambda s=system: self.set_unit_system(s)),
             )
         yield SystemCommand(
             "Accuracy vs time", "Run the current simulation at every accuracy level", self.action_accuracy
@@ -431,7 +449,7 @@ class GearheadApp(App):
         )
         for calc in calculators().values():
             yield SystemCommand(
-                f"Open {calc.title}", calc.summary, lambda cid=calc.id: self.show_calculator(cid)
+                f"Open {calc.title}", calc.summary, guard(self, lambda cid=calc.id: self.show_calculator(cid))
             )
             if calc.exports:
                 targets = ", ".join(calculators()[t].title for t in calc.exports if t in calculators())
@@ -441,13 +459,32 @@ class GearheadApp(App):
                     lambda cid=calc.id: self._send_from(cid),
                 )
 
+    @guarded
     async def _send_from(self, calc_id: str) -> None:
         self.show_calculator(calc_id)
         await self.card(calc_id)
         await self.action_send()
 
 
-def run() -> None:
+def run() -> str | None:
+    """Run the app until it quits: None, or Textual's report of an exception that stopped it.
+
+    Our handlers catch their own exceptions (guard.py); one that still reaches Textual ends the
+    app, and Textual prints its traceback on sys.stderr once the terminal is given back. Textual
+    has no public hook to print something else (its `_handle_exception` and `error_console` are
+    private), so sys.stderr is a buffer while the app runs (the screen itself is drawn on
+    sys.__stderr__): cli.main logs the report and says one line. A clean exit passes on what the
+    buffer holds."""
+    import contextlib
+    import io
+
     from . import settings
 
-    GearheadApp(settings_file=settings.load()).run()
+    app = GearheadApp(settings_file=settings.load())
+    report = io.StringIO()
+    with contextlib.redirect_stderr(report):
+        app.run()
+    if not app.return_code:  # 0, or None: never started (no failure either)
+        sys.stderr.write(report.getvalue())
+        return None
+    return report.getvalue() or f"the app stopped with code {app.return_code} and no report"

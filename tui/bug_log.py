@@ -53,3 +53,14 @@ def record(exc: BaseException, context: str) -> Path | None:
     for handler in log.handlers:
         handler.flush()
     return log_file()
+
+
+def record_text(text: str, context: str) -> Path | None:
+    """Append a traceback already written out (Textual's, of an exception that stopped the app)."""
+    log = _logger()
+    if log is None:
+        return None
+    log.error("%s\n%s", context, text.rstrip())
+    for handler in log.handlers:
+        handler.flush()
+    return log_file()

@@ -78,8 +78,13 @@ def main(argv: Sequence[str] | None = None) -> int:
             return EXIT_BAD_INPUT
         from .app import run
 
-        run()
-        return 0
+        try:
+            failure = run()
+        except Exception as exc:  # before the app or after it (its settings, the terminal)
+            return _internal(exc, argv)
+        if failure is None:
+            return 0
+        return _app_failure(failure)
     if sys.stdout is None:  # closed (`>&-`): the results would vanish and the exit code say 0
         _complain("cannot write the results: standard output is closed")
         return EXIT_IO
@@ -109,6 +114,29 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _internal(exc: Exception, argv) -> int:
     _complain(f"internal error ({type(exc).__name__}: {exc})" + _logged(exc, argv))
     return EXIT_INTERNAL
+
+
+def _app_failure(report: str) -> int:
+    """The app stopped on an exception Textual caught (app.run): its report to the log, one line
+    to the user (the exception's own line, the last of Textual's traceback)."""
+    import re
+
+    from . import bug_log
+
+    text = re.sub(r"\x1b\[[0-9;?]*[A-Za-z]", "", report)  # Textual's colours
+    path = bug_log.record_text(text, "gearhead (the app)")
+    _complain(f"internal error ({_exception_line(text)})" + (f" (traceback in {path})" if path else ""))
+    return EXIT_INTERNAL
+
+
+def _exception_line(traceback: str) -> str:
+    """`TypeError: message` from a traceback as Rich draws it: the lines after its last frame box
+    (a long message wraps), without Textual's note on how many errors there were."""
+    lines = [line.strip() for line in traceback.splitlines()]
+    boxes = [n for n, line in enumerate(lines) if line.startswith("╰")]
+    tail = lines[boxes[-1] + 1 :] if boxes else lines
+    words = " ".join(line for line in tail if line and not line.startswith("NOTE:"))
+    return words[:300] or "the app stopped"
 
 
 def _command(args) -> int:

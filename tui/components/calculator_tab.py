@@ -23,6 +23,7 @@ from gearhead.core.errors import InputError
 from gearhead.core.model import Calculator, Field, Solution
 from gearhead.core.sim.scene import VOLATILE
 
+from ..guard import guard, guarded
 from .results import FRESH, PENDING, STALE, ResultRow, ResultsList
 from .sheet import Sheet
 from .unit_text import pretty_quantity, pretty_unit
@@ -40,7 +41,9 @@ def _entries_key(entries: dict[str, Any], display_units: dict[str, str], system:
 
 
 class CalculatorTab(Widget):
-    """The whole card for one calculator."""
+    """The whole card for one calculator. Its handlers and the callbacks the sheet, the results
+    list, timers and solve threads call are @guarded: a bug in one is a notification and a logged
+    traceback (guard.py), and the card keeps what was typed."""
 
     def __init__(
         self, calculator: Calculator, blink: bool = True, hide_timings: bool = False, **kwargs
@@ -123,6 +126,7 @@ class CalculatorTab(Widget):
                 self.status = Static("", classes="status")
                 yield self.status
 
+    @guarded
     def on_mount(self) -> None:
         self.glance = self.query_one(".glance", Static)
         self.help_line = self.query_one(".help-line", Static)
@@ -132,6 +136,7 @@ class CalculatorTab(Widget):
         self.solve()
 
     # ---- entries ------------------------------------------------------------------------
+    @guarded
     def _take_entry(self, name: str, value: Any) -> None:
         """The sheet changed an entry (a key, a toggle, a choice): solved at once."""
         if self.entries.get(name) == value:
@@ -180,6 +185,7 @@ class CalculatorTab(Widget):
         """What the user entered, as a preset stores it (whole numbers as TOML integers)."""
         return {f.name: f.kind.stored(f, self.entries[f.name]) for f in self.calculator.fields}
 
+    @guarded
     def _choose(self, field: Field) -> None:
         """A choice row's list (Enter or a click on it)."""
         from .choice_screen import ChoiceScreen
@@ -190,9 +196,12 @@ class CalculatorTab(Widget):
             if value is not None:
                 self._take_entry(field.name, value)
 
-        self.app.push_screen(ChoiceScreen(field.label, spec.options, self.entries.get(field.name)), chosen)
+        self.app.push_screen(
+            ChoiceScreen(field.label, spec.options, self.entries.get(field.name)), guard(self, chosen)
+        )
 
     # ---- the help line ------------------------------------------------------------------
+    @guarded
     def _explain_field(self, f: Field) -> None:
         line = Text(f.label + ": ", style="bold")
         line.append(f.help or "")
@@ -202,6 +211,7 @@ class CalculatorTab(Widget):
         if self._mounted:
             self.help_line.update(line)
 
+    @guarded
     def _explain_output(self, name: str) -> None:
         out = self.calculator.output(name)
         line = Text(out.label + (f" {out.equation}" if out.equation else "") + ": ", style="bold")
@@ -210,6 +220,7 @@ class CalculatorTab(Widget):
         self._append_spread(name, line)
         self.help_line.update(line)
 
+    @guarded
     def _cycle_unit(self, name: str) -> None:
         """Show the chosen result in the next common unit of its kind (mm → cm → m → in → ft …)."""
         from gearhead.core import units
@@ -305,6 +316,15 @@ class CalculatorTab(Widget):
                     )
         except RuntimeError:  # the app closed while this solve ran
             pass
+        except Exception as exc:  # a bug in the error estimate: logged and said, as a handler's
+            from ..guard import report
+
+            try:
+                self.app.call_from_thread(report, self, exc, "CalculatorTab._solve_in_thread")
+            except RuntimeError:  # the app closed meanwhile: the log alone
+                from ..bug_log import record
+
+                record(exc, "gearhead (the app) CalculatorTab._solve_in_thread")
         finally:
             self._estimating.discard(get_ident())
 
@@ -357,6 +377,7 @@ class CalculatorTab(Widget):
         self._solve_seconds = perf_counter() - started  # the whole solve (an optimiser's search too)
         return solution, error, pending
 
+    @guarded
     def _solve_done(self, solved, error: InputError | None, key: tuple) -> None:
         self._solving = False
         if not self._mounted or not self.is_attached:
@@ -369,6 +390,7 @@ class CalculatorTab(Widget):
             return
         self._show(solved, error, key)
 
+    @guarded
     def _mark_busy(self) -> None:
         if self._solving:
             self.status.update(Text("… solving", style="yellow"), layout=False)
@@ -530,6 +552,7 @@ class CalculatorTab(Widget):
             value, o.quantity, self.display_units.get(o.name) or self._preferred_units.get(o.name, o.unit)
         )
 
+    @guarded
     def _estimate_done(self, solution: Solution, value) -> None:
         if value is None or solution is not self.solution or not self._mounted:
             return  # a newer solve is (or will be) on screen
