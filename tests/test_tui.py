@@ -634,3 +634,22 @@ async def test_the_key_bar_names_the_keys_that_act_now():
         await pilot.click(KeyBar, offset=(start + 1, 0))
         await settle(pilot)
         assert app.screen is not app.home  # the load dialog
+
+
+async def test_a_choice_list_picks_by_the_words_typed():
+    """Enter on a choice row opens its list; "by l" (space included) picks "By linear speed"."""
+    from gearhead.tui.components.choice_screen import ChoiceScreen
+
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = card(app)
+        tab.sheet.focus()
+        tab.sheet.move_to_field("mode")
+        await pilot.press("enter")
+        await pilot.pause()
+        assert isinstance(app.screen, ChoiceScreen)
+        await pilot.press("b", "y", "space", "l", "enter")
+        await settle(pilot)
+        assert tab.entries["mode"] == "linear_speed"
+        assert "target_linear_speed" in [f.name for f in tab.sheet.shown_fields]

@@ -53,11 +53,14 @@ class ChoiceScreen(ModalScreen[str | None]):
         self.dismiss(None)
 
     def on_key(self, event: events.Key) -> None:
-        if not (event.is_printable and event.character) or event.character == " ":
+        if not (event.is_printable and event.character):
             return
         typed, when = self._typed
         now = monotonic()
-        typed = (typed if now - when < TYPE_AHEAD_S else "") + event.character.lower()
+        typed = typed if now - when < TYPE_AHEAD_S else ""
+        if event.character == " " and not typed:  # a space only within a search ("by l")
+            return
+        typed += event.character.lower()
         self._typed = (typed, now)
         options = self.query_one(OptionList)
         at = options.highlighted or 0
