@@ -19,9 +19,9 @@ from textual import events
 from textual.binding import Binding
 from textual.content import Content
 from textual.geometry import Region, Size
-from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
+from .line_view import LineView
 from .unit_text import fit_cells
 
 FRESH, STALE, PENDING = "fresh", "stale", "pending"
@@ -36,7 +36,7 @@ class ResultRow:
     spread: str = ""
 
 
-class ResultsList(ScrollView, can_focus=True):
+class ResultsList(LineView, can_focus=True):
     """The results of one card (module docstring)."""
 
     COMPONENT_CLASSES = {"results--header", "results--cursor", "results--equation", "results--dim"}
@@ -118,18 +118,9 @@ class ResultsList(ScrollView, can_focus=True):
         self._layout()
 
     # ---- drawing ------------------------------------------------------------------------
-    _base_style: Style | None = None  # the widget's own style, asked once per render_lines
-
-    def render_lines(self, crop: Region) -> list[Strip]:
-        self._base_style = self.rich_style  # (walks the DOM: once per render, not per line)
-        try:
-            return super().render_lines(crop)
-        finally:
-            self._base_style = None
-
     def render_line(self, y: int) -> Strip:
         width = self.size.width
-        base = self._base_style or self.rich_style
+        base = self.base_style
         index = y + self.scroll_offset.y
         if not (0 <= index < len(self._lines)):
             return Strip.blank(width, base)

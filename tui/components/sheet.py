@@ -36,13 +36,13 @@ from textual import events
 from textual.binding import Binding
 from textual.content import Content
 from textual.geometry import Region, Size
-from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
 from gearhead.core import units
 from gearhead.core.fields import Widget as FieldWidget
 from gearhead.core.model import Calculator, Field
 
+from .line_view import LineView
 from .unit_text import fit_cells, pretty_unit
 
 LABEL_CELLS = 32  # the label column; longer labels wrap by word
@@ -110,7 +110,7 @@ def flag_names(entry: Any) -> set[str]:
     return {x for x in str(entry).replace(",", " ").split() if x}
 
 
-class Sheet(ScrollView, can_focus=True):
+class Sheet(LineView, can_focus=True):
     """The form of one card (module docstring)."""
 
     COMPONENT_CLASSES = {
@@ -262,20 +262,10 @@ class Sheet(ScrollView, can_focus=True):
         cells = max(10, min(VALUE_CELLS, room - GAP - self._unit_cells))
         return cells if stop.spec.unit else max(cells, room)
 
-    _base_style: Style | None = None  # the widget's own style, asked once per render_lines
-
-    def render_lines(self, crop: Region) -> list[Strip]:
-        # rich_style walks the DOM up to the screen: asked per line it was most of a key's frame
-        self._base_style = self.rich_style
-        try:
-            return super().render_lines(crop)
-        finally:
-            self._base_style = None
-
     def render_line(self, y: int) -> Strip:
         width = self.size.width
         index = y + self.scroll_offset.y
-        base = self._base_style or self.rich_style
+        base = self.base_style
         if not (0 <= index < len(self.lines)):
             return Strip.blank(width, base)
         line = self.lines[index]
