@@ -30,21 +30,25 @@ def values(calc, **raw):
     return parse_inputs(get(calc), raw)[0]
 
 
-def neo():  # WPILib DCMotor.getNEO: 2.6 N·m, 105 A, 1.8 A, 5676 rpm at 12 V
+NEO_FREE_CURRENT = 1.8  # A at 12 V
+
+
+def neo():  # WPILib DCMotor.getNEO figures: 2.6 N·m, 105 A, 1.8 A, 5676 rpm at 12 V; Kt the seed's (7)
     R = 12 / 105
-    return R, 5676 * RPM / (12 - R * 1.8), 2.6 / 105
+    return R, 5676 * RPM / (12 - R * 1.8), 2.6 / (105 - 1.8)
 
 
 # --- closed forms --------------------------------------------------------------------------------
 
 
 def elevator_closed_form_time(G, m, r, d, F_load, N=2, V=12.0):
-    """m·ẇ = N·Kt·n·(V − n·w/Kv)/R − F_load  ⇒  w = w_f(1 − e^{−t/τ}),
+    """m·ẇ = N·Kt·n·((V − n·w/Kv)/R − i_f) − F_load  ⇒  w = w_f(1 − e^{−t/τ}),
     x = w_f(t − τ(1 − e^{−t/τ})); x = d ⇔ T = D + 1 + W0(−e^{−(D+1)}) with T = t/τ, D = d/(w_f·τ)."""
     R, Kv, Kt = neo()
     n = G / r
     tau = mp.mpf(m) * R * Kv / (N * Kt * n * n)
-    w_f = (V - F_load * R / (N * Kt * n)) * Kv / n
+    F = F_load + N * Kt * n * NEO_FREE_CURRENT * V / 12  # the motors' own loss (M3) on the load
+    w_f = (V - F * R / (N * Kt * n)) * Kv / n
     D = d / (w_f * tau)
     return float(tau * (D + 1 + mp.lambertw(-mp.exp(-(D + 1))).real))
 
@@ -87,16 +91,17 @@ def test_elevator_closed_form_equals_the_integrated_move(effects, travel):
 
 
 def test_stator_limit_constant_current_phase_then_exponential():
-    """No gravity, no sag: at the limit I_st the force is constant, a = N·Kt·n·I_st/m, until the
-    full-voltage current falls to I_st at E₁ = V − R·I_st; then the first-order approach."""
+    """No gravity, no sag: at the limit I_st the force is constant, a = N·Kt·n·(I_st − i_f)/m, until
+    the full-voltage current falls to I_st at E₁ = V − R·I_st; then the first-order approach to the
+    free speed (V − R·i_f)·Kv/n."""
     I_st, G, m, r = 30.0, 10.0, 15 * LB, 0.75 * INCH
     R, Kv, Kt = neo()
     n = G / r
-    a = 2 * Kt * n * I_st / m
+    a = 2 * Kt * n * (I_st - NEO_FREE_CURRENT) / m
     w1 = (12 - R * I_st) * Kv / n
     t1, x1 = w1 / a, w1 * w1 / (2 * a)
     tau = m * R * Kv / (2 * Kt * n * n)
-    w_f = 12 * Kv / n
+    w_f = (12 - R * NEO_FREE_CURRENT) * Kv / n
     for d in (0.5 * x1, 3 * x1 + 0.5):
         v = values("elevator", ratio=G, effects="stator_limit", stator_current_limit=I_st, travel=f"{d} m")
         got = elevator.simulate(v, 1e-11).values
@@ -119,13 +124,15 @@ def test_feedforward_gains_by_hand():
     assert out["kG"] == pytest.approx(m * G0 * R / (eta * 2 * Kt * n), rel=1e-12)
     # arm: one Kraken X60 (WPILib 7.09 N·m, 366 A, 2 A, 6000 rpm), kG at horizontal
     Rk = 12 / 366
-    Kvk, Ktk = 6000 * RPM / (12 - Rk * 2), 7.09 / 366
+    Kvk, Ktk = 6000 * RPM / (12 - Rk * 2), 7.09 / (366 - 2)
     ma, L, Ga = 8 * LB, 12 * INCH, 75.0
     o = arm.simulate(values("arm"), 1e-6).values
     assert o["kG"] == pytest.approx(ma * G0 * L * Rk / (Ktk * Ga), rel=1e-12)
     assert o["kV"] == pytest.approx(Ga / Kvk, rel=1e-12)
     assert o["kA"] == pytest.approx(4 / 3 * ma * L * L * Rk / (Ktk * Ga), rel=1e-12)
-    # counterbalance and friction: kG net of the spring, kS = friction over force per volt
+    assert o["kS"] == pytest.approx(Rk * 2, rel=1e-12)  # R·i_f: the motor's own loss
+    assert out["kS"] == pytest.approx(R * NEO_FREE_CURRENT, rel=1e-12)
+    # counterbalance and friction: kG net of the spring, kS = R·i_f + friction over force per volt
     o = arm.simulate(
         values(
             "arm", effects="gravity, counterbalance, friction", counterbalance_torque=3, friction_torque=0.5
@@ -133,7 +140,7 @@ def test_feedforward_gains_by_hand():
         1e-6,
     ).values
     assert o["kG"] == pytest.approx((ma * G0 * L - 3) * Rk / (Ktk * Ga), rel=1e-12)
-    assert o["kS"] == pytest.approx(0.5 * Rk / (Ktk * Ga), rel=1e-12)
+    assert o["kS"] == pytest.approx(Rk * 2 + 0.5 * Rk / (Ktk * Ga), rel=1e-12)
 
 
 # --- LQR against WPILib's own tests ----------------------------------------------------------------
@@ -186,7 +193,14 @@ def test_lqr_through_the_elevator_calculator():
         travel="0.2 m",
     )
     out = elevator.simulate(v, 1e-6).values
-    assert (out["kP"], out["kD"]) == pytest.approx((522.87006795347486, 38.239878385020411), abs=1e-6)
+    # the plant of WPILib's test, with the seed's Kt = τs/(Is − If) (M1) in place of WPILib's τs/Is
+    # (motion.lqr itself is checked against WPILib's numbers above)
+    R, Kv, _ = _775pro(2)
+    Kt = 0.71 / (134 - 0.7)
+    r, m = 0.0181864, 5.0
+    kV, kA = 1 / (r * Kv), R * r * m / Kt
+    assert out["kV"] == pytest.approx(kV, rel=1e-12) and out["kA"] == pytest.approx(kA, rel=1e-12)
+    assert (out["kP"], out["kD"]) == pytest.approx(motion.lqr(kV, kA, 0.02, 0.4, 12.0, 0.005, 0.0), rel=1e-12)
 
 
 # --- the algebraic loop ------------------------------------------------------------------------------
@@ -276,9 +290,19 @@ def test_neutral_settings_of_an_effect_change_nothing_and_real_ones_change_only_
             "supply_current_limit": 2000,
         },
     ).outputs
-    for k in ("time_to_goal", "max_speed", "energy", "kG", "kV", "kA", "kP", "kD", "peak_stator_current"):
+    for k in (
+        "time_to_goal",
+        "max_speed",
+        "energy",
+        "kS",
+        "kG",
+        "kV",
+        "kA",
+        "kP",
+        "kD",
+        "peak_stator_current",
+    ):
         assert neutral[k].value == pytest.approx(base[k].value, rel=1e-5, abs=1e-12), k
-    assert neutral["kS"].value == 0 and "kS" not in base
     sag = solve(cid, {"effects": "gravity, battery_sag", "battery_resistance": 0.02}).outputs
     n = solve(cid, {}).inputs["motor_count"].value
     assert sag["min_bus_voltage"].value == pytest.approx(
@@ -339,14 +363,15 @@ def test_arm_hard_cases_stay_finite_and_accurate(raw):
     _accurate("arm", raw)
 
 
-def test_limit_barely_above_the_hold_current():
-    hold = solve("elevator", {"effects": "gravity"}).outputs["hold_current"].value
+def test_limit_barely_above_the_current_to_move():
+    """Moving up takes the hold current plus the motors' own loss current i_f (1.8 A per NEO at 12 V)."""
+    move = solve("elevator", {"effects": "gravity"}).outputs["hold_current"].value + NEO_FREE_CURRENT
     out = _accurate(
-        "elevator", {"effects": "gravity, stator_limit", "stator_current_limit": f"{hold * 1.01} A"}
+        "elevator", {"effects": "gravity, stator_limit", "stator_current_limit": f"{move * 1.01} A"}
     )
     assert out["time_to_goal"] > 1.0  # slow, but it arrives
     with pytest.raises(InputError) as e:
-        solve("elevator", {"effects": "gravity, stator_limit", "stator_current_limit": f"{hold * 0.99} A"})
+        solve("elevator", {"effects": "gravity, stator_limit", "stator_current_limit": f"{move * 0.99} A"})
     assert e.value.field == "stator_current_limit"
 
 
@@ -437,8 +462,10 @@ def test_feedforward_against_recalcs_formulas():
     """ReCalc (wpilib/patches/wpilibc/wasm/feedforward_gains.h): kA = kA_ideal/η, kV = kV_ideal/η,
     linear kG = kA·g·sin(angle above horizontal), arm kG = kA·g·L·m/I, with kA_ideal = 1/B and
     kV_ideal = −A11/B of WPILib's ideal plant. Ours scales the output torque by η (back-EMF
-    torque included), so kA and kG agree and kV differs by exactly 1/η (equal at η = 1)."""
-    R, Kv, Kt = neo()
+    torque included), so kV differs by exactly 1/η (equal at η = 1); ReCalc's Kt is WPILib's τs/Is,
+    ours the seed's τs/(Is − If) (M1), so our kA and kG are ReCalc's × (Is − If)/Is."""
+    R, Kv, _ = neo()
+    Kt = 2.6 / 105  # WPILib's, as ReCalc
     eta, m, r, G, incline = 0.8, 15 * LB, 0.75 * INCH, 10.0, math.radians(30)
     n = G / r
     B = 2 * Kt * n / (R * m)  # ElevatorFromPhysicalConstants with 2 NEOs (R/2 combined)
@@ -446,13 +473,13 @@ def test_feedforward_against_recalcs_formulas():
     kA_rc, kV_rc = 1 / B / eta, -A11 / B / eta
     kG_rc = kA_rc * G0 * math.sin(math.pi / 2 - incline)
     out = elevator.simulate(values("elevator", efficiency=eta, incline="30 deg"), 1e-6).values
-    assert out["kA"] == pytest.approx(kA_rc, rel=1e-12)
-    assert out["kG"] == pytest.approx(kG_rc, rel=1e-12)
+    assert out["kA"] == pytest.approx(kA_rc * (105 - 1.8) / 105, rel=1e-12)
+    assert out["kG"] == pytest.approx(kG_rc * (105 - 1.8) / 105, rel=1e-12)
     assert out["kV"] == pytest.approx(kV_rc * eta, rel=1e-12)
     Rk, Ktk = 12 / 366, 7.09 / 366
     ma, L, Ga = 8 * LB, 12 * INCH, 75.0
     I = 4 / 3 * ma * L * L
     kA_arm = I * Rk / (Ktk * Ga) / eta
     o = arm.simulate(values("arm", efficiency=eta), 1e-6).values
-    assert o["kA"] == pytest.approx(kA_arm, rel=1e-12)
-    assert o["kG"] == pytest.approx(kA_arm * G0 * L * ma / I, rel=1e-12)
+    assert o["kA"] == pytest.approx(kA_arm * (366 - 2) / 366, rel=1e-12)
+    assert o["kG"] == pytest.approx(kA_arm * G0 * L * ma / I * (366 - 2) / 366, rel=1e-12)

@@ -9,10 +9,16 @@ How the two are made to describe the same thing:
 - the arm: WPILib's gravity term is 3g/(2ℓ)·cos θ, a uniform rod of length ℓ about its end, which is
   Gearhead's default uniform bar (I = 4/3·m·L², L the pivot-to-centre-of-mass distance) at ℓ = 2L;
 - the arm without gravity is a DCMotorSim (a motor turning an inertia through G);
-- the flywheel: Gearhead's flywheel tab uses the seed's line τ = τ̃s·(1 − ω/ω̃f) (torque from
-  I − I_free); WPILib's DCMotor gives exactly that line when its free current is 0 (Kv = ω_f/V,
-  τ = Kt·(V − ω/Kv)/R = τs·(1 − ω/ω_f)), so FlywheelSim runs such a DCMotor built from the same
-  four constants (the difference of the two models is issue 28 item 3, not tested here).
+- the motor model: every Gearhead tab uses the seed's, τ = Kt·(I − i_f) with Kt = τs/(Is − If)
+  (core.sim.motion (M1)-(M3)); WPILib's DCMotor has the same R and Kv but Kt = τs/Is and no loss
+  torque. Two WPILib motors stand in for it exactly:
+  * for the motion (time to goal, peak current at rest), at a constant voltage V: a DCMotor with
+    the same four constants and no free current. Its line τ = Kt·(V − ω/Kv)/R = τs·(V/V_nom − ω/ω_f)
+    is the seed's (τ = Kt'·((V − ω/Kv')/R − If·V/V_nom) reduces to the same), and its current at
+    rest V/R is the same (the sims run at 12 V; the flywheel tab too);
+  * for the linear plant (kV, kA, kG, LQR): a DCMotor whose stall torque is τs·Is/(Is − If), so its
+    Kt is the seed's and R, Kv are unchanged: the same ẋ = A·x + B·u (the seed's constant loss is
+    the kS term, checked by hand: kS = R·i_f).
 
 Each sim is stepped at a fixed step h from rest at full voltage; the time the goal is reached is
 located between two steps by the cubic through their positions and speeds. Its error is bounded by
@@ -22,8 +28,9 @@ _cases) and the cubic's error is O(h⁴), so the difference of the two runs boun
 run at h (for a 4th-order error the error at h is 1/15 of that difference): the tolerance of a time
 is that difference plus Gearhead's own error estimate plus 1e-12 of rounding. Closed forms (peak
 current at rest, kG/kV/kA) are compared to 1e-12, the LQR gains to LQR_TOL (see there).
-Measured (10 cases each): time to goal elevator 2.2e-13, arm 2.7e-12, arm/DCMotorSim 9.6e-14,
-flywheel spin-up 1.0e-12; peak current 2.0e-16; kG/kV/kA ≤ 4.3e-16; kP/kD ≤ 1.3e-13.
+Measured (10 cases each, with the seed model): time to goal elevator
+1.7e-13, arm 1.3e-12, arm/DCMotorSim 7.0e-14, flywheel spin-up 1.0e-12; peak current 2.0e-16;
+kS/kG/kV/kA ≤ 4.7e-16; kP/kD ≤ 1.3e-13.
 """
 
 import math
@@ -74,10 +81,24 @@ def wpilib_motor(name: str, count: int = 1):
     return getattr(DCMotor, FACTORIES[name])(count)
 
 
+def line_motor(name: str, count: int = 1):
+    """WPILib's DCMotor with the same four constants and no free current: at a constant voltage its
+    torque line and its current at rest are the seed model's (see the module's docstring)."""
+    m = wpilib_motor(name)
+    return DCMotor(m.nominalVoltage, m.stallTorque, m.stallCurrent, 0.0, m.freeSpeed, count)
+
+
+def plant_motor(name: str, count: int = 1):
+    """WPILib's DCMotor with the seed's Kt = τs/(Is − If) and WPILib's R and Kv: the same linear plant."""
+    m = wpilib_motor(name)
+    ts = m.stallTorque * m.stallCurrent / (m.stallCurrent - m.freeCurrent)
+    return DCMotor(m.nominalVoltage, ts, m.stallCurrent, m.freeCurrent, m.freeSpeed, count)
+
+
 def test_every_motor_both_have_is_theirs_constant_by_constant():
     """Every WPILib motor Gearhead lists: nominal voltage, stall torque, stall and free current,
-    free speed, and the derived R, Kv, Kt (M1) to 1e-12 (both are the same decimal figures, the
-    free speed through one rpm → rad/s factor)."""
+    free speed, and the derived R, Kv (M1) to 1e-12 (both are the same decimal figures, the
+    free speed through one rpm → rad/s factor); Kt is the seed's τs/(Is − If) from theirs."""
     assert {m.name for m in motors.MOTORS if m.source == "wpilib"} == set(FACTORIES)
     for name in FACTORIES:
         mine, _ = motors.lookup(name, "wpilib")
@@ -91,7 +112,8 @@ def test_every_motor_both_have_is_theirs_constant_by_constant():
             "free speed": (mine.free_speed, theirs.freeSpeed),
             "R": (mech.R, theirs.R),
             "Kv": (mech.Kv, theirs.Kv),
-            "Kt": (mech.Kt, theirs.Kt),
+            "Kt": (mech.Kt, theirs.stallTorque / (theirs.stallCurrent - theirs.freeCurrent)),
+            "Kt (plant motor)": (mech.Kt, plant_motor(name).Kt),
         }
         for what, (a, b) in pairs.items():
             assert a == pytest.approx(b, rel=1e-12), f"{name}: {what} {a} here, {b} in WPILib"
@@ -213,13 +235,13 @@ def wpilib_gravity(monkeypatch):
     monkeypatch.setattr(arm_calc, "G", G_WPILIB)
 
 
-def _elevator_plant(c):
-    return LinearSystemId.elevatorSystem(wpilib_motor(c["name"], c["N"]), c["m"], c["r"], c["G"])
+def _elevator_plant(c, motor=plant_motor):
+    return LinearSystemId.elevatorSystem(motor(c["name"], c["N"]), c["m"], c["r"], c["G"])
 
 
 def test_elevator_against_elevatorsim(wpilib_gravity):
-    for c, out in _cases(2801, _draw_elevator, "elevator", lambda c: _tau(_elevator_plant(c))):
-        motor = wpilib_motor(c["name"], c["N"])
+    for c, out in _cases(2801, _draw_elevator, "elevator", lambda c: _tau(_elevator_plant(c, line_motor))):
+        motor = line_motor(c["name"], c["N"])
 
         def make():
             return ElevatorSim(motor, c["G"], c["m"], c["r"], -1.0, 10.0, True, 0.0)
@@ -233,6 +255,7 @@ def test_elevator_against_elevatorsim(wpilib_gravity):
         _agree("elevator", "kV", out["kV"], -A[1, 1] / B[1, 0], 1e-12)
         _agree("elevator", "kA", out["kA"], 1 / B[1, 0], 1e-12)
         _agree("elevator", "kG", out["kG"], G_WPILIB / B[1, 0], 1e-12)
+        _agree("elevator", "kS", out["kS"], plant_motor(c["name"]).R * _free_current(c), 1e-12)
         kP, kD = _lqr(
             plant, c["q_position"], c["q_velocity"], c["r_volts"], c["control_period"], c["sensor_delay"]
         )
@@ -271,13 +294,17 @@ def _draw_arm(rng, gravity=True):
     }
 
 
-def _arm_plant(c):
-    return LinearSystemId.singleJointedArmSystem(wpilib_motor(c["name"], c["N"]), c["J"], c["G"])
+def _arm_plant(c, motor=plant_motor):
+    return LinearSystemId.singleJointedArmSystem(motor(c["name"], c["N"]), c["J"], c["G"])
+
+
+def _free_current(c) -> float:
+    return wpilib_motor(c["name"]).freeCurrent  # i_f at 12 V, per motor
 
 
 def test_arm_against_singlejointedarmsim(wpilib_gravity):
-    for c, out in _cases(2802, _draw_arm, "arm", lambda c: _tau(_arm_plant(c))):
-        motor = wpilib_motor(c["name"], c["N"])
+    for c, out in _cases(2802, _draw_arm, "arm", lambda c: _tau(_arm_plant(c, line_motor))):
+        motor = line_motor(c["name"], c["N"])
 
         def make():
             return SingleJointedArmSim(motor, c["G"], c["J"], 2 * c["L"], -100.0, 100.0, True, c["start"])
@@ -290,6 +317,7 @@ def test_arm_against_singlejointedarmsim(wpilib_gravity):
         _agree("arm", "kV", out["kV"], -A[1, 1] / B[1, 0], 1e-12)
         _agree("arm", "kA", out["kA"], 1 / B[1, 0], 1e-12)
         _agree("arm", "kG", out["kG"], c["m"] * G_WPILIB * c["L"] / c["J"] / B[1, 0], 1e-12)
+        _agree("arm", "kS", out["kS"], plant_motor(c["name"]).R * _free_current(c), 1e-12)
         kP, kD = _lqr(
             plant, c["q_position"], c["q_velocity"], c["r_volts"], c["control_period"], c["sensor_delay"]
         )
@@ -301,9 +329,9 @@ def test_arm_without_gravity_against_dcmotorsim():
     """A motor turning an inertia through G: DCMotorSim (LinearSystemSim: each step the exact
     matrix exponential of the plant) against Gearhead's arm with no effect on."""
     for c, out in _cases(
-        2803, lambda rng: _draw_arm(rng, gravity=False), "arm", lambda c: _tau(_arm_plant(c))
+        2803, lambda rng: _draw_arm(rng, gravity=False), "arm", lambda c: _tau(_arm_plant(c, line_motor))
     ):
-        motor = wpilib_motor(c["name"], c["N"])
+        motor = line_motor(c["name"], c["N"])
 
         def make():
             return DCMotorSim(LinearSystemId.DCMotorSystem(motor, c["J"], c["G"]), motor)
@@ -328,10 +356,7 @@ def _draw_flywheel(rng):
 
 
 def _seed_line_motor(c):
-    """WPILib's DCMotor with the same four constants and no free current: its torque line is the
-    seed's τ = τs·(1 − ω/ω_f) the flywheel tab uses."""
-    m = c["motor"]
-    return DCMotor(m.v_spec, m.stall_torque, m.stall_current, 0.0, m.free_speed, c["N"])
+    return line_motor(c["name"], c["N"])
 
 
 def test_flywheel_spin_up_against_flywheelsim():

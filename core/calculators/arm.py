@@ -2,10 +2,11 @@
 the goal angle at full voltage, as a scene with effects (core.sim.motion, core.sim.effects).
 
 Coordinate θ: the arm's angle from the horizontal, up positive (θ = 90°: straight up).
-    I·θ̈ = η·N·Kt·G·I_m − m·g·L·cos θ (gravity) + τ_cb·cos θ (counterbalance) − τ_f·sgn(θ̇) (friction)
-                                                                                               (AR1)
+    I·θ̈ = η·N·Kt·G·(I_m − i_f) − m·g·L·cos θ (gravity) + τ_cb·cos θ (counterbalance)
+          − τ_f·sgn(θ̇) (friction)                                                             (AR1)
     I_m = (u·V_bus − G·θ̇/Kv)/R  per motor, u the duty (1 unless a current limit lowers it);
-        R = V_spec/I_stall, Kv = ω_free/(V_spec − R·I_free), Kt = τ_stall/I_stall (WPILib)    (AR2)
+        R = V_spec/I_stall, Kv = ω_free/(V_spec − R·I_free), Kt = τ_stall/(I_stall − I_free),
+        i_f = I_free·V_b/V_spec (the seed's motor model, eqs. 3, 7, 9, as every tab)            (AR2)
 with L the pivot-to-centre-of-mass distance and I the moment of inertia about the pivot
     I = m·(2L)²/3 = 4/3·m·L²  (default: a uniform bar whose centre of mass is at L, so its length
         is 2L), or the entered I (at least m·L²)                                               (AR3)
@@ -20,7 +21,7 @@ What a move reports:
     T: the first time θ reaches the goal, (AR1) integrated from rest at full voltage with an
        event at the goal                                                                       (AR4)
     ω_max = largest |θ̇| over the move (a peak inside it located as an event);
-    ω_free = V_b·Kv/G (no load: no current, u = 1)                                             (AR5)
+    ω_free = (V_b − R·i_f)·Kv/G = ω_free,motor·V_b/(V_spec·G) (no load, u = 1)                (AR5)
     peak stator current: |I_m| of (AR2) at rest (at top speed if the load drives the motor past
     free speed); supply current u·I_m per motor; battery current N·u·I_m; bus voltage
     V_bus = V_b − N·R_batt·u·I_m, lowest where the supply current peaks                        (AR6)
@@ -28,7 +29,8 @@ What a move reports:
     I_hold = |(τ_cb − m·g·L)·cos θ_goal|/(η·N·Kt·G) per motor                                   (AR8)
 Feedforward (WPILib ArmFeedforward: V = kS·sgn(ω) + kG·cos θ + kV·ω + kA·α), from (AR1), (AR2)
 at u = 1, kG quoted at horizontal and net of the counterbalance:
-    kG = (m·g·L − τ_cb)·R/(η·N·Kt·G),  kV = G/Kv,  kA = I·R/(η·N·Kt·G),  kS = τ_f·R/(η·N·Kt·G) (AR9)
+    kG = (m·g·L − τ_cb)·R/(η·N·Kt·G),  kV = G/Kv,  kA = I·R/(η·N·Kt·G),
+    kS = R·i_f + τ_f·R/(η·N·Kt·G)                                                              (AR9)
 Feedback: WPILib's LQR on the plant (θ, θ̇),
     ẋ = [[0, 1], [0, −kV/kA]]·x + [0, 1/kA]·V, discretised over the control period,
     Q = diag(1/q_pos², 1/q_vel²), R = 1/r²: [kP, kD] from the discrete Riccati equation,
@@ -218,7 +220,7 @@ OUTPUTS = (
 HOW = {
     "time_to_goal": ("(AR4)", "First time the arm reaches the goal angle from rest at full voltage (AR4)."),
     "max_speed": ("(AR5)", "Fastest the arm turns during the move (AR5)."),
-    "free_speed": ("(AR5)", "Arm speed with no load at the battery voltage, V_b·Kv/G (AR5)."),
+    "free_speed": ("(AR5)", "Arm speed with no load at the battery voltage, ω_free·V_b/V_spec/G (AR5)."),
     "peak_stator_current": (
         "(AR2), (AR6)",
         "Largest motor (stator) current per motor: at rest, unless a limit holds it (AR6).",
@@ -240,7 +242,10 @@ HOW = {
     ),
     "kV": ("(AR9)", "Volts per unit of angular speed, G/Kv (WPILib kV) (AR9)."),
     "kA": ("(AR9)", "Volts per unit of angular acceleration, I·R/(η·N·Kt·G) (WPILib kA) (AR9)."),
-    "kS": ("(AR9)", "Volts to overcome the friction, τ_f·R/(η·N·Kt·G) (WPILib kS) (AR9)."),
+    "kS": (
+        "(AR9)",
+        "Volts to overcome the motors' own loss and the friction, R·i_f + τ_f·R/(η·N·Kt·G) (WPILib kS) (AR9).",
+    ),
     "kP": ("(AR10)", "LQR position gain for the plant kV, kA, as WPILib's LinearQuadraticRegulator (AR10)."),
     "kD": ("(AR10)", "LQR velocity gain for the plant kV, kA, as WPILib's LinearQuadraticRegulator (AR10)."),
 }

@@ -5,29 +5,32 @@ Coordinate x: carriage travel along the rail, up positive; the rail leans `incli
     r = spool_diameter/2;  k = 1 (continuous rigging) or the stage count (cascade: the carriage
     moves k times the first stage, which the spool pulls)
     n = G/(r·k)                        motor radians per metre of carriage travel              (EL1)
-    m·ẍ = η·N·Kt·n·I − m·g·cos(incline) (gravity) + F_cb (counterbalance) − F_f·sgn(ẋ) (friction)
-                                                                                               (EL2)
+    m·ẍ = η·N·Kt·n·(I − i_f) − m·g·cos(incline) (gravity) + F_cb (counterbalance)
+          − F_f·sgn(ẋ) (friction)                                                             (EL2)
     I = (u·V_bus − n·ẋ/Kv)/R  per motor, u the duty (1 unless a current limit lowers it);
-        R = V_spec/I_stall, Kv = ω_free/(V_spec − R·I_free), Kt = τ_stall/I_stall (WPILib)    (EL3)
+        R = V_spec/I_stall, Kv = ω_free/(V_spec − R·I_free), Kt = τ_stall/(I_stall − I_free),
+        i_f = I_free·V_b/V_spec (the seed's motor model, eqs. 3, 7, 9, as every tab)            (EL3)
 (gearhead.core.sim.motion (M1)-(M4); the current limits and battery sag set u and V_bus, (E1)-(E3)).
 The rigging's own stage masses are not modelled (add them to load_mass, scaled by their speed ratio
 squared, if they matter).
-Closed form with no limits, no sag and a constant load F (the check in tests/test_motion.py):
+Closed form with no limits, no sag and a constant load F (the motors' loss η·N·Kt·n·i_f included;
+the check in tests/test_motion.py):
     τ = m·R·Kv/(η·N·Kt·n²),  v_f = (V·Kv/n)·(1 − F/F_stall),  F_stall = η·N·Kt·n·V/R,
     v(t) = v_f·(1 − e^{−t/τ}),  x(t) = v_f·(t − τ·(1 − e^{−t/τ}))                              (EL4)
 What a move reports:
     T: the first time x reaches the travel, from rest at full voltage: (EL4) solved for T (motion
        (C2), Lambert W) when it applies, else (EL2) integrated with an event at the goal       (EL5)
-    v_max = largest |ẋ| over the move;  v_free = V_b·Kv/n (no load: no current, u = 1)         (EL6)
+    v_max = largest |ẋ| over the move;  v_free = (V_b − R·i_f)·Kv/n = ω_free·V_b/(V_spec·n)  (EL6)
     peak stator current: |I| of (EL3) at rest (at top speed if the load drives the motor past
     free speed); supply current u·I per motor; battery current N·u·I; bus voltage
     V_bus = V_b − N·R_batt·u·I, lowest where the supply current peaks                          (EL7)
     E = ∫ V_b·N·u·I dt, the battery's EMF times its current                                     (EL8)
     I_hold = |F_field(goal)|/(η·N·Kt·n) per motor, F_field = −m·g·cos(incline) + F_cb          (EL9)
 Effects: gravity (on by default), stator_limit, supply_limit, battery_sag, friction (a constant
-force against the motion, reported as kS), counterbalance (a constant-force spring pulling up).
+force against the motion, added to kS), counterbalance (a constant-force spring pulling up).
 Feedforward in WPILib's convention, V = kS·sgn(ẋ) + kG + kV·ẋ + kA·ẍ from (EL2), (EL3) at u = 1:
-    kG = −F_field·R/(η·N·Kt·n),  kV = n/Kv,  kA = m·R/(η·N·Kt·n),  kS = F_f·R/(η·N·Kt·n)     (EL10)
+    kG = −F_field·R/(η·N·Kt·n),  kV = n/Kv,  kA = m·R/(η·N·Kt·n),  kS = R·i_f + F_f·R/(η·N·Kt·n)
+                                                                                              (EL10)
 (kG: gravity minus the counterbalance). Note: ReCalc scales only the voltage input by η, so its
 kV is this kV/η (they agree at η = 1). Feedback: WPILib's LQR on the plant (x, ẋ),
     ẋ = [[0, 1], [0, −kV/kA]]·x + [0, 1/kA]·V, discretised over the control period,
@@ -208,7 +211,7 @@ HOW = {
         "First time the carriage reaches the goal from rest at full voltage (EL5).",
     ),
     "max_speed": ("(EL6)", "Fastest the carriage moves during the move (EL6)."),
-    "free_speed": ("(EL6)", "Carriage speed with no load at the battery voltage, V_b·Kv/n (EL6)."),
+    "free_speed": ("(EL6)", "Carriage speed with no load at the battery voltage, ω_free·V_b/V_spec/n (EL6)."),
     "peak_stator_current": (
         "(EL3), (EL7)",
         "Largest motor (stator) current per motor: at rest, unless a limit holds it (EL7).",
@@ -227,7 +230,10 @@ HOW = {
     "kG": ("(EL10)", "Volts to hold the load against gravity, minus the counterbalance (WPILib kG) (EL10)."),
     "kV": ("(EL10)", "Volts per unit of speed, n/Kv (WPILib kV) (EL10)."),
     "kA": ("(EL10)", "Volts per unit of acceleration, m·R/(η·N·Kt·n) (WPILib kA) (EL10)."),
-    "kS": ("(EL10)", "Volts to overcome the friction, F_f·R/(η·N·Kt·n) (WPILib kS) (EL10)."),
+    "kS": (
+        "(EL10)",
+        "Volts to overcome the motors' own loss and the friction, R·i_f + F_f·R/(η·N·Kt·n) (WPILib kS) (EL10).",
+    ),
     "kP": ("(EL11)", "LQR position gain for the plant kV, kA, as WPILib's LinearQuadraticRegulator (EL11)."),
     "kD": ("(EL11)", "LQR velocity gain for the plant kV, kA, as WPILib's LinearQuadraticRegulator (EL11)."),
 }

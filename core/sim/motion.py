@@ -1,16 +1,22 @@
 """A mechanism driven by DC motors from rest to a goal at full voltage: the scene shared by the
 elevator and the arm (one coordinate q: metres of carriage travel, or radians of arm angle).
 
-Motor (WPILib DCMotor, per motor; wpimath DCMotor.java):
-    R = V_nom/I_stall,  Kv = ω_free/(V_nom − R·I_free),  Kt = τ_stall/I_stall            (M1)
+Motor: the seed's model (section 1, eqs. 3, 7, 9), the one every tab uses; per motor:
+    R = V_nom/I_stall,  Kv = ω_free/(V_nom − R·I_free),  Kt = τ_stall/(I_stall − I_free)    (M1)
     I = (u·V_bus − ω_m/Kv)/R                  stator current, u the duty (0..1)         (M2)
+    i_f = I_free·V_b/V_nom                    free current at the battery voltage (eq. 3)
     n = motor radians per unit of q (G/(r·k) for a spool of radius r and rigging k; G for an arm)
-    F_motor = η·N·Kt·n·I                      gearbox efficiency η on the output torque (M3)
+    F_motor = η·N·Kt·n·(I − i_f)              gearbox efficiency η on the output torque (M3)
+i.e. a DC motor whose own losses are a constant torque Kt·i_f against the motion: it runs at its
+rated free speed with no load (I = i_f) and gives its rated stall torque at the stall current, the
+datasheet's two points, as (8) and (9). (WPILib's DCMotor has the same R and Kv but Kt = τs/Is and
+no loss torque: its free speed is Kv·V, above the rated one, and its stall torque the rated one.)
 Everything is written toward the goal: s = sign(q_goal − q_start), p = s·(q − q_start) ≥ 0,
 w = s·q̇, E = w·n/Kv (back-EMF, V). Then
     M·ẇ = η·N·Kt·n·I(E) + s·F_field(q) − F_friction                                    (M4)
 where F_field is the sum of the position-dependent forces of the effects on (gravity,
-counterbalance, signed in +q) and F_friction the constant friction (`friction`).
+counterbalance, signed in +q) and F_friction the constant force against the motion: the motors'
+loss η·N·Kt·n·i_f of (M3) plus the friction effect's (`friction`).
 Electrical effects (all per motor, solved exactly at each evaluation, no lag):
 - `battery_sag`: V_bus = V_b − R_bus·u·I with R_bus = N·R_batt (N motors share the battery
   resistance). With (M2): I(u) = (u·V_b − E)/(R + u²·R_bus)                            (E1)
@@ -95,7 +101,16 @@ class Mechanism:
 
     @property
     def Kt(self) -> float:
-        return self.motor.stall_torque / self.motor.stall_current  # (M1)
+        m = self.motor
+        return m.stall_torque / (m.stall_current - m.free_current)  # (M1), seed eq. 7
+
+    @property
+    def free_current(self) -> float:
+        return self.motor.free_current * self.battery_voltage / self.motor.v_spec  # i_f, seed eq. 3
+
+    @property
+    def loss_force(self):
+        return self.force_per_amp * self.free_current  # (M3): the motors' own loss, against the motion
 
     @property
     def s(self) -> float:
@@ -115,7 +130,8 @@ class Mechanism:
 
     @property
     def free_speed(self):
-        return self.battery_voltage * self.Kv / self.n  # of q, at V_b with no load current
+        # of q, at V_b with no load: I = i_f in (M2), = ω_free·V_b/V_nom/n (seed eq. 1)
+        return (self.battery_voltage - self.R * self.free_current) * self.Kv / self.n
 
     def q_at(self, p):
         return self.q0 + self.s * p
@@ -124,7 +140,7 @@ class Mechanism:
 def friction_effect(quantity: str, unit: str, name: str, help: str, default: float) -> Effect:
     def build(values, mech):
         F = values[name]
-        return Part(terms={"friction": lambda: F}, report=lambda run: {"kS": F / mech.force_per_volt})
+        return Part(terms={"friction": lambda: F})
 
     return Effect(
         "friction",
@@ -139,10 +155,9 @@ def friction_effect(quantity: str, unit: str, name: str, help: str, default: flo
                 default=default,
                 min=0,
                 max=2.2e5,
-                help="Constant force or torque against the motion (Coulomb friction), reported as kS.",
+                help="Constant force or torque against the motion (Coulomb friction), added to kS.",
             ),
         ),
-        outputs=(Output("kS", "kS", "voltage", "V", help="Voltage to overcome the friction (WPILib kS)."),),
     )
 
 
@@ -166,9 +181,15 @@ def field_force(setup: Setup):
     return f if f is not None else (lambda q: 0.0)
 
 
-def friction_of(setup: Setup) -> float:
+def effect_friction(setup: Setup) -> float:
+    """The friction effect's force against the motion (0 when off)."""
     f = setup.asm.slots["friction"]
     return f() if f is not None else 0.0
+
+
+def friction_of(setup: Setup):
+    """F_friction of (M4): the motors' own loss (M3) plus the friction effect's."""
+    return setup.mech.loss_force + effect_friction(setup)
 
 
 def build_rhs(setup: Setup):
@@ -209,25 +230,30 @@ def build_rhs(setup: Setup):
 
 def check_can_move(setup: Setup) -> None:
     """InputError naming the reason and the field when the force at rest does not beat the load
-    somewhere between start and goal (the mechanism would stop, or never leave)."""
+    somewhere between start and goal (the mechanism would stop, or never leave). The motors'
+    own loss (M3) is counted on their side: what they give is η·N·Kt·n·(I − i_f)."""
     m = setup.mech
     names = setup.names
     force = field_force(setup)
-    F_fric = friction_of(setup)
+    F_fric = effect_friction(setup)
     lo, hi = sorted((m.q0, m.q1))
     points = [m.q0, m.q1] + [q for q in setup.critical if lo < q < hi]
     load = max(-m.s * force(q) + F_fric for q in points)  # the most the field and friction resist
     q_worst = max(points, key=lambda q: -m.s * force(q))
     u0, I0 = electrical(m, setup.asm.slots["duty"])(0.0)
-    F0 = m.force_per_amp * I0
+
+    def given(I):  # what the motors give at rest with stator current I each (M3)
+        return m.force_per_amp * I - m.loss_force
+
+    F0 = given(I0)
     if F0 > load:
         return
     unit = names.get("force_unit", "N")
-    need_I = load / m.force_per_amp
+    need_I = load / m.force_per_amp + m.free_current
     where = names.get("where", lambda q: "")(q_worst)
     if "stator_limit" in setup.asm.on or "supply_limit" in setup.asm.on:
         _, I_free = electrical(m, None)(0.0)
-        if m.force_per_amp * I_free > load:
+        if given(I_free) > load:
             field_name = "stator_current_limit"
             if "supply_limit" in setup.asm.on:
                 sup = setup.asm.parts["supply_limit"].terms["duty"](0.0)
@@ -246,7 +272,7 @@ def check_can_move(setup: Setup) -> None:
             )
     if m.bus_resistance > 0:
         _, I_nosag = electrical(replace(m, bus_resistance=0.0), None)(0.0)
-        if m.force_per_amp * I_nosag > load:
+        if given(I_nosag) > load:
             raise InputError(
                 "battery_resistance",
                 f"sags the battery so far at stall that the motors give only "
@@ -289,7 +315,7 @@ def estimated_time(setup: Setup) -> float:
     the net force at the start."""
     m = setup.mech
     _, I0 = electrical(m, setup.asm.slots["duty"])(0.0)
-    F0 = m.force_per_amp * I0 + m.s * field_force(setup)(m.q0) - friction_of(setup)
+    F0 = m.force_per_amp * I0 + m.s * field_force(setup)(m.q0) - friction_of(setup)  # (M4) at rest
     accel_time = math.sqrt(2 * m.distance * m.inertia / F0) if F0 > 0 else math.inf
     return m.distance / m.free_speed + time_constant(m) + accel_time
 
@@ -397,11 +423,17 @@ def samples(setup: Setup, mv: Move, count: int = SAMPLES) -> dict[str, tuple[lis
 
 
 def feedforward(setup: Setup, q_hold: float) -> dict[str, float]:
-    """kG, kV, kA in volts per unit of q: V = kS·sgn(q̇) + kG + kV·q̇ + kA·q̈ from (M2)-(M4) at
-    full bus voltage: kV = n/Kv, kA = M·R/(η·N·Kt·n), kG = −F_field(q_hold)·R/(η·N·Kt·n)."""
+    """kS, kG, kV, kA in volts per unit of q: V = kS·sgn(q̇) + kG + kV·q̇ + kA·q̈ from (M2)-(M4) at
+    full bus voltage: kV = n/Kv, kA = M·R/(η·N·Kt·n), kG = −F_field(q_hold)·R/(η·N·Kt·n),
+    kS = F_friction·R/(η·N·Kt·n) = R·i_f + (the friction effect's share)."""
     m = setup.mech
     fpv = m.force_per_volt
-    return {"kG": -field_force(setup)(q_hold) / fpv, "kV": m.n / m.Kv, "kA": m.inertia / fpv}
+    return {
+        "kS": friction_of(setup) / fpv,
+        "kG": -field_force(setup)(q_hold) / fpv,
+        "kV": m.n / m.Kv,
+        "kA": m.inertia / fpv,
+    }
 
 
 @lru_cache(maxsize=256)
@@ -734,6 +766,13 @@ def common_outputs(
             help="Per motor, to hold at the goal "
             "against the field (gravity, counterbalance); friction not counted on.",
         ),
+        Output(
+            "kS",
+            "kS",
+            "voltage",
+            "V",
+            help="WPILib kS: volts to overcome the motors' own loss (R·i_f) and the friction effect.",
+        ),
         Output("kG", "kG", "voltage", "V", help=kg_help),
         Output("kV", "kV", f"voltage_per_{speed_q}", per_speed_u, help="WPILib kV: volts per unit of speed."),
         Output(
@@ -907,10 +946,10 @@ def optimise(
     pm = probe.mech
     lo_q, hi_q = sorted((pm.q0, pm.q1))
     points = [pm.q0, pm.q1] + [q for q in probe.critical if lo_q < q < hi_q]
-    load = max(-pm.s * field_force(probe)(q) for q in points) + friction_of(probe)
+    load = max(-pm.s * field_force(probe)(q) for q in points) + effect_friction(probe)
     _, I0 = electrical(pm, probe.asm.slots["duty"])(0.0)
-    if load > 0 and I0 > 0:
-        G_hold = ratio_hint * load / (pm.force_per_amp * I0)
+    if load > 0 and I0 > pm.free_current:  # the motors give η·N·Kt·n·(I0 − i_f) ∝ G at rest (M3)
+        G_hold = ratio_hint * load / (pm.force_per_amp * (I0 - pm.free_current))
         lo_G = max(lo_G, 1.001 * G_hold)
         hi_G = max(hi_G, 100 * lo_G)
     ratios = np.geomspace(lo_G, hi_G, CANDIDATES)

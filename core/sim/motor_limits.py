@@ -2,12 +2,11 @@
 motor calculator uses (the elevator and arm scenes in core.sim.motion, the flywheel's spin-up and
 recovery, the drivetrain's pushing force, the motor tab's limited curves).
 
-Motor (WPILib DCMotor, per motor; wpimath DCMotor.java):
+Motor (per motor; R and Kv as WPILib's DCMotor, wpimath DCMotor.java):
     R = V_nom/I_stall,  Kv = ω_free/(V_nom − R·I_free)                                  (M1)
     I = (u·V_bus − E)/R,  E = ω_m/Kv the back-EMF, u the duty (0..1)                      (M2)
-The effects act on (u, I) only: how the current turns into torque is the calculator's (WPILib's
-Kt·I in core.sim.motion; the seed's K_T·(I − I_free) (eqs. 7, 9) in the flywheel, drivetrain and
-motor tabs, which keeps their unlimited answers the seed's).
+The effects act on (u, I) only; every calculator turns the current into torque by the seed's
+K_T·(I − i_f) (eqs. 3, 7, 9; core.sim.motion (M3)), one motor model on every tab.
 - `battery_sag`: V_bus = V_b − R_bus·u·I, R_bus the resistance each motor's share of the supply
   current sees (N·R_batt for N motors on one battery). With (M2):
       I(u) = (u·V_b − E)/(R + u²·R_bus)                                                  (E1)
