@@ -17,7 +17,7 @@ from .model import Calculator
 # strips from this table without importing thirteen modules before its first frame.
 AREAS: dict[str, tuple[str, tuple[str, ...]]] = {
     "gearing": ("Motors", ("motor", "gear_ratio", "ratio_distance", "ratio_finder")),
-    "mechanisms": ("Mechanisms", ("lead_screw", "drivetrain", "elevator", "arm")),
+    "mechanisms": ("Mechanisms", ("lead_screw", "drivetrain", "sprint", "elevator", "arm")),
     "structure": ("Structure", ("beam", "chain_belt", "gear_clearance")),
     "pneumatics": ("Pneumatics", ("pneumatics", "pneumatic_linkage")),
     "shooters": ("Shooters", ("projectile", "flywheel", "trebuchet")),
@@ -28,6 +28,7 @@ TITLES = {
     "ratio_distance": "Ratio & distance",
     "lead_screw": "Lead screw",
     "drivetrain": "Drivetrain",
+    "sprint": "Drivetrain sprint",
     "beam": "Beam",
     "chain_belt": "Chain/belt C-C",
     "gear_clearance": "Gear clearance",

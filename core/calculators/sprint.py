@@ -1,0 +1,812 @@
+"""Drivetrain sprint: how long a robot takes to cross a distance from rest at full voltage in a straight
+line, and the ratio that crosses it first (issue 29). A scene with effects (core.sim.effects), on the
+motor model every tab uses (core.sim.motion (M1)-(M3), the seed's eqs. 3, 7, 9).
+
+N drive motors (all of them: a tank's both sides, a swerve's drive motors) through the reduction G
+(motor turns per wheel turn) on wheels of radius r push the robot of mass m; per motor
+    n = G/r                                   motor radians per metre of travel                    (S1)
+    E = n·v/Kv,  I = (u·V_bus − E)/R          back-EMF and stator current; u, V_bus from the current
+                                              limits and the battery sag (core.sim.motor_limits (E1)-(E3))
+    F_m = η·N·Kt·n·(I − i_f)                  the motors' force at the wheels, Kt = τs/(Is − If),
+                                              i_f = If·V_b/V_spec (the motors' own loss)           (S2)
+    F_t = μ·m·g                               the most the wheels transmit (every wheel driven)    (S3)
+    m·v̇ = min(F_m, F_t) − C_rr·m·g − ½·ρ·CdA·v²   (rolling resistance, air drag: effects)          (S4)
+While F_m > F_t the wheels are at the edge of slipping (traction-limited): the robot accelerates at
+(μ − C_rr)·g and the motors, spinning up until their force equals the traction, draw
+    I_slip = F_t/(η·N·Kt·n) + i_f             per motor (the drivetrain tab's eq. 39)              (S5)
+at the back-EMF E_slip where I(E_slip) = I_slip; that is also where the robot's own E reaches when
+the traction phase ends, so the electrical state moves through E_slip → E(goal) and the supply
+current and bus voltage are extreme at rest, at either end or at a branch point of the duty rule
+(motor_limits.branch_emfs), as in core.sim.motion.extremes. (The wheels' and motors' rotating inertia
+is not counted: it adds a few % to m at high ratios; add it to the mass if it matters.)
+
+Closed form with no current limit and no drag (the battery sag keeps the motor force affine in v,
+R_eff = R + R_bus):
+    F_m(v) = η·N·Kt·n·((V_b − n·v/Kv)/R_eff − i_f)
+    v_sw = (V_b − R_eff·(i_f + F_t/(η·N·Kt·n)))·Kv/n     traction lets go (0 if it never binds)     (S6)
+    phase 1: a₁ = (μ − C_rr)·g;  t_sw = v_sw/a₁,  x_sw = v_sw²/(2·a₁)
+    phase 2: m·v̇ = (m/τ)·(v_f − v),  τ = m·R_eff·Kv/(η·N·Kt·n²),
+             v_f = (V_b − R_eff·(i_f + C_rr·m·g/(η·N·Kt·n)))·Kv/n
+             x = x_sw + v_f·s − (v_f − v_sw)·τ·(1 − e^{−s/τ}),  s = t − t_sw                       (S7)
+    x = d ⇔ X − a·(1 − e^{−X}) = D,  X = s/τ, a = (v_f − v_sw)/v_f, D = (d − x_sw)/(v_f·τ)
+          ⇔ X = D + a + W₀(−a·e^{−(D+a)})                                                           (S8)
+(derived by hand: X = D + a + w turns (S8) into w·e^w = −a·e^{−(D+a)}; W₀ since X ≥ 0), polished by
+Newton on f(X) = (1 − a)·X + a·g(X) − D with g(X) = X + e^{−X} − 1 summed as its series for small X
+(core.sim.motion._g), f' = 1 − a·e^{−X} > 0: for small D it starts from (1 − a)·X + a·X²/2 = D.
+Otherwise (S4) is integrated (DP54, restarted where the traction lets go: the acceleration has a kink
+there), with an event at the goal.
+Outputs for control: kV = n/Kv, kA = m·R/(η·N·Kt·n), kS = R·i_f + C_rr·m·g·R/(η·N·Kt·n), per volt of
+the drive (WPILib's SimpleMotorFeedforward for the whole robot, linear).                        (S9)
+Optimise: G* minimising the time to the distance: the time on 60 ratios log-spaced over two decades
+about the ratio at which the motors just slip the wheels at rest (G_t: F_m(0) = F_t), then bounded
+Brent on the accurate solve, and the same for 1 m, 3 m, 5 m and the field's 16.54 m (the table).  (S10)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from ..constants import G0 as G
+from ..errors import InputError
+from ..model import Calculator, Column, Field, Output, Plot, Table
+from ..motors import lookup
+from ..sim import motion
+from ..sim.effects import Effect, Effects, Part, Slot
+from ..sim.integrate import Event, integrate
+from ..sim.motor_limits import braking_warning, branch_emfs, bus_resistance_of, electrical, electrical_effects
+from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stats
+
+AIR_DENSITY = 1.2  # kg/m³, sea level at 20 °C
+FIELD_LENGTH = 16.54  # m, the FRC field (2024-2026), alliance wall to alliance wall
+TABLE_DISTANCES = (1.0, 3.0, 5.0, FIELD_LENGTH)
+CURVE_RATIOS = 60  # ratios on the optimise curve
+SAMPLES = 120
+DP54_STEPS = 20_000
+
+SLOTS = (
+    Slot("resist", "sum", "force against the motion at speed v (N)"),
+    Slot("duty", "min", "upper bound on the motor duty from a current limit, given the back-EMF E"),
+)
+
+
+def _rolling(values, ctx):
+    F = values["rolling_coefficient"] * ctx.mass * G
+    return Part(terms={"resist": lambda v: F})
+
+
+def _drag(values, ctx):
+    k = 0.5 * AIR_DENSITY * values["drag_area"]
+    return Part(terms={"resist": lambda v: k * v * v})
+
+
+# A robot always runs with current limits and a battery that sags, and the fastest ratio depends
+# on them (with neither, four Kraken X60s would "win" 5 m at G = 2.2 drawing 220 A each): on by default.
+EFFECTS = Effects(
+    *[
+        dataclasses.replace(e, default_on=True)
+        for e in electrical_effects(limit_default=80.0, supply_default=60.0)
+    ],
+    Effect(
+        "rolling_resistance",
+        "a constant force C_rr·m·g against the motion (tread, bearings, belts)",
+        _rolling,
+        fields=(
+            Field(
+                "rolling_coefficient",
+                "Rolling resistance C_rr",
+                default=0.02,
+                min=0,
+                max=1,
+                help="Rolling resistance over the weight (C_rr); 0.01-0.03 for FRC wheels on carpet.",
+            ),
+        ),
+    ),
+    Effect(
+        "air_drag",
+        "½·ρ·CdA·v² against the motion (ρ = 1.2 kg/m³)",
+        _drag,
+        fields=(
+            Field(
+                "drag_area",
+                "Drag area CdA",
+                "area",
+                "m**2",
+                default=0.5,
+                min=0,
+                max=100,
+                help="Drag coefficient × frontal area; a bumpered FRC robot ≈ 0.5 m².",
+            ),
+        ),
+    ),
+)
+
+MODES = ("sprint", "optimise")
+MODE_LABELS = ("Sprint at the given ratio", "Optimise: the ratio that arrives first")
+
+FIELDS = (
+    Field(
+        "mode",
+        "Solve",
+        choices=MODES,
+        choice_labels=MODE_LABELS,
+        default="sprint",
+        help="One sprint at the ratio you give, or the ratio that crosses the distance first "
+        "(time against ratio plotted, and a table for 1 m, 3 m, 5 m and the field).",
+    ),
+    *motion.battery_motor_fields("Kraken X60", 4),
+    Field(
+        "ratio",
+        "Reduction G",
+        default=6.75,
+        min=0.05,
+        max=1000,
+        modes=("sprint",),
+        help="Motor turns per wheel turn (SDS MK4i L2: 6.75).",
+    ),
+    Field(
+        "wheel_diameter",
+        "Wheel diameter",
+        "length",
+        "in",
+        default=4,
+        min=0.5,
+        max=40,
+        help="Nominal tread diameter (worn tread is smaller).",
+    ),
+    Field(
+        "robot_mass",
+        "Robot mass",
+        "mass",
+        "lb",
+        default=135,
+        min=1,
+        max=2000,
+        help="Everything that moves: robot, battery and bumpers.",
+    ),
+    Field(
+        "wheel_cof",
+        "Wheel friction μ",
+        default=1.1,
+        min=0.05,
+        max=3,
+        help="Wheel-to-floor coefficient of friction (new tread on carpet ≈ 1.1-1.3).",
+    ),
+    Field(
+        "distance",
+        "Distance",
+        "length",
+        "m",
+        default=5,
+        min=0,
+        min_exclusive=True,
+        max=1000,
+        help="How far to sprint from rest (the FRC field is 16.54 m long).",
+    ),
+    EFFECTS.field(
+        "stator_limit, supply_limit (per motor current limits); battery_sag (bus = battery − R × total "
+        "supply current); rolling_resistance (C_rr·m·g); air_drag (½ρ·CdA·v²)."
+    ),
+    *EFFECTS.fields(),
+    accuracy_field(),
+)
+FIELDS = tuple(
+    dataclasses.replace(
+        f, default=0.9, help="Gearbox and wheel efficiency η, 0 to 1 (a swerve module ≈ 0.9)."
+    )
+    if f.name == "efficiency"
+    else dataclasses.replace(
+        f, label="Drive motors", help="All drive motors (a swerve's four, a tank's both sides)."
+    )
+    if f.name == "motor_count"
+    else f
+    for f in FIELDS
+)
+
+OUTPUTS = (
+    Output(
+        "best_ratio",
+        "Fastest ratio",
+        help="Optimise: the reduction G that arrives first (S10).",
+        equation="(S10)",
+    ),
+    Output(
+        "time_to_distance",
+        "Time to distance",
+        "time",
+        "s",
+        help="From rest (S4), (S7)-(S8).",
+        equation="(S8)",
+    ),
+    Output(
+        "speed_at_distance",
+        "Speed at distance",
+        "speed",
+        "ft/s",
+        help="When it crosses the distance.",
+        equation="(S4)",
+    ),
+    Output(
+        "free_speed",
+        "Free speed",
+        "speed",
+        "ft/s",
+        help="No load at the battery voltage: the motors' rated free speed through G and the wheel.",
+        equation="(S2)",
+    ),
+    Output(
+        "top_speed",
+        "Attainable speed",
+        "speed",
+        "ft/s",
+        help="Where the motors' force equals rolling resistance and drag (the free speed with neither).",
+        equation="(S4)",
+    ),
+    Output(
+        "traction_distance",
+        "Distance traction-limited",
+        "length",
+        "m",
+        help="Travelled at the edge of wheel slip (F_m > μ·m·g), from the start.",
+        equation="(S6)",
+    ),
+    Output(
+        "traction_time",
+        "Time traction-limited",
+        "time",
+        "s",
+        help="Spent at the edge of wheel slip.",
+        equation="(S6)",
+    ),
+    Output(
+        "start_acceleration",
+        "Acceleration at the start",
+        "acceleration",
+        "m/s**2",
+        help="min(F_m(0), μ·m·g)/m less rolling resistance (S4).",
+        equation="(S4)",
+    ),
+    Output(
+        "traction_acceleration",
+        "Traction limit μ·g",
+        "acceleration",
+        "m/s**2",
+        help="The most any gearing can accelerate the robot (S3).",
+        equation="(S3)",
+    ),
+    Output(
+        "slip_current",
+        "Suggested stator limit",
+        "current",
+        "A",
+        help="Per motor: the stator current at which the wheels just grip (S5); a limit at or below it "
+        "stops wheel slip and wastes no traction.",
+        equation="(S5)",
+    ),
+    Output("peak_stator_current", "Peak stator current", "current", "A", help="Per motor.", equation="(S5)"),
+    Output(
+        "peak_supply_current", "Peak supply current", "current", "A", help="Per motor: stator current × duty."
+    ),
+    Output("peak_battery_current", "Peak battery current", "current", "A", help="All drive motors."),
+    Output("min_bus_voltage", "Min bus voltage", "voltage", "V", help="Battery voltage minus the sag."),
+    Output(
+        "energy", "Energy", "energy", "J", help="Drawn from the battery over the sprint (its EMF × current)."
+    ),
+    Output(
+        "kS",
+        "kS",
+        "voltage",
+        "V",
+        help="Volts to overcome the motors' loss and rolling resistance (S9).",
+        equation="(S9)",
+    ),
+    Output(
+        "kV", "kV", "voltage_per_speed", "V*s/m", help="Volts per m/s of the robot (S9).", equation="(S9)"
+    ),
+    Output(
+        "kA",
+        "kA",
+        "voltage_per_acceleration",
+        "V*s**2/m",
+        help="Volts per m/s² of the robot (S9).",
+        equation="(S9)",
+    ),
+    *STATS_OUTPUTS,
+)
+
+TABLES = (
+    Table(
+        "distances",
+        "Fastest ratio by distance",
+        (
+            Column("distance", "Distance", "length", "m", width=10),
+            Column("best_ratio", "Fastest G", width=10),
+            Column("time", "Time", "time", "s", width=10),
+            Column("speed", "Speed there", "speed", "ft/s", width=12),
+        ),
+    ),
+)
+
+
+@dataclasses.dataclass(frozen=True)
+class Drive:
+    """What the motors see in a sprint (the context the effects are built with)."""
+
+    motor: Any
+    count: int
+    battery_voltage: float
+    efficiency: float
+    n: float  # motor rad per metre (S1)
+    mass: float
+    bus_resistance: float = 0.0
+    xp: Any = motion.SCALAR
+
+    R = motion.Mechanism.R
+    Kv = motion.Mechanism.Kv
+    Kt = motion.Mechanism.Kt
+    free_current = motion.Mechanism.free_current
+
+    @property
+    def force_per_amp(self) -> float:
+        return self.efficiency * self.count * self.Kt * self.n  # (S2)
+
+
+@dataclasses.dataclass
+class Setup:
+    drive: Drive
+    asm: Any
+    values: Mapping[str, Any]
+    distance: float
+    traction: float  # F_t (S3)
+
+    def resist(self):
+        f = self.asm.slots["resist"]
+        return f if f is not None else (lambda v: 0.0)
+
+
+def setup(v: Mapping[str, Any], ratio: float | None = None, distance: float | None = None) -> Setup:
+    on = v["effects"]
+    motor, _ = lookup(v["motor"], v["source"])
+    G_ = v["ratio"] if ratio is None else ratio
+    drive = Drive(
+        motor,
+        v["motor_count"],
+        v["voltage"],
+        v["efficiency"],
+        G_ / (v["wheel_diameter"] / 2),  # (S1)
+        v["robot_mass"],
+        bus_resistance_of(v, on),
+    )
+    asm = EFFECTS.assemble(on, v, drive, SLOTS, ("position", "speed", "energy"))
+    d = v["distance"] if distance is None else distance
+    return Setup(drive, asm, v, d, v["wheel_cof"] * v["robot_mass"] * G)
+
+
+def _motor_force(s: Setup):
+    """v -> (F_m, u, I): (S2) with the duty and current of the limits that are on."""
+    dr = s.drive
+    elec = electrical(dr, s.asm.slots["duty"])
+    fpa, i_f, k_emf = dr.force_per_amp, dr.free_current, dr.n / dr.Kv
+
+    def f(v):
+        u, I = elec(k_emf * v)
+        return fpa * (I - i_f), u, I
+
+    return f, elec
+
+
+def check_can_move(s: Setup) -> None:
+    """An InputError naming the field when the robot cannot leave: the wheels' grip or the motors'
+    force at rest does not beat rolling resistance."""
+    F0 = _motor_force(s)[0](0.0)[0]
+    F_rr = s.resist()(0.0)
+    if s.traction <= F_rr:
+        raise InputError(
+            "wheel_cof",
+            f"({s.values['wheel_cof']:.4g}) is no more than the rolling resistance "
+            f"({s.values['rolling_coefficient']:.4g}): the wheels cannot push the robot",
+        )
+    if F0 > F_rr:
+        return
+    on = s.values["effects"]
+    if "stator_limit" in on or "supply_limit" in on:
+        raise InputError(
+            "stator_current_limit" if "stator_limit" in on else "supply_current_limit",
+            f"is too low: at rest the motors give {F0:.4g} N, rolling resistance takes {F_rr:.4g} N",
+        )
+    raise InputError(
+        "ratio", f"is too low: the motors stall at {F0:.4g} N against {F_rr:.4g} N of rolling resistance"
+    )
+
+
+def _slip_point(s: Setup, elec) -> tuple[float, float]:
+    """(I_slip (S5), E_slip): the current at which the motors' force equals the traction, and the
+    back-EMF where the motors draw it (bisection: I(E) never rises with E)."""
+    dr = s.drive
+    I_slip = s.traction / dr.force_per_amp + dr.free_current  # (S5)
+    if elec(0.0)[1] <= I_slip:
+        return I_slip, 0.0
+    lo, hi = 0.0, dr.battery_voltage
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if elec(mid)[1] > I_slip:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-15 * dr.battery_voltage:
+            break
+    return I_slip, hi
+
+
+def _g_and_slope(X: float, a: float) -> tuple[float, float]:
+    return (1 - a) * X + a * motion._g(X), 1 - a * math.exp(-X)
+
+
+def phase_two_time(D: float, a: float) -> float:
+    """X ≥ 0 with X − a·(1 − e^{−X}) = D (S8), 0 ≤ a ≤ 1: Lambert W₀ for D ≥ 0.01, else the root of
+    (1 − a)·X + a·X²/2 = D; then Newton (f convex and increasing: it converges from either side)."""
+    if D <= 0:
+        return 0.0
+    if D < 0.01:
+        X = 2 * D / ((1 - a) + math.sqrt((1 - a) ** 2 + 2 * a * D))
+    else:
+        from scipy.special import lambertw
+
+        X = D + a + float(lambertw(-a * math.exp(-(D + a))).real)  # (S8)
+    for _ in range(6):
+        f, slope = _g_and_slope(X, a)
+        if not slope > 0:
+            break
+        step = (f - D) / slope
+        X -= step
+        if abs(step) <= 1e-16 * X:
+            break
+    return X
+
+
+def closed_form(s: Setup) -> dict[str, float] | None:
+    """(S6)-(S8) when nothing needs integrating (no current limit, no drag); None otherwise."""
+    if s.asm.slots["duty"] is not None or "air_drag" in s.asm.on:
+        return None
+    dr = s.drive
+    m, d = dr.mass, s.distance
+    R_eff = dr.R + dr.bus_resistance
+    fpa = dr.force_per_amp
+    F_rr = s.resist()(0.0)
+    a1 = (s.traction - F_rr) / m
+    v_sw = max(
+        0.0, (dr.battery_voltage - R_eff * (dr.free_current + s.traction / fpa)) * dr.Kv / dr.n
+    )  # (S6)
+    t_sw, x_sw = v_sw / a1, v_sw * v_sw / (2 * a1)
+    if x_sw >= d:
+        T = math.sqrt(2 * d / a1)
+        return {"time": T, "speed": a1 * T, "traction_time": T, "traction_distance": d}
+    tau = m * R_eff * dr.Kv / (fpa * dr.n)  # (S7)
+    v_f = (dr.battery_voltage - R_eff * (dr.free_current + F_rr / fpa)) * dr.Kv / dr.n
+    a = (v_f - v_sw) / v_f
+    X = phase_two_time((d - x_sw) / (v_f * tau), a)
+    speed = v_f - (v_f - v_sw) * math.exp(-X)
+    return {"time": t_sw + X * tau, "speed": speed, "traction_time": t_sw, "traction_distance": x_sw}
+
+
+class _Pieces:
+    """Runs one after another (the traction phase, then the rest), answering `at(t)` and `y[-1]`."""
+
+    def __init__(self, runs):
+        self.runs = runs
+        self.y = runs[-1].y
+        self.nfev = sum(r.nfev for r in runs)
+
+    def at(self, t: float):
+        for r in self.runs:
+            if t <= r.t[-1]:
+                return r.at(t)
+        return self.runs[-1].at(t)
+
+
+def integrated(s: Setup, rtol: float, dense: bool = False):
+    """(S4) integrated to the goal: the traction phase to where the wheels grip (a terminal event:
+    the acceleration has a kink there, and F_m falls with v, so they never slip again), then on
+    to the goal. (values, run, scales)."""
+    dr = s.drive
+    force, elec = _motor_force(s)
+    resist = s.resist()
+    F_t, m, d = s.traction, dr.mass, s.distance
+    I_slip, E_slip = _slip_point(s, elec)
+    u_slip = elec(E_slip)[0]
+    v_ref = (dr.battery_voltage - dr.R * dr.free_current) * dr.Kv / dr.n
+    e_ref = dr.count * dr.battery_voltage * I_slip * d / v_ref
+    Vb_N = dr.battery_voltage * dr.count
+    slip_sup = Vb_N * u_slip * I_slip / e_ref
+
+    def slipping(t, y):  # (S4) at the edge of slip: the traction pushes, the motors draw I_slip (S5)
+        v = y[1] * v_ref
+        return [v / d, (F_t - resist(v)) / (m * v_ref), slip_sup]
+
+    def gripping(t, y):
+        v = y[1] * v_ref
+        F_m, u, I = force(v)
+        return [v / d, (F_m - resist(v)) / (m * v_ref), Vb_N * u * I / e_ref]
+
+    goal = Event("goal", lambda t, y: y[0] - 1.0, +1)
+    grip = Event("grip", lambda t, y: force(y[1] * v_ref)[0] - F_t, -1)
+    opts = {"rtol": rtol, "atol": rtol, "max_steps": DP54_STEPS, "dense": dense}
+    runs = []
+    t0, y0 = 0.0, [0.0, 0.0, 0.0]
+    t_grip, x_grip = 0.0, 0.0
+    if force(0.0)[0] > F_t:
+        first = integrate(slipping, 0.0, 3600.0, y0, events=[goal, grip], **opts)
+        runs.append(first)
+        t0, y0 = first.t[-1], list(first.y[-1])
+        t_grip, x_grip = t0, y0[0] * d
+    if not runs or runs[-1].event == "grip":
+        rest = integrate(gripping, t0, 3600.0, y0, events=[goal], restart=("grip",), **opts)
+        runs.append(rest)
+    if runs[-1].event != "goal":
+        raise InputError("ratio", "the robot does not cross the distance within an hour: change the ratio")
+    run = _Pieces(runs)
+    end = run.y[-1]
+    values = {
+        "time": runs[-1].t[-1],
+        "speed": end[1] * v_ref,
+        "traction_time": t_grip,
+        "traction_distance": x_grip,
+        "energy": end[2] * e_ref,
+    }
+    return values, run, (d, v_ref, e_ref)
+
+
+def _attainable(s: Setup) -> float:
+    """Top speed: F_m(v) = resist(v) (S4); the free speed when nothing resists."""
+    force, _ = _motor_force(s)
+    resist = s.resist()
+    dr = s.drive
+    v_free = (dr.battery_voltage - (dr.R + dr.bus_resistance) * dr.free_current) * dr.Kv / dr.n
+
+    def net(v):
+        return force(v)[0] - resist(v)
+
+    if s.asm.slots["resist"] is None:
+        return v_free  # F_m(v_free) = 0 at full duty (the limits do not bind at the free current)
+    from scipy.optimize import brentq
+
+    return float(brentq(net, 0.0, v_free, xtol=1e-14 * v_free, rtol=1e-15))
+
+
+def sprint(s: Setup, rtol: float, plots: bool = False) -> SimRun:
+    """Every output of one sprint at one ratio (closed form when nothing needs integrating)."""
+    check_can_move(s)
+    dr = s.drive
+    force, elec = _motor_force(s)
+    I_slip, E_slip = _slip_point(s, elec)
+    exact = closed_form(s)
+    run = scales = None
+    nfev = 0
+    if exact is None:
+        exact, run, scales = integrated(s, rtol, dense=plots)
+        nfev = run.nfev
+    else:
+        exact["energy"] = _energy_closed(s, exact, I_slip, elec(E_slip)[0])
+    traction_limited = exact["traction_time"] > 0
+    E_start = E_slip if traction_limited else 0.0
+    # while slipping the motors sit at E_slip whatever the robot's speed (S5); after, E rises with v
+    E_end = max(E_start, dr.n * exact["speed"] / dr.Kv)
+    Es = [E_start, E_end] + [E for E in branch_emfs(dr, s.values, s.asm.on) if E_start < E < E_end]
+    sup = []
+    for E in Es:
+        u, I = elec(E)
+        if traction_limited and E == E_start:
+            I = I_slip
+        sup.append(u * I)
+    I0 = I_slip if traction_limited else elec(0.0)[1]
+    peak_sup = max(sup)
+    v_free = (dr.battery_voltage - (dr.R + dr.bus_resistance) * dr.free_current) * dr.Kv / dr.n
+    F_rr = s.resist()(0.0)
+    fpv = dr.force_per_amp / dr.R
+    values = {
+        "time_to_distance": exact["time"],
+        "speed_at_distance": exact["speed"],
+        "free_speed": v_free,
+        "top_speed": _attainable(s),
+        "traction_distance": exact["traction_distance"],
+        "traction_time": exact["traction_time"],
+        "start_acceleration": (min(force(0.0)[0], s.traction) - F_rr) / dr.mass,
+        "traction_acceleration": s.values["wheel_cof"] * G,
+        "slip_current": I_slip,
+        "peak_stator_current": I0,
+        "peak_supply_current": peak_sup,
+        "peak_battery_current": peak_sup * dr.count,
+        "min_bus_voltage": dr.battery_voltage - dr.bus_resistance * peak_sup,
+        "energy": exact["energy"],
+        "kS": dr.R * dr.free_current + F_rr / fpv,  # (S9)
+        "kV": dr.n / dr.Kv,
+        "kA": dr.mass / fpv,
+    }
+    key = {"time_to_distance": exact["time"], "speed_at_distance": exact["speed"], "energy": exact["energy"]}
+    series = _samples(s, run, scales, exact, I_slip, elec) if plots else {}
+    return SimRun(values, key, nfev, [], series)
+
+
+def _energy_closed(s: Setup, exact, I_slip: float, u_slip: float) -> float:
+    """∫ V_b·N·u·I dt in closed form: traction phase at I_slip, then (M2) at full duty,
+    I = (V_b − n·v/Kv)/R_eff, so ∫ I dt = (V_b·s − n·(x − x_sw)/Kv)/R_eff."""
+    dr = s.drive
+    R_eff = dr.R + dr.bus_resistance
+    t2 = exact["time"] - exact["traction_time"]
+    x2 = s.distance - exact["traction_distance"]
+    charge = u_slip * I_slip * exact["traction_time"] + (dr.battery_voltage * t2 - dr.n * x2 / dr.Kv) / R_eff
+    return dr.count * dr.battery_voltage * charge
+
+
+def _samples(s: Setup, run, scales, exact, I_slip: float, elec) -> dict[str, tuple[list, list]]:
+    """Distance, speed and current over time: from the dense output, or from (S6)-(S7)."""
+    dr = s.drive
+    force, _ = _motor_force(s)
+    T = exact["time"]
+    if run is not None:
+        d, v_ref, _ = scales
+
+        def state(t, last):
+            y = run.y[-1] if last else run.at(t)
+            return y[0] * d, y[1] * v_ref
+    else:
+        m, R_eff, fpa = dr.mass, dr.R + dr.bus_resistance, dr.force_per_amp
+        a1 = (s.traction - s.resist()(0.0)) / m
+        t_sw, x_sw = exact["traction_time"], exact["traction_distance"]
+        v_sw = a1 * t_sw
+        tau = m * R_eff * dr.Kv / (fpa * dr.n)  # (S7)
+        v_f = (dr.battery_voltage - R_eff * (dr.free_current + s.resist()(0.0) / fpa)) * dr.Kv / dr.n
+
+        def state(t, last):
+            if t <= t_sw:
+                return a1 * t * t / 2, a1 * t
+            x = -(t - t_sw) / tau
+            return x_sw + v_f * (t - t_sw) + (v_f - v_sw) * tau * math.expm1(x), v_f - (
+                v_f - v_sw
+            ) * math.exp(x)
+
+    ts, xs, vs, cur = [], [], [], []
+    for k in range(SAMPLES + 1):
+        t = T * k / SAMPLES
+        x, v = state(t, k == SAMPLES)
+        F_m, _, I = force(v)
+        ts.append(t)
+        xs.append(x)
+        vs.append(v)
+        cur.append(I_slip if F_m > s.traction else I)
+    return {"position": (ts, xs), "speed": (ts, vs), "stator_current": (ts, cur)}
+
+
+def slip_ratio(v: Mapping[str, Any], distance: float | None = None) -> float:
+    """G_t: the ratio at which the motors' force at rest equals the traction (S10's centre)."""
+    probe = setup(v, 1.0, distance)
+    dr = probe.drive
+    _, I0 = electrical(dr, probe.asm.slots["duty"])(0.0)
+    if I0 <= dr.free_current:
+        check_can_move(probe)
+    return probe.traction / (dr.force_per_amp * (I0 - dr.free_current))
+
+
+def fastest(v: Mapping[str, Any], rtol: float, distance: float) -> tuple[float, float, list, list, bool]:
+    """(G*, T*, curve ratios, curve times, at the edge) for one distance (S10)."""
+    import numpy as np
+    from scipy.optimize import minimize_scalar
+
+    G_t = slip_ratio(v, distance)
+    ratios = np.geomspace(G_t / 30, G_t * 3, CURVE_RATIOS)
+    curve_rtol = max(rtol, 1e-4)
+    times = []
+    for G_ in ratios:
+        try:
+            times.append(sprint(setup(v, float(G_), distance), curve_rtol).values["time_to_distance"])
+        except InputError:
+            times.append(math.inf)
+    times_arr = np.array(times)
+    if not np.isfinite(times_arr).any():
+        check_can_move(setup(v, float(ratios[-1]), distance))
+        raise InputError("ratio", "no ratio moves the robot")
+    i = int(np.argmin(times_arr))
+    lo, hi = float(ratios[max(i - 2, 0)]), float(ratios[min(i + 2, CURVE_RATIOS - 1)])
+
+    def time_at(G_):
+        try:
+            return sprint(setup(v, float(G_), distance), rtol).values["time_to_distance"]
+        except InputError:
+            return math.inf
+
+    best = minimize_scalar(time_at, bounds=(lo, hi), method="bounded", options={"xatol": 1e-7 * lo})
+    G_best, T_best = float(best.x), float(best.fun)
+    if _traction_only(v, G_best, distance, rtol):
+        # the time is (μ − C_rr)·g's alone for every ratio that keeps the wheels at the edge of slip
+        # to the distance: a flat optimum. The least reduction of them (the most top speed) by
+        # bisection from a ratio that leaves the traction limit before the distance.
+        lo_G = float(ratios[0])
+        if not _traction_only(v, lo_G, distance, rtol):
+            hi_G = G_best
+            for _ in range(60):
+                mid = math.sqrt(lo_G * hi_G)
+                if _traction_only(v, mid, distance, rtol):
+                    hi_G = mid
+                else:
+                    lo_G = mid
+                if hi_G / lo_G - 1 < 1e-9:
+                    break
+            G_best = hi_G
+            T_best = time_at(G_best)
+    ok = np.isfinite(times_arr)
+    return (
+        G_best,
+        T_best,
+        [float(r) for r in ratios[ok]],
+        [float(t) for t in times_arr[ok]],
+        i in (0, CURVE_RATIOS - 1),
+    )
+
+
+def _traction_only(v: Mapping[str, Any], G_: float, distance: float, rtol: float) -> bool:
+    try:
+        out = sprint(setup(v, G_, distance), rtol).values
+    except InputError:
+        return False
+    return out["traction_distance"] >= distance * (1 - 1e-12)
+
+
+def simulate(v: Mapping[str, Any], rtol: float) -> SimRun:
+    _, note = lookup(v["motor"], v["source"])
+    if v["mode"] == "optimise":
+        G_best, _, ratios, times, edge = fastest(v, rtol, v["distance"])
+        run = sprint(setup(v, G_best), rtol, plots=True)
+        run.values["best_ratio"] = G_best
+        run.key["best_ratio"] = G_best
+        run.series["time_vs_ratio"] = (ratios, times)
+        if edge:
+            run.warnings.append(
+                f"The fastest ratio is at the edge of the range searched ({ratios[0]:.3g} to {ratios[-1]:.3g})."
+            )
+    else:
+        run = sprint(setup(v), rtol, plots=True)
+    braking_warning(v, run)
+    if note:
+        run.warnings.insert(0, note)
+    return run
+
+
+def compute(values: Mapping[str, Any]):
+    from ..model import Result
+
+    result_of = compute_with_stats(simulate)
+    result = result_of(values)
+    if values["mode"] == "optimise":
+        rtol = 1e-6
+        rows = []
+        for d in TABLE_DISTANCES:
+            try:
+                G_best, T, _, _, _ = fastest(values, rtol, d)
+            except InputError:
+                continue
+            speed = sprint(setup(values, G_best, d), rtol).values["speed_at_distance"]
+            rows.append({"distance": d, "best_ratio": G_best, "time": T, "speed": speed})
+        result.tables["distances"] = rows
+    return Result(result.values, result.warnings, result.series, result.tables)
+
+
+CALCULATOR = Calculator(
+    id="sprint",
+    title="Drivetrain sprint",
+    summary="Time for a robot to cross a distance from rest, and the ratio that crosses it first.",
+    fields=FIELDS,
+    outputs=OUTPUTS,
+    compute=compute,
+    simulate=simulate,
+    tables=TABLES,
+    plots=(
+        Plot("Distance", ("position",), "time", "time", "s", "distance", "length", "m"),
+        Plot("Speed", ("speed",), "time", "time", "s", "speed", "speed", "ft/s"),
+        Plot("Current (per motor)", ("stator_current",), "time", "time", "s", "current", "current", "A"),
+        Plot(
+            "Time vs ratio (optimise)", ("time_vs_ratio",), "ratio", "dimensionless", "", "time", "time", "s"
+        ),
+    ),
+)
