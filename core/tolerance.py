@@ -36,6 +36,9 @@ from typing import Any
 from . import units
 from .errors import InputError
 from .model import Calculator, choice_values, parse_inputs
+from .model import solve as solve_nominal
+from .registry import get
+from .sim.integrate import cpu_clock
 from .sweep import STATS, Cost, Outcome, evaluate, numeric_outputs
 
 _PLUS_MINUS = re.compile(r"±|\+/-|\+-")
@@ -255,8 +258,6 @@ class _Probe:
         cost: Cost,
         cancelled: Callable[[], bool] | None,
     ):
-        from .sim.integrate import cpu_clock
-
         self.calc, self.base, self.tols, self.cost = calc, dict(values), tolerances, cost
         self.cancelled = cancelled
         self.clock = cpu_clock
@@ -596,9 +597,6 @@ def solve(
     budget_s: float | None = None,
 ):
     """(Solution at the nominal values, exactly core.model.solve's; Spread or None; notes)."""
-    from .model import solve as solve_nominal
-    from .registry import get
-
     calc = get(calc_id)
     nominal_raw, values, tols, notes = parse(calc, raw)
     solution = solve_nominal(calc_id, nominal_raw, display_units)
@@ -617,8 +615,6 @@ def solve(
 def solve_entries(calc_id: str, entries: Mapping[str, Any], display_units: Mapping[str, str] | None = None):
     """What a card solves: (Solution, Spread or None). Entries without ± go straight to
     core.model.solve, so a card without tolerances costs what it did."""
-    from .model import solve as solve_nominal
-
     if not any(isinstance(v, str) and _PLUS_MINUS.search(v) for v in entries.values()):
         return solve_nominal(calc_id, entries, display_units), None
     solution, result, _ = solve(calc_id, entries, display_units, budget_s=APP_BUDGET_S)

@@ -255,10 +255,9 @@ def test_bounds_are_in_the_display_unit_and_messages_quote_them_there():
 
 def test_retired_names_are_replaced_once_per_solve(monkeypatch):
     """retire() ran three times per solve (solve, parse_inputs, choice_values) (issue 34 item 7)."""
-    from gearhead.core.model import solve
-    from gearhead.core.sim import effects
+    from gearhead.core import model
 
-    calls, real = [], effects.retire
-    monkeypatch.setattr(effects, "retire", lambda *a, **k: calls.append(1) or real(*a, **k))
-    solve("beam", {"section": "round_tube"})
+    calls, real = [], model.retire  # core.sim.effects.retire, as core.model calls it
+    monkeypatch.setattr(model, "retire", lambda *a, **k: calls.append(1) or real(*a, **k))
+    model.solve("beam", {"section": "round_tube"})
     assert len(calls) == 1

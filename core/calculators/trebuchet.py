@@ -63,8 +63,9 @@ from __future__ import annotations
 
 import math
 
+from ..declarations import Calculator, Output, Plot, Result
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot, Result
+from ..fields import Field
 from ..sim import flight
 from ..sim import trebuchet as tb
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats, solve_budget

@@ -52,7 +52,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from ..model import Field, Output
+from ..declarations import Output
+from ..fields import Field
 from .effects import Assembly, Effect, Effects, Part, Slot, nothing
 
 
