@@ -28,7 +28,7 @@ from .declarations import Output as Output
 from .declarations import Plot as Plot
 from .declarations import Result as Result
 from .declarations import Table as Table
-from .errors import InputError
+from .errors import InputError, raise_all
 from .fields import Field as Field
 from .registry import get
 from .sim.effects import retire
@@ -80,23 +80,36 @@ def parse_inputs(
     fallback is one line appended to `ignored` (when given), and its text is the default's, so
     a report never shows "banana" beside the default's value. `retired`: the caller has already
     replaced retired names (core.sim.effects.retire), once for the whole solve.
+
+    Every wrong entry is reported, not only the first: one is raised as it is, several as one
+    InputErrors (core.errors) whose primary, the first met, is the error raised before (unknown
+    names first, then the fields in the calculator's order). A wrong mode stops the reading there:
+    which fields are used depends on it.
     """
     if not retired:
         raw, _ = retire(calc.fields, raw)  # a name retired from a flags field: what replaced it
     known = {f.name for f in calc.fields}
-    for name in raw:
-        if name not in known:
-            raise InputError(name, f"unknown field for {calc.id} (fields: {', '.join(sorted(known))})")
+    errors = [
+        InputError(name, f"unknown field for {calc.id} (fields: {', '.join(sorted(known))})")
+        for name in raw
+        if name not in known
+    ]
     mode = None
     if "mode" in known:
-        mode = calc.field("mode").parse(raw.get("mode", calc.field("mode").default))
+        try:
+            mode = calc.field("mode").parse(raw.get("mode", calc.field("mode").default))
+        except InputError as exc:
+            raise_all(errors + [exc])
     choices = choice_values(calc, raw, retired=True)
     values: dict[str, Any] = {}
     texts: dict[str, str] = {}
     for f in calc.fields:
         entered = raw.get(f.name, f.default)
         if f.active(mode, choices):
-            values[f.name] = f.parse(entered)
+            try:
+                values[f.name] = f.parse(entered)
+            except InputError as exc:
+                errors.append(exc)
         else:
             try:
                 values[f.name] = f.parse(entered)
@@ -109,6 +122,7 @@ def parse_inputs(
                         f"the default {f.entry_text(f.default)} stands"
                     )
         texts[f.name] = f.entry_text(entered)
+    raise_all(errors)
     return values, texts
 
 
