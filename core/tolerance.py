@@ -33,10 +33,8 @@ from dataclasses import dataclass
 from dataclasses import field as dc_field
 from typing import Any
 
-from . import (
-    model,  # model.solve read at each use (the app's tests stand in for it)
-    units,
-)
+# model.solve and integrate.cpu_clock are read at each use: tests stand in for them
+from . import model, units
 from .errors import InputError
 from .model import Calculator, choice_values, parse_inputs
 from .registry import get
