@@ -1,4 +1,7 @@
-"""Checks a calculator's declaration when the registry loads it, so a slip in a description
+"""What a calculator declares (its outputs, plots and tables, what its compute returns, the
+Calculator itself; its fields are core/fields.py), and the checks of a declaration.
+
+A calculator's declaration is checked when the registry loads it, so a slip in a description
 (a misspelled quantity kind, a unit of the wrong dimension, a default outside its bounds, a `when`
 naming a field that does not exist) fails at once with the calculator and the field named, instead
 of as a KeyError or a pint traceback the first time someone solves it.
@@ -13,13 +16,124 @@ from it.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from dataclasses import field as dc_field
+from typing import Any
 
 from . import units
 from .errors import InputError
+from .fields import Field
 
-if TYPE_CHECKING:
-    from .model import Calculator
+
+@dataclass(frozen=True)
+class Output:
+    name: str
+    label: str
+    quantity: str = "dimensionless"
+    unit: str = ""
+    help: str = ""
+    # the seed's equation number(s) this output comes from, e.g. "(12)" or "(61)-(64)"; shown on the
+    # result row with `help` as its one-line "how"
+    equation: str = ""
+
+
+@dataclass(frozen=True)
+class Plot:
+    """A chart of one or more series a compute function returns (x and y in SI)."""
+
+    title: str
+    series: tuple[str, ...]  # keys of Result.series, one line each
+    x_label: str
+    x_quantity: str
+    x_unit: str
+    y_label: str
+    y_quantity: str
+    y_unit: str
+
+
+@dataclass(frozen=True)
+class Column:
+    """One column of a Table: a value per row, in SI like an Output."""
+
+    name: str
+    label: str
+    quantity: str = "dimensionless"
+    unit: str = ""
+    hidden: bool = False  # carried for sending a row (exports), not shown
+    width: int = 0  # characters on screen; fixed so the table never re-measures (0: the label's)
+
+
+@dataclass(frozen=True)
+class Table:
+    """A list of alternatives a compute function returns (e.g. the ratio finder's combinations),
+    shown under the results; each row is a dict of column values, a missing key an empty cell."""
+
+    name: str  # key of Result.tables
+    title: str
+    columns: tuple[Column, ...]
+    # a row sent to another calculator: {target_id: {target_field: column}}; a row is sent to the
+    # targets whose columns it all has
+    exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
+
+    def column(self, name: str) -> Column:
+        for c in self.columns:
+            if c.name == name:
+                return c
+        raise KeyError(name)
+
+
+@dataclass
+class Result:
+    """What a compute function returns: output values in SI, and warnings for the user."""
+
+    values: dict[str, Any]
+    warnings: list[str] = dc_field(default_factory=list)
+    series: dict[str, tuple[list[float], list[float]]] = dc_field(default_factory=dict)  # for plots
+    tables: dict[str, list[dict[str, Any]]] = dc_field(default_factory=dict)  # rows of each Table
+
+
+@dataclass(frozen=True)
+class Calculator:
+    id: str
+    title: str
+    summary: str
+    fields: tuple[Field, ...]
+    outputs: tuple[Output, ...]
+    compute: Callable[[Mapping[str, Any]], Result]
+    section: str = ""  # where in the seed it comes from
+    # Outputs that feed another calculator: {target_id: {target_field: output_name}}
+    exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
+    plots: tuple[Plot, ...] = ()
+    tables: tuple[Table, ...] = ()
+    # Simulated calculators: simulate(values, rtol) -> core.sim.scene.SimRun (for the accuracy ladder)
+    simulate: Callable[[Mapping[str, Any], float], Any] | None = None
+
+    def field(self, name: str) -> Field:
+        return self._index("fields")[name]  # KeyError(name) when there is none
+
+    def output(self, name: str) -> Output:
+        return self._index("outputs")[name]
+
+    def _index(self, what: str) -> dict[str, Any]:
+        """{name: field} or {name: output}, built on first use: lookups run per key and per point."""
+        key = f"_{what}_by_name"
+        try:
+            return self.__dict__[key]
+        except KeyError:
+            pass
+        index: dict[str, Any] = {}
+        for item in getattr(self, what):
+            index.setdefault(item.name, item)  # the first of a name, as a scan would find
+        object.__setattr__(self, key, index)
+        return index
+
+    @property
+    def modes(self) -> tuple[str, ...]:
+        try:
+            return self.field("mode").choices
+        except KeyError:
+            return ()
 
 
 class DeclarationError(RuntimeError):

@@ -1,5 +1,9 @@
 """The one error type every bad input raises, and how a message shows what was typed."""
 
+from __future__ import annotations
+
+from collections.abc import Iterable
+
 ECHO_CHARS = 40  # a message quotes at most this much of an entry, so it stays one short line
 
 
@@ -23,3 +27,43 @@ class InputError(ValueError):
         # a field name may itself be what the user typed (an unknown --set NAME): cap it in the text
         name = field if len(field) <= ECHO_CHARS and field.isprintable() else shown(field)
         super().__init__(f"{where}{name}: {message}")
+
+    @property
+    def errors(self) -> tuple[InputError, ...]:
+        """Every wrong entry this error reports, one per field: itself (InputErrors: several)."""
+        return (self,)
+
+    def from_source(self, source: str) -> InputError:
+        """The same wrong entries, said of `source` (e.g. the preset file they came from)."""
+        return InputError(self.field, self.message, source)
+
+
+class InputErrors(InputError):
+    """Several wrong entries at once: core.model.parse_inputs reads every field before it refuses,
+    so a form can mark each bad field, not only the first. `errors` holds one InputError per wrong
+    entry, in the order parsing meets them (unknown names, then the calculator's fields in order).
+    The first is the primary: this error's field, message, source and text are its own, so a
+    caller that reads one error sees exactly what it saw when parsing stopped at the first."""
+
+    def __init__(self, errors: Iterable[InputError]):
+        found = tuple(errors)
+        if len(found) < 2:
+            raise ValueError("InputErrors holds two or more errors (raise a single one as it is)")
+        first = found[0]
+        super().__init__(first.field, first.message, first.source)
+        self._errors = tuple(e for error in found for e in error.errors)  # flat: each one entry
+
+    @property
+    def errors(self) -> tuple[InputError, ...]:
+        return self._errors
+
+    def from_source(self, source: str) -> InputError:
+        return InputErrors(e.from_source(source) for e in self._errors)
+
+
+def raise_all(errors: list[InputError]) -> None:
+    """Nothing when `errors` is empty; the one error as it is; else InputErrors of them all."""
+    if len(errors) == 1:
+        raise errors[0]
+    if errors:
+        raise InputErrors(errors)

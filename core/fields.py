@@ -9,6 +9,7 @@ on a kind's name, so a new kind is one new class here (or anywhere: `Field(..., 
 
 Calculators declare fields as before (`Field("x", "X", "length", "mm", ...)`, `integer=True`,
 `choices=(...)`, `boolean=True`, `flags=True`); `kind_of` maps that syntax to a kind once.
+`Field` itself is here too, at the end: a field and its kind are read together.
 
 Bounds convention: `min`, `max` and `default` are all in the field's display unit (`unit`), the
 unit the author reads beside the field: `Field("wall", "Wall", "length", "in", default=0.0625,
@@ -19,14 +20,12 @@ from __future__ import annotations
 
 import math
 import numbers
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from . import units
 from .errors import InputError, shown
-
-if TYPE_CHECKING:
-    from .model import Field
 
 # Beyond these magnitudes (in SI) no robot part exists, and products of such values overflow
 # or underflow; rejecting them keeps every formula finite without per-field guesswork.
@@ -380,3 +379,104 @@ def check_bounds(f: Field, value: float, typed: str) -> float:
             word = "less than" if f.max_exclusive else "at most"
             raise InputError(f.name, f"{typed} is too large: must be {word} {f.kind.bound_text(f, hi)}")
     return value
+
+
+_BUILTIN_KINDS = (QUANTITY, INTEGER, CHOICE, FLAGS, BOOLEAN)
+
+
+@dataclass(frozen=True)
+class Field:
+    """One input. `default`, `min` and `max` are what the user would type: numbers in the display
+    unit `unit` (the unit the author reads beside the field; a string default may carry its own
+    unit), e.g. `Field("wall", "Wall", "length", "in", default=0.0625, min=0, max=1)` is 0 to 1 in.
+    Parsed values are SI; `bounds_si` gives the bounds in SI. What sort of value it holds (a
+    quantity, whole number, choice, set of flags, yes/no) is its `kind` (core/fields.py), named
+    by the declaration syntax (`integer=True`, `choices=(...)`, `boolean=True`, `flags=True`;
+    else a quantity) or given as `kind=`."""
+
+    name: str
+    label: str
+    quantity: str = "dimensionless"  # a key of units.SI_UNITS
+    unit: str = ""  # display unit; a bare number typed by the user means this unit
+    default: Any = 0
+    min: float | None = None
+    max: float | None = None
+    min_exclusive: bool = False
+    max_exclusive: bool = False
+    choices: tuple[str, ...] = ()
+    choice_labels: tuple[str, ...] = ()
+    integer: bool = False
+    boolean: bool = False
+    flags: bool = False  # a set of the choices (e.g. the effects a scene switches on)
+    help: str = ""
+    modes: tuple[str, ...] = ()  # shown and used only in these modes; empty means all
+    # shown and used only when other choice fields hold one of these values (for a flags field:
+    # when one of them is on), e.g. (("section", ("round_tube", "rectangular_tube")),) for a wall
+    when: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    kind: Kind | None = None  # after construction always the field's Kind
+
+    def __post_init__(self) -> None:
+        legacy = kind_of(self)
+        # a built-in kind follows the syntax (so dataclasses.replace(f, integer=True) re-kinds f);
+        # any other kind object given is kept
+        declared = self.kind
+        if declared is None or (declared in _BUILTIN_KINDS and legacy is not QUANTITY):
+            declared = legacy
+        object.__setattr__(self, "kind", declared)
+
+    @property
+    def type(self) -> str:
+        """The kind's name ("quantity", "int", "choice", "flags", "bool", ...)."""
+        return self.kind.name
+
+    def label_of(self, choice: str) -> str:
+        if self.choice_labels:
+            return self.choice_labels[self.choices.index(choice)]
+        return choice.replace("_", " ")
+
+    def active(self, mode: str | None, choices: Mapping[str, Any] | None = None) -> bool:
+        """Whether this field is shown and used, given the mode and the other choices made."""
+        if self.modes and mode is not None and mode not in self.modes:
+            return False
+        if choices is not None:
+            for name, allowed in self.when:
+                if name not in choices:
+                    continue
+                chosen = choices[name]
+                if isinstance(chosen, frozenset):  # a flags field: any of the allowed is on
+                    if not chosen & set(allowed):
+                        return False
+                elif chosen not in allowed:
+                    return False
+        return True
+
+    def default_text(self) -> str:
+        return self.kind.default_text(self)
+
+    def entry_text(self, entered: Any) -> str:
+        """The text shown for what was entered."""
+        return self.kind.entry_text(self, entered)
+
+    def parse(self, raw: Any) -> Any:
+        """SI value (float), int, bool, choice string or set of flags (as the kind reads it) from
+        what a user entered; or an InputError naming this field, in one line, quoting at most the
+        start of what was typed."""
+        limit = self.kind.max_chars(self)
+        if isinstance(raw, str) and len(raw) > limit:
+            raise InputError(self.name, f"is too long ({len(raw)} characters; at most {limit})")
+        return self.kind.parse(self, raw)
+
+    def _check_bounds(self, value: float, typed: str) -> float:
+        """`value` (SI) checked against the bounds (and, for a quantity, the magnitude limits)."""
+        return self.kind.checked(self, value, typed)
+
+    def bounds_si(self) -> tuple[float | None, float | None]:
+        """(min, max) in the unit `parse` returns (SI), None where unbounded; `min` and `max` are
+        declared in the display unit (converted once, on first use, as a bare number typed)."""
+        try:
+            return self.__dict__["_bounds_si"]
+        except KeyError:
+            pass
+        bounds = tuple(None if b is None else self.kind.bound_si(self, b) for b in (self.min, self.max))
+        object.__setattr__(self, "_bounds_si", bounds)
+        return bounds

@@ -1,231 +1,37 @@
-"""How a calculator is described (once, as data) and the one path that solves it.
+"""The one path that solves a calculator: parse what was entered, compute, format.
 
 The TUI, the CLI and presets all go through `solve`; none keeps its own list of fields.
+
+Layers (one way; tests/test_architecture.py checks no import cycle among core modules comes back):
+errors, units, fields (Field and its kinds) at the bottom; declarations (what a calculator
+declares: Output, Plot, Table, Result, Calculator, and the checks of a declaration) above them;
+the registry (which loads the calculators) above that; this module on top. The declaration classes
+are re-exported here, so `from gearhead.core.model import Calculator, Field` keeps working; a
+calculator module imports them from core.fields and core.declarations (the registry imports the
+calculators, so a calculator that imported this module would close a circle).
 """
 
 from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from dataclasses import field as dc_field
 from typing import Any
 
 from . import units
-from .errors import InputError
-from .fields import BOOLEAN, CHOICE, FLAGS, INTEGER, QUANTITY, Kind, kind_of
-
-_BUILTIN_KINDS = (QUANTITY, INTEGER, CHOICE, FLAGS, BOOLEAN)
-
-
-@dataclass(frozen=True)
-class Field:
-    """One input. `default`, `min` and `max` are what the user would type: numbers in the display
-    unit `unit` (the unit the author reads beside the field; a string default may carry its own
-    unit), e.g. `Field("wall", "Wall", "length", "in", default=0.0625, min=0, max=1)` is 0 to 1 in.
-    Parsed values are SI; `bounds_si` gives the bounds in SI. What sort of value it holds (a
-    quantity, whole number, choice, set of flags, yes/no) is its `kind` (core/fields.py), named
-    by the declaration syntax (`integer=True`, `choices=(...)`, `boolean=True`, `flags=True`;
-    else a quantity) or given as `kind=`."""
-
-    name: str
-    label: str
-    quantity: str = "dimensionless"  # a key of units.SI_UNITS
-    unit: str = ""  # display unit; a bare number typed by the user means this unit
-    default: Any = 0
-    min: float | None = None
-    max: float | None = None
-    min_exclusive: bool = False
-    max_exclusive: bool = False
-    choices: tuple[str, ...] = ()
-    choice_labels: tuple[str, ...] = ()
-    integer: bool = False
-    boolean: bool = False
-    flags: bool = False  # a set of the choices (e.g. the effects a scene switches on)
-    help: str = ""
-    modes: tuple[str, ...] = ()  # shown and used only in these modes; empty means all
-    # shown and used only when other choice fields hold one of these values (for a flags field:
-    # when one of them is on), e.g. (("section", ("round_tube", "rectangular_tube")),) for a wall
-    when: tuple[tuple[str, tuple[str, ...]], ...] = ()
-    kind: Kind | None = None  # after construction always the field's Kind
-
-    def __post_init__(self) -> None:
-        legacy = kind_of(self)
-        # a built-in kind follows the syntax (so dataclasses.replace(f, integer=True) re-kinds f);
-        # any other kind object given is kept
-        declared = self.kind
-        if declared is None or (declared in _BUILTIN_KINDS and legacy is not QUANTITY):
-            declared = legacy
-        object.__setattr__(self, "kind", declared)
-
-    @property
-    def type(self) -> str:
-        """The kind's name ("quantity", "int", "choice", "flags", "bool", ...)."""
-        return self.kind.name
-
-    def label_of(self, choice: str) -> str:
-        if self.choice_labels:
-            return self.choice_labels[self.choices.index(choice)]
-        return choice.replace("_", " ")
-
-    def active(self, mode: str | None, choices: Mapping[str, Any] | None = None) -> bool:
-        """Whether this field is shown and used, given the mode and the other choices made."""
-        if self.modes and mode is not None and mode not in self.modes:
-            return False
-        if choices is not None:
-            for name, allowed in self.when:
-                if name not in choices:
-                    continue
-                chosen = choices[name]
-                if isinstance(chosen, frozenset):  # a flags field: any of the allowed is on
-                    if not chosen & set(allowed):
-                        return False
-                elif chosen not in allowed:
-                    return False
-        return True
-
-    def default_text(self) -> str:
-        return self.kind.default_text(self)
-
-    def entry_text(self, entered: Any) -> str:
-        """The text shown for what was entered."""
-        return self.kind.entry_text(self, entered)
-
-    def parse(self, raw: Any) -> Any:
-        """SI value (float), int, bool, choice string or set of flags (as the kind reads it) from
-        what a user entered; or an InputError naming this field, in one line, quoting at most the
-        start of what was typed."""
-        limit = self.kind.max_chars(self)
-        if isinstance(raw, str) and len(raw) > limit:
-            raise InputError(self.name, f"is too long ({len(raw)} characters; at most {limit})")
-        return self.kind.parse(self, raw)
-
-    def _check_bounds(self, value: float, typed: str) -> float:
-        """`value` (SI) checked against the bounds (and, for a quantity, the magnitude limits)."""
-        return self.kind.checked(self, value, typed)
-
-    def bounds_si(self) -> tuple[float | None, float | None]:
-        """(min, max) in the unit `parse` returns (SI), None where unbounded; `min` and `max` are
-        declared in the display unit (converted once, on first use, as a bare number typed)."""
-        try:
-            return self.__dict__["_bounds_si"]
-        except KeyError:
-            pass
-        bounds = tuple(None if b is None else self.kind.bound_si(self, b) for b in (self.min, self.max))
-        object.__setattr__(self, "_bounds_si", bounds)
-        return bounds
-
-
-@dataclass(frozen=True)
-class Output:
-    name: str
-    label: str
-    quantity: str = "dimensionless"
-    unit: str = ""
-    help: str = ""
-    # the seed's equation number(s) this output comes from, e.g. "(12)" or "(61)-(64)"; shown on the
-    # result row with `help` as its one-line "how"
-    equation: str = ""
-
-
-@dataclass(frozen=True)
-class Plot:
-    """A chart of one or more series a compute function returns (x and y in SI)."""
-
-    title: str
-    series: tuple[str, ...]  # keys of Result.series, one line each
-    x_label: str
-    x_quantity: str
-    x_unit: str
-    y_label: str
-    y_quantity: str
-    y_unit: str
-
-
-@dataclass(frozen=True)
-class Column:
-    """One column of a Table: a value per row, in SI like an Output."""
-
-    name: str
-    label: str
-    quantity: str = "dimensionless"
-    unit: str = ""
-    hidden: bool = False  # carried for sending a row (exports), not shown
-    width: int = 0  # characters on screen; fixed so the table never re-measures (0: the label's)
-
-
-@dataclass(frozen=True)
-class Table:
-    """A list of alternatives a compute function returns (e.g. the ratio finder's combinations),
-    shown under the results; each row is a dict of column values, a missing key an empty cell."""
-
-    name: str  # key of Result.tables
-    title: str
-    columns: tuple[Column, ...]
-    # a row sent to another calculator: {target_id: {target_field: column}}; a row is sent to the
-    # targets whose columns it all has
-    exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
-
-    def column(self, name: str) -> Column:
-        for c in self.columns:
-            if c.name == name:
-                return c
-        raise KeyError(name)
-
-
-@dataclass
-class Result:
-    """What a compute function returns: output values in SI, and warnings for the user."""
-
-    values: dict[str, Any]
-    warnings: list[str] = dc_field(default_factory=list)
-    series: dict[str, tuple[list[float], list[float]]] = dc_field(default_factory=dict)  # for plots
-    tables: dict[str, list[dict[str, Any]]] = dc_field(default_factory=dict)  # rows of each Table
-
-
-@dataclass(frozen=True)
-class Calculator:
-    id: str
-    title: str
-    summary: str
-    fields: tuple[Field, ...]
-    outputs: tuple[Output, ...]
-    compute: Callable[[Mapping[str, Any]], Result]
-    section: str = ""  # where in the seed it comes from
-    # Outputs that feed another calculator: {target_id: {target_field: output_name}}
-    exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
-    plots: tuple[Plot, ...] = ()
-    tables: tuple[Table, ...] = ()
-    # Simulated calculators: simulate(values, rtol) -> core.sim.scene.SimRun (for the accuracy ladder)
-    simulate: Callable[[Mapping[str, Any], float], Any] | None = None
-
-    def field(self, name: str) -> Field:
-        return self._index("fields")[name]  # KeyError(name) when there is none
-
-    def output(self, name: str) -> Output:
-        return self._index("outputs")[name]
-
-    def _index(self, what: str) -> dict[str, Any]:
-        """{name: field} or {name: output}, built on first use: lookups run per key and per point."""
-        key = f"_{what}_by_name"
-        try:
-            return self.__dict__[key]
-        except KeyError:
-            pass
-        index: dict[str, Any] = {}
-        for item in getattr(self, what):
-            index.setdefault(item.name, item)  # the first of a name, as a scan would find
-        object.__setattr__(self, key, index)
-        return index
-
-    @property
-    def modes(self) -> tuple[str, ...]:
-        try:
-            return self.field("mode").choices
-        except KeyError:
-            return ()
+from .declarations import Calculator as Calculator
+from .declarations import Column as Column
+from .declarations import Output as Output
+from .declarations import Plot as Plot
+from .declarations import Result as Result
+from .declarations import Table as Table
+from .errors import InputError, raise_all
+from .fields import Field as Field
+from .registry import get
+from .sim.effects import retire
 
 
 @dataclass(frozen=True)
@@ -274,25 +80,36 @@ def parse_inputs(
     fallback is one line appended to `ignored` (when given), and its text is the default's, so
     a report never shows "banana" beside the default's value. `retired`: the caller has already
     replaced retired names (core.sim.effects.retire), once for the whole solve.
+
+    Every wrong entry is reported, not only the first: one is raised as it is, several as one
+    InputErrors (core.errors) whose primary, the first met, is the error raised before (unknown
+    names first, then the fields in the calculator's order). A wrong mode stops the reading there:
+    which fields are used depends on it.
     """
     if not retired:
-        from .sim.effects import retire  # a name retired from a flags field: what replaced it
-
-        raw, _ = retire(calc.fields, raw)
+        raw, _ = retire(calc.fields, raw)  # a name retired from a flags field: what replaced it
     known = {f.name for f in calc.fields}
-    for name in raw:
-        if name not in known:
-            raise InputError(name, f"unknown field for {calc.id} (fields: {', '.join(sorted(known))})")
+    errors = [
+        InputError(name, f"unknown field for {calc.id} (fields: {', '.join(sorted(known))})")
+        for name in raw
+        if name not in known
+    ]
     mode = None
     if "mode" in known:
-        mode = calc.field("mode").parse(raw.get("mode", calc.field("mode").default))
+        try:
+            mode = calc.field("mode").parse(raw.get("mode", calc.field("mode").default))
+        except InputError as exc:
+            raise_all(errors + [exc])
     choices = choice_values(calc, raw, retired=True)
     values: dict[str, Any] = {}
     texts: dict[str, str] = {}
     for f in calc.fields:
         entered = raw.get(f.name, f.default)
         if f.active(mode, choices):
-            values[f.name] = f.parse(entered)
+            try:
+                values[f.name] = f.parse(entered)
+            except InputError as exc:
+                errors.append(exc)
         else:
             try:
                 values[f.name] = f.parse(entered)
@@ -305,6 +122,7 @@ def parse_inputs(
                         f"the default {f.entry_text(f.default)} stands"
                     )
         texts[f.name] = f.entry_text(entered)
+    raise_all(errors)
     return values, texts
 
 
@@ -313,8 +131,6 @@ def choice_values(calc: Calculator, raw: Mapping[str, Any], *, retired: bool = F
     name among a flags field counts as what replaced it (core.sim.effects.retire, unless `retired`
     says the caller has done it)."""
     if not retired:
-        from .sim.effects import retire
-
         try:
             raw, _ = retire(calc.fields, raw)
         except InputError:  # two old names at odds: parse_inputs says so; here the defaults serve
@@ -377,9 +193,6 @@ def solve(
     calc_id: str, raw: Mapping[str, Any] | None = None, display_units: Mapping[str, str] | None = None
 ) -> Solution:
     """Parse, compute and format one calculator. Raises InputError on any bad entry."""
-    from .registry import get
-    from .sim.effects import retire
-
     calc = get(calc_id)
     raw, notices = retire(calc.fields, raw or {})  # once per solve: parse_inputs is told so
     values, texts = parse_inputs(calc, raw, notices, retired=True)

@@ -190,7 +190,7 @@ def from_dict(
         inputs, notices = retire(calc.fields, inputs)  # stored in today's fields
         tolerance.parse(calc, inputs)  # unknown field, bad unit, out of bounds, bad ± tolerance
     except InputError as exc:
-        raise InputError(exc.field, exc.message, src) from None
+        raise exc.from_source(src) from None  # every wrong entry, each said of the file
     preset = Preset(calc_id, name, description, dict(inputs), path, builtin)
     preset.warnings = [f"{src}: {n}" for n in notices] + unused_entry_warnings(calc, inputs, src)
     return preset

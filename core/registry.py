@@ -6,9 +6,8 @@ import importlib
 import pkgutil
 from functools import lru_cache
 
-from .declarations import check, check_links
+from .declarations import Calculator, check, check_links
 from .errors import InputError, shown
-from .model import Calculator
 
 # Where each calculator lives in the app: areas in the order of the top tab strip, each with its
 # calculators in tab order. Every calculator must be in exactly one area (checked at load), so a

@@ -25,7 +25,18 @@ from typing import Any
 
 from . import units
 from .errors import InputError
-from .model import UNCOMPUTABLE, Calculator, Field, check_display_units, parse_inputs, uncomputable
+from .model import (
+    UNCOMPUTABLE,
+    Calculator,
+    Field,
+    check_display_units,
+    choice_values,
+    parse_inputs,
+    uncomputable,
+)
+from .registry import get
+from .sim import integrate  # integrate.cpu_clock read at each use (tests slow it down)
+from .sim.effects import retire
 
 DEFAULT_POINTS = 21
 MAX_POINTS = 20_000  # a grid larger than this is a typo (a missing ':'), not a study
@@ -346,8 +357,6 @@ def run(
     Two varies make a grid: the first varies slowest. `progress(done, total)` is called as points
     finish; when `cancelled()` turns true the sweep stops and returns the points it has.
     """
-    from .registry import get
-
     t0 = time.perf_counter()
     calc = get(calc_id)
     specs = [v if isinstance(v, Vary) else parse_vary(calc, v) for v in varies]
@@ -355,13 +364,9 @@ def run(
         raise InputError("--vary", f"sweep one input (a table) or two (a grid), not {len(specs)}")
     if len(specs) == 2 and specs[0].name == specs[1].name:
         raise InputError(specs[0].name, "is varied twice")
-    from .sim.effects import retire
-
     raw, notes = retire(calc.fields, raw)  # an old name among a flags field: noted once, not per point
     base, _ = parse_inputs(calc, raw, retired=True)
     mode = base.get("mode")
-    from .model import choice_values
-
     choices = choice_values(calc, raw, retired=True)
     for v in specs:
         if not calc.field(v.name).active(mode, choices):
@@ -382,17 +387,15 @@ def run(
     grid = [(x,) for x in axes[0]] if len(axes) == 1 else [(x, y) for x in axes[0] for y in axes[1]]
     if len(grid) > MAX_POINTS:
         raise InputError("--vary", f"{len(grid)} points is more than {MAX_POINTS}")
-    from .sim.integrate import cpu_clock
-
     cost = Cost()
     points: list[Point] = []
     stopped = False
-    started = cpu_clock()
+    started = integrate.cpu_clock()
     for i, xs in enumerate(grid):
         if cancelled is not None and cancelled():
             stopped = True
             break
-        if cpu_clock() - started > SWEEP_SECONDS:
+        if integrate.cpu_clock() - started > SWEEP_SECONDS:
             notes.append(
                 f"stopped after {i} of {len(grid)} points: the sweep's budget ({SWEEP_SECONDS:g} s of "
                 f"computing) is spent; sweep fewer points or a narrower range"

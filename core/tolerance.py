@@ -33,9 +33,12 @@ from dataclasses import dataclass
 from dataclasses import field as dc_field
 from typing import Any
 
-from . import units
+# model.solve and integrate.cpu_clock are read at each use: tests stand in for them
+from . import model, units
 from .errors import InputError
 from .model import Calculator, choice_values, parse_inputs
+from .registry import get
+from .sim import integrate
 from .sweep import STATS, Cost, Outcome, evaluate, numeric_outputs
 
 _PLUS_MINUS = re.compile(r"±|\+/-|\+-")
@@ -255,12 +258,10 @@ class _Probe:
         cost: Cost,
         cancelled: Callable[[], bool] | None,
     ):
-        from .sim.integrate import cpu_clock
-
         self.calc, self.base, self.tols, self.cost = calc, dict(values), tolerances, cost
         self.cancelled = cancelled
-        self.clock = cpu_clock
-        self.started = cpu_clock()
+        self.clock = integrate.cpu_clock
+        self.started = integrate.cpu_clock()
         self.share = 1.0
 
     def check(self) -> None:
@@ -596,12 +597,9 @@ def solve(
     budget_s: float | None = None,
 ):
     """(Solution at the nominal values, exactly core.model.solve's; Spread or None; notes)."""
-    from .model import solve as solve_nominal
-    from .registry import get
-
     calc = get(calc_id)
     nominal_raw, values, tols, notes = parse(calc, raw)
-    solution = solve_nominal(calc_id, nominal_raw, display_units)
+    solution = model.solve(calc_id, nominal_raw, display_units)
     for t in tols:
         entered = solution.inputs[t.name]
         solution.inputs[t.name] = type(entered)(entered.value, entered.unit, t.entry)
@@ -617,10 +615,8 @@ def solve(
 def solve_entries(calc_id: str, entries: Mapping[str, Any], display_units: Mapping[str, str] | None = None):
     """What a card solves: (Solution, Spread or None). Entries without ± go straight to
     core.model.solve, so a card without tolerances costs what it did."""
-    from .model import solve as solve_nominal
-
     if not any(isinstance(v, str) and _PLUS_MINUS.search(v) for v in entries.values()):
-        return solve_nominal(calc_id, entries, display_units), None
+        return model.solve(calc_id, entries, display_units), None
     solution, result, _ = solve(calc_id, entries, display_units, budget_s=APP_BUDGET_S)
     return solution, result
 

@@ -1,41 +1,27 @@
-"""SI factors of the units Gearhead declares, generated from pint and stored as JSON, so that a
-solve with bare numbers (the CLI in a script's loop) never pays for pint's registry (~150 ms).
+"""Generates the stored SI factors of the units Gearhead declares (core/unit_factors.json, read by
+core.units.stored_factor), so that a solve with bare numbers (the CLI in a script's loop) never pays
+for pint's registry (~150 ms).
 
 pint stays the source of truth: tests/test_unit_factors.py checks every stored factor against pint
 and that every unit a calculator declares is stored. Regenerate after adding a unit:
 
     .venv/bin/python -m gearhead.core.unit_factors
+
+A tool on top of the registry (it reads every calculator's declaration); nothing in core imports it.
 """
 
 from __future__ import annotations
 
 import json
-from functools import lru_cache
-from pathlib import Path
 
-TABLE = Path(__file__).with_name("unit_factors.json")
-
-
-@lru_cache(maxsize=1)
-def _table() -> dict[str, float]:
-    try:
-        return json.loads(TABLE.read_text(encoding="utf-8"))
-    except (OSError, ValueError):  # no table: every lookup falls back to pint
-        return {}
-
-
-def lookup(unit: str, kind: str) -> float | None:
-    """The stored factor of `unit` as a `kind`, or None (then ask pint)."""
-    return _table().get(f"{kind}|{unit}")
+from .registry import calculators
+from .unit_systems import TO_IMPERIAL, TO_METRIC
+from .units import COMMON_UNITS, FACTOR_TABLE, SI_UNITS, registry, stored_factors
 
 
 def declared_units() -> set[tuple[str, str]]:
     """(unit, kind) of every field, output and plot axis, every unit of the result-unit ring and of
     the units preference."""
-    from .registry import calculators
-    from .unit_systems import TO_IMPERIAL, TO_METRIC
-    from .units import COMMON_UNITS
-
     found = set()
     for calc in calculators().values():
         for f in calc.fields:
@@ -58,8 +44,6 @@ def declared_units() -> set[tuple[str, str]]:
 
 def generate() -> dict[str, float]:
     """Every declared unit's factor, from pint (the same computation as core.units.factor)."""
-    from .units import SI_UNITS, registry
-
     # a fresh registry: the shared one, once it has converted other units, can give a factor one
     # rounding step apart (in*lbf: ...167 vs ...1671), which made the equality test order-dependent
     ureg = registry.__wrapped__()
@@ -72,5 +56,5 @@ def generate() -> dict[str, float]:
 
 
 if __name__ == "__main__":
-    TABLE.write_text(json.dumps(generate(), indent=0, sort_keys=True) + "\n", encoding="utf-8")
-    print(f"wrote {len(_table.__wrapped__())} factors to {TABLE}")
+    FACTOR_TABLE.write_text(json.dumps(generate(), indent=0, sort_keys=True) + "\n", encoding="utf-8")
+    print(f"wrote {len(stored_factors.__wrapped__())} factors to {FACTOR_TABLE}")

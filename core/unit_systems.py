@@ -11,6 +11,9 @@ import re
 from collections.abc import Mapping
 from typing import Any
 
+from .errors import InputError
+from .units import check_unit
+
 SYSTEMS = ("calculator", "imperial", "metric", "as_entered")
 SYSTEM_LABELS = {
     "calculator": "each calculator's own units",
@@ -101,9 +104,6 @@ def system_unit(unit: str, system: str) -> str:
 def typed_units(fields, entries: Mapping[str, Any]) -> dict[str, str]:
     """Quantity kind -> the unit the user typed for a field of that kind (the first one found),
     for the "as entered" preference. Bare numbers and expressions say nothing about a unit."""
-    from .errors import InputError
-    from .units import check_unit
-
     found: dict[str, str] = {}
     for f in fields:
         if not f.kind.with_unit or f.quantity in found or f.quantity == "dimensionless":

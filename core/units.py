@@ -8,8 +8,13 @@ from __future__ import annotations
 import math
 import re
 from functools import lru_cache
+from pathlib import Path
 
 from .errors import InputError, shown
+
+# SI factors of every unit Gearhead declares, generated from pint by core/unit_factors.py, so a solve
+# with bare numbers never pays for pint's registry (~150 ms)
+FACTOR_TABLE = Path(__file__).with_name("unit_factors.json")
 
 # Quantity kind -> the SI unit core works in (written as DESIGN.md's JSON shows them).
 SI_UNITS: dict[str, str] = {
@@ -90,6 +95,22 @@ def _collector_time() -> _CollectorTime:
 
 
 @lru_cache(maxsize=1)
+def stored_factors() -> dict[str, float]:
+    """{"kind|unit": SI factor} as core/unit_factors.py stored them ({} without the file)."""
+    import json  # lazily, as pint: importing this module costs nothing at start-up
+
+    try:
+        return json.loads(FACTOR_TABLE.read_text(encoding="utf-8"))
+    except (OSError, ValueError):  # no table: every lookup falls back to pint
+        return {}
+
+
+def stored_factor(unit: str, kind: str) -> float | None:
+    """The stored factor of `unit` as a `kind`, or None (then ask pint)."""
+    return stored_factors().get(f"{kind}|{unit}")
+
+
+@lru_cache(maxsize=1)
 def registry():
     """The shared pint registry (built once, on first use)."""
     import pint
@@ -106,9 +127,7 @@ def factor(unit: str, kind: str) -> float:
         if kind != "dimensionless":
             raise ValueError(f"{_a(kind)} needs a unit")
         return 1.0
-    from .unit_factors import lookup
-
-    known = lookup(unit, kind)  # every declared unit, generated from pint: no registry to build
+    known = stored_factor(unit, kind)  # every declared unit, generated from pint: no registry to build
     if known is not None:
         return known
     import pint

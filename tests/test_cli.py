@@ -119,3 +119,19 @@ def test_unit_option_changes_only_the_display(capsys):
 def test_bad_unit_option_exits_2_naming_the_output(capsys, spec, named):
     code, out, err = run(capsys, "solve", "gear_ratio", "--unit", spec)
     assert code == 2 and out == "" and named in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("as_json", [[], ["--json"]])
+def test_several_bad_inputs_exit_2_with_a_line_for_each(capsys, as_json):
+    """The first line is what one bad input printed; each further bad field has its own line."""
+    args = ["solve", "gear_ratio", "--set", "load=abc", "--set", "radius=3 kg", *as_json]
+    code, out, err = run(capsys, *args)
+    assert code == 2 and out == ""
+    lines = err.strip().splitlines()
+    assert (
+        len(lines) == 2
+        and lines[0].startswith("gearhead: load: ")
+        and lines[1].startswith("gearhead: radius: ")
+    )
+    _, _, alone = run(capsys, "solve", "gear_ratio", "--set", "load=abc", *as_json)
+    assert lines[0] == alone.strip()

@@ -255,10 +255,66 @@ def test_bounds_are_in_the_display_unit_and_messages_quote_them_there():
 
 def test_retired_names_are_replaced_once_per_solve(monkeypatch):
     """retire() ran three times per solve (solve, parse_inputs, choice_values) (issue 34 item 7)."""
-    from gearhead.core.model import solve
-    from gearhead.core.sim import effects
+    from gearhead.core import model
 
-    calls, real = [], effects.retire
-    monkeypatch.setattr(effects, "retire", lambda *a, **k: calls.append(1) or real(*a, **k))
-    solve("beam", {"section": "round_tube"})
+    calls, real = [], model.retire  # core.sim.effects.retire, as core.model calls it
+    monkeypatch.setattr(model, "retire", lambda *a, **k: calls.append(1) or real(*a, **k))
+    model.solve("beam", {"section": "round_tube"})
     assert len(calls) == 1
+
+
+# ---- every wrong entry reported, not only the first (issue 34: two wrong entries, one marked) ----
+
+
+def test_several_wrong_entries_are_all_reported_the_first_as_before():
+    from gearhead.core.errors import InputErrors
+
+    raw = {"load": "abc", "radius": "3 kg", "motor_count": "0"}
+    with pytest.raises(InputErrors) as exc:
+        parse_inputs(get("gear_ratio"), raw)
+    # in the calculator's field order (the motor's fields come first)
+    assert [e.field for e in exc.value.errors] == ["motor_count", "load", "radius"]
+    assert all(type(e) is InputError for e in exc.value.errors)
+    # the primary is what parsing raised when it stopped at the first
+    with pytest.raises(InputError) as first:
+        parse_inputs(get("gear_ratio"), {"motor_count": "0"})
+    assert isinstance(exc.value, InputError)
+    assert (exc.value.field, exc.value.message, str(exc.value)) == (
+        "motor_count",
+        first.value.message,
+        str(first.value),
+    )
+    assert str(exc.value.errors[1]) == "load: 'abc' is not a unit I know (units of a force: N, lbf)"
+
+
+def test_one_wrong_entry_is_raised_as_it_was():
+    with pytest.raises(InputError) as exc:
+        solve("gear_ratio", {"load": "abc"})
+    assert type(exc.value) is InputError and exc.value.errors == (exc.value,)
+
+
+def test_unknown_names_come_first_and_a_wrong_mode_stops_the_reading():
+    from gearhead.core.errors import InputErrors
+
+    with pytest.raises(InputErrors) as exc:
+        solve("gear_ratio", {"load": "abc", "wheels": "4", "spokes": "9"})
+    assert [e.field for e in exc.value.errors] == ["wheels", "spokes", "load"]
+    with pytest.raises(InputErrors) as exc:  # which fields are used depends on the mode
+        solve("gear_ratio", {"wheels": "4", "mode": "fastest", "load": "abc"})
+    assert [e.field for e in exc.value.errors] == ["wheels", "mode"]
+
+
+def test_a_wrong_entry_in_a_field_not_used_is_still_only_a_notice():
+    with pytest.raises(InputError) as exc:
+        solve("gear_ratio", {"mode": "max_power", "target_current": "banana", "load": "abc"})
+    assert [e.field for e in exc.value.errors] == ["load"]
+
+
+def test_a_preset_with_several_wrong_entries_names_each_with_its_file():
+    from gearhead.core import presets
+
+    data = {"calculator": "gear_ratio", "inputs": {"load": "abc", "radius": "3 kg"}}
+    with pytest.raises(InputError) as exc:
+        presets.from_dict(data, "arm.toml")
+    assert [(e.source, e.field) for e in exc.value.errors] == [("arm.toml", "load"), ("arm.toml", "radius")]
+    assert str(exc.value).startswith("arm.toml: load: ")

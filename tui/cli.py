@@ -94,6 +94,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         return code
     except InputError as exc:
         _complain(str(exc) + _logged(exc, argv))
+        for error in exc.errors[1:]:  # several wrong entries: one line each, the first as before
+            _complain(str(error))
         return EXIT_BAD_INPUT
     except KeyboardInterrupt:
         print("gearhead: interrupted", file=sys.stderr)

@@ -44,8 +44,9 @@ from __future__ import annotations
 import math
 
 from .. import beams
+from ..declarations import Calculator, Output, Plot, Result
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot, Result
+from ..fields import Field
 from ..units import format_number
 
 MILD_STEEL_YIELD = 250e6  # Pa, ASTM A36 (the low end of common steels), for the short-column warning

@@ -51,8 +51,9 @@ from __future__ import annotations
 import math
 
 from ..constants import INCH as IN
+from ..declarations import Calculator, Output, Result
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Result
+from ..fields import Field
 
 MM = 1e-3
 

@@ -61,8 +61,9 @@ from __future__ import annotations
 
 import dataclasses
 
+from ..declarations import Calculator, Output, Plot, Result
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot, Result
+from ..fields import Field
 from ..motors import MotorSystem, motor_fields, system_from
 from ..sim import motor_limits
 from ..sim.effects import Effect, Effects, nothing

@@ -72,8 +72,9 @@ from typing import Any
 
 from ..constants import G0 as G_ACC
 from ..constants import RPM
+from ..declarations import Calculator, Output, Plot
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot
+from ..fields import Field
 from ..motors import lookup, motor_fields, system_from
 from ..sim import motor_limits
 from ..sim.effects import Effect, Effects, nothing

@@ -23,7 +23,8 @@ Corrections to the seed:
 
 from __future__ import annotations
 
-from ..model import Calculator, Field, Output, Result
+from ..declarations import Calculator, Output, Result
+from ..fields import Field
 
 _WHERE = (
     "Gears 2 and 3 mesh. Gear 1 is on the shaft of gear 2 (shaft A); gear 4 is on the shaft "

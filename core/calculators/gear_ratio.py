@@ -19,8 +19,9 @@ from __future__ import annotations
 
 import math
 
+from ..declarations import Calculator, Output, Result
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Result
+from ..fields import Field
 from ..motors import MotorSystem, motor_fields, system_from
 
 MODES = (

@@ -25,8 +25,9 @@ from __future__ import annotations
 import math
 
 from ..constants import INCH
+from ..declarations import Calculator, Output, Plot, Result
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot, Result
+from ..fields import Field
 
 FIELDS = (
     Field(

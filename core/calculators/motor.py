@@ -12,8 +12,9 @@ with τ(ω) = τ (τ never rises with ω). Electrical power is drawn from the ba
 
 from __future__ import annotations
 
+from ..declarations import Calculator, Output, Plot, Result
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot, Result
+from ..fields import Field
 from ..motors import lookup, motor_fields, system_from
 from ..sim import motor_limits
 from ..sim.effects import Effects

@@ -43,8 +43,9 @@ from __future__ import annotations
 
 import math
 
+from ..declarations import Calculator, Output, Plot, Result
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot, Result
+from ..fields import Field
 from ..units import format_quantity
 
 MODES = ("forward", "reverse")

@@ -35,8 +35,9 @@ from bisect import bisect_right
 from functools import cache
 
 from ..constants import LBF, PSI
+from ..declarations import Calculator, Output, Plot, Result
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot, Result
+from ..fields import Field
 from ..sim.effects import Effect, Effects, Part, Slot
 from ..sim.integrate import Event, integrate
 from ..sim.scene import SOLVE_NFEV, STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats

@@ -42,8 +42,9 @@ import dataclasses
 import math
 
 from ..constants import G0 as G
+from ..declarations import Calculator, Output, Plot
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot
+from ..fields import Field
 from ..sim import flight
 from ..sim.effects import Effect, Effects
 from ..sim.flight import Air, aim, aim_along, fly, vacuum_apex, vacuum_at, vacuum_path, vacuum_range

@@ -25,8 +25,9 @@ from __future__ import annotations
 import math
 
 from ..constants import INCH as IN
+from ..declarations import Calculator, Output, Result
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Result
+from ..fields import Field
 
 MIN_TEETH = 10  # smallest pinion counted (module docstring)
 MAX_RATIO = 50.0

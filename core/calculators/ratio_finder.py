@@ -17,8 +17,9 @@ from __future__ import annotations
 
 import math
 
+from ..declarations import Calculator, Column, Output, Result, Table
 from ..errors import InputError
-from ..model import Calculator, Column, Field, Output, Result, Table
+from ..fields import Field
 from ..parts import BORES, FAMILIES, SHAFT_BORES, VENDORS
 
 STAGES = (1, 2, 3)

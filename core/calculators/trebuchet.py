@@ -63,8 +63,9 @@ from __future__ import annotations
 
 import math
 
+from ..declarations import Calculator, Output, Plot, Result
 from ..errors import InputError
-from ..model import Calculator, Field, Output, Plot, Result
+from ..fields import Field
 from ..sim import flight
 from ..sim import trebuchet as tb
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats, solve_budget
@@ -359,16 +360,7 @@ def machine(v, sling: bool | None = None, l: float | None = None) -> tb.Machine:
             "so that the long end C can rest on the ground",
         )
     hinged = "hinged_counterweight" in effects
-    if hinged and v["hanger_length"] > 0 and v["arm_mass"] == 0 and v["counterweight_gyration"] == 0:
-        # After release the arm's own inertia about the pivot is I_arm + M·r²·k²/(d² + k²) (the
-        # pendulum's block eliminated): 0 for a massless arm and a point counterweight, whenever the
-        # hanger is square to the arm; the equations of motion are singular there (no unique motion).
-        raise InputError(
-            "arm_mass",
-            "must be above 0 when the counterweight is a point mass (gyration 0) on a "
-            "hanger: a massless arm then has no inertia of its own after release",
-        )
-    return tb.Machine(
+    p = tb.Machine(
         M=v["counterweight_mass"],
         k=v["counterweight_gyration"],
         m=v["arm_mass"],
@@ -382,6 +374,39 @@ def machine(v, sling: bool | None = None, l: float | None = None) -> tb.Machine:
         d=v["hanger_length"] if hinged else 0.0,
         sling=("sling" in effects) if sling is None else sling,
     )
+    check_inertia(p)
+    return p
+
+
+def check_inertia(p: tb.Machine) -> None:
+    """Refuse a machine whose arm can lose (nearly) all its inertia about the pivot in some
+    configuration (Machine.least_inertia): the equations of motion are singular there, and the
+    swing's elimination divided by zero (or by rounding noise) instead."""
+    least, m11 = p.released().least_inertia()
+    if least < tb.MIN_INERTIA_RATIO * m11:
+        # After release the arm's own inertia about the pivot is I_arm + M·r²·k²/(d² + k²) (the
+        # pendulum's block eliminated) whenever the hanger lies in line with the arm (ψ − φ = ±90°,
+        # e.g. hanging straight down under an upright arm): 0 for a massless arm and a point
+        # counterweight (no unique motion), rounding noise for a near-massless one.
+        raise InputError(
+            "arm_mass",
+            f"is too small for a counterweight of gyration {p.k:.3g} m on a {p.d:.3g} m hanger: once "
+            f"the projectile has left, the arm's inertia about the pivot falls to {least:.3g} kg·m² "
+            f"when the hanger lies in line with the arm ({least / m11:.1e} of its {m11:.3g} kg·m², below "
+            f"the {tb.MIN_INERTIA_RATIO:.0e} the swing resolves): a heavier arm, a larger "
+            "counterweight_gyration or a shorter hanger_length",
+        )
+    least, m11 = p.least_inertia()
+    if least < tb.MIN_INERTIA_RATIO * m11:
+        # Before release the sling along the arm takes the projectile's whole m_p·R² off it: what
+        # is left is the arm and counterweight's own inertia.
+        raise InputError(
+            "projectile_mass",
+            f"is too heavy for this arm: when the sling lies along the arm, the arm's inertia about "
+            f"the pivot is {least:.3g} kg·m², {least / m11:.1e} of the projectile's m_p·R² "
+            f"({m11 - least:.3g} kg·m²), below the {tb.MIN_INERTIA_RATIO:.0e} the swing resolves: "
+            "a lighter projectile, a heavier counterweight or arm, or a longer short arm",
+        )
 
 
 def sample(ts: list, ys: list, n: int = PLOT_POINTS) -> tuple[list, list]:

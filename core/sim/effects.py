@@ -52,8 +52,9 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..declarations import Output
 from ..errors import InputError
-from ..model import Field, Output
+from ..fields import Field
 
 Term = Callable[..., Any]
 

@@ -40,7 +40,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from ..model import Field
+from ..fields import Field
 from .effects import Effect, Effects, Part, Slot, nothing
 
 

@@ -15,8 +15,9 @@ from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..declarations import Output, Result
 from ..errors import InputError
-from ..model import Field, Output
+from ..fields import Field
 from .integrate import BudgetExceeded, budget
 
 # Named accuracy levels -> relative tolerance. "default" sits where the error-vs-time curve bends
@@ -190,7 +191,6 @@ def _estimate(
 
 def compute_with_stats(simulate: Simulate, advice: tuple[str, str] = DEFAULT_ADVICE):
     """A calculator's compute function that is just its scene run with the cost figures added."""
-    from ..model import Result
 
     def compute(values: Mapping[str, Any]) -> Result:
         run = run_with_stats(simulate, values, advice)

@@ -52,8 +52,13 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from ..model import Field, Output
+from ..declarations import Output
+from ..fields import Field
 from .effects import Assembly, Effect, Effects, Part, Slot, nothing
+
+# The least effective inertia of the arm (Machine.least_inertia) the swing resolves, relative to the
+# M11 it is computed from: rounding costs ~1e-16·M11, so at 1e-9 the elimination keeps 7 digits.
+MIN_INERTIA_RATIO = 1e-9
 
 
 @dataclass(frozen=True)
@@ -100,6 +105,22 @@ class Machine:
         if self.rigid:
             I += self.M * self.k**2  # rigid: the counterweight turns with the arm
         return I
+
+    def least_inertia(self) -> tuple[float, float]:
+        """(least, M11): the least the arm's effective inertia about the pivot (T6's Schur
+        denominator M11 − Σ M1j²/Mjj) can be over the swing's configurations, in closed form, and
+        M11, which the swing subtracts from. A sling along the arm takes the projectile's whole
+        share (M12²/M22 = m_p·R²·cos²(γ−φ)); a pendulum counterweight in line with the arm all of its
+        share but M·r²·k²/(d² + k²) (M13²/M33 = M·r²·d²·sin²(ψ−φ)/(d² + k²)). The swing computes
+        the difference, so a least inertia below MIN_INERTIA_RATIO of M11 is lost to rounding
+        (exactly 0 there: a division by zero; slightly negative: an arm that turns the wrong way)."""
+        if self.pendulum:
+            least = self.I_arm + self.M * self.r**2 * self.k**2 / (self.d**2 + self.k**2)
+        else:
+            least = self.I_phi
+        if not self.sling:  # the projectile rides in the cup at C: its share never leaves the arm
+            least += self.m_p * self.R**2
+        return least, self.I_phi + self.m_p * self.R**2
 
     @property
     def phi0(self) -> float:

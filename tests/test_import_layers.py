@@ -1,0 +1,138 @@
+"""core's modules import one way: no cycle among them, counting every import statement wherever it
+is (module level, inside a function, under TYPE_CHECKING) and the registry's loading of every
+calculator module by name (issue 34 item 7: core/model <-> registry <-> declarations <-> fields <->
+units went round, held apart only by imports inside functions and TYPE_CHECKING).
+
+The layers (core/model.py's docstring): errors, units, fields at the bottom; declarations; the
+calculators and their scenes (core/sim); the registry, which loads the calculators; model (solve);
+sweep, tolerance, presets, export on top. A lazy import (pint, numpy, scipy at first use) is fine:
+it is an edge like any other here, and only a cycle fails.
+"""
+
+from __future__ import annotations
+
+import ast
+import pathlib
+
+CORE = pathlib.Path(__file__).resolve().parents[1] / "core"
+
+# Edges from files this branch does not edit (the lead's): each imports the declaration classes
+# from core.model (which re-exports them) rather than from core.fields / core.declarations, and
+# core.model imports the registry, which loads the calculators. The one-line diffs are in the
+# robust34 report; remove an entry when its file is changed (test_pending_edges_still_exist says so).
+PENDING = {
+    ("core.calculators.elevator", "core.model"),
+    ("core.calculators.arm", "core.model"),
+    ("core.sim.motion", "core.model"),
+    ("core.motors", "core.model"),
+}
+
+
+def _modules(core: pathlib.Path) -> dict[str, pathlib.Path]:
+    out = {}
+    for path in core.rglob("*.py"):
+        parts = list(path.relative_to(core.parent).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts.pop()
+        out[".".join(parts)] = path
+    return out
+
+
+def _targets(module: str, is_package: bool, node: ast.Import | ast.ImportFrom, known) -> set[str]:
+    """The core modules one import statement loads (a package and the submodules it names)."""
+    names: list[str] = []
+    if isinstance(node, ast.Import):
+        names = [a.name for a in node.names]
+    else:
+        if node.level:
+            base = module.split(".") if is_package else module.split(".")[:-1]
+            base = base[: len(base) - (node.level - 1)]
+            prefix = ".".join(base + ([node.module] if node.module else []))
+        else:
+            prefix = node.module or ""
+        names = [prefix] + [f"{prefix}.{a.name}" for a in node.names]
+    names = [n.removeprefix("gearhead.") for n in names]
+    found = set()
+    for n in names:
+        parts = n.split(".")
+        for i in range(1, len(parts) + 1):  # `import a.b.c` loads a, a.b and a.b.c
+            if ".".join(parts[:i]) in known:
+                found.add(".".join(parts[:i]))
+    return found
+
+
+def import_graph(core: pathlib.Path = CORE) -> dict[str, set[str]]:
+    """{module: the core modules it imports}, every import statement counted, plus the registry's
+    importlib loading of each calculator module."""
+    modules = _modules(core)
+    graph: dict[str, set[str]] = {}
+    for module, path in modules.items():
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        edges: set[str] = set()
+        for node in ast.walk(tree):
+            if isinstance(node, (ast.Import, ast.ImportFrom)):
+                edges |= _targets(module, path.name == "__init__.py", node, modules)
+        edges.discard(module)
+        graph[module] = edges
+    registry = modules["core.registry"].read_text(encoding="utf-8")
+    assert "importlib.import_module" in registry, "the registry no longer loads by name: update this test"
+    graph["core.registry"] |= {m for m in modules if m.startswith("core.calculators.")}
+    return graph
+
+
+def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
+    """One cycle as [a, b, ..., a], or None."""
+    state: dict[str, int] = {}  # 1: on the current path, 2: done
+    path: list[str] = []
+
+    def visit(node: str) -> list[str] | None:
+        state[node] = 1
+        path.append(node)
+        for nxt in sorted(graph.get(node, ())):
+            if state.get(nxt) == 1:
+                return path[path.index(nxt) :] + [nxt]
+            if nxt not in state:
+                found = visit(nxt)
+                if found:
+                    return found
+        path.pop()
+        state[node] = 2
+        return None
+
+    for node in sorted(graph):
+        if node not in state:
+            found = visit(node)
+            if found:
+                return found
+    return None
+
+
+def test_core_modules_import_one_way():
+    graph = import_graph()
+    for a, b in PENDING:
+        graph[a].discard(b)
+    cycle = find_cycle(graph)
+    assert cycle is None, "import cycle among core modules: " + " -> ".join(cycle)
+
+
+def test_pending_edges_still_exist():
+    graph = import_graph()
+    gone = sorted(f"{a} -> {b}" for a, b in PENDING if b not in graph[a])
+    assert not gone, f"no longer imported, remove from PENDING: {', '.join(gone)}"
+
+
+def test_the_checker_sees_a_cycle_through_a_function_level_import(tmp_path):
+    """The graph counts an import inside a function and one under TYPE_CHECKING (both hid the old
+    circle), and the registry's loading of calculators by name."""
+    core = tmp_path / "core"
+    (core / "calculators").mkdir(parents=True)
+    (core / "__init__.py").write_text("")
+    (core / "calculators" / "__init__.py").write_text("")
+    (core / "registry.py").write_text("import importlib\n# importlib.import_module by name\n")
+    (core / "a.py").write_text("def f():\n    from .b import x\n")
+    (core / "b.py").write_text("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from . import a\n")
+    assert find_cycle(import_graph(core)) == ["core.a", "core.b", "core.a"]
+    (core / "b.py").write_text("")
+    assert find_cycle(import_graph(core)) is None
+    (core / "calculators" / "c.py").write_text("from ..registry import importlib\n")
+    assert find_cycle(import_graph(core)) == ["core.calculators.c", "core.registry", "core.calculators.c"]
