@@ -15,6 +15,7 @@ import math
 from dataclasses import dataclass
 
 from .constants import LB, RPM
+from .fields import Field
 
 
 @dataclass(frozen=True)
@@ -190,8 +191,6 @@ def system(motor: Motor, count: int, voltage: float, efficiency: float) -> Motor
 
 def motor_fields(default_motor: str = "Kraken X60", default_count: int = 1):
     """The motor picker and system fields (motor, source, count, voltage, gearbox efficiency)."""
-    from .model import Field
-
     return (
         Field(
             "motor",

@@ -45,8 +45,9 @@ import math
 from dataclasses import replace
 
 from ..constants import G0 as G
+from ..declarations import Calculator, Output
 from ..errors import InputError
-from ..model import Calculator, Field, Output
+from ..fields import Field
 from ..motors import lookup
 from ..sim import motion
 from ..sim.effects import Effect, Effects, Part

@@ -50,8 +50,9 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..constants import G0 as G
+from ..declarations import Calculator, Column, Output, Plot, Result, Table
 from ..errors import InputError
-from ..model import Calculator, Column, Field, Output, Plot, Table
+from ..fields import Field
 from ..motors import lookup
 from ..sim import motion
 from ..sim.effects import Effect, Effects, Part, Slot
@@ -773,9 +774,7 @@ def simulate(v: Mapping[str, Any], rtol: float) -> SimRun:
     return run
 
 
-def compute(values: Mapping[str, Any]):
-    from ..model import Result
-
+def compute(values: Mapping[str, Any]) -> Result:
     result_of = compute_with_stats(simulate)
     result = result_of(values)
     if values["mode"] == "optimise":

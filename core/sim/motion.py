@@ -48,11 +48,12 @@ from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from typing import Any
 
+from ..declarations import Output, Plot
 from ..errors import InputError
-from ..model import Field, Output, Plot
+from ..fields import Field
 from ..motors import Motor, motor_fields
 from .effects import Effect, Effects, Part, Slot
-from .integrate import Event, StiffRun, integrate, integrate_stiff
+from .integrate import Event, StiffRun, charge, integrate, integrate_stiff
 from .motor_limits import (  # noqa: F401 (shared)
     SCALAR,
     _Array,
@@ -457,9 +458,13 @@ def lqr(
     R = np.array([[1.0 / r_volts**2]])
     S = solve_discrete_are(Ad, Bd, Q, R)
     K = np.linalg.solve(Bd.T @ S @ Bd + R, Bd.T @ S @ Ad)
+    if not np.all(np.abs(np.linalg.eigvals(Ad - Bd @ K)) <= 1 + 1e-9):
+        # Q and R many decades apart: the Riccati solve lost its digits and K destabilises the loop
+        raise ValueError("the LQR gains do not stabilise the loop")
     if delay > 0:
-        closed = fractional_matrix_power(Ad - Bd @ K, delay / dt)
-        K = K @ np.real(closed)
+        with np.errstate(all="ignore"):  # (A − BK)^(delay/dt) may overflow: non-finite, refused by the caller
+            closed = fractional_matrix_power(Ad - Bd @ K, delay / dt)
+            K = K @ np.real(closed)
     return float(K[0, 0]), float(K[0, 1])
 
 
@@ -888,6 +893,9 @@ def batch_times(setup: Setup) -> Any:
     for _ in range(40 * BATCH_STEPS):
         if done.all():
             break
+        # three accelerations a step, each over every candidate counted as one (as the trebuchet's
+        # batch_ranges): the solve's CPU backstop and cancel are polled each step
+        charge(3)
         a = accel(p, w)
         dw = 1e-7 * (np.abs(w) + m.free_speed)
         J = (accel(p, w + dw) - a) / dw

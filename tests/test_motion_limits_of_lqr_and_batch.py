@@ -1,6 +1,6 @@
-"""Issue 34 item 2, the motor scenes' last gaps (core/sim/motion.py, the lead's file): these tests
-fail until the diff in the robust34 report lands there. They are strict xfails: once the diff is in
-they pass, xfail reports XPASS as a failure, and the marker (PENDING) is to be removed.
+"""Issue 34 item 2, the motor scenes' last gaps (core/sim/motion.py): each test failed before the
+fix in motion.py (LQR gains that destabilise the loop refused; the optimise pre-search charged to
+the solve's budget).
 
 - `batch_times`, optimise's pre-search over 240 ratios (up to 6 000 numpy steps), charged nothing
   to the solve's budget: the CPU backstop and the app's cancel were not polled during it.
@@ -22,10 +22,6 @@ from gearhead.core.registry import get
 from gearhead.core.sim import motion
 from gearhead.core.sim.integrate import Cancelled, budget
 
-PENDING = pytest.mark.xfail(
-    strict=True, reason="until the core/sim/motion.py diff of the robust34 report lands"
-)
-
 # an elevator that moves (ratio 1e-4 on a 0.22 g load) with LQR tolerances 12 decades apart
 # (r 1e-7 V against q 12.7 mm), at the shortest control period
 UNSTABLE = {"control_period": "0.1", "r_volts": "1e-7", "ratio": "0.0001", "load_mass": "0.00022"}
@@ -38,13 +34,11 @@ def _batch():
     return elevator.setup(v, np.geomspace(0.5, 500, motion.CANDIDATES), motion._Array())
 
 
-@PENDING
 def test_the_batch_presearch_polls_the_apps_cancel():
     with budget(cancel=lambda: True), pytest.raises(Cancelled):
         motion.batch_times(_batch())
 
 
-@PENDING
 def test_the_batch_presearch_is_charged_to_the_solves_budget():
     with budget() as b:
         times = motion.batch_times(_batch())
@@ -52,7 +46,6 @@ def test_the_batch_presearch_is_charged_to_the_solves_budget():
     assert 0 < b.nfev <= 3 * 40 * motion.BATCH_STEPS
 
 
-@PENDING
 @pytest.mark.parametrize("delay", ["0", "20"])
 def test_lqr_gains_that_do_not_stabilise_the_loop_are_refused(delay):
     with pytest.raises(InputError) as exc:
@@ -60,7 +53,6 @@ def test_lqr_gains_that_do_not_stabilise_the_loop_are_refused(delay):
     assert exc.value.field == "q_position"
 
 
-@PENDING
 def test_a_long_delay_at_the_shortest_period_leaks_no_numpy_warning():
     motion.lqr.cache_clear()  # a cached result would say nothing
     with warnings.catch_warnings(record=True) as caught:
