@@ -93,6 +93,7 @@ def test_slip_current_and_gains_by_hand():
     ],
 )
 def test_closed_form_equals_the_integrated_scene(raw):
+    """(S6)-(S8) against (S4) integrated at 1e-12 (both phases, restarted where the wheels grip)."""
     s = sprint.setup(values(**raw))
     exact = sprint.closed_form(s)
     assert exact is not None
@@ -164,6 +165,7 @@ def test_a_flat_optimum_reports_the_least_reduction_that_ties():
     [
         ({"wheel_cof": 0.05, "effects": "rolling_resistance", "rolling_coefficient": 0.1}, "wheel_cof"),
         ({"effects": "stator_limit", "stator_current_limit": 1.5}, "stator_current_limit"),
+        ({"supply_current_limit": 0}, "supply_current_limit"),  # both limits on: the one that binds
         (
             {"effects": "rolling_resistance", "rolling_coefficient": 0.9, "wheel_cof": 2, "ratio": 0.05},
             "ratio",
@@ -174,3 +176,13 @@ def test_cannot_move_names_the_field(raw, field):
     with pytest.raises(InputError) as e:
         solve("sprint", raw)
     assert e.value.field == field
+
+
+def test_a_stiff_sprint_is_handed_to_lsoda():
+    """A 1 lb robot on 1000:1: the speed settles in τ ≈ 5 ns over a 31 s sprint (T/τ ~ 1e10), which no
+    explicit step crosses; LSODA does, and the time is the closed form's (no drag: (S8))."""
+    raw = {"robot_mass": "1 lb", "ratio": 1000, "distance": "1 m"}
+    stiff = solve("sprint", raw | {"effects": "air_drag", "drag_area": 0}).outputs
+    exact = solve("sprint", raw | {"effects": ""}).outputs
+    assert stiff["rhs_evaluations"].value > 0 and exact["rhs_evaluations"].value == 0
+    assert stiff["time_to_distance"].value == pytest.approx(exact["time_to_distance"].value, rel=1e-5)

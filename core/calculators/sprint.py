@@ -37,6 +37,10 @@ Otherwise (S4) is integrated (DP54, restarted where the traction lets go: the ac
 there), with an event at the goal.
 Outputs for control: kV = n/Kv, kA = m·R/(η·N·Kt·n), kS = R·i_f + C_rr·m·g·R/(η·N·Kt·n), per volt of
 the drive (WPILib's SimpleMotorFeedforward for the whole robot, linear).                        (S9)
+Per motor, the supply current u·I, the battery's N·u·I and the bus V_b − R_bus·u·I, extreme at rest,
+at the ends or at a branch point of the duty rule (core.sim.motor_limits (E4)-(E7))              (S11)
+Energy drawn from the battery: ∫ V_b·N·u·I dt (I = I_slip while slipping); in closed form the
+traction phase's u_slip·I_slip·t_sw plus (V_b·s − n·(d − x_sw)/Kv)/R_eff                       (S12)
 Optimise: G* minimising the time to the distance: the time on 60 ratios log-spaced over two decades
 about the ratio at which the motors just slip the wheels at rest (G_t: F_m(0) = F_t), then bounded
 Brent on the accurate solve, and the same for 1 m, 3 m, 5 m and the field's 16.54 m (the table).  (S10)
@@ -56,7 +60,7 @@ from ..fields import Field
 from ..motors import lookup
 from ..sim import motion
 from ..sim.effects import Effect, Effects, Part, Slot
-from ..sim.integrate import Event, integrate
+from ..sim.integrate import Event, integrate, integrate_stiff
 from ..sim.motor_limits import braking_warning, branch_emfs, bus_resistance_of, electrical, electrical_effects
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stats
 
@@ -65,7 +69,8 @@ FIELD_LENGTH = 16.54  # m, the FRC field (2024-2026), alliance wall to alliance 
 TABLE_DISTANCES = (1.0, 3.0, 5.0, FIELD_LENGTH)
 CURVE_RATIOS = 60  # ratios on the optimise curve
 SAMPLES = 120
-DP54_STEPS = 20_000
+DP54_STEPS = 2_000  # beyond this the sprint is stiff: LSODA takes over
+STIFF = 60.0  # sprint time over the speed's time constant above which LSODA is used (as core.sim.motion)
 
 SLOTS = (
     Slot("resist", "sum", "force against the motion at speed v (N)"),
@@ -282,18 +287,41 @@ OUTPUTS = (
         "Suggested stator limit",
         "current",
         "A",
-        help="Per motor: the stator current at which the wheels just grip (S5); a limit at or below it "
-        "stops wheel slip and wastes no traction.",
+        help="Per motor: the stator current at which the wheels just grip (S5); a limit at or below it stops slip.",
         equation="(S5)",
     ),
     Output("peak_stator_current", "Peak stator current", "current", "A", help="Per motor.", equation="(S5)"),
     Output(
-        "peak_supply_current", "Peak supply current", "current", "A", help="Per motor: stator current × duty."
+        "peak_supply_current",
+        "Peak supply current",
+        "current",
+        "A",
+        help="Per motor: stator current × duty (S11).",
+        equation="(S11)",
     ),
-    Output("peak_battery_current", "Peak battery current", "current", "A", help="All drive motors."),
-    Output("min_bus_voltage", "Min bus voltage", "voltage", "V", help="Battery voltage minus the sag."),
     Output(
-        "energy", "Energy", "energy", "J", help="Drawn from the battery over the sprint (its EMF × current)."
+        "peak_battery_current",
+        "Peak battery current",
+        "current",
+        "A",
+        help="All drive motors (S11).",
+        equation="(S11)",
+    ),
+    Output(
+        "min_bus_voltage",
+        "Min bus voltage",
+        "voltage",
+        "V",
+        help="Battery voltage minus the sag (S11).",
+        equation="(S11)",
+    ),
+    Output(
+        "energy",
+        "Energy",
+        "energy",
+        "J",
+        help="Drawn from the battery over the sprint, its EMF × current (S12).",
+        equation="(S12)",
     ),
     Output(
         "kS",
@@ -411,10 +439,12 @@ def check_can_move(s: Setup) -> None:
         )
     if F0 > F_rr:
         return
-    on = s.values["effects"]
-    if "stator_limit" in on or "supply_limit" in on:
+    parts = s.asm.parts
+    limits = [n for n in ("stator_limit", "supply_limit") if n in parts]
+    if limits:
+        binding = min(limits, key=lambda n: parts[n].terms["duty"](0.0))  # the lower duty bound at rest
         raise InputError(
-            "stator_current_limit" if "stator_limit" in on else "supply_current_limit",
+            "stator_current_limit" if binding == "stator_limit" else "supply_current_limit",
             f"is too low: at rest the motors give {F0:.4g} N, rolling resistance takes {F_rr:.4g} N",
         )
     raise InputError(
@@ -543,7 +573,18 @@ def integrated(s: Setup, rtol: float, dense: bool = False):
         t0, y0 = first.t[-1], list(first.y[-1])
         t_grip, x_grip = t0, y0[0] * d
     if not runs or runs[-1].event == "grip":
-        rest = integrate(gripping, t0, 3600.0, y0, events=[goal], restart=("grip",), **opts)
+        # the speed settles with τ = m·R·Kv/(η·N·Kt·n²) (S7); an explicit step must stay near 3τ, so
+        # a sprint many τ long is stiff: scipy's LSODA (same events, dense output) takes it
+        tau = m * (dr.R + dr.bus_resistance) * dr.Kv / (dr.force_per_amp * dr.n)
+        stiff = d / v_ref > STIFF * tau
+        try:
+            if stiff:
+                raise RuntimeError("stiff")
+            rest = integrate(gripping, t0, 3600.0, y0, events=[goal], restart=("grip",), **opts)
+        except RuntimeError:  # stiffer than estimated: LSODA takes over
+            rest = integrate_stiff(gripping, t0, 3600.0, y0, rtol, rtol, [goal], "LSODA")
+            if rest.status == -1:
+                raise InputError("ratio", f"the sprint could not be integrated ({rest.message})") from None
         runs.append(rest)
     if runs[-1].event != "goal":
         raise InputError("ratio", "the robot does not cross the distance within an hour: change the ratio")
@@ -569,7 +610,7 @@ def _attainable(s: Setup) -> float:
     def net(v):
         return force(v)[0] - resist(v)
 
-    if s.asm.slots["resist"] is None:
+    if s.asm.slots["resist"] is None or net(v_free) >= 0:
         return v_free  # F_m(v_free) = 0 at full duty (the limits do not bind at the free current)
     from scipy.optimize import brentq
 
