@@ -31,7 +31,7 @@ def main() -> None:
         print(f"  {label:<40} {s * 1e3:8.3f} ms  ({s / base:5.1f}x baseline)")
     v = parse_inputs(get("sprint"), {})[0]
     for label, fn in (
-        ("optimise one distance (60-ratio curve + Brent)", lambda: sprint.fastest(v, 1e-6, 5.0)),
+        ("optimise one distance (200-ratio batch + Brent)", lambda: sprint.fastest(v, 1e-6, 5.0)),
         ("optimise mode, whole solve (4-distance table)", lambda: solve("sprint", {"mode": "optimise"})),
     ):
         t0 = time.perf_counter()

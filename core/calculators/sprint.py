@@ -41,7 +41,7 @@ Per motor, the supply current u·I, the battery's N·u·I and the bus V_b − R_
 at the ends or at a branch point of the duty rule (core.sim.motor_limits (E4)-(E7))              (S11)
 Energy drawn from the battery: ∫ V_b·N·u·I dt (I = I_slip while slipping); in closed form the
 traction phase's u_slip·I_slip·t_sw plus (V_b·s − n·(d − x_sw)/Kv)/R_eff                       (S12)
-Optimise: G* minimising the time to the distance: the time on 60 ratios log-spaced over two decades
+Optimise: G* minimising the time to the distance: the time on 200 ratios (one numpy batch, core.sim.motion.batch_arrival) log-spaced over two decades
 about the ratio at which the motors just slip the wheels at rest (G_t: F_m(0) = F_t), then bounded
 Brent on the accurate solve, and the same for 1 m, 3 m, 5 m and the field's 16.54 m (the table).  (S10)
 """
@@ -67,7 +67,7 @@ from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stat
 AIR_DENSITY = 1.2  # kg/m³, sea level at 20 °C
 FIELD_LENGTH = 16.54  # m, the FRC field (2024-2026), alliance wall to alliance wall
 TABLE_DISTANCES = (1.0, 3.0, 5.0, FIELD_LENGTH)
-CURVE_RATIOS = 60  # ratios on the optimise curve
+CURVE_RATIOS = 200  # ratios on the optimise curve (one numpy batch)
 SAMPLES = 120
 DP54_STEPS = 2_000  # beyond this the sprint is stiff: LSODA takes over
 STIFF = 60.0  # sprint time over the speed's time constant above which LSODA is used (as core.sim.motion)
@@ -731,45 +731,96 @@ def slip_ratio(v: Mapping[str, Any], distance: float | None = None) -> float:
     return probe.traction / (dr.force_per_amp * (I0 - dr.free_current))
 
 
+def batch_times(v: Mapping[str, Any], ratios: Any, distance: float) -> Any:
+    """Time to the distance at every ratio of a numpy array at once, to a few 0.1 % (a screen for the
+    optimiser: core.sim.motion.batch_arrival, fixed steps, numpy over the ratios); nan where the robot
+    cannot leave."""
+    import numpy as np
+
+    xp = motion._Array()
+    on = v["effects"]
+    motor, _ = lookup(v["motor"], v["source"])
+    n = np.asarray(ratios, dtype=float) / (v["wheel_diameter"] / 2)  # (S1)
+    dr = Drive(
+        motor,
+        v["motor_count"],
+        v["voltage"],
+        v["efficiency"],
+        n,
+        v["robot_mass"],
+        bus_resistance_of(v, on),
+        xp,
+    )
+    asm = EFFECTS.assemble(on, v, dr, SLOTS, ("position", "speed", "energy"), minimum=xp.minimum)
+    elec = electrical(dr, asm.slots["duty"])
+    resist = asm.slots["resist"] or (lambda w: 0.0 * w)
+    fpa, i_f, k_emf, m = dr.force_per_amp, dr.free_current, n / dr.Kv, dr.mass
+    F_t = v["wheel_cof"] * m * G
+
+    def accel(p, w):
+        _, I = elec(k_emf * w)
+        return (np.minimum(fpa * (I - i_f), F_t) - resist(w)) / m  # (S4)
+
+    _, I0 = elec(0.0 * n)
+    F0 = np.minimum(fpa * (I0 - i_f), F_t) - resist(0.0 * n)
+    movable = F0 > 0
+    R_eff = dr.R + dr.bus_resistance
+    v_free = (dr.battery_voltage - R_eff * i_f) * dr.Kv / n
+    tau = m * R_eff * dr.Kv / (fpa * n)
+    T_est = distance / v_free + tau + np.sqrt(2 * distance * m / np.where(movable, F0, np.nan))
+    h = np.where(movable, T_est / motion.BATCH_STEPS, 0.0)
+    return motion.batch_arrival(accel, distance, h, ~movable, v_free)
+
+
+def _time_and_grip(s: Setup, rtol: float) -> tuple[float, float]:
+    """(time to the distance, distance traction-limited) of one sprint, nothing else computed."""
+    check_can_move(s)
+    exact = closed_form(s)
+    if exact is None:
+        exact, _, _ = integrated(s, rtol)
+    return exact["time"], exact["traction_distance"]
+
+
 def fastest(v: Mapping[str, Any], rtol: float, distance: float) -> tuple[float, float, list, list, bool]:
-    """(G*, T*, curve ratios, curve times, at the edge) for one distance (S10)."""
+    """(G*, T*, curve ratios, curve times, at the edge) for one distance (S10): the batch over
+    CURVE_RATIOS ratios, then bounded Brent on the accurate sprint around the batch's best."""
     import numpy as np
     from scipy.optimize import minimize_scalar
 
     G_t = slip_ratio(v, distance)
     ratios = np.geomspace(G_t / 30, G_t * 3, CURVE_RATIOS)
-    curve_rtol = max(rtol, 1e-4)
-    times = []
-    for G_ in ratios:
-        try:
-            times.append(sprint(setup(v, float(G_), distance), curve_rtol).values["time_to_distance"])
-        except InputError:
-            times.append(math.inf)
-    times_arr = np.array(times)
-    if not np.isfinite(times_arr).any():
+    times_arr = batch_times(v, ratios, distance)
+    ok = np.isfinite(times_arr)
+    if not ok.any():
         check_can_move(setup(v, float(ratios[-1]), distance))
         raise InputError("ratio", "no ratio moves the robot")
-    i = int(np.argmin(times_arr))
-    lo, hi = float(ratios[max(i - 2, 0)]), float(ratios[min(i + 2, CURVE_RATIOS - 1)])
+    i = int(np.nanargmin(np.where(ok, times_arr, np.nan)))
+    lo, hi = float(ratios[max(i - 3, 0)]), float(ratios[min(i + 3, CURVE_RATIOS - 1)])
 
     def time_at(G_):
         try:
-            return sprint(setup(v, float(G_), distance), rtol).values["time_to_distance"]
+            return _time_and_grip(setup(v, float(G_), distance), rtol)[0]
         except InputError:
             return math.inf
 
+    def traction_only(G_):
+        try:
+            return _time_and_grip(setup(v, float(G_), distance), rtol)[1] >= distance * (1 - 1e-12)
+        except InputError:
+            return False
+
     best = minimize_scalar(time_at, bounds=(lo, hi), method="bounded", options={"xatol": 1e-7 * lo})
     G_best, T_best = float(best.x), float(best.fun)
-    if _traction_only(v, G_best, distance, rtol):
+    if traction_only(G_best):
         # the time is (μ − C_rr)·g's alone for every ratio that keeps the wheels at the edge of slip
         # to the distance: a flat optimum. The least reduction of them (the most top speed) by
         # bisection from a ratio that leaves the traction limit before the distance.
         lo_G = float(ratios[0])
-        if not _traction_only(v, lo_G, distance, rtol):
+        if not traction_only(lo_G):
             hi_G = G_best
             for _ in range(60):
                 mid = math.sqrt(lo_G * hi_G)
-                if _traction_only(v, mid, distance, rtol):
+                if traction_only(mid):
                     hi_G = mid
                 else:
                     lo_G = mid
@@ -777,7 +828,6 @@ def fastest(v: Mapping[str, Any], rtol: float, distance: float) -> tuple[float, 
                     break
             G_best = hi_G
             T_best = time_at(G_best)
-    ok = np.isfinite(times_arr)
     return (
         G_best,
         T_best,
@@ -785,14 +835,6 @@ def fastest(v: Mapping[str, Any], rtol: float, distance: float) -> tuple[float, 
         [float(t) for t in times_arr[ok]],
         i in (0, CURVE_RATIOS - 1),
     )
-
-
-def _traction_only(v: Mapping[str, Any], G_: float, distance: float, rtol: float) -> bool:
-    try:
-        out = sprint(setup(v, G_, distance), rtol).values
-    except InputError:
-        return False
-    return out["traction_distance"] >= distance * (1 - 1e-12)
 
 
 def simulate(v: Mapping[str, Any], rtol: float) -> SimRun:

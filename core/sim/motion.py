@@ -885,11 +885,21 @@ def batch_times(setup: Setup) -> Any:
     F_net = np.where(movable, fpa * I0 - load, np.nan)
     T_est = d / m.free_speed + tau + np.sqrt(2 * d * M / F_net)
     h = np.where(movable, T_est / BATCH_STEPS, 0.0)
-    p = np.zeros_like(n)
-    w = np.zeros_like(n)
-    t = np.zeros_like(n)
-    done = ~movable
-    arrival = np.full_like(n, np.nan)
+    return batch_arrival(accel, d, h, ~movable, m.free_speed)
+
+
+def batch_arrival(accel, d: float, h: Any, done: Any, w_scale: Any) -> Any:
+    """When each candidate of a batch, from rest, first covers the distance d: `accel(p, w)` over
+    numpy arrays (nan where done from the start), h the step of each candidate, w_scale a speed
+    scale for the slope's difference quotient. Exponential Euler on the speed with the local slope
+    J = ∂a/∂w (exact for an acceleration affine in speed, stable however stiff), position by the
+    matching φ2 term; the arrival is located on the cubic Hermite through the last step."""
+    import numpy as np
+
+    p = np.zeros_like(h)
+    w = np.zeros_like(h)
+    t = np.zeros_like(h)
+    arrival = np.full_like(h, np.nan)
     for _ in range(40 * BATCH_STEPS):
         if done.all():
             break
@@ -897,7 +907,7 @@ def batch_times(setup: Setup) -> Any:
         # batch_ranges): the solve's CPU backstop and cancel are polled each step
         charge(3)
         a = accel(p, w)
-        dw = 1e-7 * (np.abs(w) + m.free_speed)
+        dw = 1e-7 * (np.abs(w) + w_scale)
         J = (accel(p, w + dw) - a) / dw
         # across a kink (a current limit letting go) within the step the local slope says too
         # little: take the secant over the step's predicted change when it damps more
