@@ -186,3 +186,23 @@ def test_a_stiff_sprint_is_handed_to_lsoda():
     exact = solve("sprint", raw | {"effects": ""}).outputs
     assert stiff["rhs_evaluations"].value > 0 and exact["rhs_evaluations"].value == 0
     assert stiff["time_to_distance"].value == pytest.approx(exact["time_to_distance"].value, rel=1e-5)
+
+
+def test_weight_transfer_by_hand():
+    """Four equal modules, CG midway at h: the front ones carry m·g/2 − m·a·h/L, and slip when
+    m·a/4 > μ·(m·g/2 − m·a·h/L)/2, so a traction-limited robot accelerates at a = μ·g/(1 + 2μ·h/L):
+    μ = 1.1, h = 8 in, L = 22.75 in gives 6.0818 m/s² (μ·g = 10.787), checked on a 0.2 m sprint."""
+    a = 1.1 * G0 / (1 + 2 * 1.1 * 8 / 22.75)
+    raw = {
+        "ratio": 12,
+        "distance": "0.2 m",
+        "effects": "weight_transfer",
+        "wheelbase": "22.75 in",
+        "cg_height": "8 in",
+    }
+    out = solve("sprint", raw).outputs
+    assert out["traction_acceleration"].value == pytest.approx(a, rel=1e-14)
+    assert out["time_to_distance"].value == pytest.approx(math.sqrt(2 * 0.2 / a), rel=1e-14)
+    # with no height nothing transfers
+    flat = solve("sprint", raw | {"cg_height": 0}).outputs
+    assert flat["traction_acceleration"].value == pytest.approx(1.1 * G0, rel=1e-15)

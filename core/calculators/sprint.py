@@ -10,6 +10,7 @@ N drive motors (all of them: a tank's both sides, a swerve's drive motors) throu
     F_m = η·N·Kt·n·(I − i_f)                  the motors' force at the wheels, Kt = τs/(Is − If),
                                               i_f = If·V_b/V_spec (the motors' own loss)           (S2)
     F_t = μ·m·g                               the most the wheels transmit (every wheel driven)    (S3)
+                                              (weight_transfer: less, see `traction` (S3'))
     m·v̇ = min(F_m, F_t) − C_rr·m·g − ½·ρ·CdA·v²   (rolling resistance, air drag: effects)          (S4)
 While F_m > F_t the wheels are at the edge of slipping (traction-limited): the robot accelerates at
 (μ − C_rr)·g and the motors, spinning up until their force equals the traction, draw
@@ -59,7 +60,7 @@ from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
 from ..sim import motion
-from ..sim.effects import Effect, Effects, Part, Slot
+from ..sim.effects import Effect, Effects, Part, Slot, nothing
 from ..sim.integrate import Event, integrate, integrate_stiff
 from ..sim.motor_limits import braking_warning, branch_emfs, bus_resistance_of, electrical, electrical_effects
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stats
@@ -107,6 +108,33 @@ EFFECTS = Effects(
                 min=0,
                 max=1,
                 help="Rolling resistance over the weight (C_rr); 0.01-0.03 for FRC wheels on carpet.",
+            ),
+        ),
+    ),
+    Effect(
+        "weight_transfer",
+        "accelerating unloads the front wheels, which slip first (swerve, mecanum: four equal modules)",
+        nothing,
+        fields=(
+            Field(
+                "wheelbase",
+                "Wheelbase",
+                "length",
+                "in",
+                default=22.75,
+                min=1,
+                max=200,
+                help="Front to back distance between the wheels' (modules') centres.",
+            ),
+            Field(
+                "cg_height",
+                "CG height",
+                "length",
+                "in",
+                default=8,
+                min=0,
+                max=200,
+                help="Height of the centre of mass above the floor (taken midway between the axles).",
             ),
         ),
     ),
@@ -193,7 +221,8 @@ FIELDS = (
     ),
     EFFECTS.field(
         "stator_limit, supply_limit (per motor current limits); battery_sag (bus = battery − R × total "
-        "supply current); rolling_resistance (C_rr·m·g); air_drag (½ρ·CdA·v²)."
+        "supply current); rolling_resistance (C_rr·m·g); weight_transfer (front wheels slip first); "
+        "air_drag (½ρ·CdA·v²)."
     ),
     *EFFECTS.fields(),
     accuracy_field(),
@@ -276,10 +305,10 @@ OUTPUTS = (
     ),
     Output(
         "traction_acceleration",
-        "Traction limit μ·g",
+        "Traction limit",
         "acceleration",
         "m/s**2",
-        help="The most any gearing can accelerate the robot (S3).",
+        help="The wheels' force at the edge of slip over the mass: μ·g, less with weight_transfer (S3).",
         equation="(S3)",
     ),
     Output(
@@ -410,7 +439,21 @@ def setup(v: Mapping[str, Any], ratio: float | None = None, distance: float | No
     )
     asm = EFFECTS.assemble(on, v, drive, SLOTS, ("position", "speed", "energy"))
     d = v["distance"] if distance is None else distance
-    return Setup(drive, asm, v, d, v["wheel_cof"] * v["robot_mass"] * G)
+    return Setup(drive, asm, v, d, traction(v, on))
+
+
+def traction(v: Mapping[str, Any], on) -> float:
+    """F_t (S3), or (S3') with weight_transfer: four equal modules, the centre of mass midway
+    between the axles at height h. Accelerating, the front wheels carry m·g/2 − (F − F_rr)·h/L, and
+    each module pushes F/4 ≤ μ·(its load), so the front ones slip first:
+        F ≤ 2μ·(m·g/2 − (F − F_rr)·h/L)  ⇔  F ≤ (μ·m·g + k·F_rr)/(1 + k),  k = 2μ·h/L           (S3')
+    (rolling resistance acts at the ground: no pitching moment about the contacts; drag's is left out)."""
+    mu, m = v["wheel_cof"], v["robot_mass"]
+    if "weight_transfer" not in on:
+        return mu * m * G  # (S3)
+    k = 2 * mu * v["cg_height"] / v["wheelbase"]
+    F_rr = v["rolling_coefficient"] * m * G if "rolling_resistance" in on else 0.0
+    return (mu * m * G + k * F_rr) / (1 + k)  # (S3')
 
 
 def _motor_force(s: Setup):
@@ -655,7 +698,7 @@ def sprint(s: Setup, rtol: float, plots: bool = False) -> SimRun:
         "traction_distance": exact["traction_distance"],
         "traction_time": exact["traction_time"],
         "start_acceleration": (min(force(0.0)[0], s.traction) - F_rr) / dr.mass,
-        "traction_acceleration": s.values["wheel_cof"] * G,
+        "traction_acceleration": s.traction / dr.mass,
         "slip_current": I_slip,
         "peak_stator_current": I0,
         "peak_supply_current": peak_sup,
@@ -755,7 +798,7 @@ def batch_times(v: Mapping[str, Any], ratios: Any, distance: float) -> Any:
     elec = electrical(dr, asm.slots["duty"])
     resist = asm.slots["resist"] or (lambda w: 0.0 * w)
     fpa, i_f, k_emf, m = dr.force_per_amp, dr.free_current, n / dr.Kv, dr.mass
-    F_t = v["wheel_cof"] * m * G
+    F_t = traction(v, on)
 
     def accel(p, w):
         _, I = elec(k_emf * w)
