@@ -73,6 +73,23 @@ async def test_invalid_entry_names_the_field_and_keeps_the_text():
         assert tab.solution.inputs["radius"].value == pytest.approx(0.0508)
 
 
+async def test_every_wrong_entry_is_marked_on_its_row():
+    """Two wrong entries: both rows carry their message (parse_inputs reports every bad field);
+    the status line names the first and counts the rest. Only the first was marked before."""
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        tab._take_entry("radius", "3 kg")
+        tab._take_entry("load", "banana")
+        await settle(pilot)
+        assert set(tab.sheet.errors) == {"radius", "load"}
+        assert sum(1 for line in tab.sheet.lines if line.error) >= 2  # both drawn under their rows
+        assert "(and 1 more)" in str(tab.query_one(".status", Static).render())
+        await type_into(pilot, "load", "20 lbf")
+        assert set(tab.sheet.errors) == {"radius"}
+
+
 async def test_preset_save_then_load_round_trip():
     app = GearheadApp(blink=False, initial="gear_ratio")
     async with app.run_test(size=SIZE) as pilot:

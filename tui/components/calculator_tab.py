@@ -403,12 +403,19 @@ class CalculatorTab(Widget):
     def _show(self, solved, error: InputError | None, key: tuple) -> None:
         if error is not None:
             self.error, self.error_key = error, key
-            field = error.field if error.field in {f.name for f in self.calculator.fields} else None
-            self.sheet.set_errors({field: error.message} if field else {})
+            names = {f.name for f in self.calculator.fields}
+            # every wrong entry is marked on its row (parse_inputs reports them all: InputErrors)
+            marks: dict[str, str] = {}
+            for e in error.errors:
+                if e.field in names:
+                    marks.setdefault(e.field, e.message)
+            self.sheet.set_errors(marks)
             try:  # the label the user sees on the form, not the internal field name
                 where = self.calculator.field(error.field).label
             except KeyError:
                 where = error.field
+            if len(error.errors) > 1:
+                where = f"{where} (and {len(error.errors) - 1} more)"
             if self.solution is not None:
                 self.results.show(self._rows(self.solution), STALE)
             self.status.update(
