@@ -80,15 +80,19 @@ class GearheadApp(App):
         self._mounting: dict[str, object] = {}  # calc_id -> its AwaitMount, while mounting
         self._area_active: dict[str, str] = {}  # area -> the calculator shown there
         self._area = ""  # the area shown
+        self._strips: dict[str, Tabs] = {}  # area -> its calculator strip, built on its first visit
+        self._strip_mounts: dict[str, object] = {}  # area -> the AwaitMount of a strip being built
+        self._strips_started: set[str] = set()  # areas whose strip has sent its first TabActivated
         self._started = False  # the first frame is on screen
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def compose(self) -> ComposeResult:
         # Two strips: areas (F1-F5), then the calculators of the active area (digits 1-9 on the
         # focused strip). They come from the registry's tables, without importing any calculator.
-        # Plain Tabs, one strip per area (the others hidden), and the cards below them, each shown
-        # or hidden by the app: no TabbedContent, whose panes and switchers nested six containers
-        # above a card, each drawn again under it on every frame.
+        # Plain Tabs, one calculator strip per area (built on the area's first visit, hidden while
+        # another area shows), and the cards below them, each shown or hidden by the app: no
+        # TabbedContent, whose panes and switchers nested six containers above a card, each drawn
+        # again under it on every frame.
         first = self.initial or ORDER[0]
         self._area_active = {area: first if first in ids else ids[0] for area, (_, ids) in AREAS.items()}
         self._area = area_of(first)
@@ -100,16 +104,26 @@ class GearheadApp(App):
             active=f"area-{self._area}",
             id="areas",
         )
-        for area, (_, ids) in AREAS.items():
-            strip = Tabs(
-                *(Tab(Content(f"{i} {TITLES[cid]}"), id=f"tab-{cid}") for i, cid in enumerate(ids, 1)),
-                active=f"tab-{self._area_active[area]}",
-                id=f"calcs-{area}",
-                classes="calculators",
-            )
-            strip.display = area == self._area
-            yield strip
+        yield self._new_strip(self._area)
         yield KeyBar()
+
+    def _new_strip(self, area: str) -> Tabs:
+        strip = self._strips[area] = Tabs(
+            *(Tab(Content(f"{i} {TITLES[cid]}"), id=f"tab-{cid}") for i, cid in enumerate(AREAS[area][1], 1)),
+            active=f"tab-{self._area_active[area]}",
+            id=f"calcs-{area}",
+            classes="calculators",
+        )
+        return strip
+
+    def _strip(self, area: str) -> Tabs:
+        """An area's calculator strip, built (mounted below the others) on its first visit."""
+        strip = self._strips.get(area)
+        if strip is None:
+            last = list(self._strips.values())[-1]
+            strip = self._new_strip(area)
+            self._strip_mounts[area] = self.home.mount(strip, after=last)
+        return strip
 
     @property
     def home(self) -> Screen:
@@ -135,14 +149,21 @@ class GearheadApp(App):
             tab.display = calc_id == self.current_calculator
             self._mounting[calc_id] = self.home.mount(tab)
         mounting = self._mounting.get(calc_id)
-        if mounting is not None:
-            # no layout or frame while the card is composed: a frame of its pane without it (or
-            # half-built) was a whole layout and repaint more on a first visit, drawn for nothing
+        strip = self._strip_mounts.get(area_of(calc_id))
+        if mounting is not None or strip is not None:
+            # no layout or frame while the card (or its area's strip) is composed: a frame of the
+            # strip without the card, or half-built, was a whole layout and repaint more on a
+            # first visit, drawn for nothing
             with self.batch_update():
-                await mounting
-            self._mounting.pop(calc_id, None)
-            if calc_id == self.current_calculator:
-                self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r where they apply
+                if strip is not None:
+                    await strip
+                    self._strip_mounts.pop(area_of(calc_id), None)
+                if mounting is not None:
+                    await mounting
+            if mounting is not None:
+                self._mounting.pop(calc_id, None)
+                if calc_id == self.current_calculator:
+                    self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r where they apply
         return tab
 
     _quitting = False  # ctrl+q taken: no card is mounted meanwhile, no other key acts
@@ -153,7 +174,7 @@ class GearheadApp(App):
         into (F2 then ctrl+q in one burst: a MountError on the way out)."""
         self._quitting = True
         try:
-            for mount in list(self._mounting.values()):
+            for mount in [*self._strip_mounts.values(), *self._mounting.values()]:
                 await mount
         finally:  # a failed mount is logged (guarded), and the app quits all the same
             self.exit()
@@ -171,7 +192,13 @@ class GearheadApp(App):
             self._show_area(tab_id.removeprefix("area-"))
         elif strip_id.startswith("calcs-"):
             area = strip_id.removeprefix("calcs-")
-            self._area_active[area] = tab_id.removeprefix("tab-")
+            calc_id = tab_id.removeprefix("tab-")
+            if area not in self._strips_started:  # its first: the tab it was built with
+                self._strips_started.add(area)
+                if calc_id != self._area_active[area]:  # another was picked before it mounted
+                    event.tabs.active = f"tab-{self._area_active[area]}"
+                    return
+            self._area_active[area] = calc_id
             if area == self._area:
                 self._show_card(self._area_active[area])
         else:
@@ -185,8 +212,10 @@ class GearheadApp(App):
         """Show an area's strip and the card of the calculator last used there."""
         if area != self._area:
             self._area = area
-            for strip in self.home.query(".calculators"):
-                strip.display = strip.id == f"calcs-{area}"
+            shown = self._strip(area)
+            for strip in self._strips.values():
+                if strip.display != (strip is shown):
+                    strip.display = strip is shown
         self._show_card(self._area_active[area])
 
     def _show_card(self, calc_id: str) -> None:
@@ -230,8 +259,9 @@ class GearheadApp(App):
         widget of the card left keeps focus."""
         area = area_of(calc_id)
         self._area_active[area] = calc_id
-        strip = self.home.query_one(f"#calcs-{area}", Tabs)
-        strip.active = f"tab-{calc_id}"
+        if area in self._strips:  # else built now, with this tab active
+            self._strips[area].active = f"tab-{calc_id}"
+        strip = self._strip(area)
         self.home.query_one("#areas", Tabs).active = f"area-{area}"
         self._show_area(area)
         self.home.set_focus(strip)
@@ -255,7 +285,7 @@ class GearheadApp(App):
         digit then picks a calculator (two keys to any calculator). A card not built yet is
         built here, before the next frame: the pane and its card are drawn in one frame."""
         self.show_calculator(self._area_active[area])
-        await self.card(self.current_calculator)
+        await self.card(self.current_calculator)  # and its strip, if built now
 
     DIGITS = "123456789"  # ASCII only: '²' or '①' pass str.isdigit() and int() refuses them
 
