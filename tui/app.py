@@ -13,7 +13,7 @@ from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.content import Content
 from textual.screen import Screen
-from textual.widgets import TabbedContent, TabPane, Tabs
+from textual.widgets import Tab, Tabs
 
 from gearhead.core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
 from gearhead.core.unit_systems import SYSTEM_LABELS, SYSTEMS
@@ -79,23 +79,51 @@ class GearheadApp(App):
         self._cards: dict[str, CalculatorTab] = {}
         self._mounting: dict[str, object] = {}  # calc_id -> its AwaitMount, while mounting
         self._area_active: dict[str, str] = {}  # area -> the calculator shown there
+        self._area = ""  # the area shown
+        self._strips: dict[str, Tabs] = {}  # area -> its calculator strip, built on its first visit
+        self._strip_mounts: dict[str, object] = {}  # area -> the AwaitMount of a strip being built
+        self._strips_started: set[str] = set()  # areas whose strip has sent its first TabActivated
         self._started = False  # the first frame is on screen
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def compose(self) -> ComposeResult:
         # Two strips: areas (F1-F5), then the calculators of the active area (digits 1-9 on the
         # focused strip). They come from the registry's tables, without importing any calculator.
+        # Plain Tabs, one calculator strip per area (built on the area's first visit, hidden while
+        # another area shows), and the cards below them, each shown or hidden by the app: no
+        # TabbedContent, whose panes and switchers nested six containers above a card, each drawn
+        # again under it on every frame.
         first = self.initial or ORDER[0]
         self._area_active = {area: first if first in ids else ids[0] for area, (_, ids) in AREAS.items()}
-        with TabbedContent(initial=f"area-{area_of(first)}", id="areas"):
-            for n, (area, (title, ids)) in enumerate(AREAS.items(), 1):
-                with TabPane(Content(f"F{n} {title}"), id=f"area-{area}"):
-                    with TabbedContent(
-                        initial=f"tab-{self._area_active[area]}", id=f"calcs-{area}", classes="calculators"
-                    ):
-                        for i, cid in enumerate(ids, 1):
-                            yield TabPane(Content(f"{i} {TITLES[cid]}"), id=f"tab-{cid}")
+        self._area = area_of(first)
+        yield Tabs(
+            *(
+                Tab(Content(f"F{n} {title}"), id=f"area-{area}")
+                for n, (area, (title, _)) in enumerate(AREAS.items(), 1)
+            ),
+            active=f"area-{self._area}",
+            id="areas",
+        )
+        yield self._new_strip(self._area)
         yield KeyBar()
+
+    def _new_strip(self, area: str) -> Tabs:
+        strip = self._strips[area] = Tabs(
+            *(Tab(Content(f"{i} {TITLES[cid]}"), id=f"tab-{cid}") for i, cid in enumerate(AREAS[area][1], 1)),
+            active=f"tab-{self._area_active[area]}",
+            id=f"calcs-{area}",
+            classes="calculators",
+        )
+        return strip
+
+    def _strip(self, area: str) -> Tabs:
+        """An area's calculator strip, built (mounted below the others) on its first visit."""
+        strip = self._strips.get(area)
+        if strip is None:
+            last = list(self._strips.values())[-1]
+            strip = self._new_strip(area)
+            self._strip_mounts[area] = self.home.mount(strip, after=last)
+        return strip
 
     @property
     def home(self) -> Screen:
@@ -118,42 +146,82 @@ class GearheadApp(App):
                 get(calc_id), blink=self.blink, hide_timings=self.hide_timings, id=f"calc-{calc_id}"
             )
             tab.unit_system = self.unit_system
-            pane = self.home.query_one(f"#calcs-{area_of(calc_id)}", TabbedContent).get_pane(f"tab-{calc_id}")
-            self._mounting[calc_id] = pane.mount(tab)
+            tab.display = calc_id == self.current_calculator
+            self._mounting[calc_id] = self.home.mount(tab)
         mounting = self._mounting.get(calc_id)
-        if mounting is not None:
-            await mounting
-            self._mounting.pop(calc_id, None)
-            if calc_id == self.current_calculator:
-                self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r where they apply
+        strip = self._strip_mounts.get(area_of(calc_id))
+        if mounting is not None or strip is not None:
+            # no layout or frame while the card (or its area's strip) is composed: a frame of the
+            # strip without the card, or half-built, was a whole layout and repaint more on a
+            # first visit, drawn for nothing
+            with self.batch_update():
+                if strip is not None:
+                    await strip
+                    self._strip_mounts.pop(area_of(calc_id), None)
+                if mounting is not None:
+                    await mounting
+            if mounting is not None:
+                self._mounting.pop(calc_id, None)
+                if calc_id == self.current_calculator:
+                    self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r where they apply
         return tab
 
     _quitting = False  # ctrl+q taken: no card is mounted meanwhile, no other key acts
 
     @guarded
     async def action_quit(self) -> None:
-        """Quit once the cards being mounted are: a quit pruned a pane a card was mounting into
-        (F2 then ctrl+q in one burst: a MountError on the way out)."""
+        """Quit once the cards being mounted are: a quit pruned the screen a card was mounting
+        into (F2 then ctrl+q in one burst: a MountError on the way out)."""
         self._quitting = True
         try:
-            for mount in list(self._mounting.values()):
+            for mount in [*self._strip_mounts.values(), *self._mounting.values()]:
                 await mount
         finally:  # a failed mount is logged (guarded), and the app quits all the same
             self.exit()
 
     def card_ready(self, calc_id: str) -> bool:
-        """The calculator's card is on its pane, its sheet and results composed."""
+        """The calculator's card is mounted, its sheet and results composed."""
         return calc_id in self._cards and calc_id not in self._mounting
 
     @guarded
-    async def on_tabbed_content_tab_activated(self, event: TabbedContent.TabActivated) -> None:
-        strip_id = event.tabbed_content.id or ""
-        if strip_id.startswith("calcs-"):
-            self._area_active[strip_id.removeprefix("calcs-")] = event.pane.id.removeprefix("tab-")
+    async def on_tabs_tab_activated(self, event: Tabs.TabActivated) -> None:
+        """A tab of a strip picked (a click, ← →, or show_calculator): show its card."""
+        strip_id = event.tabs.id or ""
+        tab_id = event.tab.id or ""
+        if strip_id == "areas":
+            self._show_area(tab_id.removeprefix("area-"))
+        elif strip_id.startswith("calcs-"):
+            area = strip_id.removeprefix("calcs-")
+            calc_id = tab_id.removeprefix("tab-")
+            if area not in self._strips_started:  # its first: the tab it was built with
+                self._strips_started.add(area)
+                if calc_id != self._area_active[area]:  # another was picked before it mounted
+                    event.tabs.active = f"tab-{self._area_active[area]}"
+                    return
+            self._area_active[area] = calc_id
+            if area == self._area:
+                self._show_card(self._area_active[area])
+        else:
+            return  # a dialog's tabs
         if not self._started or self._quitting:  # start-up: on_ready builds the first card
             return
         await self.card(self.current_calculator)
         self.refresh_bindings()
+
+    def _show_area(self, area: str) -> None:
+        """Show an area's strip and the card of the calculator last used there."""
+        if area != self._area:
+            self._area = area
+            shown = self._strip(area)
+            for strip in self._strips.values():
+                if strip.display != (strip is shown):
+                    strip.display = strip is shown
+        self._show_card(self._area_active[area])
+
+    def _show_card(self, calc_id: str) -> None:
+        for cid, tab in self._cards.items():
+            if tab.display != (cid == calc_id):
+                tab.display = cid == calc_id
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         if self._quitting:  # the F-keys are priority bindings: one after ctrl+q would mount a card
@@ -174,7 +242,7 @@ class GearheadApp(App):
     # ---- navigation ---------------------------------------------------------------------
     @property
     def current_area(self) -> str:
-        return self.home.query_one("#areas", TabbedContent).active.removeprefix("area-")
+        return self._area
 
     @property
     def current_calculator(self) -> str:
@@ -187,15 +255,16 @@ class GearheadApp(App):
 
     def show_calculator(self, calc_id: str) -> None:
         """Switch to a calculator's card and put focus on its area's tab strip (a digit then
-        picks another), in one focus change: the strip is focused as the panes switch, so no
-        widget of the card left keeps focus (Textual's TabbedContent shows the pane of a focused
-        widget: a sheet left focused there pulled the old card back)."""
+        picks another), in one focus change: the strip is focused as the cards switch, so no
+        widget of the card left keeps focus."""
         area = area_of(calc_id)
         self._area_active[area] = calc_id
-        strip = self.home.query_one(f"#calcs-{area}", TabbedContent)
-        strip.active = f"tab-{calc_id}"
-        self.home.query_one("#areas", TabbedContent).active = f"area-{area}"
-        self.home.set_focus(strip.query_one(Tabs))
+        if area in self._strips:  # else built now, with this tab active
+            self._strips[area].active = f"tab-{calc_id}"
+        strip = self._strip(area)
+        self.home.query_one("#areas", Tabs).active = f"area-{area}"
+        self._show_area(area)
+        self.home.set_focus(strip)
 
     @guarded
     async def action_focus_next(self) -> None:
@@ -203,7 +272,7 @@ class GearheadApp(App):
         chain, taken while a card switches (F5 2 Tab in a burst), reached the card being left and
         TabbedContent then showed that one again."""
         strip = self.focused
-        on_strip = isinstance(strip, Tabs) and (strip.parent.id or "").startswith("calcs-")
+        on_strip = isinstance(strip, Tabs) and (strip.id or "").startswith("calcs-")
         if self.screen is self.home and (on_strip or strip is None):  # None: an F-key's strip to come
             tab = await self.card(self.current_calculator)
             tab.sheet.focus()
@@ -211,34 +280,37 @@ class GearheadApp(App):
         super().action_focus_next()
 
     @guarded
-    def action_area(self, area: str) -> None:
+    async def action_area(self, area: str) -> None:
         """F1-F5: show an area at the calculator last used there; its strip takes focus, so a
-        digit then picks a calculator (two keys to any calculator)."""
+        digit then picks a calculator (two keys to any calculator). A card not built yet is
+        built here, before the next frame: the pane and its card are drawn in one frame."""
         self.show_calculator(self._area_active[area])
+        await self.card(self.current_calculator)  # and its strip, if built now
 
     DIGITS = "123456789"  # ASCII only: '²' or '①' pass str.isdigit() and int() refuses them
 
     @guarded
-    def on_key(self, event: events.Key) -> None:
+    async def on_key(self, event: events.Key) -> None:
         """A digit on a focused tab strip picks its n-th tab (the sheet never sees it: a strip is
         focused, not the sheet). The pick is made here, at once (show_calculator), not by the
         strip's TabActivated message: a Tab typed right after the digit would find the card left
         still recorded as shown."""
         character = event.character or ""
-        if len(character) != 1 or character not in self.DIGITS:
+        if len(character) != 1 or character not in self.DIGITS or self._quitting:
             return
         n = int(character)
         strip = self.focused
-        owner = (strip.parent.id or "") if isinstance(strip, Tabs) and strip.parent is not None else ""
+        owner = (strip.id or "") if isinstance(strip, Tabs) else ""
         if owner.startswith("calcs-"):
             ids = AREAS[owner.removeprefix("calcs-")][1]
             if n <= len(ids):
                 event.stop()
                 self.show_calculator(ids[n - 1])
+                await self.card(ids[n - 1])  # in the frame that shows its pane (action_area)
         elif owner == "areas":
             if n <= len(AREAS):
                 event.stop()
-                self.action_area(list(AREAS)[n - 1])
+                await self.action_area(list(AREAS)[n - 1])
 
     def set_unit_system(self, system: str, remember: bool = True) -> None:
         """The units preference for every card (each built card solves and redraws), kept in the
