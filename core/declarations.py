@@ -94,6 +94,17 @@ class Result:
 
 
 @dataclass(frozen=True)
+class Document:
+    """A file another tool reads, built from one solution (e.g. a PathPlanner settings.json):
+    `build(solution) -> text`, or a ValueError saying what cannot be exported."""
+
+    name: str  # the CLI's --document NAME
+    label: str  # for people, in the export dialog
+    filename: str  # the name the other tool expects
+    build: Callable[[Any], str]
+
+
+@dataclass(frozen=True)
 class Calculator:
     id: str
     title: str
@@ -106,6 +117,7 @@ class Calculator:
     exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
     plots: tuple[Plot, ...] = ()
     tables: tuple[Table, ...] = ()
+    documents: tuple[Document, ...] = ()  # files for other tools (ctrl+e, `solve --document NAME`)
     # Simulated calculators: simulate(values, rtol) -> core.sim.scene.SimRun (for the accuracy ladder)
     simulate: Callable[[Mapping[str, Any], float], Any] | None = None
 

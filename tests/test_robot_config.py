@@ -210,7 +210,8 @@ def test_json_round_trip(make):
 
 
 def _pathplannerlib(tmp_path, monkeypatch, settings):
-    config = pytest.importorskip("pathplannerlib.config")
+    from pathplannerlib import config  # a test extra (pyproject.toml): PathPlannerLib's own reader
+
     (tmp_path / "pathplanner").mkdir()
     (tmp_path / "pathplanner" / "settings.json").write_text(json.dumps(settings, indent=2))
     monkeypatch.setattr(config, "getDeployDirectory", lambda: str(tmp_path))

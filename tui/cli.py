@@ -54,6 +54,12 @@ def _parser() -> argparse.ArgumentParser:
         help="write the inputs solved as a preset: '-' prints it instead of the results "
         "(to chain: ... --preset-out - > x.toml); a FILE is never overwritten",
     )
+    s.add_argument(
+        "--document",
+        metavar="NAME",
+        help="print a file for another tool instead of the results, e.g. `solve sprint --document "
+        "pathplanner > settings.json` (`calculators` lists each calculator's documents)",
+    )
     a = sub.add_parser("accuracy", help="run a simulation at every accuracy level: error, time, evaluations")
     a.add_argument("calculator", help="a simulated calculator (e.g. pneumatics)")
     a.add_argument("--preset", metavar="FILE")
@@ -258,6 +264,8 @@ def _solve(args) -> int:
         solution = solve(calc.id, raw, display_units)  # a bad input exits 2 before any preset is written
     if args.preset_out is not None:
         return _preset_out(args, calc, raw, solution)
+    if args.document is not None:
+        return _document(calc, args.document, solution)
     if args.json:
         data = solution.as_json() if spread is None else tolerance.as_json(solution, spread)
         print(json.dumps(data, allow_nan=False))
@@ -272,6 +280,20 @@ def _solve(args) -> int:
         _print_table(table, solution.tables.get(table.name, []))
     if spread is not None:
         print("\n".join(tolerance.spread_lines(calc, solution, spread, width)))
+    return 0
+
+
+def _document(calc, name: str, solution) -> int:
+    """--document NAME: the calculator's file for another tool (core.declarations.Document), on stdout."""
+    docs = {d.name: d for d in calc.documents}
+    if name not in docs:
+        have = ", ".join(docs) if docs else "none"
+        raise InputError("--document", f"{name!r} is not a document of {calc.id} (it has: {have})")
+    try:
+        text = docs[name].build(solution)
+    except ValueError as exc:
+        raise InputError("--document", f"{name}: {exc}") from None
+    sys.stdout.write(text)
     return 0
 
 
@@ -492,6 +514,9 @@ def _calculators(args) -> int:
                 "outputs": [
                     {"name": o.name, "unit": o.unit, "si_unit": SI_UNITS[o.quantity]} for o in calc.outputs
                 ],
+                "documents": [
+                    {"name": d.name, "label": d.label, "filename": d.filename} for d in calc.documents
+                ],
             }
         )
     if args.json:
@@ -503,6 +528,8 @@ def _calculators(args) -> int:
             print(f"  modes:   {', '.join(d['modes'])}")
         print(f"  fields:  {', '.join(f['name'] for f in d['fields'])}")
         print(f"  outputs: {', '.join(o['name'] for o in d['outputs'])}")
+        if d["documents"]:
+            print(f"  documents (solve --document NAME): {', '.join(x['name'] for x in d['documents'])}")
     return 0
 
 

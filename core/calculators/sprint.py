@@ -42,6 +42,10 @@ Per motor, the supply current u·I, the battery's N·u·I and the bus V_b − R_
 at the ends or at a branch point of the duty rule (core.sim.motor_limits (E4)-(E7))              (S11)
 Energy drawn from the battery: ∫ V_b·N·u·I dt (I = I_slip while slipping); in closed form the
 traction phase's u_slip·I_slip·t_sw plus (V_b·s − n·(d − x_sw)/Kv)/R_eff                       (S12)
+Exports (PathPlanner settings.json, Choreo .chor; core.robot_config): the yaw inertia estimated as a
+uniform plate over the bumper outline, I = m·(L² + W²)/12 (PathPlanner's "rough estimate"), or entered;
+the attainable speed as the top speed; the stator limit (the stall current when off) per motor, and
+one motor's torque there, Kt·(I_lim − i_f)·η                                                       (S13)
 Optimise: G* minimising the time to the distance: the time on 200 ratios (one numpy batch, core.sim.motion.batch_arrival) log-spaced over two decades
 about the ratio at which the motors just slip the wheels at rest (G_t: F_m(0) = F_t), then bounded
 Brent on the accurate solve, and the same for 1 m, 3 m, 5 m and the field's 16.54 m (the table).  (S10)
@@ -50,15 +54,17 @@ Brent on the accurate solve, and the same for 1 m, 3 m, 5 m and the field's 16.5
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 from collections.abc import Mapping
 from typing import Any
 
 from ..constants import G0 as G
-from ..declarations import Calculator, Column, Output, Plot, Result, Table
+from ..declarations import Calculator, Column, Document, Output, Plot, Result, Table
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
+from ..robot_config import RobotConfig, choreo_project, estimated_moi, pathplanner_settings
 from ..sim import motion
 from ..sim.effects import Effect, Effects, Part, Slot, nothing
 from ..sim.integrate import Event, integrate, integrate_stiff
@@ -117,16 +123,6 @@ EFFECTS = Effects(
         nothing,
         fields=(
             Field(
-                "wheelbase",
-                "Wheelbase",
-                "length",
-                "in",
-                default=22.75,
-                min=1,
-                max=200,
-                help="Front to back distance between the wheels' (modules') centres.",
-            ),
-            Field(
                 "cg_height",
                 "CG height",
                 "length",
@@ -158,6 +154,7 @@ EFFECTS = Effects(
 )
 
 MODES = ("sprint", "optimise")
+DRIVES = ("swerve", "tank", "mecanum")
 MODE_LABELS = ("Sprint at the given ratio", "Optimise: the ratio that arrives first")
 
 FIELDS = (
@@ -218,6 +215,74 @@ FIELDS = (
         min_exclusive=True,
         max=1000,
         help="How far to sprint from rest (the FRC field is 16.54 m long).",
+    ),
+    Field(
+        "drive",
+        "Drive",
+        choices=DRIVES,
+        choice_labels=("Swerve", "Tank (differential)", "Mecanum"),
+        default="swerve",
+        help="For the PathPlanner and Choreo exports; the sprint is the same straight line for all.",
+    ),
+    Field(
+        "trackwidth",
+        "Track width",
+        "length",
+        "in",
+        default=22.75,
+        min=1,
+        max=200,
+        help="Left to right distance between the wheels' (modules') centres.",
+    ),
+    Field(
+        "wheelbase",
+        "Wheelbase",
+        "length",
+        "in",
+        default=22.75,
+        min=1,
+        max=200,
+        help="Front to back distance between the wheels' (modules') centres.",
+    ),
+    Field(
+        "bumper_width",
+        "Width with bumpers",
+        "length",
+        "in",
+        default=34,
+        min=1,
+        max=300,
+        help="Overall left to right, bumpers on (exports; the estimated inertia).",
+    ),
+    Field(
+        "bumper_length",
+        "Length with bumpers",
+        "length",
+        "in",
+        default=34,
+        min=1,
+        max=300,
+        help="Overall front to back, bumpers on (exports; the estimated inertia).",
+    ),
+    Field(
+        "inertia_model",
+        "Yaw inertia",
+        choices=("estimated", "entered"),
+        choice_labels=("Estimated: m·(L² + W²)/12 over the bumpers", "Entered (CAD, sysId)"),
+        default="estimated",
+        help="The robot's moment of inertia about its vertical axis, for the exports (S13).",
+    ),
+    Field(
+        "moment_of_inertia",
+        "Moment of inertia",
+        "inertia",
+        "kg*m**2",
+        default=6,
+        min=0,
+        min_exclusive=True,
+        max=1e4,
+        when=(("inertia_model", ("entered",)),),
+        help="About the robot's vertical axis through its centre (CAD mass properties or sysId).",
     ),
     EFFECTS.field(
         "stator_limit, supply_limit (per motor current limits); battery_sag (bus = battery − R × total "
@@ -351,6 +416,14 @@ OUTPUTS = (
         "J",
         help="Drawn from the battery over the sprint, its EMF × current (S12).",
         equation="(S12)",
+    ),
+    Output(
+        "moment_of_inertia",
+        "Yaw inertia",
+        "inertia",
+        "kg*m**2",
+        help="About the vertical axis: estimated m·(L² + W²)/12 over the bumpers, or as entered (S13).",
+        equation="(S13)",
     ),
     Output(
         "kS",
@@ -705,6 +778,7 @@ def sprint(s: Setup, rtol: float, plots: bool = False) -> SimRun:
         "peak_battery_current": peak_sup * dr.count,
         "min_bus_voltage": dr.battery_voltage - dr.bus_resistance * peak_sup,
         "energy": exact["energy"],
+        "moment_of_inertia": yaw_inertia(s.values),  # (S13)
         "kS": dr.R * dr.free_current + F_rr / fpv,  # (S9)
         "kV": dr.n / dr.Kv,
         "kA": dr.mass / fpv,
@@ -917,6 +991,65 @@ def compute(values: Mapping[str, Any]) -> Result:
     return Result(result.values, result.warnings, result.series, result.tables)
 
 
+def yaw_inertia(v: Mapping[str, Any]) -> float:
+    if v["inertia_model"] == "entered":
+        return v["moment_of_inertia"]
+    return estimated_moi(v["robot_mass"], v["bumper_length"], v["bumper_width"])  # (S13)
+
+
+def robot_config_of(solution) -> RobotConfig:
+    """The drivetrain a solved sprint describes, as the path planners see it (S13). A ValueError says
+    what cannot be exported (PathPlanner and Choreo check their own limits: core.robot_config)."""
+    v = {name: value.value for name, value in solution.inputs.items()}
+    out = {name: value.value for name, value in solution.outputs.items()}
+    G_ = out.get("best_ratio", v.get("ratio"))
+    motor, _ = lookup(v["motor"], v["source"])
+    i_f = motor.free_current * v["voltage"] / motor.v_spec  # (S2)
+    limit = (
+        v["stator_current_limit"]
+        if "stator_limit" in v["effects"]
+        else motor.stall_current * v["voltage"] / motor.v_spec
+    )
+    Kt = motor.stall_torque / (motor.stall_current - motor.free_current)  # (M1), the seed's eq. 7
+    torque = v["efficiency"] * Kt * (limit - i_f)
+    if not torque > 0:
+        raise ValueError(
+            f"the stator current limit {limit:.4g} A is below the free current {i_f:.4g} A: no torque to export"
+        )
+    return RobotConfig(
+        kind=v["drive"],
+        mass=v["robot_mass"],
+        moi=out["moment_of_inertia"],
+        wheel_radius=v["wheel_diameter"] / 2,
+        gearing=G_,
+        motor=v["motor"],
+        motor_count=v["motor_count"],
+        current_limit=limit,
+        wheel_cof=v["wheel_cof"],
+        max_speed=min(out["top_speed"], out["free_speed"]),
+        trackwidth=v["trackwidth"],
+        wheelbase=v["wheelbase"],
+        bumper_width=v["bumper_width"],
+        bumper_length=v["bumper_length"],
+        motor_free_speed=motor.free_speed * v["voltage"] / motor.v_spec,  # (1)
+        motor_max_torque=torque,
+    )
+
+
+def _pathplanner(solution) -> str:
+    return json.dumps(pathplanner_settings(robot_config_of(solution)), indent=2) + "\n"
+
+
+def _choreo(solution) -> str:
+    return json.dumps(choreo_project(robot_config_of(solution), "Gearhead sprint"), indent=1) + "\n"
+
+
+DOCUMENTS = (
+    Document("pathplanner", "PathPlanner robot config (settings.json)", "settings.json", _pathplanner),
+    Document("choreo", "Choreo project with this robot (.chor)", "robot.chor", _choreo),
+)
+
+
 CALCULATOR = Calculator(
     id="sprint",
     title="Drivetrain sprint",
@@ -926,6 +1059,7 @@ CALCULATOR = Calculator(
     compute=compute,
     simulate=simulate,
     tables=TABLES,
+    documents=DOCUMENTS,
     plots=(
         Plot("Distance", ("position",), "time", "time", "s", "distance", "length", "m"),
         Plot("Speed", ("speed",), "time", "time", "s", "speed", "speed", "ft/s"),

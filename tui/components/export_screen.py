@@ -41,10 +41,17 @@ class ExportScreen(ModalScreen[str | None]):
                 lambda: export.results_csv(calculator, solution),
             ),
         ]
+        self.names = [f"{calculator.id}_results.md", f"{calculator.id}_results.csv"]
         if plot is not None and any(solution.series.get(s, ([], []))[0] for s in plot.series):
             self.formats.append(
                 (f"Plot data as CSV: {plot.title}", "csv", lambda: export.plot_csv(plot, solution))
             )
+            self.names.append(f"{calculator.id}_plot.csv")
+        for doc in calculator.documents:  # files for other tools (PathPlanner, Choreo)
+            self.formats.append(
+                (doc.label, doc.filename.rpartition(".")[2], lambda doc=doc: doc.build(solution))
+            )
+            self.names.append(doc.filename)
 
     def compose(self) -> ComposeResult:
         with Vertical(classes="dialog"):
@@ -63,8 +70,7 @@ class ExportScreen(ModalScreen[str | None]):
                 yield Button("Cancel", id="cancel")
 
     def _default_name(self, index: int) -> str:
-        kind = "plot" if index >= 2 else "results"
-        return f"{self.calculator.id}_{kind}.{self.formats[index][1]}"
+        return self.names[index]
 
     @property
     def _index(self) -> int:
@@ -82,8 +88,19 @@ class ExportScreen(ModalScreen[str | None]):
     @on(Button.Pressed, "#copy")
     def _copy(self) -> None:
         label, _, build = self.formats[self._index]
-        self.app.copy_to_clipboard(build())
+        text = self._built(build)
+        if text is None:
+            return
+        self.app.copy_to_clipboard(text)
         self.dismiss(f"Copied to the clipboard: {label.lower()}")
+
+    def _built(self, build) -> str | None:
+        """The export's text, or None with the reason shown (a robot another tool cannot take)."""
+        try:
+            return build()
+        except ValueError as exc:
+            self.query_one("#export-error", Static).update(Text(f"cannot export: {exc}", style="bold red"))
+            return None
 
     @on(Input.Submitted, "#export-path")
     @on(Button.Pressed, "#save")
@@ -94,10 +111,13 @@ class ExportScreen(ModalScreen[str | None]):
         if not raw or "\0" in raw:
             error.update(Text("file: enter a file name", style="bold red"))
             return
+        text = self._built(build)
+        if text is None:
+            return
         path = Path(raw).expanduser()
         try:
             with path.open("x", encoding="utf-8", newline="") as fh:  # "x": never overwrite
-                fh.write(build())
+                fh.write(text)
         except FileExistsError:
             error.update(Text(f"file: {raw[:60]} exists; choose another name", style="bold red"))
             return
