@@ -206,3 +206,16 @@ def test_weight_transfer_by_hand():
     # with no height nothing transfers
     flat = solve("sprint", raw | {"cg_height": 0}).outputs
     assert flat["traction_acceleration"].value == pytest.approx(1.1 * G0, rel=1e-15)
+
+
+def test_angular_ka_by_hand():
+    """Turning in place the wheels' total force F acts at r_b = track/2: I·α = F·r_b; the voltage for a
+    force is F/(force per volt) = F·kA/m, so V/α = kA·I/(m·r_b) (V·s²/rad). PathPlanner's
+    I = m·r_b·kA_angular/kA inverts it; checked for an entered I."""
+    out = solve(
+        "sprint", {"inertia_model": "entered", "moment_of_inertia": "5 kg*m**2", "trackwidth": "0.6 m"}
+    )
+    o = out.outputs
+    m = 135 * LB
+    assert o["kA_angular"].value == pytest.approx(o["kA"].value * 5 / (m * 0.3), rel=1e-14)
+    assert m * 0.3 * o["kA_angular"].value / o["kA"].value == pytest.approx(5, rel=1e-14)

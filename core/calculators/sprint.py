@@ -37,7 +37,10 @@ Newton on f(X) = (1 − a)·X + a·g(X) − D with g(X) = X + e^{−X} − 1 sum
 Otherwise (S4) is integrated (DP54, restarted where the traction lets go: the acceleration has a kink
 there), with an event at the goal.
 Outputs for control: kV = n/Kv, kA = m·R/(η·N·Kt·n), kS = R·i_f + C_rr·m·g·R/(η·N·Kt·n), per volt of
-the drive (WPILib's SimpleMotorFeedforward for the whole robot, linear).                        (S9)
+the drive (WPILib's SimpleMotorFeedforward for the whole robot, linear). Turning in place the wheels'
+total force F acts at r_b = track/2: I·α = F·r_b, and V = F/(η·N·Kt·n/R) for the acceleration, so
+kA_angular = V/α = I·R/(r_b·η·N·Kt·n) = kA·I/(m·r_b), volts per rad/s² (PathPlanner's estimate
+I = m·r_b·kA_angular/kA inverts it)                                                            (S9)
 Per motor, the supply current u·I, the battery's N·u·I and the bus V_b − R_bus·u·I, extreme at rest,
 at the ends or at a branch point of the duty rule (core.sim.motor_limits (E4)-(E7))              (S11)
 Energy drawn from the battery: ∫ V_b·N·u·I dt (I = I_slip while slipping); in closed form the
@@ -444,6 +447,14 @@ OUTPUTS = (
         help="Volts per m/s² of the robot (S9).",
         equation="(S9)",
     ),
+    Output(
+        "kA_angular",
+        "kA angular",
+        "voltage_per_angular_acceleration",
+        "V*s**2/rad",
+        help="Volts per rad/s² of yaw, turning in place: kA·I/(m·r_b), r_b half the track (S9).",
+        equation="(S9)",
+    ),
     *STATS_OUTPUTS,
 )
 
@@ -782,6 +793,7 @@ def sprint(s: Setup, rtol: float, plots: bool = False) -> SimRun:
         "kS": dr.R * dr.free_current + F_rr / fpv,  # (S9)
         "kV": dr.n / dr.Kv,
         "kA": dr.mass / fpv,
+        "kA_angular": dr.mass / fpv * yaw_inertia(s.values) / (dr.mass * s.values["trackwidth"] / 2),  # (S9)
     }
     key = {"time_to_distance": exact["time"], "speed_at_distance": exact["speed"], "energy": exact["energy"]}
     series = _samples(s, run, scales, exact, I_slip, elec) if plots else {}
