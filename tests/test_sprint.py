@@ -5,6 +5,7 @@ Hand model (the module's (S1)-(S8), written again here from the motor data, not 
 motor R = 12/I_s, Kv = ω_f/(12 − R·I_f), Kt = τ_s/(I_s − I_f); the robot's force from the motors
 F_m(v) = η·N·Kt·(G/r)·((V − (G/r)·v/Kv)/R − I_f), at most μ·m·g."""
 
+import json
 import math
 
 import mpmath as mp
@@ -219,3 +220,29 @@ def test_angular_ka_by_hand():
     m = 135 * LB
     assert o["kA_angular"].value == pytest.approx(o["kA"].value * 5 / (m * 0.3), rel=1e-14)
     assert m * 0.3 * o["kA_angular"].value / o["kA"].value == pytest.approx(5, rel=1e-14)
+
+
+@pytest.mark.parametrize(
+    "drive,G,wheel_in",
+    [
+        ("sds_mk4i_l1", 8.142857142857142, 4),  # (50/14)(19/25)(45/15)
+        ("sds_mk4i_l2", 6.746031746031746, 4),  # (50/14)(17/27)(45/15)
+        ("sds_mk4i_l3", 6.122448979591837, 4),  # (50/14)(16/28)(45/15)
+        ("rev_maxswerve_12t", 5.5, 3),  # 45·22/(12·15)
+        ("rev_maxswerve_13t", 5.076923076923077, 3),
+        ("rev_maxswerve_14t", 4.714285714285714, 3),
+    ],
+)
+def test_a_cots_module_is_its_ratio_and_wheel(drive, G, wheel_in):
+    module = solve("sprint", {"drive": drive}).outputs
+    entered = solve("sprint", {"ratio": G, "wheel_diameter": f"{wheel_in} in"}).outputs
+    for k in ("time_to_distance", "free_speed", "slip_current"):
+        assert module[k].value == pytest.approx(entered[k].value, rel=1e-12), k
+
+
+def test_a_ratio_set_beside_a_module_is_reported_unused(capsys):
+    from gearhead.tui.cli import main
+
+    assert main(["solve", "sprint", "--set", "drive=sds_mk4i_l2", "--set", "ratio=9", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert any(w.startswith("ratio: not used") for w in out["warnings"])

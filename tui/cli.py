@@ -228,6 +228,26 @@ def _raw_inputs(args, calc) -> dict:
     return raw
 
 
+def _unused_sets(calc, args, raw: dict) -> list[str]:
+    """A warning for each --set of a field the other choices leave unused (a ratio typed beside a
+    COTS module, a mode's field in another mode): it is kept, not read, and the user must know."""
+    from gearhead.core.model import choice_values
+
+    choices = choice_values(calc, raw)
+    mode = None
+    if "mode" in {f.name for f in calc.fields}:
+        try:
+            mode = calc.field("mode").parse(raw.get("mode", calc.field("mode").default))
+        except InputError:
+            return []
+    named = {item.partition("=")[0].strip() for item in args.sets}
+    out = []
+    for f in calc.fields:
+        if f.name in named and not f.active(mode, choices):
+            out.append(f"{f.name}: not used with these choices (set, but it changes nothing here)")
+    return out
+
+
 def _display_units(args) -> dict[str, str]:
     """--unit OUTPUT=UNIT options as {output: unit}."""
     display_units: dict[str, str] = {}
@@ -262,6 +282,8 @@ def _solve(args) -> int:
             solution.warnings.extend(notes)
     else:
         solution = solve(calc.id, raw, display_units)  # a bad input exits 2 before any preset is written
+    said = {w.partition(":")[0] for w in solution.warnings}  # an invalid unused entry is said already
+    solution.warnings.extend(w for w in _unused_sets(calc, args, raw) if w.partition(":")[0] not in said)
     if args.preset_out is not None:
         return _preset_out(args, calc, raw, solution)
     if args.document is not None:

@@ -63,6 +63,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..constants import G0 as G
+from ..constants import INCH
 from ..declarations import Calculator, Column, Document, Output, Plot, Result, Table
 from ..errors import InputError
 from ..fields import Field
@@ -157,7 +158,23 @@ EFFECTS = Effects(
 )
 
 MODES = ("sprint", "optimise")
-DRIVES = ("swerve", "tank", "mecanum")
+KINDS = ("swerve", "tank", "mecanum")
+# COTS swerve modules: drive reduction and nominal wheel diameter (in), from the vendors' own code:
+# SDS swerve-lib SdsModuleConfigurations.java (55f3f1a): MK4i L1 (50/14)(19/25)(45/15), L2 (50/14)(17/27)
+# (45/15), L3 (50/14)(16/28)(45/15), 4 in wheels; REV MAXSwerve-Java-Template Constants.java (112ee68):
+# (45·22)/(pinion·15) for the 12, 13 and 14 tooth pinions, 3 in wheels.
+MODULES = {
+    "sds_mk4i_l1": ("Swerve: SDS MK4i L1", (50 / 14) * (19 / 25) * (45 / 15), 4.0),
+    "sds_mk4i_l2": ("Swerve: SDS MK4i L2", (50 / 14) * (17 / 27) * (45 / 15), 4.0),
+    "sds_mk4i_l3": ("Swerve: SDS MK4i L3", (50 / 14) * (16 / 28) * (45 / 15), 4.0),
+    "rev_maxswerve_12t": ("Swerve: REV MAXSwerve, 12T pinion", 45 * 22 / (12 * 15), 3.0),
+    "rev_maxswerve_13t": ("Swerve: REV MAXSwerve, 13T pinion", 45 * 22 / (13 * 15), 3.0),
+    "rev_maxswerve_14t": ("Swerve: REV MAXSwerve, 14T pinion", 45 * 22 / (14 * 15), 3.0),
+}
+DRIVES = KINDS + tuple(MODULES)
+DRIVE_LABELS = ("Swerve (enter ratio and wheel)", "Tank (differential)", "Mecanum") + tuple(
+    f"{label} ({G_:.4g}:1, {d:g} in wheels)" for label, G_, d in MODULES.values()
+)
 MODE_LABELS = ("Sprint at the given ratio", "Optimise: the ratio that arrives first")
 
 FIELDS = (
@@ -172,12 +189,22 @@ FIELDS = (
     ),
     *motion.battery_motor_fields("Kraken X60", 4),
     Field(
+        "drive",
+        "Drive",
+        choices=DRIVES,
+        choice_labels=DRIVE_LABELS,
+        default="swerve",
+        help="Swerve, tank or mecanum with your ratio and wheel, or a COTS swerve module (its ratio and "
+        "wheel, from the vendor's code). The sprint is the same straight line; the exports differ.",
+    ),
+    Field(
         "ratio",
         "Reduction G",
         default=6.75,
         min=0.05,
         max=1000,
         modes=("sprint",),
+        when=(("drive", KINDS),),
         help="Motor turns per wheel turn (SDS MK4i L2: 6.75).",
     ),
     Field(
@@ -188,6 +215,7 @@ FIELDS = (
         default=4,
         min=0.5,
         max=40,
+        when=(("drive", KINDS),),
         help="Nominal tread diameter (worn tread is smaller).",
     ),
     Field(
@@ -218,14 +246,6 @@ FIELDS = (
         min_exclusive=True,
         max=1000,
         help="How far to sprint from rest (the FRC field is 16.54 m long).",
-    ),
-    Field(
-        "drive",
-        "Drive",
-        choices=DRIVES,
-        choice_labels=("Swerve", "Tank (differential)", "Mecanum"),
-        default="swerve",
-        help="For the PathPlanner and Choreo exports; the sprint is the same straight line for all.",
     ),
     Field(
         "trackwidth",
@@ -508,16 +528,25 @@ class Setup:
         return f if f is not None else (lambda v: 0.0)
 
 
+def geometry(v: Mapping[str, Any]) -> tuple[str, float, float]:
+    """(kind, reduction G, wheel diameter m): a COTS module's own figures, else the entered ones."""
+    if v["drive"] in MODULES:
+        _, G_, d_in = MODULES[v["drive"]]
+        return "swerve", G_, d_in * INCH
+    return v["drive"], v.get("ratio", 1.0), v["wheel_diameter"]
+
+
 def setup(v: Mapping[str, Any], ratio: float | None = None, distance: float | None = None) -> Setup:
     on = v["effects"]
     motor, _ = lookup(v["motor"], v["source"])
-    G_ = v["ratio"] if ratio is None else ratio
+    _, G_module, wheel = geometry(v)
+    G_ = G_module if ratio is None else ratio
     drive = Drive(
         motor,
         v["motor_count"],
         v["voltage"],
         v["efficiency"],
-        G_ / (v["wheel_diameter"] / 2),  # (S1)
+        G_ / (wheel / 2),  # (S1)
         v["robot_mass"],
         bus_resistance_of(v, on),
     )
@@ -869,7 +898,7 @@ def batch_times(v: Mapping[str, Any], ratios: Any, distance: float) -> Any:
     xp = motion._Array()
     on = v["effects"]
     motor, _ = lookup(v["motor"], v["source"])
-    n = np.asarray(ratios, dtype=float) / (v["wheel_diameter"] / 2)  # (S1)
+    n = np.asarray(ratios, dtype=float) / (geometry(v)[2] / 2)  # (S1)
     dr = Drive(
         motor,
         v["motor_count"],
@@ -1014,7 +1043,8 @@ def robot_config_of(solution) -> RobotConfig:
     what cannot be exported (PathPlanner and Choreo check their own limits: core.robot_config)."""
     v = {name: value.value for name, value in solution.inputs.items()}
     out = {name: value.value for name, value in solution.outputs.items()}
-    G_ = out.get("best_ratio", v.get("ratio"))
+    kind, G_module, wheel = geometry(v)
+    G_ = out.get("best_ratio", G_module)
     motor, _ = lookup(v["motor"], v["source"])
     i_f = motor.free_current * v["voltage"] / motor.v_spec  # (S2)
     limit = (
@@ -1029,10 +1059,10 @@ def robot_config_of(solution) -> RobotConfig:
             f"the stator current limit {limit:.4g} A is below the free current {i_f:.4g} A: no torque to export"
         )
     return RobotConfig(
-        kind=v["drive"],
+        kind=kind,
         mass=v["robot_mass"],
         moi=out["moment_of_inertia"],
-        wheel_radius=v["wheel_diameter"] / 2,
+        wheel_radius=wheel / 2,
         gearing=G_,
         motor=v["motor"],
         motor_count=v["motor_count"],
