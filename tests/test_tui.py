@@ -670,3 +670,23 @@ async def test_a_choice_list_picks_by_the_words_typed():
         await settle(pilot)
         assert tab.entries["mode"] == "linear_speed"
         assert "target_linear_speed" in [f.name for f in tab.sheet.shown_fields]
+
+
+async def test_a_choice_list_matches_a_word_inside_a_label():
+    """ "sds mk4i l3" picks "Swerve: SDS MK4i L3 (...)": the words typed may begin any word of the label,
+    punctuation aside (only the label's start matched before)."""
+    from gearhead.tui.components.choice_screen import ChoiceScreen
+
+    app = GearheadApp(blink=False, initial="sprint")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = card(app)
+        tab.sheet.focus()
+        tab.sheet.move_to_field("drive")
+        await pilot.press("enter")
+        await pilot.pause()
+        assert isinstance(app.screen, ChoiceScreen)
+        await pilot.press(*"sds", "space", *"mk4i", "space", "l", "3", "enter")
+        await settle(pilot)
+        assert tab.entries["drive"] == "sds_mk4i_l3"
+        assert "ratio" not in [f.name for f in tab.sheet.shown_fields]  # the module's ratio is used

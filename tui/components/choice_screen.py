@@ -69,7 +69,16 @@ class ChoiceScreen(ModalScreen[str | None]):
         prefix = typed[0] if repeat else typed
         for step in range(1 if repeat else 0, n + 1):
             value, label = self.options[(at + step) % n]
-            if label.lower().startswith(prefix) or value.lower().startswith(prefix):
+            if _matches(label, prefix) or value.lower().startswith(prefix):
                 options.highlighted = (at + step) % n
                 break
         event.stop()
+
+
+def _matches(label: str, typed: str) -> bool:
+    """`typed` begins the label or one of its words, punctuation aside: "sds mk4i l3" and "swerve sds"
+    both find "Swerve: SDS MK4i L3 (...)"."""
+    if label.lower().startswith(typed):
+        return True
+    plain = " ".join("".join(c for c in label.lower() if c.isalnum() or c.isspace()).split())
+    return f" {typed}" in f" {plain}"
