@@ -1003,6 +1003,7 @@ def simulate(v: Mapping[str, Any], rtol: float) -> SimRun:
         run.values["best_ratio"] = G_best
         run.key["best_ratio"] = G_best
         run.series["time_vs_ratio"] = (ratios, times)
+        run.series["fastest"] = ([G_best], [run.values["time_to_distance"]])  # the optimum, marked
         if edge:
             run.warnings.append(
                 f"The fastest ratio is at the edge of the range searched ({ratios[0]:.3g} to {ratios[-1]:.3g})."
@@ -1107,7 +1108,14 @@ CALCULATOR = Calculator(
         Plot("Speed", ("speed",), "time", "time", "s", "speed", "speed", "ft/s"),
         Plot("Current (per motor)", ("stator_current",), "time", "time", "s", "current", "current", "A"),
         Plot(
-            "Time vs ratio (optimise)", ("time_vs_ratio",), "ratio", "dimensionless", "", "time", "time", "s"
+            "Time vs ratio (optimise)",
+            ("time_vs_ratio", "fastest"),
+            "ratio",
+            "dimensionless",
+            "",
+            "time",
+            "time",
+            "s",
         ),
     ),
 )
