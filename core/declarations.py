@@ -75,6 +75,10 @@ class Table:
     # a row sent to another calculator: {target_id: {target_field: column}}; a row is sent to the
     # targets whose columns it all has
     exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
+    modes: tuple[str, ...] = ()  # shown only in these modes of the calculator; empty means all
+
+    def shown_in(self, mode: Any) -> bool:
+        return not self.modes or mode in self.modes
 
     def column(self, name: str) -> Column:
         for c in self.columns:

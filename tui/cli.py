@@ -298,8 +298,10 @@ def _solve(args) -> int:
         print(f"  {calc.output(name).label:<{width}}  {value.text}")
     for w in solution.warnings:
         print(f"  warning: {w}")
+    mode = solution.inputs["mode"].value if "mode" in solution.inputs else None
     for table in calc.tables:
-        _print_table(table, solution.tables.get(table.name, []))
+        if table.shown_in(mode):
+            _print_table(table, solution.tables.get(table.name, []))
     if spread is not None:
         print("\n".join(tolerance.spread_lines(calc, solution, spread, width)))
     return 0

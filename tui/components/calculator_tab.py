@@ -571,7 +571,9 @@ class CalculatorTab(Widget):
     def _compose_tables(self) -> ComposeResult:
         """A scrollable table per declared Table, its header holding each column's unit."""
         for t in self.calculator.tables:
-            yield Static(Text(t.title, style="bold"), classes="result-table-title")
+            yield Static(
+                Text(t.title, style="bold"), classes="result-table-title", id=f"table-title-{t.name}"
+            )
             grid = DataTable(
                 classes="result-table", id=f"table-{t.name}", cursor_type="row", zebra_stripes=True
             )
@@ -585,8 +587,13 @@ class CalculatorTab(Widget):
             yield grid
 
     def _show_tables(self, solution: Solution) -> None:
+        mode = solution.inputs["mode"].value if "mode" in solution.inputs else None
         for t in self.calculator.tables:
             grid = self.query_one(f"#table-{t.name}", DataTable)
+            shown = t.shown_in(mode)  # a table of another mode (the sprint's optimise table) gives way
+            if grid.display != shown:
+                grid.display = shown
+                self.query_one(f"#table-title-{t.name}", Static).display = shown
             cursor = grid.cursor_row
             grid.clear()
             for n, row in enumerate(solution.tables.get(t.name, [])):
