@@ -68,7 +68,7 @@ from ..declarations import Calculator, Column, Document, Output, Plot, Result, T
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
-from ..robot_config import RobotConfig, choreo_project, estimated_moi, pathplanner_settings
+from ..robot_config import RobotConfig, choreo_project, estimated_moi, motor_limits, pathplanner_settings
 from ..sim import motion
 from ..sim.effects import Effect, Effects, Part, Slot, nothing
 from ..sim.integrate import Event, integrate, integrate_stiff
@@ -1062,15 +1062,14 @@ def robot_config_of(solution) -> RobotConfig:
     kind, G_module, wheel = geometry(v)
     G_ = out.get("best_ratio", G_module)
     motor, _ = lookup(v["motor"], v["source"])
-    i_f = motor.free_current * v["voltage"] / motor.v_spec  # (S2)
-    limit = (
-        v["stator_current_limit"]
-        if "stator_limit" in v["effects"]
-        else motor.stall_current * v["voltage"] / motor.v_spec
+    stall = motor.stall_current * v["voltage"] / motor.v_spec  # (4)
+    limit = v["stator_current_limit"] if "stator_limit" in v["effects"] else stall
+    # one motor at the battery voltage: free speed (1) and torque at the limit Kt·(I − i_f)·η (S13)
+    free_speed, torque = motor_limits(
+        v["motor"], limit, voltage=v["voltage"], efficiency=v["efficiency"], source=v["source"]
     )
-    Kt = motor.stall_torque / (motor.stall_current - motor.free_current)  # (M1), the seed's eq. 7
-    torque = v["efficiency"] * Kt * (limit - i_f)
     if not torque > 0:
+        i_f = motor.free_current * v["voltage"] / motor.v_spec
         raise ValueError(
             f"the stator current limit {limit:.4g} A is below the free current {i_f:.4g} A: no torque to export"
         )
@@ -1089,7 +1088,7 @@ def robot_config_of(solution) -> RobotConfig:
         wheelbase=v["wheelbase"],
         bumper_width=v["bumper_width"],
         bumper_length=v["bumper_length"],
-        motor_free_speed=motor.free_speed * v["voltage"] / motor.v_spec,  # (1)
+        motor_free_speed=free_speed,
         motor_max_torque=torque,
     )
 
