@@ -690,3 +690,17 @@ async def test_a_choice_list_matches_a_word_inside_a_label():
         await settle(pilot)
         assert tab.entries["drive"] == "sds_mk4i_l3"
         assert "ratio" not in [f.name for f in tab.sheet.shown_fields]  # the module's ratio is used
+
+
+async def test_letters_on_the_load_list_pick_the_preset_they_name():
+    """ctrl+o, then "vex" and Enter loads "VEX lift, 2 V5 red" (the third): the load list has the
+    choice lists' type-ahead (letters did nothing there, and Enter loaded the first preset)."""
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        tab = card(app)
+        await pilot.press("ctrl+o")
+        await settle(pilot)
+        await pilot.press("v", "e", "x", "enter")
+        await settle(pilot)
+        assert tab.entries["motor"] == "V5 100 rpm (red)"

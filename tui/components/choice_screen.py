@@ -3,6 +3,7 @@ letters jump to the next choice they begin (type-ahead, as on the row itself).""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from time import monotonic
 
 from rich.text import Text
@@ -14,6 +15,37 @@ from textual.widgets import Label, OptionList
 from textual.widgets.option_list import Option
 
 TYPE_AHEAD_S = 1.0
+
+
+class TypeAhead:
+    """Letters typed within TYPE_AHEAD_S of each other move an OptionList to the next entry whose
+    label (or value) they begin, or whose words they begin; one letter repeated steps through the
+    entries it begins; a space counts only within a search ("by l")."""
+
+    def __init__(self) -> None:
+        self._typed = ("", 0.0)
+
+    def key(self, event: events.Key, options: OptionList, entries: Sequence[tuple[str, str]]) -> bool:
+        """Handle `event` for `options`, whose entries are (value, label); False if it is no letter."""
+        if not (event.is_printable and event.character) or not entries:
+            return False
+        typed, when = self._typed
+        now = monotonic()
+        typed = typed if now - when < TYPE_AHEAD_S else ""
+        if event.character == " " and not typed:
+            return False
+        typed += event.character.lower()
+        self._typed = (typed, now)
+        at = options.highlighted or 0
+        n = len(entries)
+        repeat = len(set(typed)) == 1
+        prefix = typed[0] if repeat else typed
+        for step in range(1 if repeat else 0, n + 1):
+            value, label = entries[(at + step) % n]
+            if _matches(label, prefix) or value.lower().startswith(prefix):
+                options.highlighted = (at + step) % n
+                break
+        return True
 
 
 class ChoiceScreen(ModalScreen[str | None]):
@@ -32,7 +64,7 @@ class ChoiceScreen(ModalScreen[str | None]):
         self.title_text = title
         self.options = options
         self.current = current
-        self._typed = ("", 0.0)
+        self.type_ahead = TypeAhead()
 
     def compose(self) -> ComposeResult:
         with Vertical():
@@ -53,26 +85,8 @@ class ChoiceScreen(ModalScreen[str | None]):
         self.dismiss(None)
 
     def on_key(self, event: events.Key) -> None:
-        if not (event.is_printable and event.character):
-            return
-        typed, when = self._typed
-        now = monotonic()
-        typed = typed if now - when < TYPE_AHEAD_S else ""
-        if event.character == " " and not typed:  # a space only within a search ("by l")
-            return
-        typed += event.character.lower()
-        self._typed = (typed, now)
-        options = self.query_one(OptionList)
-        at = options.highlighted or 0
-        n = len(self.options)
-        repeat = len(set(typed)) == 1
-        prefix = typed[0] if repeat else typed
-        for step in range(1 if repeat else 0, n + 1):
-            value, label = self.options[(at + step) % n]
-            if _matches(label, prefix) or value.lower().startswith(prefix):
-                options.highlighted = (at + step) % n
-                break
-        event.stop()
+        if self.type_ahead.key(event, self.query_one(OptionList), self.options):
+            event.stop()
 
 
 def _matches(label: str, typed: str) -> bool:

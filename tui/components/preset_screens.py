@@ -17,6 +17,7 @@ from textual.widgets.option_list import Option
 from gearhead.core import presets
 from gearhead.core.errors import InputError
 
+from .choice_screen import TypeAhead
 from .field_input import FieldInput
 
 
@@ -143,6 +144,14 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
         self.calc_id = calc_id
         self.blink = blink
         self.found = presets.listing(calc_id)
+        self.type_ahead = TypeAhead()  # letters on the list jump to the preset they name
+
+    def on_key(self, event: events.Key) -> None:
+        listing = self.query_one("#preset-list", OptionList)
+        if self.focused is listing and self.type_ahead.key(
+            event, listing, [(str(i), p.name) for i, p in enumerate(self.found)]
+        ):
+            event.stop()
 
     def compose(self) -> ComposeResult:
         with Vertical(classes="dialog load-dialog"):
