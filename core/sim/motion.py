@@ -888,10 +888,10 @@ def batch_times(setup: Setup) -> Any:
     return batch_arrival(accel, d, h, ~movable, m.free_speed)
 
 
-def batch_arrival(accel, d: float, h: Any, done: Any, w_scale: Any) -> Any:
+def batch_arrival(accel, d: float, h: Any, done: Any, w_scale: Any, timed: bool = False) -> Any:
     """When each candidate of a batch, from rest, first covers the distance d: `accel(p, w)` over
-    numpy arrays (nan where done from the start), h the step of each candidate, w_scale a speed
-    scale for the slope's difference quotient. Exponential Euler on the speed with the local slope
+    numpy arrays (nan where done from the start; `accel(p, w, t)` when `timed`), h the step of each
+    candidate, w_scale a speed scale for the slope's difference quotient. Exponential Euler on the speed with the local slope
     J = ∂a/∂w (exact for an acceleration affine in speed, stable however stiff), position by the
     matching φ2 term; the arrival is located on the cubic Hermite through the last step."""
     import numpy as np
@@ -903,16 +903,19 @@ def batch_arrival(accel, d: float, h: Any, done: Any, w_scale: Any) -> Any:
     for _ in range(40 * BATCH_STEPS):
         if done.all():
             break
+        # a time-dependent acceleration is taken at the step's middle (second order for a forcing
+        # linear in time, as a ramp is)
+        step_accel = (lambda p_, w_, mid=t + h / 2: accel(p_, w_, mid)) if timed else accel
         # three accelerations a step, each over every candidate counted as one (as the trebuchet's
         # batch_ranges): the solve's CPU backstop and cancel are polled each step
         charge(3)
-        a = accel(p, w)
+        a = step_accel(p, w)
         dw = 1e-7 * (np.abs(w) + w_scale)
-        J = (accel(p, w + dw) - a) / dw
+        J = (step_accel(p, w + dw) - a) / dw
         # across a kink (a current limit letting go) within the step the local slope says too
         # little: take the secant over the step's predicted change when it damps more
         jump = np.where(np.abs(h * a) > dw, h * a, dw)
-        J = np.minimum(J, (accel(p, w + jump) - a) / jump)
+        J = np.minimum(J, (step_accel(p, w + jump) - a) / jump)
         z = np.minimum(h * J, -1e-12)  # J < 0: the back-EMF damps; never amplify
         ez = np.exp(z)
         phi1 = np.where(z < -1e-4, (ez - 1) / np.where(z < -1e-4, z, 1.0), 1 + z / 2 + z * z / 6)
