@@ -896,6 +896,14 @@ def batch_arrival(accel, d: float, h: Any, done: Any, w_scale: Any, timed: bool 
     matching φ2 term; the arrival is located on the cubic Hermite through the last step."""
     import numpy as np
 
+    # candidates that cannot move are nan from the start, and stay so: no warning for them
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return _batch_arrival(accel, d, h, done, w_scale, timed)
+
+
+def _batch_arrival(accel, d: float, h: Any, done: Any, w_scale: Any, timed: bool) -> Any:
+    import numpy as np
+
     p = np.zeros_like(h)
     w = np.zeros_like(h)
     t = np.zeros_like(h)
