@@ -150,7 +150,8 @@ def format_value(value: Any, quantity: str, unit: str) -> Value:
     if isinstance(value, bool) or isinstance(value, str):
         text = ("yes" if value else "no") if isinstance(value, bool) else value
         return Value(value, "", text)
-    if isinstance(value, numbers.Integral):
+    # a count is an integer; a physical quantity that happens to be an int (a sum of nothing) is not
+    if isinstance(value, numbers.Integral) and not units.SI_UNITS.get(quantity):
         return Value(int(value), "", str(int(value)))
     value = float(value)
     return Value(value, units.SI_UNITS[quantity], units.format_quantity(value, unit, quantity))

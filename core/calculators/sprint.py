@@ -336,7 +336,7 @@ FIELDS = (
     EFFECTS.field(
         "stator_limit, supply_limit (per motor current limits); battery_sag (bus = battery − R × total "
         "supply current); rolling_resistance (C_rr·m·g); weight_transfer (front wheels slip first); "
-        "air_drag (½ρ·CdA·v²)."
+        "air_drag (½ρ·CdA·v²); voltage_ramp (the duty rises from 0 to full over the ramp time)."
     ),
     *EFFECTS.fields(),
     accuracy_field(),
@@ -854,7 +854,7 @@ def integrated(s: Setup, rtol: float, dense: bool = False):
         "time": runs[-1].t[-1],
         "speed": end[1] * v_ref,
         "traction_time": sum(r.t[-1] - r.t[0] for r in slip_runs),
-        "traction_distance": sum(r.y[-1][0] - r.y[0][0] for r in slip_runs) * d,
+        "traction_distance": sum((r.y[-1][0] - r.y[0][0] for r in slip_runs), 0.0) * d,
         "energy": end[2] * e_ref,
     }
     return values, piece, (d, v_ref, e_ref)
