@@ -55,7 +55,10 @@ the motors by its own ratio; everything is written at the primary wheel (r₁ = 
     (D7) hood_secondary: a hood shooter with a secondary wheel geared to the primary that does not
          touch the ball (ReCalc's "Flywheel" section): (2)-(6) with I from (D1).
 The incoming ball speed and spin (default 0) apply to every layout; motor_during_shot needs a ball
-entering at rest and one contact section (not with an incoming ball or the compound layout).
+entering at rest and one contact section (not with an incoming ball or the compound layout). For the
+dual layout its grip F is the generalised force of (D4) at the primary wheel: r₁·F is the torque
+the ball takes from the geared wheels (r₁·J₁ + G₂₁·r₂·J₂ per unit time), so (FW3) holds with s, σ
+of (D2)-(D3); how F divides between the two contacts is not modelled.
 
 Motor (linear model, core.motors): the wheel set of inertia I is driven through reduction G (motor
 turns per wheel turn) by n motors:  I·dω/dt = G·τ̃s·(1 − G·ω/ω̃f)  ⇒  ω(t) = ω_f,w·(1 − e^(−t/T)),
