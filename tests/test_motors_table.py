@@ -183,3 +183,15 @@ def test_cli_json_gives_the_table():
     table = data["tables"]["motors"]
     assert len(table) == len(motors.motor_names())
     assert table[0]["peak_power"]["unit"] == "W" and table[0]["free_speed"]["unit"] == "rad/s"
+
+
+def test_chart_csv_names_the_motors_not_the_slots():
+    """Result.series_labels reaches the exported chart data (the legend uses the same label)."""
+    from gearhead.core.export import plot_csv
+    from gearhead.core.registry import get
+
+    sol = solve("motors", {"curve_motor_1": "Kraken X60", "curve_motor_2": "(none)", "curve_motor_3": "NEO"})
+    text = plot_csv(get("motors").plots[0], sol)
+    first_column = {line.split(",")[0] for line in text.splitlines()[1:]}
+    assert first_column == {"Kraken X60", "NEO", "Minion"}
+    assert sol.series_label("torque 1") == "Kraken X60" and sol.series_label("other") == "other"
