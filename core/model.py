@@ -54,6 +54,10 @@ class Solution:
     warnings: list[str]
     series: dict[str, tuple[list[float], list[float]]] = dc_field(default_factory=dict)
     tables: dict[str, list[dict[str, Value]]] = dc_field(default_factory=dict)
+    series_labels: dict[str, str] = dc_field(default_factory=dict)  # Result.series_labels
+
+    def series_label(self, name: str) -> str:
+        return self.series_labels.get(name, name)
 
     def as_json(self) -> dict[str, Any]:
         out = {
@@ -228,4 +232,12 @@ def solve(
                 cells[c.name] = format_value(v, c.quantity, c.unit)
             rows.append(cells)
         tables[t.name] = rows
-    return Solution(calc.id, inputs, outputs, notices + list(result.warnings), dict(result.series), tables)
+    return Solution(
+        calc.id,
+        inputs,
+        outputs,
+        notices + list(result.warnings),
+        dict(result.series),
+        tables,
+        dict(result.series_labels),
+    )

@@ -29,6 +29,7 @@ SI_UNITS: dict[str, str] = {
     "torque": "N*m",
     "energy": "J",
     "power": "W",
+    "power_density": "W/kg",  # a motor's peak power per kilogram (the motors table)
     "speed": "m/s",
     "angular_speed": "rad/s",
     "angle": "rad",
@@ -483,6 +484,7 @@ COMMON_UNITS: dict[str, tuple[str, ...]] = {
     "torque": ("N*m", "in*lbf", "ft*lbf"),
     "energy": ("J", "ft*lbf", "kJ"),
     "power": ("W", "hp", "kW"),
+    "power_density": ("W/kg", "W/lb"),
     "speed": ("m/s", "ft/s", "in/s", "km/h", "mph"),
     "angular_speed": ("rpm", "rad/s", "deg/s"),
     "angle": ("deg", "rad"),
