@@ -130,6 +130,10 @@ def from_text_kind(text: str) -> str | None:
     ReCalc link, else None (a file path, or TOML): nothing is decoded here."""
     if is_code(text):
         return "code"
+    from . import recalc
+
+    if recalc.is_link(text):
+        return "recalc"
     return None
 
 
@@ -138,6 +142,10 @@ def from_text(text: str) -> Preset | None:
     (core.recalc; what it could not map in the preset's warnings); None if it is none of these."""
     if is_code(text):
         return decode(text)
+    from . import recalc
+
+    if recalc.is_link(text):
+        return recalc.to_preset(text)
     return None
 
 
