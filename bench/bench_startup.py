@@ -315,6 +315,8 @@ def main() -> None:
                 "gearhead solve beam ... length='0.005 furlong'",
                 ["solve", "beam", "--set", "length=0.005 furlong"],
             ),
+            # the elevator's closed-form move and LQR without scipy (core/sim/small_math.py)
+            ("gearhead solve elevator", ["solve", "elevator"]),
         ):
             pair(label, lambda cmd=cmd: wall([gearhead, *cmd]), numpy, "python -c 'import numpy'")
     pair(
