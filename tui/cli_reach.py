@@ -1,5 +1,6 @@
 """The command line's sharing commands (DESIGN.md "Command line"): `gearhead share FILE` prints a
-preset's share code, `gearhead import TEXT` turns a share code or a ReCalc link into a preset.
+preset's share code, `gearhead import TEXT` turns a share code or a ReCalc link into a preset,
+`gearhead serve` runs the app in a browser (tui/serve.py).
 Kept apart from cli.py, which registers them (`add_parsers`) and runs them (`run`)."""
 
 from __future__ import annotations
@@ -8,10 +9,12 @@ import sys
 
 from gearhead.core.errors import InputError
 
-COMMANDS = ("share", "import")
+COMMANDS = ("share", "import", "serve")
 
 
 def add_parsers(sub) -> None:
+    from . import serve
+
     sh = sub.add_parser("share", help="print a preset as a share code (gh1:…), accepted wherever a preset is")
     sh.add_argument("preset", metavar="FILE", help="a preset file (or a share code or ReCalc link)")
     sh.add_argument(
@@ -25,9 +28,14 @@ def add_parsers(sub) -> None:
     im.add_argument("text", metavar="LINK", help="a reca.lc link (linear, arm, flywheel, ...) or a gh1: code")
     im.add_argument("--code", action="store_true", help="print a share code instead of the TOML")
     im.add_argument("--out", metavar="FILE", help="write the preset to FILE (never overwritten)")
+    serve.add_parser(sub)
 
 
 def run(args) -> int:
+    if args.command == "serve":
+        from . import serve
+
+        return serve.run(args)
     if args.command == "share":
         return _share(args)
     return _import(args)
