@@ -51,7 +51,9 @@ class GearheadApp(App):
         Binding("ctrl+o", "load_preset", "Load", tooltip="Load a preset into this tab"),
         Binding("ctrl+g", "send", "Send to…", tooltip="Send results to the calculator they feed"),
         Binding("ctrl+r", "accuracy", "Accuracy", tooltip="Accuracy vs time of this simulation"),
-        Binding("ctrl+y", "copy_preset", "Copy", tooltip="Copy this tab as preset TOML (to share)"),
+        Binding(
+            "ctrl+y", "copy_share_code", "Copy", tooltip="Copy this tab as a share code (gh1:…, to share)"
+        ),
         Binding("ctrl+e", "export", "Export", tooltip="Results or plot data as CSV or Markdown"),
         # priority: from inside a dialog's entry too (where Input binds ctrl+w to delete a word)
         Binding("ctrl+w", "sweep", "Sweep row", priority=True),
@@ -423,6 +425,26 @@ class GearheadApp(App):
         )
 
     @guarded
+    async def action_copy_share_code(self) -> None:
+        """ctrl+y: the tab as a share code (core/share.py): one line that survives a chat or a
+        terminal's paste, where the TOML's line breaks did not; ctrl+o anywhere reads it."""
+        from gearhead.core import share
+        from gearhead.core.presets import Preset
+
+        tab = await self.card(self.current_calculator)  # a key on a card still being built waits for it
+        name, description = tab.preset_meta
+        preset = Preset(
+            tab.calculator.id, name or f"{tab.calculator.id} design", description, tab.current_inputs()
+        )
+        self.copy_to_clipboard(share.encode(preset))
+        self.notify(
+            f"{tab.calculator.title} copied as a share code; paste it into ctrl+o of any Gearhead, or "
+            f"`gearhead solve {tab.calculator.id} --preset CODE` (the palette's 'Copy as preset TOML' copies the file)",
+            title="Copied",
+            markup=False,
+        )
+
+    @guarded
     async def action_export(self) -> None:
         tab = await self.card(self.current_calculator)  # a key on a card still being built waits for it
         if tab.solution is None:
@@ -532,6 +554,11 @@ class GearheadApp(App):
         )
         yield SystemCommand(
             "Load preset", "Load a built-in or user preset into the current tab", self.action_load_preset
+        )
+        yield SystemCommand(
+            "Copy share code",
+            "Copy the current tab as a gh1: share code (ctrl+y)",
+            self.action_copy_share_code,
         )
         yield SystemCommand(
             "Copy as preset TOML", "Copy the current tab as preset text, to share", self.action_copy_preset

@@ -446,24 +446,22 @@ def lqr(
     Q = diag(1/q_pos², 1/q_vel²), R = 1/r²; S from the discrete algebraic Riccati equation;
     K = (BᵀSB + R)⁻¹·BᵀSA; latency compensation K ← K·(A − B·K)^(delay/dt)."""
     import numpy as np
-    from scipy.linalg import expm, fractional_matrix_power, solve_discrete_are
 
-    A = np.array([[0.0, 1.0], [0.0, -kV / kA]])
-    B = np.array([[0.0], [1.0 / kA]])
-    M = np.zeros((3, 3))
-    M[:2, :2], M[:2, 2:] = A, B
-    phi = expm(M * dt)  # zero-order hold: [[Ad, Bd], [0, I]] = exp([[A, B], [0, 0]]·dt)
-    Ad, Bd = phi[:2, :2], phi[:2, 2:]
+    # closed forms of the 2-state case (small_math.py L1-L3; scipy's expm, solve_discrete_are and
+    # fractional_matrix_power gave the same to 1e-12, tests/test_small_math.py): no scipy import
+    from .small_math import dare, matrix_power_2x2, zero_order_hold
+
+    Ad, Bd = zero_order_hold(kV / kA, 1.0 / kA, dt)  # exp([[A, B], [0, 0]]·dt) = [[Ad, Bd], [0, I]]
     Q = np.diag([1.0 / q_position**2, 1.0 / q_velocity**2])
     R = np.array([[1.0 / r_volts**2]])
-    S = solve_discrete_are(Ad, Bd, Q, R)
+    S = dare(Ad, Bd, Q, R)
     K = np.linalg.solve(Bd.T @ S @ Bd + R, Bd.T @ S @ Ad)
     if not np.all(np.abs(np.linalg.eigvals(Ad - Bd @ K)) <= 1 + 1e-9):
         # Q and R many decades apart: the Riccati solve lost its digits and K destabilises the loop
         raise ValueError("the LQR gains do not stabilise the loop")
     if delay > 0:
         with np.errstate(all="ignore"):  # (A − BK)^(delay/dt) may overflow: non-finite, refused by the caller
-            closed = fractional_matrix_power(Ad - Bd @ K, delay / dt)
+            closed = matrix_power_2x2(Ad - Bd @ K, delay / dt)
             K = K @ np.real(closed)
     return float(K[0, 0]), float(K[0, 1])
 
@@ -537,7 +535,7 @@ def closed_form(setup: Setup) -> Move | None:
     None when the scene must be integrated."""
     if setup.varying or setup.asm.slots["duty"] is not None:
         return None
-    from scipy.special import lambertw
+    from .small_math import lambert_w0  # scipy.special.lambertw's principal branch, without scipy
 
     m = setup.mech
     R_eff = m.R + m.bus_resistance
@@ -546,7 +544,7 @@ def closed_form(setup: Setup) -> Move | None:
     w_f = (m.battery_voltage + F_c * R_eff / fpa) * m.Kv / m.n
     tau = m.inertia * R_eff * m.Kv / (fpa * m.n)
     D = m.distance / w_f / tau
-    u = close_time(D, lambda D: D + 1 + float(lambertw(-math.exp(-(D + 1))).real))  # (C2)
+    u = close_time(D, lambda D: D + 1 + lambert_w0(-math.exp(-(D + 1))))  # (C2)
     T = u * tau
     if not (T > 0 and math.isfinite(T) and math.isfinite(-w_f * math.expm1(-u))):
         raise InputError("ratio", "the move is out of floating-point range at this ratio: change the ratio")
