@@ -38,6 +38,11 @@ kV is this kV/η (they agree at η = 1). Feedback: WPILib's LQR on the plant (x,
     latency-compensated (motion.lqr)                                                           (EL11)
 Optimise: G* minimising T(G): 240 ratios log-spaced about the characteristic ratio
 (d = v_free·τ), then bounded Brent on the accurate move around the best (motion.optimise)       (EL12)
+Profiled move: the loop robot code runs (core.sim.profiled (P1)-(P11)): a trapezoid from rest to rest
+(limits entered, or fractions of v_free and of the acceleration from rest at full voltage), the
+feedforward (EL10) with kG constant, PD feedback (the LQR gains (EL11) or entered) on the position
+measured `sensor_delay` earlier, every `control_period`, the voltage held between updates and
+clamped at the battery voltage; (EL2) with friction against the motion in either direction    (EL13)
 """
 
 from __future__ import annotations
@@ -50,7 +55,7 @@ from ..declarations import Calculator, Output
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
-from ..sim import motion
+from ..sim import motion, profiled
 from ..sim.effects import Effect, Effects, Part
 from ..sim.motor_limits import braking_warning
 from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
@@ -99,7 +104,7 @@ EFFECTS = Effects(
 
 
 FIELDS = (
-    motion.mode_field(),
+    motion.mode_field(profiled=True),
     *motion.battery_motor_fields("NEO", 2),
     Field(
         "ratio",
@@ -110,7 +115,7 @@ FIELDS = (
         min=0,
         min_exclusive=True,
         max=1e5,
-        modes=("move",),
+        modes=("move", "profiled"),
         help="Motor turns per spool turn.",
     ),
     Field(
@@ -181,6 +186,14 @@ FIELDS = (
     ),
     *EFFECTS.fields(),
     *motion.feedback_fields("length", "in", 0.5, "speed", "in/s", 10),
+    *profiled.profile_fields(
+        ("length", "in"),
+        ("speed", "ft/s", 3),
+        ("acceleration", "ft/s**2", 10),
+        ("voltage_per_length", "V/in", 2),
+        ("voltage_per_speed", "V*s/in", 0.05),
+        0.25,
+    ),
     accuracy_field(),
 )
 
@@ -202,6 +215,7 @@ OUTPUTS = (
         "V/m",
         "Volts to hold the load against gravity (minus the counterbalance).",
     ),
+    *profiled.profile_outputs(("length", "in"), ("speed", "ft/s"), ("acceleration", "ft/s**2")),
     *EFFECTS.outputs(),
     *STATS_OUTPUTS,
 )
@@ -281,6 +295,10 @@ def simulate(v, rtol: float):
         run = motion.optimise(
             lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, spool_factor(v)
         )
+    elif v["mode"] == "profiled":
+        s = setup(v)
+        ff = motion.feedforward(s, s.mech.q1)  # (EL10): kG the same all along the rail
+        run = profiled.run_profiled(s, v, rtol, ff, lambda q: ff["kG"])  # (EL13)
     else:
         run = motion.run_move(setup(v), rtol)
     braking_warning(v, run)
@@ -300,5 +318,6 @@ CALCULATOR = Calculator(
     compute=compute,
     simulate=simulate,
     exports={"ratio_finder": {"target_ratio": "best_ratio"}},  # optimise mode: the parts for that ratio
-    plots=motion.plots("position", "length", "in", "speed", "ft/s"),
+    plots=motion.plots("position", "length", "in", "speed", "ft/s")
+    + profiled.profile_plots("position", "length", "in"),
 )
