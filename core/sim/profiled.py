@@ -19,8 +19,11 @@ Trapezoid from rest to rest over the distance d with limits v_max, a_max (WPILib
     p(t) = a·t²/2 (t < t_a);  a·t_a²/2 + v_peak·(t − t_a) (t < t_a + t_c);  d − a·(T − t)²/2 (t ≤ T)
                                                                                        (P2)
 The plant between updates (per motor; the duty signed, a limit lowers its magnitude):
-    σ = sgn(u_k), E = n·q̇/Kv,  |u| = max(0, min(|u_k|, u_limit(σ·E)))   ((E2), (E3) toward σ)
-    I = σ·(|u|·V_b − σ·E)/(R + u²·R_bus)                                   (E1), signed
+    E = n·q̇/Kv,  u = clamp(u_k, −b(−E), b(E)),  b the shared duty bound of the limits on
+    ((E2), (E3), the duty a limit lets a driving motor rise to; mirrored for a current the other
+    way, so the stator limit holds |I| while the loop brakes too, as a controller's current loop
+    does; the full-voltage move of core.sim.motion never brakes against its command)
+    I = (u·V_b − E)/(R + u²·R_bus)                                                 (E1), signed
     M·q̈ = η·N·Kt·n·I + F_field(q) − F_fric·sgn(q̇)                                     (P7)
 F_fric is the motors' own loss (M3) plus the friction effect (Coulomb, against the motion). At
 q̇ = 0 the mechanism sticks while |η·N·Kt·n·I + F_field| ≤ F_fric (both constant there for the rest
@@ -128,17 +131,22 @@ def _sgn(x: float) -> float:
 
 
 def driver(mech, duty_bound):
-    """(u_cmd, E) -> (u, I) per motor for a signed duty command (E1)-(E3) toward its sign."""
+    """(u_cmd, E) -> (u, I) per motor for a signed duty command: the shared duty bound b(E) of the
+    limits that are on ((E2), (E3): what the duty may rise to while driving) caps it, and its mirror
+    −b(−E) floors it (I(−u, −E) = −I(u, E): the same limits on a current the other way, e.g. the
+    stator current while the loop brakes), then (E1)."""
     Vb, R, Rb = mech.battery_voltage, mech.R, mech.bus_resistance
+    if duty_bound is None:
+
+        def drive(u_cmd: float, E: float) -> tuple[float, float]:
+            return u_cmd, (u_cmd * Vb - E) / (R + u_cmd * u_cmd * Rb)
+
+        return drive
 
     def drive(u_cmd: float, E: float) -> tuple[float, float]:
-        sd = 1.0 if u_cmd >= 0 else -1.0
-        Ed = sd * E
-        mag = abs(u_cmd)
-        if duty_bound is not None:
-            mag = max(0.0, min(mag, duty_bound(Ed)))
-        I = (mag * Vb - Ed) / (R + mag * mag * Rb)
-        return sd * mag, sd * I
+        u = min(max(u_cmd, -duty_bound(-E)), duty_bound(E))
+        u = min(max(u, -1.0), 1.0)
+        return u, (u * Vb - E) / (R + u * u * Rb)
 
     return drive
 
@@ -155,8 +163,12 @@ def driver(mech, duty_bound):
 #     φ₂(z) = (e^z − 1 − z)/z²                                                           (X1)
 # is exact for f affine in w and independent of p (an elevator with no limit binding: one step a
 # period), second order otherwise; the error is estimated by step doubling (one step of h against
-# two of h/2, which are kept), the step adapted as h·(tol/err)^(1/3) (X2). The energy is Simpson's
-# rule over each doubled step (its ends and middle) (X3). Events are located on (X1) of the half
+# two of h/2, which are kept) and by the defect of the linear model at each half's end,
+# δ = f(end) − (f₀ + J·Δw): e_w = δ·min(h/2, 1/|J|), e_p = c·e_w·h/2 (and the energy's by its
+# own line's defect: e_e = δ_g·h/2); the step adapted as
+# h·(tol/err)^(1/3) (X2). The energy rate g is
+# linearised in w on each half step like f, G = ∂g/∂w: ∫g dt = g₀·h + G·(Δp/c − w·h), exact where
+# (X1) is (X3). Events are located on (X1) of the half
 # step they fall in (the speed is monotone in s on it: at most one stop).
 
 
@@ -165,6 +177,10 @@ def _phi(z: float) -> tuple[float, float]:
         return 1 + z / 2 + z * z / 6 + z**3 / 24, 0.5 + z / 6 + z * z / 24 + z**3 / 120
     e1 = math.expm1(z)
     return e1 / z, (e1 - z) / (z * z)
+
+
+def _beyond_noise(defect: float, f: float, dw: float, w: float) -> float:
+    return max(0.0, abs(defect) - 1e-9 * abs(f) * abs(dw) / (abs(w) + 1.0) - 1e-15 * abs(f))
 
 
 class ExpRun:
@@ -204,7 +220,7 @@ def integrate_exp(
     events=(),
     first_step=None,
     restart=(),
-    max_steps: int = 400,
+    max_steps: int = 200_000,
 ) -> ExpRun:
     """(X1)-(X3) from t0 to t1; rhs(t, y) -> [c·w, f, g] (the scene's own right-hand side)."""
     from scipy.optimize import brentq
@@ -222,11 +238,12 @@ def integrate_exp(
     atol = rtol
 
     def slope(tt, yy, kk):
-        dw = 1e-7 * (abs(yy[1]) + 1.0)
+        """(∂f/∂w, ∂g/∂w) by a difference quotient."""
+        dw = 1e-6 * (abs(yy[1]) + 1.0)
         k2 = rhs(tt, [yy[0], yy[1] + dw, yy[2]])
-        return (k2[1] - kk[1]) / dw
+        return (k2[1] - kk[1]) / dw, (k2[2] - kk[2]) / dw
 
-    J0 = slope(t, y, k0)
+    J0, G0 = slope(t, y, k0)
     nfev += 1
     for _ in range(max_steps):
         charge(4)
@@ -238,22 +255,53 @@ def integrate_exp(
         mid = _exp_state(half, y[0], y[1], k0[1], J0, c)
         tm = t + half
         km = rhs(tm, mid + [0.0])
-        Jm = slope(tm, mid + [0.0], km)
+        Jm, Gm = slope(tm, mid + [0.0], km)
         end = _exp_state(half, mid[0], mid[1], km[1], Jm, c)
-        nfev += 2
-        err = math.sqrt(
-            sum(((a - b) / (atol + rtol * max(abs(a), abs(b)))) ** 2 for a, b in zip(full, end)) / 2
+        t_end = t1 if last else t + h
+        k1 = rhs(t_end, end + [0.0])
+        nfev += 3
+        # the defect of the linear model at each half's end (a kink inside a half, where a limit
+        # lets go, fools step doubling: both halves then extrapolate the same line) (X2)
+        # less what the difference quotient's rounding alone leaves (J to ~1e-10·|f|/(|w| + 1))
+        defect = max(
+            _beyond_noise(km[1] - k0[1] - J0 * (mid[1] - y[1]), k0[1], mid[1] - y[1], y[1]),
+            _beyond_noise(k1[1] - km[1] - Jm * (end[1] - mid[1]), km[1], end[1] - mid[1], mid[1]),
+        )
+        stiff = max(abs(J0), abs(Jm), 1e-300)
+        e_w = defect * min(half, 1.0 / stiff)
+        e_p = c * e_w * half
+        # the energy's quadrature (X3) by the same defect of its own line (the sag bends it)
+        e_e = half * max(
+            _beyond_noise(km[2] - k0[2] - G0 * (mid[1] - y[1]), k0[2], mid[1] - y[1], y[1]),
+            _beyond_noise(k1[2] - km[2] - Gm * (end[1] - mid[1]), km[2], end[1] - mid[1], mid[1]),
+        )
+        err = max(
+            math.sqrt(
+                sum(((a - b) / (atol + rtol * max(abs(a), abs(b)))) ** 2 for a, b in zip(full, end)) / 2
+            ),
+            e_w / (atol + rtol * max(abs(end[1]), abs(end[1] - y[1]))),
+            e_p / (atol + rtol * max(abs(end[0]), abs(end[0] - y[0]))),
+            e_e / (atol + rtol * max(abs(y[2]), h * abs(k0[2]))),
         )
         if err > 1.0 and h > 1e-12 * max(1.0, abs(t)):
             h *= max(0.2, 0.9 * err ** (-1 / 3))
             continue
-        t_end = t1 if last else t + h
-        k1 = rhs(t_end, end + [0.0])
-        nfev += 1
-        energy = y[2] + h / 6 * (k0[2] + 4 * km[2] + k1[2])  # (X3)
-        segs = [(t, half, y[0], y[1], k0[1], J0, c), (tm, t_end - tm, mid[0], mid[1], km[1], Jm, c)]
+        # (X3): g linearised in w on each half, ∫w dt = Δp/c from (X1)
+        energy = (
+            y[2]
+            + half * k0[2]
+            + G0 * ((mid[0] - y[0]) / c - y[1] * half)
+            + (t_end - tm) * km[2]
+            + Gm * ((end[0] - mid[0]) / c - mid[1] * (t_end - tm))
+        )
+        e_mid = y[2] + half * k0[2] + G0 * ((mid[0] - y[0]) / c - y[1] * half)
+        # each half: the dense state (X1) and the energy (X3) from its start
+        halves = [
+            ((t, half, y[0], y[1], k0[1], J0, c), (y[2], k0[2], G0)),
+            ((tm, t_end - tm, mid[0], mid[1], km[1], Jm, c), (e_mid, km[2], Gm)),
+        ]
         hit = None
-        for seg in segs:
+        for seg, (e0, g0, G) in halves:
             s0, sh = seg[0], seg[1]
             ys = _exp_state(sh, *seg[2:])
             for idx, ev in enumerate(events):
@@ -263,11 +311,9 @@ def integrate_exp(
                 )
                 if crossed:
                     f = lambda th, seg=seg, ev=ev: ev.g(seg[0] + th, _exp_state(th, *seg[2:]))  # noqa: E731
-                    te = (
-                        s0 + brentq(f, 0.0, sh, xtol=1e-15, rtol=1e-15, maxiter=200)
-                        if f(sh) != 0 and ((f(sh) > 0) != (g_old > 0))
-                        else s0 + sh
-                    )
+                    f_end = f(sh)
+                    inside = f_end != 0 and (f_end > 0) != (f(0.0) > 0)
+                    te = s0 + brentq(f, 0.0, sh, xtol=1e-15, rtol=1e-15, maxiter=200) if inside else s0 + sh
                     if ev.name in restart and abs(te - t0) <= 1e-10 * (t1 - t0):
                         pass
                     elif ev.terminal:
@@ -280,16 +326,15 @@ def integrate_exp(
                 te = hit[0]
                 run.segments.append((s0, te - s0, *seg[2:]))
                 ye = _exp_state(te - s0, *seg[2:])
-                frac = (te - t) / h
                 run.t.append(te)
-                run.y.append(ye + [y[2] + frac * (energy - y[2])])
+                run.y.append(ye + [e0 + (te - s0) * g0 + G * ((ye[0] - seg[2]) / c - seg[3] * (te - s0))])
                 run.crossings = [cr for cr in run.crossings if cr[1] <= te]
                 run.event = hit[1].name
                 run.nfev = nfev
                 return run
             run.segments.append(seg)
         t, y, k0 = t_end, end + [energy], k1
-        J0 = slope(t, y, k0)
+        J0, G0 = slope(t, y, k0)
         nfev += 1
         run.t.append(t)
         run.y.append(list(y))
