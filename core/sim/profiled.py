@@ -47,6 +47,7 @@ from __future__ import annotations
 import bisect
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 from ..errors import InputError
@@ -66,21 +67,21 @@ class Trapezoid:
     v_max: float
     a_max: float
 
-    @property
+    @cached_property
     def accel_time(self) -> float:
         t_a = self.v_max / self.a_max
         return math.sqrt(self.distance / self.a_max) if self.a_max * t_a * t_a > self.distance else t_a
 
-    @property
+    @cached_property
     def peak_speed(self) -> float:
         return self.a_max * self.accel_time
 
-    @property
+    @cached_property
     def cruise_time(self) -> float:
         t_a = self.accel_time
         return max(0.0, self.distance - self.a_max * t_a * t_a) / self.peak_speed
 
-    @property
+    @cached_property
     def total_time(self) -> float:
         return 2 * self.accel_time + self.cruise_time
 
@@ -162,14 +163,13 @@ def driver(mech, duty_bound):
 #     w₁ = w + h·φ₁(hJ)·f₀,  p₁ = p + c·(h·w + h²·φ₂(hJ)·f₀),  φ₁(z) = (e^z − 1)/z,
 #     φ₂(z) = (e^z − 1 − z)/z²                                                           (X1)
 # is exact for f affine in w and independent of p (an elevator with no limit binding: one step a
-# period), second order otherwise; the error is estimated by step doubling (one step of h against
-# two of h/2, which are kept) and by the defect of the linear model at each half's end,
-# δ = f(end) − (f₀ + J·Δw): e_w = δ·min(h/2, 1/|J|), e_p = c·e_w·h/2 (and the energy's by its
-# own line's defect: e_e = δ_g·h/2); the step adapted as
-# h·(tol/err)^(1/3) (X2). The energy rate g is
-# linearised in w on each half step like f, G = ∂g/∂w: ∫g dt = g₀·h + G·(Δp/c − w·h), exact where
-# (X1) is (X3). Events are located on (X1) of the half
-# step they fall in (the speed is monotone in s on it: at most one stop).
+# period), second order otherwise. Its error is what the linear model misses: with the defect at
+# the step's end δ = f(p₁, w₁) − (f₀ + J·(w₁ − w)) (it sees a limit letting go inside the step,
+# the sag's curve and an arm's gravity changing with p), e_w = δ·min(h, 1/|J|) and
+# e_p = c·e_w·h; the step adapted as h·(tol/err)^(1/2) (X2). The energy rate g is linearised in w
+# like f, G = ∂g/∂w: ∫g dt = g₀·h + G·(Δp/c − w·h), exact where (X1) is, its error h·δ_g (X3).
+# Events are located on (X1) of the step (the speed is monotone on it: at most one stop). Cost:
+# f at the step's end (the next step's start) and one difference quotient: 2 evaluations a step.
 
 
 def _phi(z: float) -> tuple[float, float]:
@@ -223,8 +223,6 @@ def integrate_exp(
     max_steps: int = 200_000,
 ) -> ExpRun:
     """(X1)-(X3) from t0 to t1; rhs(t, y) -> [c·w, f, g] (the scene's own right-hand side)."""
-    from scipy.optimize import brentq
-
     from .integrate import charge
 
     run = ExpRun()
@@ -233,7 +231,6 @@ def integrate_exp(
     run.y.append(list(y))
     h = min(first_step or (t1 - t0), t1 - t0)
     k0 = rhs(t, y)
-    nfev = 1
     g_prev = [ev.g(t, y) for ev in events]
     atol = rtol
 
@@ -244,105 +241,144 @@ def integrate_exp(
         return (k2[1] - kk[1]) / dw, (k2[2] - kk[2]) / dw
 
     J0, G0 = slope(t, y, k0)
-    nfev += 1
+    nfev = 2
     for _ in range(max_steps):
-        charge(4)
-        last = t + h >= t1 * (1 - 1e-15) - 1e-15
+        charge(2)
+        last = t + h >= t1 - 1e-15 * max(1.0, abs(t1))
         if last:
             h = t1 - t
-        full = _exp_state(h, y[0], y[1], k0[1], J0, c)
-        half = h / 2
-        mid = _exp_state(half, y[0], y[1], k0[1], J0, c)
-        tm = t + half
-        km = rhs(tm, mid + [0.0])
-        Jm, Gm = slope(tm, mid + [0.0], km)
-        end = _exp_state(half, mid[0], mid[1], km[1], Jm, c)
+        end = _exp_state(h, y[0], y[1], k0[1], J0, c)
         t_end = t1 if last else t + h
         k1 = rhs(t_end, end + [0.0])
-        nfev += 3
-        # the defect of the linear model at each half's end (a kink inside a half, where a limit
-        # lets go, fools step doubling: both halves then extrapolate the same line) (X2)
-        # less what the difference quotient's rounding alone leaves (J to ~1e-10·|f|/(|w| + 1))
-        defect = max(
-            _beyond_noise(km[1] - k0[1] - J0 * (mid[1] - y[1]), k0[1], mid[1] - y[1], y[1]),
-            _beyond_noise(k1[1] - km[1] - Jm * (end[1] - mid[1]), km[1], end[1] - mid[1], mid[1]),
-        )
-        stiff = max(abs(J0), abs(Jm), 1e-300)
-        e_w = defect * min(half, 1.0 / stiff)
-        e_p = c * e_w * half
-        # the energy's quadrature (X3) by the same defect of its own line (the sag bends it)
-        e_e = half * max(
-            _beyond_noise(km[2] - k0[2] - G0 * (mid[1] - y[1]), k0[2], mid[1] - y[1], y[1]),
-            _beyond_noise(k1[2] - km[2] - Gm * (end[1] - mid[1]), km[2], end[1] - mid[1], mid[1]),
-        )
+        nfev += 1
+        dw = end[1] - y[1]
+        # (X2): the defect of the linear model at the step's end
+        e_w = _beyond_noise(k1[1] - k0[1] - J0 * dw, k0[1], dw, y[1]) * min(h, 1.0 / max(abs(J0), 1e-300))
+        e_e = _beyond_noise(k1[2] - k0[2] - G0 * dw, k0[2], dw, y[1]) * h
         err = max(
-            math.sqrt(
-                sum(((a - b) / (atol + rtol * max(abs(a), abs(b)))) ** 2 for a, b in zip(full, end)) / 2
-            ),
-            e_w / (atol + rtol * max(abs(end[1]), abs(end[1] - y[1]))),
-            e_p / (atol + rtol * max(abs(end[0]), abs(end[0] - y[0]))),
+            e_w / (atol + rtol * max(abs(end[1]), abs(dw))),
+            c * e_w * h / (atol + rtol * max(abs(end[0]), abs(end[0] - y[0]))),
             e_e / (atol + rtol * max(abs(y[2]), h * abs(k0[2]))),
         )
         if err > 1.0 and h > 1e-12 * max(1.0, abs(t)):
-            h *= max(0.2, 0.9 * err ** (-1 / 3))
+            h *= max(0.2, 0.9 * err**-0.5)
             continue
-        # (X3): g linearised in w on each half, ∫w dt = Δp/c from (X1)
-        energy = (
-            y[2]
-            + half * k0[2]
-            + G0 * ((mid[0] - y[0]) / c - y[1] * half)
-            + (t_end - tm) * km[2]
-            + Gm * ((end[0] - mid[0]) / c - mid[1] * (t_end - tm))
-        )
-        e_mid = y[2] + half * k0[2] + G0 * ((mid[0] - y[0]) / c - y[1] * half)
-        # each half: the dense state (X1) and the energy (X3) from its start
-        halves = [
-            ((t, half, y[0], y[1], k0[1], J0, c), (y[2], k0[2], G0)),
-            ((tm, t_end - tm, mid[0], mid[1], km[1], Jm, c), (e_mid, km[2], Gm)),
-        ]
+        seg = (t, h, y[0], y[1], k0[1], J0, c)
         hit = None
-        for seg, (e0, g0, G) in halves:
-            s0, sh = seg[0], seg[1]
-            ys = _exp_state(sh, *seg[2:])
-            for idx, ev in enumerate(events):
-                g_old, g_new = g_prev[idx], ev.g(s0 + sh, ys)
-                crossed = (g_old < 0 <= g_new and ev.direction >= 0) or (
-                    g_old > 0 >= g_new and ev.direction <= 0
-                )
-                if crossed:
-                    f = lambda th, seg=seg, ev=ev: ev.g(seg[0] + th, _exp_state(th, *seg[2:]))  # noqa: E731
-                    f_end = f(sh)
-                    inside = f_end != 0 and (f_end > 0) != (f(0.0) > 0)
-                    te = s0 + brentq(f, 0.0, sh, xtol=1e-15, rtol=1e-15, maxiter=200) if inside else s0 + sh
-                    if ev.name in restart and abs(te - t0) <= 1e-10 * (t1 - t0):
-                        pass
-                    elif ev.terminal:
-                        if hit is None or te < hit[0]:
-                            hit = (te, ev)
-                    else:
-                        run.crossings.append((ev.name, te, _exp_state(te - s0, *seg[2:])))
-                g_prev[idx] = g_new
-            if hit is not None:
-                te = hit[0]
-                run.segments.append((s0, te - s0, *seg[2:]))
-                ye = _exp_state(te - s0, *seg[2:])
-                run.t.append(te)
-                run.y.append(ye + [e0 + (te - s0) * g0 + G * ((ye[0] - seg[2]) / c - seg[3] * (te - s0))])
-                run.crossings = [cr for cr in run.crossings if cr[1] <= te]
-                run.event = hit[1].name
-                run.nfev = nfev
-                return run
-            run.segments.append(seg)
+        for idx, ev in enumerate(events):
+            g_old, g_new = g_prev[idx], ev.g(t_end, end)
+            if (g_old < 0 <= g_new and ev.direction >= 0) or (g_old > 0 >= g_new and ev.direction <= 0):
+                te = _locate(ev, seg, g_old)
+                if ev.name in restart and abs(te - t0) <= 1e-10 * (t1 - t0):
+                    pass
+                elif ev.terminal:
+                    if hit is None or te < hit[0]:
+                        hit = (te, ev)
+                else:
+                    run.crossings.append((ev.name, te, _exp_state(te - t, *seg[2:])))
+            g_prev[idx] = g_new
+        if hit is not None:
+            te = hit[0]
+            s_ = te - t
+            run.segments.append((t, s_, *seg[2:]))
+            ye = _exp_state(s_, *seg[2:])
+            run.t.append(te)
+            run.y.append(ye + [y[2] + s_ * k0[2] + G0 * ((ye[0] - y[0]) / c - y[1] * s_)])  # (X3)
+            run.crossings = [cr for cr in run.crossings if cr[1] <= te]
+            run.event = hit[1].name
+            run.nfev = nfev
+            return run
+        run.segments.append(seg)
+        energy = y[2] + h * k0[2] + G0 * ((end[0] - y[0]) / c - y[1] * h)  # (X3)
         t, y, k0 = t_end, end + [energy], k1
-        J0, G0 = slope(t, y, k0)
-        nfev += 1
         run.t.append(t)
-        run.y.append(list(y))
+        run.y.append(y)
         if last:
             run.nfev = nfev
             return run
-        h *= min(4.0, max(0.2, 0.9 * err ** (-1 / 3))) if err > 0 else 4.0
+        J0, G0 = slope(t, y, k0)
+        nfev += 1
+        h *= min(4.0, max(0.2, 0.9 * err**-0.5)) if err > 0 else 4.0
     raise RuntimeError(f"integration did not finish in {max_steps} steps (t = {t:.6g})")
+
+
+def _locate(ev, seg, g_old: float) -> float:
+    """The event's time on the step's (X1), by Brent's method (the speed is monotone on it)."""
+    from scipy.optimize import brentq
+
+    t, h = seg[0], seg[1]
+    f = lambda th: ev.g(t + th, _exp_state(th, *seg[2:]))  # noqa: E731
+    f_end = f(h)
+    if f_end == 0 or (f_end > 0) == (f(0.0) > 0):
+        return t + h
+    return t + brentq(f, 0.0, h, xtol=1e-15, rtol=1e-15, maxiter=200)
+
+
+# --- the reference it is measured against (bench/bench_profiled.py): a fixed 0.1 ms step ---------
+
+FIXED_STEP = 1e-4  # s
+
+
+class FixedRun(ExpRun):
+    """Steps of classical RK4 with the state linear between them (what `at` and the events see)."""
+
+    def at(self, t: float) -> list[float]:
+        i = max(0, min(bisect.bisect_right(self.t, t) - 1, len(self.t) - 2))
+        t0, t1 = self.t[i], self.t[i + 1]
+        th = (t - t0) / (t1 - t0) if t1 > t0 else 0.0
+        return [a + th * (b - a) for a, b in zip(self.y[i], self.y[i + 1])]
+
+    @property
+    def dense(self):
+        return []
+
+
+def integrate_rk4(rhs, t0: float, t1: float, y0, step: float, events=(), restart=()) -> FixedRun:
+    """Classical RK4 at a fixed step (the last one shortened to end at t1); an event is located by
+    linear interpolation between the steps it falls between."""
+    from .integrate import charge
+
+    run = FixedRun()
+    t, y = t0, list(y0)
+    run.t.append(t)
+    run.y.append(list(y))
+    g_prev = [ev.g(t, y) for ev in events]
+    n = max(1, math.ceil((t1 - t0) / step - 1e-9))
+    for i in range(n):
+        charge(4)
+        h = (t1 - t) if i == n - 1 else step
+        k1 = rhs(t, y)
+        k2 = rhs(t + h / 2, [a + h / 2 * b for a, b in zip(y, k1)])
+        k3 = rhs(t + h / 2, [a + h / 2 * b for a, b in zip(y, k2)])
+        k4 = rhs(t + h, [a + h * b for a, b in zip(y, k3)])
+        y1 = [a + h / 6 * (b + 2 * c + 2 * d + e) for a, b, c, d, e in zip(y, k1, k2, k3, k4)]
+        run.nfev += 4
+        t_new = t1 if i == n - 1 else t + h
+        hit = None
+        for idx, ev in enumerate(events):
+            g_old, g_new = g_prev[idx], ev.g(t_new, y1)
+            if (g_old < 0 <= g_new and ev.direction >= 0) or (g_old > 0 >= g_new and ev.direction <= 0):
+                th = g_old / (g_old - g_new) if g_old != g_new else 1.0
+                te = t + th * h
+                ye = [a + th * (b - a) for a, b in zip(y, y1)]
+                if ev.name in restart and i == 0 and th < 1e-9:
+                    pass
+                elif ev.terminal:
+                    if hit is None or te < hit[0]:
+                        hit = (te, ev, ye)
+                else:
+                    run.crossings.append((ev.name, te, ye))
+            g_prev[idx] = g_new
+        if hit is not None:
+            run.t.append(hit[0])
+            run.y.append(hit[2])
+            run.crossings = [c for c in run.crossings if c[1] <= hit[0]]
+            run.event = hit[1].name
+            return run
+        t, y = t_new, y1
+        run.t.append(t)
+        run.y.append(list(y))
+    return run
 
 
 @dataclass
@@ -499,6 +535,8 @@ def profiled_move(setup, loop: Loop, profile: Trapezoid, rtol: float, method: st
                     dense=True,
                     restart=restart,
                 )
+            elif method == "RK4":
+                run = integrate_rk4(make_rhs(u_cmd, dirn), t, t_next, y, FIXED_STEP, [stop, *band], restart)
             else:
                 run = integrate_exp(
                     make_rhs(u_cmd, dirn), v_ref / d, t, t_next, y, rtol, [stop, *band], h, restart
