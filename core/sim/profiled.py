@@ -145,7 +145,8 @@ def driver(mech, duty_bound):
         return drive
 
     def drive(u_cmd: float, E: float) -> tuple[float, float]:
-        u = min(max(u_cmd, -duty_bound(-E)), duty_bound(E))
+        # a current forward (u·V_b > E) meets the cap only, one backward the floor only
+        u = min(u_cmd, duty_bound(E)) if u_cmd * Vb > E else max(u_cmd, -duty_bound(-E))
         u = min(max(u, -1.0), 1.0)
         return u, (u * Vb - E) / (R + u * u * Rb)
 
