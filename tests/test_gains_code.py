@@ -122,3 +122,8 @@ def test_documents_through_the_cli(capsys, name):
     assert code == 0 and ("kP" in text or ".p(" in text)
     code, text, err = document(capsys, "--document", name)  # the full-voltage move has no profile
     assert code == 2 and text == "" and "mode = profiled" in err and "Traceback" not in err
+
+
+def test_export_is_the_designs_name_for_it(capsys):
+    code, text, _ = document(capsys, "--set", "mode=profiled", "--export", "phoenix6")
+    assert code == 0 and "cfg.Slot0.kP" in text
