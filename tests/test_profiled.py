@@ -10,6 +10,7 @@ import pytest
 from wpimath.controller import ElevatorFeedforward
 from wpimath.trajectory import TrapezoidProfile
 
+from gearhead.core.calculators import arm as arm_calc
 from gearhead.core.calculators import elevator as elevator_calc
 from gearhead.core.errors import InputError
 from gearhead.core.model import parse_inputs, solve
@@ -202,3 +203,29 @@ def test_too_long_a_window_names_the_period():
 def test_saturation_is_said():
     sol = solve("elevator", {"mode": "profiled", "velocity_fraction": 0.9, "acceleration_fraction": 0.9})
     assert any("saturated" in w for w in sol.warnings)
+
+
+def test_arm_exponential_integrator_agrees_with_dp54():
+    """The arm's gravity changes with the angle (the b term of (X1)); limits, sag and friction on; the
+    down move, where gravity helps."""
+    calc = get("arm")
+    raw = {
+        "mode": "profiled",
+        "effects": "gravity, stator_limit, battery_sag, friction",
+        "start_angle": "80 deg",
+        "goal_angle": "-20 deg",
+        "sensor_delay": "10 ms",
+    }
+    v, _ = parse_inputs(calc, raw)
+    s = arm_calc.setup(v)
+    ff = motion.feedforward(s, 0.0)
+    loop, profile, _ = profiled.loop_of(s, v, ff, lambda q: ff["kG"] * math.cos(q))
+    exp = profiled.profiled_move(s, loop, profile, 1e-9)
+    dp = profiled.profiled_move(s, loop, profile, 1e-11, method="DP54")
+    assert exp.settled and dp.settled
+    for k in ("settle_time", "overshoot", "final_error", "peak_tracking_error"):
+        assert exp.values[k] == pytest.approx(dp.values[k], rel=2e-6, abs=1e-9), k
+    # the net energy nearly cancels (the load drives the motors down): compared on the gross scale,
+    # N·V_b·(peak supply current)·(window)
+    gross = 2 * 12 * dp.values["peak_supply_current"] * dp.updates * loop.period
+    assert exp.values["energy"] == pytest.approx(dp.values["energy"], abs=1e-7 * gross)

@@ -37,6 +37,10 @@ Feedback: WPILib's LQR on the plant (θ, θ̇),
     latency-compensated (motion.lqr)                                                           (AR10)
 Optimise: G* minimising T(G): 240 ratios log-spaced about the characteristic ratio, then
 bounded Brent on the accurate move around the best (motion.optimise)                           (AR11)
+Profiled move (core.sim.profiled (P1)-(P11)): the trapezoid in angle, the feedforward (AR9) with
+kG·cos θ at the setpoint's angle, PD feedback (the LQR gains (AR10) or entered) every control period
+on the angle measured `sensor_delay` earlier, the voltage held and clamped; the up move and the down
+move are two solves (swap start and goal: the gravity helps one and loads the other)          (AR12)
 """
 
 from __future__ import annotations
@@ -49,7 +53,7 @@ from ..declarations import Calculator, Output
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
-from ..sim import motion
+from ..sim import motion, profiled
 from ..sim.effects import Effect, Effects, Part
 from ..sim.motor_limits import braking_warning
 from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
@@ -99,7 +103,7 @@ EFFECTS = Effects(
 
 
 FIELDS = (
-    motion.mode_field(),
+    motion.mode_field(profiled=True),
     *motion.battery_motor_fields("Kraken X60", 1),
     Field(
         "ratio",
@@ -110,7 +114,7 @@ FIELDS = (
         min=0,
         min_exclusive=True,
         max=1e5,
-        modes=("move",),
+        modes=("move", "profiled"),
         help="Motor turns per arm turn.",
     ),
     Field(
@@ -184,6 +188,14 @@ FIELDS = (
     ),
     *EFFECTS.fields(),
     *motion.feedback_fields("angle", "deg", 2, "angular_speed", "deg/s", 20),
+    *profiled.profile_fields(
+        ("angle", "deg"),
+        ("angular_speed", "deg/s", 90),
+        ("angular_acceleration", "deg/s**2", 360),
+        ("voltage_per_angle", "V/deg", 0.2),
+        ("voltage_per_angular_speed", "V*s/deg", 0.01),
+        1.0,
+    ),
     accuracy_field(),
 )
 
@@ -215,6 +227,9 @@ OUTPUTS = (
         "WPILib ArmFeedforward multiplies it by cos θ.",
     ),
     *EFFECTS.outputs(),
+    *profiled.profile_outputs(
+        ("angle", "deg"), ("angular_speed", "deg/s"), ("angular_acceleration", "deg/s**2")
+    ),
     *STATS_OUTPUTS,
 )
 # what each shared output means here (equation, help), in this module's numbering
@@ -316,6 +331,10 @@ def simulate(v, rtol: float):
         run = motion.optimise(
             lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, 1.0, hold_q=0.0
         )
+    elif v["mode"] == "profiled":
+        s = setup(v)
+        ff = motion.feedforward(s, 0.0)  # (AR9): kG at horizontal
+        run = profiled.run_profiled(s, v, rtol, ff, lambda q: ff["kG"] * math.cos(q))  # (AR12)
     else:
         run = motion.run_move(setup(v), rtol, hold_q=0.0)
     run.values["moment_of_inertia"] = inertia(v)
@@ -336,5 +355,6 @@ CALCULATOR = Calculator(
     compute=compute,
     simulate=simulate,
     exports={"ratio_finder": {"target_ratio": "best_ratio"}},  # optimise mode: the parts for that ratio
-    plots=motion.plots("angle", "angle", "deg", "angular_speed", "deg/s"),
+    plots=motion.plots("angle", "angle", "deg", "angular_speed", "deg/s")
+    + profiled.profile_plots("angle", "angle", "deg"),
 )

@@ -160,24 +160,33 @@ def driver(mech, duty_bound):
 # is held to steps ≈ 3τ by stability there, hundreds of evaluations a period. The plant is
 #     ṗ = c·w,  ẇ = f(p, w),  ė = g(p, w)   (scaled position, speed, energy)
 # with f affine in w except where a current limit or the sag bends it. Exponential Rosenbrock-Euler
-# in w (J = ∂f/∂w at the step's start, by a difference quotient):
-#     w₁ = w + h·φ₁(hJ)·f₀,  p₁ = p + c·(h·w + h²·φ₂(hJ)·f₀),  φ₁(z) = (e^z − 1)/z,
-#     φ₂(z) = (e^z − 1 − z)/z²                                                           (X1)
+# in w (J = ∂f/∂w at the step's start, by a difference quotient), with the position's pull on f
+# taken as a forcing growing linearly over the step, b = c·w·∂f/∂p (an arm's gravity; 0 and not
+# evaluated when the field force does not vary, as on an elevator):
+#     ẇ ≈ f₀ + J·(w − w₀) + b·s  ⇒  w(s) = w₀ + s·φ₁(sJ)·f₀ + s²·φ₂(sJ)·b,
+#     p(s) = p₀ + c·(w₀·s + s²·φ₂(sJ)·f₀ + s³·φ₃(sJ)·b),
+#     φ₁(z) = (e^z − 1)/z,  φ₂(z) = (e^z − 1 − z)/z²,  φ₃(z) = (e^z − 1 − z − z²/2)/z³        (X1)
 # is exact for f affine in w and independent of p (an elevator with no limit binding: one step a
 # period), second order otherwise. Its error is what the linear model misses: with the defect at
-# the step's end δ = f(p₁, w₁) − (f₀ + J·(w₁ − w)) (it sees a limit letting go inside the step,
+# the step's end δ = f(p₁, w₁) − (f₀ + J·(w₁ − w) + b·h) (it sees a limit letting go inside the step,
 # the sag's curve and an arm's gravity changing with p), e_w = δ·min(h, 1/|J|) and
 # e_p = c·e_w·h; the step adapted as h·(tol/err)^(1/2) (X2). The energy rate g is linearised in w
 # like f, G = ∂g/∂w: ∫g dt = g₀·h + G·(Δp/c − w·h), exact where (X1) is, its error h·δ_g (X3).
 # Events are located on (X1) of the step (the speed is monotone on it: at most one stop). Cost:
-# f at the step's end (the next step's start) and one difference quotient: 2 evaluations a step.
+# f at the step's end (the next step's start) and the difference quotients: 2 evaluations a step
+# (3 with b).
 
 
-def _phi(z: float) -> tuple[float, float]:
-    if abs(z) < 1e-3:
-        return 1 + z / 2 + z * z / 6 + z**3 / 24, 0.5 + z / 6 + z * z / 24 + z**3 / 120
+def _phi(z: float) -> tuple[float, float, float]:
+    """φ₁, φ₂, φ₃ of (X1): φ₃(z) = (e^z − 1 − z − z²/2)/z³; their series near 0."""
+    if abs(z) < 2e-3:
+        return (
+            1 + z / 2 + z * z / 6 + z**3 / 24,
+            0.5 + z / 6 + z * z / 24 + z**3 / 120,
+            1 / 6 + z / 24 + z * z / 120 + z**3 / 720,
+        )
     e1 = math.expm1(z)
-    return e1 / z, (e1 - z) / (z * z)
+    return e1 / z, (e1 - z) / (z * z), (e1 - z - z * z / 2) / (z * z * z)
 
 
 def _beyond_noise(defect: float, f: float, dw: float, w: float) -> float:
@@ -190,7 +199,7 @@ class ExpRun:
     def __init__(self):
         self.t: list[float] = []
         self.y: list[list[float]] = []
-        self.segments: list[tuple] = []  # (t0, h, p, w, f0, J, c)
+        self.segments: list[tuple] = []  # (t0, h, p, w, f0, J, c, b)
         self.crossings: list = []
         self.event: str | None = None
         self.nfev = 0
@@ -200,15 +209,15 @@ class ExpRun:
         return [(t0, h, None) for t0, h, *_ in self.segments]
 
     def at(self, t: float) -> list[float]:
-        for t0, h, p, w, f0, J, c in self.segments:
+        for t0, h, *rest in self.segments:
             if t0 <= t <= t0 + h:
-                return _exp_state(t - t0, p, w, f0, J, c)
+                return _exp_state(t - t0, *rest)
         raise ValueError(f"t = {t} outside the integrated span")
 
 
-def _exp_state(s: float, p, w, f0, J, c) -> list[float]:
-    ph1, ph2 = _phi(s * J)
-    return [p + c * (s * w + s * s * ph2 * f0), w + s * ph1 * f0]
+def _exp_state(s: float, p, w, f0, J, c, b=0.0) -> list[float]:
+    ph1, ph2, ph3 = _phi(s * J)
+    return [p + c * (s * w + s * s * (ph2 * f0 + s * ph3 * b)), w + s * (ph1 * f0 + s * ph2 * b)]
 
 
 def integrate_exp(
@@ -222,6 +231,7 @@ def integrate_exp(
     first_step=None,
     restart=(),
     max_steps: int = 200_000,
+    p_coupled: bool = False,
 ) -> ExpRun:
     """(X1)-(X3) from t0 to t1; rhs(t, y) -> [c·w, f, g] (the scene's own right-hand side)."""
     from .integrate import charge
@@ -236,25 +246,32 @@ def integrate_exp(
     atol = rtol
 
     def slope(tt, yy, kk):
-        """(∂f/∂w, ∂g/∂w) by a difference quotient."""
+        """(∂f/∂w, ∂g/∂w, b = c·w·∂f/∂p) by difference quotients (b only when f depends on p)."""
         dw = 1e-6 * (abs(yy[1]) + 1.0)
         k2 = rhs(tt, [yy[0], yy[1] + dw, yy[2]])
-        return (k2[1] - kk[1]) / dw, (k2[2] - kk[2]) / dw
+        if not p_coupled:
+            return (k2[1] - kk[1]) / dw, (k2[2] - kk[2]) / dw, 0.0
+        dp = 1e-6 * (abs(yy[0]) + 1.0)
+        k3 = rhs(tt, [yy[0] + dp, yy[1], yy[2]])
+        return (k2[1] - kk[1]) / dw, (k2[2] - kk[2]) / dw, c * yy[1] * (k3[1] - kk[1]) / dp
 
-    J0, G0 = slope(t, y, k0)
-    nfev = 2
+    extra = 2 if p_coupled else 1
+    J0, G0, b0 = slope(t, y, k0)
+    nfev = 1 + extra
     for _ in range(max_steps):
         charge(2)
         last = t + h >= t1 - 1e-15 * max(1.0, abs(t1))
         if last:
             h = t1 - t
-        end = _exp_state(h, y[0], y[1], k0[1], J0, c)
+        end = _exp_state(h, y[0], y[1], k0[1], J0, c, b0)
         t_end = t1 if last else t + h
         k1 = rhs(t_end, end + [0.0])
         nfev += 1
         dw = end[1] - y[1]
         # (X2): the defect of the linear model at the step's end
-        e_w = _beyond_noise(k1[1] - k0[1] - J0 * dw, k0[1], dw, y[1]) * min(h, 1.0 / max(abs(J0), 1e-300))
+        e_w = _beyond_noise(k1[1] - k0[1] - J0 * dw - b0 * h, k0[1], dw, y[1]) * min(
+            h, 1.0 / max(abs(J0), 1e-300)
+        )
         e_e = _beyond_noise(k1[2] - k0[2] - G0 * dw, k0[2], dw, y[1]) * h
         err = max(
             e_w / (atol + rtol * max(abs(end[1]), abs(dw))),
@@ -264,7 +281,7 @@ def integrate_exp(
         if err > 1.0 and h > 1e-12 * max(1.0, abs(t)):
             h *= max(0.2, 0.9 * err**-0.5)
             continue
-        seg = (t, h, y[0], y[1], k0[1], J0, c)
+        seg = (t, h, y[0], y[1], k0[1], J0, c, b0)
         hit = None
         for idx, ev in enumerate(events):
             g_old, g_new = g_prev[idx], ev.g(t_end, end)
@@ -297,8 +314,8 @@ def integrate_exp(
         if last:
             run.nfev = nfev
             return run
-        J0, G0 = slope(t, y, k0)
-        nfev += 1
+        J0, G0, b0 = slope(t, y, k0)
+        nfev += extra
         h *= min(4.0, max(0.2, 0.9 * err**-0.5)) if err > 0 else 4.0
     raise RuntimeError(f"integration did not finish in {max_steps} steps (t = {t:.6g})")
 
@@ -540,7 +557,16 @@ def profiled_move(setup, loop: Loop, profile: Trapezoid, rtol: float, method: st
                 run = integrate_rk4(make_rhs(u_cmd, dirn), t, t_next, y, FIXED_STEP, [stop, *band], restart)
             else:
                 run = integrate_exp(
-                    make_rhs(u_cmd, dirn), v_ref / d, t, t_next, y, rtol, [stop, *band], h, restart
+                    make_rhs(u_cmd, dirn),
+                    v_ref / d,
+                    t,
+                    t_next,
+                    y,
+                    rtol,
+                    [stop, *band],
+                    h,
+                    restart,
+                    p_coupled=field is not None and setup.varying,
                 )
             nfev += run.nfev
             if run.dense:
