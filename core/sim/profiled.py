@@ -820,6 +820,7 @@ def profile_outputs(pos: tuple[str, str], speed: tuple[str, str], accel: tuple[s
             speed[0],
             speed[1],
             help="The profile's velocity limit used (P1).",
+            equation="(P1)",
         ),
         Output(
             "profile_max_acceleration",
@@ -827,6 +828,7 @@ def profile_outputs(pos: tuple[str, str], speed: tuple[str, str], accel: tuple[s
             accel[0],
             accel[1],
             help="The profile's acceleration limit used (P1).",
+            equation="(P1)",
         ),
         Output(
             "overshoot",
@@ -861,7 +863,10 @@ def profile_outputs(pos: tuple[str, str], speed: tuple[str, str], accel: tuple[s
             equation="(P10)",
         ),
         Output(
-            "control_updates", "Control updates", help="Periods simulated (each one integrator call or more)."
+            "control_updates",
+            "Control updates",
+            help="Periods simulated over the window (each one integrator call or more) (P6).",
+            equation="(P6)",
         ),
     )
 
