@@ -6,8 +6,9 @@ offer them.
 
 Gearhead's gains are SI per unit of the mechanism's coordinate q (an elevator: metres of carriage
 travel; kS, kG in V, kV in V·s/m, kA in V·s²/m, kP in V/m, kD in V·s/m). Each target's units:
-- WPILib (ElevatorFeedforward, ProfiledPIDController, TrapezoidProfile.Constraints): SI as they are
-  (WPILib is unit-agnostic; the profile and the gains share the metre).                        (GC1)
+- WPILib (ElevatorFeedforward or ArmFeedforward, ProfiledPIDController, TrapezoidProfile.Constraints):
+  SI as they are (WPILib is unit-agnostic; the profile and the gains share the metre, or for an
+  arm the radian from horizontal, ArmFeedforward's kG·cos θ).                                   (GC1)
 - Phoenix 6 (CTRE docs, Slot0Configs: kP "output per unit of error" with position in rotations,
   kV per rps, kA per rps/s, kD per rps; MotionMagicConfigs in rps and rps/s; voltage output with
   MotionMagicVoltage): positions in mechanism rotations, the drum's, with
@@ -16,6 +17,8 @@ travel; kS, kG in V, kV in V·s/m, kA in V·s²/m, kP in V/m, kD in V·s/m). Eac
       kP_rot = kP·L,  kD_rot = kD·L,  kV_rot = kV·L,  kA_rot = kA·L  (V per rotation, rps, rps/s);
       cruise = v_max/L (rps),  acceleration = a_max/L (rps/s);  kS, kG unchanged (V)         (GC2)
   GravityType Elevator_Static (a constant kG); MotionMagicJerk = 0 (no jerk limit: a trapezoid).
+  An arm: positions in arm rotations (L = 2π rad a rotation, SensorToMechanismRatio = G), GravityType
+  Arm_Cosine, which needs the sensor at 0 with the arm horizontal (CTRE's GravityTypeValue docs).
   (Sources: CrossTheRoadElec/Phoenix6-Examples at b6dd147 "Bump to 26.2.0",
   java/MotionMagic/src/main/java/frc/robot/Robot.java: cfg.Feedback.SensorToMechanismRatio,
   cfg.MotionMagic.MotionMagicCruiseVelocity/Acceleration/Jerk, cfg.Slot0.kS/kV/kA/kP/kI/kD;
@@ -58,12 +61,21 @@ class Gains:
     max_acceleration: float
     period: float  # s, the loop the LQR gains were discretised for
     ratio: float  # G, motor turns per drum turn
-    metres_per_rotation: float  # L = 2π·r·k: carriage travel per drum turn
+    metres_per_rotation: float  # L: q per drum turn, 2π·r·k m (elevator) or 2π rad per arm turn
     battery_voltage: float
     tolerance: float  # settle tolerance, m
     stator_limit: float | None = None  # A per motor, None when off
     supply_limit: float | None = None
     title: str = "Elevator"
+    arm: bool = False  # q is the arm's angle from horizontal (rad): ArmFeedforward, Arm_Cosine
+
+
+def _u(g: Gains) -> str:
+    return "rad" if g.arm else "m"
+
+
+def _ff(g: Gains) -> str:
+    return "ArmFeedforward" if g.arm else "ElevatorFeedforward"
 
 
 def _num(x: float) -> str:
@@ -110,7 +122,8 @@ def revlib_values(g: Gains) -> dict[str, float]:
 
 def _header(g: Gains, comment: str) -> str:
     return (
-        f"{comment} {g.title} gains from Gearhead's profiled move (SI: metres of carriage travel).\n"
+        f"{comment} {g.title} gains from Gearhead's profiled move (SI: "
+        f"{'radians of arm angle from horizontal' if g.arm else 'metres of carriage travel'}).\n"
         f"{comment} kP and kD are LQR gains for a {g.period * 1000:g} ms loop unless entered; a loop on the\n"
         f"{comment} motor controller (1 kHz) may take them higher: re-solve with its period.\n"
     )
@@ -118,18 +131,18 @@ def _header(g: Gains, comment: str) -> str:
 
 def wpilib_python(g: Gains) -> str:
     return (
-        _header(g, "#") + "from wpimath.controller import ElevatorFeedforward, ProfiledPIDController\n"
+        _header(g, "#") + f"from wpimath.controller import {_ff(g)}, ProfiledPIDController\n"
         "from wpimath.trajectory import TrapezoidProfile\n\n"
         f"kS = {_num(g.kS)}  # V\n"
         f"kG = {_num(g.kG)}  # V\n"
-        f"kV = {_num(g.kV)}  # V*s/m\n"
-        f"kA = {_num(g.kA)}  # V*s^2/m\n"
-        f"kP = {_num(g.kP)}  # V/m\n"
-        f"kD = {_num(g.kD)}  # V*s/m\n"
-        f"MAX_VELOCITY = {_num(g.max_velocity)}  # m/s\n"
-        f"MAX_ACCELERATION = {_num(g.max_acceleration)}  # m/s^2\n"
+        f"kV = {_num(g.kV)}  # V*s/{_u(g)}\n"
+        f"kA = {_num(g.kA)}  # V*s^2/{_u(g)}\n"
+        f"kP = {_num(g.kP)}  # V/{_u(g)}\n"
+        f"kD = {_num(g.kD)}  # V*s/{_u(g)}\n"
+        f"MAX_VELOCITY = {_num(g.max_velocity)}  # {_u(g)}/s\n"
+        f"MAX_ACCELERATION = {_num(g.max_acceleration)}  # {_u(g)}/s^2\n"
         f"PERIOD = {_num(g.period)}  # s\n\n"
-        "feedforward = ElevatorFeedforward(kS, kG, kV, kA, PERIOD)\n"
+        f"feedforward = {_ff(g)}(kS, kG, kV, kA, PERIOD)\n"
         "controller = ProfiledPIDController(\n"
         "    kP, 0.0, kD, TrapezoidProfile.Constraints(MAX_VELOCITY, MAX_ACCELERATION), PERIOD\n"
         ")\n"
@@ -141,21 +154,21 @@ def wpilib_python(g: Gains) -> str:
 def wpilib_java(g: Gains) -> str:
     cls = f"{g.title.replace(' ', '')}Gains"
     return (
-        _header(g, "//") + "import edu.wpi.first.math.controller.ElevatorFeedforward;\n"
+        _header(g, "//") + f"import edu.wpi.first.math.controller.{_ff(g)};\n"
         "import edu.wpi.first.math.controller.ProfiledPIDController;\n"
         "import edu.wpi.first.math.trajectory.TrapezoidProfile;\n\n"
         f"public final class {cls} {{\n"
         f"  public static final double kS = {_num(g.kS)}; // V\n"
         f"  public static final double kG = {_num(g.kG)}; // V\n"
-        f"  public static final double kV = {_num(g.kV)}; // V*s/m\n"
-        f"  public static final double kA = {_num(g.kA)}; // V*s^2/m\n"
-        f"  public static final double kP = {_num(g.kP)}; // V/m\n"
-        f"  public static final double kD = {_num(g.kD)}; // V*s/m\n"
-        f"  public static final double kMaxVelocity = {_num(g.max_velocity)}; // m/s\n"
-        f"  public static final double kMaxAcceleration = {_num(g.max_acceleration)}; // m/s^2\n"
+        f"  public static final double kV = {_num(g.kV)}; // V*s/{_u(g)}\n"
+        f"  public static final double kA = {_num(g.kA)}; // V*s^2/{_u(g)}\n"
+        f"  public static final double kP = {_num(g.kP)}; // V/{_u(g)}\n"
+        f"  public static final double kD = {_num(g.kD)}; // V*s/{_u(g)}\n"
+        f"  public static final double kMaxVelocity = {_num(g.max_velocity)}; // {_u(g)}/s\n"
+        f"  public static final double kMaxAcceleration = {_num(g.max_acceleration)}; // {_u(g)}/s^2\n"
         f"  public static final double kPeriod = {_num(g.period)}; // s\n\n"
-        "  public static ElevatorFeedforward feedforward() {\n"
-        "    return new ElevatorFeedforward(kS, kG, kV, kA, kPeriod);\n"
+        f"  public static {_ff(g)} feedforward() {{\n"
+        f"    return new {_ff(g)}(kS, kG, kV, kA, kPeriod);\n"
         "  }\n\n"
         "  public static ProfiledPIDController controller() {\n"
         "    return new ProfiledPIDController(\n"
@@ -171,18 +184,29 @@ def phoenix6_java(g: Gains) -> str:
     cls = f"{g.title.replace(' ', '')}TalonFXConfig"
     lines = [
         _header(g, "//").rstrip("\n"),
-        "// Positions in drum rotations (SensorToMechanismRatio = motor turns per drum turn);",
-        f"// one drum rotation = {_num(g.metres_per_rotation)} m of carriage travel. Request MotionMagicVoltage.",
+        *(
+            [
+                "// Positions in arm rotations (SensorToMechanismRatio = motor turns per arm turn), 0 with the",
+                "// arm horizontal (set the sensor's offset so): Arm_Cosine needs it. Request MotionMagicVoltage.",
+            ]
+            if g.arm
+            else [
+                "// Positions in drum rotations (SensorToMechanismRatio = motor turns per drum turn);",
+                f"// one drum rotation = {_num(g.metres_per_rotation)} m of carriage travel. "
+                "Request MotionMagicVoltage.",
+            ]
+        ),
         "import com.ctre.phoenix6.configs.TalonFXConfiguration;",
         "import com.ctre.phoenix6.signals.GravityTypeValue;",
         "",
         f"public final class {cls} {{",
-        f"  public static final double kMetresPerRotation = {_num(g.metres_per_rotation)};",
+        f"  public static final double k{'Radians' if g.arm else 'Metres'}PerRotation = "
+        f"{_num(g.metres_per_rotation)};",
         "",
         "  public static TalonFXConfiguration config() {",
         "    var cfg = new TalonFXConfiguration();",
         f"    cfg.Feedback.SensorToMechanismRatio = {_num(v['SensorToMechanismRatio'])};",
-        "    cfg.Slot0.GravityType = GravityTypeValue.Elevator_Static;",
+        f"    cfg.Slot0.GravityType = GravityTypeValue.{'Arm_Cosine' if g.arm else 'Elevator_Static'};",
         f"    cfg.Slot0.kS = {_num(v['kS'])}; // V",
         f"    cfg.Slot0.kG = {_num(v['kG'])}; // V",
         f"    cfg.Slot0.kV = {_num(v['kV'])}; // V per rps",
@@ -209,6 +233,10 @@ def phoenix6_java(g: Gains) -> str:
 
 
 def revlib_java(g: Gains) -> str:
+    if g.arm:
+        # REVLib's arm term (feedForward.kCos with kCosRatio) is not exported: its docs do not say
+        # what kCosRatio converts, and a wrong one would turn the gravity term the wrong way
+        raise ValueError("REVLib's arm feedforward (kCos, kCosRatio) is not exported; use wpilib-java")
     v = revlib_values(g)
     cls = f"{g.title.replace(' ', '')}SparkMaxConfig"
     lines = [

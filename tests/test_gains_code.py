@@ -127,3 +127,32 @@ def test_documents_through_the_cli(capsys, name):
 def test_export_is_the_designs_name_for_it(capsys):
     code, text, _ = document(capsys, "--set", "mode=profiled", "--export", "phoenix6")
     assert code == 0 and "cfg.Slot0.kP" in text
+
+
+def test_arm_documents():
+    """The arm's: ArmFeedforward in radians, run against robotpy; Phoenix 6 in arm rotations (2π rad)
+    with Arm_Cosine; REVLib's arm term refused with the reason, not guessed."""
+    from dataclasses import replace
+
+    from gearhead.core.calculators import arm as arm_calc
+
+    sol = solve("arm", {"mode": "profiled", "effects": "gravity, stator_limit"})
+    out = {k: v.value for k, v in sol.outputs.items()}
+    g = arm_calc.gains_of(sol)
+    namespace: dict = {}
+    exec(gains_code.wpilib_python(g), namespace)  # noqa: S102 - our own text
+    ff, pid = namespace["feedforward"], namespace["controller"]
+    assert type(ff).__name__ == "ArmFeedforward"
+    assert (ff.getKs(), ff.getKg(), ff.getKv(), ff.getKa()) == (out["kS"], out["kG"], out["kV"], out["kA"])
+    assert (pid.getP(), pid.getD()) == (out["kP"], out["kD"])
+    ph = gains_code.phoenix6_java(g)
+    assert "GravityTypeValue.Arm_Cosine" in ph and "horizontal" in ph
+    # a gain per radian times 2π rad a rotation; 90°/s = 0.25 rps
+    assert _number(ph, r"cfg\.Slot0\.kP") == pytest.approx(out["kP"] * 2 * math.pi, rel=1e-15)
+    quarter = replace(g, max_velocity=math.pi / 2)
+    assert gains_code.phoenix6_values(quarter)["MotionMagicCruiseVelocity"] == pytest.approx(0.25, rel=1e-15)
+    with pytest.raises(ValueError, match="kCosRatio"):
+        gains_code.revlib_java(g)
+    assert [d.name for d in arm_calc.CALCULATOR.documents] == ["wpilib-java", "wpilib-python", "phoenix6"]
+    java = gains_code.wpilib_java(g)
+    assert "new ArmFeedforward(kS, kG, kV, kA, kPeriod)" in java and "V*s/rad" in java

@@ -48,8 +48,9 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from .. import gains_code
 from ..constants import G0 as G
-from ..declarations import Calculator, Output
+from ..declarations import Calculator, Document, Output
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
@@ -346,6 +347,57 @@ def simulate(v, rtol: float):
 
 compute = compute_with_stats(simulate)
 
+
+def gains_of(solution) -> gains_code.Gains:
+    """The profiled move's gains and limits for the exports (core.gains_code (GC1), (GC2)), in
+    radians from horizontal; a ValueError when the solution is not of that mode."""
+    v = {name: value.value for name, value in solution.inputs.items()}
+    out = {name: value.value for name, value in solution.outputs.items()}
+    if v.get("mode") != "profiled" or "profile_max_velocity" not in out:
+        raise ValueError("the gains and the profile are exported from the profiled move: set mode = profiled")
+    on = v["effects"]
+    return gains_code.Gains(
+        kS=out["kS"],
+        kG=out["kG"],
+        kV=out["kV"],
+        kA=out["kA"],
+        kP=out["kP"],
+        kD=out["kD"],
+        max_velocity=out["profile_max_velocity"],
+        max_acceleration=out["profile_max_acceleration"],
+        period=v["control_period"],
+        ratio=v["ratio"],
+        metres_per_rotation=2 * math.pi,
+        battery_voltage=v["voltage"],
+        tolerance=v["settle_tolerance"],
+        stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
+        supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
+        title="Arm",
+        arm=True,
+    )
+
+
+DOCUMENTS = (
+    Document(
+        "wpilib-java",
+        "WPILib Java: ArmFeedforward + ProfiledPIDController",
+        "ArmGains.java",
+        lambda sol: gains_code.wpilib_java(gains_of(sol)),
+    ),
+    Document(
+        "wpilib-python",
+        "WPILib Python (robotpy): ArmFeedforward + ProfiledPIDController",
+        "arm_gains.py",
+        lambda sol: gains_code.wpilib_python(gains_of(sol)),
+    ),
+    Document(
+        "phoenix6",
+        "CTRE Phoenix 6 TalonFXConfiguration, Arm_Cosine (Java)",
+        "ArmTalonFXConfig.java",
+        lambda sol: gains_code.phoenix6_java(gains_of(sol)),
+    ),
+)
+
 CALCULATOR = Calculator(
     id="arm",
     title="Arm",
@@ -355,6 +407,7 @@ CALCULATOR = Calculator(
     compute=compute,
     simulate=simulate,
     exports={"ratio_finder": {"target_ratio": "best_ratio"}},  # optimise mode: the parts for that ratio
+    documents=DOCUMENTS,  # profiled mode: the gains as code
     plots=motion.plots("angle", "angle", "deg", "angular_speed", "deg/s")
     + profiled.profile_plots("angle", "angle", "deg"),
 )
