@@ -43,6 +43,8 @@ Profiled move: the loop robot code runs (core.sim.profiled (P1)-(P11)): a trapez
 feedforward (EL10) with kG constant, PD feedback (the LQR gains (EL11) or entered) on the position
 measured `sensor_delay` earlier, every `control_period`, the voltage held between updates and
 clamped at the battery voltage; (EL2) with friction against the motion in either direction    (EL13)
+Current-limit grid: for each stator × supply limit pair the fastest ratio of the full-voltage move,
+its time, peak currents and energy; the pick within a supply budget (core.sim.limit_grid)     (EL14)
 """
 
 from __future__ import annotations
@@ -52,14 +54,14 @@ from dataclasses import replace
 
 from .. import gains_code
 from ..constants import G0 as G
-from ..declarations import Calculator, Document, Output
+from ..declarations import Calculator, Document, Output, Result
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
-from ..sim import motion, profiled
+from ..sim import limit_grid, motion, profiled
 from ..sim.effects import Effect, Effects, Part
 from ..sim.motor_limits import braking_warning
-from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
+from ..sim.scene import STATS_OUTPUTS, accuracy_field, run_with_stats
 
 RIGGINGS = ("continuous", "cascade")
 RIGGING_LABELS = (
@@ -105,7 +107,7 @@ EFFECTS = Effects(
 
 
 FIELDS = (
-    motion.mode_field(profiled=True),
+    motion.mode_field(profiled=True, grid=True),
     *motion.battery_motor_fields("NEO", 2),
     Field(
         "ratio",
@@ -195,6 +197,7 @@ FIELDS = (
         ("voltage_per_speed", "V*s/in", 0.05),
         0.25,
     ),
+    *limit_grid.fields(),
     accuracy_field(),
 )
 
@@ -217,6 +220,7 @@ OUTPUTS = (
         "Volts to hold the load against gravity (minus the counterbalance).",
     ),
     *profiled.profile_outputs(("length", "in"), ("speed", "ft/s"), ("acceleration", "ft/s**2")),
+    *limit_grid.outputs(),
     *EFFECTS.outputs(),
     *STATS_OUTPUTS,
 )
@@ -296,6 +300,16 @@ def simulate(v, rtol: float):
         run = motion.optimise(
             lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, spool_factor(v)
         )
+    elif v["mode"] == "limit_grid":
+        run = limit_grid.run(  # (EL14)
+            lambda values, G_=None, xp=motion.SCALAR: setup(values, G_, xp),
+            dict(v),
+            limit_grid.axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator"),
+            limit_grid.axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply"),
+            v["supply_budget"],
+            rtol,
+            spool_factor(v),
+        )
     elif v["mode"] == "profiled":
         s = setup(v)
         ff = motion.feedforward(s, s.mech.q1)  # (EL10): kG the same all along the rail
@@ -308,7 +322,9 @@ def simulate(v, rtol: float):
     return run
 
 
-compute = compute_with_stats(simulate)
+def compute(values) -> Result:
+    run = run_with_stats(simulate, values)
+    return Result(run.values, run.warnings, run.series, getattr(run, "tables", {}))
 
 
 def gains_of(solution) -> gains_code.Gains:
@@ -375,6 +391,7 @@ CALCULATOR = Calculator(
     simulate=simulate,
     exports={"ratio_finder": {"target_ratio": "best_ratio"}},  # optimise mode: the parts for that ratio
     documents=DOCUMENTS,  # profiled mode: the gains as code
+    tables=(limit_grid.table(),),
     plots=motion.plots("position", "length", "in", "speed", "ft/s")
     + profiled.profile_plots("position", "length", "in"),
 )
