@@ -43,6 +43,7 @@ SI_UNITS: dict[str, str] = {
     "flow": "m**3/s",
     "density": "kg/m**3",
     "acceleration": "m/s**2",
+    "angular_acceleration": "rad/s**2",
     "reciprocal_length": "1/m",
     # WPILib feedforward and feedback gains (elevator: per metre; arm: per radian)
     "voltage_per_speed": "V*s/m",
@@ -509,6 +510,7 @@ COMMON_UNITS: dict[str, tuple[str, ...]] = {
     "flow": ("L/s", "ft**3/min"),
     "density": ("kg/m**3", "g/cc"),
     "acceleration": ("m/s**2", "ft/s**2"),
+    "angular_acceleration": ("deg/s**2", "rad/s**2"),
     "dimensionless": ("", "%"),
 }
 

@@ -62,9 +62,12 @@ def _parser() -> argparse.ArgumentParser:
     )
     s.add_argument(
         "--document",
+        "--export",
+        dest="document",
         metavar="NAME",
         help="print a file for another tool instead of the results, e.g. `solve sprint --document "
-        "pathplanner > settings.json` (`calculators` lists each calculator's documents)",
+        "pathplanner > settings.json`, `solve elevator --set mode=profiled --export phoenix6` "
+        "(`calculators` lists each calculator's documents)",
     )
     a = sub.add_parser("accuracy", help="run a simulation at every accuracy level: error, time, evaluations")
     a.add_argument("calculator", help="a simulated calculator (e.g. pneumatics)")

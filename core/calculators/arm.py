@@ -37,6 +37,10 @@ Feedback: WPILib's LQR on the plant (θ, θ̇),
     latency-compensated (motion.lqr)                                                           (AR10)
 Optimise: G* minimising T(G): 240 ratios log-spaced about the characteristic ratio, then
 bounded Brent on the accurate move around the best (motion.optimise)                           (AR11)
+Profiled move (core.sim.profiled (P1)-(P11)): the trapezoid in angle, the feedforward (AR9) with
+kG·cos θ at the setpoint's angle, PD feedback (the LQR gains (AR10) or entered) every control period
+on the angle measured `sensor_delay` earlier, the voltage held and clamped; the up move and the down
+move are two solves (swap start and goal: the gravity helps one and loads the other)          (AR12)
 """
 
 from __future__ import annotations
@@ -44,12 +48,13 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from .. import gains_code
 from ..constants import G0 as G
-from ..declarations import Calculator, Output
+from ..declarations import Calculator, Document, Output
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
-from ..sim import motion
+from ..sim import motion, profiled
 from ..sim.effects import Effect, Effects, Part
 from ..sim.motor_limits import braking_warning
 from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
@@ -99,7 +104,7 @@ EFFECTS = Effects(
 
 
 FIELDS = (
-    motion.mode_field(),
+    motion.mode_field(profiled=True),
     *motion.battery_motor_fields("Kraken X60", 1),
     Field(
         "ratio",
@@ -110,7 +115,7 @@ FIELDS = (
         min=0,
         min_exclusive=True,
         max=1e5,
-        modes=("move",),
+        modes=("move", "profiled"),
         help="Motor turns per arm turn.",
     ),
     Field(
@@ -184,6 +189,14 @@ FIELDS = (
     ),
     *EFFECTS.fields(),
     *motion.feedback_fields("angle", "deg", 2, "angular_speed", "deg/s", 20),
+    *profiled.profile_fields(
+        ("angle", "deg"),
+        ("angular_speed", "deg/s", 90),
+        ("angular_acceleration", "deg/s**2", 360),
+        ("voltage_per_angle", "V/deg", 0.2),
+        ("voltage_per_angular_speed", "V*s/deg", 0.01),
+        1.0,
+    ),
     accuracy_field(),
 )
 
@@ -215,6 +228,9 @@ OUTPUTS = (
         "WPILib ArmFeedforward multiplies it by cos θ.",
     ),
     *EFFECTS.outputs(),
+    *profiled.profile_outputs(
+        ("angle", "deg"), ("angular_speed", "deg/s"), ("angular_acceleration", "deg/s**2")
+    ),
     *STATS_OUTPUTS,
 )
 # what each shared output means here (equation, help), in this module's numbering
@@ -316,6 +332,10 @@ def simulate(v, rtol: float):
         run = motion.optimise(
             lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, 1.0, hold_q=0.0
         )
+    elif v["mode"] == "profiled":
+        s = setup(v)
+        ff = motion.feedforward(s, 0.0)  # (AR9): kG at horizontal
+        run = profiled.run_profiled(s, v, rtol, ff, lambda q: ff["kG"] * math.cos(q))  # (AR12)
     else:
         run = motion.run_move(setup(v), rtol, hold_q=0.0)
     run.values["moment_of_inertia"] = inertia(v)
@@ -327,6 +347,57 @@ def simulate(v, rtol: float):
 
 compute = compute_with_stats(simulate)
 
+
+def gains_of(solution) -> gains_code.Gains:
+    """The profiled move's gains and limits for the exports (core.gains_code (GC1), (GC2)), in
+    radians from horizontal; a ValueError when the solution is not of that mode."""
+    v = {name: value.value for name, value in solution.inputs.items()}
+    out = {name: value.value for name, value in solution.outputs.items()}
+    if v.get("mode") != "profiled" or "profile_max_velocity" not in out:
+        raise ValueError("the gains and the profile are exported from the profiled move: set mode = profiled")
+    on = v["effects"]
+    return gains_code.Gains(
+        kS=out["kS"],
+        kG=out["kG"],
+        kV=out["kV"],
+        kA=out["kA"],
+        kP=out["kP"],
+        kD=out["kD"],
+        max_velocity=out["profile_max_velocity"],
+        max_acceleration=out["profile_max_acceleration"],
+        period=v["control_period"],
+        ratio=v["ratio"],
+        metres_per_rotation=2 * math.pi,
+        battery_voltage=v["voltage"],
+        tolerance=v["settle_tolerance"],
+        stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
+        supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
+        title="Arm",
+        arm=True,
+    )
+
+
+DOCUMENTS = (
+    Document(
+        "wpilib-java",
+        "WPILib Java: ArmFeedforward + ProfiledPIDController",
+        "ArmGains.java",
+        lambda sol: gains_code.wpilib_java(gains_of(sol)),
+    ),
+    Document(
+        "wpilib-python",
+        "WPILib Python (robotpy): ArmFeedforward + ProfiledPIDController",
+        "arm_gains.py",
+        lambda sol: gains_code.wpilib_python(gains_of(sol)),
+    ),
+    Document(
+        "phoenix6",
+        "CTRE Phoenix 6 TalonFXConfiguration, Arm_Cosine (Java)",
+        "ArmTalonFXConfig.java",
+        lambda sol: gains_code.phoenix6_java(gains_of(sol)),
+    ),
+)
+
 CALCULATOR = Calculator(
     id="arm",
     title="Arm",
@@ -336,5 +407,7 @@ CALCULATOR = Calculator(
     compute=compute,
     simulate=simulate,
     exports={"ratio_finder": {"target_ratio": "best_ratio"}},  # optimise mode: the parts for that ratio
-    plots=motion.plots("angle", "angle", "deg", "angular_speed", "deg/s"),
+    documents=DOCUMENTS,  # profiled mode: the gains as code
+    plots=motion.plots("angle", "angle", "deg", "angular_speed", "deg/s")
+    + profiled.profile_plots("angle", "angle", "deg"),
 )

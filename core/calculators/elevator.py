@@ -38,6 +38,13 @@ kV is this kV/η (they agree at η = 1). Feedback: WPILib's LQR on the plant (x,
     latency-compensated (motion.lqr)                                                           (EL11)
 Optimise: G* minimising T(G): 240 ratios log-spaced about the characteristic ratio
 (d = v_free·τ), then bounded Brent on the accurate move around the best (motion.optimise)       (EL12)
+Profiled move: the loop robot code runs (core.sim.profiled (P1)-(P11)): a trapezoid from rest to rest
+(limits entered, or fractions of v_free and of the acceleration from rest at full voltage), the
+feedforward (EL10) with kG constant, PD feedback (the LQR gains (EL11) or entered) on the position
+measured `sensor_delay` earlier, every `control_period`, the voltage held between updates and
+clamped at the battery voltage; (EL2) with friction against the motion in either direction    (EL13)
+Current-limit grid: for each stator × supply limit pair the fastest ratio of the full-voltage move,
+its time, peak currents and energy; the pick within a supply budget (core.sim.limit_grid)     (EL14)
 """
 
 from __future__ import annotations
@@ -45,15 +52,16 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from .. import gains_code
 from ..constants import G0 as G
-from ..declarations import Calculator, Output
+from ..declarations import Calculator, Document, Output, Result
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
-from ..sim import motion
+from ..sim import limit_grid, motion, profiled
 from ..sim.effects import Effect, Effects, Part
 from ..sim.motor_limits import braking_warning
-from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
+from ..sim.scene import STATS_OUTPUTS, accuracy_field, run_with_stats
 
 RIGGINGS = ("continuous", "cascade")
 RIGGING_LABELS = (
@@ -99,7 +107,7 @@ EFFECTS = Effects(
 
 
 FIELDS = (
-    motion.mode_field(),
+    motion.mode_field(profiled=True, grid=True),
     *motion.battery_motor_fields("NEO", 2),
     Field(
         "ratio",
@@ -110,7 +118,7 @@ FIELDS = (
         min=0,
         min_exclusive=True,
         max=1e5,
-        modes=("move",),
+        modes=("move", "profiled"),
         help="Motor turns per spool turn.",
     ),
     Field(
@@ -181,6 +189,15 @@ FIELDS = (
     ),
     *EFFECTS.fields(),
     *motion.feedback_fields("length", "in", 0.5, "speed", "in/s", 10),
+    *profiled.profile_fields(
+        ("length", "in"),
+        ("speed", "ft/s", 3),
+        ("acceleration", "ft/s**2", 10),
+        ("voltage_per_length", "V/in", 2),
+        ("voltage_per_speed", "V*s/in", 0.05),
+        0.25,
+    ),
+    *limit_grid.fields(),
     accuracy_field(),
 )
 
@@ -202,6 +219,8 @@ OUTPUTS = (
         "V/m",
         "Volts to hold the load against gravity (minus the counterbalance).",
     ),
+    *profiled.profile_outputs(("length", "in"), ("speed", "ft/s"), ("acceleration", "ft/s**2")),
+    *limit_grid.outputs(),
     *EFFECTS.outputs(),
     *STATS_OUTPUTS,
 )
@@ -281,6 +300,20 @@ def simulate(v, rtol: float):
         run = motion.optimise(
             lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, spool_factor(v)
         )
+    elif v["mode"] == "limit_grid":
+        run = limit_grid.run(  # (EL14)
+            lambda values, G_=None, xp=motion.SCALAR: setup(values, G_, xp),
+            dict(v),
+            limit_grid.axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator"),
+            limit_grid.axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply"),
+            v["supply_budget"],
+            rtol,
+            spool_factor(v),
+        )
+    elif v["mode"] == "profiled":
+        s = setup(v)
+        ff = motion.feedforward(s, s.mech.q1)  # (EL10): kG the same all along the rail
+        run = profiled.run_profiled(s, v, rtol, ff, lambda q: ff["kG"])  # (EL13)
     else:
         run = motion.run_move(setup(v), rtol)
     braking_warning(v, run)
@@ -289,7 +322,64 @@ def simulate(v, rtol: float):
     return run
 
 
-compute = compute_with_stats(simulate)
+def compute(values) -> Result:
+    run = run_with_stats(simulate, values)
+    return Result(run.values, run.warnings, run.series, getattr(run, "tables", {}))
+
+
+def gains_of(solution) -> gains_code.Gains:
+    """The profiled move's gains and limits for the exports (core.gains_code (GC1)-(GC3)); a
+    ValueError when the solution is not of that mode (the profile's limits come from it)."""
+    v = {name: value.value for name, value in solution.inputs.items()}
+    out = {name: value.value for name, value in solution.outputs.items()}
+    if v.get("mode") != "profiled" or "profile_max_velocity" not in out:
+        raise ValueError("the gains and the profile are exported from the profiled move: set mode = profiled")
+    on = v["effects"]
+    return gains_code.Gains(
+        kS=out["kS"],
+        kG=out["kG"],
+        kV=out["kV"],
+        kA=out["kA"],
+        kP=out["kP"],
+        kD=out["kD"],
+        max_velocity=out["profile_max_velocity"],
+        max_acceleration=out["profile_max_acceleration"],
+        period=v["control_period"],
+        ratio=v["ratio"],
+        metres_per_rotation=2 * math.pi * spool_factor(v),
+        battery_voltage=v["voltage"],
+        tolerance=v["settle_tolerance"],
+        stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
+        supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
+    )
+
+
+DOCUMENTS = (
+    Document(
+        "wpilib-java",
+        "WPILib Java: ElevatorFeedforward + ProfiledPIDController",
+        "ElevatorGains.java",
+        lambda sol: gains_code.wpilib_java(gains_of(sol)),
+    ),
+    Document(
+        "wpilib-python",
+        "WPILib Python (robotpy): ElevatorFeedforward + ProfiledPIDController",
+        "elevator_gains.py",
+        lambda sol: gains_code.wpilib_python(gains_of(sol)),
+    ),
+    Document(
+        "phoenix6",
+        "CTRE Phoenix 6 TalonFXConfiguration (Java)",
+        "ElevatorTalonFXConfig.java",
+        lambda sol: gains_code.phoenix6_java(gains_of(sol)),
+    ),
+    Document(
+        "revlib",
+        "REVLib SparkMaxConfig with MAXMotion (Java)",
+        "ElevatorSparkMaxConfig.java",
+        lambda sol: gains_code.revlib_java(gains_of(sol)),
+    ),
+)
 
 CALCULATOR = Calculator(
     id="elevator",
@@ -300,5 +390,8 @@ CALCULATOR = Calculator(
     compute=compute,
     simulate=simulate,
     exports={"ratio_finder": {"target_ratio": "best_ratio"}},  # optimise mode: the parts for that ratio
-    plots=motion.plots("position", "length", "in", "speed", "ft/s"),
+    documents=DOCUMENTS,  # profiled mode: the gains as code
+    tables=(limit_grid.table(),),
+    plots=motion.plots("position", "length", "in", "speed", "ft/s")
+    + profiled.profile_plots("position", "length", "in"),
 )

@@ -636,15 +636,24 @@ def battery_motor_fields(default_motor: str, default_count: int) -> tuple[Field,
     )
 
 
-def mode_field() -> Field:
+PROFILED_LABEL = "Profiled move: trapezoid, feedforward + PD at the control period"
+
+
+GRID_LABEL = "Current-limit grid: the fastest ratio for each stator × supply limit"
+
+
+def mode_field(profiled: bool = False, grid: bool = False) -> Field:
+    """`profiled`: the scene offers core.sim.profiled's closed-loop move as a mode; `grid`: the
+    current-limit grid of core.sim.limit_grid."""
     return Field(
         "mode",
         "Solve",
-        choices=MODES,
-        choice_labels=MODE_LABELS,
+        choices=MODES + (("profiled",) if profiled else ()) + (("limit_grid",) if grid else ()),
+        choice_labels=MODE_LABELS + ((PROFILED_LABEL,) if profiled else ()) + ((GRID_LABEL,) if grid else ()),
         default="move",
         help="One move at the ratio you give, or the ratio that reaches the goal fastest "
-        "(time against ratio plotted).",
+        "(time against ratio plotted)"
+        + (", or the move as robot code runs it (profile, feedforward, feedback)." if profiled else "."),
     )
 
 

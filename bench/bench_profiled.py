@@ -1,0 +1,100 @@
+"""The profiled move (core.sim.profiled, issue 30): timings and solver work, printed, never asserted.
+
+Run:  .venv/bin/python bench/bench_profiled.py
+- one profiled move (elevator.simulate at the default accuracy: the loop at 20 ms, outputs, plots),
+  median of 30, beside the full-voltage move of the same elevator measured in the same run (the
+  baseline); goal: ≤ 20 ms median;
+- the right-hand-side evaluations a 20 ms period costs with the per-period exponential integrator
+  (the default), the scene's DP54 per period, and a fixed 0.1 ms RK4 step (800 a period), with what
+  each gives for the settle time (the 0.1 ms RK4 and the exponential integrator at 1e-10 as the
+  reference);
+- the current-limit grid (11 stator × 7 supply limits, elevator.simulate once, no error estimate),
+  median of 3, beside one optimise-mode solve of the same elevator (the baseline); goal ≤ 2 s.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from timing import median_seconds  # noqa: E402  (bench/ is on sys.path when run)
+
+CASES = {
+    "elevator, gravity": {},
+    "elevator, limits + sag + friction": {
+        "effects": "gravity, stator_limit, supply_limit, battery_sag, friction",
+        "stator_current_limit": "35 A",
+        "supply_current_limit": "25 A",
+        "sensor_delay": "10 ms",
+    },
+}
+
+
+def main() -> None:
+    from gearhead.core.calculators import elevator
+    from gearhead.core.model import parse_inputs
+    from gearhead.core.registry import get
+    from gearhead.core.sim import motion, profiled
+    from gearhead.core.sim.scene import LEVELS
+
+    rtol = LEVELS["default"]
+    calc = get("elevator")
+    print("One move at the default accuracy (rtol 1e-6), median of 30 (baseline: the full-voltage move):")
+    for label, raw in CASES.items():
+        v_move, _ = parse_inputs(calc, raw)
+        v_prof, _ = parse_inputs(calc, {**raw, "mode": "profiled"})
+        t_move = median_seconds(lambda: elevator.simulate(v_move, rtol), 30) * 1e3
+        t_prof = median_seconds(lambda: elevator.simulate(v_prof, rtol), 30) * 1e3
+        run = elevator.simulate(v_prof, rtol)
+        print(
+            f"  {label:<36} profiled {t_prof:6.2f} ms  (full-voltage move {t_move:6.2f} ms, "
+            f"x{t_prof / t_move:.1f})  {run.values['control_updates']} updates, rhs {run.nfev}"
+        )
+
+    print("Right-hand-side evaluations per 20 ms period, and the settle time each gives:")
+    for label, raw in CASES.items():
+        v, _ = parse_inputs(calc, {**raw, "mode": "profiled"})
+        s = elevator.setup(v)
+        ff = motion.feedforward(s, s.mech.q1)
+        loop, profile, _ = profiled.loop_of(s, v, ff, lambda q: ff["kG"])
+        ref = profiled.profiled_move(s, loop, profile, 1e-10).values["settle_time"]
+        print(f"  {label} (settle time at 1e-10: {ref:.9f} s)")
+        for method, tol in (("exp", 1e-6), ("exp", 1e-9), ("DP54", 1e-6), ("DP54", 1e-9), ("RK4", 0.0)):
+            run = profiled.profiled_move(s, loop, profile, tol, method=method)
+            wall = median_seconds(lambda: profiled.profiled_move(s, loop, profile, tol, method=method), 3)
+            name = "RK4, fixed 0.1 ms" if method == "RK4" else f"{method}, rtol {tol:.0e}"
+            print(
+                f"    {name:<20} {run.nfev / run.updates:7.1f} per period  {wall * 1e3:8.1f} ms  "
+                f"settle error {run.values['settle_time'] - ref:+.2e} s"
+            )
+
+
+def grid() -> None:
+    from gearhead.core.calculators import elevator
+    from gearhead.core.model import parse_inputs
+    from gearhead.core.registry import get
+    from gearhead.core.sim.scene import LEVELS
+
+    rtol = LEVELS["default"]
+    calc = get("elevator")
+    for label, effects in (("gravity", "gravity"), ("gravity + sag", "gravity, battery_sag")):
+        v_grid, _ = parse_inputs(calc, {"mode": "limit_grid", "effects": effects})
+        v_opt, _ = parse_inputs(
+            calc, {"mode": "optimise", "effects": effects + ", stator_limit, supply_limit"}
+        )
+        t_opt = median_seconds(lambda: elevator.simulate(v_opt, rtol), 3)
+        t_grid = median_seconds(lambda: elevator.simulate(v_grid, rtol), 3)
+        run = elevator.simulate(v_grid, rtol)
+        print(
+            f"  grid 11 x 7, {label:<14} {t_grid:6.3f} s  (one optimise solve {t_opt * 1e3:6.1f} ms)  "
+            f"{run.values['grid_cells']} cells, rhs {run.nfev}"
+        )
+
+
+if __name__ == "__main__":
+    main()
+    print("Current-limit grid (median of 3):")
+    grid()

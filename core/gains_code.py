@@ -1,0 +1,286 @@
+"""Gains as code: a profiled move's feedforward and feedback gains, profile limits and current limits
+written as the code a team pastes into its robot project, for WPILib (Java, Python), CTRE Phoenix 6
+(TalonFXConfiguration) and REVLib (SparkMaxConfig). Pure text builders (standard library only); the
+calculators declare them as Documents (core.declarations), so ctrl+e and `solve --document NAME`
+offer them.
+
+Gearhead's gains are SI per unit of the mechanism's coordinate q (an elevator: metres of carriage
+travel; kS, kG in V, kV in V·s/m, kA in V·s²/m, kP in V/m, kD in V·s/m). Each target's units:
+- WPILib (ElevatorFeedforward or ArmFeedforward, ProfiledPIDController, TrapezoidProfile.Constraints):
+  SI as they are (WPILib is unit-agnostic; the profile and the gains share the metre, or for an
+  arm the radian from horizontal, ArmFeedforward's kG·cos θ).                                   (GC1)
+- Phoenix 6 (CTRE docs, Slot0Configs: kP "output per unit of error" with position in rotations,
+  kV per rps, kA per rps/s, kD per rps; MotionMagicConfigs in rps and rps/s; voltage output with
+  MotionMagicVoltage): positions in mechanism rotations, the drum's, with
+  Feedback.SensorToMechanismRatio = G (rotor turns per drum turn). One drum turn moves the carriage
+  L = 2π·r·k metres (r the drum radius, k the rigging factor), so a gain per metre becomes
+      kP_rot = kP·L,  kD_rot = kD·L,  kV_rot = kV·L,  kA_rot = kA·L  (V per rotation, rps, rps/s);
+      cruise = v_max/L (rps),  acceleration = a_max/L (rps/s);  kS, kG unchanged (V)         (GC2)
+  GravityType Elevator_Static (a constant kG); MotionMagicJerk = 0 (no jerk limit: a trapezoid).
+  An arm: positions in arm rotations (L = 2π rad a rotation, SensorToMechanismRatio = G), GravityType
+  Arm_Cosine, which needs the sensor at 0 with the arm horizontal (CTRE's GravityTypeValue docs).
+  (Sources: CrossTheRoadElec/Phoenix6-Examples at b6dd147 "Bump to 26.2.0",
+  java/MotionMagic/src/main/java/frc/robot/Robot.java: cfg.Feedback.SensorToMechanismRatio,
+  cfg.MotionMagic.MotionMagicCruiseVelocity/Acceleration/Jerk, cfg.Slot0.kS/kV/kA/kP/kI/kD;
+  java/CurrentLimits: CurrentLimits.StatorCurrentLimit(Enable), SupplyCurrentLimit(Enable);
+  GravityTypeValue.Elevator_Static in com.ctre.phoenix6.signals.)
+- REVLib 2026 (REVrobotics/REVLib-Examples at 6b03aa4 "Update examples to use 2026 WPILib and
+  REVLib", Java/SPARK/MAXMotion: closedLoop.p/i/d/outputRange, closedLoop.feedForward.kV "now in
+  Volts", closedLoop.maxMotion.cruiseVelocity/maxAcceleration/allowedProfileError; REV's
+  FeedForwardConfig docs: kS, kV, kA, kG in volts per native unit): the encoder's conversion
+  factors make the native units SI, positionConversionFactor = L/G (m per motor rotation) and
+  velocityConversionFactor = L/(60·G) (m/s per rpm), so kS, kG, kV, kA, the cruise velocity and the
+  acceleration are Gearhead's as they are. The SPARK's PID output is normalised (duty cycle, ±1)
+  and runs at 1 kHz with kD on the error's change per 1 ms step (REV's "SPARK MAX Closed Loop
+  Control" page: kP normalized/native, kD normalized/(native/ms)); with voltageCompensation(V_b) a
+  duty of 1 is V_b volts:
+      kP_rev = kP/V_b,  kD_rev = kD/(V_b · 1 ms)                                               (GC3)
+  smartCurrentLimit is the stator limit (whole amps); REVLib has no supply current limit, said in
+  a comment.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+REV_LOOP_PERIOD = 1e-3  # s: the SPARK's closed loop runs at 1 kHz (GC3)
+
+
+@dataclass(frozen=True)
+class Gains:
+    """What a profiled move exports, SI per unit of the coordinate (metres for an elevator)."""
+
+    kS: float
+    kG: float
+    kV: float
+    kA: float
+    kP: float
+    kD: float
+    max_velocity: float
+    max_acceleration: float
+    period: float  # s, the loop the LQR gains were discretised for
+    ratio: float  # G, motor turns per drum turn
+    metres_per_rotation: float  # L: q per drum turn, 2π·r·k m (elevator) or 2π rad per arm turn
+    battery_voltage: float
+    tolerance: float  # settle tolerance, m
+    stator_limit: float | None = None  # A per motor, None when off
+    supply_limit: float | None = None
+    title: str = "Elevator"
+    arm: bool = False  # q is the arm's angle from horizontal (rad): ArmFeedforward, Arm_Cosine
+
+
+def _u(g: Gains) -> str:
+    return "rad" if g.arm else "m"
+
+
+def _ff(g: Gains) -> str:
+    return "ArmFeedforward" if g.arm else "ElevatorFeedforward"
+
+
+def _num(x: float) -> str:
+    """A float as a literal Java and Python both read back to the same double."""
+    if not math.isfinite(x):
+        raise ValueError(f"{x} cannot be exported")
+    return repr(float(x))
+
+
+def phoenix6_values(g: Gains) -> dict[str, float]:
+    """(GC2): the Slot0 and MotionMagic values, in drum rotations."""
+    L = g.metres_per_rotation
+    return {
+        "SensorToMechanismRatio": g.ratio,
+        "kS": g.kS,
+        "kG": g.kG,
+        "kV": g.kV * L,
+        "kA": g.kA * L,
+        "kP": g.kP * L,
+        "kD": g.kD * L,
+        "MotionMagicCruiseVelocity": g.max_velocity / L,
+        "MotionMagicAcceleration": g.max_acceleration / L,
+    }
+
+
+def revlib_values(g: Gains) -> dict[str, float]:
+    """(GC3): the encoder's conversion factors and the closed loop's gains."""
+    L, G, Vb = g.metres_per_rotation, g.ratio, g.battery_voltage
+    return {
+        "positionConversionFactor": L / G,
+        "velocityConversionFactor": L / G / 60.0,
+        "voltageCompensation": Vb,
+        "p": g.kP / Vb,
+        "d": g.kD / (Vb * REV_LOOP_PERIOD),
+        "kS": g.kS,
+        "kV": g.kV,
+        "kA": g.kA,
+        "kG": g.kG,
+        "cruiseVelocity": g.max_velocity,
+        "maxAcceleration": g.max_acceleration,
+        "allowedProfileError": g.tolerance,
+    }
+
+
+def _header(g: Gains, comment: str) -> str:
+    return (
+        f"{comment} {g.title} gains from Gearhead's profiled move (SI: "
+        f"{'radians of arm angle from horizontal' if g.arm else 'metres of carriage travel'}).\n"
+        f"{comment} kP and kD are LQR gains for a {g.period * 1000:g} ms loop unless entered; a loop on the\n"
+        f"{comment} motor controller (1 kHz) may take them higher: re-solve with its period.\n"
+    )
+
+
+def wpilib_python(g: Gains) -> str:
+    return (
+        _header(g, "#") + f"from wpimath.controller import {_ff(g)}, ProfiledPIDController\n"
+        "from wpimath.trajectory import TrapezoidProfile\n\n"
+        f"kS = {_num(g.kS)}  # V\n"
+        f"kG = {_num(g.kG)}  # V\n"
+        f"kV = {_num(g.kV)}  # V*s/{_u(g)}\n"
+        f"kA = {_num(g.kA)}  # V*s^2/{_u(g)}\n"
+        f"kP = {_num(g.kP)}  # V/{_u(g)}\n"
+        f"kD = {_num(g.kD)}  # V*s/{_u(g)}\n"
+        f"MAX_VELOCITY = {_num(g.max_velocity)}  # {_u(g)}/s\n"
+        f"MAX_ACCELERATION = {_num(g.max_acceleration)}  # {_u(g)}/s^2\n"
+        f"PERIOD = {_num(g.period)}  # s\n\n"
+        f"feedforward = {_ff(g)}(kS, kG, kV, kA, PERIOD)\n"
+        "controller = ProfiledPIDController(\n"
+        "    kP, 0.0, kD, TrapezoidProfile.Constraints(MAX_VELOCITY, MAX_ACCELERATION), PERIOD\n"
+        ")\n"
+        "# each period: v = controller.getSetpoint().velocity; u = controller.calculate(position)\n"
+        "#             volts = u + feedforward.calculate(v, controller.getSetpoint().velocity)\n"
+    )
+
+
+def wpilib_java(g: Gains) -> str:
+    cls = f"{g.title.replace(' ', '')}Gains"
+    return (
+        _header(g, "//") + f"import edu.wpi.first.math.controller.{_ff(g)};\n"
+        "import edu.wpi.first.math.controller.ProfiledPIDController;\n"
+        "import edu.wpi.first.math.trajectory.TrapezoidProfile;\n\n"
+        f"public final class {cls} {{\n"
+        f"  public static final double kS = {_num(g.kS)}; // V\n"
+        f"  public static final double kG = {_num(g.kG)}; // V\n"
+        f"  public static final double kV = {_num(g.kV)}; // V*s/{_u(g)}\n"
+        f"  public static final double kA = {_num(g.kA)}; // V*s^2/{_u(g)}\n"
+        f"  public static final double kP = {_num(g.kP)}; // V/{_u(g)}\n"
+        f"  public static final double kD = {_num(g.kD)}; // V*s/{_u(g)}\n"
+        f"  public static final double kMaxVelocity = {_num(g.max_velocity)}; // {_u(g)}/s\n"
+        f"  public static final double kMaxAcceleration = {_num(g.max_acceleration)}; // {_u(g)}/s^2\n"
+        f"  public static final double kPeriod = {_num(g.period)}; // s\n\n"
+        f"  public static {_ff(g)} feedforward() {{\n"
+        f"    return new {_ff(g)}(kS, kG, kV, kA, kPeriod);\n"
+        "  }\n\n"
+        "  public static ProfiledPIDController controller() {\n"
+        "    return new ProfiledPIDController(\n"
+        "        kP, 0.0, kD, new TrapezoidProfile.Constraints(kMaxVelocity, kMaxAcceleration), kPeriod);\n"
+        "  }\n\n"
+        f"  private {cls}() {{}}\n"
+        "}\n"
+    )
+
+
+def phoenix6_java(g: Gains) -> str:
+    v = phoenix6_values(g)
+    cls = f"{g.title.replace(' ', '')}TalonFXConfig"
+    lines = [
+        _header(g, "//").rstrip("\n"),
+        *(
+            [
+                "// Positions in arm rotations (SensorToMechanismRatio = motor turns per arm turn), 0 with the",
+                "// arm horizontal (set the sensor's offset so): Arm_Cosine needs it. Request MotionMagicVoltage.",
+            ]
+            if g.arm
+            else [
+                "// Positions in drum rotations (SensorToMechanismRatio = motor turns per drum turn);",
+                f"// one drum rotation = {_num(g.metres_per_rotation)} m of carriage travel. "
+                "Request MotionMagicVoltage.",
+            ]
+        ),
+        "import com.ctre.phoenix6.configs.TalonFXConfiguration;",
+        "import com.ctre.phoenix6.signals.GravityTypeValue;",
+        "",
+        f"public final class {cls} {{",
+        f"  public static final double k{'Radians' if g.arm else 'Metres'}PerRotation = "
+        f"{_num(g.metres_per_rotation)};",
+        "",
+        "  public static TalonFXConfiguration config() {",
+        "    var cfg = new TalonFXConfiguration();",
+        f"    cfg.Feedback.SensorToMechanismRatio = {_num(v['SensorToMechanismRatio'])};",
+        f"    cfg.Slot0.GravityType = GravityTypeValue.{'Arm_Cosine' if g.arm else 'Elevator_Static'};",
+        f"    cfg.Slot0.kS = {_num(v['kS'])}; // V",
+        f"    cfg.Slot0.kG = {_num(v['kG'])}; // V",
+        f"    cfg.Slot0.kV = {_num(v['kV'])}; // V per rps",
+        f"    cfg.Slot0.kA = {_num(v['kA'])}; // V per rps/s",
+        f"    cfg.Slot0.kP = {_num(v['kP'])}; // V per rotation",
+        "    cfg.Slot0.kI = 0.0;",
+        f"    cfg.Slot0.kD = {_num(v['kD'])}; // V per rps",
+        f"    cfg.MotionMagic.MotionMagicCruiseVelocity = {_num(v['MotionMagicCruiseVelocity'])}; // rps",
+        f"    cfg.MotionMagic.MotionMagicAcceleration = {_num(v['MotionMagicAcceleration'])}; // rps/s",
+        "    cfg.MotionMagic.MotionMagicJerk = 0.0; // no jerk limit: a trapezoid",
+    ]
+    if g.stator_limit is not None:
+        lines += [
+            f"    cfg.CurrentLimits.StatorCurrentLimit = {_num(g.stator_limit)}; // A",
+            "    cfg.CurrentLimits.StatorCurrentLimitEnable = true;",
+        ]
+    if g.supply_limit is not None:
+        lines += [
+            f"    cfg.CurrentLimits.SupplyCurrentLimit = {_num(g.supply_limit)}; // A",
+            "    cfg.CurrentLimits.SupplyCurrentLimitEnable = true;",
+        ]
+    lines += ["    return cfg;", "  }", "", f"  private {cls}() {{}}", "}", ""]
+    return "\n".join(lines)
+
+
+def revlib_java(g: Gains) -> str:
+    if g.arm:
+        # REVLib's arm term (feedForward.kCos with kCosRatio) is not exported: its docs do not say
+        # what kCosRatio converts, and a wrong one would turn the gravity term the wrong way
+        raise ValueError("REVLib's arm feedforward (kCos, kCosRatio) is not exported; use wpilib-java")
+    v = revlib_values(g)
+    cls = f"{g.title.replace(' ', '')}SparkMaxConfig"
+    lines = [
+        _header(g, "//").rstrip("\n"),
+        "// Native units are SI through the encoder's conversion factors (m, m/s); the PID output is a",
+        "// duty cycle of the compensated voltage, kD per 1 ms step (the SPARK's loop runs at 1 kHz).",
+        "import com.revrobotics.spark.FeedbackSensor;",
+        "import com.revrobotics.spark.config.SparkMaxConfig;",
+        "",
+        f"public final class {cls} {{",
+        "  public static SparkMaxConfig config() {",
+        "    SparkMaxConfig config = new SparkMaxConfig();",
+        f"    config.voltageCompensation({_num(v['voltageCompensation'])});",
+    ]
+    if g.stator_limit is not None:
+        lines.append(f"    config.smartCurrentLimit({int(round(g.stator_limit))}); // A, stator")
+    if g.supply_limit is not None:
+        lines.append(
+            f"    // supply limit {g.supply_limit:g} A per motor: REVLib has none (a stator limit only)"
+        )
+    lines += [
+        "    config.encoder",
+        f"        .positionConversionFactor({_num(v['positionConversionFactor'])}) // m per motor turn",
+        f"        .velocityConversionFactor({_num(v['velocityConversionFactor'])}); // m/s per rpm",
+        "    config.closedLoop",
+        "        .feedbackSensor(FeedbackSensor.kPrimaryEncoder)",
+        f"        .p({_num(v['p'])})",
+        "        .i(0.0)",
+        f"        .d({_num(v['d'])})",
+        "        .outputRange(-1, 1);",
+        "    config.closedLoop.feedForward",
+        f"        .kS({_num(v['kS'])})",
+        f"        .kV({_num(v['kV'])})",
+        f"        .kA({_num(v['kA'])})",
+        f"        .kG({_num(v['kG'])});",
+        "    config.closedLoop.maxMotion",
+        f"        .cruiseVelocity({_num(v['cruiseVelocity'])}) // m/s",
+        f"        .maxAcceleration({_num(v['maxAcceleration'])}) // m/s^2",
+        f"        .allowedProfileError({_num(v['allowedProfileError'])}); // m",
+        "    return config;",
+        "  }",
+        "",
+        f"  private {cls}() {{}}",
+        "}",
+        "",
+    ]
+    return "\n".join(lines)

@@ -1,0 +1,965 @@
+"""A profiled closed-loop move: the mechanism of core.sim.motion driven the way robot code drives
+it, a trapezoid profile with feedforward plus PD feedback evaluated every control period, the
+voltage held between updates (zero-order hold), saturating at the battery voltage, with the
+current-limit and sag effects of core.sim.motor_limits.
+
+The robot code (WPILib's ProfiledPIDController + ElevatorFeedforward, as its examples use them), at
+the updates t_k = k·dt, k = 0, 1, ...:
+    (r_k, ṙ_k) = profile(t_k),  (r_{k+1}, ṙ_{k+1}) = profile(t_{k+1})            (P1), (P2)
+    y_k = q(t_k − δ)   the measured position, δ the sensor delay (q(0) before δ)      (P3)
+    e_k = r_{k+1} − y_k,  V_fb = kP·e_k + kD·(e_k − e_{k−1})/dt,  e_{−1} = 0         (P4)
+          (WPILib PIDController.Calculate: the derivative is the error's difference)
+    V_ff = kS·sgn(ṙ_k) + kG(r_k) + (ṙ_{k+1} − A_d·ṙ_k)/B_d,  A = −kV/kA, B = 1/kA,
+           A_d = e^{A·dt}, B_d = (A_d − 1)·B/A   (ElevatorFeedforward.Calculate(current, next);
+           kS·sgn(ṙ_{k+1}) + kG + kV·ṙ_{k+1} when kA < 1e-9)                         (P5)
+    V_k = clamp(V_fb + V_ff, −V_b, V_b),  duty u_k = V_k/V_b, held over [t_k, t_{k+1})  (P6)
+Trapezoid from rest to rest over the distance d with limits v_max, a_max (WPILib TrapezoidProfile):
+    t_a = v_max/a_max;  if a_max·t_a² > d: t_a = √(d/a_max) (a triangle), v_peak = a_max·t_a;
+    t_c = (d − a_max·t_a²)/v_peak;  T = 2·t_a + t_c                                     (P1)
+    p(t) = a·t²/2 (t < t_a);  a·t_a²/2 + v_peak·(t − t_a) (t < t_a + t_c);  d − a·(T − t)²/2 (t ≤ T)
+                                                                                       (P2)
+The plant between updates (per motor; the duty signed, a limit lowers its magnitude):
+    E = n·q̇/Kv,  u = clamp(u_k, −b(−E), b(E)),  b the shared duty bound of the limits on
+    ((E2), (E3), the duty a limit lets a driving motor rise to; mirrored for a current the other
+    way, so the stator limit holds |I| while the loop brakes too, as a controller's current loop
+    does; the full-voltage move of core.sim.motion never brakes against its command)
+    I = (u·V_b − E)/(R + u²·R_bus)                                                 (E1), signed
+    M·q̈ = η·N·Kt·n·I + F_field(q) − F_fric·sgn(q̇)                                     (P7)
+F_fric is the motors' own loss (M3) plus the friction effect (Coulomb, against the motion). At
+q̇ = 0 the mechanism sticks while |η·N·Kt·n·I + F_field| ≤ F_fric (both constant there for the rest
+of the period: the duty is held, E = 0 and q does not change), else moves toward that force. Each
+period is integrated by the scene's integrator (core.sim.integrate, DP54) from t_k to t_{k+1}, with
+a terminal event where q̇ passes 0 (the friction changes sign there) and the band events below.
+Outputs:
+    settle time: the first t after which |q − goal| ≤ tol up to the end of the window, the band
+    edges located as events on the dense output (continuous, not on the update grid)      (P8)
+    window: the profile's time T plus max(1 s, T)
+    overshoot = max(0, max_t s·(q − goal));  final error = s·(goal − q) at the window's end
+    (positive: short of the goal)                                                        (P9)
+    tracking error at the updates: r(t_k) − q(t_k) (RMS and peak over the window)       (P10)
+    peak stator |I| and supply u·I per motor, lowest bus V_b − R_bus·max(u·I): over the
+    integrator's step points and each period's ends (the current jumps at an update)    (P11)
+    energy = ∫ N·V_b·u·I dt (regeneration negative)
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
+
+from ..errors import InputError
+from .integrate import Event, integrate
+from .scene import SimRun
+
+SETTLE_EXTRA = 1.0  # s: the window is the profile's time plus the larger of this and that time
+MAX_PIECES = 50  # friction reversals within one period beyond which the mechanism is held stuck
+STEP_CAP = 20_000  # DP54 steps per period (stiff: held to ≈ 3τ by stability)
+
+
+@dataclass(frozen=True)
+class Trapezoid:
+    """Rest-to-rest trapezoid over `distance` ≥ 0 (P1), (P2)."""
+
+    distance: float
+    v_max: float
+    a_max: float
+
+    @cached_property
+    def accel_time(self) -> float:
+        t_a = self.v_max / self.a_max
+        return math.sqrt(self.distance / self.a_max) if self.a_max * t_a * t_a > self.distance else t_a
+
+    @cached_property
+    def peak_speed(self) -> float:
+        return self.a_max * self.accel_time
+
+    @cached_property
+    def cruise_time(self) -> float:
+        t_a = self.accel_time
+        return max(0.0, self.distance - self.a_max * t_a * t_a) / self.peak_speed
+
+    @cached_property
+    def total_time(self) -> float:
+        return 2 * self.accel_time + self.cruise_time
+
+    def at(self, t: float) -> tuple[float, float]:
+        """(p, ṗ) at time t (P2)."""
+        a, t_a, T = self.a_max, self.accel_time, self.total_time
+        if t <= 0:
+            return 0.0, 0.0
+        if t < t_a:
+            return a * t * t / 2, a * t
+        if t < t_a + self.cruise_time:
+            v = self.peak_speed
+            return a * t_a * t_a / 2 + v * (t - t_a), v
+        if t <= T:
+            left = T - t
+            return self.distance - a * left * left / 2, a * left
+        return self.distance, 0.0
+
+
+@dataclass(frozen=True)
+class Loop:
+    """The robot code's constants, in SI per unit of q (P4)-(P6)."""
+
+    kS: float
+    kG: Any  # q -> volts (constant for an elevator)
+    kV: float
+    kA: float
+    kP: float
+    kD: float
+    period: float
+    delay: float
+    tolerance: float
+
+    def feedforward(self, r: float, v: float, v_next: float) -> float:
+        """(P5): WPILib ElevatorFeedforward.Calculate(currentVelocity, nextVelocity), kG at r."""
+        kG = self.kG(r)
+        if self.kA < 1e-9:
+            return self.kS * _sgn(v_next) + kG + self.kV * v_next
+        A = -self.kV / self.kA
+        B = 1.0 / self.kA
+        A_d = math.exp(A * self.period)
+        B_d = B * self.period if A > -1e-9 else (A_d - 1.0) * B / A
+        return kG + self.kS * _sgn(v) + (v_next - A_d * v) / B_d
+
+
+def _sgn(x: float) -> float:
+    return (x > 0) - (x < 0)
+
+
+def driver(mech, duty_bound):
+    """(u_cmd, E) -> (u, I) per motor for a signed duty command: the shared duty bound b(E) of the
+    limits that are on ((E2), (E3): what the duty may rise to while driving) caps it, and its mirror
+    −b(−E) floors it (I(−u, −E) = −I(u, E): the same limits on a current the other way, e.g. the
+    stator current while the loop brakes), then (E1)."""
+    Vb, R, Rb = mech.battery_voltage, mech.R, mech.bus_resistance
+    if duty_bound is None:
+
+        def drive(u_cmd: float, E: float) -> tuple[float, float]:
+            return u_cmd, (u_cmd * Vb - E) / (R + u_cmd * u_cmd * Rb)
+
+        return drive
+
+    def drive(u_cmd: float, E: float) -> tuple[float, float]:
+        # a current forward (u·V_b > E) meets the cap only, one backward the floor only
+        u = min(u_cmd, duty_bound(E)) if u_cmd * Vb > E else max(u_cmd, -duty_bound(-E))
+        u = min(max(u, -1.0), 1.0)
+        return u, (u * Vb - E) / (R + u * u * Rb)
+
+    return drive
+
+
+# --- the integrator of one period: exponential in the speed ------------------------------------
+#
+# The back-EMF damps the speed with the mechanical time constant τ = kA/kV, often far below the
+# control period (0.2-6 ms against 20 ms in FRC elevators): an explicit method (the scene's DP54)
+# is held to steps ≈ 3τ by stability there, hundreds of evaluations a period. The plant is
+#     ṗ = c·w,  ẇ = f(p, w),  ė = g(p, w)   (scaled position, speed, energy)
+# with f affine in w except where a current limit or the sag bends it. Exponential Rosenbrock-Euler
+# in w (J = ∂f/∂w at the step's start, by a difference quotient), with the position's pull on f
+# taken as a forcing growing linearly over the step, b = c·w·∂f/∂p (an arm's gravity; 0 and not
+# evaluated when the field force does not vary, as on an elevator):
+#     ẇ ≈ f₀ + J·(w − w₀) + b·s  ⇒  w(s) = w₀ + s·φ₁(sJ)·f₀ + s²·φ₂(sJ)·b,
+#     p(s) = p₀ + c·(w₀·s + s²·φ₂(sJ)·f₀ + s³·φ₃(sJ)·b),
+#     φ₁(z) = (e^z − 1)/z,  φ₂(z) = (e^z − 1 − z)/z²,  φ₃(z) = (e^z − 1 − z − z²/2)/z³        (X1)
+# is exact for f affine in w and independent of p (an elevator with no limit binding: one step a
+# period), second order otherwise. Its error is what the linear model misses: with the defect at
+# the step's end δ = f(p₁, w₁) − (f₀ + J·(w₁ − w) + b·h) (it sees a limit letting go inside the step,
+# the sag's curve and an arm's gravity changing with p), e_w = δ·min(h, 1/|J|) and
+# e_p = c·e_w·h; the step adapted as h·(tol/err)^(1/2) (X2). The energy rate g is linearised in w
+# like f, G = ∂g/∂w: ∫g dt = g₀·h + G·(Δp/c − w·h), exact where (X1) is, its error h·δ_g (X3).
+# Events are located on (X1) of the step (the speed is monotone on it: at most one stop). Cost:
+# f at the step's end (the next step's start) and the difference quotients: 2 evaluations a step
+# (3 with b).
+
+
+def _phi(z: float) -> tuple[float, float, float]:
+    """φ₁, φ₂, φ₃ of (X1): φ₃(z) = (e^z − 1 − z − z²/2)/z³; their series near 0."""
+    if abs(z) < 2e-3:
+        return (
+            1 + z / 2 + z * z / 6 + z**3 / 24,
+            0.5 + z / 6 + z * z / 24 + z**3 / 120,
+            1 / 6 + z / 24 + z * z / 120 + z**3 / 720,
+        )
+    e1 = math.expm1(z)
+    return e1 / z, (e1 - z) / (z * z), (e1 - z - z * z / 2) / (z * z * z)
+
+
+def _beyond_noise(defect: float, f: float, dw: float, w: float) -> float:
+    return max(0.0, abs(defect) - 1e-9 * abs(f) * abs(dw) / (abs(w) + 1.0) - 1e-15 * abs(f))
+
+
+class ExpRun:
+    """One period (or the part of it before a stop), as integrate's Run offers it."""
+
+    def __init__(self):
+        self.t: list[float] = []
+        self.y: list[list[float]] = []
+        self.segments: list[tuple] = []  # (t0, h, p, w, f0, J, c, b)
+        self.crossings: list = []
+        self.event: str | None = None
+        self.nfev = 0
+
+    @property
+    def dense(self):
+        return [(t0, h, None) for t0, h, *_ in self.segments]
+
+    def at(self, t: float) -> list[float]:
+        for t0, h, *rest in self.segments:
+            if t0 <= t <= t0 + h:
+                return _exp_state(t - t0, *rest)
+        raise ValueError(f"t = {t} outside the integrated span")
+
+
+def _exp_state(s: float, p, w, f0, J, c, b=0.0) -> list[float]:
+    ph1, ph2, ph3 = _phi(s * J)
+    return [p + c * (s * w + s * s * (ph2 * f0 + s * ph3 * b)), w + s * (ph1 * f0 + s * ph2 * b)]
+
+
+def integrate_exp(
+    rhs,
+    c: float,
+    t0: float,
+    t1: float,
+    y0,
+    rtol: float,
+    events=(),
+    first_step=None,
+    restart=(),
+    max_steps: int = 200_000,
+    p_coupled: bool = False,
+) -> ExpRun:
+    """(X1)-(X3) from t0 to t1; rhs(t, y) -> [c·w, f, g] (the scene's own right-hand side)."""
+    from .integrate import charge
+
+    run = ExpRun()
+    t, y = t0, list(y0)
+    run.t.append(t)
+    run.y.append(list(y))
+    h = min(first_step or (t1 - t0), t1 - t0)
+    k0 = rhs(t, y)
+    g_prev = [ev.g(t, y) for ev in events]
+    atol = rtol
+
+    def slope(tt, yy, kk):
+        """(∂f/∂w, ∂g/∂w, b = c·w·∂f/∂p) by difference quotients (b only when f depends on p)."""
+        dw = 1e-6 * (abs(yy[1]) + 1.0)
+        k2 = rhs(tt, [yy[0], yy[1] + dw, yy[2]])
+        if not p_coupled:
+            return (k2[1] - kk[1]) / dw, (k2[2] - kk[2]) / dw, 0.0
+        dp = 1e-6 * (abs(yy[0]) + 1.0)
+        k3 = rhs(tt, [yy[0] + dp, yy[1], yy[2]])
+        return (k2[1] - kk[1]) / dw, (k2[2] - kk[2]) / dw, c * yy[1] * (k3[1] - kk[1]) / dp
+
+    extra = 2 if p_coupled else 1
+    J0, G0, b0 = slope(t, y, k0)
+    nfev = 1 + extra
+    for _ in range(max_steps):
+        charge(2)
+        last = t + h >= t1 - 1e-15 * max(1.0, abs(t1))
+        if last:
+            h = t1 - t
+        end = _exp_state(h, y[0], y[1], k0[1], J0, c, b0)
+        t_end = t1 if last else t + h
+        k1 = rhs(t_end, end + [0.0])
+        nfev += 1
+        dw = end[1] - y[1]
+        # (X2): the defect of the linear model at the step's end
+        e_w = _beyond_noise(k1[1] - k0[1] - J0 * dw - b0 * h, k0[1], dw, y[1]) * min(
+            h, 1.0 / max(abs(J0), 1e-300)
+        )
+        e_e = _beyond_noise(k1[2] - k0[2] - G0 * dw, k0[2], dw, y[1]) * h
+        err = max(
+            e_w / (atol + rtol * max(abs(end[1]), abs(dw))),
+            c * e_w * h / (atol + rtol * max(abs(end[0]), abs(end[0] - y[0]))),
+            e_e / (atol + rtol * max(abs(y[2]), h * abs(k0[2]))),
+        )
+        if err > 1.0 and h > 1e-12 * max(1.0, abs(t)):
+            h *= max(0.2, 0.9 * err**-0.5)
+            continue
+        seg = (t, h, y[0], y[1], k0[1], J0, c, b0)
+        hit = None
+        for idx, ev in enumerate(events):
+            g_old, g_new = g_prev[idx], ev.g(t_end, end)
+            if (g_old < 0 <= g_new and ev.direction >= 0) or (g_old > 0 >= g_new and ev.direction <= 0):
+                te = _locate(ev, seg, g_old)
+                if ev.name in restart and abs(te - t0) <= 1e-10 * (t1 - t0):
+                    pass
+                elif ev.terminal:
+                    if hit is None or te < hit[0]:
+                        hit = (te, ev)
+                else:
+                    run.crossings.append((ev.name, te, _exp_state(te - t, *seg[2:])))
+            g_prev[idx] = g_new
+        if hit is not None:
+            te = hit[0]
+            s_ = te - t
+            run.segments.append((t, s_, *seg[2:]))
+            ye = _exp_state(s_, *seg[2:])
+            run.t.append(te)
+            run.y.append(ye + [y[2] + s_ * k0[2] + G0 * ((ye[0] - y[0]) / c - y[1] * s_)])  # (X3)
+            run.crossings = [cr for cr in run.crossings if cr[1] <= te]
+            run.event = hit[1].name
+            run.nfev = nfev
+            return run
+        run.segments.append(seg)
+        energy = y[2] + h * k0[2] + G0 * ((end[0] - y[0]) / c - y[1] * h)  # (X3)
+        t, y, k0 = t_end, end + [energy], k1
+        run.t.append(t)
+        run.y.append(y)
+        if last:
+            run.nfev = nfev
+            return run
+        J0, G0, b0 = slope(t, y, k0)
+        nfev += extra
+        h *= min(4.0, max(0.2, 0.9 * err**-0.5)) if err > 0 else 4.0
+    raise RuntimeError(f"integration did not finish in {max_steps} steps (t = {t:.6g})")
+
+
+def _locate(ev, seg, g_old: float) -> float:
+    """The event's time on the step's (X1), by Brent's method (the speed is monotone on it)."""
+    from scipy.optimize import brentq
+
+    t, h = seg[0], seg[1]
+    f = lambda th: ev.g(t + th, _exp_state(th, *seg[2:]))  # noqa: E731
+    f_end = f(h)
+    if f_end == 0 or (f_end > 0) == (f(0.0) > 0):
+        return t + h
+    return t + brentq(f, 0.0, h, xtol=1e-15, rtol=1e-15, maxiter=200)
+
+
+# --- the reference it is measured against (bench/bench_profiled.py): a fixed 0.1 ms step ---------
+
+FIXED_STEP = 1e-4  # s
+
+
+class FixedRun(ExpRun):
+    """Steps of classical RK4 with the state linear between them (what `at` and the events see)."""
+
+    def at(self, t: float) -> list[float]:
+        i = max(0, min(bisect.bisect_right(self.t, t) - 1, len(self.t) - 2))
+        t0, t1 = self.t[i], self.t[i + 1]
+        th = (t - t0) / (t1 - t0) if t1 > t0 else 0.0
+        return [a + th * (b - a) for a, b in zip(self.y[i], self.y[i + 1])]
+
+    @property
+    def dense(self):
+        return []
+
+
+def integrate_rk4(rhs, t0: float, t1: float, y0, step: float, events=(), restart=()) -> FixedRun:
+    """Classical RK4 at a fixed step (the last one shortened to end at t1); an event is located by
+    linear interpolation between the steps it falls between."""
+    from .integrate import charge
+
+    run = FixedRun()
+    t, y = t0, list(y0)
+    run.t.append(t)
+    run.y.append(list(y))
+    g_prev = [ev.g(t, y) for ev in events]
+    n = max(1, math.ceil((t1 - t0) / step - 1e-9))
+    for i in range(n):
+        charge(4)
+        h = (t1 - t) if i == n - 1 else step
+        k1 = rhs(t, y)
+        k2 = rhs(t + h / 2, [a + h / 2 * b for a, b in zip(y, k1)])
+        k3 = rhs(t + h / 2, [a + h / 2 * b for a, b in zip(y, k2)])
+        k4 = rhs(t + h, [a + h * b for a, b in zip(y, k3)])
+        y1 = [a + h / 6 * (b + 2 * c + 2 * d + e) for a, b, c, d, e in zip(y, k1, k2, k3, k4)]
+        run.nfev += 4
+        t_new = t1 if i == n - 1 else t + h
+        hit = None
+        for idx, ev in enumerate(events):
+            g_old, g_new = g_prev[idx], ev.g(t_new, y1)
+            if (g_old < 0 <= g_new and ev.direction >= 0) or (g_old > 0 >= g_new and ev.direction <= 0):
+                th = g_old / (g_old - g_new) if g_old != g_new else 1.0
+                te = t + th * h
+                ye = [a + th * (b - a) for a, b in zip(y, y1)]
+                if ev.name in restart and i == 0 and th < 1e-9:
+                    pass
+                elif ev.terminal:
+                    if hit is None or te < hit[0]:
+                        hit = (te, ev, ye)
+                else:
+                    run.crossings.append((ev.name, te, ye))
+            g_prev[idx] = g_new
+        if hit is not None:
+            run.t.append(hit[0])
+            run.y.append(hit[2])
+            run.crossings = [c for c in run.crossings if c[1] <= hit[0]]
+            run.event = hit[1].name
+            return run
+        t, y = t_new, y1
+        run.t.append(t)
+        run.y.append(list(y))
+    return run
+
+
+@dataclass
+class ProfiledRun:
+    values: dict
+    series: dict
+    nfev: int
+    updates: int
+    saturated: int
+    settled: bool
+    key: dict
+
+
+def profiled_move(setup, loop: Loop, profile: Trapezoid, rtol: float, method: str = "exp") -> ProfiledRun:
+    """Simulate the loop (P1)-(P7) over the window and report (P8)-(P11)."""
+    m = setup.mech
+    s, d_move, q0, q1 = m.s, m.distance, m.q0, m.q1
+    from .motion import field_force, friction_of
+
+    field = setup.asm.slots["force"]
+    F_fric = friction_of(setup)
+    drive = driver(m, setup.asm.slots["duty"])
+    fpa, M, Vb, Rb, N = m.force_per_amp, m.inertia, m.battery_voltage, m.bus_resistance, m.count
+    n_kv = m.n / m.Kv
+    d = d_move  # position scale
+    v_ref = m.free_speed
+    e_ref = 1e-3 * N * Vb * Vb / m.R * d / v_ref
+    dt = loop.period
+    T_prof = profile.total_time
+    T_end = T_prof + max(SETTLE_EXTRA, T_prof)
+    K = math.ceil(T_end / dt - 1e-9)
+    T_end = K * dt
+    goal_s = s  # goal in scaled position (q1 − q0)/d
+    tol_s = loop.tolerance / d
+    ff_field = field_force(setup)
+
+    def net_force_at_rest(u_cmd: float, q: float) -> float:
+        _, I = drive(u_cmd, 0.0)
+        return fpa * I + ff_field(q)
+
+    def make_rhs(u_cmd: float, dirn: float):
+        F_f = dirn * F_fric
+        e_scale = N * Vb / e_ref
+        a_scale = 1.0 / (M * v_ref)
+        p_scale = v_ref / d
+        if field is None:
+
+            def rhs(t, y):
+                u, I = drive(u_cmd, n_kv * v_ref * y[1])
+                return [y[1] * p_scale, (fpa * I - F_f) * a_scale, u * I * e_scale]
+        else:
+
+            def rhs(t, y):
+                u, I = drive(u_cmd, n_kv * v_ref * y[1])
+                F = fpa * I + field(q0 + d * y[0]) - F_f
+                return [y[1] * p_scale, F * a_scale, u * I * e_scale]
+
+        return rhs
+
+    band = [
+        Event("band_hi", lambda t, y: y[0] - goal_s - tol_s, 0, terminal=False),
+        Event("band_lo", lambda t, y: y[0] - goal_s + tol_s, 0, terminal=False),
+    ]
+    # history of the position for the delayed measurement: piece starts, and (run or constant)
+    starts: list[float] = []
+    pieces: list[tuple[float, float, Any, list]] = []
+
+    def q_scaled_at(t: float) -> float:
+        if t <= 0:
+            return 0.0
+        i = bisect.bisect_right(starts, t) - 1
+        ta, tb, run, y = pieces[i]
+        if run is None or t >= tb:
+            return y[0] if run is None else run.y[-1][0]
+        return run.at(t)[0]
+
+    y = [0.0, 0.0, 0.0]
+    nfev = 0
+    h = None
+    e_prev = 0.0
+    saturated = 0
+    crossings: list[float] = []
+    track: list[float] = []
+    ts_out, q_out, r_out, v_out = [], [], [], []
+    volt_t, volt_v = [], []
+    cur_t, cur_st, cur_sup, cur_bus = [], [], [], []
+    peak_stator = peak_supply = 0.0
+    max_over = 0.0
+    max_speed = 0.0
+
+    def note_current(t, u_cmd, yy):
+        nonlocal peak_stator, peak_supply
+        u, I = drive(u_cmd, n_kv * v_ref * yy[1])
+        peak_stator = max(peak_stator, abs(I))
+        peak_supply = max(peak_supply, u * I)
+        cur_t.append(t)
+        cur_st.append(I)
+        cur_sup.append(u * I)
+        cur_bus.append(Vb - Rb * u * I)
+
+    for k in range(K):
+        t_k, t_next = k * dt, (k + 1) * dt
+        p_k, pv_k = profile.at(t_k)
+        p_n, pv_n = profile.at(t_next)
+        r_k, rv_k = q0 + s * p_k, s * pv_k
+        r_n, rv_n = q0 + s * p_n, s * pv_n
+        meas = q0 + d * q_scaled_at(t_k - loop.delay)  # (P3)
+        e = r_n - meas  # (P4)
+        V = loop.kP * e + loop.kD * (e - e_prev) / dt + loop.feedforward(r_k, rv_k, rv_n)
+        e_prev = e
+        if not math.isfinite(V):
+            raise InputError("kP", "the loop's voltage is not a number: the gains are too large")
+        if abs(V) > Vb:
+            saturated += 1
+            V = math.copysign(Vb, V)  # (P6)
+        u_cmd = V / Vb
+        q_k = q0 + d * y[0]
+        track.append(r_k - q_k)  # (P10)
+        ts_out.append(t_k)
+        q_out.append(q_k)
+        r_out.append(r_k)
+        v_out.append(v_ref * y[1])
+        volt_t += [t_k, t_next]
+        volt_v += [V, V]
+        note_current(t_k, u_cmd, y)
+        # integrate the period, piece by piece between reversals of the motion
+        t = t_k
+        restart: tuple[str, ...] = ()
+        for _ in range(MAX_PIECES):
+            if y[1] == 0.0:
+                F0 = net_force_at_rest(u_cmd, q0 + d * y[0])
+                if abs(F0) <= F_fric:  # stuck for the rest of the period (P7)
+                    u, I = drive(u_cmd, 0.0)
+                    y = [y[0], 0.0, y[2] + N * Vb * u * I / e_ref * (t_next - t)]
+                    starts.append(t)
+                    pieces.append((t, t_next, None, y))
+                    t = t_next
+                    break
+                dirn = 1.0 if F0 > 0 else -1.0
+            else:
+                dirn = 1.0 if y[1] > 0 else -1.0
+            stop = Event("stop", (lambda dn: lambda t_, yy: dn * yy[1])(dirn), -1, terminal=True)
+            if method == "DP54":
+                run = integrate(
+                    make_rhs(u_cmd, dirn),
+                    t,
+                    t_next,
+                    y,
+                    rtol=rtol,
+                    atol=rtol,
+                    events=[stop, *band],
+                    max_steps=STEP_CAP,
+                    first_step=h,
+                    dense=True,
+                    restart=restart,
+                )
+            elif method == "RK4":
+                run = integrate_rk4(make_rhs(u_cmd, dirn), t, t_next, y, FIXED_STEP, [stop, *band], restart)
+            else:
+                run = integrate_exp(
+                    make_rhs(u_cmd, dirn),
+                    v_ref / d,
+                    t,
+                    t_next,
+                    y,
+                    rtol,
+                    [stop, *band],
+                    h,
+                    restart,
+                    p_coupled=field is not None and setup.varying,
+                )
+            nfev += run.nfev
+            if run.dense:
+                h = min(dt, max(abs(hs) for _, hs, _ in run.dense))
+            starts.append(t)
+            pieces.append((t, run.t[-1], run, run.y[-1]))
+            crossings += [c[1] for c in run.crossings]
+            for tt, yy in zip(run.t[1:], run.y[1:]):
+                note_current(tt, u_cmd, yy)
+                max_over = max(max_over, s * (yy[0] - goal_s) * d)
+                max_speed = max(max_speed, abs(yy[1]) * v_ref)
+            y = list(run.y[-1])
+            t = run.t[-1]
+            if run.event == "stop":
+                y[1] = 0.0
+                restart = ("stop",)
+                if t >= t_next * (1 - 1e-15):
+                    break
+                continue
+            break
+        else:
+            y = [y[0], 0.0, y[2]]  # chattering about zero speed: held at rest for the period
+            t = t_next
+    q_end = q0 + d * y[0]
+    ts_out.append(T_end)
+    q_out.append(q_end)
+    r_out.append(q1)
+    v_out.append(v_ref * y[1])
+    track.append(q1 - q_end)
+    err_end = q_end - q1
+    settled = abs(err_end) <= loop.tolerance
+    settle = None
+    if settled:
+        settle = max(crossings) if crossings else 0.0  # (P8)
+    rms = math.sqrt(sum(x * x for x in track) / len(track))
+    values = {
+        "profile_time": T_prof,
+        "profile_max_velocity": profile.v_max,
+        "profile_max_acceleration": profile.a_max,
+        "overshoot": max_over,
+        "final_error": -s * err_end,
+        "rms_tracking_error": rms,
+        "peak_tracking_error": max(abs(x) for x in track),
+        "peak_stator_current": peak_stator,
+        "peak_supply_current": peak_supply,
+        "peak_battery_current": N * peak_supply,
+        "min_bus_voltage": Vb - Rb * peak_supply,
+        "energy": y[2] * e_ref,
+        "max_speed": max_speed,
+        "control_updates": K,
+    }
+    if settle is not None:
+        values["settle_time"] = settle
+    key = {
+        "peak_tracking_error": values["peak_tracking_error"],
+        "overshoot": max_over,
+        "peak_stator_current": peak_stator,
+    }
+    if settle is not None:
+        key["settle_time"] = settle
+    series = {
+        "position": (ts_out, q_out),
+        "profile": (ts_out, r_out),
+        "speed": (ts_out, v_out),
+        "voltage": (volt_t, volt_v),
+        "stator_current": (cur_t, cur_st),
+        "supply_current": (cur_t, cur_sup),
+        "bus_voltage": (cur_t, cur_bus),
+    }
+    return ProfiledRun(values, series, nfev, K, saturated, settled, key)
+
+
+def as_sim_run(pr: ProfiledRun, extra: dict, loop: Loop) -> SimRun:
+    warnings = []
+    if not pr.settled:
+        warnings.append(
+            f"The move does not settle within ±{loop.tolerance:.4g} of the goal by the end of the "
+            f"window ({pr.updates} updates): no settle time. Raise the gains or the tolerance, or slow the profile."
+        )
+    if pr.saturated:
+        warnings.append(
+            f"The loop's voltage saturated at the battery voltage in {pr.saturated} of {pr.updates} "
+            f"updates: the profile asks for more than the motors give (lower the fractions or limits)."
+        )
+    values = dict(pr.values)
+    values.update(extra)
+    return SimRun(values, pr.key, pr.nfev, warnings, pr.series)
+
+
+# --- the mode's fields, outputs and run, shared by the motor scenes ------------------------------
+
+PROFILED = ("profiled",)
+LIMIT_CHOICES = ("derived", "entered")
+LIMIT_LABELS = (
+    "Derived: fractions of the free speed and of the acceleration at stall",
+    "Entered: max velocity and acceleration",
+)
+FEEDBACK_CHOICES = ("lqr", "entered")
+FEEDBACK_LABELS = ("LQR gains (as shown: kP, kD)", "Entered kP and kD")
+
+
+def profile_fields(
+    pos: tuple[str, str],
+    speed: tuple[str, str, float],
+    accel: tuple[str, str, float],
+    kp: tuple[str, str, float],
+    kd: tuple[str, str, float],
+    tolerance: float,
+) -> tuple:
+    """The profiled move's fields: (quantity, unit[, default]) of each kind of the scene's q."""
+    from ..fields import Field
+
+    return (
+        Field(
+            "profile_limits",
+            "Profile limits",
+            choices=LIMIT_CHOICES,
+            choice_labels=LIMIT_LABELS,
+            default="derived",
+            modes=PROFILED,
+            help="The trapezoid's max velocity and acceleration: fractions of what the mechanism can "
+            "do (free speed; acceleration from rest at full voltage against the load), or entered.",
+        ),
+        Field(
+            "velocity_fraction",
+            "Velocity fraction",
+            "dimensionless",
+            "",
+            default=0.6,
+            min=0,
+            min_exclusive=True,
+            max=1,
+            modes=PROFILED,
+            when=(("profile_limits", ("derived",)),),
+            help="Profile max velocity as a fraction of the free speed (0-1). Velocity and acceleration "
+            "fractions summing below 1 leave voltage for the feedback.",
+        ),
+        Field(
+            "acceleration_fraction",
+            "Acceleration fraction",
+            "dimensionless",
+            "",
+            default=0.3,
+            min=0,
+            min_exclusive=True,
+            max=1,
+            modes=PROFILED,
+            when=(("profile_limits", ("derived",)),),
+            help="Profile max acceleration as a fraction of the acceleration from rest at full voltage "
+            "against the load (0-1).",
+        ),
+        Field(
+            "max_velocity",
+            "Max velocity",
+            speed[0],
+            speed[1],
+            default=speed[2],
+            min=0,
+            min_exclusive=True,
+            max=1e6,
+            modes=PROFILED,
+            when=(("profile_limits", ("entered",)),),
+            help="The trapezoid profile's cruise velocity (TrapezoidProfile.Constraints maxVelocity).",
+        ),
+        Field(
+            "max_acceleration",
+            "Max acceleration",
+            accel[0],
+            accel[1],
+            default=accel[2],
+            min=0,
+            min_exclusive=True,
+            max=1e7,
+            modes=PROFILED,
+            when=(("profile_limits", ("entered",)),),
+            help="The trapezoid profile's acceleration (TrapezoidProfile.Constraints maxAcceleration).",
+        ),
+        Field(
+            "feedback",
+            "Feedback gains",
+            choices=FEEDBACK_CHOICES,
+            choice_labels=FEEDBACK_LABELS,
+            default="lqr",
+            modes=PROFILED,
+            help="The PD gains of the loop: the LQR gains computed from the tolerances below, or your own.",
+        ),
+        Field(
+            "feedback_kp",
+            "kP",
+            kp[0],
+            kp[1],
+            default=kp[2],
+            min=0,
+            max=1e6,
+            modes=PROFILED,
+            when=(("feedback", ("entered",)),),
+            help="Proportional gain, volts per unit of position error (PIDController kP).",
+        ),
+        Field(
+            "feedback_kd",
+            "kD",
+            kd[0],
+            kd[1],
+            default=kd[2],
+            min=0,
+            max=1e6,
+            modes=PROFILED,
+            when=(("feedback", ("entered",)),),
+            help="Derivative gain, volts per unit of speed error (PIDController kD, on the error's "
+            "difference over the period).",
+        ),
+        Field(
+            "settle_tolerance",
+            "Settle tolerance",
+            pos[0],
+            pos[1],
+            default=tolerance,
+            min=0,
+            min_exclusive=True,
+            max=1e6,
+            modes=PROFILED,
+            help="Settled: within this of the goal from then to the end of the simulated window "
+            "(the profile's time plus the larger of 1 s and that time).",
+        ),
+    )
+
+
+def profile_outputs(pos: tuple[str, str], speed: tuple[str, str], accel: tuple[str, str]) -> tuple:
+    from ..declarations import Output
+
+    return (
+        Output(
+            "settle_time",
+            "Settle time",
+            "time",
+            "s",
+            help="Profiled: from the start until the position stays within the tolerance of the goal (P8).",
+            equation="(P8)",
+        ),
+        Output(
+            "profile_time",
+            "Profile time",
+            "time",
+            "s",
+            help="The trapezoid's duration (P1).",
+            equation="(P1)",
+        ),
+        Output(
+            "profile_max_velocity",
+            "Profile max velocity",
+            speed[0],
+            speed[1],
+            help="The profile's velocity limit used (P1).",
+            equation="(P1)",
+        ),
+        Output(
+            "profile_max_acceleration",
+            "Profile max acceleration",
+            accel[0],
+            accel[1],
+            help="The profile's acceleration limit used (P1).",
+            equation="(P1)",
+        ),
+        Output(
+            "overshoot",
+            "Overshoot",
+            pos[0],
+            pos[1],
+            help="Farthest past the goal (0 when it never passes it) (P9).",
+            equation="(P9)",
+        ),
+        Output(
+            "final_error",
+            "Steady-state error",
+            pos[0],
+            pos[1],
+            help="Goal minus position at the end of the window, toward the goal (positive: short) (P9).",
+            equation="(P9)",
+        ),
+        Output(
+            "rms_tracking_error",
+            "RMS tracking error",
+            pos[0],
+            pos[1],
+            help="Profile position minus position at the control updates, RMS over the window (P10).",
+            equation="(P10)",
+        ),
+        Output(
+            "peak_tracking_error",
+            "Peak tracking error",
+            pos[0],
+            pos[1],
+            help="Largest |profile position − position| at the control updates (P10).",
+            equation="(P10)",
+        ),
+        Output(
+            "control_updates",
+            "Control updates",
+            help="Periods simulated over the window (each one integrator call or more) (P6).",
+            equation="(P6)",
+        ),
+    )
+
+
+def profile_plots(label: str, pos_q: str, pos_u: str) -> tuple:
+    from ..declarations import Plot
+
+    return (
+        Plot(
+            f"{label.capitalize()} vs profile (profiled)",
+            ("position", "profile"),
+            "time",
+            "time",
+            "s",
+            label,
+            pos_q,
+            pos_u,
+        ),
+        Plot("Voltage (profiled)", ("voltage",), "time", "time", "s", "voltage", "voltage", "V"),
+    )
+
+
+def stall_acceleration(setup) -> float:
+    """Acceleration toward the goal from rest at full voltage against the load at the start (M4)."""
+    from .motion import electrical, field_force, friction_of
+
+    m = setup.mech
+    _, I0 = electrical(m, setup.asm.slots["duty"])(0.0)
+    return (m.force_per_amp * I0 + m.s * field_force(setup)(m.q0) - friction_of(setup)) / m.inertia
+
+
+def loop_of(setup, v, ff: dict, kG) -> tuple[Loop, Trapezoid, dict]:
+    """The loop and profile from the entries; kP, kD from LQR (motion.lqr) or entered."""
+    from .motion import check_can_move, lqr
+
+    check_can_move(setup)
+    m = setup.mech
+    if v["profile_limits"] == "derived":
+        v_max = v["velocity_fraction"] * m.free_speed
+        a_max = v["acceleration_fraction"] * stall_acceleration(setup)
+    else:
+        v_max, a_max = v["max_velocity"], v["max_acceleration"]
+    if v["feedback"] == "lqr":
+        try:
+            kP, kD = lqr(
+                ff["kV"],
+                ff["kA"],
+                v["q_position"],
+                v["q_velocity"],
+                v["r_volts"],
+                v["control_period"],
+                v["sensor_delay"],
+            )
+        except Exception as exc:  # noqa: BLE001 - scipy raises LinAlgError
+            raise InputError(
+                "q_position", f"no LQR solution for these tolerances ({type(exc).__name__})"
+            ) from None
+        if not (math.isfinite(kP) and math.isfinite(kD)):
+            raise InputError("q_position", "the LQR gains are not finite for these tolerances")
+    else:
+        kP, kD = v["feedback_kp"], v["feedback_kd"]
+    loop = Loop(
+        ff["kS"],
+        kG,
+        ff["kV"],
+        ff["kA"],
+        kP,
+        kD,
+        v["control_period"],
+        v["sensor_delay"],
+        v["settle_tolerance"],
+    )
+    profile = Trapezoid(m.distance, v_max, a_max)
+    T = profile.total_time
+    if not (math.isfinite(T) and T > 0):
+        raise InputError("max_velocity", "the profile's time is not a positive number")
+    updates = (T + max(SETTLE_EXTRA, T)) / v["control_period"]
+    if updates > MAX_UPDATES:
+        field_name = "control_period" if T < 600 else "max_velocity"
+        raise InputError(
+            field_name,
+            f"the move needs {updates:.3g} control updates (more than {MAX_UPDATES}): "
+            "lengthen the control period or speed up the profile",
+        )
+    return loop, profile, {"kP": kP, "kD": kD}
+
+
+MAX_UPDATES = 5_000  # 100 s of a 20 ms loop: within one solve's budget (scene.SOLVE_NFEV)
+
+
+def run_profiled(setup, v, rtol: float, ff: dict, kG) -> SimRun:
+    """Every output of the profiled mode (the gains shown are those the loop used)."""
+    loop, profile, gains = loop_of(setup, v, ff, kG)
+    pr = profiled_move(setup, loop, profile, rtol)
+    extra = {**ff, **gains, "free_speed": setup.mech.free_speed}
+    return as_sim_run(pr, extra, loop)
