@@ -28,8 +28,9 @@ The plant between updates (per motor; the duty signed, a limit lowers its magnit
 F_fric is the motors' own loss (M3) plus the friction effect (Coulomb, against the motion). At
 q̇ = 0 the mechanism sticks while |η·N·Kt·n·I + F_field| ≤ F_fric (both constant there for the rest
 of the period: the duty is held, E = 0 and q does not change), else moves toward that force. Each
-period is integrated by the scene's integrator (core.sim.integrate, DP54) from t_k to t_{k+1}, with
-a terminal event where q̇ passes 0 (the friction changes sign there) and the band events below.
+period is integrated from t_k to t_{k+1} by the exponential step below ((X1)-(X3): the scene's DP54
+is held to steps ≈ 3τ there), with a terminal event where q̇ passes 0 (the friction changes sign
+there) and the band events below.
 Outputs:
     settle time: the first t after which |q − goal| ≤ tol up to the end of the window, the band
     edges located as events on the dense output (continuous, not on the update grid)      (P8)
