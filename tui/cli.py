@@ -20,7 +20,9 @@ def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="gearhead", description="Mechanism design calculators for FRC and VEX.")
     sub = p.add_subparsers(dest="command")
     s = sub.add_parser("solve", help="solve one calculator and print its outputs")
-    s.add_argument("calculator", help="calculator id (see `gearhead calculators`)")
+    s.add_argument(
+        "calculator", help="calculator id (see `gearhead calculators`), or a workbook file (.toml)"
+    )
     s.add_argument("--preset", metavar="FILE", help="start from this preset file")
     s.add_argument(
         "--set",
@@ -70,6 +72,9 @@ def _parser() -> argparse.ArgumentParser:
     pr.add_argument("calculator", nargs="?", help="only this calculator's presets")
     c = sub.add_parser("calculators", help="list calculator ids, modes and fields")
     c.add_argument("--json", action="store_true")
+    from . import workbook_cli  # `check`, and solve/sweep of a workbook file
+
+    workbook_cli.add_parser(sub)
     return p
 
 
@@ -148,6 +153,12 @@ def _exception_line(traceback: str) -> str:
 
 
 def _command(args) -> int:
+    from . import workbook_cli
+
+    if args.command == "check":
+        return workbook_cli.check(args)
+    if args.command in ("solve", "sweep") and workbook_cli.is_workbook(args.calculator):
+        return workbook_cli.solve(args) if args.command == "solve" else workbook_cli.sweep(args)
     if args.command == "solve":
         return _solve(args)
     if args.command == "presets":
