@@ -64,6 +64,7 @@ EQUAL_WITHIN = 1e-9  # == and != on measured quantities: equal within this relat
 BUILTIN_PREFIX = "builtin:"
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 _KEYWORD_PREFIX = "_kw_"  # a unit that is a Python keyword ('in') is renamed while parsing
+_KEYWORD_UNITS = {"in"}  # the others ('if', 'not', 'lambda') keep their meaning and are refused
 _COMPARISONS = {ast.Lt: "<", ast.LtE: "<=", ast.Gt: ">", ast.GtE: ">=", ast.Eq: "==", ast.NotEq: "!="}
 _TYPESET = str.maketrans({"\u2212": "-", "·": "*", "⋅": "*", "×": "*", "÷": "/", "^": "**"})
 
@@ -117,18 +118,19 @@ def parse_expression(text: str, where: str, source: str, compare: bool = False) 
         operands = [tree.left, *tree.comparators]
     else:
         operands = [tree]
-    names: set[str] = set()
+    exprs = []
     for node in operands:
+        names: set[str] = set()
         _check_node(node, fail, names)
-    exprs = [Expr(ast.unparse(n).replace(_KEYWORD_PREFIX, ""), n, frozenset(names)) for n in operands]
+        exprs.append(Expr(ast.unparse(node).replace(_KEYWORD_PREFIX, ""), node, frozenset(names)))
     if compare:
         return [exprs, ops]
-    return Expr(text.strip(), tree, frozenset(names))
+    return Expr(text.strip(), tree, exprs[0].names)
 
 
 def _python_source(body: str, fail) -> str:
     """`body` as Python: a product written as juxtaposition ('9.8 m/s**2', '2 ft') gets its '*',
-    a unit that is a Python keyword ('in') a name Python accepts."""
+    the inch ('in', a Python keyword) a name Python accepts."""
     out: list[str] = []
     previous = None  # the last token's type: a value ends with a NUMBER, NAME or ')'
     try:
@@ -148,7 +150,7 @@ def _python_source(body: str, fail) -> str:
         if starts_value and previous in ("value", ")") and not (out and out[-1] == "."):
             out.append("*")
         text = tok.string
-        if tok.type == tokenize.NAME and keyword.iskeyword(text):
+        if tok.type == tokenize.NAME and text in _KEYWORD_UNITS:
             text = _KEYWORD_PREFIX + text
         out.append(text)
         if tok.type in (tokenize.NUMBER, tokenize.NAME):
@@ -605,6 +607,13 @@ def evaluate(expr: Expr, scope: Scope, where: str, src: str) -> Any:
             number(x, ast.unparse(node.operand))
             return -x if isinstance(node.op, ast.USub) else x
         left, right = walk(node.left), walk(node.right)
+        if (
+            isinstance(node.op, ast.Pow)
+            and right is UNKNOWN
+            and _is_quantity(left)
+            and not left.dimensionless
+        ):
+            fail("raises a quantity with a unit to a power that is not a plain number")
         if left is UNKNOWN or right is UNKNOWN:
             return UNKNOWN
         number(left, ast.unparse(node.left).replace(_KEYWORD_PREFIX, ""))
@@ -625,6 +634,8 @@ def evaluate(expr: Expr, scope: Scope, where: str, src: str) -> Any:
                     fail("divides by zero")
                 return tidy(left / right)
             return tidy(power(node, left, right))
+        except InputError:
+            raise
         except pint.errors.DimensionalityError as exc:
             fail(f"{_kinds_text(exc)}: the terms of + and - must be of one kind")
         except (OverflowError, ZeroDivisionError, ValueError, ArithmeticError):
@@ -692,10 +703,8 @@ def evaluate(expr: Expr, scope: Scope, where: str, src: str) -> Any:
                 kind = table.column(path[1]).quantity
             except KeyError:
                 fail(f"{shown(path[1])} is not a column of {card}.{path[0]}")
-        if scope.static:
-            if kind == "dimensionless":
-                return UNKNOWN
-            return ureg.Quantity(1.0, units.SI_UNITS[kind])
+        if scope.static:  # a dimensionless output may also be text: _check_kinds lets it pass as either
+            return ureg.Quantity(1.0, units.SI_UNITS[kind] or "dimensionless")
         if card in scope.failed:
             raise NotSolved(f"{card} could not be solved ({scope.failed[card]})")
         solution = scope.cards[card]
@@ -749,10 +758,13 @@ def _calc(wb: Workbook, card: str):
 # Into a card's field
 
 
-def entry_for(f, value: Any, where: str, src: str) -> Any:
+def entry_for(f, value: Any, where: str, src: str, static: bool = False) -> Any:
     """A referenced value as an entry of field `f` (what a user would type): a quantity in the
-    field's display unit, a whole number, or a word. InputError when the kind does not fit."""
+    field's display unit, a whole number, or a word. InputError when the kind does not fit.
+    `static`: the kinds check, where a plain number may stand for a card's text output."""
     if value is UNKNOWN:
+        return value
+    if static and not f.kind.numeric and _is_quantity(value) and value.dimensionless:
         return value
     if f.kind.with_unit:
         if isinstance(value, (str, bool)):
@@ -799,7 +811,7 @@ def entry_for(f, value: Any, where: str, src: str) -> Any:
 
 
 def _kind_words(kind: str) -> str:
-    return "a plain number" if kind == "dimensionless" else f"a {kind.replace('_', ' ')}"
+    return "a plain number" if kind == "dimensionless" else units._a(kind)
 
 
 def _dimension_words(q: Any) -> str:
@@ -830,11 +842,26 @@ def _check_kinds(wb: Workbook) -> None:
         calc = _calc(wb, node)
         for field_name, expr in card.links.items():
             where = f"cards.{node}.{field_name}"
-            entry_for(calc.field(field_name), evaluate(expr, scope, where, wb.source), where, wb.source)
+            value = evaluate(expr, scope, where, wb.source)
+            try:
+                entry_for(calc.field(field_name), value, where, wb.source, static=True)
+            except InputError as exc:
+                raise InputError(where, exc.message + _read_as_units(wb, [expr]), wb.source) from None
     for r in wb.requirements:
         where = f"requirements[{r.index}].check"
         sides = [evaluate(e, scope, where, wb.source) for e in r.operands]
-        _compare_kinds(sides, r, where, wb.source)
+        try:
+            _compare_kinds(sides, r, where, wb.source, static=True)
+        except InputError as exc:
+            raise InputError(where, exc.message + _read_as_units(wb, r.operands), wb.source) from None
+
+
+def _read_as_units(wb: Workbook, exprs: list[Expr]) -> str:
+    """'; read as units: mas' when a name that is no variable or card was taken for a unit (a typo
+    of a variable's name may be one of pint's many units), else ''."""
+    known = set(wb.variables) | set(wb.cards)
+    guessed = sorted({n for e in exprs for n in e.names if n not in known and len(n) > 1})
+    return f" (read as units: {', '.join(guessed)})" if guessed else ""
 
 
 def _literal_value(v: Variable) -> Any:
@@ -845,13 +872,15 @@ def _literal_value(v: Variable) -> Any:
     )
 
 
-def _compare_kinds(sides: list, r: Requirement, where: str, src: str) -> None:
+def _compare_kinds(sides: list, r: Requirement, where: str, src: str, static: bool = False) -> None:
     import pint
 
     for (a, b), op in zip(zip(sides, sides[1:]), r.ops):
         if a is UNKNOWN or b is UNKNOWN:
             continue
         texts = isinstance(a, (str, bool)) or isinstance(b, (str, bool))
+        if texts and static and any(_is_quantity(x) and x.dimensionless for x in (a, b)):
+            continue  # a card's dimensionless output may be text
         if texts:
             if op not in ("==", "!=") or type(a) is not type(b):
                 raise InputError(
@@ -997,6 +1026,8 @@ def solve(wb: Workbook, overrides: Mapping[str, Any] | None = None) -> Outcome:
                     scope.variables[node] = evaluate(v.expr, scope, f"variables.{node}", src)
                 except NotSolved as exc:
                     scope.variables[node] = _Missing(str(exc))
+                except InputError as exc:  # e.g. a division by zero at these values
+                    scope.variables[node] = _Missing(f"{node}: {exc.message}")
             else:
                 scope.variables[node] = _literal_value(v)
             continue
@@ -1010,6 +1041,9 @@ def solve(wb: Workbook, overrides: Mapping[str, Any] | None = None) -> Outcome:
                 raw[field_name] = _link_entry(wb, scope, expr, calc.field(field_name), where, overrides)
             except NotSolved as exc:
                 error = f"{field_name}: not solved: {exc}"
+                break
+            except InputError as exc:  # the reference cannot be worked out at these values
+                error = f"{field_name}: {exc.message}"
                 break
         links = {k: "= " + e.text for k, e in card.links.items()}
         if error is None:
@@ -1065,8 +1099,11 @@ def _check(wb: Workbook, scope: Scope, r: Requirement) -> CheckResult:
             return CheckResult(r, None, [], "", None, None, "", f"not evaluated: {value.why}")
     try:
         sides = [evaluate(e, scope, where, wb.source) for e in r.operands]
+        _compare_kinds(sides, r, where, wb.source)  # text against a number shows only now
     except NotSolved as exc:
         return CheckResult(r, None, [], "", None, None, "", f"not evaluated: {exc}")
+    except InputError as exc:  # e.g. a division by zero at these values
+        return CheckResult(r, None, [], "", None, None, "", f"not evaluated: {exc.message}")
     if any(isinstance(s, (str, bool)) for s in sides):
         holds = all((a == b) if op == "==" else (a != b) for (a, b), op in zip(zip(sides, sides[1:]), r.ops))
         return CheckResult(r, holds, [str(s) for s in sides], "", None, None, "")
