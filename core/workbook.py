@@ -513,13 +513,23 @@ def _order(wb: Workbook) -> list[str]:
     for c in wb.cards.values():
         graph[c.name] = set().union(*(e.references(known) for e in c.links.values()))
     sorter = graphlib.TopologicalSorter(graph)
+    position = {name: i for i, name in enumerate(graph)}
     try:
-        return list(sorter.static_order())
+        sorter.prepare()
     except graphlib.CycleError as exc:
         cycle = exc.args[1]  # [a, b, ..., a]
         first = cycle[0]
         where = _where_reads(wb, first, cycle[1])
         raise InputError(where, f"a cycle of references: {' → '.join(reversed(cycle))}", wb.source) from None
+    order: list[str] = []
+    ready: set[str] = set()
+    while sorter.is_active():  # of the ready ones, the first in the file: cards print in file order
+        ready.update(sorter.get_ready())
+        node = min(ready, key=position.__getitem__)
+        ready.remove(node)
+        order.append(node)
+        sorter.done(node)
+    return order
 
 
 def _where_reads(wb: Workbook, node: str, target: str) -> str:
@@ -664,6 +674,8 @@ def evaluate(expr: Expr, scope: Scope, where: str, src: str) -> Any:
     def name(n: str):
         if n in scope.variables:
             return scope.variables[n]
+        if n in ("true", "false"):  # for yes/no outputs: clear.axle_clears == true
+            return n == "true"
         wb = scope.workbook
         if wb is not None and n in wb.cards:
             outs = ", ".join(o.name for o in _calc(wb, n).outputs)

@@ -431,3 +431,36 @@ def test_a_division_by_zero_at_these_values_fails_the_card_not_the_file():
     assert "divides by zero" in outcome.cards["stage"].error
     assert outcome.checks[0].holds is None
     assert outcome.checks[1].holds is None and "divides by zero" in outcome.checks[1].error
+
+
+def test_yes_no_outputs_compare_with_true_and_false():
+    text = """
+[cards.gears]
+calculator = "gear_clearance"
+inputs = { axle_diameter = "0.5 in" }
+
+[[requirements]]
+check = "gears.axle_clears == true"
+
+[[requirements]]
+check = "gears.axle_clears == false"
+"""
+    outcome = workbook.solve(book(text))
+    clears = outcome.cards["gears"].solution.outputs["axle_clears"].value
+    assert isinstance(clears, bool)
+    assert [c.holds for c in outcome.checks] == [clears, not clears]
+
+
+def test_cards_print_in_file_order_where_links_allow():
+    # 'stage' reads 'lift', so it waits; otherwise the file's order stands
+    text = BASE.replace("[cards.lift]", '[cards.stage2]\ncalculator = "motor"\n\n[cards.lift]')
+    text = text.replace("[cards.stage2]", "[cards.first]")
+    assert book(text).order == ["mass", "spool", "motor_name", "first", "lift", "stage"]
+
+
+def test_a_card_waits_for_a_later_card_it_reads():
+    lift = BASE[BASE.index("[cards.lift]") : BASE.index("[cards.stage]")]
+    stage = BASE[BASE.index("[cards.stage]") :]
+    text = BASE[: BASE.index("[cards.lift]")] + stage + "\n" + lift
+    assert text.index("[cards.stage]") < text.index("[cards.lift]")
+    assert book(text).order[-2:] == ["lift", "stage"]
