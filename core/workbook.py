@@ -978,6 +978,7 @@ class Outcome:
     variables: dict[str, Any]
     cards: dict[str, CardResult]
     checks: list[CheckResult]
+    rhs_evaluations: int = 0  # of the simulated cards solved for this outcome
 
     @property
     def all_hold(self) -> bool:
@@ -1023,6 +1024,7 @@ def solve(wb: Workbook, overrides: Mapping[str, Any] | None = None) -> Outcome:
     overrides = dict(overrides or {})
     scope = Scope({}, {}, {}, workbook=wb)
     results: dict[str, CardResult] = {}
+    evaluations = 0  # right-hand-side evaluations of the scenes solved now (not from the cache)
     src = wb.source
     ureg = units.registry()
     for node in wb.order:
@@ -1064,6 +1066,8 @@ def solve(wb: Workbook, overrides: Mapping[str, Any] | None = None) -> Outcome:
             if cached is None:
                 try:
                     cached = (solve_card(calc.id, raw), None)
+                    work = cached[0].outputs.get("rhs_evaluations")
+                    evaluations += int(work.value) if work is not None else 0
                 except InputError as exc:
                     cached = (None, f"{exc.field}: {exc.message}")
                 if len(wb._cache) > 4096:
@@ -1078,9 +1082,8 @@ def solve(wb: Workbook, overrides: Mapping[str, Any] | None = None) -> Outcome:
             scope.cards[node] = solution
         results[node] = CardResult(node, calc.id, solution, error, links, raw)
     checks = [_check(wb, scope, r) for r in wb.requirements]
-    return Outcome(
-        wb, {k: v for k, v in scope.variables.items() if not isinstance(v, _Missing)}, results, checks
-    )
+    variables = {k: v for k, v in scope.variables.items() if not isinstance(v, _Missing)}
+    return Outcome(wb, variables, results, checks, evaluations)
 
 
 class _Missing:
@@ -1203,11 +1206,14 @@ def as_calculator(wb: Workbook):
         outputs.append(
             Output(r.key, r.name or r.check, kind, unit if unit else units.SI_UNITS[kind], help=r.check)
         )
+    # a study's cost line counts the scenes' work (core.sweep.STATS: never a column)
+    outputs.append(Output("rhs_evaluations", "Solver work (evaluations)"))
 
     def compute(values: Mapping[str, Any]) -> Result:
         overrides = {f.name: values[f.name] for f in fields if f.name in values}
         outcome = solve(wb, overrides)
-        out, warnings = {}, []
+        out: dict[str, Any] = {"rhs_evaluations": outcome.rhs_evaluations}
+        warnings = []
         for c in outcome.checks:
             if c.margin_si is not None:
                 out[c.requirement.key] = c.margin_si

@@ -46,7 +46,7 @@ def run_sweep(
         raise InputError("--vary", f"sweep one variable (a table) or two (a grid), not {len(specs)}")
     if len(specs) == 2 and specs[0].name == specs[1].name:
         raise InputError(specs[0].name, "is varied twice")
-    known = [o.name for o in calc.outputs]
+    known = [o.name for o in calc.outputs if o.name not in sweeps.STATS]
     for name in outputs:
         if name not in known:
             raise InputError(name, f"is not a requirement of the workbook (requirements: {', '.join(known)})")
@@ -112,6 +112,8 @@ class WorstCase:
     def as_json(self) -> dict[str, Any]:
         out = {}
         for o in self.calculator.outputs:
+            if o.name in sweeps.STATS:
+                continue
             s = self.spread.outputs.get(o.name) if self.spread else None
             out[o.name] = {
                 "nominal_margin": self.nominal.get(o.name),
