@@ -594,13 +594,18 @@ def evaluate(expr: Expr, scope: Scope, where: str, src: str) -> Any:
         if scope.static and _is_quantity(x):
             return ureg.Quantity(1.0, x.units)  # only the dimension is known
         m = x.magnitude if _is_quantity(x) else x
+        if isinstance(m, int) and not isinstance(m, bool):
+            m = float(m) if abs(m) < 1e300 else math.inf  # a card's whole-number outputs multiplied
         if isinstance(m, float) and not math.isfinite(m):
             fail("is not a finite number")
         return x
 
     def walk(node):
-        if isinstance(node, ast.Constant):
-            return node.value
+        if isinstance(node, ast.Constant):  # a float, so no product of integers grows without bound
+            try:
+                return float(node.value)
+            except OverflowError:
+                fail("is not a finite number")
         if isinstance(node, ast.Name):
             return name(node.id.removeprefix(_KEYWORD_PREFIX))
         if isinstance(node, ast.Attribute):
@@ -1135,6 +1140,10 @@ def _check(wb: Workbook, scope: Scope, r: Requirement) -> CheckResult:
         holds = holds and ok
         margins.append(m)
         si_margins.append(sm)
+    if not all(math.isfinite(x) for x in margins + si_margins):  # 1e300 m > -1e300 m
+        return CheckResult(
+            r, None, [], "", None, None, "", "not evaluated: the values are too large to compare"
+        )
     sides_text = [f"{units.format_number(m)} {unit}".rstrip() for m in mags]
     return CheckResult(r, holds, sides_text, unit, min(margins), min(si_margins), kind)
 

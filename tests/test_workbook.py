@@ -464,3 +464,29 @@ def test_a_card_waits_for_a_later_card_it_reads():
     text = BASE[: BASE.index("[cards.lift]")] + stage + "\n" + lift
     assert text.index("[cards.stage]") < text.index("[cards.lift]")
     assert book(text).order[-2:] == ["lift", "stage"]
+
+
+@pytest.mark.parametrize(
+    "reference",
+    [
+        "= 99 ** 99 * 99 ** 99 * 99 ** 99 * 99 ** 99",
+        "= " + "9" * 320,
+        "= 1e300 * 1e300",
+        "= 2 ** 2 ** 2 ** 2 ** 2",
+        "= lift.ratio / 0",
+        "= " + "(" * 41 + "1" + ")" * 41,
+        "= -" * 60 + "1",
+    ],
+)
+def test_hostile_references_give_a_message_never_a_traceback(tmp_path, capsys, reference):
+    path = tmp_path / "robot.toml"
+    path.write_text(with_requirements("stage.ratio > 1").replace('"= lift.ratio * 2"', json.dumps(reference)))
+    code, out, err = run(capsys, "check", path, "--json")
+    assert code in (1, 2), err
+    if code == 2:
+        assert out == "" and err.startswith(f"gearhead: {path}: cards.stage.ratio: ") and "\n" == err[-1]
+        assert err.count("\n") == 1
+    else:  # solved as far as it goes: the card failed, named
+        data = json.loads(out)
+        assert data["card_errors"]["stage"].startswith("ratio: ")
+        assert data["requirements"][0]["holds"] is None

@@ -149,7 +149,7 @@ def solve(args) -> int:
     wb = _load(args.calculator, args)
     outcome = workbook.solve(wb)
     if args.json:
-        print(json.dumps(outcome.as_json(with_cards=True), allow_nan=False, default=str))
+        print(json.dumps(outcome.as_json(with_cards=True), allow_nan=False))
         return 0
     print(f"{wb.name} ({wb.source})")
     for name, card in outcome.cards.items():
