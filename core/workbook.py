@@ -239,6 +239,8 @@ class Workbook:
     cards: dict[str, Card]
     requirements: list[Requirement]
     order: list[str]  # variables and cards, each after what it reads
+    data: dict = dc_field(default_factory=dict, repr=False, compare=False)  # the TOML as read
+    folder: Path | None = None  # where a card's relative preset path starts
     _cache: dict = dc_field(default_factory=dict, repr=False, compare=False)
 
 
@@ -310,10 +312,55 @@ def from_dict(
     for r in requirements:
         if keys.count(r.key) > 1:
             r.key = f"check_{r.index}"
-    wb = Workbook(src, name, description, variables, cards, requirements, [])
+    import copy
+
+    wb = Workbook(
+        src, name, description, variables, cards, requirements, [], copy.deepcopy(dict(data)), folder
+    )
+    wb.data["variables"] = dict(raw_vars)
     wb.order = _order(wb)
     _check_kinds(wb)
     return wb
+
+
+def edited(
+    wb: Workbook,
+    variables: Mapping[str, Any] | None = None,
+    inputs: Mapping[str, Mapping[str, Any]] | None = None,
+) -> Workbook:
+    """The workbook with variables' entries and cards' own inputs replaced (the app's edits),
+    checked as a file is; a card's linked fields keep their references. Cards whose entries did
+    not change are not solved again (the solve cache is shared)."""
+    import copy
+
+    data = copy.deepcopy(wb.data)
+    known = data.setdefault("variables", {})
+    for name, value in (variables or {}).items():
+        if name in known:
+            known[name] = value
+    for name, values in (inputs or {}).items():
+        card = data.get("cards", {}).get(name)
+        if not isinstance(card, dict):
+            continue
+        own = dict(card.get("inputs", {}))
+        for key, value in values.items():
+            if not (isinstance(own.get(key), str) and own[key].lstrip().startswith("=")):
+                own[key] = value
+        card["inputs"] = own
+    new = from_dict(data, wb.source, wb.folder or Path.cwd())
+    new._cache = wb._cache
+    return new
+
+
+def is_workbook_file(path: str | Path) -> bool:
+    """Whether a file reads as a workbook (variables, cards or requirements; not a preset)."""
+    from . import presets
+
+    try:
+        data = presets.parse_text(presets.read_text(path), str(path))
+    except InputError:
+        return False
+    return "calculator" not in data and any(k in data for k in ("variables", "cards", "requirements"))
 
 
 def _table(data, key: str, src: str) -> dict:

@@ -68,6 +68,7 @@ class GearheadApp(App):
         initial: str | None = None,
         hide_timings: bool = False,
         settings_file: dict | None = None,
+        workbook=None,
     ) -> None:
         # NO_COLOR: Textual's Monochrome filter fails on a segment without a style (the chart's
         # canvas draws one before it has a size); its NoColor filter, used with ANSI colours,
@@ -76,6 +77,7 @@ class GearheadApp(App):
         self.blink = blink  # tests switch the cursor blink off for deterministic snapshots
         self.hide_timings = hide_timings  # and hide wall-clock figures
         self.initial = initial
+        self.workbook = workbook  # a core.workbook.Workbook to open at start (`gearhead robot.toml`)
         self._cards: dict[str, CalculatorTab] = {}
         self._mounting: dict[str, object] = {}  # calc_id -> its AwaitMount, while mounting
         self._area_active: dict[str, str] = {}  # area -> the calculator shown there
@@ -134,6 +136,14 @@ class GearheadApp(App):
     async def on_ready(self) -> None:
         self._started = True
         await self.card(self.current_calculator)
+        if self.workbook is not None:
+            self.open_workbook(self.workbook)
+
+    def open_workbook(self, book) -> None:
+        """Show a workbook's cards over the calculator cards (Esc returns to them)."""
+        from .components.workbook_screen import WorkbookScreen
+
+        self.push_screen(WorkbookScreen(book, self.blink, self.hide_timings))
 
     async def card(self, calc_id: str) -> CalculatorTab:
         """The card of a calculator, built on its first visit."""
@@ -356,6 +366,11 @@ class GearheadApp(App):
         tab = await self.card(self.current_calculator)  # a key on a card still being built waits for it
 
         async def loaded(preset) -> None:
+            from gearhead.core.workbook import Workbook
+
+            if isinstance(preset, Workbook):  # a workbook file typed or browsed to
+                self.open_workbook(preset)
+                return
             if preset is not None:
                 target = tab
                 if preset.calculator != tab.calculator.id:  # another calculator's: open that one
@@ -538,7 +553,7 @@ class GearheadApp(App):
         await self.action_send()
 
 
-def run() -> str | None:
+def run(workbook=None) -> str | None:
     """Run the app until it quits: None, or Textual's report of an exception that stopped it.
 
     Our handlers catch their own exceptions (guard.py); one that still reaches Textual ends the
@@ -552,7 +567,7 @@ def run() -> str | None:
 
     from . import settings
 
-    app = GearheadApp(settings_file=settings.load())
+    app = GearheadApp(settings_file=settings.load(), workbook=workbook)
     report = io.StringIO()
     with contextlib.redirect_stderr(report):
         app.run()

@@ -79,6 +79,11 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    from . import workbook_cli
+
+    given = list(sys.argv[1:] if argv is None else argv)
+    if len(given) == 1 and given[0].endswith(".toml") and not given[0].startswith("-"):
+        return workbook_cli.app(given[0], argv)  # `gearhead robot.toml`: the app with that workbook
     args = _parser().parse_args(argv)
     if args.command is None:
         if not _terminal():  # with no terminal the app waited for keys that never come

@@ -236,7 +236,11 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
             if "\0" in text:  # the OS refuses such a name (Path raises ValueError deep inside)
                 raise InputError("preset", "a file path cannot contain a NUL character", repr(text)[:80])
             try:
-                preset = presets.load(Path(text).expanduser())
+                from gearhead.core import workbook
+
+                path = Path(text).expanduser()
+                # a workbook (cards, variables, requirements) opens as one: the app shows its cards
+                preset = workbook.load(path) if workbook.is_workbook_file(path) else presets.load(path)
             except (ValueError, RuntimeError) as exc:  # an unusable path ('~nosuchuser/x')
                 raise InputError("preset", f"not a usable file path ({exc})", text[:80]) from None
         except InputError as exc:
