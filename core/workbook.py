@@ -129,36 +129,55 @@ def parse_expression(text: str, where: str, source: str, compare: bool = False) 
 
 
 def _python_source(body: str, fail) -> str:
-    """`body` as Python: a product written as juxtaposition ('9.8 m/s**2', '2 ft') gets its '*',
-    the inch ('in', a Python keyword) a name Python accepts."""
-    out: list[str] = []
-    previous = None  # the last token's type: a value ends with a NUMBER, NAME or ')'
+    """`body` as Python: a quantity written as a number then its unit ('9.8 m/s**2', '2 ft',
+    '3 lbf ft', '2 m**2') becomes one parenthesised product, so it binds as written ('x / 2 s' is x
+    divided by two seconds); any other juxtaposition is a product; the inch ('in', a Python
+    keyword) gets a name Python accepts."""
     try:
-        tokens = list(tokenize.generate_tokens(io.StringIO(body).readline))
+        raw = list(tokenize.generate_tokens(io.StringIO(body).readline))
     except (tokenize.TokenError, SyntaxError, IndentationError):
         fail("is not a complete expression")
-    for tok in tokens:
+    tokens = []
+    for tok in raw:
         if tok.type in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER, tokenize.INDENT, tokenize.DEDENT):
             continue
-        if tok.type == tokenize.ERRORTOKEN:
-            if tok.string.isspace():
-                continue
-            fail(f"contains {tok.string!r}, which is not part of a number, unit or name")
+        if tok.type == tokenize.ERRORTOKEN and tok.string.isspace():
+            continue
         if tok.type not in (tokenize.NUMBER, tokenize.NAME, tokenize.OP):
             fail(f"contains {tok.string!r}, which is not part of a number, unit or name")
-        starts_value = tok.type in (tokenize.NUMBER, tokenize.NAME) or tok.string == "("
-        if starts_value and previous in ("value", ")") and not (out and out[-1] == "."):
-            out.append("*")
         text = tok.string
         if tok.type == tokenize.NAME and text in _KEYWORD_UNITS:
             text = _KEYWORD_PREFIX + text
-        out.append(text)
-        if tok.type in (tokenize.NUMBER, tokenize.NAME):
+        tokens.append((tok.type, text))
+
+    def is_(k: int, kind: int, text: str | None = None) -> bool:
+        return k < len(tokens) and tokens[k][0] == kind and (text is None or tokens[k][1] == text)
+
+    out: list[str] = []
+    previous = None  # 'value' after a NUMBER, NAME or ')': a value next is a product
+    k = 0
+    while k < len(tokens):
+        kind, text = tokens[k]
+        starts_value = kind in (tokenize.NUMBER, tokenize.NAME) or text == "("
+        if starts_value and previous == "value" and not (out and out[-1] == "."):
+            out.append("*")
+        if kind == tokenize.NUMBER and is_(k + 1, tokenize.NAME) and not is_(k + 2, tokenize.OP, "."):
+            group = [text]
+            k += 1
+            while is_(k, tokenize.NAME) and not is_(k + 1, tokenize.OP, "."):  # its units, and powers
+                group += ["*", tokens[k][1]]
+                k += 1
+                if is_(k, tokenize.OP, "**"):
+                    sign = ["-"] if is_(k + 1, tokenize.OP, "-") else []
+                    if is_(k + 1 + len(sign), tokenize.NUMBER):
+                        group += ["**", *sign, tokens[k + 1 + len(sign)][1]]
+                        k += 2 + len(sign)
+            out += ["(", *group, ")"]
             previous = "value"
-        elif tok.string == ")":
-            previous = ")"
-        else:
-            previous = "op"
+            continue
+        out.append(text)
+        previous = "value" if (kind in (tokenize.NUMBER, tokenize.NAME) or text == ")") else "op"
+        k += 1
     return " ".join(out)
 
 
@@ -408,8 +427,8 @@ def _variable(name: str, value: Any, src: str) -> Variable:
     try:
         q = evaluate(parse_expression(nominal, where, src), Scope({}, {}, {}), where, src)
     except InputError:
-        if nominal[:1].isalpha() and tol is None:
-            return Variable(name, value, value, None, None, text=True)  # a word: a motor, a material
+        if tol is None:  # a word ('Kraken X60', '775pro', a material): a field that takes it reads it
+            return Variable(name, value, value, None, None, text=True)
         raise
     if isinstance(q, str):
         return Variable(name, value, value, None, None, text=True)
@@ -725,7 +744,10 @@ def evaluate(expr: Expr, scope: Scope, where: str, src: str) -> Any:
 
     def name(n: str):
         if n in scope.variables:
-            return scope.variables[n]
+            value = scope.variables[n]
+            if isinstance(value, _Missing):  # it reads a card that could not be solved
+                raise NotSolved(value.why)
+            return value
         if n in ("true", "false"):  # for yes/no outputs: clear.axle_clears == true
             return n == "true"
         wb = scope.workbook
@@ -1176,10 +1198,16 @@ def _check(wb: Workbook, scope: Scope, r: Requirement) -> CheckResult:
         return CheckResult(r, holds, [str(s) for s in sides], "", None, None, "")
     unit = _display_unit(wb, r)
     qs = [_as_q(s) for s in sides]
-    kind = kind_of(qs[0]) or "dimensionless"
-    target = unit or "dimensionless"
+    kind = kind_of(qs[0])
+    # a kind Gearhead has no name for (kg/s): the margin in SI base units, shown as a number
+    si_unit = (units.SI_UNITS[kind] or "dimensionless") if kind else qs[0].to_base_units().units
+    target = unit or si_unit
     mags = [float(q.to(target).magnitude) for q in qs]
-    si_mags = [float(q.to(units.SI_UNITS[kind] or "dimensionless").magnitude) for q in qs]
+    si_mags = [float(q.to(si_unit).magnitude) for q in qs]
+    kind = kind or "dimensionless"
+    if not kind_of(qs[0]):
+        unit = ""
+        mags = si_mags
     margins, si_margins, holds = [], [], True
     for (a, b), (sa, sb), op in zip(zip(mags, mags[1:]), zip(si_mags, si_mags[1:]), r.ops):
         ok, m = _holds(a, b, op)

@@ -490,3 +490,43 @@ def test_hostile_references_give_a_message_never_a_traceback(tmp_path, capsys, r
         data = json.loads(out)
         assert data["card_errors"]["stage"].startswith("ratio: ")
         assert data["requirements"][0]["holds"] is None
+
+
+def test_a_kind_without_a_name_compares_in_si():
+    outcome = workbook.solve(book(with_requirements("mass / 1 s < 10 kg/s")))
+    check = outcome.checks[0]
+    assert check.holds is True
+    assert check.margin_si == pytest.approx(10 - 10 * 0.45359237, rel=1e-12)  # kg/s
+
+
+def test_a_variable_reading_a_failed_card_fails_what_reads_it():
+    text = (
+        with_requirements("double > 1")
+        .replace('[variables]\nmass = "10 lb"', '[variables]\nmass = "10 lb"\ndouble = "= stage.ratio * 2"')
+        .replace('"= lift.ratio * 2"', '"= lift.ratio * -2"')
+    )
+    outcome = workbook.solve(book(text))
+    assert outcome.checks[0].holds is None and "stage could not be solved" in outcome.checks[0].error
+
+
+def test_words_are_text_variables():
+    text = BASE.replace('motor_name = "NEO"', 'motor_name = "775pro"')
+    outcome = workbook.solve(book(text))
+    assert outcome.cards["lift"].solution.inputs["motor"].value == "775pro"
+
+
+@pytest.mark.parametrize(
+    "text, si",
+    [
+        ("10 kg / 2 s", 5.0),  # a number and its unit are one quantity
+        ("2 m**2", 2.0),
+        ("1 / 4 s**-1", 0.25),  # 1 / (4 per second)
+        ("3 lbf ft", 3 * LBF * 12 * INCH),
+        ("6 m / 2", 3.0),
+        ("(2 + 1) m", 3.0),
+    ],
+)
+def test_a_number_and_its_unit_bind_as_written(text, si):
+    expr = workbook.parse_expression(text, "x", "t.toml")
+    value = workbook.evaluate(expr, workbook.Scope({}, {}, {}), "x", "t.toml")
+    assert float(value.to_base_units().magnitude) == pytest.approx(si, rel=1e-12)

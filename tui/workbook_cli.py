@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 import sys
-from pathlib import Path
 
 from gearhead.core.errors import InputError, shown
 
@@ -21,7 +20,9 @@ EXIT_FAILS = 1
 
 def is_workbook(argument: str | None) -> bool:
     """Whether `solve`/`sweep`'s first argument names a workbook file rather than a calculator id."""
-    return bool(argument) and (argument.endswith(".toml") or "/" in argument or Path(argument).is_file())
+    # no file-system look-up: a calculator id never ends in .toml nor holds a slash (and a look-up
+    # of a 5000-character name raises)
+    return bool(argument) and (argument.endswith(".toml") or "/" in argument or "\\" in argument)
 
 
 def add_parser(sub) -> None:
