@@ -90,6 +90,45 @@ class WorkbookCard(CalculatorTab):
         return {k: v for k, v in self.current_inputs().items() if k not in self.links}
 
 
+def robot_calculator(book):
+    """The Robot card's form: core.workbook.as_calculator's fields (numbers and quantities), then
+    each text variable that a card's choice field reads as it is ('motor = "= drive_motor"') as a
+    choice of that field's choices, and each yes/no variable as a yes/no."""
+    import ast
+
+    from gearhead.core import workbook
+    from gearhead.core.fields import Field
+    from gearhead.core.registry import get
+
+    calc = workbook.as_calculator(book)
+    extra = []
+    for v in book.variables.values():
+        if not v.text:
+            continue
+        if isinstance(v.nominal, bool):
+            extra.append(Field(v.name, v.name, boolean=True, default=v.nominal))
+            continue
+        for card in book.cards.values():
+            reading = [
+                get(card.calculator).field(name)
+                for name, expr in card.links.items()
+                if isinstance(expr.tree, ast.Name) and expr.tree.id == v.name
+            ]
+            choice = next((f for f in reading if f.choices and not f.flags and v.nominal in f.choices), None)
+            if choice is not None:
+                extra.append(
+                    Field(
+                        v.name,
+                        v.name,
+                        choices=choice.choices,
+                        choice_labels=choice.choice_labels,
+                        default=v.nominal,
+                    )
+                )
+                break
+    return dataclasses.replace(calc, fields=calc.fields + tuple(extra))
+
+
 class RobotCard(Vertical):
     """The workbook's variables (editable) and requirements (live ✔/✘)."""
 
@@ -111,7 +150,7 @@ class RobotCard(Vertical):
             entries=lambda: self.entries,
             on_entry=self._take_entry,
             on_cursor=lambda f: None,
-            on_choose=lambda f: None,
+            on_choose=self._choose,
             classes="form",
         )
         self.sheet.styles.height = min(len(self.calculator.fields), 12) + 1
@@ -130,6 +169,21 @@ class RobotCard(Vertical):
         self.sheet.refresh_field(name)
         self.on_change()
 
+    @guarded
+    def _choose(self, field) -> None:
+        """A choice row's list (Enter or a click on it), as on any card."""
+        from ..guard import guard
+        from .choice_screen import ChoiceScreen
+
+        def chosen(value) -> None:
+            if value is not None:
+                self._take_entry(field.name, value)
+
+        options = field.kind.widget(field).options
+        self.app.push_screen(
+            ChoiceScreen(field.label, options, self.entries.get(field.name)), guard(self, chosen)
+        )
+
 
 class WorkbookScreen(Screen):
     """One workbook: a strip of its cards (Robot first), the card chosen below it."""
@@ -147,12 +201,11 @@ class WorkbookScreen(Screen):
 
     def __init__(self, book, blink: bool = True, hide_timings: bool = False) -> None:
         super().__init__()
-        from gearhead.core import workbook
 
         self.book = book
         self.blink = blink
         self.hide_timings = hide_timings
-        self.robot_calc = workbook.as_calculator(book)
+        self.robot_calc = robot_calculator(book)
         self.outcome = None  # the last core.workbook.Outcome shown
         self._wb_generation = 0  # solves asked for; a thread's result older than the last is dropped
         self._wb_lock = threading.Lock()
@@ -169,7 +222,12 @@ class WorkbookScreen(Screen):
             *(Tab(name, id=f"wbtab-{name}") for name in book.cards),
             id="workbook-tabs",
         )
-        entries = {f.name: f.kind.entry(f, book.variables[f.name].entry) for f in self.robot_calc.fields}
+        entries = {
+            f.name: f.kind.entry(f, book.variables[f.name].entry)
+            if f.kind.with_unit
+            else f.kind.initial_entry(f)
+            for f in self.robot_calc.fields
+        }
         self.robot = RobotCard(self.robot_calc, entries, self.request_solve, id="wbpane-robot")
         self.cards: dict[str, WorkbookCard] = {}
         with ContentSwitcher(initial="wbpane-robot", id="workbook-panes"):
