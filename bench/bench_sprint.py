@@ -22,16 +22,23 @@ def main() -> None:
     cases = {
         "sprint, closed form (no limits)": {"effects": ""},
         "sprint, limits + sag (integrated)": {},
+        "sprint, limits + sag + voltage ramp": {
+            "effects": "stator_limit, supply_limit, battery_sag, voltage_ramp"
+        },
         "sprint, every effect": {
-            "effects": "stator_limit, supply_limit, battery_sag, rolling_resistance, air_drag"
+            "effects": "stator_limit, supply_limit, battery_sag, rolling_resistance, air_drag, voltage_ramp"
         },
     }
     for label, raw in cases.items():
         s = median_seconds(lambda raw=raw: solve("sprint", raw), 100)
         print(f"  {label:<40} {s * 1e3:8.3f} ms  ({s / base:5.1f}x baseline)")
     v = parse_inputs(get("sprint"), {})[0]
+    ramped = parse_inputs(
+        get("sprint"), {"effects": "stator_limit, supply_limit, battery_sag, voltage_ramp"}
+    )[0]
     for label, fn in (
         ("optimise one distance (200-ratio batch + Brent)", lambda: sprint.fastest(v, 1e-6, 5.0)),
+        ("the same under a voltage ramp", lambda: sprint.fastest(ramped, 1e-6, 5.0)),
         ("optimise mode, whole solve (4-distance table)", lambda: solve("sprint", {"mode": "optimise"})),
     ):
         t0 = time.perf_counter()

@@ -1,7 +1,9 @@
 """Start-up as a user meets it, each figure beside its baseline, run alternately in fresh
 processes (medians; the machine is shared, so read the ratios):
 
-- CLI: `gearhead solve gear_ratio --json` (bare numbers) vs `python -c "import numpy"`;
+- CLI: `gearhead solve gear_ratio --json` (bare numbers) vs `python -c "import numpy"`; typed
+  units (read from the stored table), the beam bare, and a unit only pint reads (furlong), each
+  vs the same baseline;
 - first frame: the app's first screen vs a minimal Textual app with 13 empty tab panes.
 
 - first visit: F3 opens the beam (another area) 8 s after start (the warm-up under way) and
@@ -299,12 +301,24 @@ def main() -> None:
             numpy,
             "python -c 'import numpy'",
         )
-        pair(
-            "gearhead solve beam --set length='20 in'",
-            lambda: wall([gearhead, "solve", "beam", "--set", "length=20 in"]),
-            numpy,
-            "same (a typed unit loads pint)",
-        )
+        # typed units are read from core/unit_factors.json (pint only for what it cannot read):
+        # typed costs what bare costs. The beam's default section (a rectangular tube) pays for
+        # its finite-element J (scipy.sparse), bare or typed; gear_ratio shows the units alone
+        for label, cmd in (
+            (
+                "gearhead solve gear_ratio --set load='40 lbf'",
+                ["solve", "gear_ratio", "--set", "load=40 lbf"],
+            ),
+            ("gearhead solve beam --set length='20 in'", ["solve", "beam", "--set", "length=20 in"]),
+            ("gearhead solve beam --set length=20", ["solve", "beam", "--set", "length=20"]),
+            (
+                "gearhead solve beam ... length='0.005 furlong'",
+                ["solve", "beam", "--set", "length=0.005 furlong"],
+            ),
+            # the elevator's closed-form move and LQR without scipy (core/sim/small_math.py)
+            ("gearhead solve elevator", ["solve", "elevator"]),
+        ):
+            pair(label, lambda cmd=cmd: wall([gearhead, *cmd]), numpy, "python -c 'import numpy'")
     pair(
         "app: first frame (headless, 140x45)",
         lambda: reported(FIRST_FRAME),

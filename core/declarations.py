@@ -95,6 +95,9 @@ class Result:
     warnings: list[str] = dc_field(default_factory=list)
     series: dict[str, tuple[list[float], list[float]]] = dc_field(default_factory=dict)  # for plots
     tables: dict[str, list[dict[str, Any]]] = dc_field(default_factory=dict)  # rows of each Table
+    # what a chart's legend calls a series whose key is a slot, not a name (the motors table's
+    # "curve 1" is the motor chosen for it); a key not here is its own label
+    series_labels: dict[str, str] = dc_field(default_factory=dict)
 
 
 @dataclass(frozen=True)

@@ -82,7 +82,8 @@ def plot_csv(plot: Plot, solution: Solution) -> str:
     fy = units.factor(plot.y_unit, plot.y_quantity)
     for name in plot.series:
         xs, ys = solution.series.get(name, ([], []))
-        writer.writerows((name, repr(x / fx), repr(y / fy)) for x, y in zip(xs, ys))
+        label = solution.series_label(name)
+        writer.writerows((label, repr(x / fx), repr(y / fy)) for x, y in zip(xs, ys))
     return out.getvalue()
 
 

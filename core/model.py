@@ -54,6 +54,10 @@ class Solution:
     warnings: list[str]
     series: dict[str, tuple[list[float], list[float]]] = dc_field(default_factory=dict)
     tables: dict[str, list[dict[str, Value]]] = dc_field(default_factory=dict)
+    series_labels: dict[str, str] = dc_field(default_factory=dict)  # Result.series_labels
+
+    def series_label(self, name: str) -> str:
+        return self.series_labels.get(name, name)
 
     def as_json(self) -> dict[str, Any]:
         out = {
@@ -150,7 +154,8 @@ def format_value(value: Any, quantity: str, unit: str) -> Value:
     if isinstance(value, bool) or isinstance(value, str):
         text = ("yes" if value else "no") if isinstance(value, bool) else value
         return Value(value, "", text)
-    if isinstance(value, numbers.Integral):
+    # a count is an integer; a physical quantity that happens to be an int (a sum of nothing) is not
+    if isinstance(value, numbers.Integral) and not units.SI_UNITS.get(quantity):
         return Value(int(value), "", str(int(value)))
     value = float(value)
     return Value(value, units.SI_UNITS[quantity], units.format_quantity(value, unit, quantity))
@@ -227,4 +232,12 @@ def solve(
                 cells[c.name] = format_value(v, c.quantity, c.unit)
             rows.append(cells)
         tables[t.name] = rows
-    return Solution(calc.id, inputs, outputs, notices + list(result.warnings), dict(result.series), tables)
+    return Solution(
+        calc.id,
+        inputs,
+        outputs,
+        notices + list(result.warnings),
+        dict(result.series),
+        tables,
+        dict(result.series_labels),
+    )

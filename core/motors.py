@@ -6,6 +6,10 @@ Figures from ../shared/REFERENCE_DATA.md:
   (NEO 2.0, 775 RedLine, NeveRest, REV HD Hex, REV Core Hex): choosing WPILib data for them says
   so and uses ReCalc's.
 - VEX: V5 Smart Motor cartridges and VEX 393 (7.2 V), from VEX's published specifications.
+- Added for issue 31 (docs/motors.md lists each with its source): Minion (Adv Hall), Thrifty Pulsar,
+  BaneBots 550, Snowblower and Modern Robotics from ReCalc's Motor.ts; the Romi's built-in motor
+  from WPILib's DCMotor (4.5 V); the goBILDA Yellow Jacket family (5203 series) from goBILDA's
+  specifications. They follow every motor above in MOTORS, so the choice lists only grow at the end.
 SI inside: speeds in rad/s, torques in N*m.
 """
 
@@ -14,14 +18,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .constants import LB, RPM
+from .constants import G0, LB, RPM
 from .fields import Field
 
 
 @dataclass(frozen=True)
 class Motor:
     name: str
-    source: str  # "wpilib", "recalc" or "vex"
+    source: str  # "wpilib", "recalc", "vex" or "gobilda"
     v_spec: float  # V
     free_speed: float  # ω_f, rad/s
     stall_torque: float  # τ_s, N*m
@@ -85,10 +89,38 @@ _RECALC = [
     ("REV HD Hex", 6000, 0.105, 8.5, 0.4, 1.0),
     ("REV Core Hex", 125, 3.2, 4.4, 0.5, 1.0),
 ]
+# Motor.ts weighs every brushed motor it has no weight for at a placeholder 1.0 lb: no mass here, so
+# the motors table shows no power density it cannot back (the 1.0 above is not read by any calculator).
+_PLACEHOLDER_MASS = {"775 RedLine", "NeveRest", "REV HD Hex", "REV Core Hex"}
+
+# Added for issue 31, ReCalc app/lib/models/Motor.ts at tervay/recalc commit 03511cb4 (MIT): ωf rpm, τs N*m,
+# is A, if A, mass lb (None: Motor.ts's placeholder 1.0 lb). Motor.ts's dataSource: CTRE for the Minion (Adv
+# Hall), Thrifty for the Pulsar, VEX (motors.vex.com dyno) for the BaneBots 550, Snowblower and Modern Robotics.
+_RECALC_ADDED = [
+    ("Minion (Adv Hall)", 7644, 3.201, 207.18, 2.384, 0.65),
+    ("Thrifty Pulsar", 7500, 3.1, 189, 1, 0.65),
+    ("BaneBots 550", 19300, 0.488, 85, 1.4, None),
+    ("Snowblower", 100, 7.90893775, 24, 5, None),
+    ("Modern Robotics", 5900, 0.19, 11, 0.3, None),
+]
+
+# goBILDA 5203-series Yellow Jacket planetary gear motors at 12 V, at the gearbox output (goBILDA's product
+# pages: stall torque in kg*cm, 9.2 A stall and 0.25 A no-load for every ratio): name, ratio, ωf rpm, τs kg*cm.
+# The stall torques include the gearbox's losses (24.3 kg*cm at 19.2:1 is 86 % of 19.2 bare motors' worth).
+_GOBILDA = [
+    ("goBILDA Yellow Jacket 1150 rpm", 5.2, 1150, 7.9),
+    ("goBILDA Yellow Jacket 435 rpm", 13.7, 435, 18.7),
+    ("goBILDA Yellow Jacket 312 rpm", 19.2, 312, 24.3),
+    ("goBILDA Yellow Jacket 223 rpm", 26.9, 223, 38.0),
+]
+KGF_CM = G0 / 100  # N*m per kg*cm
 
 MOTORS: list[Motor] = (
     [_m(n, "wpilib", 12.0, rpm, ts, i_s, i_f) for n, ts, i_s, i_f, rpm in _WPILIB]
-    + [_m(n, "recalc", 12.0, rpm, ts, i_s, i_f, lb) for n, rpm, ts, i_s, i_f, lb in _RECALC]
+    + [
+        _m(n, "recalc", 12.0, rpm, ts, i_s, i_f, None if n in _PLACEHOLDER_MASS else lb)
+        for n, rpm, ts, i_s, i_f, lb in _RECALC
+    ]
     + [
         # VEX V5 Smart Motor (11 W): one motor, three gear cartridges; same currents.
         _m("V5 100 rpm (red)", "vex", 12.0, 100, 2.1, 2.5, 0.9),
@@ -98,6 +130,11 @@ MOTORS: list[Motor] = (
         _m("VEX 393", "vex", 7.2, 100, 1.67, 4.8, 0.37),
         _m("VEX 393 high speed", "vex", 7.2, 160, 1.67 * 100 / 160, 4.8, 0.37),
     ]
+    + [_m(n, "recalc", 12.0, rpm, ts, i_s, i_f, lb) for n, rpm, ts, i_s, i_f, lb in _RECALC_ADDED]
+    # Romi's built-in motor, WPILib DCMotor.getRomiBuiltIn (wpimath, 2026): 4.5 V, 0.1765 N*m, 1.25 A, 0.13 A,
+    # 150 rpm (at the wheel: the gearbox is part of it)
+    + [_m("Romi", "wpilib", 4.5, 150, 0.1765, 1.25, 0.13)]
+    + [_m(n, "gobilda", 12.0, rpm, kgcm * KGF_CM, 9.2, 0.25) for n, _, rpm, kgcm in _GOBILDA]
 )
 
 SOURCES = ("wpilib", "recalc")
@@ -120,7 +157,7 @@ def lookup(name: str, source: str = "wpilib") -> tuple[Motor, str | None]:
         if m.source == source:
             return m, None
     m = matches[0]
-    if m.source == "vex":
+    if m.source not in SOURCES:  # a vendor's only figures (VEX, goBILDA): nothing to choose between
         return m, None
     label = dict(zip(SOURCES, SOURCE_LABELS))
     return m, f"{label.get(source, source)} has no data for {name}; using {label.get(m.source, m.source)}"

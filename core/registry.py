@@ -15,14 +15,16 @@ from .errors import InputError, shown
 # The tab titles are the calculators' own (checked when the registry loads): the app draws its
 # strips from this table without importing thirteen modules before its first frame.
 AREAS: dict[str, tuple[str, tuple[str, ...]]] = {
-    "gearing": ("Motors", ("motor", "gear_ratio", "ratio_distance", "ratio_finder")),
-    "mechanisms": ("Mechanisms", ("lead_screw", "drivetrain", "sprint", "elevator", "arm")),
+    "gearing": ("Motors", ("motor", "gear_ratio", "ratio_distance", "ratio_finder", "motors")),
+    "mechanisms": ("Mechanisms", ("lead_screw", "drivetrain", "sprint", "elevator", "arm", "intake")),
     "structure": ("Structure", ("beam", "chain_belt", "gear_clearance")),
     "pneumatics": ("Pneumatics", ("pneumatics", "pneumatic_linkage")),
     "shooters": ("Shooters", ("projectile", "flywheel", "trebuchet")),
 }
 TITLES = {
     "motor": "Motor",
+    "motors": "Motor comparison",
+    "intake": "Intake",
     "gear_ratio": "Gear ratio",
     "ratio_distance": "Ratio & distance",
     "lead_screw": "Lead screw",

@@ -68,7 +68,7 @@ async def test_a_key_whose_handler_raises_is_a_notice_and_a_logged_traceback(sta
         await settle(pilot)
         assert notices[-1][0].startswith("Gear ratio copied")
     log = next(state_home.rglob("gearhead.log")).read_text()
-    assert "Traceback" in log and INJECTED in log and "action_copy_preset" in log
+    assert "Traceback" in log and INJECTED in log and "action_copy_share_code" in log
 
 
 def test_textuals_report_is_read_as_one_line():

@@ -345,3 +345,90 @@ async def test_switching_to_a_chain_standard_in_the_app_solves_as_a_chain():
         assert tab.solution is not None and tab.solution.inputs["pitch_standard"].value == "chain_25"
         assert "half_links" in shown_rows(tab) and "kind" not in shown_rows(tab)
         assert tab.solution.outputs["minimum_links"].value % 2 == 0
+
+
+# --- belt teeth in mesh (CB6), issue 31 ---
+
+
+def mp_teeth_in_mesh(C, n1, n2, p):
+    """θ_small = π − 2·asin((D − d)/(2C)) (textbook form, not the code's atan2), θ_large = 2π − θ_small;
+    fractional teeth θ/(2π)·n on each pulley."""
+    D1, D2 = n1 * p / mp.pi, n2 * p / mp.pi
+    small = mp.pi - 2 * mp.asin(abs(D2 - D1) / (2 * C))
+    th1, th2 = (small, 2 * mp.pi - small) if n1 <= n2 else (2 * mp.pi - small, small)
+    return th1 / (2 * mp.pi) * n1, th2 / (2 * mp.pi) * n2
+
+
+def test_teeth_in_mesh_intake_belt_by_hand():
+    """20T and 30T HTD 5 mm on a 100-tooth belt: C = 187.331 mm (mpmath from the β-form), Δ = 7.9577 mm,
+    θ_small = π − 2·asin(7.9577/187.331) = 3.05661 rad: 20·0.48647 = 9.729 → 9; 30·0.51353 = 15.41 → 15."""
+    mp.mp.dps = 30
+    p = mp.mpf(5) / 1000
+    C = mp_center(100 * p, 20 * p / mp.pi, 30 * p / mp.pi)
+    x1, x2 = mp_teeth_in_mesh(C, 20, 30, p)
+    assert float(x1) == pytest.approx(9.729, abs=5e-4) and float(x2) == pytest.approx(15.406, abs=5e-4)
+    o = out(mode="center_from_links", pitch_standard="htd_5mm", teeth_1=20, teeth_2=30, links=100)
+    assert (o["teeth_in_mesh_1"], o["teeth_in_mesh_2"]) == (int(mp.floor(x1)), int(mp.floor(x2))) == (9, 15)
+
+
+def test_teeth_in_mesh_recalc_case_with_the_wraps_the_right_way_round():
+    """ReCalc's belts.test.ts case: 30T and 20T, 5 mm, C = 100 mm. ReCalc answers 14 (30T) and 10 (20T),
+    its wrap angles swapped; Δ = 7.9577 mm, θ_small = π − 2·asin(0.079577) = 2.98227 rad, so the
+    exact wraps give 30·0.52536 = 15.761 → 15 and 20·0.47464 = 9.493 → 9."""
+    mp.mp.dps = 30
+    x30, x20 = mp_teeth_in_mesh(mp.mpf("0.1"), 30, 20, mp.mpf(5) / 1000)
+    assert float(x30) == pytest.approx(15.7607, abs=5e-5) and float(x20) == pytest.approx(9.4929, abs=5e-5)
+    o = out(
+        mode="links_from_center", pitch_standard="htd_5mm", teeth_1=30, teeth_2=20, target_center="100 mm"
+    )
+    assert (o["teeth_in_mesh_1"], o["teeth_in_mesh_2"]) == (15, 9)
+
+
+def test_teeth_in_mesh_equal_pulleys_half_each():
+    """180° on each of two 20T pulleys is exactly 10 teeth (ReCalc floors 9.99999... to 9)."""
+    o = out(
+        mode="links_from_center", pitch_standard="htd_5mm", teeth_1=20, teeth_2=20, target_center="100 mm"
+    )
+    assert (o["teeth_in_mesh_1"], o["teeth_in_mesh_2"]) == (10, 10)
+
+
+def test_fewer_than_six_teeth_in_mesh_warns():
+    """GT2 3 mm, 12T to 36T at 30 mm: Δ = 24·3/(2π) = 11.459 mm, θ_small = π − 2·asin(11.459/30)
+    = 2.3579 rad: 12·0.37527 = 4.50 → 4 teeth on the 12T (36·0.62473 = 22.49 → 22)."""
+    mp.mp.dps = 30
+    x1, x2 = mp_teeth_in_mesh(mp.mpf("0.03"), 12, 36, mp.mpf(3) / 1000)
+    assert float(x1) == pytest.approx(4.503, abs=5e-4)
+    sol = solve(
+        "chain_belt",
+        dict(
+            mode="links_from_center", pitch_standard="gt2_3mm", teeth_1=12, teeth_2=36, target_center="30 mm"
+        ),
+    )
+    assert (sol.outputs["teeth_in_mesh_1"].value, sol.outputs["teeth_in_mesh_2"].value) == (4, 22)
+    assert any("Fewer than 6 belt teeth in mesh on pulley 1 (4 teeth)" in w for w in sol.warnings)
+    far = solve(
+        "chain_belt",
+        dict(
+            mode="links_from_center", pitch_standard="gt2_3mm", teeth_1=18, teeth_2=36, target_center="300 mm"
+        ),
+    )
+    assert not any("teeth in mesh" in w for w in far.warnings)
+
+
+def test_chains_have_no_belt_teeth_in_mesh():
+    o = out(mode="center_from_links", pitch_standard="chain_25", teeth_1=16, teeth_2=32, links=80)
+    assert "teeth_in_mesh_1" not in o and "teeth_in_mesh_2" not in o
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.integers(3, 200), st.integers(3, 200), st.integers(0, 400))
+def test_teeth_in_mesh_against_mpmath(n1, n2, extra):
+    """Random belts: the whole counts equal ⌊mpmath⌋ wherever the fraction is not within 1e-6 of a whole."""
+    mp.mp.dps = 30
+    links = max(n1, n2) + 1 + extra
+    o = out(mode="center_from_links", pitch_standard="htd_5mm", teeth_1=n1, teeth_2=n2, links=links)
+    p = mp.mpf(5) / 1000
+    C = mp.mpf(o["center_distance"])
+    for x, got in zip(mp_teeth_in_mesh(C, n1, n2, p), (o["teeth_in_mesh_1"], o["teeth_in_mesh_2"])):
+        if abs(x - mp.nint(x)) > 1e-6:
+            assert got == int(mp.floor(x))

@@ -52,6 +52,7 @@ BOOKKEEPING = {"error_estimate", "rhs_evaluations", "wall_time"}
 BOOKKEEPING_OF = {
     "ratio_finder": {"stage_count", "part_count", "combinations"},  # counts
     "trebuchet": {"candidates"},  # throws evaluated by the optimiser
+    "motors": {"motors_listed"},  # a count of the database
 }
 
 ITEM = r"(?:\(\w+\)|§\d+(?:\.\d+)?)"  # an equation "(12)", "(GR1)" or a seed section "§2.1"

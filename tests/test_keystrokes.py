@@ -98,6 +98,44 @@ async def test_f_key_digit_then_tab_goes_into_the_card_picked(gap):
         assert app.focused is card(app).sheet
 
 
+@pytest.mark.parametrize("gap", [0.0, 0.05])
+async def test_keys_after_an_f_key_and_digit_go_to_the_card_in_order(gap):
+    """F2 3 ↓ ↓ ↓ 5 in one burst: the sprint card, its fourth row typed into. The pick is a
+    priority binding taken in the order typed, and the card's sheet has focus at once (the strip
+    held focus after a pick: ↓ did nothing there, and at 0 ms the 5 reached the strip and opened
+    the arm)."""
+    app = GearheadApp(blink=False, hide_timings=True, initial="motor")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        for k in ["f2", "3", "down", "down", "down", "5"]:
+            app.post_message(key(k))
+            if gap:
+                await pilot.pause(gap)
+        await settle(pilot)
+        tab = card(app)
+        assert app.current_calculator == "sprint"
+        assert app.focused is tab.sheet
+        assert tab.sheet.current_field.name == tab.sheet.stops[3].field.name == "motor_count"
+        assert tab.entries["motor_count"] == "5"
+
+
+@pytest.mark.parametrize(
+    "keys,calc,field,entry", [(["f1", "x", "3"], "motor", "motor", None), (["3"], "motor", "motor", None)]
+)
+async def test_a_digit_picks_only_right_after_an_f_key(keys, calc, field, entry):
+    """A digit not right after an F-key is typed, not a pick: F1 x 3 types into the motor card's
+    first row (a choice: type-ahead), and so does 3 at start."""
+    app = GearheadApp(blink=False, hide_timings=True, initial="motor")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        for k in keys:
+            app.post_message(key(k))
+        await settle(pilot)
+        assert app.current_calculator == calc
+        assert app.focused is card(app).sheet
+        assert card(app).sheet.current_field.name == field
+
+
 @pytest.mark.parametrize("calc_id", sorted(calculators()))
 async def test_tab_then_type_in_every_card(calc_id):
     """On every card: the first two numeric rows, each typed right after the Tab that reaches it,
@@ -228,7 +266,7 @@ def _open(term: Terminal, fkey: str, digit: str, seen: str) -> None:
     time.sleep(0.3)
     term.keys(digit)
     term.wait_for(lambda screen: seen in screen, f"{fkey} {digit} to open the card with {seen!r}")
-    term.keys("Tab")  # from the strip into the sheet
+    # the card's sheet has the keys at once (its help line shows the cursor's row)
     term.wait_for(lambda screen: _cursor_label(screen) is not None, "the sheet to take focus", timeout=5)
 
 

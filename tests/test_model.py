@@ -318,3 +318,13 @@ def test_a_preset_with_several_wrong_entries_names_each_with_its_file():
         presets.from_dict(data, "arm.toml")
     assert [(e.source, e.field) for e in exc.value.errors] == [("arm.toml", "load"), ("arm.toml", "radius")]
     assert str(exc.value).startswith("arm.toml: load: ")
+
+
+def test_an_integer_valued_quantity_keeps_its_unit():
+    """A calculator's 0 from sum() of nothing (the sprint's time slipping under a ramp) is still a
+    time: '0 s', not the bare '0' of a count; a count stays an integer."""
+    from gearhead.core.model import format_value
+
+    assert format_value(0, "time", "s").text == "0 s"
+    assert format_value(0, "time", "s").value == 0.0
+    assert format_value(3, "dimensionless", "").text == "3"

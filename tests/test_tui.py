@@ -429,8 +429,10 @@ def test_every_calculator_is_in_exactly_one_area():
     assert sorted(placed) == sorted(calculators())
 
 
-async def test_ctrl_y_copies_the_tab_as_a_preset_that_loads_back():
+async def test_ctrl_y_copies_the_tab_as_a_share_code_that_loads_back():
     import tomllib
+
+    from gearhead.core import share
 
     app = GearheadApp(blink=False, initial="gear_ratio")
     async with app.run_test(size=SIZE) as pilot:
@@ -438,10 +440,13 @@ async def test_ctrl_y_copies_the_tab_as_a_preset_that_loads_back():
         await type_into(pilot, "load", "31 lbf")
         await pilot.press("ctrl+y")
         await pilot.pause()
-        preset = presets.from_dict(tomllib.loads(app.clipboard))
+        assert app.clipboard.startswith("gh1:") and "\n" not in app.clipboard
+        preset = share.decode(app.clipboard)
         assert preset.calculator == "gear_ratio" and preset.inputs["load"] == "31 lbf"
         tab = app.query_one("#calc-gear_ratio", CalculatorTab)
         assert solve("gear_ratio", preset.inputs).outputs == tab.solution.outputs
+        await app.action_copy_preset()  # the palette's "Copy as preset TOML": the file's text, as before
+        assert presets.from_dict(tomllib.loads(app.clipboard)).inputs == preset.inputs
 
 
 async def test_ctrl_e_exports_results_and_plot_data(tmp_path, monkeypatch):
@@ -498,7 +503,9 @@ async def test_save_dialog_offers_the_loaded_presets_name_and_description():
 @pytest.mark.parametrize(
     "text,loads",
     [
-        (None, True),  # what ctrl+y copied on another tab of the same calculator
+        (None, True),  # what ctrl+y copied on another tab of the same calculator (a share code)
+        ("gh1:AAAA", False),  # a damaged share code
+        ("http://127.0.0.1:8000/?p=gh2:AAAA", False),  # a newer Gearhead's code in a served link
         ('calculator = "gear_ratio"\nname = "x"\n[inputs]\nload = "3 kg"\n', False),  # wrong unit
         ('calculator = "gear_ratio"\n' + "x = " + "[" * 5000 + "]" * 5000 + "\n", False),  # too deep
         ('calculator = "beam"\nname = "x"\n', True),  # another calculator's: opens that one
@@ -646,7 +653,7 @@ async def test_the_key_bar_names_the_keys_that_act_now():
         app.show_calculator("beam")
         await settle(pilot)
         drawn = bar.render_line(0).text
-        assert "Send to" not in drawn and "Edit" not in drawn  # the strip has focus on a switch
+        assert "Send to" not in drawn and "Edit" in drawn  # the beam's sheet has the keys at once
         start = drawn.index("^o")
         await pilot.click(KeyBar, offset=(start + 1, 0))
         await settle(pilot)

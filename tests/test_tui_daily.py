@@ -169,17 +169,27 @@ async def test_f_key_then_digit_typed_at_once_opens_the_calculator():
 
 @pytest.mark.parametrize("character", ["²", "³", "①", "٣"])
 async def test_a_digit_like_character_on_a_strip_is_ignored(character):
-    """'²' passes str.isdigit() and int() refuses it: on a tab strip it killed the app."""
+    """'²' passes str.isdigit() and int() refuses it: on a tab strip it killed the app. After an
+    F-key it picks nothing (it ends the chord and goes to the card); on a strip focused by a click
+    it is ignored; a real digit after an F-key still picks."""
     from textual import events
+    from textual.widgets import Tabs
 
     app = GearheadApp(blink=False, initial="motor")
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
         app.post_message(events.Key("f1", None))
         app.post_message(events.Key(character, character))
+        await settle(pilot)
+        assert app.current_calculator == "motor"
+        app.home.set_focus(app.query_one("#calcs-gearing", Tabs))
+        app.post_message(events.Key(character, character))
+        await settle(pilot)
+        assert app.current_calculator == "motor"
+        app.post_message(events.Key("f1", None))
         app.post_message(events.Key("2", "2"))
         await settle(pilot)
-        assert app.current_calculator == "gear_ratio"  # the real digit after it still picks
+        assert app.current_calculator == "gear_ratio"
 
 
 async def test_an_f_key_under_a_dialog_leaves_the_card_alone():

@@ -72,6 +72,7 @@ FACTORIES = {
     "Kraken X44 FOC": "krakenX44FOC",
     "Minion": "minion",
     "NEO Vortex": "neoVortex",
+    "Romi": "romiBuiltIn",  # 4.5 V (issue 31)
 }
 FRC = ["Kraken X60", "Kraken X60 FOC", "Falcon 500", "NEO", "NEO Vortex", "Kraken X44", "Minion", "CIM"]
 CASES = 10  # random cases per calculator (seeded)

@@ -51,7 +51,9 @@ class GearheadApp(App):
         Binding("ctrl+o", "load_preset", "Load", tooltip="Load a preset into this tab"),
         Binding("ctrl+g", "send", "Send to…", tooltip="Send results to the calculator they feed"),
         Binding("ctrl+r", "accuracy", "Accuracy", tooltip="Accuracy vs time of this simulation"),
-        Binding("ctrl+y", "copy_preset", "Copy", tooltip="Copy this tab as preset TOML (to share)"),
+        Binding(
+            "ctrl+y", "copy_share_code", "Copy", tooltip="Copy this tab as a share code (gh1:…, to share)"
+        ),
         Binding("ctrl+e", "export", "Export", tooltip="Results or plot data as CSV or Markdown"),
         # priority: from inside a dialog's entry too (where Input binds ctrl+w to delete a word)
         Binding("ctrl+w", "sweep", "Sweep row", priority=True),
@@ -60,6 +62,10 @@ class GearheadApp(App):
             Binding(f"f{n}", f"area('{area}')", title, show=False, priority=True)
             for n, (area, (title, _)) in enumerate(AREAS.items(), 1)
         ),
+        # the digit right after an F-key picks a calculator of that area (check_action lets it
+        # through only then); priority, so the app takes it in the order typed, before any key
+        # behind it reaches a widget
+        *(Binding(str(n), f"pick({n})", show=False, priority=True) for n in range(1, 10)),
     ]
 
     def __init__(
@@ -86,6 +92,8 @@ class GearheadApp(App):
         self._strip_mounts: dict[str, object] = {}  # area -> the AwaitMount of a strip being built
         self._strips_started: set[str] = set()  # areas whose strip has sent its first TabActivated
         self._started = False  # the first frame is on screen
+        self._pick_armed = False  # the last key was an F-key: a digit now picks a calculator
+        self._picking = False  # ... and the key being handled is the one after it
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def compose(self) -> ComposeResult:
@@ -145,6 +153,14 @@ class GearheadApp(App):
 
         self.push_screen(WorkbookScreen(book, self.blink, self.hide_timings))
 
+    async def on_event(self, event: events.Event) -> None:
+        """Every key the app reads (before its bindings): an F-key arms the pick of a calculator by
+        the next key, and any key ends it, so only F-key-then-digit picks (the digit's priority
+        binding asks check_action, which reads this)."""
+        if isinstance(event, events.Key) and not event.is_forwarded:
+            self._picking, self._pick_armed = self._pick_armed, False
+        await super().on_event(event)
+
     async def card(self, calc_id: str) -> CalculatorTab:
         """The card of a calculator, built on its first visit."""
         tab = self._cards.get(calc_id)
@@ -173,6 +189,7 @@ class GearheadApp(App):
             if mounting is not None:
                 self._mounting.pop(calc_id, None)
                 if calc_id == self.current_calculator:
+                    self.home.set_focus(tab.sheet)  # the card shown takes the keys (show_calculator)
                     self.refresh_bindings()  # the footer shows ctrl+g / ctrl+r where they apply
         return tab
 
@@ -239,6 +256,8 @@ class GearheadApp(App):
         on_home = self.screen is self.home
         if action in ("area", "sweep"):  # not under a dialog: the card would change behind it
             return on_home
+        if action == "pick":  # only right after an F-key (on_event), else the digit is typed
+            return self._picking and on_home and parameters[0] <= len(AREAS[self._area][1])
         if action in ("send", "accuracy"):
             tab = self._cards.get(self._area_active.get(self.current_area, ""))
             if tab is None:  # not built yet (start-up): shown once the card is there
@@ -264,17 +283,18 @@ class GearheadApp(App):
         return self._cards[self.current_calculator]
 
     def show_calculator(self, calc_id: str) -> None:
-        """Switch to a calculator's card and put focus on its area's tab strip (a digit then
-        picks another), in one focus change: the strip is focused as the cards switch, so no
-        widget of the card left keeps focus."""
+        """Switch to a calculator's card and give its sheet the keys, in one focus change (a card
+        not built yet takes focus once mounted: `card`). The strips only show where one is: the
+        keys typed after a switch go to the card, in the order typed."""
         area = area_of(calc_id)
         self._area_active[area] = calc_id
         if area in self._strips:  # else built now, with this tab active
             self._strips[area].active = f"tab-{calc_id}"
-        strip = self._strip(area)
+        self._strip(area)
         self.home.query_one("#areas", Tabs).active = f"area-{area}"
         self._show_area(area)
-        self.home.set_focus(strip)
+        if self.card_ready(calc_id):
+            self.home.set_focus(self._cards[calc_id].sheet)
 
     @guarded
     async def action_focus_next(self) -> None:
@@ -283,34 +303,48 @@ class GearheadApp(App):
         TabbedContent then showed that one again."""
         strip = self.focused
         on_strip = isinstance(strip, Tabs) and (strip.id or "").startswith("calcs-")
-        if self.screen is self.home and (on_strip or strip is None):  # None: an F-key's strip to come
+        if self.screen is self.home and (on_strip or strip is None):  # None: a card to come
             tab = await self.card(self.current_calculator)
-            tab.sheet.focus()
+            self.home.set_focus(tab.sheet)
             return
         super().action_focus_next()
 
     @guarded
     async def action_area(self, area: str) -> None:
-        """F1-F5: show an area at the calculator last used there; its strip takes focus, so a
-        digit then picks a calculator (two keys to any calculator). A card not built yet is
-        built here, before the next frame: the pane and its card are drawn in one frame."""
+        """F1-F5: show an area at the calculator last used there, its sheet focused; a digit
+        typed next picks a calculator of the area (two keys to any calculator: action_pick). A
+        card not built yet is built here, before the next frame: the pane and its card are drawn
+        in one frame."""
         self.show_calculator(self._area_active[area])
         await self.card(self.current_calculator)  # and its strip, if built now
+        self._pick_armed = True
+
+    @guarded
+    async def action_pick(self, n: int) -> None:
+        """The digit after an F-key: the area's n-th calculator (check_action lets only that
+        digit through, and only for a calculator the area has)."""
+        calc_id = AREAS[self._area][1][n - 1]
+        self.show_calculator(calc_id)
+        await self.card(calc_id)
 
     DIGITS = "123456789"  # ASCII only: '²' or '①' pass str.isdigit() and int() refuses them
 
     @guarded
     async def on_key(self, event: events.Key) -> None:
         """A digit on a focused tab strip picks its n-th tab (the sheet never sees it: a strip is
-        focused, not the sheet). The pick is made here, at once (show_calculator), not by the
+        focused, not the sheet); ↓ there goes into the card. The pick is made here, at once (show_calculator), not by the
         strip's TabActivated message: a Tab typed right after the digit would find the card left
         still recorded as shown."""
         character = event.character or ""
+        strip = self.focused
+        owner = (strip.id or "") if isinstance(strip, Tabs) else ""
+        if event.key == "down" and owner.startswith("calcs-") and not self._quitting:
+            event.stop()  # ↓ from the strip goes into the card, as Tab does (a strip has no ↓ of its own)
+            await self.action_focus_next()
+            return
         if len(character) != 1 or character not in self.DIGITS or self._quitting:
             return
         n = int(character)
-        strip = self.focused
-        owner = (strip.id or "") if isinstance(strip, Tabs) else ""
         if owner.startswith("calcs-"):
             ids = AREAS[owner.removeprefix("calcs-")][1]
             if n <= len(ids):
@@ -401,6 +435,26 @@ class GearheadApp(App):
         self.notify(
             f"{tab.calculator.title} copied as preset TOML; paste it into ctrl+o of any "
             f"Gearhead or save it as a .toml file",
+            title="Copied",
+            markup=False,
+        )
+
+    @guarded
+    async def action_copy_share_code(self) -> None:
+        """ctrl+y: the tab as a share code (core/share.py): one line that survives a chat or a
+        terminal's paste, where the TOML's line breaks did not; ctrl+o anywhere reads it."""
+        from gearhead.core import share
+        from gearhead.core.presets import Preset
+
+        tab = await self.card(self.current_calculator)  # a key on a card still being built waits for it
+        name, description = tab.preset_meta
+        preset = Preset(
+            tab.calculator.id, name or f"{tab.calculator.id} design", description, tab.current_inputs()
+        )
+        self.copy_to_clipboard(share.encode(preset))
+        self.notify(
+            f"{tab.calculator.title} copied as a share code; paste it into ctrl+o of any Gearhead, or "
+            f"`gearhead solve {tab.calculator.id} --preset CODE` (the palette's 'Copy as preset TOML' copies the file)",
             title="Copied",
             markup=False,
         )
@@ -515,6 +569,11 @@ class GearheadApp(App):
         )
         yield SystemCommand(
             "Load preset", "Load a built-in or user preset into the current tab", self.action_load_preset
+        )
+        yield SystemCommand(
+            "Copy share code",
+            "Copy the current tab as a gh1: share code (ctrl+y)",
+            self.action_copy_share_code,
         )
         yield SystemCommand(
             "Copy as preset TOML", "Copy the current tab as preset text, to share", self.action_copy_preset

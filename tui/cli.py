@@ -9,6 +9,8 @@ from collections.abc import Sequence
 
 from gearhead.core.errors import InputError, shown
 
+from . import cli_reach
+
 EXIT_BAD_INPUT = 2
 EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE, what a shell reports for a writer whose reader left
 EXIT_INTERNAL = 70  # EX_SOFTWARE: a bug, not the user's input
@@ -23,7 +25,11 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument(
         "calculator", help="calculator id (see `gearhead calculators`), or a workbook file (.toml)"
     )
-    s.add_argument("--preset", metavar="FILE", help="start from this preset file")
+    s.add_argument(
+        "--preset",
+        metavar="FILE",
+        help="start from this preset file (or a gh1: share code, or a ReCalc link)",
+    )
     s.add_argument(
         "--set",
         dest="sets",
@@ -72,6 +78,7 @@ def _parser() -> argparse.ArgumentParser:
     pr.add_argument("calculator", nargs="?", help="only this calculator's presets")
     c = sub.add_parser("calculators", help="list calculator ids, modes and fields")
     c.add_argument("--json", action="store_true")
+    cli_reach.add_parsers(sub)
     from . import workbook_cli  # `check`, and solve/sweep of a workbook file
 
     workbook_cli.add_parser(sub)
@@ -172,6 +179,8 @@ def _command(args) -> int:
         return _accuracy(args)
     if args.command == "sweep":
         return _sweep(args)
+    if args.command in cli_reach.COMMANDS:
+        return cli_reach.run(args)
     return _calculators(args)
 
 
@@ -219,13 +228,13 @@ def _complain(message: str, kind: str = "") -> None:
 
 def _raw_inputs(args, calc) -> dict:
     """Inputs from --preset then --set, as typed; a preset's warnings go to stderr, one line each."""
-    from gearhead.core import presets
+    from gearhead.core import share
 
     raw: dict = {}
     if args.preset is not None:
         if not args.preset.strip():  # `--preset ""` (an unset shell variable) was ignored
             raise InputError("--preset", "is empty; give a preset file")
-        preset = presets.load(args.preset)
+        preset = share.load_any(args.preset)  # a file, or a share code or ReCalc link
         if preset.calculator != calc.id:
             raise InputError(
                 "calculator", f"preset is for {shown(preset.calculator)}, not {calc.id!r}", args.preset
@@ -410,14 +419,14 @@ def _preset_out(args, calc, raw: dict, solution) -> int:
     given), '-' to stdout alone so it pipes into a file or another tool, else a new file."""
     from pathlib import Path
 
-    from gearhead.core import presets
+    from gearhead.core import share
     from gearhead.core.export import preset_toml
 
     inputs = {f.name: f.kind.initial_entry(f) for f in calc.fields}
     inputs.update(raw)
     # as the app saves them (whole numbers as TOML integers)
     inputs = {f.name: f.kind.stored(f, inputs[f.name]) for f in calc.fields}
-    name = presets.load(args.preset).name if args.preset else f"{calc.title} (command line)"
+    name = share.load_any(args.preset).name if args.preset else f"{calc.title} (command line)"
     text = preset_toml(calc.id, inputs, name)
     if args.preset_out == "-":
         sys.stdout.write(text)

@@ -44,6 +44,19 @@ Equations beyond the seed (cited by the outputs), Δ = |r_2 − r_1|, X = √(D�
     L(D) = 2X + π(r_1 + r_2) + 2Δ·sin⁻¹(Δ/D)         (68) corrected, as derived above      (CB4)
     l_below = s·⌊l_exact/s⌋, l_above = l_below + s (one count when l_exact is whole),
         s = 2 for chain without half links, else 1                                         (CB5)
+    belt teeth in mesh on each pulley: z_i = ⌊θ_i/(2π)·n_i⌋, θ_small from (CB2),
+        θ_large = 2π − θ_small; whole teeth, as the belt makers count teeth "in full contact"  (CB6)
+
+(CB6) sources and conventions: Gates' drive design manuals (as quoted on Gates' own applications
+blog, gatesbeltsandapplications.blogspot.com, 2012-05) ask for at least six teeth in mesh on a
+loaded sprocket, subtract 20 % of the belt's rating for each tooth short of six "in full contact",
+and ask for at least 60° of wrap on each loaded sprocket; Gates' printed formula is a linearised
+form in (D − d)/C which could not be retrieved here, so the exact wrap (CB2) is used and the count
+rounded down to whole teeth (a tooth partly in the arc is not in full contact). A pulley short of
+6 teeth in mesh gets a warning. ReCalc's belts.ts teethInMesh (tervay/recalc, commit 03511cb4)
+gives the larger pulley the smaller wrap and vice versa (20T and 30T HTD 5 mm at 100 mm: 10 and 14
+there, 9 and 15 by (CB6)), and floors 9.99999... for a 180° wrap on 20T (9 there, 10 here: the
+count is floored after adding 1e-9 for the rounding of an exact whole number).
 """
 
 from __future__ import annotations
@@ -56,6 +69,7 @@ from ..errors import InputError
 from ..fields import Field
 
 MM = 1e-3
+MIN_TEETH_IN_MESH = 6  # Gates: fewer in full contact cost 20 % of the belt's rating per tooth
 
 STANDARDS = ("chain_25", "chain_35", "chain_40", "htd_5mm", "gt2_3mm", "rt25", "custom")
 STANDARD_LABELS = (
@@ -265,6 +279,18 @@ OUTPUTS = (
         equation="(CB2)",
     ),
     Output(
+        "teeth_in_mesh_1",
+        "Belt teeth in mesh, pulley 1",
+        help="Whole belt teeth in the wrap of pulley 1, ⌊θ_1/(2π)·n_1⌋ (belts; reverse mode: at the wanted D).",
+        equation="(CB6)",
+    ),
+    Output(
+        "teeth_in_mesh_2",
+        "Belt teeth in mesh, pulley 2",
+        help="Whole belt teeth in the wrap of pulley 2, ⌊θ_2/(2π)·n_2⌋ (belts; reverse mode: at the wanted D).",
+        equation="(CB6)",
+    ),
+    Output(
         "minimum_links",
         "Fewest links with both clear",
         help="Fewest links (belt teeth) at which the wheels clear each other, D > (OD_1 + OD_2)/2 (CB3).",
@@ -366,6 +392,28 @@ def wrap_angle(X: float, r1: float, r2: float) -> float:
     return 2 * math.atan2(X, abs(r2 - r1))
 
 
+def teeth_in_mesh(X: float, n1: int, n2: int) -> tuple[int, int]:
+    """(CB6): whole teeth in the wrap of each pulley (r ∝ n for a belt, so Δ ∝ |n_2 − n_1|)."""
+    small = 2 * math.atan2(X, abs(n2 - n1) / (2 * math.pi))  # (CB2), θ on the smaller, per unit p
+    theta_1, theta_2 = (small, 2 * math.pi - small) if n1 <= n2 else (2 * math.pi - small, small)
+    if n1 == n2:
+        theta_1 = theta_2 = math.pi
+    return tuple(math.floor(th / (2 * math.pi) * n + 1e-9) for th, n in ((theta_1, n1), (theta_2, n2)))
+
+
+def mesh_check(values: dict, warnings: list[str], X: float, p: float, n1: int, n2: int) -> None:
+    """(CB6) outputs and the makers' six-teeth warning, belts only (X the straight span, m)."""
+    z1, z2 = teeth_in_mesh(X / p, n1, n2)
+    values.update(teeth_in_mesh_1=z1, teeth_in_mesh_2=z2)
+    short = [f"pulley {i} ({z} teeth)" for i, z in ((1, z1), (2, z2)) if z < MIN_TEETH_IN_MESH]
+    if short:
+        warnings.append(
+            f"Fewer than {MIN_TEETH_IN_MESH} belt teeth in mesh on {' and '.join(short)}: the belt "
+            f"makers (Gates) ask for at least {MIN_TEETH_IN_MESH} on a loaded pulley and derate the "
+            f"belt 20 % per tooth short; it may skip. Use a larger pulley or a longer center distance."
+        )
+
+
 # --- the calculator --------------------------------------------------------------------------
 
 
@@ -419,6 +467,8 @@ def compute(v) -> Result:
         D, X = span_from_length(L, r1, r2, spare(l))
         values.update(center_distance=D, length=L, clearance=D - (shown_1 + shown_2))  # (67)
         values["wrap_angle_small"] = wrap_angle(X, r1, r2)
+        if kind == "belt":
+            mesh_check(values, warnings, X, p, n1, n2)
         if D <= touch:
             warnings.append(
                 f"The {wheels} overlap at this length: the wheels would collide; "
@@ -437,6 +487,8 @@ def compute(v) -> Result:
     L = length_from_center(D, r1, r2)
     l_exact = L / p
     values["links_exact"] = l_exact
+    if kind == "belt":  # at the wanted center distance
+        mesh_check(values, warnings, math.sqrt((D - delta) * (D + delta)), p, n1, n2)
     if D <= touch:
         warnings.append(
             f"The {wheels} overlap at this center distance: the wheels would collide; "

@@ -31,6 +31,35 @@ Where this module departs from or corrects the seed:
 - `loss_fraction` f (friction, ball compression): energy model, E_b = (1−f)·(E_w,initial − E_w,final)
   ⇒ ω₁ = ω₀/√(1 + β/(1−f)); momentum model, the ball leaves with (1−f) of its energy (V·√(1−f)).
 
+Shooter layouts with a secondary wheel (issue 31; ReCalc v2's shooter modes, tervay/recalc
+app/lib/math/ballShot.ts at commit 03511cb4, the Team 449 paper's main body, §2.3 and Appendix A).
+The secondary (top) wheels turn at ω₂ = G₂₁·ω₁ of the primary (bottom) wheels, each set geared to
+the motors by its own ratio; everything is written at the primary wheel (r₁ = r_w, ω₁ = ω_w):
+    (D1) G₂₁ = G/G₂ (motor turns per primary / per secondary turn),
+         I = n₁·I₁ + G₂₁²·n₂·I₂ + N·J_r·G²                     all inertia seen at the primary wheel
+    (D2) no slip at both contacts at release: V + r_b·ω_b = r₁·ω₁,  V − r_b·ω_b = G₂₁·r₂·ω₁
+         ⇒ V = s·r₁·ω₁, s = (r₁ + G₂₁·r₂)/(2·r₁);  ω_b = c·V/r_b, c = (r₁ − G₂₁·r₂)/(r₁ + G₂₁·r₂)
+         (hood: G₂₁ = 0, s = ½, c = 1 as (2); a same-speed pair: s = 1, c = 0; c < 0 is backspin)
+    (D3) E_b = ½·m·V² + ½·I_b·ω_b² = ½·m_e·V²,  m_e = m·(1 + c²·k_b):  (3) and (6) with σ = c²,
+         β = m_e·s²·r₁²/I; so both seed transfer models hold unchanged for the dual layout
+    (D4) momentum, impulses J₁, J₂ of the two contacts on the ball, the wheels geared together:
+         I·(ω₀ − ω₁) = r₁·J₁ + G₂₁·r₂·J₂,  m·(V − V_i) = J₁ + J₂,  I_b·(ω_b − ω_bi) = r_b·(J₁ − J₂)
+         ⇒ ω₁ = (ω₀ + β·V_eq/(s·r₁))/(1 + β),  V_eq = (V_i + c·k_b·r_b·ω_bi)/(1 + c²·k_b)
+         (V_i, ω_bi the ball's incoming speed and spin; ReCalc's rawDualShooter, rawSingleHooded)
+    (D5) energy with an incoming ball: E_b − E_b,i = (1 − f)·½·I·(ω₀² − ω₁²),
+         E_b,i = ½·m·(V_i² + k_b·r_b²·ω_bi²)  ⇒  ω₁² = (ω₀² + 2·E_b,i/((1 − f)·I))/(1 + β/(1 − f))
+    (D6) compound: a hood section of the primary wheel (s = ½, c = 1), then the pair (D2); the first
+         section's exit (V, ω_b) is the second's incoming (V_i, ω_bi), each section by (D4) or (D5)
+         with its own loss f. Energy model: ω₁ = ω₀/√(1 + β_pair/(1 − f)), whatever the path
+         (the sections' E_b = (1 − f)·ΔE_w add up); the momentum model's slip loses more.
+    (D7) hood_secondary: a hood shooter with a secondary wheel geared to the primary that does not
+         touch the ball (ReCalc's "Flywheel" section): (2)-(6) with I from (D1).
+The incoming ball speed and spin (default 0) apply to every layout; motor_during_shot needs a ball
+entering at rest and one contact section (not with an incoming ball or the compound layout). For the
+dual layout its grip F is the generalised force of (D4) at the primary wheel: r₁·F is the torque
+the ball takes from the geared wheels (r₁·J₁ + G₂₁·r₂·J₂ per unit time), so (FW3) holds with s, σ
+of (D2)-(D3); how F divides between the two contacts is not modelled.
+
 Motor (linear model, core.motors): the wheel set of inertia I is driven through reduction G (motor
 turns per wheel turn) by n motors:  I·dω/dt = G·τ̃s·(1 − G·ω/ω̃f)  ⇒  ω(t) = ω_f,w·(1 − e^(−t/T)),
 ω_f,w = ω̃f/G, T = I·ω̃f/(G²·τ̃s). Full power below the target speed, held at the target above it.
@@ -114,8 +143,16 @@ EFFECTS = Effects(
     ),
     *motor_limits.electrical_effects(),
 )
-SHOOTERS = ("hood", "two_wheel")
-SHOOTER_LABELS = ("Single wheel with hood (ball at half surface speed)", "Two wheels (ball at surface speed)")
+SHOOTERS = ("hood", "two_wheel", "dual", "compound", "hood_secondary")
+SHOOTER_LABELS = (
+    "Single wheel with hood (ball at half surface speed)",
+    "Two wheels (ball at surface speed)",
+    "Dual: bottom and top wheels, each its own diameter and ratio",
+    "Compound: hood section, then between the wheel and a secondary wheel",
+    "Hood with a secondary wheel geared to it (inertia only)",
+)
+SECONDARY = ("dual", "compound", "hood_secondary")  # layouts with a secondary wheel set
+WITH_SPIN = ("hood", "dual", "compound", "hood_secondary")  # the ball leaves spinning
 INERTIA_MODES = ("radius_of_gyration", "moment_of_inertia")
 
 
@@ -195,7 +232,8 @@ FIELDS = (
         default=1,
         min=1,
         max=20,
-        help="Wheels spinning together (all wheels of both sides for a two-wheel shooter).",
+        help="Wheels spinning together (all wheels of both sides for a two-wheel shooter; the "
+        "primary shaft's for the layouts with a secondary wheel).",
     ),
     Field(
         "shooter",
@@ -204,7 +242,9 @@ FIELDS = (
         choice_labels=SHOOTER_LABELS,
         default="hood",
         help="Hood: the ball rolls on the hood and leaves at half the surface speed with spin V/r_b. "
-        "Two wheels: surface speed, no spin.",
+        "Two wheels: surface speed, no spin. Dual: between the primary (bottom) and secondary (top) "
+        "wheels, V = (r₁·ω₁ + r₂·ω₂)/2 (D2). Compound: a hood section, then dual (D6). Hood with a "
+        "secondary wheel: its inertia adds to the hood shooter's (D7).",
     ),
     Field(
         "ball_diameter",
@@ -215,8 +255,101 @@ FIELDS = (
         min=0,
         min_exclusive=True,
         max=79,
-        when=(("shooter", ("hood",)),),
-        help="2·r_b: sets the spin V/r_b of a ball rolling on the hood.",
+        when=(("shooter", WITH_SPIN),),
+        help="2·r_b: sets the spin c·V/r_b of the ball (D2); c = 1 rolling on the hood.",
+    ),
+    Field(
+        "secondary_diameter",
+        "Secondary wheel diameter",
+        "length",
+        "in",
+        default=4,
+        min=0,
+        min_exclusive=True,
+        max=79,
+        when=(("shooter", SECONDARY),),
+        help="2·r₂ of the secondary (top) wheel (D2); for hood_secondary only its inertia counts.",
+    ),
+    Field(
+        "secondary_mass",
+        "Secondary wheel mass (each)",
+        "mass",
+        "g",
+        default=180,
+        min=0,
+        min_exclusive=True,
+        max=50_000,
+        modes=("radius_of_gyration",),
+        when=(("shooter", SECONDARY),),
+        help="Mass of one secondary wheel.",
+    ),
+    Field(
+        "secondary_gyration_fraction",
+        "Secondary radius of gyration / radius",
+        "dimensionless",
+        "",
+        default=0.84,
+        min=0,
+        min_exclusive=True,
+        max=1,
+        modes=("radius_of_gyration",),
+        when=(("shooter", SECONDARY),),
+        help="k₂/r₂ with I₂ = m₂·(k₂·r₂)² (disc 0.707, ReCalc's m·r²/2).",
+    ),
+    Field(
+        "secondary_inertia",
+        "Secondary wheel inertia (each)",
+        "inertia",
+        "lb*in**2",
+        default=1.75,
+        min=0,
+        min_exclusive=True,
+        max=3.4e9,
+        modes=("moment_of_inertia",),
+        when=(("shooter", SECONDARY),),
+        help="Moment of inertia of one secondary wheel about its axle.",
+    ),
+    Field(
+        "secondary_count",
+        "Secondary wheels",
+        integer=True,
+        default=1,
+        min=1,
+        max=20,
+        when=(("shooter", SECONDARY),),
+        help="Secondary wheels spinning together on their shaft.",
+    ),
+    Field(
+        "secondary_ratio",
+        "Secondary ratio (motor : secondary)",
+        "dimensionless",
+        "",
+        default=0.04,
+        min=1e-4,
+        max=1e4,
+        when=(("shooter", SECONDARY),),
+        help="G₂, motor turns per secondary wheel turn; the secondary turns at G/G₂ of the primary (D1).",
+    ),
+    Field(
+        "ball_initial_speed",
+        "Ball incoming speed",
+        "speed",
+        "m/s",
+        default=0,
+        min=0,
+        max=100,
+        help="V_i: the ball's speed along the shot as it meets the wheel (ReCalc v2; 0: at rest) (D4), (D5).",
+    ),
+    Field(
+        "ball_initial_spin",
+        "Ball incoming spin",
+        "angular_speed",
+        "rpm",
+        default=0,
+        min=-1e6,
+        max=1e6,
+        when=(("shooter", WITH_SPIN),),
+        help="ω_bi, positive in the sense the primary wheel spins the ball (a hood shot's) (D4), (D5).",
     ),
     Field(
         "ball_mass",
@@ -236,8 +369,8 @@ FIELDS = (
         default=0.4,
         min=0,
         max=0.67,
-        when=(("shooter", ("hood",)),),
-        help="k_b: 2/5 solid sphere (seed), 2/3 thin shell.",
+        when=(("shooter", WITH_SPIN),),
+        help="k_b = I_b/(m·r_b²): 2/5 solid sphere (seed, ReCalc's default), 2/3 thin shell.",
     ),
     Field(
         "ball_mass_tolerance",
@@ -362,8 +495,16 @@ OUTPUTS = (
         "Ball spin",
         "angular_speed",
         "rpm",
-        help="V/r_b for a ball rolling on the hood (2); 0 for two wheels.",
-        equation="(2)",
+        help="c·V/r_b (D2): V/r_b rolling on the hood (2), 0 for two wheels, negative for backspin.",
+        equation="(2), (D2)",
+    ),
+    Output(
+        "secondary_speed",
+        "Secondary wheel speed",
+        "angular_speed",
+        "rpm",
+        help="G₂₁·ω_t: the secondary wheels at the primary's target speed (layouts with one).",
+        equation="(D1)",
     ),
     Output("ball_energy", "Ball energy", "energy", "J", help="Translation plus spin.", equation="(3)"),
     Output(
@@ -547,7 +688,7 @@ class Scene:
     r_b: float
     k_b: float
     s: float  # V / (r_w·ω_w) at release
-    sigma: float  # 1: the ball spins at V/r_b (hood); 0: no spin
+    sigma: float  # c² (D3): 1 the ball spins at V/r_b (hood); 0: no spin
     f: float  # loss fraction
     model: str  # "energy" or "momentum"
     motor_on: bool  # motor_during_shot
@@ -556,6 +697,15 @@ class Scene:
     grip: float  # N
     drive: Drive | None = dataclasses.field(default=None, compare=False)  # a current limit is on
     electric: Drive | None = dataclasses.field(default=None, compare=False)  # a limit or battery_sag is on
+    spin_ratio: float = 1.0  # c = ω_b·r_b/V at release (D2): 1 hood, 0 a same-speed pair
+    V_in: float = 0.0  # V_i, the ball's incoming speed, m/s (D4)
+    spin_in: float = 0.0  # ω_bi, its incoming spin, rad/s
+    first: Scene | None = None  # compound: the hood section before this one (D6)
+
+    @property
+    def incoming(self) -> bool:
+        """The shot has no closed form in m alone: a ball entering moving, or two sections."""
+        return self.first is not None or self.V_in != 0 or self.spin_in != 0
 
     @property
     def B(self) -> float:
@@ -569,6 +719,28 @@ class Scene:
 def rotor_reflected(v) -> float:
     """N·J_r·G²: the motors' rotors seen at the wheel (kinetic energy ½·J_r·(G·ω)² each)."""
     return v["motor_count"] * v["rotor_inertia"] * v["ratio"] ** 2
+
+
+def secondary_speed_ratio(v) -> float:
+    """(D1) G₂₁ = ω₂/ω₁ = G/G₂."""
+    return v["ratio"] / v["secondary_ratio"]
+
+
+def secondary_reflected(v) -> float:
+    """(D1) G₂₁²·n₂·I₂: the secondary wheels seen at the primary wheel (0 without them)."""
+    if v["shooter"] not in SECONDARY:
+        return 0.0
+    if v["mode"] == "moment_of_inertia":
+        each = v["secondary_inertia"]
+    else:
+        each = v["secondary_mass"] * (v["secondary_gyration_fraction"] * v["secondary_diameter"] / 2) ** 2
+    return secondary_speed_ratio(v) ** 2 * v["secondary_count"] * each
+
+
+def with_inertia(sc: Scene, I: float) -> Scene:
+    """The scene with all wheels' inertia I (and its compound first section likewise)."""
+    first = None if sc.first is None else dataclasses.replace(sc.first, I=I)
+    return dataclasses.replace(sc, I=I, first=first)
 
 
 def inertia_each(v) -> float:
@@ -596,17 +768,43 @@ def scene_from(v, rtol: float = 1e-6) -> tuple[Scene, list[str]]:
     if any(n in effects for n in ELECTRICAL):
         A, free, electric = electrical_drive(v, A, free, G, rtol)
         drive = electric if electric.boundaries is not None else None
-    hood = v["shooter"] == "hood"
+    shooter = v["shooter"]
+    incoming = v["ball_initial_speed"] != 0 or (shooter in WITH_SPIN and v["ball_initial_spin"] != 0)
+    if motor_on and (incoming or shooter == "compound"):
+        name = "shooter" if shooter == "compound" else "ball_initial_speed"
+        if shooter != "compound" and v["ball_initial_speed"] == 0:
+            name = "ball_initial_spin"
+        raise InputError(
+            name,
+            "motor_during_shot models one contact section with the ball entering at rest: "
+            "not with the compound layout or an incoming ball speed or spin (turn the effect off)",
+        )
+    r_w = v["wheel_diameter"] / 2
+    if shooter in ("dual", "compound"):  # (D2)
+        pair = r_w + secondary_speed_ratio(v) * v["secondary_diameter"] / 2
+        s = pair / (2 * r_w)
+        c = (r_w - secondary_speed_ratio(v) * v["secondary_diameter"] / 2) / pair
+    elif shooter == "two_wheel":
+        s, c = 1.0, 0.0
+    else:  # hood, hood_secondary: (2)
+        s, c = 0.5, 1.0
     I = v["wheel_count"] * inertia_each(v)
+    if shooter in SECONDARY:
+        I += secondary_reflected(v)  # (D1)
     if v["rotor_inertia"] > 0:
         I += rotor_reflected(v)
+    if incoming and model == "energy":
+        warnings.append(
+            "The energy model counts the incoming ball's kinetic energy whatever the direction of "
+            "its spin (D5); the momentum model (ReCalc v2, Team 449) accounts for it (D4)."
+        )
     sc = Scene(
-        r_w=v["wheel_diameter"] / 2,
+        r_w=r_w,
         I=I,
         r_b=v["ball_diameter"] / 2,
         k_b=v["ball_inertia_factor"],
-        s=0.5 if hood else 1.0,
-        sigma=1.0 if hood else 0.0,
+        s=s,
+        sigma=c * c,
         f=v["loss_fraction"],
         model=model,
         motor_on=motor_on,
@@ -615,7 +813,13 @@ def scene_from(v, rtol: float = 1e-6) -> tuple[Scene, list[str]]:
         grip=v["grip_force"],
         drive=drive,
         electric=electric,
+        spin_ratio=c,
+        V_in=v["ball_initial_speed"],
+        spin_in=v["ball_initial_spin"] if shooter in WITH_SPIN else 0.0,
     )
+    if shooter == "compound":  # (D6): the hood section meets the incoming ball
+        hood = dataclasses.replace(sc, s=0.5, sigma=1.0, spin_ratio=1.0)
+        sc = dataclasses.replace(sc, V_in=0.0, spin_in=0.0, first=hood)
     return sc, warnings
 
 
@@ -671,6 +875,8 @@ class Shot:
 
 def shot(sc: Scene, omega0: float, m: float, target: float, rtol: float) -> Shot:
     """The ball leaves a wheel set spinning at omega0: wheel speed after, ball speed, spin, energy."""
+    if sc.incoming:
+        return shot_incoming(sc, omega0, m)
     b = beta(sc, m)
     m_e = m * (1 + sc.sigma * sc.k_b)
     t_c, nfev = 0.0, 0
@@ -690,8 +896,41 @@ def shot(sc: Scene, omega0: float, m: float, target: float, rtol: float) -> Shot
         omega1, V, t_c, nfev = slip_phase(sc, omega0, m_e, target, rtol)
         drop = omega0 - omega1
         V *= math.sqrt(1 - sc.f)
-    spin = sc.sigma * V / sc.r_b  # (2)
+    spin = sc.spin_ratio * V / sc.r_b  # (2), (D2)
     return Shot(omega1, drop, V, spin, 0.5 * m_e * V * V, t_c, nfev)  # (3)
+
+
+def shot_incoming(sc: Scene, omega0: float, m: float) -> Shot:
+    """A shot whose ball meets the wheels moving (V_i, ω_bi), by (D4) or (D5); compound (D6): the
+    hood section first, its exit the pair's incoming ball. No slip phase (checked in scene_from)."""
+    if sc.first is not None:
+        one = shot_incoming(sc.first, omega0, m)
+        two = section(sc, one.omega_after, m, one.V, one.spin)
+    else:
+        two = section(sc, omega0, m, sc.V_in, sc.spin_in)
+    return dataclasses.replace(two, drop=omega0 - two.omega_after)
+
+
+def section(sc: Scene, omega0: float, m: float, V_in: float, spin_in: float) -> Shot:
+    """One contact section with an incoming ball: (D4) momentum or (D5) energy, losses f."""
+    b = beta(sc, m)
+    m_e = m * (1 + sc.sigma * sc.k_b)
+    if sc.model == "energy":
+        E_in = 0.5 * m * (V_in * V_in + sc.k_b * (sc.r_b * spin_in) ** 2)  # (D5)
+        omega1 = math.sqrt((omega0 * omega0 + 2 * E_in / ((1 - sc.f) * sc.I)) / (1 + b / (1 - sc.f)))
+        V = sc.s * sc.r_w * omega1  # (D2)
+    else:
+        V_eq = (V_in + sc.spin_ratio * sc.k_b * sc.r_b * spin_in) / (1 + sc.sigma * sc.k_b)  # (D4)
+        omega1 = (omega0 + b * V_eq / (sc.s * sc.r_w)) / (1 + b)  # (D4)
+        if omega1 < 0:
+            raise InputError(
+                "ball_initial_spin",
+                "spins the ball against the wheels so hard that they would turn backwards (D4): "
+                "the ball would not be thrown",
+            )
+        V = sc.s * sc.r_w * omega1 * math.sqrt(1 - sc.f)
+    spin = sc.spin_ratio * V / sc.r_b  # (D2)
+    return Shot(omega1, omega0 - omega1, V, spin, 0.5 * m_e * V * V, 0.0, 0)  # (D3)
 
 
 def slip_phase(
@@ -849,6 +1088,8 @@ def speed_sq_change(sc: Scene, m0: float, dm: float, shot0: Shot, shot1: Shot) -
     the change of β is β(dm) (β is linear in m), so nothing is formed by subtraction."""
     if shot0.V == 0:
         return 0.0
+    if sc.incoming:  # no closed form in the mass alone
+        return (shot1.V - shot0.V) * (shot1.V + shot0.V) / (shot0.V * shot0.V)
     m1 = m0 + dm
     if sc.model == "energy":  # V² ∝ 1/(1 + β/(1−f)):  (7)
         b1 = beta(sc, m1) / (1 - sc.f)
@@ -1108,6 +1349,8 @@ def _simulate(v, rtol: float) -> SimRun:
         "range_error_linear": range_error_linear(sc, m0, e_m),
         "range_spread": R * (range_change(sc, v, shots, -m0 * e_m) - range_change(sc, v, shots, m0 * e_m)),
     }
+    if v["shooter"] in SECONDARY:
+        values["secondary_speed"] = secondary_speed_ratio(v) * target  # (D1)
     if sc.motor_on:
         values["contact_time"] = first.contact_time
         # the grip is constant, so the ball accelerates uniformly from rest: it slips over V·t_c/2
@@ -1122,7 +1365,7 @@ def _simulate(v, rtol: float) -> SimRun:
             "The 'seed linear' range errors are the seed's energy model; the momentum model's "
             "exact range errors are about twice them (R ∝ 1/(1 + β)² instead of 1/(1 + β))."
         )
-    if v["mode"] == "radius_of_gyration":
+    if v["mode"] == "radius_of_gyration" and v["shooter"] not in SECONDARY:
         values["mass_ratio_coefficient"] = (
             (1 + sc.sigma * sc.k_b) * sc.s**2 / v["gyration_fraction"] ** 2
         )  # (6)
@@ -1130,7 +1373,7 @@ def _simulate(v, rtol: float) -> SimRun:
         sc_n = (
             sc
             if n == v["wheel_count"]
-            else dataclasses.replace(sc, I=n * inertia_each(v) + rotor_reflected(v))
+            else with_inertia(sc, n * inertia_each(v) + secondary_reflected(v) + rotor_reflected(v))
         )
         values[f"range_error_{n}"] = range_change(sc_n, v, shots, m0 * e_m)
         values[f"range_error_linear_{n}"] = range_error_linear(sc_n, m0, e_m)

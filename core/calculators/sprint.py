@@ -49,6 +49,14 @@ Exports (PathPlanner settings.json, Choreo .chor; core.robot_config): the yaw in
 uniform plate over the bumper outline, I = m·(L² + W²)/12 (PathPlanner's "rough estimate"), or entered;
 the attainable speed as the top speed; the stator limit (the stall current when off) per motor, and
 one motor's torque there, Kt·(I_lim − i_f)·η                                                       (S13)
+Voltage ramp (the controllers' open-loop ramp, T_r from 0 to full output): the duty is at most t/T_r,
+    u = min(t/T_r, 1, u_st, u_sup)                                                                (S14)
+so the electrical state depends on time as well as speed. The robot waits at rest while the motors'
+force at v = 0 is below the loss and rolling resistance (drawing the stalled current); while slipping
+the motors draw I_slip at the duty min(t/T_r, u_slip); the wheels may start slipping part-way up the
+ramp. Nothing is closed-form then: (S4) is integrated in phases (rest, gripping, slipping), each run
+on the ramp's own branch u = t/T_r while it binds, stopped where it meets the limits' bound; the
+peak currents are the runs' maxima (each local maximum refined on the dense output).
 Optimise: G* minimising the time to the distance: the time on 200 ratios (one numpy batch, core.sim.motion.batch_arrival) log-spaced over two decades
 about the ratio at which the motors just slip the wheels at rest (G_t: F_m(0) = F_t), then bounded
 Brent on the accurate solve, and the same for 1 m, 3 m, 5 m and the field's 16.54 m (the table).  (S10)
@@ -135,6 +143,24 @@ EFFECTS = Effects(
                 min=0,
                 max=200,
                 help="Height of the centre of mass above the floor (taken midway between the axles).",
+            ),
+        ),
+    ),
+    Effect(
+        "voltage_ramp",
+        "the controllers' open-loop ramp: the duty may rise from 0 to full over the ramp time (S14)",
+        nothing,
+        fields=(
+            Field(
+                "ramp_time",
+                "Ramp time",
+                "time",
+                "s",
+                default=0.25,
+                min=0,
+                max=10,
+                help="Seconds from 0 to full output (REVLib openLoopRampRate, Phoenix 6 "
+                "DutyCycleOpenLoopRampPeriod); it softens the start's current and wheel slip.",
             ),
         ),
     ),
@@ -310,7 +336,7 @@ FIELDS = (
     EFFECTS.field(
         "stator_limit, supply_limit (per motor current limits); battery_sag (bus = battery − R × total "
         "supply current); rolling_resistance (C_rr·m·g); weight_transfer (front wheels slip first); "
-        "air_drag (½ρ·CdA·v²)."
+        "air_drag (½ρ·CdA·v²); voltage_ramp (the duty rises from 0 to full over the ramp time)."
     ),
     *EFFECTS.fields(),
     accuracy_field(),
@@ -372,7 +398,7 @@ OUTPUTS = (
         "Distance traction-limited",
         "length",
         "m",
-        help="Travelled at the edge of wheel slip (F_m > μ·m·g), from the start.",
+        help="Travelled at the edge of wheel slip (F_m > μ·m·g): from the start, or part-way up a ramp.",
         equation="(S6)",
     ),
     Output(
@@ -523,6 +549,11 @@ class Setup:
     values: Mapping[str, Any]
     distance: float
     traction: float  # F_t (S3)
+    ramp: float = 0.0  # T_r (S14), 0 without the voltage_ramp effect
+
+    def ceiling(self, t: float) -> float:
+        """The duty the ramp allows at time t (S14)."""
+        return min(1.0, t / self.ramp) if self.ramp > 0 and t < self.ramp else 1.0
 
     def resist(self):
         f = self.asm.slots["resist"]
@@ -553,7 +584,7 @@ def setup(v: Mapping[str, Any], ratio: float | None = None, distance: float | No
     )
     asm = EFFECTS.assemble(on, v, drive, SLOTS, ("position", "speed", "energy"))
     d = v["distance"] if distance is None else distance
-    return Setup(drive, asm, v, d, traction(v, on))
+    return Setup(drive, asm, v, d, traction(v, on), v["ramp_time"] if "voltage_ramp" in on else 0.0)
 
 
 def traction(v: Mapping[str, Any], on) -> float:
@@ -571,12 +602,22 @@ def traction(v: Mapping[str, Any], on) -> float:
 
 
 def _motor_force(s: Setup):
-    """v -> (F_m, u, I): (S2) with the duty and current of the limits that are on."""
+    """(v, t) -> (F_m, u, I): (S2) with the duty and current of the limits that are on, under the
+    ramp's ceiling at time t (S14; t omitted: full duty)."""
     dr = s.drive
     elec = electrical(dr, s.asm.slots["duty"])
     fpa, i_f, k_emf = dr.force_per_amp, dr.free_current, dr.n / dr.Kv
 
-    def f(v):
+    if s.ramp > 0:
+        ceiling = s.ceiling
+
+        def f(v, t=math.inf):
+            u, I = elec(k_emf * v, ceiling(t))
+            return fpa * (I - i_f), u, I
+
+        return f, elec
+
+    def f(v, t=None):
         u, I = elec(k_emf * v)
         return fpa * (I - i_f), u, I
 
@@ -655,8 +696,8 @@ def phase_two_time(D: float, a: float) -> float:
 
 
 def closed_form(s: Setup) -> dict[str, float] | None:
-    """(S6)-(S8) when nothing needs integrating (no current limit, no drag); None otherwise."""
-    if s.asm.slots["duty"] is not None or "air_drag" in s.asm.on:
+    """(S6)-(S8) when nothing needs integrating (no current limit, no drag, no ramp); None otherwise."""
+    if s.asm.slots["duty"] is not None or "air_drag" in s.asm.on or s.ramp > 0:
         return None
     dr = s.drive
     m, d = dr.mass, s.distance
@@ -680,95 +721,143 @@ def closed_form(s: Setup) -> dict[str, float] | None:
 
 
 class _Pieces:
-    """Runs one after another (the traction phase, then the rest), answering `at(t)` and `y[-1]`."""
+    """Runs one after another (each a phase: at rest, slipping or gripping), answering `at(t)`,
+    `phase_at(t)` and `y[-1]`."""
 
-    def __init__(self, runs):
+    def __init__(self, runs, phases):
         self.runs = runs
+        self.phases = phases
         self.y = runs[-1].y
         self.nfev = sum(r.nfev for r in runs)
 
+    def _piece(self, t: float) -> int:
+        return next((k for k, r in enumerate(self.runs) if t <= r.t[-1]), len(self.runs) - 1)
+
     def at(self, t: float):
-        for r in self.runs:
-            if t <= r.t[-1]:
-                return r.at(t)
-        return self.runs[-1].at(t)
+        return self.runs[self._piece(t)].at(t)
+
+    def phase_at(self, t: float) -> str:
+        return self.phases[self._piece(t)]
 
 
 def integrated(s: Setup, rtol: float, dense: bool = False):
-    """(S4) integrated to the goal: the traction phase to where the wheels grip (a terminal event:
-    the acceleration has a kink there, and F_m falls with v, so they never slip again), then on
-    to the goal. (values, run, scales)."""
+    """(S4) integrated to the goal, one run per phase: at rest while the ramp's force is below what
+    holds the robot (S14), slipping (at the edge of slip: the traction pushes, the motors draw I_slip
+    (S5)), gripping. A run also stops where the duty rule changes branch (a current limit letting
+    go, the ramp's ceiling meeting the limits' bound) and starts again, so no step straddles a kink
+    (straddled, the supply limit's release cost 50x the accuracy asked: energy 5.8e-5 at rtol 1e-6);
+    while the ramp binds, each run integrates the ramp's own smooth branch u = t/T_r, so the event
+    that ends it is located on a smooth solution. Without a ramp the wheels never slip again once
+    they grip: F_m falls as v rises. (values, run, scales)."""
     dr = s.drive
     force, elec = _motor_force(s)
     resist = s.resist()
-    F_t, m, d = s.traction, dr.mass, s.distance
+    F_t, m, d, T_r = s.traction, dr.mass, s.distance, s.ramp
     I_slip, E_slip = _slip_point(s, elec)
     u_slip = elec(E_slip)[0]
     v_ref = (dr.battery_voltage - dr.R * dr.free_current) * dr.Kv / dr.n
     e_ref = dr.count * dr.battery_voltage * I_slip * d / v_ref
     Vb_N = dr.battery_voltage * dr.count
-    slip_sup = Vb_N * u_slip * I_slip / e_ref
+    F_rest = resist(0.0)
+    fpa, i_f, k_emf = dr.force_per_amp, dr.free_current, dr.n * v_ref / dr.Kv
+    at_duty = electrical(dr, None)  # (E, u) -> (u, I) at a duty given outright (E1)
 
-    def slipping(t, y):  # (S4) at the edge of slip: the traction pushes, the motors draw I_slip (S5)
-        v = y[1] * v_ref
-        return [v / d, (F_t - resist(v)) / (m * v_ref), slip_sup]
+    def ramp_force(v, t):  # the ramp's branch u = t/T_r (S14), smooth past where it stops binding
+        u, I = at_duty(k_emf * v / v_ref, t / T_r)
+        return fpa * (I - i_f), u, I
 
-    def gripping(t, y):
-        v = y[1] * v_ref
-        F_m, u, I = force(v)
-        return [v / d, (F_m - resist(v)) / (m * v_ref), Vb_N * u * I / e_ref]
+    def make_phase(phase: str, binds: bool):
+        f = ramp_force if binds else force
 
-    goal = Event("goal", lambda t, y: y[0] - 1.0, +1)
-    grip = Event("grip", lambda t, y: force(y[1] * v_ref)[0] - F_t, -1)
+        def slipping(t, y):  # (S4) at the edge of slip; under a ramp the duty is min(t/T_r, u_slip) (S14)
+            v = y[1] * v_ref
+            u = t / T_r if binds else u_slip
+            return [v / d, (F_t - resist(v)) / (m * v_ref), Vb_N * u * I_slip / e_ref]
+
+        def gripping(t, y):
+            v = y[1] * v_ref
+            F_m, u, I = f(v, t)
+            return [v / d, (F_m - resist(v)) / (m * v_ref), Vb_N * u * I / e_ref]
+
+        def resting(t, y):  # the ramp's force does not yet beat the loss and rolling resistance (S14)
+            _, u, I = f(0.0, t)
+            return [0.0, 0.0, Vb_N * u * I / e_ref]
+
+        events = [Event("goal", lambda t, y: y[0] - 1.0, +1)]
+        if phase == "rest":
+            events.append(Event("leave", lambda t, y: f(0.0, t)[0] - F_rest, +1))
+        elif phase == "slip":
+            events.append(Event("grip", lambda t, y: f(y[1] * v_ref, t)[0] - F_t, -1))
+        elif binds:
+            events.append(Event("slip", lambda t, y: f(y[1] * v_ref, t)[0] - F_t, +1))
+        if binds and phase != "slip":  # the ceiling meets the limits' bound (or full duty)
+            events.append(Event("cap", lambda t, y: t / T_r - ceiling_bound(y[1]), +1))
+        return {"rest": resting, "slip": slipping, "grip": gripping}[phase], events
+
+    duty = s.asm.slots["duty"]
+
+    def ceiling_bound(w):
+        return 1.0 if duty is None else min(1.0, duty(k_emf * w))
+
+    to_scaled = dr.Kv / (dr.n * v_ref)
+    kinks = sorted({E * to_scaled for E in branch_emfs(dr, s.values, s.asm.on) if E * to_scaled > 0})
     opts = {"rtol": rtol, "atol": rtol, "max_steps": DP54_STEPS, "dense": dense}
-    runs = []
-    t0, y0 = 0.0, [0.0, 0.0, 0.0]
-    t_grip, x_grip = 0.0, 0.0
-    if force(0.0)[0] > F_t:
-        first = integrate(slipping, 0.0, 3600.0, y0, events=[goal, grip], **opts)
-        runs.append(first)
-        t0, y0 = first.t[-1], list(first.y[-1])
-        t_grip, x_grip = t0, y0[0] * d
-    if not runs or runs[-1].event == "grip":
-        # the speed settles with τ = m·R·Kv/(η·N·Kt·n²) (S7); an explicit step must stay near 3τ, so
-        # a sprint many τ long is stiff: scipy's LSODA (same events, dense output) takes it
-        tau = m * (dr.R + dr.bus_resistance) * dr.Kv / (dr.force_per_amp * dr.n)
-        stiff = d / v_ref > STIFF * tau
-        # where the duty rule changes branch (a current limit letting go) the acceleration has a kink:
-        # the run stops there and starts again, so no step straddles one (straddled, the supply
-        # limit's release cost 50x the accuracy asked: energy 5.8e-5 at rtol 1e-6)
-        to_scaled = dr.Kv / (dr.n * v_ref)
-        kinks = sorted({E * to_scaled for E in branch_emfs(dr, s.values, s.asm.on) if E * to_scaled > y0[1]})
-        last = "grip"
-        while True:
-            events = [goal] + [Event("kink", lambda t, y, w=kinks[0]: y[1] - w, +1)] if kinks else [goal]
-            try:
-                if stiff:
-                    raise RuntimeError("stiff")
-                rest = integrate(gripping, t0, 3600.0, y0, events=events, restart=(last,), **opts)
-            except RuntimeError:  # stiffer than estimated: LSODA takes over
-                rest = integrate_stiff(gripping, t0, 3600.0, y0, rtol, rtol, events, "LSODA")
-                if rest.status == -1:
-                    raise InputError(
-                        "ratio", f"the sprint could not be integrated ({rest.message})"
-                    ) from None
-            runs.append(rest)
-            if rest.event != "kink":
-                break
+    # the speed settles with τ = m·R·Kv/(η·N·Kt·n²) (S7); an explicit step must stay near 3τ, so a
+    # sprint many τ long is stiff: scipy's LSODA (same events, dense output) takes it
+    tau = m * (dr.R + dr.bus_resistance) * dr.Kv / (dr.force_per_amp * dr.n)
+    stiff = d / v_ref > STIFF * tau
+    binds = T_r > 0  # at t = 0 the ramp allows no duty at all
+    F0 = (ramp_force if binds else force)(0.0, 0.0)[0]
+    phase = "rest" if binds and F0 < F_rest else "slip" if F0 > F_t else "grip"
+    runs, phases = [], []
+    t0, y0, last = 0.0, [0.0, 0.0, 0.0], ()
+    while True:
+        if phase == "rest" and force(0.0, t0)[0] >= F_rest:
+            phase = "grip"  # (only by rounding: the force rises through F_rest before the ceiling stops)
+        if phase == "slip" and binds and not u_slip * T_r > t0:
+            binds = False
+        rhs, events = make_phase(phase, binds)
+        t1 = 3600.0
+        if phase == "slip" and binds:
+            t1 = u_slip * T_r  # the slip's duty stops rising: a kink at a known time
+        elif phase == "grip" and not binds:
+            while kinks and kinks[0] <= y0[1]:
+                kinks.pop(0)
+            if kinks:
+                events.append(Event("kink", lambda t, y, w=kinks[0]: y[1] - w, +1))
+        try:
+            if stiff and phase == "grip":
+                raise RuntimeError("stiff")
+            run = integrate(rhs, t0, t1, y0, events=events, restart=last, **opts)
+        except RuntimeError:  # stiffer than estimated: LSODA takes over
+            run = integrate_stiff(rhs, t0, t1, y0, rtol, rtol, events, "LSODA")
+            if run.status == -1:
+                raise InputError("ratio", f"the sprint could not be integrated ({run.message})") from None
+        runs.append(run)
+        phases.append(phase)
+        if run.event == "goal" or (run.event is None and t1 == 3600.0):
+            break
+        if run.event == "kink":
             kinks.pop(0)
-            t0, y0, last = rest.t[-1], list(rest.y[-1]), "kink"
+        t0, y0, last = run.t[-1], list(run.y[-1]), (run.event,) if run.event else ()
+        if run.event in ("cap", None):
+            binds = False  # past the ceiling's meeting point (or the slip's known one) the limits rule
+        phase = {"leave": "grip", "slip": "slip", "grip": "grip"}.get(run.event, phase)
+        if run.event == "grip" and binds:  # the ramp may have stopped binding while the wheels slipped
+            binds = t0 / T_r < ceiling_bound(y0[1])
     if runs[-1].event != "goal":
         raise InputError("ratio", "the robot does not cross the distance within an hour: change the ratio")
-    run = _Pieces(runs)
-    end = run.y[-1]
+    piece = _Pieces(runs, phases)
+    end = piece.y[-1]
+    slip_runs = [r for r, p in zip(runs, phases) if p == "slip"]
     values = {
         "time": runs[-1].t[-1],
         "speed": end[1] * v_ref,
-        "traction_time": t_grip,
-        "traction_distance": x_grip,
+        "traction_time": sum(r.t[-1] - r.t[0] for r in slip_runs),
+        "traction_distance": sum((r.y[-1][0] - r.y[0][0] for r in slip_runs), 0.0) * d,
         "energy": end[2] * e_ref,
     }
-    return values, run, (d, v_ref, e_ref)
+    return values, piece, (d, v_ref, e_ref)
 
 
 def _attainable(s: Setup) -> float:
@@ -798,23 +887,26 @@ def sprint(s: Setup, rtol: float, plots: bool = False) -> SimRun:
     run = scales = None
     nfev = 0
     if exact is None:
-        exact, run, scales = integrated(s, rtol, dense=plots)
+        exact, run, scales = integrated(s, rtol, dense=plots or s.ramp > 0)
         nfev = run.nfev
     else:
         exact["energy"] = _energy_closed(s, exact, I_slip, elec(E_slip)[0])
-    traction_limited = exact["traction_time"] > 0
-    E_start = E_slip if traction_limited else 0.0
-    # while slipping the motors sit at E_slip whatever the robot's speed (S5); after, E rises with v
-    E_end = max(E_start, dr.n * exact["speed"] / dr.Kv)
-    Es = [E_start, E_end] + [E for E in branch_emfs(dr, s.values, s.asm.on) if E_start < E < E_end]
-    sup = []
-    for E in Es:
-        u, I = elec(E)
-        if traction_limited and E == E_start:
-            I = I_slip
-        sup.append(u * I)
-    I0 = I_slip if traction_limited else elec(0.0)[1]
-    peak_sup = max(sup)
+    if s.ramp > 0:
+        I0, peak_sup = _ramp_peaks(s, run, scales, I_slip, elec(E_slip)[0])
+    else:
+        traction_limited = exact["traction_time"] > 0
+        E_start = E_slip if traction_limited else 0.0
+        # while slipping the motors sit at E_slip whatever the robot's speed (S5); after, E rises with v
+        E_end = max(E_start, dr.n * exact["speed"] / dr.Kv)
+        Es = [E_start, E_end] + [E for E in branch_emfs(dr, s.values, s.asm.on) if E_start < E < E_end]
+        sup = []
+        for E in Es:
+            u, I = elec(E)
+            if traction_limited and E == E_start:
+                I = I_slip
+            sup.append(u * I)
+        I0 = I_slip if traction_limited else elec(0.0)[1]
+        peak_sup = max(sup)
     v_free = (dr.battery_voltage - (dr.R + dr.bus_resistance) * dr.free_current) * dr.Kv / dr.n
     F_rr = s.resist()(0.0)
     fpv = dr.force_per_amp / dr.R
@@ -842,6 +934,38 @@ def sprint(s: Setup, rtol: float, plots: bool = False) -> SimRun:
     key = {"time_to_distance": exact["time"], "speed_at_distance": exact["speed"], "energy": exact["energy"]}
     series = _samples(s, run, scales, exact, I_slip, elec) if plots else {}
     return SimRun(values, key, nfev, [], series)
+
+
+def _ramp_peaks(s: Setup, run: _Pieces, scales, I_slip: float, u_slip: float) -> tuple[float, float]:
+    """(peak stator, peak supply current) per motor under a ramp (S14): the electrical state now
+    depends on time as well as speed, so the extremes are found along the run: at every step and
+    phase boundary, each local maximum then refined by bounded Brent on the dense output."""
+    from scipy.optimize import minimize_scalar
+
+    force, _ = _motor_force(s)
+    _, v_ref, _ = scales
+
+    def currents(t: float, phase: str, y) -> tuple[float, float]:
+        if phase == "slip":  # at the edge of slip the motors draw I_slip at the ramp's duty (S5), (S14)
+            return I_slip, min(s.ceiling(t), u_slip) * I_slip
+        _, u, I = force(0.0 if phase == "rest" else y[1] * v_ref, t)
+        return I, u * I
+
+    peaks = [0.0, 0.0]
+    for r, phase in zip(run.runs, run.phases):
+        for k in (0, 1):
+            values = [currents(t, phase, y)[k] for t, y in zip(r.t, r.y)]
+            peaks[k] = max(peaks[k], *values)
+            for i in range(1, len(values) - 1):
+                if values[i] >= values[i - 1] and values[i] >= values[i + 1]:
+                    best = minimize_scalar(
+                        lambda t: -currents(t, phase, r.at(t))[k],
+                        bounds=(r.t[i - 1], r.t[i + 1]),
+                        method="bounded",
+                        options={"xatol": 1e-12 * r.t[-1]},
+                    )
+                    peaks[k] = max(peaks[k], -float(best.fun))
+    return peaks[0], peaks[1]
 
 
 def _energy_closed(s: Setup, exact, I_slip: float, u_slip: float) -> float:
@@ -886,7 +1010,7 @@ def _samples(s: Setup, run, scales, exact, I_slip: float, elec) -> dict[str, tup
     for k in range(SAMPLES + 1):
         t = T * k / SAMPLES
         x, v = state(t, k == SAMPLES)
-        F_m, _, I = force(v)
+        F_m, _, I = force(v, t)
         ts.append(t)
         xs.append(x)
         vs.append(v)
@@ -930,9 +1054,12 @@ def batch_times(v: Mapping[str, Any], ratios: Any, distance: float) -> Any:
     fpa, i_f, k_emf, m = dr.force_per_amp, dr.free_current, n / dr.Kv, dr.mass
     F_t = traction(v, on)
 
-    def accel(p, w):
-        _, I = elec(k_emf * w)
-        return (np.minimum(fpa * (I - i_f), F_t) - resist(w)) / m  # (S4)
+    T_r = v["ramp_time"] if "voltage_ramp" in on else 0.0
+
+    def accel(p, w, t=None):
+        _, I = elec(k_emf * w) if t is None else elec(k_emf * w, np.minimum(1.0, t / T_r))  # (S14)
+        a = (np.minimum(fpa * (I - i_f), F_t) - resist(w)) / m  # (S4)
+        return a if t is None else np.where((w <= 0) & (a < 0), 0.0, a)  # held at rest (S14)
 
     _, I0 = elec(0.0 * n)
     F0 = np.minimum(fpa * (I0 - i_f), F_t) - resist(0.0 * n)
@@ -940,9 +1067,9 @@ def batch_times(v: Mapping[str, Any], ratios: Any, distance: float) -> Any:
     R_eff = dr.R + dr.bus_resistance
     v_free = (dr.battery_voltage - R_eff * i_f) * dr.Kv / n
     tau = m * R_eff * dr.Kv / (fpa * n)
-    T_est = distance / v_free + tau + np.sqrt(2 * distance * m / np.where(movable, F0, np.nan))
+    T_est = distance / v_free + tau + np.sqrt(2 * distance * m / np.where(movable, F0, np.nan)) + T_r
     h = np.where(movable, T_est / motion.BATCH_STEPS, 0.0)
-    return motion.batch_arrival(accel, distance, h, ~movable, v_free)
+    return motion.batch_arrival(accel, distance, h, ~movable, v_free, timed=T_r > 0)
 
 
 def _time_and_grip(s: Setup, rtol: float) -> tuple[float, float]:

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -256,6 +257,10 @@ def integrate_stiff(
     point is reported as its crossing instead."""
     from scipy.integrate import solve_ivp
 
+    # LSODA's own complaints ("repeated convergence failures") would reach the terminal; its outcome
+    # is in sol.status and sol.message, which the callers read (a process-wide filter, set once:
+    # catch_warnings is not thread-safe, and solves run in threads)
+    warnings.filterwarnings("ignore", category=UserWarning, module=r"scipy\.integrate\._ivp\.lsoda")
     fns = []
     for ev in events:
         fn = (lambda e: lambda t, y: e.g(t, y))(ev)

@@ -446,24 +446,22 @@ def lqr(
     Q = diag(1/q_pos², 1/q_vel²), R = 1/r²; S from the discrete algebraic Riccati equation;
     K = (BᵀSB + R)⁻¹·BᵀSA; latency compensation K ← K·(A − B·K)^(delay/dt)."""
     import numpy as np
-    from scipy.linalg import expm, fractional_matrix_power, solve_discrete_are
 
-    A = np.array([[0.0, 1.0], [0.0, -kV / kA]])
-    B = np.array([[0.0], [1.0 / kA]])
-    M = np.zeros((3, 3))
-    M[:2, :2], M[:2, 2:] = A, B
-    phi = expm(M * dt)  # zero-order hold: [[Ad, Bd], [0, I]] = exp([[A, B], [0, 0]]·dt)
-    Ad, Bd = phi[:2, :2], phi[:2, 2:]
+    # closed forms of the 2-state case (small_math.py L1-L3; scipy's expm, solve_discrete_are and
+    # fractional_matrix_power gave the same to 1e-12, tests/test_small_math.py): no scipy import
+    from .small_math import dare, matrix_power_2x2, zero_order_hold
+
+    Ad, Bd = zero_order_hold(kV / kA, 1.0 / kA, dt)  # exp([[A, B], [0, 0]]·dt) = [[Ad, Bd], [0, I]]
     Q = np.diag([1.0 / q_position**2, 1.0 / q_velocity**2])
     R = np.array([[1.0 / r_volts**2]])
-    S = solve_discrete_are(Ad, Bd, Q, R)
+    S = dare(Ad, Bd, Q, R)
     K = np.linalg.solve(Bd.T @ S @ Bd + R, Bd.T @ S @ Ad)
     if not np.all(np.abs(np.linalg.eigvals(Ad - Bd @ K)) <= 1 + 1e-9):
         # Q and R many decades apart: the Riccati solve lost its digits and K destabilises the loop
         raise ValueError("the LQR gains do not stabilise the loop")
     if delay > 0:
         with np.errstate(all="ignore"):  # (A − BK)^(delay/dt) may overflow: non-finite, refused by the caller
-            closed = fractional_matrix_power(Ad - Bd @ K, delay / dt)
+            closed = matrix_power_2x2(Ad - Bd @ K, delay / dt)
             K = K @ np.real(closed)
     return float(K[0, 0]), float(K[0, 1])
 
@@ -537,7 +535,7 @@ def closed_form(setup: Setup) -> Move | None:
     None when the scene must be integrated."""
     if setup.varying or setup.asm.slots["duty"] is not None:
         return None
-    from scipy.special import lambertw
+    from .small_math import lambert_w0  # scipy.special.lambertw's principal branch, without scipy
 
     m = setup.mech
     R_eff = m.R + m.bus_resistance
@@ -546,7 +544,7 @@ def closed_form(setup: Setup) -> Move | None:
     w_f = (m.battery_voltage + F_c * R_eff / fpa) * m.Kv / m.n
     tau = m.inertia * R_eff * m.Kv / (fpa * m.n)
     D = m.distance / w_f / tau
-    u = close_time(D, lambda D: D + 1 + float(lambertw(-math.exp(-(D + 1))).real))  # (C2)
+    u = close_time(D, lambda D: D + 1 + lambert_w0(-math.exp(-(D + 1))))  # (C2)
     T = u * tau
     if not (T > 0 and math.isfinite(T) and math.isfinite(-w_f * math.expm1(-u))):
         raise InputError("ratio", "the move is out of floating-point range at this ratio: change the ratio")
@@ -888,12 +886,20 @@ def batch_times(setup: Setup) -> Any:
     return batch_arrival(accel, d, h, ~movable, m.free_speed)
 
 
-def batch_arrival(accel, d: float, h: Any, done: Any, w_scale: Any) -> Any:
+def batch_arrival(accel, d: float, h: Any, done: Any, w_scale: Any, timed: bool = False) -> Any:
     """When each candidate of a batch, from rest, first covers the distance d: `accel(p, w)` over
-    numpy arrays (nan where done from the start), h the step of each candidate, w_scale a speed
-    scale for the slope's difference quotient. Exponential Euler on the speed with the local slope
+    numpy arrays (nan where done from the start; `accel(p, w, t)` when `timed`), h the step of each
+    candidate, w_scale a speed scale for the slope's difference quotient. Exponential Euler on the speed with the local slope
     J = ∂a/∂w (exact for an acceleration affine in speed, stable however stiff), position by the
     matching φ2 term; the arrival is located on the cubic Hermite through the last step."""
+    import numpy as np
+
+    # candidates that cannot move are nan from the start, and stay so: no warning for them
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return _batch_arrival(accel, d, h, done, w_scale, timed)
+
+
+def _batch_arrival(accel, d: float, h: Any, done: Any, w_scale: Any, timed: bool) -> Any:
     import numpy as np
 
     p = np.zeros_like(h)
@@ -903,16 +909,19 @@ def batch_arrival(accel, d: float, h: Any, done: Any, w_scale: Any) -> Any:
     for _ in range(40 * BATCH_STEPS):
         if done.all():
             break
+        # a time-dependent acceleration is taken at the step's middle (second order for a forcing
+        # linear in time, as a ramp is)
+        step_accel = (lambda p_, w_, mid=t + h / 2: accel(p_, w_, mid)) if timed else accel
         # three accelerations a step, each over every candidate counted as one (as the trebuchet's
         # batch_ranges): the solve's CPU backstop and cancel are polled each step
         charge(3)
-        a = accel(p, w)
+        a = step_accel(p, w)
         dw = 1e-7 * (np.abs(w) + w_scale)
-        J = (accel(p, w + dw) - a) / dw
+        J = (step_accel(p, w + dw) - a) / dw
         # across a kink (a current limit letting go) within the step the local slope says too
         # little: take the secant over the step's predicted change when it damps more
         jump = np.where(np.abs(h * a) > dw, h * a, dw)
-        J = np.minimum(J, (accel(p, w + jump) - a) / jump)
+        J = np.minimum(J, (step_accel(p, w + jump) - a) / jump)
         z = np.minimum(h * J, -1e-12)  # J < 0: the back-EMF damps; never amplify
         ez = np.exp(z)
         phi1 = np.where(z < -1e-4, (ez - 1) / np.where(z < -1e-4, z, 1.0), 1 + z / 2 + z * z / 6)

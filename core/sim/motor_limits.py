@@ -185,24 +185,24 @@ def bus_resistance_of(values: Mapping[str, Any], on) -> float:
 
 
 def electrical(mech: Any, duty):
-    """E -> (u, I): the duty and stator current per motor at back-EMF E, (E1)-(E3)."""
+    """(E, ceiling=1) -> (u, I): the duty and stator current per motor at back-EMF E, (E1)-(E3);
+    `ceiling` caps the duty from outside the limits (an open-loop ramp: the duty it allows now)."""
     Vb, R, Rb = mech.battery_voltage, mech.R, mech.bus_resistance
     if duty is None:
         if Rb == 0:
-            return lambda E: (1.0, (Vb - E) / R)
-        R1 = R + Rb
-        return lambda E: (1.0, (Vb - E) / R1)
+            return lambda E, ceiling=1.0: (ceiling, (ceiling * Vb - E) / R)
+        return lambda E, ceiling=1.0: (ceiling, (ceiling * Vb - E) / (R + ceiling * ceiling * Rb))
     minimum = mech.xp.minimum
     if Rb == 0:
 
-        def f(E):
-            u = minimum(duty(E), 1.0)
+        def f(E, ceiling=1.0):
+            u = minimum(duty(E), ceiling)
             return u, (u * Vb - E) / R
 
         return f
 
-    def f(E):
-        u = minimum(duty(E), 1.0)
+    def f(E, ceiling=1.0):
+        u = minimum(duty(E), ceiling)
         return u, (u * Vb - E) / (R + u * u * Rb)  # (E1)
 
     return f

@@ -121,7 +121,7 @@ class PlotPanel(Vertical):
                 [y / fy for y in ys],
                 line_style=colour,
                 hires_mode=HiResMode.BRAILLE,
-                label=escape(name) if len(spec.series) > 1 else None,
+                label=escape(solution.series_label(name)) if len(spec.series) > 1 else None,
             )
         # an empty frame with an empty legend box looks like a drawing bug: say there is no data
         self.query_one("#plot-empty", Static).display = drawn == 0

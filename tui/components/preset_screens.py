@@ -116,6 +116,13 @@ def preview(preset: presets.Preset) -> Text:
 MAX_PASTE = 100_000  # characters: a preset is a few hundred; more is a paste gone wrong
 
 
+def _carries_preset(text: str) -> bool:
+    """Whether a one-line paste is a share code or a link carrying one (loaded at once)."""
+    from gearhead.core import share
+
+    return len(text) <= MAX_PASTE and share.from_text_kind(text) is not None
+
+
 class PresetPathInput(FieldInput):
     """The load dialog's path entry; a multi-line paste is a preset's text (ctrl+y elsewhere)."""
 
@@ -128,7 +135,7 @@ class PresetPathInput(FieldInput):
         """A paste with a line break (LF, CRLF or a lone CR, as some terminals send it) is a
         preset's text; one line is a path, inserted by Input as usual (once: this handler runs
         before Input's own and leaves it alone)."""
-        if "\n" in event.text.strip() or "\r" in event.text.strip():
+        if "\n" in event.text.strip() or "\r" in event.text.strip() or _carries_preset(event.text):
             event.stop()
             event.prevent_default()
             self.post_message(self.PresetPasted(event.text.replace("\r\n", "\n").replace("\r", "\n")))
@@ -210,9 +217,15 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
     def _from_text(self, event: PresetPathInput.PresetPasted) -> None:
         import tomllib
 
+        from gearhead.core import share
+
         try:
             if len(event.text) > MAX_PASTE:
                 raise InputError("preset", f"pasted text is too long ({len(event.text)} characters)")
+            carried = share.from_text(event.text)  # a share code or a ReCalc link, else TOML
+            if carried is not None:
+                self.dismiss(carried)
+                return
             try:
                 data = tomllib.loads(event.text.lstrip("\ufeff"))
             except (tomllib.TOMLDecodeError, RecursionError) as exc:
@@ -236,11 +249,14 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
             if "\0" in text:  # the OS refuses such a name (Path raises ValueError deep inside)
                 raise InputError("preset", "a file path cannot contain a NUL character", repr(text)[:80])
             try:
-                from gearhead.core import workbook
+                from gearhead.core import share, workbook
 
-                path = Path(text).expanduser()
-                # a workbook (cards, variables, requirements) opens as one: the app shows its cards
-                preset = workbook.load(path) if workbook.is_workbook_file(path) else presets.load(path)
+                if share.from_text_kind(text):
+                    preset = share.load_any(text)
+                elif workbook.is_workbook_file(Path(text).expanduser()):  # opens as one: its cards
+                    preset = workbook.load(Path(text).expanduser())
+                else:
+                    preset = presets.load(Path(text).expanduser())
             except (ValueError, RuntimeError) as exc:  # an unusable path ('~nosuchuser/x')
                 raise InputError("preset", f"not a usable file path ({exc})", text[:80]) from None
         except InputError as exc:

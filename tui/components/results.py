@@ -96,7 +96,9 @@ class ResultsList(LineView, can_focus=True):
         return self.rows[self.cursor].name if 0 <= self.cursor < len(self.rows) else None
 
     def _layout(self) -> None:
-        width = self.size.width or 60
+        # the columns fit the region beside the scrollbar's gutter (size.width counts the gutter:
+        # the equation column ran under the scrollbar, '(S11' for '(S11)')
+        width = self.scrollable_content_region.width or 60
         value = max([self.value_width] + [cell_len(r.value) for r in self.rows])
         spread = max([0] + [cell_len(r.spread) for r in self.rows])
         spread = max(spread, len("Worst case  σ")) if spread else 0

@@ -217,7 +217,7 @@ class Sheet(LineView, can_focus=True):
                 lines.append(Line(len(stops) - 1, extra))
             message = self.errors.get(f.name)
             if message:
-                width = max(20, (self.size.width or 100) - LABEL_CELLS - 2 * GAP - 1)
+                width = max(20, (self.scrollable_content_region.width or 100) - LABEL_CELLS - 2 * GAP - 1)
                 wrapped = Content("⚠ " + message).wrap(width)
                 for k, line in enumerate(wrapped[:2]):
                     text = line.plain + ("…" if k == 1 and len(wrapped) > 2 else "")
@@ -258,7 +258,7 @@ class Sheet(LineView, can_focus=True):
         """The value cell's width: VALUE_CELLS, less on a narrow sheet so the widest unit of the
         card stays in sight (at 120 columns the form is 59 cells wide); a row without a unit (a
         choice, a flag, a yes/no) takes the unit's column too."""
-        room = self.size.width - (1 + LABEL_CELLS + GAP) - 1
+        room = self.scrollable_content_region.width - (1 + LABEL_CELLS + GAP) - 1  # beside the gutter
         cells = max(10, min(VALUE_CELLS, room - GAP - self._unit_cells))
         return cells if stop.spec.unit else max(cells, room)
 
