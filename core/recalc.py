@@ -149,7 +149,7 @@ TARGETS = {
     "chains": "chain_belt",
     "gears": "ratio_distance",
     "ratio": "ratio_finder",
-    "intake": "gear_ratio",
+    "intake": "intake",
 }
 
 # ReCalc's motor names (Motor.ts) -> Gearhead's; the others have no Gearhead motor
@@ -443,16 +443,12 @@ def _ratio_pairs(link: _Link) -> dict:
 def _intake(link: _Link) -> dict:
     inputs: dict[str, Any] = {}
     link.motor(inputs)
-    inputs["mode"] = "ratio"
     inputs["ratio"] = link.ratio()
-    diameter = link.si("rollerDiameter", "length")
-    inputs["radius"] = f"{_num(diameter / 2)} m"
-    for name in ("travelDistance", "drivetrainSpeed", "statorCurrentLimit"):
-        link.used.add(name)
-    link.notes.append(
-        "intake: Gearhead has no intake calculator; opened as Gear ratio at ReCalc's ratio and the "
-        "roller's radius (its surface speed); travelDistance, drivetrainSpeed and statorCurrentLimit left out"
-    )
+    inputs["roller_diameter"] = link.quantity("rollerDiameter")
+    inputs["pull_distance"] = link.quantity("travelDistance")
+    inputs["drivetrain_speed"] = link.quantity("drivetrainSpeed")
+    inputs["effects"] = "stator_limit"
+    inputs["stator_current_limit"] = link.quantity("statorCurrentLimit")
     return inputs
 
 

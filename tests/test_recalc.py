@@ -262,10 +262,22 @@ def test_ratio_pairs_give_the_overall_ratio():
     assert preset.inputs["max_stages"] == 3
 
 
-def test_intake_opens_gear_ratio_and_says_what_is_left_out():
+def test_intake_opens_the_intake_calculator_with_every_input():
+    """ReCalc's intake defaults (2 in rollers, 15 in travel, 14 ft/s, a 30 A stator limit): each
+    has its field, and the surface speed is the roller's free speed through the ratio by hand."""
     preset = recalc.to_preset(link("intake"))
-    assert preset.calculator == "gear_ratio" and si(preset, "radius") == pytest.approx(IN, rel=1e-15)
-    assert any("drivetrainSpeed" in w for w in preset.warnings)
+    assert preset.calculator == "intake" and not preset.warnings
+    assert si(preset, "roller_diameter") == pytest.approx(2 * IN, rel=1e-15)
+    assert si(preset, "pull_distance") == pytest.approx(15 * IN, rel=1e-15)
+    assert si(preset, "drivetrain_speed") == pytest.approx(14 * 12 * IN, rel=1e-15)
+    assert si(preset, "stator_current_limit") == pytest.approx(30, rel=1e-15)
+    from gearhead.core.motors import lookup
+
+    motor, _ = lookup(preset.inputs["motor"], preset.inputs["source"])  # ReCalc's Kraken X60 (FOC)
+    out = solve("intake", preset.inputs).outputs
+    free = motor.free_speed * 12 / motor.v_spec  # rad/s at 12 V (eq. 1)
+    assert out["surface_speed"].value == pytest.approx(free / 2 * IN, rel=1e-12)  # ω/G · d/2
+    assert out["speed_ratio"].value == pytest.approx(free / 2 * IN / (14 * 12 * IN), rel=1e-12)
 
 
 def test_a_short_link_takes_recalcs_defaults():

@@ -219,3 +219,47 @@ def test_the_app_in_a_headless_browser_shows_a_card_and_updates_a_result(tmp_pat
                     await page.wait_for_text(stall_text(3), after=len(before))
 
         asyncio.run(asyncio.wait_for(drive(), 150))
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no chromium installed (apt-get install chromium; .ci/run does)")
+def test_a_served_link_with_a_share_code_opens_its_design(tmp_path):
+    """http://host:port/?p=gh1:… (gearhead share FILE --link URL): the page's session starts with
+    that preset (three motors on the Motor card: its stall torque tripled), and a page opened
+    after it without ?p= starts with the defaults again."""
+    import aiohttp
+
+    from gearhead.core import share
+    from gearhead.core.model import solve
+    from gearhead.core.presets import Preset
+
+    code = share.encode(Preset("motor", "three motors", "", {"motor_count": 3}))
+    three, one = (solve("motor", {"motor_count": n}).outputs["stall_torque"].text.split()[0] for n in (3, 1))
+    port, debug_port = free_port(), free_port()
+    with (
+        running(GEARHEAD, "serve", "--port", str(port)),
+        running(
+            CHROMIUM, "--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+            f"--user-data-dir={tmp_path / 'profile'}", f"--remote-debugging-port={debug_port}",
+            "--window-size=1600,1000", "about:blank",
+        ),
+    ):  # fmt: skip
+        assert wait_for(f"http://127.0.0.1:{port}/") == 200
+        wait_for(f"http://127.0.0.1:{debug_port}/json/version")
+
+        async def drive():
+            async with aiohttp.ClientSession() as session:
+                async with session.get(f"http://127.0.0.1:{debug_port}/json/list") as response:
+                    target = next(t for t in await response.json() if t["type"] == "page")
+                async with session.ws_connect(target["webSocketDebuggerUrl"], max_msg_size=0) as ws:
+                    page = Page(ws)
+                    await page.send("Page.enable")
+                    await page.send("Page.addScriptToEvaluateOnNewDocument", source=RECORDER)
+                    await page.send("Page.navigate", url=share.link(code, f"http://127.0.0.1:{port}/"))
+                    await page.wait_for_text("Preset loaded")
+                    await page.wait_for_text(three)
+                    await page.send("Page.navigate", url=f"http://127.0.0.1:{port}/")
+                    await page.evaluate("window.__screen = ''")
+                    screen = await page.wait_for_text(one)
+                    assert "Preset loaded" not in screen
+
+        asyncio.run(asyncio.wait_for(drive(), 150))

@@ -75,6 +75,7 @@ class GearheadApp(App):
         hide_timings: bool = False,
         settings_file: dict | None = None,
         workbook=None,
+        open_text: str | None = None,
     ) -> None:
         # NO_COLOR: Textual's Monochrome filter fails on a segment without a style (the chart's
         # canvas draws one before it has a size); its NoColor filter, used with ANSI colours,
@@ -82,6 +83,7 @@ class GearheadApp(App):
         super().__init__(ansi_color=True if "NO_COLOR" in os.environ else None)
         self.blink = blink  # tests switch the cursor blink off for deterministic snapshots
         self.hide_timings = hide_timings  # and hide wall-clock figures
+        self.open_text = open_text  # a share code (or a link with one) to open once started
         self.initial = initial
         self.workbook = workbook  # a core.workbook.Workbook to open at start (`gearhead robot.toml`)
         self._cards: dict[str, CalculatorTab] = {}
@@ -143,9 +145,22 @@ class GearheadApp(App):
     @guarded
     async def on_ready(self) -> None:
         self._started = True
-        await self.card(self.current_calculator)
+        tab = await self.card(self.current_calculator)
         if self.workbook is not None:
             self.open_workbook(self.workbook)
+        if self.open_text:  # e.g. a served page's ?p=gh1:… (tui/serve.py)
+            from gearhead.core import share
+            from gearhead.core.errors import InputError
+
+            try:
+                preset = share.from_text(self.open_text)
+            except InputError as exc:
+                self.notify(
+                    str(exc), title="Could not open the link's design", severity="error", markup=False
+                )
+                return
+            if preset is not None:
+                await self.open_preset(preset, tab)
 
     def open_workbook(self, book) -> None:
         """Show a workbook's cards over the calculator cards (Esc returns to them)."""
@@ -395,6 +410,23 @@ class GearheadApp(App):
             guard(self, saved),
         )
 
+    async def open_preset(self, preset, tab: CalculatorTab) -> None:
+        """A preset's inputs into its calculator's card (`tab`'s, or the card of the calculator the
+        preset is for, opened), with a notice and its warnings."""
+        target = tab
+        if preset.calculator != tab.calculator.id:  # another calculator's: open that one
+            self.show_calculator(preset.calculator)
+            target = await self.card(preset.calculator)
+        # a preset is a whole design: fields it omits take their defaults (DESIGN.md),
+        # not whatever was typed before, so the card solves what the CLI solves
+        defaults = {f.name: type(target).initial_entry(f) for f in target.calculator.fields}
+        target.set_entries({**defaults, **preset.inputs})
+        target.preset_meta = (preset.name, preset.description)  # the save dialog offers them
+        where = "" if target is tab else f" (a {target.calculator.title} preset: opened that card)"
+        self.notify(f"Loaded {preset.name}{where}", title="Preset loaded", markup=False)
+        for warning in preset.warnings:  # e.g. a junk value in a field this mode ignores
+            self.notify(warning, title="Preset warning", severity="warning", markup=False)
+
     @guarded
     async def action_load_preset(self) -> None:
         tab = await self.card(self.current_calculator)  # a key on a card still being built waits for it
@@ -406,19 +438,7 @@ class GearheadApp(App):
                 self.open_workbook(preset)
                 return
             if preset is not None:
-                target = tab
-                if preset.calculator != tab.calculator.id:  # another calculator's: open that one
-                    self.show_calculator(preset.calculator)
-                    target = await self.card(preset.calculator)
-                # a preset is a whole design: fields it omits take their defaults (DESIGN.md),
-                # not whatever was typed before, so the card solves what the CLI solves
-                defaults = {f.name: type(target).initial_entry(f) for f in target.calculator.fields}
-                target.set_entries({**defaults, **preset.inputs})
-                target.preset_meta = (preset.name, preset.description)  # the save dialog offers them
-                where = "" if target is tab else f" (a {target.calculator.title} preset: opened that card)"
-                self.notify(f"Loaded {preset.name}{where}", title="Preset loaded", markup=False)
-                for warning in preset.warnings:  # e.g. a junk value in a field this mode ignores
-                    self.notify(warning, title="Preset warning", severity="warning", markup=False)
+                await self.open_preset(preset, tab)
 
         from .components.preset_screens import LoadPresetScreen
 
@@ -612,7 +632,7 @@ class GearheadApp(App):
         await self.action_send()
 
 
-def run(workbook=None) -> str | None:
+def run(open_text: str | None = None, workbook=None) -> str | None:
     """Run the app until it quits: None, or Textual's report of an exception that stopped it.
 
     Our handlers catch their own exceptions (guard.py); one that still reaches Textual ends the
@@ -626,7 +646,7 @@ def run(workbook=None) -> str | None:
 
     from . import settings
 
-    app = GearheadApp(settings_file=settings.load(), workbook=workbook)
+    app = GearheadApp(settings_file=settings.load(), open_text=open_text, workbook=workbook)
     report = io.StringIO()
     with contextlib.redirect_stderr(report):
         app.run()

@@ -17,6 +17,8 @@ import shlex
 import sys
 
 TOKEN_COOKIE = "gearhead_token"
+OPEN_COOKIE = "gearhead_open"  # the share code of the page's ?p=, for the websocket that follows
+MAX_OPEN_COOKIE = 3800  # a cookie holds about 4 KB; a longer code is refused with a notice
 
 
 def is_loopback(host: str) -> bool:
@@ -47,10 +49,29 @@ def public_url(host: str, port: int) -> str:
 def make_server(host: str, port: int, token: str | None, url: str | None = None):
     """A textual-serve Server for the app; with `token`, every page, websocket and download needs
     it (as ?token= or the cookie the page sets)."""
+    from contextvars import ContextVar
+
     from aiohttp import web
     from textual_serve.server import Server
 
+    from gearhead.core import share
+
+    session_command: ContextVar[str | None] = ContextVar("session_command", default=None)
+
     class GearheadServer(Server):
+        """textual-serve's server, with the access token and ?p=: the page's share code goes in a
+        short-lived cookie, and the websocket that follows starts its app with `--open CODE`
+        (textual-serve reads `self.command` when it starts a session; here it is per request,
+        through a context variable, so two sessions starting at once cannot swap codes)."""
+
+        @property
+        def command(self) -> str:
+            return session_command.get() or self._base_command
+
+        @command.setter
+        def command(self, value: str) -> None:
+            self._base_command = value
+
         def _allowed(self, request) -> bool:
             if token is None:
                 return True
@@ -69,11 +90,19 @@ def make_server(host: str, port: int, token: str | None, url: str | None = None)
             response = await super().handle_index(request)
             if token is not None:
                 response.set_cookie(TOKEN_COOKIE, token, httponly=True, samesite="Strict")
+            code = share.find_code(request.query.get("p", ""))
+            if code is not None and len(code) <= MAX_OPEN_COOKIE:
+                response.set_cookie(OPEN_COOKIE, code, httponly=True, samesite="Strict", max_age=120)
+            else:  # a page without ?p= opens the default card, whatever an earlier page carried
+                response.del_cookie(OPEN_COOKIE)
             return response
 
         async def handle_websocket(self, request):
             if not self._allowed(request):
                 return self._refuse()
+            code = share.find_code(request.cookies.get(OPEN_COOKIE, ""))
+            if code is not None:
+                session_command.set(f"{self._base_command} --open {shlex.quote(code)}")
             return await super().handle_websocket(request)
 
         async def handle_download(self, request):

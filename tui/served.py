@@ -8,7 +8,9 @@ import sys
 from .app import run
 
 if __name__ == "__main__":
-    failure = run()
+    # `--open CODE`: the share code of the page's ?p= (tui/serve.py), opened once the app starts
+    args = sys.argv[1:]
+    failure = run(args[1] if len(args) == 2 and args[0] == "--open" else None)
     if failure is not None:
         sys.stderr.write(failure)
         sys.exit(70)
