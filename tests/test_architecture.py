@@ -55,7 +55,7 @@ def test_every_package_folder_is_installed_under_gearhead():
     listed = set(config["packages"])
     found = {
         "gearhead." + ".".join(p.parent.relative_to(root).parts)
-        for top in ("core", "tui", "presets")
+        for top in ("core", "tui", "presets", "examples")
         for p in (root / top).rglob("__init__.py")
     }
     assert listed == found, "pyproject.toml [tool.setuptools] packages must list every package folder"

@@ -74,6 +74,7 @@ class GearheadApp(App):
         initial: str | None = None,
         hide_timings: bool = False,
         settings_file: dict | None = None,
+        workbook=None,
         open_text: str | None = None,
     ) -> None:
         # NO_COLOR: Textual's Monochrome filter fails on a segment without a style (the chart's
@@ -84,6 +85,7 @@ class GearheadApp(App):
         self.hide_timings = hide_timings  # and hide wall-clock figures
         self.open_text = open_text  # a share code (or a link with one) to open once started
         self.initial = initial
+        self.workbook = workbook  # a core.workbook.Workbook to open at start (`gearhead robot.toml`)
         self._cards: dict[str, CalculatorTab] = {}
         self._mounting: dict[str, object] = {}  # calc_id -> its AwaitMount, while mounting
         self._area_active: dict[str, str] = {}  # area -> the calculator shown there
@@ -144,6 +146,8 @@ class GearheadApp(App):
     async def on_ready(self) -> None:
         self._started = True
         tab = await self.card(self.current_calculator)
+        if self.workbook is not None:
+            self.open_workbook(self.workbook)
         if self.open_text:  # e.g. a served page's ?p=gh1:… (tui/serve.py)
             from gearhead.core import share
             from gearhead.core.errors import InputError
@@ -157,6 +161,12 @@ class GearheadApp(App):
                 return
             if preset is not None:
                 await self.open_preset(preset, tab)
+
+    def open_workbook(self, book) -> None:
+        """Show a workbook's cards over the calculator cards (Esc returns to them)."""
+        from .components.workbook_screen import WorkbookScreen
+
+        self.push_screen(WorkbookScreen(book, self.blink, self.hide_timings))
 
     async def on_event(self, event: events.Event) -> None:
         """Every key the app reads (before its bindings): an F-key arms the pick of a calculator by
@@ -422,6 +432,11 @@ class GearheadApp(App):
         tab = await self.card(self.current_calculator)  # a key on a card still being built waits for it
 
         async def loaded(preset) -> None:
+            from gearhead.core.workbook import Workbook
+
+            if isinstance(preset, Workbook):  # a workbook file typed or browsed to
+                self.open_workbook(preset)
+                return
             if preset is not None:
                 await self.open_preset(preset, tab)
 
@@ -617,7 +632,7 @@ class GearheadApp(App):
         await self.action_send()
 
 
-def run(open_text: str | None = None) -> str | None:
+def run(open_text: str | None = None, workbook=None) -> str | None:
     """Run the app until it quits: None, or Textual's report of an exception that stopped it.
 
     Our handlers catch their own exceptions (guard.py); one that still reaches Textual ends the
@@ -631,7 +646,7 @@ def run(open_text: str | None = None) -> str | None:
 
     from . import settings
 
-    app = GearheadApp(settings_file=settings.load(), open_text=open_text)
+    app = GearheadApp(settings_file=settings.load(), open_text=open_text, workbook=workbook)
     report = io.StringIO()
     with contextlib.redirect_stderr(report):
         app.run()

@@ -22,7 +22,9 @@ def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="gearhead", description="Mechanism design calculators for FRC and VEX.")
     sub = p.add_subparsers(dest="command")
     s = sub.add_parser("solve", help="solve one calculator and print its outputs")
-    s.add_argument("calculator", help="calculator id (see `gearhead calculators`)")
+    s.add_argument(
+        "calculator", help="calculator id (see `gearhead calculators`), or a workbook file (.toml)"
+    )
     s.add_argument(
         "--preset",
         metavar="FILE",
@@ -80,10 +82,18 @@ def _parser() -> argparse.ArgumentParser:
     c = sub.add_parser("calculators", help="list calculator ids, modes and fields")
     c.add_argument("--json", action="store_true")
     cli_reach.add_parsers(sub)
+    from . import workbook_cli  # `check`, and solve/sweep of a workbook file
+
+    workbook_cli.add_parser(sub)
     return p
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    from . import workbook_cli
+
+    given = list(sys.argv[1:] if argv is None else argv)
+    if len(given) == 1 and given[0].endswith(".toml") and not given[0].startswith("-"):
+        return workbook_cli.app(given[0], argv)  # `gearhead robot.toml`: the app with that workbook
     args = _parser().parse_args(argv)
     if args.command is None:
         if not _terminal():  # with no terminal the app waited for keys that never come
@@ -158,6 +168,12 @@ def _exception_line(traceback: str) -> str:
 
 
 def _command(args) -> int:
+    from . import workbook_cli
+
+    if args.command == "check":
+        return workbook_cli.check(args)
+    if args.command in ("solve", "sweep") and workbook_cli.is_workbook(args.calculator):
+        return workbook_cli.solve(args) if args.command == "solve" else workbook_cli.sweep(args)
     if args.command == "solve":
         return _solve(args)
     if args.command == "presets":

@@ -45,6 +45,8 @@ class CalculatorTab(Widget):
     list, timers and solve threads call are @guarded: a bug in one is a notification and a logged
     traceback (guard.py), and the card keeps what was typed."""
 
+    sheet_class = Sheet  # the form's class (a workbook card's refuses edits on its linked rows)
+
     def __init__(
         self, calculator: Calculator, blink: bool = True, hide_timings: bool = False, **kwargs
     ) -> None:
@@ -85,7 +87,7 @@ class CalculatorTab(Widget):
         with Horizontal(classes="card"):
             with Vertical(classes="inputs-pane"):
                 yield Static(Text(calc.summary), classes="summary")
-                self.sheet = Sheet(
+                self.sheet = self.sheet_class(
                     calc,
                     entries=lambda: self.entries,
                     on_entry=self._take_entry,

@@ -249,13 +249,14 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
             if "\0" in text:  # the OS refuses such a name (Path raises ValueError deep inside)
                 raise InputError("preset", "a file path cannot contain a NUL character", repr(text)[:80])
             try:
-                from gearhead.core import share
+                from gearhead.core import share, workbook
 
-                preset = (
-                    share.load_any(text)
-                    if share.from_text_kind(text)
-                    else presets.load(Path(text).expanduser())
-                )
+                if share.from_text_kind(text):
+                    preset = share.load_any(text)
+                elif workbook.is_workbook_file(Path(text).expanduser()):  # opens as one: its cards
+                    preset = workbook.load(Path(text).expanduser())
+                else:
+                    preset = presets.load(Path(text).expanduser())
             except (ValueError, RuntimeError) as exc:  # an unusable path ('~nosuchuser/x')
                 raise InputError("preset", f"not a usable file path ({exc})", text[:80]) from None
         except InputError as exc:

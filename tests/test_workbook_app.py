@@ -1,0 +1,161 @@
+"""A workbook in the app (tui/components/workbook_screen.py): its cards as the cards they are,
+linked fields read-only with their reference shown, a change flowing to every dependent card, and
+the Robot card's requirements live. (tests/test_keystrokes.py-style tmux check: see the commit.)"""
+
+from pathlib import Path
+
+import pytest
+from textual.widgets import Input
+
+from gearhead.core import workbook
+from gearhead.tui.app import GearheadApp
+from gearhead.tui.components.workbook_screen import LINK_MARK, WorkbookScreen
+from tests.tui_helpers import keys_of, started
+
+LBF = 4.4482216152605
+
+TEXT = """
+name = "pilot robot"
+
+[variables]
+mass = "10 lb"
+motor_name = "NEO"
+
+[cards.lift]
+calculator = "gear_ratio"
+inputs = { load = "= mass * 9.80665 m/s**2", radius = "0.75 in", motor = "= motor_name" }
+
+[cards.stage]
+calculator = "gear_ratio"
+inputs = { mode = "ratio", ratio = "= lift.ratio * 2" }
+
+[[requirements]]
+name = "Lift ratio"
+check = "lift.ratio < 1"
+"""
+
+
+async def settled(pilot, screen: WorkbookScreen) -> None:
+    """Until the workbook and every card on it have solved what is on screen."""
+    for _ in range(400):
+        await pilot.pause(0.02)
+        if screen.outcome is not None and not screen.busy and not any(t.busy for t in screen.cards.values()):
+            await pilot.pause()
+            if not screen.busy:
+                return
+    raise AssertionError("the workbook never settled")
+
+
+def requirement_line(screen: WorkbookScreen) -> str:
+    return str(screen.robot.requirements.render()).splitlines()[0]
+
+
+async def test_a_variable_change_flows_to_every_card_and_the_requirements():
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.from_text(TEXT, "pilot.toml"))
+    async with app.run_test(size=(140, 40)) as pilot:
+        await started(pilot)
+        for _ in range(200):
+            if isinstance(app.screen, WorkbookScreen):
+                break
+            await pilot.pause()
+        screen = app.screen
+        assert isinstance(screen, WorkbookScreen)
+        await settled(pilot, screen)
+        lift, stage = screen.cards["lift"], screen.cards["stage"]
+        assert lift.solution.inputs["load"].value == approx(10 * LBF)
+        assert lift.solution.outputs["ratio"].value < 1  # holds at 10 lb...
+        assert requirement_line(screen).startswith("✔ Lift ratio")
+        # the linked rows carry their reference in the label; the others do not
+        assert lift.calculator.field("load").label.endswith(f"{LINK_MARK} = mass * 9.80665 m/s**2")
+        assert LINK_MARK not in lift.calculator.field("radius").label
+        # the user types a new mass on the Robot card, as on any sheet
+        screen.robot.sheet.focus()
+        assert screen.robot.sheet.move_to_field("mass")
+        await pilot.press(*keys_of("40 lb"), "enter")
+        await settled(pilot, screen)
+        assert lift.solution.inputs["load"].value == approx(40 * LBF)
+        lift_ratio = lift.solution.outputs["ratio"].value
+        assert stage.solution.inputs["ratio"].value == approx(2 * lift_ratio)
+        # and each card shows exactly what a solve of those entries gives
+        direct = workbook.solve(workbook.from_text(TEXT.replace('"10 lb"', '"40 lb"'), "pilot.toml"))
+        assert lift_ratio == approx(direct.cards["lift"].solution.outputs["ratio"].value)
+        assert lift_ratio > 1  # ...and fails at 40 lb, live
+        assert requirement_line(screen).startswith("✘ Lift ratio")
+
+
+async def test_a_linked_field_is_read_only_and_a_card_edit_flows_on():
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.from_text(TEXT, "pilot.toml"))
+    async with app.run_test(size=(140, 40)) as pilot:
+        await started(pilot)
+        for _ in range(200):
+            if isinstance(app.screen, WorkbookScreen):
+                break
+            await pilot.pause()
+        screen = app.screen
+        await settled(pilot, screen)
+        await pilot.press("ctrl+right")  # to the lift card
+        await pilot.pause()
+        lift, stage = screen.cards["lift"], screen.cards["stage"]
+        assert lift.sheet.has_focus
+        before = lift.entries["load"]
+        assert lift.sheet.move_to_field("load")
+        await pilot.press("9", "enter")
+        await settled(pilot, screen)
+        assert lift.entries["load"] == before  # refused, with a notification
+        assert not lift.sheet.editing  # Enter on a linked row does not open it either
+        assert lift.sheet.move_to_field("radius")
+        await pilot.press("2", "enter")
+        await settled(pilot, screen)
+        assert lift.solution.inputs["radius"].value == approx(2 * 0.0254)
+        assert stage.solution.inputs["ratio"].value == approx(2 * lift.solution.outputs["ratio"].value)
+        await pilot.press("escape")  # back to the calculator cards
+        await pilot.pause()
+        assert not isinstance(app.screen, WorkbookScreen)
+
+
+async def test_ctrl_o_opens_a_workbook_file(tmp_path: Path):
+    path = tmp_path / "robot.toml"
+    path.write_text(TEXT, encoding="utf-8")
+    app = GearheadApp(blink=False, hide_timings=True)
+    async with app.run_test(size=(140, 40)) as pilot:
+        await started(pilot)
+        await pilot.press("ctrl+o")
+        await pilot.pause()
+        entry = app.screen.query_one("#preset-path", Input)
+        entry.focus()
+        entry.value = str(path)
+        await pilot.press("enter")
+        for _ in range(200):
+            if isinstance(app.screen, WorkbookScreen):
+                break
+            await pilot.pause()
+        assert isinstance(app.screen, WorkbookScreen)
+        await settled(pilot, app.screen)
+        assert app.screen.book.name == "pilot robot"
+
+
+def approx(x):
+    return pytest.approx(x, rel=1e-9)
+
+
+async def test_a_text_variable_is_a_choice_on_the_robot_card():
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.from_text(TEXT, "pilot.toml"))
+    async with app.run_test(size=(140, 40)) as pilot:
+        await started(pilot)
+        for _ in range(200):
+            if isinstance(app.screen, WorkbookScreen):
+                break
+            await pilot.pause()
+        screen = app.screen
+        await settled(pilot, screen)
+        lift = screen.cards["lift"]
+        assert lift.solution.inputs["motor"].value == "NEO"
+        field = screen.robot.calculator.field("motor_name")
+        assert "Kraken X60" in field.choices  # the gear-ratio card's own motor list
+        screen.robot.sheet.focus()
+        assert screen.robot.sheet.move_to_field("motor_name")
+        await pilot.press("k")  # letters on a choice row pick the next that begins with them
+        await settled(pilot, screen)
+        chosen = screen.robot.entries["motor_name"]
+        assert chosen.lower().startswith("k") and chosen != "NEO"
+        assert lift.solution.inputs["motor"].value == chosen

@@ -1,0 +1,379 @@
+"""A workbook in the app (core/workbook.py): a Robot card and one card per workbook card.
+
+The Robot card lists the variables (a Sheet over core.workbook.as_calculator's fields: every plain
+number or quantity, editable) and the requirements, each ✔ or ✘ with its values. Each workbook card
+is the generic card (CalculatorTab) of its calculator; a linked field shows its reference after its
+label and is read-only. Any change (a variable, a card's own entry) re-solves the workbook in a
+thread (latest wins) and the linked fields of every dependent card take their new values, which
+each card then solves as it does for any entry.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import threading
+from typing import Any
+
+from rich.text import Text
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Vertical, VerticalScroll
+from textual.screen import Screen
+from textual.widgets import ContentSwitcher, Static, Tab, Tabs
+
+from gearhead.core.errors import InputError
+
+from ..guard import guarded
+from .calculator_tab import CalculatorTab
+from .sheet import Sheet
+
+LINK_MARK = "⇐"  # after a linked field's label: 'Robot mass ⇐ = robot_mass'
+
+
+class LinkedSheet(Sheet):
+    """A card's form whose linked rows cannot be edited: Enter or a key there says why."""
+
+    linked: dict[str, str] = {}  # field -> its reference, set by the card
+
+    def begin_edit(self, replace_with: str | None = None) -> None:
+        stop = self.current_stop
+        if stop is not None and stop.field.name in self.linked:
+            self.app.notify(
+                f"{stop.field.name} is linked ({self.linked[stop.field.name]}): change what it reads instead",
+                title="Linked field",
+                severity="warning",
+                markup=False,
+            )
+            return
+        super().begin_edit(replace_with)
+
+
+class WorkbookCard(CalculatorTab):
+    """The generic card of one workbook card: linked fields read-only, each change reported."""
+
+    sheet_class = LinkedSheet
+
+    def __init__(self, name: str, calculator, links: dict[str, str], on_change, **kwargs) -> None:
+        fields = tuple(
+            dataclasses.replace(f, label=f"{f.label} {LINK_MARK} {links[f.name]}") if f.name in links else f
+            for f in calculator.fields
+        )
+        super().__init__(dataclasses.replace(calculator, fields=fields), **kwargs)
+        self.card_name = name
+        self.links = dict(links)
+        self.on_change = on_change
+
+    @guarded
+    def on_mount(self) -> None:
+        self.sheet.linked = dict(self.links)
+        super().on_mount()
+
+    @guarded
+    def _take_entry(self, name: str, value: Any) -> None:
+        if name in self.links:  # a choice or a toggle on a linked row
+            self.sheet.editing = False
+            self.sheet.refresh()
+            self.app.notify(
+                f"{name} is linked ({self.links[name]}): change what it reads instead",
+                title="Linked field",
+                severity="warning",
+                markup=False,
+            )
+            return
+        before = self.entries.get(name)
+        super()._take_entry(name, value)
+        if self.entries.get(name) != before:
+            self.on_change()
+
+    def own_inputs(self) -> dict[str, Any]:
+        """What was typed on this card (not its linked fields), as a preset stores it."""
+        return {k: v for k, v in self.current_inputs().items() if k not in self.links}
+
+
+def robot_calculator(book):
+    """The Robot card's form: core.workbook.as_calculator's fields (numbers and quantities), then
+    each text variable that a card's choice field reads as it is ('motor = "= drive_motor"') as a
+    choice of that field's choices, and each yes/no variable as a yes/no."""
+    import ast
+
+    from gearhead.core import workbook
+    from gearhead.core.fields import Field
+    from gearhead.core.registry import get
+
+    calc = workbook.as_calculator(book)
+    extra = []
+    for v in book.variables.values():
+        if not v.text:
+            continue
+        if isinstance(v.nominal, bool):
+            extra.append(Field(v.name, v.name, boolean=True, default=v.nominal))
+            continue
+        for card in book.cards.values():
+            reading = [
+                get(card.calculator).field(name)
+                for name, expr in card.links.items()
+                if isinstance(expr.tree, ast.Name) and expr.tree.id == v.name
+            ]
+            choice = next((f for f in reading if f.choices and not f.flags and v.nominal in f.choices), None)
+            if choice is not None:
+                extra.append(
+                    Field(
+                        v.name,
+                        v.name,
+                        choices=choice.choices,
+                        choice_labels=choice.choice_labels,
+                        default=v.nominal,
+                    )
+                )
+                break
+    return dataclasses.replace(calc, fields=calc.fields + tuple(extra))
+
+
+class RobotCard(Vertical):
+    """The workbook's variables (editable) and requirements (live ✔/✘)."""
+
+    DEFAULT_CSS = """
+    RobotCard { height: 1fr; }
+    RobotCard > #requirements-box { height: 1fr; }
+    """
+
+    def __init__(self, calculator, entries: dict[str, Any], on_change, **kwargs) -> None:
+        super().__init__(**kwargs)
+        self.calculator = calculator
+        self.entries = dict(entries)
+        self.on_change = on_change
+
+    def compose(self) -> ComposeResult:
+        yield Static(Text(self.calculator.title, style="bold"), classes="summary")
+        self.sheet = Sheet(
+            self.calculator,
+            entries=lambda: self.entries,
+            on_entry=self._take_entry,
+            on_cursor=lambda f: None,
+            on_choose=self._choose,
+            classes="form",
+        )
+        self.sheet.styles.height = min(len(self.calculator.fields), 12) + 1
+        yield self.sheet
+        self.status = Static("", id="workbook-status")
+        yield self.status
+        with VerticalScroll(id="requirements-box"):
+            self.requirements = Static("", id="requirements")
+            yield self.requirements
+
+    @guarded
+    def _take_entry(self, name: str, value: Any) -> None:
+        if self.entries.get(name) == value:
+            return
+        self.entries = {**self.entries, name: value}
+        self.sheet.refresh_field(name)
+        self.on_change()
+
+    @guarded
+    def _choose(self, field) -> None:
+        """A choice row's list (Enter or a click on it), as on any card."""
+        from ..guard import guard
+        from .choice_screen import ChoiceScreen
+
+        def chosen(value) -> None:
+            if value is not None:
+                self._take_entry(field.name, value)
+
+        options = field.kind.widget(field).options
+        self.app.push_screen(
+            ChoiceScreen(field.label, options, self.entries.get(field.name)), guard(self, chosen)
+        )
+
+
+class WorkbookScreen(Screen):
+    """One workbook: a strip of its cards (Robot first), the card chosen below it."""
+
+    BINDINGS = [
+        Binding("escape", "close", "Close workbook"),
+        Binding("ctrl+right", "step(1)", "Next card"),
+        Binding("ctrl+left", "step(-1)", "Previous card"),
+        # the app's card commands act on the calculator cards behind this screen: not here
+        *(
+            Binding(key, "not_here", show=False)
+            for key in ("ctrl+s", "ctrl+o", "ctrl+g", "ctrl+r", "ctrl+y", "ctrl+e")
+        ),
+    ]
+
+    def __init__(self, book, blink: bool = True, hide_timings: bool = False) -> None:
+        super().__init__()
+
+        self.book = book
+        self.blink = blink
+        self.hide_timings = hide_timings
+        self.robot_calc = robot_calculator(book)
+        self.outcome = None  # the last core.workbook.Outcome shown
+        self._wb_generation = 0  # solves asked for; a thread's result older than the last is dropped
+        self._wb_lock = threading.Lock()
+        self._wb_running = False
+        self._wb_pending = None  # the latest request not yet taken up by the solving thread
+        self._wb_pushed: dict[tuple[str, str], Any] = {}  # (card, field) -> the linked value last set
+
+    def compose(self) -> ComposeResult:
+        from gearhead.core.registry import get
+
+        book = self.book
+        yield Tabs(
+            Tab("Robot", id="wbtab-robot"),
+            *(Tab(name, id=f"wbtab-{name}") for name in book.cards),
+            id="workbook-tabs",
+        )
+        entries = {
+            f.name: f.kind.entry(f, book.variables[f.name].entry)
+            if f.kind.with_unit
+            else f.kind.initial_entry(f)
+            for f in self.robot_calc.fields
+        }
+        self.robot = RobotCard(self.robot_calc, entries, self.request_solve, id="wbpane-robot")
+        self.cards: dict[str, WorkbookCard] = {}
+        with ContentSwitcher(initial="wbpane-robot", id="workbook-panes"):
+            yield self.robot
+            for name, card in book.cards.items():
+                links = {k: "= " + e.text for k, e in card.links.items()}
+                tab = WorkbookCard(
+                    name,
+                    get(card.calculator),
+                    links,
+                    self.request_solve,
+                    blink=self.blink,
+                    hide_timings=self.hide_timings,
+                    id=f"wbpane-{name}",
+                )
+                calc = tab.calculator
+                literal = {k: v for k, v in card.inputs.items() if k not in links}
+                tab.entries = {
+                    **{f.name: tab.initial_entry(f) for f in calc.fields},
+                    **{k: calc.field(k).kind.entry(calc.field(k), v) for k, v in literal.items()},
+                }
+                self.cards[name] = tab
+                yield tab
+        from .key_bar import KeyBar
+
+        yield KeyBar()
+
+    @guarded
+    def on_mount(self) -> None:
+        self.sub_title = self.book.name
+        self.request_solve()
+        self.robot.sheet.focus()
+
+    @guarded
+    def on_tabs_tab_activated(self, event: Tabs.TabActivated) -> None:
+        if event.tabs.id != "workbook-tabs" or event.tab is None:
+            return
+        event.stop()
+        pane = "wbpane-" + (event.tab.id or "").removeprefix("wbtab-")
+        self.query_one("#workbook-panes", ContentSwitcher).current = pane
+        shown = self.robot if pane == "wbpane-robot" else self.cards[pane.removeprefix("wbpane-")]
+        if shown.is_mounted:
+            shown.sheet.focus()  # typing goes to the card on screen
+
+    def action_step(self, step: int) -> None:
+        tabs = self.query_one("#workbook-tabs", Tabs)
+        ids = ["wbtab-robot", *(f"wbtab-{n}" for n in self.book.cards)]
+        current = ids.index(tabs.active) if tabs.active in ids else 0
+        tabs.active = ids[(current + step) % len(ids)]
+
+    def action_close(self) -> None:
+        self.app.pop_screen()
+
+    def action_not_here(self) -> None:
+        self.app.notify(
+            "On a workbook, edit the file to save it; the card commands work on the calculator cards "
+            "(Esc closes the workbook).",
+            severity="warning",
+            markup=False,
+        )
+
+    # ---- solving ------------------------------------------------------------------------
+    def request_solve(self) -> None:
+        """Solve the workbook with what is on screen, in a thread; a request while one runs is
+        taken up when it ends (latest wins)."""
+        self._wb_generation += 1
+        variables = dict(self.robot.entries)
+        inputs = {name: tab.own_inputs() for name, tab in self.cards.items()}
+        job = (self._wb_generation, variables, inputs)
+        with self._wb_lock:
+            self._wb_pending = job
+            if self._wb_running:
+                return
+            self._wb_running = True
+        threading.Thread(target=self._solve_loop, name="gearhead-workbook", daemon=True).start()
+
+    @property
+    def busy(self) -> bool:
+        return self._wb_running
+
+    def _solve_loop(self) -> None:
+        from gearhead.core import workbook
+
+        while True:
+            with self._wb_lock:
+                job, self._wb_pending = self._wb_pending, None
+                if job is None:
+                    self._wb_running = False
+                    return
+            generation, variables, inputs = job
+            try:
+                book = workbook.edited(self.book, variables, inputs)
+                result: Any = workbook.solve(book)
+            except InputError as exc:
+                result = exc
+            except Exception as exc:  # a bug: said on the Robot card, logged; the screen keeps working
+                from ..bug_log import record
+
+                path = record(exc, "gearhead (the app) workbook solve")
+                result = InputError(
+                    "(workbook)", f"internal error: {type(exc).__name__}: {exc} (traceback in {path})"
+                )
+            try:
+                self.app.call_from_thread(self._show, generation, result)
+            except RuntimeError:  # the app closed meanwhile
+                return
+
+    @guarded
+    def _show(self, generation: int, result) -> None:
+        if generation != self._wb_generation or not self.is_attached:
+            return  # a newer request is on its way
+        if isinstance(result, InputError):
+            self.robot.status.update(Text(f"✗ {result}", style="red"))
+            return
+        self.outcome = result
+        for name, card in result.cards.items():
+            tab = self.cards[name]
+            pushed = {
+                field_name: card.entries[field_name]
+                for field_name in card.links
+                if field_name in card.entries
+                and self._wb_pushed.get((name, field_name)) != card.entries[field_name]
+            }
+            if pushed:
+                tab.set_entries(pushed)
+                self._wb_pushed.update({(name, k): v for k, v in pushed.items()})
+            if card.error:
+                tab.status.update(Text(f"✗ workbook: {card.error}", style="red"))
+        self.robot.requirements.update(requirements_text(result))
+        holding = sum(1 for c in result.checks if c.holds)
+        style = "green" if result.all_hold else "red"
+        self.robot.status.update(Text(f"{holding} of {len(result.checks)} requirements hold", style=style))
+
+
+def requirements_text(outcome) -> Text:
+    """One line per requirement: ✔/✘ (? when it could not be evaluated), its name, its values."""
+    text = Text()
+    for c in outcome.checks:
+        r = c.requirement
+        mark, style = ("✔", "green") if c.holds else (("?", "yellow") if c.holds is None else ("✘", "red"))
+        text.append(f"{mark} ", style=style)
+        text.append(r.name or r.check, style="bold")
+        text.append(f"  {c.text()}\n")
+        if r.name:
+            text.append(f"    {r.check}\n", style="dim")
+    for name, card in outcome.cards.items():
+        if card.error:
+            text.append(f"card {name} not solved: {card.error}\n", style="red")
+    return text

@@ -1,0 +1,225 @@
+"""The command line of workbooks (core/workbook.py): `check`, and `solve`/`sweep` given a .toml file.
+
+    gearhead check ROBOT.toml [--set VAR=VALUE ...] [--worst-case] [--json]
+    gearhead solve ROBOT.toml [--set VAR=VALUE ...] [--json]
+    gearhead sweep ROBOT.toml --vary VAR=START..STOP[:N][:log] [--output REQUIREMENT ...] [--csv | --json]
+
+`check` exits 0 when every requirement holds, 1 when one does not (or cannot be evaluated: a card it
+reads could not be solved), 2 for a bad file (tui/cli.py's handler of InputError).
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+
+from gearhead.core.errors import InputError, shown
+
+EXIT_FAILS = 1
+
+
+def is_workbook(argument: str | None) -> bool:
+    """Whether `solve`/`sweep`'s first argument names a workbook file rather than a calculator id."""
+    # no file-system look-up: a calculator id never ends in .toml nor holds a slash (and a look-up
+    # of a 5000-character name raises)
+    return bool(argument) and (argument.endswith(".toml") or "/" in argument or "\\" in argument)
+
+
+def add_parser(sub) -> None:
+    c = sub.add_parser(
+        "check", help="check a workbook's requirements: exit 0 all hold, 1 one fails, 2 bad file"
+    )
+    c.add_argument("workbook", help="a workbook file (TOML: variables, cards, requirements)")
+    c.add_argument(
+        "--set",
+        dest="sets",
+        action="append",
+        default=[],
+        metavar="VAR=VALUE",
+        help="replace a variable's value",
+    )
+    c.add_argument(
+        "--worst-case",
+        action="store_true",
+        help="hold each requirement over the variables' tolerances (worst case), not only at the nominal values",
+    )
+    c.add_argument("--json", action="store_true", help="one JSON object (margins also in SI)")
+
+
+def _marks() -> tuple[str, str]:
+    """✔/✘, or ok/FAIL where standard output cannot write them."""
+    try:
+        "✔✘".encode(sys.stdout.encoding or "ascii")
+        return "✔", "✘"
+    except (UnicodeEncodeError, LookupError):
+        return "ok", "FAIL"
+
+
+def _sets(args) -> dict[str, str]:
+    out = {}
+    for item in getattr(args, "sets", []):
+        name, sep, value = item.partition("=")
+        if not sep or not name.strip():
+            raise InputError(name.strip() or "--set", f"--set takes VAR=VALUE, got {shown(item)}")
+        out[name.strip()] = value.strip()
+    return out
+
+
+def _load(path: str, args):
+    from gearhead.core import workbook
+
+    if not path.strip():
+        raise InputError("workbook", "is empty; give a workbook file")
+    return workbook.load(path, _sets(args))
+
+
+def check(args) -> int:
+    from gearhead.core import workbook
+
+    wb = _load(args.workbook, args)
+    outcome = workbook.solve(wb)
+    worst = None
+    if args.worst_case:
+        from gearhead.core import workbook_study
+
+        worst = workbook_study.worst_case(wb)
+    holds = outcome.all_hold and (
+        worst is None or all(worst.holds(c.requirement.key) for c in outcome.checks)
+    )
+    if args.json:
+        data = outcome.as_json()
+        data["holds"] = holds
+        if worst is not None:
+            data["worst_case"] = worst.as_json()
+        print(json.dumps(data, allow_nan=False))
+        return 0 if holds else EXIT_FAILS
+    yes, no = _marks()
+    passed = sum(1 for c in outcome.checks if c.holds)
+    failed = len(outcome.checks) - passed
+    print(
+        f"{wb.name} ({wb.source}): {len(outcome.checks)} requirement{'s' if len(outcome.checks) != 1 else ''}, "
+        f"{passed} hold{'s' if passed == 1 else ''}, {failed} fail{'s' if failed == 1 else ''}"
+    )
+    width = max((len(c.requirement.name or c.requirement.check) for c in outcome.checks), default=0)
+    for c in outcome.checks:
+        r = c.requirement
+        label = r.name or r.check
+        line = f"  {yes if c.holds else no} {label:<{width}}  {c.text()}"
+        if r.name:
+            line += f"   [{r.check}]"
+        print(line)
+        if worst is not None and c.holds is not None:
+            low = worst.low(r.key)
+            if worst.spread is not None and r.key in worst.spread.outputs:
+                mark = yes if worst.holds(r.key) else no
+                o = worst.calculator.output(r.key)
+                from gearhead.core import units
+
+                shown_low = units.format_quantity(low, o.unit, o.quantity)
+                print(
+                    f"    {mark} worst case: margin {shown_low} ({worst.spread.outputs[r.key].worst_case_method})"
+                )
+    for name, card in outcome.cards.items():
+        if card.error:
+            print(f"  card {name} ({card.calculator}) not solved: {card.error}")
+    for card in wb.cards.values():
+        for warning in card.warnings:
+            print(f"  warning: {warning}")
+    if worst is not None:
+        if worst.spread is not None:
+            print(
+                f"  tolerances: {', '.join(t.entry for t in worst.spread.tolerances)}; {worst.spread.cost.text()}"
+            )
+        for note in worst.notes:
+            print(f"  note: {note}")
+    elif any(v.tolerance for v in wb.variables.values()):
+        print("  note: tolerances on variables are not analysed here: add --worst-case")
+    return 0 if holds else EXIT_FAILS
+
+
+def solve(args) -> int:
+    """Every card of a workbook, in dependency order, then its requirements."""
+    from gearhead.core import workbook
+    from gearhead.core.registry import get
+
+    for option in ("preset", "preset_out", "document"):
+        if getattr(args, option, None) is not None:
+            raise InputError(f"--{option.replace('_', '-')}", "is for one calculator, not a workbook")
+    if getattr(args, "units", None):
+        raise InputError("--unit", "is for one calculator, not a workbook")
+    wb = _load(args.calculator, args)
+    outcome = workbook.solve(wb)
+    if args.json:
+        print(json.dumps(outcome.as_json(with_cards=True), allow_nan=False))
+        return 0
+    print(f"{wb.name} ({wb.source})")
+    for name, card in outcome.cards.items():
+        calc = get(card.calculator)
+        print(f"\n[{name}] {calc.title} ({calc.id})")
+        for field_name, ref in card.links.items():
+            entry = (
+                card.solution.inputs[field_name].text if card.solution else card.entries.get(field_name, "")
+            )
+            print(f"  {calc.field(field_name).label} {ref}  → {entry}")
+        if card.error:
+            print(f"  not solved: {card.error}")
+            continue
+        width = max((len(calc.output(k).label) for k in card.solution.outputs), default=0)
+        for key, value in card.solution.outputs.items():
+            print(f"  {calc.output(key).label:<{width}}  {value.text}")
+        for w in card.solution.warnings:
+            print(f"  warning: {w}")
+    yes, no = _marks()
+    if outcome.checks:
+        print("\nRequirements")
+    for c in outcome.checks:
+        print(f"  {yes if c.holds else no} {c.requirement.name or c.requirement.check}  {c.text()}")
+    return 0
+
+
+def sweep(args) -> int:
+    from gearhead.core import workbook_study
+    from gearhead.core.sweep import text_table
+
+    if args.preset is not None or args.units:
+        raise InputError(
+            "--preset" if args.preset is not None else "--unit", "is for one calculator, not a workbook"
+        )
+    wb = _load(args.calculator, args)
+    result = workbook_study.run_sweep(wb, args.varies, args.outputs)
+    if args.json:
+        print(json.dumps(result.as_json(), allow_nan=False))
+    elif args.csv:
+        sys.stdout.write(result.csv_text())
+    else:
+        print(text_table(result, None))
+        print("(each column: the requirement's margin; negative where it fails)")
+    for note in result.notes:
+        if not args.json:
+            print(f"gearhead: note: {note}", file=sys.stderr)
+    return 0
+
+
+def app(path: str, argv) -> int:
+    """`gearhead robot.toml`: the app, showing the workbook's cards (a bad file: exit 2, one line)."""
+    from gearhead.core import workbook
+
+    from . import cli
+
+    if not cli._terminal():
+        cli._complain(
+            "the app needs a terminal; from a script use `gearhead check FILE` or `gearhead solve FILE`"
+        )
+        return cli.EXIT_BAD_INPUT
+    try:
+        book = workbook.load(path)
+    except InputError as exc:
+        cli._complain(str(exc))
+        return cli.EXIT_BAD_INPUT
+    from .app import run
+
+    try:
+        failure = run(workbook=book)
+    except Exception as exc:  # before the app or after it (its settings, the terminal)
+        return cli._internal(exc, argv)
+    return 0 if failure is None else cli._app_failure(failure)
