@@ -159,3 +159,23 @@ async def test_a_text_variable_is_a_choice_on_the_robot_card():
         chosen = screen.robot.entries["motor_name"]
         assert chosen.lower().startswith("k") and chosen != "NEO"
         assert lift.solution.inputs["motor"].value == chosen
+
+
+async def test_a_bare_number_on_the_robot_card_is_in_the_unit_the_row_shows():
+    """'40' typed on 'mass … lb' is 40 lb, as on any card (the workbook took it for a plain number
+    and refused it: 'takes a mass; the reference gives a plain number', found in tmux)."""
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.from_text(TEXT, "pilot.toml"))
+    async with app.run_test(size=(140, 40)) as pilot:
+        await started(pilot)
+        for _ in range(200):
+            if isinstance(app.screen, WorkbookScreen):
+                break
+            await pilot.pause()
+        screen = app.screen
+        await settled(pilot, screen)
+        screen.robot.sheet.focus()
+        assert screen.robot.sheet.move_to_field("mass")
+        await pilot.press(*keys_of("40"), "enter")
+        await settled(pilot, screen)
+        assert screen.cards["lift"].solution.inputs["load"].value == approx(40 * LBF)
+        assert requirement_line(screen).startswith("✘ Lift ratio")

@@ -294,7 +294,7 @@ class WorkbookScreen(Screen):
         """Solve the workbook with what is on screen, in a thread; a request while one runs is
         taken up when it ends (latest wins)."""
         self._wb_generation += 1
-        variables = dict(self.robot.entries)
+        variables = {name: self._with_unit(name, entry) for name, entry in self.robot.entries.items()}
         inputs = {name: tab.own_inputs() for name, tab in self.cards.items()}
         job = (self._wb_generation, variables, inputs)
         with self._wb_lock:
@@ -303,6 +303,18 @@ class WorkbookScreen(Screen):
                 return
             self._wb_running = True
         threading.Thread(target=self._solve_loop, name="gearhead-workbook", daemon=True).start()
+
+    def _with_unit(self, name: str, entry: Any) -> Any:
+        """A bare number typed on a Robot card row is in the unit the row shows (as on any card):
+        '140' on 'robot_mass … lb' is 140 lb (the workbook read it as a plain number and refused it)."""
+        field = next((f for f in self.robot_calc.fields if f.name == name), None)
+        if field is None or not (field.kind.with_unit and field.unit) or not isinstance(entry, str):
+            return entry
+        try:
+            float(entry.strip().replace("−", "-"))
+        except ValueError:
+            return entry  # a unit of its own, a tolerance, or something the workbook will name
+        return f"{entry.strip()} {field.unit}"
 
     @property
     def busy(self) -> bool:
