@@ -136,9 +136,9 @@ FIRST_VISIT = (
     + r"""
 from gearhead.tui.app import GearheadApp
 def card(app):  # a dict lookup: a query per frame walks every widget (60-80 ms with all cards)
-    if app.current_calculator != "beam":  # a rehearsal draws it beneath the card on screen
+    if app.current_calculator != "CALC":  # a rehearsal draws it beneath the card on screen
         return None
-    return app._cards.get("beam")
+    return app._cards.get("CALC")
 watch(card)
 async def main():
     try:
@@ -148,10 +148,10 @@ async def main():
     async with app.run_test(size=(140, 45)) as pilot:
         if REPEAT:  # the beam seen once already: F3, back with F1, then the F3 measured
             await pilot.pause(READ_S)
-            for key in ("f3", "f1"):
+            for key in ("KEY", "f1"):
                 await app._press_keys([key])
                 await pilot.pause(1.5)
-        await visit(app, lambda: app._press_keys(["f3"]), pilot, 0.5 if REPEAT else READ_S)
+        await visit(app, lambda: app._press_keys(["KEY"]), pilot, 0.5 if REPEAT else READ_S)
         app.warm_up = False  # closing mid-mount trips Textual: stop building, let mounts end
         await pilot.pause(1.0)
 asyncio.run(main())
@@ -259,9 +259,13 @@ def reported(code: str) -> float:
     return reported_all(code)[0]
 
 
-def reported_all(code: str, read_s: float = READ_S, repeat: bool = False) -> list[float]:
-    """The figures a script prints on its last line (seconds, or ms for the visit probe)."""
+def reported_all(
+    code: str, read_s: float = READ_S, repeat: bool = False, key: str = "f3", calc: str = "beam"
+) -> list[float]:
+    """The figures a script prints on its last line (seconds, or ms for the visit probe); a
+    visit presses `key`, which opens `calc`'s card."""
     code = code.replace("STALLS", STALLS).replace("READ_S", repr(read_s)).replace("REPEAT", repr(repeat))
+    code = code.replace('"KEY"', repr(key)).replace('"CALC"', repr(calc))
     out = subprocess.run([sys.executable, "-c", code], cwd=APP_ROOT, capture_output=True, text=True, env=ENV)
     if out.returncode:
         raise RuntimeError(out.stderr[-2000:])
@@ -335,6 +339,17 @@ def main() -> None:
             names=("key -> drawn", "longest stall"),
             scale=1,
         )
+    # the same first visit to a card whose first solve imports nothing more (the lead screw's closed
+    # form): what the card costs, without the beam's finite-element J loading scipy.sparse (~400 ms
+    # of import in the solve thread, whose allocations set off a full garbage collection)
+    pair(
+        f"app: first visit (F2, lead screw) at {WARMED_S:.0f} s, ",
+        lambda: reported_all(FIRST_VISIT, WARMED_S, key="f2", calc="lead_screw"),
+        lambda: reported_all(MINIMAL_VISIT),
+        "minimal app, F3 shows a new pane",
+        names=("key -> drawn", "longest stall"),
+        scale=1,
+    )
     pair(  # what any switch costs: the floor for a first visit
         f"app: repeat visit (F3 F1 F3) at {WARMED_S:.0f} s, ",
         lambda: reported_all(FIRST_VISIT, WARMED_S, repeat=True),
