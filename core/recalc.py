@@ -106,9 +106,23 @@ DEFAULTS: dict[str, dict[str, Any]] = {
         "customShooterMoi": _m(4.5, "in2*lbs"),
         "useCustomShooterMoi": False,
         "flywheelEnabled": False,
+        "flywheelDiameter": _m(4, "in"),
+        "flywheelWeight": _m(1.5, "lb"),
+        "customFlywheelMoi": _m(3, "in2*lbs"),
+        "useCustomFlywheelMoi": False,
+        "flywheelToShooterRatio": _ratio(1),
         "projectileDiameter": _m(5, "in"),
         "projectileWeight": _m(0.5, "lb"),
+        "ballInitialVelocity": _m(0, "ft/s"),
+        "ballInitialSpin": _m(0, "rpm"),
         "shooterMode": "single-hooded",
+        "useCustomBallMoi": False,
+        "customBallMoi": _m(2.5, "in2*lbs"),
+        "secondaryShooterDiameter": _m(4, "in"),
+        "secondaryShooterWeight": _m(1, "lb"),
+        "secondaryShooterToShooterRatio": _ratio(1),
+        "useCustomSecondaryShooterMoi": False,
+        "customSecondaryShooterMoi": _m(4.5, "in2*lbs"),
         "efficiency": 100,
     },
     "belts": {
@@ -346,29 +360,85 @@ def _arm(link: _Link) -> dict:
     return inputs
 
 
+def _disc_or_custom(link: _Link, diameter: str, weight: str, custom: str, use_custom: str) -> str:
+    """A wheel's moment of inertia as ReCalc takes it: the entered one, else a solid disc m·r²/2
+    (flywheel.tsx derivedShooterMOI and its siblings)."""
+    if link.value(use_custom):
+        link.used.update((diameter, weight))
+        return link.quantity(custom)
+    link.used.add(custom)
+    radius = link.si(diameter, "length") / 2
+    inertia = link.si(weight, "mass") * radius * radius / 2
+    if not math.isfinite(inertia) or inertia <= 0:
+        raise InputError(weight, "and the diameter give no finite, positive moment of inertia", SOURCE)
+    return f"{_num(inertia)} kg*m**2"
+
+
+# ReCalc's shooter modes (flywheel.tsx, ballShot.ts) -> Gearhead's layouts (core/calculators/flywheel.py)
+SHOOTER_MODES = {"single-hooded": "hood", "dual-shooter": "dual", "compound": "compound"}
+
+
 def _flywheel(link: _Link) -> dict:
+    """ReCalc's shot (ballShot.ts) is the momentum transfer with no loss, the ball a solid sphere
+    (2/5·m·r²) unless entered: the same model chosen here, so the numbers are ReCalc's."""
     inputs: dict[str, Any] = {}
     link.motor(inputs)
-    inputs["ratio"] = link.ratio()
+    G = inputs["ratio"] = link.ratio()
     link.efficiency(inputs)
     inputs["voltage"] = link.quantity("supplyVoltage")
     inputs["wheel_diameter"] = link.quantity("shooterDiameter")
-    inputs["wheel_mass"] = link.quantity("shooterWeight")
     inputs["mode"] = "moment_of_inertia"
-    if link.value("useCustomShooterMoi"):
-        inputs["wheel_inertia"] = link.quantity("customShooterMoi")
-    else:  # ReCalc's derived shooter MOI: a solid disc, m·r²/2 (flywheel.tsx derivedShooterMOI)
-        radius = link.si("shooterDiameter", "length") / 2
-        inputs["wheel_inertia"] = f"{_num(link.si('shooterWeight', 'mass') * radius**2 / 2)} kg*m**2"
+    inputs["wheel_inertia"] = _disc_or_custom(
+        link, "shooterDiameter", "shooterWeight", "customShooterMoi", "useCustomShooterMoi"
+    )
+    inputs["wheel_count"] = 1
     inputs["target_speed"] = link.quantity("shooterTargetSpeed")
     inputs["ball_diameter"] = link.quantity("projectileDiameter")
     inputs["ball_mass"] = link.quantity("projectileWeight")
+    if link.value("useCustomBallMoi"):
+        r_b = link.si("projectileDiameter", "length") / 2
+        factor = link.si("customBallMoi", "inertia") / (link.si("projectileWeight", "mass") * r_b * r_b)
+        if not (math.isfinite(factor) and factor > 0):
+            raise InputError("customBallMoi", "gives no finite, positive I/(m·r²) for the ball", SOURCE)
+        inputs["ball_inertia_factor"] = factor
+    else:
+        link.used.add("customBallMoi")
+        inputs["ball_inertia_factor"] = 0.4
+    inputs["ball_initial_speed"] = link.quantity("ballInitialVelocity")
+    inputs["ball_initial_spin"] = link.quantity("ballInitialSpin")
+    inputs["transfer"] = "momentum"
+    inputs["loss_fraction"] = "0 %"
     mode = link.value("shooterMode")
-    inputs["shooter"] = {"single-hooded": "hood", "dual-shooter": "two_wheel"}.get(mode, "hood")
-    if mode not in ("single-hooded", "dual-shooter"):
+    shooter = SHOOTER_MODES.get(mode)
+    if shooter is None:
         link.notes.append(f"shooterMode: Gearhead has no {shown(mode)} shooter; a hooded single wheel used")
-    if link.value("flywheelEnabled"):
-        link.notes.append("flywheelEnabled: the extra geared flywheel is not modelled in Gearhead; left out")
+        shooter = "hood"
+    secondary = ("secondaryShooterDiameter", "secondaryShooterWeight", "customSecondaryShooterMoi")
+    extra = ("flywheelDiameter", "flywheelWeight", "customFlywheelMoi")
+    if shooter in ("dual", "compound"):  # the top wheel turns at 1/r of the shooter: G₂ = G·r
+        inputs["secondary_diameter"] = link.quantity("secondaryShooterDiameter")
+        inputs["secondary_inertia"] = _disc_or_custom(link, *secondary, "useCustomSecondaryShooterMoi")
+        inputs["secondary_count"] = 1
+        inputs["secondary_ratio"] = G * link.ratio("secondaryShooterToShooterRatio")
+        if link.value("flywheelEnabled"):
+            link.notes.append(
+                "flywheelEnabled: Gearhead models a secondary shooter wheel or an extra geared flywheel, "
+                "not both; the extra flywheel left out"
+            )
+        link.used.update((*extra, "useCustomFlywheelMoi", "flywheelToShooterRatio"))
+    elif link.value("flywheelEnabled"):  # a hood with ReCalc's extra geared flywheel: its inertia only
+        shooter = "hood_secondary"
+        inputs["secondary_diameter"] = link.quantity("flywheelDiameter")
+        inputs["secondary_inertia"] = _disc_or_custom(link, *extra, "useCustomFlywheelMoi")
+        inputs["secondary_count"] = 1
+        inputs["secondary_ratio"] = G * link.ratio("flywheelToShooterRatio")
+        link.used.update((*secondary, "useCustomSecondaryShooterMoi", "secondaryShooterToShooterRatio"))
+    else:  # neither: their parameters have nothing to act on
+        link.used.update(
+            (*secondary, "useCustomSecondaryShooterMoi", "secondaryShooterToShooterRatio", *extra)
+        )
+        link.used.update(("useCustomFlywheelMoi", "flywheelToShooterRatio"))
+    inputs["shooter"] = shooter
     inputs["effects"] = link.limits(inputs)
     return inputs
 
