@@ -1229,10 +1229,13 @@ def _holds(a: float, b: float, op: str) -> tuple[bool, float]:
         return (a < b if op == "<" else a <= b), b - a
     if op in (">", ">="):
         return (a > b if op == ">" else a >= b), a - b
-    close = abs(a - b) <= EQUAL_WITHIN * max(abs(a), abs(b))
+    # the margin's sign is the verdict's, as for the inequalities (a worst case is the least margin):
+    # equal means within EQUAL_WITHIN, relative
+    band = EQUAL_WITHIN * max(abs(a), abs(b))
+    close = abs(a - b) <= band
     if op == "==":
-        return close, -abs(a - b)
-    return not close, abs(a - b)
+        return close, band - abs(a - b)
+    return not close, abs(a - b) - band
 
 
 def _display_unit(wb: Workbook, r: Requirement) -> str:
@@ -1297,13 +1300,14 @@ def as_calculator(wb: Workbook):
         overrides = {f.name: values[f.name] for f in fields if f.name in values}
         outcome = solve(wb, overrides)
         out: dict[str, Any] = {"rhs_evaluations": outcome.rhs_evaluations}
-        warnings = []
         for c in outcome.checks:
             if c.margin_si is not None:
                 out[c.requirement.key] = c.margin_si
             elif c.error:
-                warnings.append(f"{c.requirement.key}: {c.error}")
-        return Result(out, warnings)
+                # a robot that cannot be solved here is no robot that meets its requirements: the
+                # point fails (a tolerance corner is counted infeasible, never left out of the worst case)
+                raise InputError(c.requirement.key, c.error)
+        return Result(out)
 
     return Calculator("workbook", wb.name, wb.description, tuple(fields), tuple(outputs), compute)
 

@@ -102,7 +102,10 @@ class WorstCase:
         """Whether the requirement holds at its worst (None: its margin could not be found)."""
         if self.spread is None or key not in self.spread.outputs:
             return None if key not in self.nominal else self.nominal[key] >= 0
-        return self.spread.outputs[key].low >= 0
+        spread = self.spread.outputs[key]
+        if spread.infeasible:  # a corner where the robot could not be solved fails the requirement
+            return False
+        return spread.low >= 0
 
     def low(self, key: str) -> float | None:
         if self.spread is None or key not in self.spread.outputs:

@@ -530,3 +530,55 @@ def test_a_number_and_its_unit_bind_as_written(text, si):
     expr = workbook.parse_expression(text, "x", "t.toml")
     value = workbook.evaluate(expr, workbook.Scope({}, {}, {}), "x", "t.toml")
     assert float(value.to_base_units().magnitude) == pytest.approx(si, rel=1e-12)
+
+
+def test_a_tolerance_corner_where_a_card_cannot_be_solved_fails_the_worst_case(tmp_path, capsys):
+    """200 lb ± 150 lb on an 80 A elevator: at 350 lb the motors cannot lift it, so the requirement
+    does not hold in the worst case (it said '✔ worst case' from the corners that did solve, exit 0,
+    while `check --set carriage_mass='350 lb'` failed)."""
+    from gearhead.tui.cli import main
+
+    path = tmp_path / "wc.toml"
+    path.write_text(
+        """format = 1
+name = "wc"
+[variables]
+carriage_mass = "200 lb ± 150 lb"
+[cards.lift]
+calculator = "elevator"
+[cards.lift.inputs]
+motor = "Kraken X60"
+motor_count = 2
+ratio = 9
+load_mass = "= carriage_mass"
+spool_diameter = "1.75 in"
+travel = "48 in"
+effects = "gravity, stator_limit"
+stator_current_limit = "80 A"
+[[requirements]]
+name = "lift"
+check = "lift.time_to_goal < 10 s"
+""",
+        encoding="utf-8",
+    )
+    assert main(["check", str(path)]) == 0  # at the nominal 200 lb it holds
+    assert main(["check", str(path), "--worst-case"]) == 1
+    out = capsys.readouterr().out
+    assert (
+        "✘ worst case" in out and "not solved in the tolerance box" in out and "stator_current_limit" in out
+    )
+
+
+@pytest.mark.parametrize(
+    "a,op,b,holds",
+    [(5.0, "!=", 5.0, False), (5.5, "!=", 5.0, True), (5.0, "==", 5.0, True), (5.0, "==", 5.5, False),
+     (5.0, "==", 5.0 * (1 + 1e-12), True)],
+)  # fmt: skip
+def test_an_equality_margin_has_the_sign_of_its_verdict(a, op, b, holds):
+    """== and != margins are negative exactly when the check fails, as the inequalities' are (a
+    worst case takes the least margin: '!=' at 5 m ± 1 m read ✔ with margin 0 where x = 5 m fails)."""
+    from gearhead.core.workbook import _holds
+
+    verdict, margin = _holds(a, b, op)
+    assert verdict is holds
+    assert (margin >= 0) is holds

@@ -115,10 +115,11 @@ def check(args) -> int:
                 o = worst.calculator.output(r.key)
                 from gearhead.core import units
 
+                spread = worst.spread.outputs[r.key]
                 shown_low = units.format_quantity(low, o.unit, o.quantity)
-                print(
-                    f"    {mark} worst case: margin {shown_low} ({worst.spread.outputs[r.key].worst_case_method})"
-                )
+                print(f"    {mark} worst case: margin {shown_low} ({spread.worst_case_method})")
+                for why in spread.infeasible:  # a corner where the robot could not be solved
+                    print(f"      not solved in the tolerance box: {why}")
     for name, card in outcome.cards.items():
         if card.error:
             print(f"  card {name} ({card.calculator}) not solved: {card.error}")
