@@ -263,3 +263,27 @@ def test_a_served_link_with_a_share_code_opens_its_design(tmp_path):
                     assert "Preset loaded" not in screen
 
         asyncio.run(asyncio.wait_for(drive(), 150))
+
+
+def test_a_request_from_another_sites_page_is_refused():
+    """Browsers let any page open a websocket to this machine: one marked as from another origin
+    is refused (403), on the loopback too, and a non-ASCII token is a 403, not a 500."""
+
+    def status(url: str, **headers) -> int:
+        try:
+            with urllib.request.urlopen(urllib.request.Request(url, headers=headers), timeout=5) as r:
+                return r.status
+        except urllib.error.HTTPError as e:
+            return e.code
+
+    port = free_port()
+    with running(GEARHEAD, "serve", "--port", str(port)):
+        base = f"http://127.0.0.1:{port}"
+        assert wait_for(f"{base}/") == 200
+        assert status(f"{base}/", Origin=base) == 200  # the page's own
+        assert status(f"{base}/", Origin="https://evil.example") == 403
+        assert status(f"{base}/ws", Origin="https://evil.example") == 403
+    port = free_port()
+    with running(GEARHEAD, "serve", "--host", "0.0.0.0", "--port", str(port)):
+        assert wait_for(f"http://127.0.0.1:{port}/") == 403
+        assert status(f"http://127.0.0.1:{port}/?token=%C3%A9") == 403

@@ -15,6 +15,7 @@ import ipaddress
 import secrets
 import shlex
 import sys
+from urllib.parse import urlsplit
 
 TOKEN_COOKIE = "gearhead_token"
 OPEN_COOKIE = "gearhead_open"  # the share code of the page's ?p=, for the websocket that follows
@@ -73,15 +74,25 @@ def make_server(host: str, port: int, token: str | None, url: str | None = None)
             self._base_command = value
 
         def _allowed(self, request) -> bool:
+            # a page of another site may open a websocket to this machine (browsers let it): a
+            # request a browser marks as from another origin is refused, on the loopback too
+            origin = request.headers.get("Origin")
+            if origin is not None and urlsplit(origin).netloc not in (
+                request.host,
+                urlsplit(self.public_url).netloc,
+            ):
+                return False
             if token is None:
                 return True
             given = request.query.get("token") or request.cookies.get(TOKEN_COOKIE) or ""
-            return secrets.compare_digest(given, token)
+            # bytes: compare_digest refuses a str with non-ASCII characters (a 500 for '?token=é')
+            return secrets.compare_digest(given.encode("utf-8", "replace"), token.encode())
 
         def _refuse(self):
             return web.Response(
                 status=403,
-                text="Gearhead: this server needs its access token (the URL it printed, with ?token=).",
+                text="Gearhead: refused (a request from another site's page, or without the access "
+                "token: the URL the server printed, with ?token=).",
             )
 
         async def handle_index(self, request):
