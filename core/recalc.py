@@ -279,6 +279,8 @@ class _Link:
         else:
             self.notes.append(f"motor: Gearhead has no {shown(name)}; the calculator's default motor used")
         if isinstance(count, (int, float)) and not isinstance(count, bool):
+            if not math.isfinite(count):  # json reads Infinity and NaN
+                raise InputError("motor", f"{shown(count)} motors is not a count", SOURCE)
             inputs["motor_count"] = int(count) if count == int(count) else count
 
     def ratio(self, name: str = "ratio") -> float:
@@ -352,7 +354,13 @@ def _arm(link: _Link) -> dict:
     # ReCalc's arm is its load at the arm's length: I = m·L² (arm.tsx momentOfInertia)
     mass, length = link.si("load", "mass"), link.si("armLength", "length")
     inputs["inertia_model"] = "entered"
-    inputs["moment_of_inertia"] = f"{_num(mass * length**2)} kg*m**2"
+    try:
+        inertia = mass * length * length
+    except OverflowError:
+        inertia = math.inf
+    if not (math.isfinite(inertia) and inertia > 0):
+        raise InputError("load", "and armLength give no finite, positive moment of inertia (m·L²)", SOURCE)
+    inputs["moment_of_inertia"] = f"{_num(inertia)} kg*m**2"
     inputs["start_angle"] = link.quantity("minAngle")
     inputs["goal_angle"] = link.quantity("maxAngle")
     inputs["effects"] = ["gravity", *link.limits(inputs)]
@@ -368,7 +376,10 @@ def _disc_or_custom(link: _Link, diameter: str, weight: str, custom: str, use_cu
         return link.quantity(custom)
     link.used.add(custom)
     radius = link.si(diameter, "length") / 2
-    inertia = link.si(weight, "mass") * radius * radius / 2
+    try:
+        inertia = link.si(weight, "mass") * radius * radius / 2
+    except OverflowError:
+        inertia = math.inf
     if not math.isfinite(inertia) or inertia <= 0:
         raise InputError(weight, "and the diameter give no finite, positive moment of inertia", SOURCE)
     return f"{_num(inertia)} kg*m**2"
@@ -397,7 +408,10 @@ def _flywheel(link: _Link) -> dict:
     inputs["ball_mass"] = link.quantity("projectileWeight")
     if link.value("useCustomBallMoi"):
         r_b = link.si("projectileDiameter", "length") / 2
-        factor = link.si("customBallMoi", "inertia") / (link.si("projectileWeight", "mass") * r_b * r_b)
+        try:
+            factor = link.si("customBallMoi", "inertia") / (link.si("projectileWeight", "mass") * r_b * r_b)
+        except (OverflowError, ZeroDivisionError):
+            factor = math.nan
         if not (math.isfinite(factor) and factor > 0):
             raise InputError("customBallMoi", "gives no finite, positive I/(m·r²) for the ball", SOURCE)
         inputs["ball_inertia_factor"] = factor

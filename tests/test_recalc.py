@@ -403,3 +403,20 @@ def test_a_flywheel_link_gives_recalcs_own_shot(changes, shooter, want):
     assert out["wheel_speed_after"].value == pytest.approx(want[0], rel=1e-12)
     assert out["ball_speed"].value == pytest.approx(want[1], rel=1e-12)
     assert out["ball_spin"].value == pytest.approx(want[2], rel=1e-12, abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    "page,changes,field",
+    [
+        ("linear", {"motor": {"name": "NEO", "quantity": math.inf}}, "motor"),
+        ("linear", {"motor": {"name": "NEO", "quantity": math.nan}}, "motor"),
+        ("arm", {"load": m(1e200, "lbs"), "armLength": m(1e200, "in")}, "load"),
+        ("flywheel", {"shooterDiameter": m(1e200, "in"), "shooterWeight": m(1e200, "lbs")}, "shooterWeight"),
+        ("flywheel", {"useCustomBallMoi": True, "projectileWeight": m(0, "lbs")}, "customBallMoi"),
+    ],
+)
+def test_a_link_with_numbers_past_any_robot_is_refused_naming_the_parameter(page, changes, field):
+    """json reads Infinity and NaN, and 1e200² overflows: each was a traceback (exit 70)."""
+    with pytest.raises(InputError) as refused:
+        recalc.to_preset(link(page, **changes))
+    assert refused.value.field == field
