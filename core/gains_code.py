@@ -145,7 +145,22 @@ def wpilib_python(g: Gains) -> str:
         f"feedforward = {_ff(g)}(kS, kG, kV, kA, PERIOD)\n"
         "controller = ProfiledPIDController(\n"
         "    kP, 0.0, kD, TrapezoidProfile.Constraints(MAX_VELOCITY, MAX_ACCELERATION), PERIOD\n"
-        ")\n"
+        ")\n" + _usage(g)
+    )
+
+
+def _usage(g: Gains) -> str:
+    """How the loop calls the feedforward: an arm's takes the angle first (its two-argument call
+    reads (angle, velocity): passing two velocities there made the velocity an angle)."""
+    if g.arm:
+        return (
+            "# each period: sp = controller.getSetpoint(); u = controller.calculate(angle)\n"
+            "#             nxt = controller.getSetpoint()  # after calculate: the next setpoint\n"
+            "#             volts = u + feedforward.calculate(sp.position, sp.velocity, nxt.velocity)\n"
+            "# (WPILib inverts the arm's gravity over the period; Gearhead's loop takes kG·cos of the\n"
+            "#  setpoint angle and the linear inversion: the two differ a little)\n"
+        )
+    return (
         "# each period: v = controller.getSetpoint().velocity; u = controller.calculate(position)\n"
         "#             volts = u + feedforward.calculate(v, controller.getSetpoint().velocity)\n"
     )

@@ -62,9 +62,9 @@ class Vary:
         n = self.points
         if f.kind.whole:
             lo, hi = sorted((self.start, self.stop))
-            whole = range(math.ceil(lo), math.floor(hi) + 1)
-            if n >= len(whole):
-                picked = list(whole)
+            first, last = math.ceil(lo), math.floor(hi)
+            if n >= last - first + 1:  # (len(range) overflows past 2**63: a sweep to 1e19)
+                picked = list(range(first, last + 1))
             else:
                 picked = sorted({round(x) for x in _spaced(lo, hi, n, self.log)})
             return picked if self.start <= self.stop else picked[::-1]

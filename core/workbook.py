@@ -719,6 +719,8 @@ def evaluate(expr: Expr, scope: Scope, where: str, src: str) -> Any:
             raise
         except pint.errors.DimensionalityError as exc:
             fail(f"{_kinds_text(exc)}: the terms of + and - must be of one kind")
+        except pint.errors.OffsetUnitCalculusError:
+            fail("does arithmetic on a unit with an offset (degC, degF): write the temperature in K or degR")
         except (OverflowError, ZeroDivisionError, ValueError, ArithmeticError):
             fail("is not a finite number")
 

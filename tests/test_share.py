@@ -170,3 +170,14 @@ def test_cli_import_writes_a_new_file_and_never_replaces_one(tmp_path, capsys):
     assert presets.load(target).inputs == {"load": "31 lbf"}
     code, _, err = run(capsys, "import", code_text, "--out", str(target))
     assert code == 2 and "exists" in err
+
+
+def test_a_preset_name_with_a_control_character_is_refused():
+    """An escape sequence in a shared preset's name reached the terminal raw (gearhead import CODE
+    printed the name): refused on load, naming the field."""
+    from gearhead.core.presets import from_dict
+
+    with pytest.raises(InputError) as refused:
+        from_dict({"calculator": "motor", "name": "x\x1b[31mRED\x1b[0m", "inputs": {}}, "<test>")
+    assert refused.value.field == "name"
+    assert from_dict({"calculator": "motor", "name": "ok", "description": "two\nlines", "inputs": {}}, "<t>")

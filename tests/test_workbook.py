@@ -476,6 +476,8 @@ def test_a_card_waits_for_a_later_card_it_reads():
         "= lift.ratio / 0",
         "= " + "(" * 41 + "1" + ")" * 41,
         "= -" * 60 + "1",
+        "= 1 degC + 1 degC",  # pint's OffsetUnitCalculusError was a traceback (exit 70)
+        "= 2 degF * lift.ratio",
     ],
 )
 def test_hostile_references_give_a_message_never_a_traceback(tmp_path, capsys, reference):
@@ -582,3 +584,11 @@ def test_an_equality_margin_has_the_sign_of_its_verdict(a, op, b, holds):
     verdict, margin = _holds(a, b, op)
     assert verdict is holds
     assert (margin >= 0) is holds
+
+
+def test_a_sweep_of_a_whole_number_over_a_huge_range_picks_its_points(capsys):
+    """intake_ratio = 1..1e19 in 3 points: len(range(...)) overflowed (a traceback, exit 70)."""
+    code, out, err = run(capsys, "sweep", EXAMPLE, "--vary", "intake_ratio=1..1e19:3")
+    assert code in (0, 1), err
+    assert "Traceback" not in err and "internal error" not in err
+    assert "10000000000000000000" in out

@@ -414,7 +414,8 @@ OUTPUTS = (
         "Acceleration at the start",
         "acceleration",
         "m/s**2",
-        help="min(F_m(0), μ·m·g)/m less rolling resistance (S4).",
+        help="min(F_m(0), μ·m·g)/m less rolling resistance (S4), at full duty: under a voltage ramp the "
+        "robot starts from 0 and reaches this only if the ramp is up before it has speed.",
         equation="(S4)",
     ),
     Output(
