@@ -153,87 +153,11 @@ class Page:
         return result["result"]["value"]
 
 
-@pytest.mark.skipif(CHROMIUM is None, reason="no chromium installed (apt-get install chromium; .ci/run does)")
-def test_the_app_in_a_headless_browser_shows_a_card_and_updates_a_result(tmp_path):
-    """The page loads, the first card (Motor) shows its results, and a value typed into it (two
-    motors, then three) changes a result on screen to what the core computes for it."""
+def in_browser(tmp_path, scenario) -> None:
+    """`gearhead serve` and headless chromium; `scenario(page, base)` drives one tab (a Page over
+    the DevTools protocol, the recorder installed) against the server at `base`."""
     import aiohttp
 
-    from gearhead.core.model import solve
-
-    def stall_text(count: int) -> str:
-        """The stall torque's number as the card shows it (its unit is drawn N·m there)."""
-        return solve("motor", {"motor_count": count}).outputs["stall_torque"].text.split()[0]
-
-    port, debug_port = free_port(), free_port()
-    with (
-        running(GEARHEAD, "serve", "--port", str(port)),
-        running(
-            CHROMIUM,
-            "--headless=new",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-dev-shm-usage",
-            f"--user-data-dir={tmp_path / 'profile'}",
-            f"--remote-debugging-port={debug_port}",
-            "--window-size=1600,1000",
-            "about:blank",
-        ),
-    ):
-        assert wait_for(f"http://127.0.0.1:{port}/") == 200
-        wait_for(f"http://127.0.0.1:{debug_port}/json/version")
-
-        async def drive():
-            async with aiohttp.ClientSession() as session:
-                async with session.get(f"http://127.0.0.1:{debug_port}/json/list") as response:
-                    target = next(t for t in await response.json() if t["type"] == "page")
-                async with session.ws_connect(target["webSocketDebuggerUrl"], max_msg_size=0) as ws:
-                    page = Page(ws)
-                    await page.send("Page.enable")
-                    await page.send("Page.addScriptToEvaluateOnNewDocument", source=RECORDER)
-                    await page.send("Page.navigate", url=f"http://127.0.0.1:{port}/")
-                    await page.wait_for_text("Stall torque")  # the Motor card and its results
-                    before = await page.wait_for_text(stall_text(1))
-                    # where the "Motors" row is drawn (Textual places each line with ESC[row;colH):
-                    # a click on its label selects the row, and typing replaces its value
-                    raw = await page.evaluate("window.__screen")
-                    row, col = next(
-                        (int(m[1]), int(m[2]))
-                        for m in CURSOR_AND_TEXT.finditer(raw)
-                        if ANSI.sub("", m[3]).startswith(" Motors ")
-                    )
-                    box = json.loads(
-                        await page.evaluate(
-                            "JSON.stringify(document.querySelector('.xterm-screen').getBoundingClientRect())"
-                        )
-                    )
-                    size = re.search(r"width=(\d+)&height=(\d+)", await page.evaluate("window.__socket_url"))
-                    x = box["left"] + (col + 2.5) * box["width"] / int(size[1])
-                    y = box["top"] + (row - 0.5) * box["height"] / int(size[2])
-                    for kind in ("mousePressed", "mouseReleased"):
-                        await page.send(
-                            "Input.dispatchMouseEvent", type=kind, x=x, y=y, button="left", clickCount=1
-                        )
-                    await page.send("Input.insertText", text="3")  # what a key press sends the terminal
-                    await page.send("Input.insertText", text="\r")
-                    await page.wait_for_text(stall_text(3), after=len(before))
-
-        asyncio.run(asyncio.wait_for(drive(), 150))
-
-
-@pytest.mark.skipif(CHROMIUM is None, reason="no chromium installed (apt-get install chromium; .ci/run does)")
-def test_a_served_link_with_a_share_code_opens_its_design(tmp_path):
-    """http://host:port/?p=gh1:… (gearhead share FILE --link URL): the page's session starts with
-    that preset (three motors on the Motor card: its stall torque tripled), and a page opened
-    after it without ?p= starts with the defaults again."""
-    import aiohttp
-
-    from gearhead.core import share
-    from gearhead.core.model import solve
-    from gearhead.core.presets import Preset
-
-    code = share.encode(Preset("motor", "three motors", "", {"motor_count": 3}))
-    three, one = (solve("motor", {"motor_count": n}).outputs["stall_torque"].text.split()[0] for n in (3, 1))
     port, debug_port = free_port(), free_port()
     with (
         running(GEARHEAD, "serve", "--port", str(port)),
@@ -254,15 +178,72 @@ def test_a_served_link_with_a_share_code_opens_its_design(tmp_path):
                     page = Page(ws)
                     await page.send("Page.enable")
                     await page.send("Page.addScriptToEvaluateOnNewDocument", source=RECORDER)
-                    await page.send("Page.navigate", url=share.link(code, f"http://127.0.0.1:{port}/"))
-                    await page.wait_for_text("Preset loaded")
-                    await page.wait_for_text(three)
-                    await page.send("Page.navigate", url=f"http://127.0.0.1:{port}/")
-                    await page.evaluate("window.__screen = ''")
-                    screen = await page.wait_for_text(one)
-                    assert "Preset loaded" not in screen
+                    await scenario(page, f"http://127.0.0.1:{port}")
 
         asyncio.run(asyncio.wait_for(drive(), 150))
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no chromium installed (apt-get install chromium; .ci/run does)")
+def test_the_app_in_a_headless_browser_shows_a_card_and_updates_a_result(tmp_path):
+    """The page loads, the first card (Motor) shows its results, and a value typed into it (two
+    motors, then three) changes a result on screen to what the core computes for it."""
+    from gearhead.core.model import solve
+
+    def stall_text(count: int) -> str:
+        """The stall torque's number as the card shows it (its unit is drawn N·m there)."""
+        return solve("motor", {"motor_count": count}).outputs["stall_torque"].text.split()[0]
+
+    async def scenario(page: Page, base: str) -> None:
+        await page.send("Page.navigate", url=f"{base}/")
+        await page.wait_for_text("Stall torque")  # the Motor card and its results
+        before = await page.wait_for_text(stall_text(1))
+        # where the "Motors" row is drawn (Textual places each line with ESC[row;colH): a click on
+        # its label selects the row, and typing replaces its value
+        raw = await page.evaluate("window.__screen")
+        row, col = next(
+            (int(m[1]), int(m[2]))
+            for m in CURSOR_AND_TEXT.finditer(raw)
+            if ANSI.sub("", m[3]).startswith(" Motors ")
+        )
+        box = json.loads(
+            await page.evaluate(
+                "JSON.stringify(document.querySelector('.xterm-screen').getBoundingClientRect())"
+            )
+        )
+        size = re.search(r"width=(\d+)&height=(\d+)", await page.evaluate("window.__socket_url"))
+        x = box["left"] + (col + 2.5) * box["width"] / int(size[1])
+        y = box["top"] + (row - 0.5) * box["height"] / int(size[2])
+        for kind in ("mousePressed", "mouseReleased"):
+            await page.send("Input.dispatchMouseEvent", type=kind, x=x, y=y, button="left", clickCount=1)
+        await page.send("Input.insertText", text="3")  # what a key press sends the terminal
+        await page.send("Input.insertText", text="\r")
+        await page.wait_for_text(stall_text(3), after=len(before))
+
+    in_browser(tmp_path, scenario)
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no chromium installed (apt-get install chromium; .ci/run does)")
+def test_a_served_link_with_a_share_code_opens_its_design(tmp_path):
+    """http://host:port/?p=gh1:… (gearhead share FILE --link URL): the page's session starts with
+    that preset (three motors on the Motor card: its stall torque tripled), and a page opened
+    after it without ?p= starts with the defaults again."""
+    from gearhead.core import share
+    from gearhead.core.model import solve
+    from gearhead.core.presets import Preset
+
+    code = share.encode(Preset("motor", "three motors", "", {"motor_count": 3}))
+    three, one = (solve("motor", {"motor_count": n}).outputs["stall_torque"].text.split()[0] for n in (3, 1))
+
+    async def scenario(page: Page, base: str) -> None:
+        await page.send("Page.navigate", url=share.link(code, f"{base}/"))
+        await page.wait_for_text("Preset loaded")
+        await page.wait_for_text(three)
+        await page.send("Page.navigate", url=f"{base}/")
+        await page.evaluate("window.__screen = ''")
+        screen = await page.wait_for_text(one)
+        assert "Preset loaded" not in screen
+
+    in_browser(tmp_path, scenario)
 
 
 def test_a_request_from_another_sites_page_is_refused():
