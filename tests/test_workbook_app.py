@@ -46,6 +46,17 @@ async def settled(pilot, screen: WorkbookScreen) -> None:
     raise AssertionError("the workbook never settled")
 
 
+async def opened(pilot, app) -> WorkbookScreen:
+    """The workbook's screen, once the app has started and pushed it."""
+    await started(pilot)
+    for _ in range(200):
+        if isinstance(app.screen, WorkbookScreen):
+            break
+        await pilot.pause()
+    assert isinstance(app.screen, WorkbookScreen)
+    return app.screen
+
+
 def requirement_line(screen: WorkbookScreen) -> str:
     return str(screen.robot.requirements.render()).splitlines()[0]
 
@@ -53,13 +64,7 @@ def requirement_line(screen: WorkbookScreen) -> str:
 async def test_a_variable_change_flows_to_every_card_and_the_requirements():
     app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.from_text(TEXT, "pilot.toml"))
     async with app.run_test(size=(140, 40)) as pilot:
-        await started(pilot)
-        for _ in range(200):
-            if isinstance(app.screen, WorkbookScreen):
-                break
-            await pilot.pause()
-        screen = app.screen
-        assert isinstance(screen, WorkbookScreen)
+        screen = await opened(pilot, app)
         await settled(pilot, screen)
         lift, stage = screen.cards["lift"], screen.cards["stage"]
         assert lift.solution.inputs["load"].value == approx(10 * LBF)
@@ -86,12 +91,7 @@ async def test_a_variable_change_flows_to_every_card_and_the_requirements():
 async def test_a_linked_field_is_read_only_and_a_card_edit_flows_on():
     app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.from_text(TEXT, "pilot.toml"))
     async with app.run_test(size=(140, 40)) as pilot:
-        await started(pilot)
-        for _ in range(200):
-            if isinstance(app.screen, WorkbookScreen):
-                break
-            await pilot.pause()
-        screen = app.screen
+        screen = await opened(pilot, app)
         await settled(pilot, screen)
         await pilot.press("ctrl+right")  # to the lift card
         await pilot.pause()
@@ -141,12 +141,7 @@ def approx(x):
 async def test_a_text_variable_is_a_choice_on_the_robot_card():
     app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.from_text(TEXT, "pilot.toml"))
     async with app.run_test(size=(140, 40)) as pilot:
-        await started(pilot)
-        for _ in range(200):
-            if isinstance(app.screen, WorkbookScreen):
-                break
-            await pilot.pause()
-        screen = app.screen
+        screen = await opened(pilot, app)
         await settled(pilot, screen)
         lift = screen.cards["lift"]
         assert lift.solution.inputs["motor"].value == "NEO"
@@ -166,12 +161,7 @@ async def test_a_bare_number_on_the_robot_card_is_in_the_unit_the_row_shows():
     and refused it: 'takes a mass; the reference gives a plain number', found in tmux)."""
     app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.from_text(TEXT, "pilot.toml"))
     async with app.run_test(size=(140, 40)) as pilot:
-        await started(pilot)
-        for _ in range(200):
-            if isinstance(app.screen, WorkbookScreen):
-                break
-            await pilot.pause()
-        screen = app.screen
+        screen = await opened(pilot, app)
         await settled(pilot, screen)
         screen.robot.sheet.focus()
         assert screen.robot.sheet.move_to_field("mass")
