@@ -173,10 +173,6 @@ def from_dict(
     description = data.get("description", "")
     if not isinstance(name, str) or not isinstance(description, str):
         raise InputError("name" if not isinstance(name, str) else "description", "must be a string", src)
-    for key, text in (("name", name), ("description", description)):
-        # shown on the terminal and in the app: an escape sequence in a shared preset would act there
-        if any(ord(c) < 32 and c not in "\n\t" or 127 <= ord(c) < 160 for c in text):
-            raise InputError(key, f"{shown(text)} contains a control character", src)
     inputs = data.get("inputs", {})
     if not isinstance(inputs, dict):
         raise InputError("inputs", "must be a table", src)

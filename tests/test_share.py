@@ -172,12 +172,13 @@ def test_cli_import_writes_a_new_file_and_never_replaces_one(tmp_path, capsys):
     assert code == 2 and "exists" in err
 
 
-def test_a_preset_name_with_a_control_character_is_refused():
-    """An escape sequence in a shared preset's name reached the terminal raw (gearhead import CODE
-    printed the name): refused on load, naming the field."""
-    from gearhead.core.presets import from_dict
+def test_a_preset_name_with_a_control_character_is_shown_escaped(tmp_path, capsys):
+    """`gearhead import CODE --out FILE` printed a shared preset's name raw: an escape sequence in
+    it acted on the terminal. Shown escaped, as `gearhead presets` lists names."""
+    from gearhead.core.presets import Preset
+    from gearhead.tui.cli import main
 
-    with pytest.raises(InputError) as refused:
-        from_dict({"calculator": "motor", "name": "x\x1b[31mRED\x1b[0m", "inputs": {}}, "<test>")
-    assert refused.value.field == "name"
-    assert from_dict({"calculator": "motor", "name": "ok", "description": "two\nlines", "inputs": {}}, "<t>")
+    code = share.encode(Preset("motor", "x\x1b[31mRED\x1b[0m", "", {"motor_count": 2}))
+    assert main(["import", code, "--out", str(tmp_path / "p.toml")]) == 0
+    err = capsys.readouterr().err
+    assert "RED" in err and "\x1b" not in err and "\\x1b[31m" in err

@@ -77,5 +77,8 @@ def _import(args) -> int:
         sys.stdout.write(tomli_w.dumps(preset.as_toml()))
         return 0
     path = presets.save(preset, Path(args.out).expanduser())  # refuses an existing file
-    print(f"{preset.name} ({preset.calculator}): preset written to {path}", file=sys.stderr)
+    from .cli import _printable
+
+    # a name is shown escaped, as `presets` lists it: a shared code's could hold an escape sequence
+    print(f"{_printable(preset.name)} ({preset.calculator}): preset written to {path}", file=sys.stderr)
     return 0

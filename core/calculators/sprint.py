@@ -414,8 +414,7 @@ OUTPUTS = (
         "Acceleration at the start",
         "acceleration",
         "m/s**2",
-        help="min(F_m(0), μ·m·g)/m less rolling resistance (S4), at full duty: under a voltage ramp the "
-        "robot starts from 0 and reaches this only if the ramp is up before it has speed.",
+        help="min(F_m(0), μ·m·g)/m less rolling resistance, at full duty (a voltage ramp starts at 0) (S4).",
         equation="(S4)",
     ),
     Output(
