@@ -89,6 +89,11 @@ The motor side, labelled here (A = G·τ̃s the wheel torque at stall, B = A/ω_
     peak stator current I(E = 0) per motor (it never rises with speed); peak supply current
         the largest u·I (E4) at rest, at the target and where a limit lets go; lowest bus
         voltage V_b − R_bus·(u·I)_peak                                                      (FW5)
+Velocity loop (control = velocity_loop; issue 30): the wheel under robot code's feedforward plus
+proportional feedback at the control period, core.sim.velocity_loop (VL1)-(VL9): the motor of (F1)
+with the held duty of each period, kS/kV/kA per rad/s at the wheel (VL2), LQR's kP (VL9). The shot
+is the model chosen above ((5) or the momentum model), from the wheel's speed at the shot time, as
+an instant drop (with motor_during_shot its slip phase runs at full power, as in the burst).
 `range_error_linear` is the seed's (9) whatever transfer model, losses or height are chosen: the
 momentum model's error is about twice it.
 """
@@ -106,7 +111,7 @@ from ..declarations import Calculator, Document, Output, Plot
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup, motor_fields, system_from
-from ..sim import motor_limits
+from ..sim import motor_limits, velocity_loop
 from ..sim.effects import Effect, Effects, nothing
 from ..sim.integrate import Event, integrate
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stats
@@ -1642,7 +1647,7 @@ def _simulate(v, rtol: float) -> SimRun:
 def loop_wheel(sc: Scene, v):
     """The flywheel's drive for core.sim.velocity_loop (VL1): k = A/(i_s − i_f) at the wheel per amp
     of each motor (A = G·τ̃s, the stall torque before sag), the circuit (M1) and the limits."""
-    from ..sim import profiled, velocity_loop
+    from ..sim import profiled
 
     on = v["effects"]
     motor, _ = lookup(v["motor"], v["source"])
@@ -1669,8 +1674,6 @@ def loop_wheel(sc: Scene, v):
 
 def velocity_loop_run(sc: Scene, v, rtol: float, values: dict, warnings: list):
     """The velocity-loop mode's outputs (core.sim.velocity_loop), added to `values`."""
-    from ..sim import velocity_loop
-
     w = loop_wheel(sc, v)
     ff = velocity_loop.feedforward_gains(w)
     dt, delay = v["control_period"], v["sensor_delay"]
