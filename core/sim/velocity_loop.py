@@ -21,7 +21,9 @@ out: no Jacobian to form):
     ω(s) = ω_ss + (ω₀ − ω_ss)·e^(−λ·s),  ω_ss = α/λ                                      (VL5)
 With a current limit the duty of each motor is the held command capped by the limits' shared
 bound ((E2), (E3) through core.sim.profiled.driver), I no longer affine in E, and the period is
-integrated by the scene's DP54 (core.sim.integrate) with dense output.
+integrated by the scene's DP54 (core.sim.integrate) with dense output, or by scipy's Radau when the
+period spans more than 200 of the wheel's time constants 1/λ (a light wheel: DP54 would be held to
+steps ≈ 3/λ by stability).
 The loop drives a wheel with a positive setpoint: it never spins it backwards; a wheel braked to
 rest is held at rest for the rest of the period (the loss torque holds it; a reverse drive is not
 modelled).
@@ -41,11 +43,12 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from .integrate import Event, integrate
+from .integrate import Event, integrate, integrate_stiff
 
 WINDOW_AFTER_SHOT = 1.0  # s: at least this long is simulated after the shot
 MAX_UPDATES = 5_000  # 100 s of a 20 ms loop (core.sim.profiled's budget)
 SAMPLES = 4  # trace points inside each period (the plot)
+STIFF = 200.0  # λ·period beyond which a limited period is integrated by Radau (as flywheel.STIFF)
 
 
 @dataclass(frozen=True)
@@ -180,16 +183,15 @@ def _period_limited(w: Wheel, u_cmd: float, t0: float, t1: float, w0: float, rto
 
     if w0 <= 0 and rhs(t0, [0.0])[0] <= 0:
         return (lambda t: 0.0), 0.0, ()
-    r = integrate(
-        rhs,
-        0.0,
-        t1 - t0,
-        [max(w0, 0.0)],
-        rtol=rtol,
-        atol=rtol * max(abs(w0), 1.0),
-        events=[Event("rest", lambda t, y: y[0], -1)],
-        dense=True,
-    )
+    events = [Event("rest", lambda t, y: y[0], -1)]
+    atol = rtol * max(abs(w0), 1.0)
+    # the unlimited decay rate bounds the slope of (VL1) (a limit only flattens it): a period of
+    # many time constants holds DP54 to steps ≈ 3/λ by stability alone, so Radau takes it
+    lam = w.k * w.G / (w.Kv * w.R * w.J)
+    if lam * (t1 - t0) > STIFF:
+        r = integrate_stiff(rhs, 0.0, t1 - t0, [max(w0, 0.0)], rtol, atol, events, method="Radau")
+    else:
+        r = integrate(rhs, 0.0, t1 - t0, [max(w0, 0.0)], rtol=rtol, atol=atol, events=events, dense=True)
     run.nfev += r.nfev
     end = r.t[-1]
     stopped = r.event == "rest"
