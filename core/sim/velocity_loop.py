@@ -24,6 +24,8 @@ bound ((E2), (E3) through core.sim.profiled.driver), I no longer affine in E, an
 integrated by the scene's DP54 (core.sim.integrate) with dense output, or by scipy's Radau when the
 period spans more than 200 of the wheel's time constants 1/λ (a light wheel: DP54 would be held to
 steps ≈ 3/λ by stability).
+A shot at an update instant comes after that update's measurement. The voltage chart is the loop's
+held command V_k (a current limit or the sag gives the motor less).
 The loop drives a wheel with a positive setpoint: it never spins it backwards; a wheel braked to
 rest is held at rest for the rest of the period (the loss torque holds it; a reverse drive is not
 modelled).
