@@ -9,7 +9,10 @@ Run:  .venv/bin/python bench/bench_profiled.py
   each gives for the settle time (the 0.1 ms RK4 and the exponential integrator at 1e-10 as the
   reference);
 - the current-limit grid (11 stator × 7 supply limits, elevator.simulate once, no error estimate),
-  median of 3, beside one optimise-mode solve of the same elevator (the baseline); goal ≤ 2 s.
+  median of 3, beside one optimise-mode solve of the same elevator (the baseline); goal ≤ 2 s;
+- the flywheel's velocity loop (core.sim.velocity_loop: closed form per period, DP54 per period
+  with a current limit), median of 30, beside the full-power spin-up of the same flywheel (the
+  baseline, the default mode).
 """
 
 from __future__ import annotations
@@ -94,7 +97,43 @@ def grid() -> None:
         )
 
 
+def flywheel_loop() -> None:
+    from gearhead.core.calculators import flywheel
+    from gearhead.core.model import parse_inputs
+    from gearhead.core.registry import get
+    from gearhead.core.sim.scene import LEVELS
+
+    rtol = LEVELS["default"]
+    calc = get("flywheel")
+    frc = {
+        "motor": "Kraken X60",
+        "motor_count": 2,
+        "voltage": "12 V",
+        "ratio": 0.6667,
+        "target_speed": "5000 rpm",
+        "sensor_delay": "10 ms",
+        "shot_time": "1.5 s",
+    }
+    cases = {
+        "VEX 393 defaults": {},
+        "Kraken x2, no limit": frc,
+        "Kraken x2, limits + sag": {**frc, "effects": "stator_limit, supply_limit, battery_sag"},
+    }
+    for label, raw in cases.items():
+        v_full, _ = parse_inputs(calc, raw)
+        v_loop, _ = parse_inputs(calc, {**raw, "control": "velocity_loop"})
+        t_full = median_seconds(lambda: flywheel.simulate(v_full, rtol), 30) * 1e3
+        t_loop = median_seconds(lambda: flywheel.simulate(v_loop, rtol), 30) * 1e3
+        run = flywheel.simulate(v_loop, rtol)
+        print(
+            f"  {label:<26} velocity loop {t_loop:6.2f} ms  (full power {t_full:6.2f} ms)  "
+            f"{run.values['control_updates']} updates, rhs {run.nfev}"
+        )
+
+
 if __name__ == "__main__":
     main()
     print("Current-limit grid (median of 3):")
     grid()
+    print("Flywheel velocity loop, median of 30 (baseline: the full-power spin-up, same flywheel):")
+    flywheel_loop()

@@ -299,3 +299,135 @@ def revlib_java(g: Gains) -> str:
         "",
     ]
     return "\n".join(lines)
+
+
+# --- a flywheel's velocity loop (issue 30) ---------------------------------------------------------
+#
+# Gearhead's flywheel gains are per rad/s of the wheel (kS in V, kV and kP in V·s/rad, kA in
+# V·s²/rad; core.sim.velocity_loop (VL2), (VL9)).
+# - WPILib (SimpleMotorFeedforward + PIDController; robotpy's SimpleMotorFeedforwardRadians): as they
+#   are, velocities in rad/s.                                                                    (GC4)
+# - Phoenix 6 (Slot0 for a VelocityVoltage request: kV "output per unit of requested velocity"
+#   in rps, kA per rps/s, kP per rps of error; SensorToMechanismRatio = G, motor turns per wheel
+#   turn, makes the velocity the wheel's): one wheel rotation is 2π rad, so
+#       kV_rps = 2π·kV,  kA_rps = 2π·kA,  kP_rps = 2π·kP,  kS unchanged;  target rps = ω/(2π)     (GC5)
+#   (CrossTheRoadElec/Phoenix6-Examples, java/VelocityClosedLoop: Slot0.kS/kV/kP, VelocityVoltage.)
+
+
+@dataclass(frozen=True)
+class FlywheelGains:
+    kS: float  # V
+    kV: float  # V·s/rad at the wheel
+    kA: float  # V·s²/rad
+    kP: float  # V·s/rad
+    period: float  # s
+    ratio: float  # G, motor turns per wheel turn
+    target_speed: float  # rad/s at the wheel
+    battery_voltage: float
+    stator_limit: float | None = None
+    supply_limit: float | None = None
+
+
+def flywheel_phoenix6_values(g: FlywheelGains) -> dict[str, float]:
+    """(GC5): Slot0 in wheel rotations per second."""
+    turn = 2 * math.pi
+    return {
+        "SensorToMechanismRatio": g.ratio,
+        "kS": g.kS,
+        "kV": g.kV * turn,
+        "kA": g.kA * turn,
+        "kP": g.kP * turn,
+        "target_rps": g.target_speed / turn,
+    }
+
+
+def _fw_header(g: FlywheelGains, comment: str) -> str:
+    return (
+        f"{comment} Flywheel velocity-loop gains from Gearhead (per rad/s of the wheel unless said).\n"
+        f"{comment} kP is LQR's for a {g.period * 1000:g} ms loop unless entered; a loop on the motor\n"
+        f"{comment} controller (1 kHz) may take it higher: re-solve with its period.\n"
+    )
+
+
+def flywheel_wpilib_python(g: FlywheelGains) -> str:
+    return (
+        _fw_header(g, "#") + "from wpimath.controller import PIDController, SimpleMotorFeedforwardRadians\n\n"
+        f"kS = {_num(g.kS)}  # V\n"
+        f"kV = {_num(g.kV)}  # V*s/rad\n"
+        f"kA = {_num(g.kA)}  # V*s^2/rad\n"
+        f"kP = {_num(g.kP)}  # V*s/rad\n"
+        f"TARGET_SPEED = {_num(g.target_speed)}  # rad/s at the wheel\n"
+        f"PERIOD = {_num(g.period)}  # s\n\n"
+        "feedforward = SimpleMotorFeedforwardRadians(kS, kV, kA, PERIOD)\n"
+        "controller = PIDController(kP, 0.0, 0.0, PERIOD)\n"
+        "# each period: volts = feedforward.calculate(TARGET_SPEED)\n"
+        "#                      + controller.calculate(wheel_speed_rad_per_s, TARGET_SPEED)\n"
+    )
+
+
+def flywheel_wpilib_java(g: FlywheelGains) -> str:
+    return (
+        _fw_header(g, "//") + "import edu.wpi.first.math.controller.PIDController;\n"
+        "import edu.wpi.first.math.controller.SimpleMotorFeedforward;\n\n"
+        "public final class FlywheelGains {\n"
+        f"  public static final double kS = {_num(g.kS)}; // V\n"
+        f"  public static final double kV = {_num(g.kV)}; // V*s/rad\n"
+        f"  public static final double kA = {_num(g.kA)}; // V*s^2/rad\n"
+        f"  public static final double kP = {_num(g.kP)}; // V*s/rad\n"
+        f"  public static final double kTargetSpeed = {_num(g.target_speed)}; // rad/s at the wheel\n"
+        f"  public static final double kPeriod = {_num(g.period)}; // s\n\n"
+        "  public static SimpleMotorFeedforward feedforward() {\n"
+        "    return new SimpleMotorFeedforward(kS, kV, kA, kPeriod);\n"
+        "  }\n\n"
+        "  public static PIDController controller() {\n"
+        "    return new PIDController(kP, 0.0, 0.0, kPeriod);\n"
+        "  }\n\n"
+        "  private FlywheelGains() {}\n"
+        "}\n"
+    )
+
+
+def flywheel_phoenix6_java(g: FlywheelGains) -> str:
+    v = flywheel_phoenix6_values(g)
+    lines = [
+        _fw_header(g, "//").rstrip("\n"),
+        "// Velocities in wheel rotations per second (SensorToMechanismRatio = motor turns per wheel turn).",
+        "import com.ctre.phoenix6.configs.TalonFXConfiguration;",
+        "import com.ctre.phoenix6.controls.VelocityVoltage;",
+        "",
+        "public final class FlywheelTalonFXConfig {",
+        f"  public static final double kTargetRps = {_num(v['target_rps'])}; // wheel rotations/s",
+        "",
+        "  public static TalonFXConfiguration config() {",
+        "    var cfg = new TalonFXConfiguration();",
+        f"    cfg.Feedback.SensorToMechanismRatio = {_num(v['SensorToMechanismRatio'])};",
+        f"    cfg.Slot0.kS = {_num(v['kS'])}; // V",
+        f"    cfg.Slot0.kV = {_num(v['kV'])}; // V per rps",
+        f"    cfg.Slot0.kA = {_num(v['kA'])}; // V per rps/s",
+        f"    cfg.Slot0.kP = {_num(v['kP'])}; // V per rps of error",
+        "    cfg.Slot0.kI = 0.0;",
+        "    cfg.Slot0.kD = 0.0;",
+    ]
+    if g.stator_limit is not None:
+        lines += [
+            f"    cfg.CurrentLimits.StatorCurrentLimit = {_num(g.stator_limit)}; // A",
+            "    cfg.CurrentLimits.StatorCurrentLimitEnable = true;",
+        ]
+    if g.supply_limit is not None:
+        lines += [
+            f"    cfg.CurrentLimits.SupplyCurrentLimit = {_num(g.supply_limit)}; // A",
+            "    cfg.CurrentLimits.SupplyCurrentLimitEnable = true;",
+        ]
+    lines += [
+        "    return cfg;",
+        "  }",
+        "",
+        "  public static VelocityVoltage request() {",
+        "    return new VelocityVoltage(kTargetRps).withSlot(0);",
+        "  }",
+        "",
+        "  private FlywheelTalonFXConfig() {}",
+        "}",
+        "",
+    ]
+    return "\n".join(lines)

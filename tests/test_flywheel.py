@@ -337,7 +337,7 @@ def test_recovery_reverses_free_run(w_frac, dt, T_scale):
 
 def test_presets_load_and_solve():
     found = [p for p in presets.listing("flywheel") if p.builtin]
-    assert len(found) == 7  # issue 31 added dual, compound and hood_secondary
+    assert len(found) == 8  # issue 31 added dual, compound and hood_secondary; issue 30 the velocity loop
     for p in found:
         sol = solve("flywheel", p.inputs)
         assert sol.outputs["ball_speed"].value > 0

@@ -89,6 +89,11 @@ The motor side, labelled here (A = G·τ̃s the wheel torque at stall, B = A/ω_
     peak stator current I(E = 0) per motor (it never rises with speed); peak supply current
         the largest u·I (E4) at rest, at the target and where a limit lets go; lowest bus
         voltage V_b − R_bus·(u·I)_peak                                                      (FW5)
+Velocity loop (control = velocity_loop; issue 30): the wheel under robot code's feedforward plus
+proportional feedback at the control period, core.sim.velocity_loop (VL1)-(VL9): the motor of (F1)
+with the held duty of each period, kS/kV/kA per rad/s at the wheel (VL2), LQR's kP (VL9). The shot
+is the model chosen above ((5) or the momentum model), from the wheel's speed at the shot time, as
+an instant drop (with motor_during_shot its slip phase runs at full power, as in the burst).
 `range_error_linear` is the seed's (9) whatever transfer model, losses or height are chosen: the
 momentum model's error is about twice it.
 """
@@ -99,13 +104,14 @@ import dataclasses
 import math
 from typing import Any
 
+from .. import gains_code
 from ..constants import G0 as G_ACC
 from ..constants import RPM
-from ..declarations import Calculator, Output, Plot
+from ..declarations import Calculator, Document, Output, Plot
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup, motor_fields, system_from
-from ..sim import motor_limits
+from ..sim import motor_limits, velocity_loop
 from ..sim.effects import Effect, Effects, nothing
 from ..sim.integrate import Event, integrate
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stats
@@ -154,6 +160,8 @@ SHOOTER_LABELS = (
 SECONDARY = ("dual", "compound", "hood_secondary")  # layouts with a secondary wheel set
 WITH_SPIN = ("hood", "dual", "compound", "hood_secondary")  # the ball leaves spinning
 INERTIA_MODES = ("radius_of_gyration", "moment_of_inertia")
+CONTROLS = ("full_power", "velocity_loop")
+CONTROL_LABELS = ("Full power (seed)", "Velocity loop: feedforward + kP at the control period")
 
 
 def _motor_fields():
@@ -168,6 +176,110 @@ def _motor_fields():
         out.append(f)
     return tuple(out)
 
+
+LOOP = (("control", ("velocity_loop",)),)
+LOOP_FIELDS = (
+    Field(
+        "control",
+        "Spin-up control",
+        choices=CONTROLS,
+        choice_labels=CONTROL_LABELS,
+        default="full_power",
+        help="Full power: the seed's spin-up at full voltage, held at the target (FW2). Velocity loop: "
+        "feedforward + kP on the speed error every control period with the sensor delay, as robot "
+        "code runs it (core.sim.velocity_loop (VL1)-(VL8)); adds the loop's outputs and charts.",
+    ),
+    Field(
+        "control_period",
+        "Control period",
+        "time",
+        "ms",
+        default=20,
+        min=0.1,
+        max=1000,
+        when=LOOP,
+        help="The loop's update period; the voltage is held between updates (VL4).",
+    ),
+    Field(
+        "sensor_delay",
+        "Sensor delay",
+        "time",
+        "ms",
+        default=0,
+        min=0,
+        max=1000,
+        when=LOOP,
+        help="The measured speed is the wheel's this long ago (VL3); LQR's kP is latency-compensated.",
+    ),
+    Field(
+        "speed_tolerance",
+        "Speed tolerance",
+        "angular_speed",
+        "rpm",
+        default=50,
+        min=0,
+        min_exclusive=True,
+        max=1e6,
+        when=LOOP,
+        help="Spun up (recovered): within this of the target from then on (VL6).",
+    ),
+    Field(
+        "shot_time",
+        "Shot at",
+        "time",
+        "s",
+        default=3,
+        min=0.001,
+        max=60,
+        when=LOOP,
+        help="When the ball is shot (the wheel speed drops as the shot model says, at once); the loop "
+        "is simulated to this time plus the larger of 1 s and it.",
+    ),
+    Field(
+        "feedback",
+        "Feedback gain",
+        choices=("lqr", "entered"),
+        choice_labels=("LQR from the tolerances below", "Entered kP"),
+        default="lqr",
+        when=LOOP,
+        help="The velocity loop's kP: WPILib's LQR for the 1-state velocity system (VL9), or your own.",
+    ),
+    Field(
+        "q_velocity",
+        "LQR speed tolerance",
+        "angular_speed",
+        "rpm",
+        default=100,
+        min=0,
+        min_exclusive=True,
+        max=1e6,
+        when=LOOP + (("feedback", ("lqr",)),),
+        help="Q = 1/q²: the speed error LQR weighs against the voltage below (VL9).",
+    ),
+    Field(
+        "r_volts",
+        "LQR voltage tolerance",
+        "voltage",
+        "V",
+        default=12,
+        min=0,
+        min_exclusive=True,
+        max=1000,
+        when=LOOP + (("feedback", ("lqr",)),),
+        help="R = 1/r²: the control effort LQR allows (VL9).",
+    ),
+    Field(
+        "feedback_kp",
+        "kP",
+        "voltage_per_angular_speed",
+        "V*s/rad",
+        default=0.01,
+        min=0,
+        max=1e6,
+        when=LOOP + (("feedback", ("entered",)),),
+        help="Volts per rad/s of wheel-speed error (PIDController kP).",
+    ),
+)
 
 FIELDS = (
     Field(
@@ -477,9 +589,123 @@ FIELDS = (
         retired=RETIRED,
     ),
     *EFFECTS.fields(),
+    *LOOP_FIELDS,
     accuracy_field(),
 )
 
+
+LOOP_OUTPUTS = (
+    Output(
+        "loop_spin_up_time",
+        "Spin-up time (velocity loop)",
+        "time",
+        "s",
+        help="From rest until the wheel stays within the speed tolerance of the target up to the shot (VL6).",
+        equation="(VL6)",
+    ),
+    Output(
+        "loop_overshoot",
+        "Overshoot (velocity loop)",
+        "angular_speed",
+        "rpm",
+        help="Fastest above the target before the shot (0 when it never passes it) (VL7).",
+        equation="(VL7)",
+    ),
+    Output(
+        "loop_speed_at_shot",
+        "Speed at the shot (velocity loop)",
+        "angular_speed",
+        "rpm",
+        help="Wheel speed when the ball is shot.",
+        equation="(VL5)",
+    ),
+    Output(
+        "loop_speed_dip",
+        "Lowest speed after the shot",
+        "angular_speed",
+        "rpm",
+        help="The shot's drop (the shot model from the speed at the shot) and anything the delay adds (VL7).",
+        equation="(5), (VL7)",
+    ),
+    Output(
+        "loop_recovery_time",
+        "Recovery time (velocity loop)",
+        "time",
+        "s",
+        help="From the shot until the wheel stays within the speed tolerance to the window's end (VL6).",
+        equation="(VL6)",
+    ),
+    Output(
+        "loop_final_error",
+        "Steady-state error (velocity loop)",
+        "angular_speed",
+        "rpm",
+        help="Target minus wheel speed at the window's end (positive: short).",
+        equation="(VL4)",
+    ),
+    Output(
+        "loop_peak_stator_current",
+        "Peak stator current (loop)",
+        "current",
+        "A",
+        help="Per motor, the largest |I| over the run (VL8).",
+        equation="(VL8)",
+    ),
+    Output(
+        "loop_peak_supply_current",
+        "Peak supply current (loop)",
+        "current",
+        "A",
+        help="Per motor, the largest duty × stator current over the run (VL8).",
+        equation="(VL8)",
+    ),
+    Output(
+        "loop_min_bus_voltage",
+        "Min bus voltage (loop)",
+        "voltage",
+        "V",
+        help="Battery voltage minus R_bus × the peak supply current (battery_sag; else the battery voltage).",
+        equation="(VL8)",
+    ),
+    Output(
+        "kS",
+        "kS",
+        "voltage",
+        "V",
+        help="Static gain R·i_f: the voltage the free current's loss takes (VL2).",
+        equation="(VL2)",
+    ),
+    Output(
+        "kV",
+        "kV (per wheel rad/s)",
+        "voltage_per_angular_speed",
+        "V*s/rad",
+        help="G/Kv, volts per rad/s of the wheel (VL2).",
+        equation="(VL2)",
+    ),
+    Output(
+        "kA",
+        "kA (per wheel rad/s²)",
+        "voltage_per_angular_acceleration",
+        "V*s**2/rad",
+        help="R·J/k, volts per rad/s² of the wheel (VL2).",
+        equation="(VL2)",
+    ),
+    Output(
+        "kP",
+        "kP (per wheel rad/s)",
+        "voltage_per_angular_speed",
+        "V*s/rad",
+        help="The loop's proportional gain: LQR (VL9) or entered.",
+        equation="(VL9)",
+    ),
+    Output(
+        "control_updates",
+        "Control updates",
+        help="Periods simulated (VL4).",
+        equation="(VL4)",
+    ),
+)
 
 OUTPUTS = (
     Output(
@@ -648,6 +874,7 @@ OUTPUTS = (
         help="Battery voltage minus the sag at the peak supply current (battery_sag).",
         equation="(FW5)",
     ),
+    *LOOP_OUTPUTS,
     *STATS_OUTPUTS,
 )
 
@@ -1406,10 +1633,152 @@ def _simulate(v, rtol: float) -> SimRun:
     if sc.drive is not None:
         key.update(spin_up_time=t_spin, recovery_time=values["recovery_time"])
         nfev += sc.drive.nfev
+    if v["control"] == "velocity_loop":
+        lr = velocity_loop_run(sc, v, rtol, values, warnings)
+        series["loop speed"] = (lr.times, lr.speeds)
+        series["loop target"] = ([0.0, lr.times[-1]], [target, target])
+        series["loop voltage"] = (lr.volt_t, lr.volts)
+        nfev += lr.nfev
+        if "loop_spin_up_time" in values:
+            key["loop_spin_up_time"] = values["loop_spin_up_time"]
     return SimRun(values, key, nfev, warnings, series)
 
 
+def loop_wheel(sc: Scene, v):
+    """The flywheel's drive for core.sim.velocity_loop (VL1): k = A/(i_s − i_f) at the wheel per amp
+    of each motor (A = G·τ̃s, the stall torque before sag), the circuit (M1) and the limits."""
+    from ..sim import profiled
+
+    on = v["effects"]
+    motor, _ = lookup(v["motor"], v["source"])
+    system, _ = system_from(v)
+    V = v["voltage"]
+    i_s = motor.stall_current * V / motor.v_spec  # (4), per motor
+    i_f = motor.free_current * V / motor.v_spec  # (3), per motor
+    circuit = motor_limits.circuit_of(motor, V, motor_limits.bus_resistance_of(v, on))
+    _, asm = motor_limits.limits(EFFECTS, on, v, circuit)
+    bound = asm.slots["duty"]
+    return velocity_loop.Wheel(
+        J=sc.I,
+        k=v["ratio"] * system.stall_torque / (i_s - i_f),
+        G=v["ratio"],
+        Kv=circuit.Kv,
+        R=circuit.R,
+        i_f=i_f,
+        battery_voltage=V,
+        bus_resistance=circuit.bus_resistance,
+        drive=profiled.driver(circuit, bound),
+        limited=bound is not None,
+    )
+
+
+def velocity_loop_run(sc: Scene, v, rtol: float, values: dict, warnings: list):
+    """The velocity-loop mode's outputs (core.sim.velocity_loop), added to `values`."""
+    w = loop_wheel(sc, v)
+    ff = velocity_loop.feedforward_gains(w)
+    dt, delay = v["control_period"], v["sensor_delay"]
+    if v["feedback"] == "lqr":
+        kP = velocity_loop.lqr_kp(ff["kV"], ff["kA"], v["q_velocity"], v["r_volts"], dt, delay)
+        if not (math.isfinite(kP) and kP >= 0):
+            raise InputError(
+                "q_velocity", "the LQR gain is not a finite positive number for these tolerances"
+            )
+    else:
+        kP = v["feedback_kp"]
+    shot_time = v["shot_time"]
+    updates = (shot_time + max(velocity_loop.WINDOW_AFTER_SHOT, shot_time)) / dt
+    if updates > velocity_loop.MAX_UPDATES:
+        raise InputError(
+            "control_period",
+            f"the run needs {updates:.3g} control updates (more than {velocity_loop.MAX_UPDATES}): "
+            "lengthen the control period or shoot earlier",
+        )
+    target = v["target_speed"]
+    loop = velocity_loop.Loop(ff["kS"], ff["kV"], kP, dt, delay, v["speed_tolerance"])
+    m0 = v["ball_mass"]
+
+    def after_shot(omega: float) -> float:
+        return shot(sc, omega, m0, target, rtol).omega_after if omega > 0 else omega
+
+    lr = velocity_loop.run_loop(w, loop, target, shot_time, after_shot, rtol)
+    values.update(
+        {
+            **ff,
+            "kP": kP,
+            "loop_overshoot": lr.overshoot,
+            "loop_speed_at_shot": lr.speed_at_shot,
+            "loop_speed_dip": lr.dip,
+            "loop_final_error": lr.final_error,
+            "loop_peak_stator_current": lr.peak_stator,
+            "loop_peak_supply_current": lr.peak_supply,
+            "loop_min_bus_voltage": v["voltage"] - w.bus_resistance * lr.peak_supply,
+            "control_updates": lr.updates,
+        }
+    )
+    if lr.spin_up_time is not None:
+        values["loop_spin_up_time"] = lr.spin_up_time
+    else:
+        warnings.append(
+            f"The velocity loop has not spun the wheel up to within the speed tolerance by the shot "
+            f"({lr.speed_at_shot / RPM:.4g} rpm at {shot_time:.3g} s): no spin-up time. Shoot later, "
+            f"raise kP or the tolerance."
+        )
+    if lr.recovery_time is not None:
+        values["loop_recovery_time"] = lr.recovery_time
+    else:
+        warnings.append(
+            "The velocity loop has not brought the wheel back within the speed tolerance by the end of "
+            "the window after the shot: no recovery time (a proportional loop leaves a steady error "
+            "when the limits or the sag hold the voltage below the feedforward's; widen the tolerance)."
+        )
+    return lr
+
+
 compute = compute_with_stats(simulate)
+
+
+def flywheel_gains_of(solution) -> gains_code.FlywheelGains:
+    """The velocity loop's gains for the exports (core.gains_code (GC4), (GC5)); a ValueError when
+    the solution is not of that mode."""
+    v = {name: value.value for name, value in solution.inputs.items()}
+    out = {name: value.value for name, value in solution.outputs.items()}
+    if v.get("control") != "velocity_loop" or "kP" not in out:
+        raise ValueError("the gains are exported from the velocity loop: set control = velocity_loop")
+    on = v["effects"]
+    return gains_code.FlywheelGains(
+        kS=out["kS"],
+        kV=out["kV"],
+        kA=out["kA"],
+        kP=out["kP"],
+        period=v["control_period"],
+        ratio=v["ratio"],
+        target_speed=v["target_speed"],
+        battery_voltage=v["voltage"],
+        stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
+        supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
+    )
+
+
+DOCUMENTS = (
+    Document(
+        "wpilib-java",
+        "WPILib Java: SimpleMotorFeedforward + PIDController",
+        "FlywheelGains.java",
+        lambda sol: gains_code.flywheel_wpilib_java(flywheel_gains_of(sol)),
+    ),
+    Document(
+        "wpilib-python",
+        "WPILib Python (robotpy): SimpleMotorFeedforward + PIDController",
+        "flywheel_gains.py",
+        lambda sol: gains_code.flywheel_wpilib_python(flywheel_gains_of(sol)),
+    ),
+    Document(
+        "phoenix6",
+        "CTRE Phoenix 6 TalonFXConfiguration + VelocityVoltage (Java)",
+        "FlywheelTalonFXConfig.java",
+        lambda sol: gains_code.flywheel_phoenix6_java(flywheel_gains_of(sol)),
+    ),
+)
 
 
 CALCULATOR = Calculator(
@@ -1435,5 +1804,17 @@ CALCULATOR = Calculator(
         Plot(
             "Spin-up and burst", ("wheel speed",), "time", "time", "s", "wheel speed", "angular_speed", "rpm"
         ),
+        Plot(
+            "Wheel speed (velocity loop)",
+            ("loop speed", "loop target"),
+            "time",
+            "time",
+            "s",
+            "wheel speed",
+            "angular_speed",
+            "rpm",
+        ),
+        Plot("Voltage (velocity loop)", ("loop voltage",), "time", "time", "s", "voltage", "voltage", "V"),
     ),
+    documents=DOCUMENTS,  # velocity-loop mode: the gains as code
 )
