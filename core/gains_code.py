@@ -194,6 +194,22 @@ def wpilib_java(g: Gains) -> str:
     )
 
 
+def _phoenix6_current_limits(g) -> list[str]:
+    """CurrentLimitsConfigs lines for the limits that are on (a mechanism's or a flywheel's gains)."""
+    lines = []
+    if g.stator_limit is not None:
+        lines += [
+            f"    cfg.CurrentLimits.StatorCurrentLimit = {_num(g.stator_limit)}; // A",
+            "    cfg.CurrentLimits.StatorCurrentLimitEnable = true;",
+        ]
+    if g.supply_limit is not None:
+        lines += [
+            f"    cfg.CurrentLimits.SupplyCurrentLimit = {_num(g.supply_limit)}; // A",
+            "    cfg.CurrentLimits.SupplyCurrentLimitEnable = true;",
+        ]
+    return lines
+
+
 def phoenix6_java(g: Gains) -> str:
     v = phoenix6_values(g)
     cls = f"{g.title.replace(' ', '')}TalonFXConfig"
@@ -233,16 +249,7 @@ def phoenix6_java(g: Gains) -> str:
         f"    cfg.MotionMagic.MotionMagicAcceleration = {_num(v['MotionMagicAcceleration'])}; // rps/s",
         "    cfg.MotionMagic.MotionMagicJerk = 0.0; // no jerk limit: a trapezoid",
     ]
-    if g.stator_limit is not None:
-        lines += [
-            f"    cfg.CurrentLimits.StatorCurrentLimit = {_num(g.stator_limit)}; // A",
-            "    cfg.CurrentLimits.StatorCurrentLimitEnable = true;",
-        ]
-    if g.supply_limit is not None:
-        lines += [
-            f"    cfg.CurrentLimits.SupplyCurrentLimit = {_num(g.supply_limit)}; // A",
-            "    cfg.CurrentLimits.SupplyCurrentLimitEnable = true;",
-        ]
+    lines += _phoenix6_current_limits(g)
     lines += ["    return cfg;", "  }", "", f"  private {cls}() {{}}", "}", ""]
     return "\n".join(lines)
 
@@ -408,16 +415,7 @@ def flywheel_phoenix6_java(g: FlywheelGains) -> str:
         "    cfg.Slot0.kI = 0.0;",
         "    cfg.Slot0.kD = 0.0;",
     ]
-    if g.stator_limit is not None:
-        lines += [
-            f"    cfg.CurrentLimits.StatorCurrentLimit = {_num(g.stator_limit)}; // A",
-            "    cfg.CurrentLimits.StatorCurrentLimitEnable = true;",
-        ]
-    if g.supply_limit is not None:
-        lines += [
-            f"    cfg.CurrentLimits.SupplyCurrentLimit = {_num(g.supply_limit)}; // A",
-            "    cfg.CurrentLimits.SupplyCurrentLimitEnable = true;",
-        ]
+    lines += _phoenix6_current_limits(g)
     lines += [
         "    return cfg;",
         "  }",
@@ -431,3 +429,41 @@ def flywheel_phoenix6_java(g: FlywheelGains) -> str:
         "",
     ]
     return "\n".join(lines)
+
+
+def mechanism_documents(title: str, gains_of, phoenix_note: str = "", revlib: bool = True) -> tuple:
+    """The documents of an elevator's or an arm's profiled move (core.declarations.Document):
+    WPILib Java and Python, Phoenix 6, and REVLib where its gravity term is defined."""
+    from .declarations import Document
+
+    ff, snake = f"{title}Feedforward", title.lower()
+    docs = [
+        Document(
+            "wpilib-java",
+            f"WPILib Java: {ff} + ProfiledPIDController",
+            f"{title}Gains.java",
+            lambda sol: wpilib_java(gains_of(sol)),
+        ),
+        Document(
+            "wpilib-python",
+            f"WPILib Python (robotpy): {ff} + ProfiledPIDController",
+            f"{snake}_gains.py",
+            lambda sol: wpilib_python(gains_of(sol)),
+        ),
+        Document(
+            "phoenix6",
+            f"CTRE Phoenix 6 TalonFXConfiguration{phoenix_note} (Java)",
+            f"{title}TalonFXConfig.java",
+            lambda sol: phoenix6_java(gains_of(sol)),
+        ),
+    ]
+    if revlib:
+        docs.append(
+            Document(
+                "revlib",
+                "REVLib SparkMaxConfig with MAXMotion (Java)",
+                f"{title}SparkMaxConfig.java",
+                lambda sol: revlib_java(gains_of(sol)),
+            )
+        )
+    return tuple(docs)

@@ -50,7 +50,7 @@ from dataclasses import replace
 
 from .. import gains_code
 from ..constants import G0 as G
-from ..declarations import Calculator, Document, Output
+from ..declarations import Calculator, Output
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
@@ -377,26 +377,7 @@ def gains_of(solution) -> gains_code.Gains:
     )
 
 
-DOCUMENTS = (
-    Document(
-        "wpilib-java",
-        "WPILib Java: ArmFeedforward + ProfiledPIDController",
-        "ArmGains.java",
-        lambda sol: gains_code.wpilib_java(gains_of(sol)),
-    ),
-    Document(
-        "wpilib-python",
-        "WPILib Python (robotpy): ArmFeedforward + ProfiledPIDController",
-        "arm_gains.py",
-        lambda sol: gains_code.wpilib_python(gains_of(sol)),
-    ),
-    Document(
-        "phoenix6",
-        "CTRE Phoenix 6 TalonFXConfiguration, Arm_Cosine (Java)",
-        "ArmTalonFXConfig.java",
-        lambda sol: gains_code.phoenix6_java(gains_of(sol)),
-    ),
-)
+DOCUMENTS = gains_code.mechanism_documents("Arm", gains_of, phoenix_note=", Arm_Cosine", revlib=False)
 
 CALCULATOR = Calculator(
     id="arm",

@@ -54,7 +54,7 @@ from dataclasses import replace
 
 from .. import gains_code
 from ..constants import G0 as G
-from ..declarations import Calculator, Document, Output, Result
+from ..declarations import Calculator, Output, Result
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
@@ -354,32 +354,7 @@ def gains_of(solution) -> gains_code.Gains:
     )
 
 
-DOCUMENTS = (
-    Document(
-        "wpilib-java",
-        "WPILib Java: ElevatorFeedforward + ProfiledPIDController",
-        "ElevatorGains.java",
-        lambda sol: gains_code.wpilib_java(gains_of(sol)),
-    ),
-    Document(
-        "wpilib-python",
-        "WPILib Python (robotpy): ElevatorFeedforward + ProfiledPIDController",
-        "elevator_gains.py",
-        lambda sol: gains_code.wpilib_python(gains_of(sol)),
-    ),
-    Document(
-        "phoenix6",
-        "CTRE Phoenix 6 TalonFXConfiguration (Java)",
-        "ElevatorTalonFXConfig.java",
-        lambda sol: gains_code.phoenix6_java(gains_of(sol)),
-    ),
-    Document(
-        "revlib",
-        "REVLib SparkMaxConfig with MAXMotion (Java)",
-        "ElevatorSparkMaxConfig.java",
-        lambda sol: gains_code.revlib_java(gains_of(sol)),
-    ),
-)
+DOCUMENTS = gains_code.mechanism_documents("Elevator", gains_of)
 
 CALCULATOR = Calculator(
     id="elevator",
