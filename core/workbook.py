@@ -371,6 +371,44 @@ def edited(
     return new
 
 
+def save(
+    path: str | Path,
+    variables: Mapping[str, Any] | None = None,
+    inputs: Mapping[str, Mapping[str, Any]] | None = None,
+) -> None:
+    """Write the app's edits into the workbook file: each variable's entry and each card's own
+    input given here, the rest of the file (comments, order, layout) as it was (tomlkit). A card
+    read from a preset gets an inputs table for what was changed on it. The file is replaced
+    whole (written beside it, then renamed), never left half written."""
+    import os
+    import tempfile
+
+    import tomlkit
+
+    path = Path(path)
+    doc = tomlkit.parse(path.read_text(encoding="utf-8"))
+    if variables:
+        table = doc.setdefault("variables", tomlkit.table())
+        for name, value in variables.items():
+            table[name] = value
+    for card, values in (inputs or {}).items():
+        if not values:
+            continue
+        table = doc["cards"][card]
+        if "inputs" not in table:
+            table["inputs"] = tomlkit.table()
+        for key, value in values.items():
+            table["inputs"][key] = value
+    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8") as out:
+            out.write(tomlkit.dumps(doc))
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+
+
 def is_workbook_file(path: str | Path) -> bool:
     """Whether a file reads as a workbook (variables, cards or requirements; not a preset)."""
     from . import presets

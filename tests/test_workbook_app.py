@@ -169,3 +169,36 @@ async def test_a_bare_number_on_the_robot_card_is_in_the_unit_the_row_shows():
         await settled(pilot, screen)
         assert screen.cards["lift"].solution.inputs["load"].value == approx(40 * LBF)
         assert requirement_line(screen).startswith("✘ Lift ratio")
+
+
+async def test_ctrl_s_writes_the_changes_into_the_file_keeping_its_comments(tmp_path: Path):
+    """A variable typed on the Robot card and an input typed on a card, saved with ctrl+s: the file
+    holds both, its comments and links as they were, and reads back to the same solve."""
+    path = tmp_path / "robot.toml"
+    commented = TEXT.replace('mass = "10 lb"', 'mass = "10 lb"  # the carriage, weighed').replace(
+        "[cards.lift]", "# the lift stage\n[cards.lift]"
+    )
+    path.write_text(commented, encoding="utf-8")
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.load(path))
+    async with app.run_test(size=(140, 40)) as pilot:
+        screen = await opened(pilot, app)
+        await settled(pilot, screen)
+        screen.robot.sheet.focus()
+        assert screen.robot.sheet.move_to_field("mass")
+        await pilot.press(*keys_of("40"), "enter")
+        await settled(pilot, screen)
+        lift = screen.cards["lift"]
+        lift.sheet.focus()
+        assert lift.sheet.move_to_field("radius")
+        await pilot.press(*keys_of("1.5"), "enter")
+        await settled(pilot, screen)
+        want = lift.solution.outputs["ratio"].value
+        await pilot.press("ctrl+s")
+        await pilot.pause()
+    text = path.read_text(encoding="utf-8")
+    assert "# the carriage, weighed" in text and "# the lift stage" in text
+    assert 'mass = "40 lb"' in text
+    assert 'load = "= mass * 9.80665 m/s**2"' in text  # the link kept
+    again = workbook.solve(workbook.load(path))
+    assert again.cards["lift"].solution.outputs["ratio"].value == approx(want)
+    assert again.cards["lift"].solution.inputs["radius"].value == approx(1.5 * 0.0254)

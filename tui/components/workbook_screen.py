@@ -62,6 +62,7 @@ class WorkbookCard(CalculatorTab):
         self.card_name = name
         self.links = dict(links)
         self.on_change = on_change
+        self.edited: set[str] = set()  # inputs changed on screen since the workbook was opened
 
     @guarded
     def on_mount(self) -> None:
@@ -83,6 +84,7 @@ class WorkbookCard(CalculatorTab):
         before = self.entries.get(name)
         super()._take_entry(name, value)
         if self.entries.get(name) != before:
+            self.edited.add(name)  # what ctrl+s writes back
             self.on_change()
 
     def own_inputs(self) -> dict[str, Any]:
@@ -142,6 +144,7 @@ class RobotCard(Vertical):
         self.calculator = calculator
         self.entries = dict(entries)
         self.on_change = on_change
+        self.edited: set[str] = set()  # variables changed on screen since the workbook was opened
 
     def compose(self) -> ComposeResult:
         yield Static(Text(self.calculator.title, style="bold"), classes="summary")
@@ -166,6 +169,7 @@ class RobotCard(Vertical):
         if self.entries.get(name) == value:
             return
         self.entries = {**self.entries, name: value}
+        self.edited.add(name)
         self.sheet.refresh_field(name)
         self.on_change()
 
@@ -190,13 +194,11 @@ class WorkbookScreen(Screen):
 
     BINDINGS = [
         Binding("escape", "close", "Close workbook"),
+        Binding("ctrl+s", "save", "Save workbook"),
         Binding("ctrl+right", "step(1)", "Next card"),
         Binding("ctrl+left", "step(-1)", "Previous card"),
         # the app's card commands act on the calculator cards behind this screen: not here
-        *(
-            Binding(key, "not_here", show=False)
-            for key in ("ctrl+s", "ctrl+o", "ctrl+g", "ctrl+r", "ctrl+y", "ctrl+e")
-        ),
+        *(Binding(key, "not_here", show=False) for key in ("ctrl+o", "ctrl+g", "ctrl+r", "ctrl+y", "ctrl+e")),
     ]
 
     def __init__(self, book, blink: bool = True, hide_timings: bool = False) -> None:
@@ -283,11 +285,36 @@ class WorkbookScreen(Screen):
 
     def action_not_here(self) -> None:
         self.app.notify(
-            "On a workbook, edit the file to save it; the card commands work on the calculator cards "
+            "On a workbook, ctrl+s saves it; the other card commands work on the calculator cards "
             "(Esc closes the workbook).",
             severity="warning",
             markup=False,
         )
+
+    @guarded
+    def action_save(self) -> None:
+        """ctrl+s: the variables and card inputs changed here, written into the workbook's file
+        (core.workbook.save: its comments and layout kept); links stay as the file has them."""
+        from pathlib import Path
+
+        from gearhead.core import workbook
+
+        path = Path(self.book.source)
+        if not path.is_file():
+            self.app.notify("This workbook has no file to save to.", severity="warning", markup=False)
+            return
+        variables = {n: self._with_unit(n, self.robot.entries[n]) for n in sorted(self.robot.edited)}
+        inputs = {}
+        for name, tab in self.cards.items():
+            own = tab.own_inputs()
+            inputs[name] = {k: own[k] for k in sorted(tab.edited) if k in own}
+        try:
+            workbook.save(path, variables, inputs)
+        except OSError as exc:
+            self.app.notify(f"Could not save {path}: {exc.strerror or exc}", severity="error", markup=False)
+            return
+        changed = len(variables) + sum(len(v) for v in inputs.values())
+        self.app.notify(f"Saved {changed} change(s) to {path}", title="Workbook saved", markup=False)
 
     # ---- solving ------------------------------------------------------------------------
     def request_solve(self) -> None:
