@@ -467,3 +467,32 @@ def mechanism_documents(title: str, gains_of, phoenix_note: str = "", revlib: bo
             )
         )
     return tuple(docs)
+
+
+def profiled_gains(solution, metres_per_rotation, **kind) -> Gains:
+    """A profiled move's gains and limits for the exports (GC1)-(GC3), from a solved elevator or arm
+    (`metres_per_rotation(inputs)`: L; `kind`: the arm's title and arm=True); a ValueError when the solution is not of that mode (the
+    profile's limits come from it)."""
+    v = {name: value.value for name, value in solution.inputs.items()}
+    out = {name: value.value for name, value in solution.outputs.items()}
+    if v.get("mode") != "profiled" or "profile_max_velocity" not in out:
+        raise ValueError("the gains and the profile are exported from the profiled move: set mode = profiled")
+    on = v["effects"]
+    return Gains(
+        kS=out["kS"],
+        kG=out["kG"],
+        kV=out["kV"],
+        kA=out["kA"],
+        kP=out["kP"],
+        kD=out["kD"],
+        max_velocity=out["profile_max_velocity"],
+        max_acceleration=out["profile_max_acceleration"],
+        period=v["control_period"],
+        ratio=v["ratio"],
+        metres_per_rotation=metres_per_rotation(v),
+        battery_voltage=v["voltage"],
+        tolerance=v["settle_tolerance"],
+        stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
+        supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
+        **kind,
+    )

@@ -349,32 +349,8 @@ compute = compute_with_stats(simulate)
 
 
 def gains_of(solution) -> gains_code.Gains:
-    """The profiled move's gains and limits for the exports (core.gains_code (GC1), (GC2)), in
-    radians from horizontal; a ValueError when the solution is not of that mode."""
-    v = {name: value.value for name, value in solution.inputs.items()}
-    out = {name: value.value for name, value in solution.outputs.items()}
-    if v.get("mode") != "profiled" or "profile_max_velocity" not in out:
-        raise ValueError("the gains and the profile are exported from the profiled move: set mode = profiled")
-    on = v["effects"]
-    return gains_code.Gains(
-        kS=out["kS"],
-        kG=out["kG"],
-        kV=out["kV"],
-        kA=out["kA"],
-        kP=out["kP"],
-        kD=out["kD"],
-        max_velocity=out["profile_max_velocity"],
-        max_acceleration=out["profile_max_acceleration"],
-        period=v["control_period"],
-        ratio=v["ratio"],
-        metres_per_rotation=2 * math.pi,
-        battery_voltage=v["voltage"],
-        tolerance=v["settle_tolerance"],
-        stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
-        supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
-        title="Arm",
-        arm=True,
-    )
+    """The profiled move's gains for the exports, in radians from horizontal (L = 2π a turn)."""
+    return gains_code.profiled_gains(solution, lambda v: 2 * math.pi, title="Arm", arm=True)
 
 
 DOCUMENTS = gains_code.mechanism_documents("Arm", gains_of, phoenix_note=", Arm_Cosine", revlib=False)

@@ -328,30 +328,8 @@ def compute(values) -> Result:
 
 
 def gains_of(solution) -> gains_code.Gains:
-    """The profiled move's gains and limits for the exports (core.gains_code (GC1)-(GC3)); a
-    ValueError when the solution is not of that mode (the profile's limits come from it)."""
-    v = {name: value.value for name, value in solution.inputs.items()}
-    out = {name: value.value for name, value in solution.outputs.items()}
-    if v.get("mode") != "profiled" or "profile_max_velocity" not in out:
-        raise ValueError("the gains and the profile are exported from the profiled move: set mode = profiled")
-    on = v["effects"]
-    return gains_code.Gains(
-        kS=out["kS"],
-        kG=out["kG"],
-        kV=out["kV"],
-        kA=out["kA"],
-        kP=out["kP"],
-        kD=out["kD"],
-        max_velocity=out["profile_max_velocity"],
-        max_acceleration=out["profile_max_acceleration"],
-        period=v["control_period"],
-        ratio=v["ratio"],
-        metres_per_rotation=2 * math.pi * spool_factor(v),
-        battery_voltage=v["voltage"],
-        tolerance=v["settle_tolerance"],
-        stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
-        supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
-    )
+    """The profiled move's gains for the exports, in metres of carriage travel (L = 2π·r·k a drum turn)."""
+    return gains_code.profiled_gains(solution, lambda v: 2 * math.pi * spool_factor(v))
 
 
 DOCUMENTS = gains_code.mechanism_documents("Elevator", gains_of)
