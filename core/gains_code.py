@@ -37,6 +37,20 @@ travel; kS, kG in V, kV in V·s/m, kA in V·s²/m, kP in V/m, kD in V·s/m). Eac
       kP_rev = kP/V_b,  kD_rev = kD/(V_b · 1 ms)                                               (GC3)
   smartCurrentLimit is the stator limit (whole amps); REVLib has no supply current limit, said in
   a comment.
+The exponential profile (WPILib ExponentialProfile, max input U volts on the plant kV, kA; the
+profiled move's choice, core.sim.profiled (P12)-(P15)):
+- WPILib: ExponentialProfile.Constraints.fromCharacteristics(U, kV, kA) with a PIDController, the
+  profile advanced each period by the robot code (no ProfiledPIDController takes it); robotpy binds
+  it as ExponentialProfileMeterVolts only, its units labels (an arm's radians go through unchanged).
+- Phoenix 6 Motion Magic Expo (MotionMagicExpoVoltage; CTRE's Motion Magic page: "Dividing the supply
+  voltage by kV results in the maximum velocity of the profile", by kA the maximum acceleration from
+  0; MotionMagicExpo_kV in V/rps, MotionMagicExpo_kA in V/(rps/s), always volts): its profile drives
+  the whole supply voltage V_b, ours U, so the same profile (v_m = U/kV, a_0 = U/kA) takes
+      Expo_kV = kV·L·V_b/U,  Expo_kA = kA·L·V_b/U;  MotionMagicCruiseVelocity = 0 (no cap)    (GC6)
+  (V_b the entered battery voltage: the device reads its own supply, which sags).
+- REVLib: MAXMotion has no exponential profile (MAXMotionConfig.MAXMotionPositionMode offers
+  kMAXMotionTrapezoidal only): the document says so, keeps the closed loop and feedforward, and
+  leaves the profile to the roboRIO (WPILib's, sending each setpoint as a position request).
 """
 
 from __future__ import annotations
@@ -68,6 +82,7 @@ class Gains:
     supply_limit: float | None = None
     title: str = "Elevator"
     arm: bool = False  # q is the arm's angle from horizontal (rad): ArmFeedforward, Arm_Cosine
+    max_input: float | None = None  # V: the exponential profile's U (GC6); None for a trapezoid
 
 
 def _u(g: Gains) -> str:
@@ -86,8 +101,19 @@ def _num(x: float) -> str:
 
 
 def phoenix6_values(g: Gains) -> dict[str, float]:
-    """(GC2): the Slot0 and MotionMagic values, in drum rotations."""
+    """(GC2): the Slot0 and MotionMagic values, in drum rotations ((GC6) for Motion Magic Expo)."""
     L = g.metres_per_rotation
+    if g.max_input is not None:
+        expo = {
+            "MotionMagicCruiseVelocity": 0.0,
+            "MotionMagicExpo_kV": g.kV * L * g.battery_voltage / g.max_input,
+            "MotionMagicExpo_kA": g.kA * L * g.battery_voltage / g.max_input,
+        }
+    else:
+        expo = {
+            "MotionMagicCruiseVelocity": g.max_velocity / L,
+            "MotionMagicAcceleration": g.max_acceleration / L,
+        }
     return {
         "SensorToMechanismRatio": g.ratio,
         "kS": g.kS,
@@ -96,8 +122,7 @@ def phoenix6_values(g: Gains) -> dict[str, float]:
         "kA": g.kA * L,
         "kP": g.kP * L,
         "kD": g.kD * L,
-        "MotionMagicCruiseVelocity": g.max_velocity / L,
-        "MotionMagicAcceleration": g.max_acceleration / L,
+        **expo,
     }
 
 
@@ -130,6 +155,8 @@ def _header(g: Gains, comment: str) -> str:
 
 
 def wpilib_python(g: Gains) -> str:
+    if g.max_input is not None:
+        return _wpilib_python_exponential(g)
     return (
         _header(g, "#") + f"from wpimath.controller import {_ff(g)}, ProfiledPIDController\n"
         "from wpimath.trajectory import TrapezoidProfile\n\n"
@@ -167,6 +194,8 @@ def _usage(g: Gains) -> str:
 
 
 def wpilib_java(g: Gains) -> str:
+    if g.max_input is not None:
+        return _wpilib_java_exponential(g)
     cls = f"{g.title.replace(' ', '')}Gains"
     return (
         _header(g, "//") + f"import edu.wpi.first.math.controller.{_ff(g)};\n"
@@ -218,13 +247,14 @@ def phoenix6_java(g: Gains) -> str:
         *(
             [
                 "// Positions in arm rotations (SensorToMechanismRatio = motor turns per arm turn), 0 with the",
-                "// arm horizontal (set the sensor's offset so): Arm_Cosine needs it. Request MotionMagicVoltage.",
+                "// arm horizontal (set the sensor's offset so): Arm_Cosine needs it. "
+                f"Request {_phoenix6_request(g)}.",
             ]
             if g.arm
             else [
                 "// Positions in drum rotations (SensorToMechanismRatio = motor turns per drum turn);",
                 f"// one drum rotation = {_num(g.metres_per_rotation)} m of carriage travel. "
-                "Request MotionMagicVoltage.",
+                f"Request {_phoenix6_request(g)}.",
             ]
         ),
         "import com.ctre.phoenix6.configs.TalonFXConfiguration;",
@@ -245,10 +275,8 @@ def phoenix6_java(g: Gains) -> str:
         f"    cfg.Slot0.kP = {_num(v['kP'])}; // V per rotation",
         "    cfg.Slot0.kI = 0.0;",
         f"    cfg.Slot0.kD = {_num(v['kD'])}; // V per rps",
-        f"    cfg.MotionMagic.MotionMagicCruiseVelocity = {_num(v['MotionMagicCruiseVelocity'])}; // rps",
-        f"    cfg.MotionMagic.MotionMagicAcceleration = {_num(v['MotionMagicAcceleration'])}; // rps/s",
-        "    cfg.MotionMagic.MotionMagicJerk = 0.0; // no jerk limit: a trapezoid",
     ]
+    lines += _phoenix6_motion_magic(g, v)
     lines += _phoenix6_current_limits(g)
     lines += ["    return cfg;", "  }", "", f"  private {cls}() {{}}", "}", ""]
     return "\n".join(lines)
@@ -294,10 +322,9 @@ def revlib_java(g: Gains) -> str:
         f"        .kV({_num(v['kV'])})",
         f"        .kA({_num(v['kA'])})",
         f"        .kG({_num(v['kG'])});",
-        "    config.closedLoop.maxMotion",
-        f"        .cruiseVelocity({_num(v['cruiseVelocity'])}) // m/s",
-        f"        .maxAcceleration({_num(v['maxAcceleration'])}) // m/s^2",
-        f"        .allowedProfileError({_num(v['allowedProfileError'])}); // m",
+    ]
+    lines += _revlib_max_motion(g, v)
+    lines += [
         "    return config;",
         "  }",
         "",
@@ -306,6 +333,109 @@ def revlib_java(g: Gains) -> str:
         "",
     ]
     return "\n".join(lines)
+
+
+# --- the exponential profile's documents (GC6) ------------------------------------------------------
+
+
+def _wpilib_python_exponential(g: Gains) -> str:
+    ff_args = (
+        "setpoint.position, setpoint.velocity, nxt.velocity" if g.arm else "setpoint.velocity, nxt.velocity"
+    )
+    return (
+        _header(g, "#") + f"from wpimath.controller import {_ff(g)}, PIDController\n"
+        "from wpimath.trajectory import ExponentialProfileMeterVolts\n\n"
+        f"kS = {_num(g.kS)}  # V\n"
+        f"kG = {_num(g.kG)}  # V\n"
+        f"kV = {_num(g.kV)}  # V*s/{_u(g)}\n"
+        f"kA = {_num(g.kA)}  # V*s^2/{_u(g)}\n"
+        f"kP = {_num(g.kP)}  # V/{_u(g)}\n"
+        f"kD = {_num(g.kD)}  # V*s/{_u(g)}\n"
+        f"MAX_INPUT = {_num(g.max_input)}  # V: the profile's, on top of kS and kG\n"
+        f"PERIOD = {_num(g.period)}  # s\n\n"
+        f"feedforward = {_ff(g)}(kS, kG, kV, kA, PERIOD)\n"
+        "controller = PIDController(kP, 0.0, kD, PERIOD)\n"
+        "# robotpy binds ExponentialProfile for metres and volts only; the units are labels"
+        + (" (radians go through unchanged)\n" if g.arm else "\n")
+        + "constraints = ExponentialProfileMeterVolts.Constraints.fromCharacteristics(MAX_INPUT, kV, kA)\n"
+        "profile = ExponentialProfileMeterVolts(constraints)\n"
+        "# start: setpoint = ExponentialProfileMeterVolts.State(position, 0.0); goal = ...State(target, 0.0)\n"
+        "# each period: nxt = profile.calculate(PERIOD, setpoint, goal)\n"
+        "#              volts = controller.calculate(position, nxt.position)\n"
+        f"#                      + feedforward.calculate({ff_args})\n"
+        "#              setpoint = nxt\n"
+    )
+
+
+def _wpilib_java_exponential(g: Gains) -> str:
+    cls = f"{g.title.replace(' ', '')}Gains"
+    ff_args = (
+        "setpoint.position, setpoint.velocity, next.velocity" if g.arm else "setpoint.velocity, next.velocity"
+    )
+    return (
+        _header(g, "//") + f"import edu.wpi.first.math.controller.{_ff(g)};\n"
+        "import edu.wpi.first.math.controller.PIDController;\n"
+        "import edu.wpi.first.math.trajectory.ExponentialProfile;\n\n"
+        "// Each period: var next = profile.calculate(kPeriod, setpoint, goal);\n"
+        "//   volts = controller.calculate(position, next.position)\n"
+        f"//           + feedforward.calculate({ff_args}); setpoint = next;\n"
+        f"public final class {cls} {{\n"
+        f"  public static final double kS = {_num(g.kS)}; // V\n"
+        f"  public static final double kG = {_num(g.kG)}; // V\n"
+        f"  public static final double kV = {_num(g.kV)}; // V*s/{_u(g)}\n"
+        f"  public static final double kA = {_num(g.kA)}; // V*s^2/{_u(g)}\n"
+        f"  public static final double kP = {_num(g.kP)}; // V/{_u(g)}\n"
+        f"  public static final double kD = {_num(g.kD)}; // V*s/{_u(g)}\n"
+        f"  public static final double kMaxInput = {_num(g.max_input)}; // V, on top of kS and kG\n"
+        f"  public static final double kPeriod = {_num(g.period)}; // s\n\n"
+        f"  public static {_ff(g)} feedforward() {{\n"
+        f"    return new {_ff(g)}(kS, kG, kV, kA, kPeriod);\n"
+        "  }\n\n"
+        "  public static PIDController controller() {\n"
+        "    return new PIDController(kP, 0.0, kD, kPeriod);\n"
+        "  }\n\n"
+        "  public static ExponentialProfile profile() {\n"
+        "    return new ExponentialProfile(ExponentialProfile.Constraints.fromCharacteristics(kMaxInput, kV, kA));\n"
+        "  }\n\n"
+        f"  private {cls}() {{}}\n"
+        "}\n"
+    )
+
+
+def _phoenix6_request(g: Gains) -> str:
+    return "MotionMagicVoltage" if g.max_input is None else "MotionMagicExpoVoltage"
+
+
+def _phoenix6_motion_magic(g: Gains, v: dict) -> list[str]:
+    if g.max_input is None:
+        return [
+            f"    cfg.MotionMagic.MotionMagicCruiseVelocity = {_num(v['MotionMagicCruiseVelocity'])}; // rps",
+            f"    cfg.MotionMagic.MotionMagicAcceleration = {_num(v['MotionMagicAcceleration'])}; // rps/s",
+            "    cfg.MotionMagic.MotionMagicJerk = 0.0; // no jerk limit: a trapezoid",
+        ]
+    return [
+        f"    // Motion Magic Expo: the profile of {g.max_input:g} V on kV, kA. CTRE's divides the supply voltage",
+        f"    // by Expo_kV and Expo_kA: they are kV, kA x {g.battery_voltage:g} V / {g.max_input:g} V (GC6)",
+        "    cfg.MotionMagic.MotionMagicCruiseVelocity = 0.0; // no cap: the profile's own limit",
+        f"    cfg.MotionMagic.MotionMagicExpo_kV = {_num(v['MotionMagicExpo_kV'])}; // V per rps",
+        f"    cfg.MotionMagic.MotionMagicExpo_kA = {_num(v['MotionMagicExpo_kA'])}; // V per rps/s",
+    ]
+
+
+def _revlib_max_motion(g: Gains, v: dict) -> list[str]:
+    if g.max_input is None:
+        return [
+            "    config.closedLoop.maxMotion",
+            f"        .cruiseVelocity({_num(v['cruiseVelocity'])}) // m/s",
+            f"        .maxAcceleration({_num(v['maxAcceleration'])}) // m/s^2",
+            f"        .allowedProfileError({_num(v['allowedProfileError'])}); // m",
+        ]
+    return [
+        "    // MAXMotion has no exponential profile (MAXMotionConfig.MAXMotionPositionMode offers",
+        "    // kMAXMotionTrapezoidal only): no maxMotion limits here. Run WPILib's ExponentialProfile on the",
+        "    // roboRIO (the wpilib-java document) and send each setpoint as a kPosition request with the",
+        "    // feedforward's volts as its arbitrary feedforward.",
+    ]
 
 
 # --- a flywheel's velocity loop (issue 30) ---------------------------------------------------------
@@ -492,6 +622,7 @@ def profiled_gains(solution, metres_per_rotation, **kind) -> Gains:
         metres_per_rotation=metres_per_rotation(v),
         battery_voltage=v["voltage"],
         tolerance=v["settle_tolerance"],
+        max_input=v["max_input"] if v.get("profile_type") == "exponential" else None,
         stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
         supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
         **kind,
