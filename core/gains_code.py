@@ -59,6 +59,7 @@ import math
 from dataclasses import dataclass
 
 REV_LOOP_PERIOD = 1e-3  # s: the SPARK's closed loop runs at 1 kHz (GC3)
+EXPO_KA_RANGE = (1e-5, 100.0)  # V per rps/s: MotionMagicConfigs.MotionMagicExpo_kA's bounds (CTRE API docs)
 
 
 @dataclass(frozen=True)
@@ -419,7 +420,13 @@ def _phoenix6_motion_magic(g: Gains, v: dict) -> list[str]:
         "    cfg.MotionMagic.MotionMagicCruiseVelocity = 0.0; // no cap: the profile's own limit",
         f"    cfg.MotionMagic.MotionMagicExpo_kV = {_num(v['MotionMagicExpo_kV'])}; // V per rps",
         f"    cfg.MotionMagic.MotionMagicExpo_kA = {_num(v['MotionMagicExpo_kA'])}; // V per rps/s",
-    ]
+    ] + (
+        []
+        if EXPO_KA_RANGE[0] <= v["MotionMagicExpo_kA"] <= EXPO_KA_RANGE[1]
+        else [
+            "    // Expo_kA is outside CTRE's documented range (1e-05 to 100 V per rps/s): the device refuses it"
+        ]
+    )
 
 
 def _revlib_max_motion(g: Gains, v: dict) -> list[str]:

@@ -354,3 +354,13 @@ def test_java_phoenix_revlib_follow_the_choice():
     assert f"MotionMagicExpo_kV = {v['MotionMagicExpo_kV']!r};" in phoenix
     revlib = gains_code.revlib_java(g)
     assert "no exponential profile" in revlib and "kMAXMotionTrapezoidal" in revlib
+
+
+def test_phoenix_says_when_expo_ka_is_out_of_ctres_range():
+    from dataclasses import replace
+
+    sol = solve("elevator", {"mode": "profiled", "profile_type": "exponential"})
+    g = elevator_calc.gains_of(sol)
+    assert "outside CTRE's documented range" not in gains_code.phoenix6_java(g)
+    heavy = replace(g, kA=1e4)  # 1e4 V·s²/m × 0.12 m a rotation × 12/10: 1440 V per rps/s
+    assert "outside CTRE's documented range" in gains_code.phoenix6_java(heavy)
