@@ -37,6 +37,18 @@ travel; kS, kG in V, kV in V·s/m, kA in V·s²/m, kP in V/m, kD in V·s/m). Eac
       kP_rev = kP/V_b,  kD_rev = kD/(V_b · 1 ms)                                               (GC3)
   smartCurrentLimit is the stator limit (whole amps); REVLib has no supply current limit, said in
   a comment.
+  An arm (q the angle from horizontal in rad, L = 2π rad an arm turn): the factors make the native
+  units radians, positionConversionFactor = 2π/G, velocityConversionFactor = 2π/(60·G), and the
+  gravity term is REVLib's kCos with kCosRatio, not kG (REVLib keeps one of the two). REVLib 2026's
+  FeedForwardConfig (javadoc of kCos and kCosRatio; the "Feed Forward Control" page's table: kCos
+  "Arm/rotary mechanism gravity feedforward. Feedback sensor must be configured to 0 =
+  horizontal", kCosRatio "Converts feedback sensor readings to mechanism rotations"): kCos, in
+  volts, "is multiplied by the cosine of the absolute position of the mechanism", that position
+  being the native position times kCosRatio, which "is applied after the conversion factor and
+  should convert from those units to absolute rotations of your mechanism". So the SPARK adds
+  kCos·cos(2π·kCosRatio·q_native), and with q_native in rad
+      kCos = kG,  kCosRatio = 1/L = 1/(2π)  (arm rotations per rad)                           (GC3a)
+  which is ArmFeedforward's kG·cos θ when the encoder reads 0 with the arm horizontal, positive up.
 """
 
 from __future__ import annotations
@@ -102,8 +114,10 @@ def phoenix6_values(g: Gains) -> dict[str, float]:
 
 
 def revlib_values(g: Gains) -> dict[str, float]:
-    """(GC3): the encoder's conversion factors and the closed loop's gains."""
+    """(GC3): the encoder's conversion factors and the closed loop's gains; an arm's gravity term as
+    kCos and kCosRatio (GC3a) in place of kG."""
     L, G, Vb = g.metres_per_rotation, g.ratio, g.battery_voltage
+    gravity = {"kCos": g.kG, "kCosRatio": 1.0 / L} if g.arm else {"kG": g.kG}
     return {
         "positionConversionFactor": L / G,
         "velocityConversionFactor": L / G / 60.0,
@@ -113,7 +127,7 @@ def revlib_values(g: Gains) -> dict[str, float]:
         "kS": g.kS,
         "kV": g.kV,
         "kA": g.kA,
-        "kG": g.kG,
+        **gravity,
         "cruiseVelocity": g.max_velocity,
         "maxAcceleration": g.max_acceleration,
         "allowedProfileError": g.tolerance,
@@ -255,16 +269,22 @@ def phoenix6_java(g: Gains) -> str:
 
 
 def revlib_java(g: Gains) -> str:
-    if g.arm:
-        # REVLib's arm term (feedForward.kCos with kCosRatio) is not exported: its docs do not say
-        # what kCosRatio converts, and a wrong one would turn the gravity term the wrong way
-        raise ValueError("REVLib's arm feedforward (kCos, kCosRatio) is not exported; use wpilib-java")
     v = revlib_values(g)
+    u = _u(g)
     cls = f"{g.title.replace(' ', '')}SparkMaxConfig"
     lines = [
         _header(g, "//").rstrip("\n"),
-        "// Native units are SI through the encoder's conversion factors (m, m/s); the PID output is a",
+        f"// Native units are SI through the encoder's conversion factors ({u}, {u}/s); the PID output is a",
         "// duty cycle of the compensated voltage, kD per 1 ms step (the SPARK's loop runs at 1 kHz).",
+        *(
+            [
+                "// Gravity: kCos·cos(2π·kCosRatio·position), kCosRatio turning radians into arm rotations;",
+                "// zero the encoder with the arm horizontal (encoder.setPosition at a known angle, in rad)",
+                "// and make positive the arm going up (config.inverted as needed). Request kMAXMotionPositionControl.",
+            ]
+            if g.arm
+            else []
+        ),
         "import com.revrobotics.spark.FeedbackSensor;",
         "import com.revrobotics.spark.config.SparkMaxConfig;",
         "",
@@ -279,10 +299,18 @@ def revlib_java(g: Gains) -> str:
         lines.append(
             f"    // supply limit {g.supply_limit:g} A per motor: REVLib has none (a stator limit only)"
         )
+    gravity = (
+        [
+            f"        .kCos({_num(v['kCos'])}) // V at horizontal",
+            f"        .kCosRatio({_num(v['kCosRatio'])}); // arm rotations per rad",
+        ]
+        if g.arm
+        else [f"        .kG({_num(v['kG'])});"]
+    )
     lines += [
         "    config.encoder",
-        f"        .positionConversionFactor({_num(v['positionConversionFactor'])}) // m per motor turn",
-        f"        .velocityConversionFactor({_num(v['velocityConversionFactor'])}); // m/s per rpm",
+        f"        .positionConversionFactor({_num(v['positionConversionFactor'])}) // {u} per motor turn",
+        f"        .velocityConversionFactor({_num(v['velocityConversionFactor'])}); // {u}/s per rpm",
         "    config.closedLoop",
         "        .feedbackSensor(FeedbackSensor.kPrimaryEncoder)",
         f"        .p({_num(v['p'])})",
@@ -293,11 +321,11 @@ def revlib_java(g: Gains) -> str:
         f"        .kS({_num(v['kS'])})",
         f"        .kV({_num(v['kV'])})",
         f"        .kA({_num(v['kA'])})",
-        f"        .kG({_num(v['kG'])});",
+        *gravity,
         "    config.closedLoop.maxMotion",
-        f"        .cruiseVelocity({_num(v['cruiseVelocity'])}) // m/s",
-        f"        .maxAcceleration({_num(v['maxAcceleration'])}) // m/s^2",
-        f"        .allowedProfileError({_num(v['allowedProfileError'])}); // m",
+        f"        .cruiseVelocity({_num(v['cruiseVelocity'])}) // {u}/s",
+        f"        .maxAcceleration({_num(v['maxAcceleration'])}) // {u}/s^2",
+        f"        .allowedProfileError({_num(v['allowedProfileError'])}); // {u}",
         "    return config;",
         "  }",
         "",
