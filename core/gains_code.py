@@ -347,6 +347,17 @@ def revlib_java(g: Gains) -> str:
 #   turn, makes the velocity the wheel's): one wheel rotation is 2π rad, so
 #       kV_rps = 2π·kV,  kA_rps = 2π·kA,  kP_rps = 2π·kP,  kS unchanged;  target rps = ω/(2π)     (GC5)
 #   (CrossTheRoadElec/Phoenix6-Examples, java/VelocityClosedLoop: Slot0.kS/kV/kP, VelocityVoltage.)
+#   Or in rotor units (no SensorToMechanismRatio: the TalonFX's own rotor rotations), a wheel rps
+#   being G rotor rps:
+#       kV_rot = 2π·kV/G,  kA_rot = 2π·kA/G,  kP_rot = 2π·kP/G,  target rps = G·ω/(2π)            (GC5a)
+#   (kV_rot = 2π/Kv of the motor whatever G: a check.)
+# - REVLib (SparkMaxConfig, ControlType.kVelocity; REVLib-Examples at 6b03aa4, Java/SPARK/Closed Loop
+#   Control: closedLoop.feedForward.kV "in Volts" per velocity unit, setSetpoint(v, kVelocity); kV
+#   is applied in velocity mode, kA in MAXMotion modes only (FeedForwardConfig javadoc)): the
+#   encoder's factors 1/G make the native units wheel rotations and wheel rpm, one rpm = 2π/60
+#   rad/s, and the PID output is a duty of the compensated voltage V_b (GC3):
+#       kV_rpm = kV·2π/60,  kA_rpm = kA·2π/60 (per rpm/s),  p = kP·2π/(60·V_b),  kS unchanged;
+#       target rpm = 60·ω/(2π)                                                                   (GC6)
 
 
 @dataclass(frozen=True)
@@ -363,16 +374,35 @@ class FlywheelGains:
     supply_limit: float | None = None
 
 
-def flywheel_phoenix6_values(g: FlywheelGains) -> dict[str, float]:
-    """(GC5): Slot0 in wheel rotations per second."""
-    turn = 2 * math.pi
+def flywheel_phoenix6_values(g: FlywheelGains, rotor: bool = False) -> dict[str, float]:
+    """(GC5): Slot0 in wheel rotations per second; rotor=True: in rotor rotations per second with no
+    SensorToMechanismRatio (GC5a)."""
+    per_turn = 2 * math.pi / g.ratio if rotor else 2 * math.pi  # rad/s of the wheel per rps
     return {
-        "SensorToMechanismRatio": g.ratio,
+        **({} if rotor else {"SensorToMechanismRatio": g.ratio}),
         "kS": g.kS,
-        "kV": g.kV * turn,
-        "kA": g.kA * turn,
-        "kP": g.kP * turn,
-        "target_rps": g.target_speed / turn,
+        "kV": g.kV * per_turn,
+        "kA": g.kA * per_turn,
+        "kP": g.kP * per_turn,
+        "target_rps": g.target_speed / per_turn,
+    }
+
+
+RPM_PER_RAD_S = 60.0 / (2 * math.pi)
+
+
+def flywheel_revlib_values(g: FlywheelGains) -> dict[str, float]:
+    """(GC6): the encoder's factors (wheel rotations, wheel rpm) and the velocity loop's gains."""
+    per_rpm = 1.0 / RPM_PER_RAD_S  # rad/s in one rpm
+    return {
+        "positionConversionFactor": 1.0 / g.ratio,
+        "velocityConversionFactor": 1.0 / g.ratio,
+        "voltageCompensation": g.battery_voltage,
+        "p": g.kP * per_rpm / g.battery_voltage,
+        "kS": g.kS,
+        "kV": g.kV * per_rpm,
+        "kA": g.kA * per_rpm,
+        "target_rpm": g.target_speed * RPM_PER_RAD_S,
     }
 
 
@@ -422,20 +452,35 @@ def flywheel_wpilib_java(g: FlywheelGains) -> str:
     )
 
 
-def flywheel_phoenix6_java(g: FlywheelGains) -> str:
-    v = flywheel_phoenix6_values(g)
+def flywheel_phoenix6_java(g: FlywheelGains, rotor: bool = False) -> str:
+    v = flywheel_phoenix6_values(g, rotor)
+    cls = f"Flywheel{'Rotor' if rotor else ''}TalonFXConfig"
+    units = (
+        [
+            "// Velocities in rotor rotations per second (no SensorToMechanismRatio: the motor's own);",
+            f"// the wheel turns once every {_num(g.ratio)} rotor turns.",
+        ]
+        if rotor
+        else [
+            "// Velocities in wheel rotations per second (SensorToMechanismRatio = motor turns per wheel turn)."
+        ]
+    )
     lines = [
         _fw_header(g, "//").rstrip("\n"),
-        "// Velocities in wheel rotations per second (SensorToMechanismRatio = motor turns per wheel turn).",
+        *units,
         "import com.ctre.phoenix6.configs.TalonFXConfiguration;",
         "import com.ctre.phoenix6.controls.VelocityVoltage;",
         "",
-        "public final class FlywheelTalonFXConfig {",
-        f"  public static final double kTargetRps = {_num(v['target_rps'])}; // wheel rotations/s",
+        f"public final class {cls} {{",
+        f"  public static final double kTargetRps = {_num(v['target_rps'])}; // {'rotor' if rotor else 'wheel'} rotations/s",
         "",
         "  public static TalonFXConfiguration config() {",
         "    var cfg = new TalonFXConfiguration();",
-        f"    cfg.Feedback.SensorToMechanismRatio = {_num(v['SensorToMechanismRatio'])};",
+        *(
+            []
+            if rotor
+            else [f"    cfg.Feedback.SensorToMechanismRatio = {_num(v['SensorToMechanismRatio'])};"]
+        ),
         f"    cfg.Slot0.kS = {_num(v['kS'])}; // V",
         f"    cfg.Slot0.kV = {_num(v['kV'])}; // V per rps",
         f"    cfg.Slot0.kA = {_num(v['kA'])}; // V per rps/s",
@@ -452,7 +497,54 @@ def flywheel_phoenix6_java(g: FlywheelGains) -> str:
         "    return new VelocityVoltage(kTargetRps).withSlot(0);",
         "  }",
         "",
-        "  private FlywheelTalonFXConfig() {}",
+        f"  private {cls}() {{}}",
+        "}",
+        "",
+    ]
+    return "\n".join(lines)
+
+
+def flywheel_revlib_java(g: FlywheelGains) -> str:
+    v = flywheel_revlib_values(g)
+    lines = [
+        _fw_header(g, "//").rstrip("\n"),
+        "// Native units are the wheel's through the encoder's conversion factors (rotations, rpm); the PID",
+        "// output is a duty cycle of the compensated voltage. Request ControlType.kVelocity.",
+        "import com.revrobotics.spark.FeedbackSensor;",
+        "import com.revrobotics.spark.config.SparkMaxConfig;",
+        "",
+        "public final class FlywheelSparkMaxConfig {",
+        f"  public static final double kTargetRpm = {_num(v['target_rpm'])}; // wheel rpm",
+        "",
+        "  public static SparkMaxConfig config() {",
+        "    SparkMaxConfig config = new SparkMaxConfig();",
+        f"    config.voltageCompensation({_num(v['voltageCompensation'])});",
+    ]
+    if g.stator_limit is not None:
+        lines.append(f"    config.smartCurrentLimit({int(round(g.stator_limit))}); // A, stator")
+    if g.supply_limit is not None:
+        lines.append(
+            f"    // supply limit {g.supply_limit:g} A per motor: REVLib has none (a stator limit only)"
+        )
+    lines += [
+        "    config.encoder",
+        f"        .positionConversionFactor({_num(v['positionConversionFactor'])}) // wheel turns per motor turn",
+        f"        .velocityConversionFactor({_num(v['velocityConversionFactor'])}); // wheel rpm per motor rpm",
+        "    config.closedLoop",
+        "        .feedbackSensor(FeedbackSensor.kPrimaryEncoder)",
+        f"        .p({_num(v['p'])}) // duty per wheel rpm of error",
+        "        .i(0.0)",
+        "        .d(0.0)",
+        "        .outputRange(-1, 1);",
+        "    config.closedLoop.feedForward",
+        f"        .kS({_num(v['kS'])}) // V",
+        f"        .kV({_num(v['kV'])}) // V per wheel rpm",
+        f"        .kA({_num(v['kA'])}); // V per wheel rpm/s (MAXMotion modes only)",
+        "    return config;",
+        "  }",
+        "",
+        "  // closedLoopController.setSetpoint(kTargetRpm, ControlType.kVelocity)",
+        "  private FlywheelSparkMaxConfig() {}",
         "}",
         "",
     ]

@@ -324,3 +324,64 @@ def test_documents_export_from_a_solution():
         assert repr(out["kS"]) in text
     phoenix = next(d for d in flywheel_calc.CALCULATOR.documents if d.name == "phoenix6").build(sol)
     assert repr(out["kP"] * 2 * math.pi) in phoenix
+
+
+HAND = gains_code.FlywheelGains(
+    kS=0.25,
+    kV=0.02,
+    kA=0.003,
+    kP=0.1,
+    period=0.02,
+    ratio=1.5,
+    target_speed=100 * math.pi,  # 3000 wheel rpm, 4500 motor rpm
+    battery_voltage=12.0,
+    stator_limit=60.0,
+    supply_limit=40.0,
+)
+
+
+def test_flywheel_revlib_units_by_hand():
+    """(GC6): wheel rotations and rpm through the factors 1/G; gains per rpm = per rad/s × 2π/60."""
+    v = gains_code.flywheel_revlib_values(HAND)
+    assert v["positionConversionFactor"] == v["velocityConversionFactor"] == pytest.approx(2 / 3, rel=1e-15)
+    assert v["kV"] == pytest.approx(0.0020943951023931952, rel=1e-15)  # 0.02 × 2π/60
+    assert v["kA"] == pytest.approx(3.141592653589793e-4, rel=1e-15)  # 0.003 × 2π/60
+    assert v["p"] == pytest.approx(8.726646259971648e-4, rel=1e-15)  # 0.1 × 2π/60 ÷ 12 V
+    assert v["target_rpm"] == pytest.approx(3000.0, rel=1e-15)
+    assert v["kS"] == 0.25
+    # 4500 motor rpm read through the factor is 3000 wheel rpm, and kV there is the feedforward's kV·ω
+    native = 4500 * v["velocityConversionFactor"]
+    assert native * v["kV"] == pytest.approx(HAND.kV * HAND.target_speed, rel=1e-15)
+    # 1 rpm of error: the duty times the compensated voltage is kP volts per rad/s × 2π/60 rad/s
+    assert v["p"] * 12.0 == pytest.approx(HAND.kP * 2 * math.pi / 60, rel=1e-15)
+    java = gains_code.flywheel_revlib_java(HAND)
+    assert f"kTargetRpm = {v['target_rpm']!r};" in java and f".kV({v['kV']!r})" in java
+    assert "smartCurrentLimit(60)" in java and "REVLib has none" in java and "kVelocity" in java
+
+
+def test_flywheel_phoenix_rotor_units_by_hand():
+    """(GC5a): per rotor rps = per wheel rps ÷ G; no SensorToMechanismRatio."""
+    v = gains_code.flywheel_phoenix6_values(HAND, rotor=True)
+    assert "SensorToMechanismRatio" not in v
+    assert v["kV"] == pytest.approx(0.08377580409572781, rel=1e-15)  # 0.02 × 2π ÷ 1.5
+    assert v["kA"] == pytest.approx(0.012566370614359173, rel=1e-15)
+    assert v["kP"] == pytest.approx(0.41887902047863906, rel=1e-15)
+    assert v["target_rps"] == pytest.approx(75.0, rel=1e-15)  # 4500 rotor rpm
+    assert v["kV"] * v["target_rps"] == pytest.approx(HAND.kV * HAND.target_speed, rel=1e-15)
+    java = gains_code.flywheel_phoenix6_java(HAND, rotor=True)
+    assert "cfg.Feedback.SensorToMechanismRatio" not in java and f"cfg.Slot0.kV = {v['kV']!r};" in java
+    assert "FlywheelRotorTalonFXConfig" in java and f"kTargetRps = {v['target_rps']!r};" in java
+
+
+@pytest.mark.parametrize("ratio", [0.6, 1.0, 2.5])
+def test_rotor_kv_is_the_motors_own(no_free_current, ratio):
+    """An independent path: per rotor rps, kV is the motor's V_spec ÷ free rps whatever the ratio."""
+    m, _ = motors.lookup("Kraken X60", "wpilib")
+    raw = {"control": "velocity_loop", "motor": "Kraken X60", "voltage": "12 V", "ratio": ratio}
+    sol = solve("flywheel", raw | {"target_speed": f"{2000 / ratio!r} rpm"})
+    g = flywheel_calc.flywheel_gains_of(sol)
+    rotor = gains_code.flywheel_phoenix6_values(g, rotor=True)
+    assert rotor["kV"] == pytest.approx(12.0 / (m.free_speed / (2 * math.pi)), rel=1e-12)
+    assert rotor["target_rps"] == pytest.approx(2000 / 60, rel=1e-12)  # the rotor at 2000 rpm
+    names = [d.name for d in flywheel_calc.CALCULATOR.documents]
+    assert names == ["wpilib-java", "wpilib-python", "phoenix6", "phoenix6-rotor", "revlib"]

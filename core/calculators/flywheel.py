@@ -1778,6 +1778,18 @@ DOCUMENTS = (
         "FlywheelTalonFXConfig.java",
         lambda sol: gains_code.flywheel_phoenix6_java(flywheel_gains_of(sol)),
     ),
+    Document(
+        "phoenix6-rotor",
+        "CTRE Phoenix 6 TalonFXConfiguration in rotor units, no SensorToMechanismRatio (Java)",
+        "FlywheelRotorTalonFXConfig.java",
+        lambda sol: gains_code.flywheel_phoenix6_java(flywheel_gains_of(sol), rotor=True),
+    ),
+    Document(
+        "revlib",
+        "REVLib SparkMaxConfig, velocity control in wheel rpm (Java)",
+        "FlywheelSparkMaxConfig.java",
+        lambda sol: gains_code.flywheel_revlib_java(flywheel_gains_of(sol)),
+    ),
 )
 
 
