@@ -358,6 +358,11 @@ def revlib_java(g: Gains) -> str:
 #   rad/s, and the PID output is a duty of the compensated voltage V_b (GC3):
 #       kV_rpm = kV·2π/60,  kA_rpm = kA·2π/60 (per rpm/s),  p = kP·2π/(60·V_b),  kS unchanged;
 #       target rpm = 60·ω/(2π)                                                                   (GC6)
+# A ramped setpoint (VL4a) at a rad/s²: Phoenix 6 MotionMagicVelocityVoltage with
+# MotionMagicAcceleration = a/(2π) wheel rps/s (a·G/(2π) rotor rps/s; it ignores the cruise
+# velocity; CTRE's MotionMagicVelocityVoltage docs), REVLib kMAXMotionVelocityControl with
+# maxMotion.maxAcceleration = 60·a/(2π) wheel rpm/s (MAXMotionConfig javadoc: rpm/s through the
+# velocity factor), WPILib's feedforward.calculate(setpoint, next) with the PID against next.   (GC7)
 
 
 @dataclass(frozen=True)
@@ -372,6 +377,7 @@ class FlywheelGains:
     battery_voltage: float
     stator_limit: float | None = None
     supply_limit: float | None = None
+    acceleration: float | None = None  # rad/s² at the wheel: a ramped setpoint (VL4a); None: a step
 
 
 def flywheel_phoenix6_values(g: FlywheelGains, rotor: bool = False) -> dict[str, float]:
@@ -385,10 +391,12 @@ def flywheel_phoenix6_values(g: FlywheelGains, rotor: bool = False) -> dict[str,
         "kA": g.kA * per_turn,
         "kP": g.kP * per_turn,
         "target_rps": g.target_speed / per_turn,
+        **({} if g.acceleration is None else {"MotionMagicAcceleration": g.acceleration / per_turn}),
     }
 
 
 RPM_PER_RAD_S = 60.0 / (2 * math.pi)
+PHOENIX_MAX_ACCELERATION = 9999.0  # rps/s: MotionMagicConfigs.MotionMagicAcceleration's maximum
 
 
 def flywheel_revlib_values(g: FlywheelGains) -> dict[str, float]:
@@ -403,6 +411,7 @@ def flywheel_revlib_values(g: FlywheelGains) -> dict[str, float]:
         "kV": g.kV * per_rpm,
         "kA": g.kA * per_rpm,
         "target_rpm": g.target_speed * RPM_PER_RAD_S,
+        **({} if g.acceleration is None else {"maxAcceleration": g.acceleration * RPM_PER_RAD_S}),
     }
 
 
@@ -422,11 +431,30 @@ def flywheel_wpilib_python(g: FlywheelGains) -> str:
         f"kA = {_num(g.kA)}  # V*s^2/rad\n"
         f"kP = {_num(g.kP)}  # V*s/rad\n"
         f"TARGET_SPEED = {_num(g.target_speed)}  # rad/s at the wheel\n"
-        f"PERIOD = {_num(g.period)}  # s\n\n"
-        "feedforward = SimpleMotorFeedforwardRadians(kS, kV, kA, PERIOD)\n"
-        "controller = PIDController(kP, 0.0, 0.0, PERIOD)\n"
-        "# each period: volts = feedforward.calculate(TARGET_SPEED)\n"
-        "#                      + controller.calculate(wheel_speed_rad_per_s, TARGET_SPEED)\n"
+        f"PERIOD = {_num(g.period)}  # s\n"
+        + (
+            f"ACCELERATION = {_num(g.acceleration)}  # rad/s^2, the setpoint's ramp\n"
+            if g.acceleration
+            else ""
+        )
+        + "\nfeedforward = SimpleMotorFeedforwardRadians(kS, kV, kA, PERIOD)\n"
+        "controller = PIDController(kP, 0.0, 0.0, PERIOD)\n" + _fw_usage(g)
+    )
+
+
+def _fw_usage(g: FlywheelGains) -> str:
+    """How the loop calls them: at the target, or along the ramp (VL4a: the feedforward from the
+    setpoint to the next one, the feedback against the next one)."""
+    if g.acceleration is None:
+        return (
+            "# each period: volts = feedforward.calculate(TARGET_SPEED)\n"
+            "#                      + controller.calculate(wheel_speed_rad_per_s, TARGET_SPEED)\n"
+        )
+    return (
+        "# setpoint = 0.0 at the start; each period:\n"
+        "#   nxt = min(TARGET_SPEED, setpoint + ACCELERATION * PERIOD)\n"
+        "#   volts = feedforward.calculate(setpoint, nxt) + controller.calculate(wheel_speed_rad_per_s, nxt)\n"
+        "#   setpoint = nxt\n"
     )
 
 
@@ -440,7 +468,13 @@ def flywheel_wpilib_java(g: FlywheelGains) -> str:
         f"  public static final double kA = {_num(g.kA)}; // V*s^2/rad\n"
         f"  public static final double kP = {_num(g.kP)}; // V*s/rad\n"
         f"  public static final double kTargetSpeed = {_num(g.target_speed)}; // rad/s at the wheel\n"
-        f"  public static final double kPeriod = {_num(g.period)}; // s\n\n"
+        f"  public static final double kPeriod = {_num(g.period)}; // s\n"
+        + (
+            f"  public static final double kAcceleration = {_num(g.acceleration)}; // rad/s^2, the setpoint's ramp\n"
+            if g.acceleration
+            else ""
+        )
+        + "\n"
         "  public static SimpleMotorFeedforward feedforward() {\n"
         "    return new SimpleMotorFeedforward(kS, kV, kA, kPeriod);\n"
         "  }\n\n"
@@ -469,7 +503,7 @@ def flywheel_phoenix6_java(g: FlywheelGains, rotor: bool = False) -> str:
         _fw_header(g, "//").rstrip("\n"),
         *units,
         "import com.ctre.phoenix6.configs.TalonFXConfiguration;",
-        "import com.ctre.phoenix6.controls.VelocityVoltage;",
+        f"import com.ctre.phoenix6.controls.{'VelocityVoltage' if g.acceleration is None else 'MotionMagicVelocityVoltage'};",
         "",
         f"public final class {cls} {{",
         f"  public static final double kTargetRps = {_num(v['target_rps'])}; // {'rotor' if rotor else 'wheel'} rotations/s",
@@ -488,13 +522,25 @@ def flywheel_phoenix6_java(g: FlywheelGains, rotor: bool = False) -> str:
         "    cfg.Slot0.kI = 0.0;",
         "    cfg.Slot0.kD = 0.0;",
     ]
+    request = "VelocityVoltage"
+    if g.acceleration is not None:
+        request = "MotionMagicVelocityVoltage"
+        a = v["MotionMagicAcceleration"]
+        lines += [
+            f"    cfg.MotionMagic.MotionMagicAcceleration = {_num(a)}; // rps/s, the setpoint's ramp",
+            "    cfg.MotionMagic.MotionMagicJerk = 0.0; // no jerk limit",
+        ]
+        if a > PHOENIX_MAX_ACCELERATION:
+            lines.append(
+                f"    // beyond the config's maximum {PHOENIX_MAX_ACCELERATION:g} rps/s: lower the ramp's acceleration"
+            )
     lines += _phoenix6_current_limits(g)
     lines += [
         "    return cfg;",
         "  }",
         "",
-        "  public static VelocityVoltage request() {",
-        "    return new VelocityVoltage(kTargetRps).withSlot(0);",
+        f"  public static {request} request() {{",
+        f"    return new {request}(kTargetRps).withSlot(0);",
         "  }",
         "",
         f"  private {cls}() {{}}",
@@ -509,7 +555,8 @@ def flywheel_revlib_java(g: FlywheelGains) -> str:
     lines = [
         _fw_header(g, "//").rstrip("\n"),
         "// Native units are the wheel's through the encoder's conversion factors (rotations, rpm); the PID",
-        "// output is a duty cycle of the compensated voltage. Request ControlType.kVelocity.",
+        "// output is a duty cycle of the compensated voltage. Request ControlType."
+        + ("kVelocity." if g.acceleration is None else "kMAXMotionVelocityControl (the ramp)."),
         "import com.revrobotics.spark.FeedbackSensor;",
         "import com.revrobotics.spark.config.SparkMaxConfig;",
         "",
@@ -540,10 +587,19 @@ def flywheel_revlib_java(g: FlywheelGains) -> str:
         f"        .kS({_num(v['kS'])}) // V",
         f"        .kV({_num(v['kV'])}) // V per wheel rpm",
         f"        .kA({_num(v['kA'])}); // V per wheel rpm/s (MAXMotion modes only)",
+    ]
+    if g.acceleration is not None:
+        lines += [
+            "    config.closedLoop.maxMotion",
+            "        .cruiseVelocity(kTargetRpm) // wheel rpm",
+            f"        .maxAcceleration({_num(v['maxAcceleration'])}); // wheel rpm/s, the setpoint's ramp",
+        ]
+    control = "kVelocity" if g.acceleration is None else "kMAXMotionVelocityControl"
+    lines += [
         "    return config;",
         "  }",
         "",
-        "  // closedLoopController.setSetpoint(kTargetRpm, ControlType.kVelocity)",
+        f"  // closedLoopController.setSetpoint(kTargetRpm, ControlType.{control})",
         "  private FlywheelSparkMaxConfig() {}",
         "}",
         "",

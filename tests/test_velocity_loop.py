@@ -94,7 +94,9 @@ def cases():
     return out
 
 
-def wpilib_run(c, out):
+def wpilib_run(c, out, acceleration=None):
+    """The robot loop on FlywheelSim; with an acceleration, the setpoint ramped by it each period and
+    the feedforward SimpleMotorFeedforward.calculate(setpoint, next), the PID against next."""
     base, _ = motors.lookup(c["name"], "wpilib")
     n, G, J = out["motor_count"], out["ratio"], c["J"]
     gearbox = DCMotor(base.v_spec, base.stall_torque, base.stall_current, 0.0, base.free_speed, n)
@@ -110,10 +112,16 @@ def wpilib_run(c, out):
     delay_sub = round(out["sensor_delay"] / SUB)
     history = [0.0]
     at_updates = []
+    setpoint = 0.0
     for k in range(round(window / PERIOD)):
         at_updates.append(history[-1])
         measured = history[max(k * per - delay_sub, 0)]
-        V = max(-12.0, min(12.0, ff.calculate(r) + pid.calculate(measured, r)))
+        if acceleration is None:
+            V = max(-12.0, min(12.0, ff.calculate(r) + pid.calculate(measured, r)))
+        else:
+            nxt = min(r, setpoint + acceleration * PERIOD)
+            V = max(-12.0, min(12.0, ff.calculate(setpoint, nxt) + pid.calculate(measured, nxt)))
+            setpoint = nxt
         sim.setInputVoltage(V)
         for _ in range(per):
             sim.update(SUB)
@@ -155,6 +163,59 @@ def test_velocity_loop_matches_flywheelsim(no_free_current, index):
             if name == "loop_recovery_time":
                 mine += out["shot_time"]
             assert -1e-9 <= theirs - mine <= SUB + 1e-9, (name, mine, theirs)
+
+
+@pytest.mark.parametrize("index", range(CASES))
+def test_ramped_setpoint_matches_flywheelsim(no_free_current, index):
+    """(VL4a): the ramp at a fraction of the stall acceleration, against FlywheelSim driven by
+    SimpleMotorFeedforward.calculate(setpoint, next) + PIDController against next."""
+    c = cases()[index]
+    fraction = random.Random(index).uniform(0.15, 0.9)
+    raw = c["raw"] | {"setpoint_profile": "ramp", "ramp_fraction": fraction}
+    sol = solve("flywheel", raw)
+    out = {k: v.value for k, v in sol.outputs.items()}
+    out.update({k: v.value for k, v in sol.inputs.items()})
+    a = out["loop_ramp_acceleration"]
+    assert a == pytest.approx(fraction * 12.0 / out["kA"], rel=1e-12)  # kS = 0 here
+    at_updates, spin, recover = wpilib_run(c, out, acceleration=a)
+    ts, ws = sol.series["loop speed"]
+    mine_at_updates = [w for t, w in zip(ts, ws) if abs(t / PERIOD - round(t / PERIOD)) < 1e-9]
+    assert len(mine_at_updates) == len(at_updates)
+    worst = max(abs(x - y) for x, y in zip(at_updates, mine_at_updates))
+    assert worst <= TRACE_TOL * out["target_speed"], worst
+    for name, theirs in (("loop_spin_up_time", spin), ("loop_recovery_time", recover)):
+        mine = out.get(name)
+        assert (mine is None) == (theirs is None), (name, mine, theirs)
+        if mine is not None:
+            if name == "loop_recovery_time":
+                mine += out["shot_time"]
+            assert -1e-9 <= theirs - mine <= SUB + 1e-9, (name, mine, theirs)
+    # the ramp's chart: up to the target at r/a, then level
+    target_t, target_w = sol.series["loop target"]
+    assert target_t[1] == pytest.approx(out["target_speed"] / a, rel=1e-12) and target_w[0] == 0.0
+
+
+def test_ramp_feedforward_alone_tracks_the_ramp(no_free_current):
+    """A ramp's feedforward holds a wheel with no feedback on its ramp (kP = 0, no delay): the speed at
+    each update is the setpoint to rounding, which kS + kV·r alone (the step's feedforward) misses."""
+    c = cases()[0]
+    raw = c["raw"] | {
+        "setpoint_profile": "ramp",
+        "ramp_fraction": 0.5,
+        "feedback": "entered",
+        "feedback_kp": 0,
+        "sensor_delay": "0 ms",
+    }
+    sol = solve("flywheel", raw)
+    a = sol.outputs["loop_ramp_acceleration"].value
+    r, shot_time = sol.inputs["target_speed"].value, sol.inputs["shot_time"].value
+    ts, ws = sol.series["loop speed"]
+    checked = 0
+    for t, w in zip(ts, ws):
+        if t < shot_time and abs(t / PERIOD - round(t / PERIOD)) < 1e-9:
+            assert w == pytest.approx(min(a * t, r), rel=1e-9, abs=1e-9 * r), t
+            checked += 1
+    assert checked > 20 and a * 0.2 < r  # the ramp spans many updates
 
 
 def test_lqr_kp_is_wpilibs():
@@ -385,3 +446,46 @@ def test_rotor_kv_is_the_motors_own(no_free_current, ratio):
     assert rotor["target_rps"] == pytest.approx(2000 / 60, rel=1e-12)  # the rotor at 2000 rpm
     names = [d.name for d in flywheel_calc.CALCULATOR.documents]
     assert names == ["wpilib-java", "wpilib-python", "phoenix6", "phoenix6-rotor", "revlib"]
+
+
+def test_ramp_exports_by_hand():
+    """(GC7): a 200π rad/s² ramp (6000 wheel rpm/s) is 100 wheel rps/s, 150 rotor rps/s at G = 1.5,
+    6000 wheel rpm/s for MAXMotion; the step's requests become the profiled ones."""
+    from dataclasses import replace
+
+    g = replace(HAND, acceleration=200 * math.pi)
+    wheel = gains_code.flywheel_phoenix6_values(g)
+    rotor = gains_code.flywheel_phoenix6_values(g, rotor=True)
+    rev = gains_code.flywheel_revlib_values(g)
+    assert wheel["MotionMagicAcceleration"] == pytest.approx(100.0, rel=1e-15)
+    assert rotor["MotionMagicAcceleration"] == pytest.approx(150.0, rel=1e-15)
+    assert rev["maxAcceleration"] == pytest.approx(6000.0, rel=1e-15)
+    java = gains_code.flywheel_phoenix6_java(g)
+    assert "new MotionMagicVelocityVoltage(kTargetRps)" in java and "MotionMagicJerk = 0.0" in java
+    assert "VelocityVoltage(kTargetRps)" not in java.replace("MotionMagicVelocityVoltage", "")
+    assert "beyond the config's maximum" not in java
+    fast = gains_code.flywheel_phoenix6_java(replace(HAND, acceleration=2 * math.pi * 10_000))
+    assert "beyond the config's maximum" in fast  # 10000 rps/s > MotionMagicAcceleration's 9999
+    revj = gains_code.flywheel_revlib_java(g)
+    assert "kMAXMotionVelocityControl" in revj and f".maxAcceleration({rev['maxAcceleration']!r})" in revj
+    namespace: dict = {}
+    exec(gains_code.flywheel_wpilib_python(g), namespace)  # noqa: S102 - our own text
+    assert namespace["ACCELERATION"] == 200 * math.pi
+    assert "feedforward.calculate(setpoint, nxt)" in gains_code.flywheel_wpilib_python(g)
+    assert "kAcceleration = 628.3185307179587;" in gains_code.flywheel_wpilib_java(g)
+    step = gains_code.flywheel_phoenix6_java(HAND)
+    assert "MotionMagic" not in step and "MotionMagic" not in gains_code.flywheel_revlib_java(HAND)
+
+
+def test_ramp_refuses_a_wheel_it_cannot_accelerate():
+    with pytest.raises(InputError) as exc:
+        solve(
+            "flywheel",
+            {
+                "control": "velocity_loop",
+                "setpoint_profile": "ramp",
+                "ramp_limit": "entered",
+                "ramp_acceleration": "0 rpm/s",
+            },
+        )
+    assert "ramp_acceleration" in str(exc.value)

@@ -91,7 +91,10 @@ The motor side, labelled here (A = G·τ̃s the wheel torque at stall, B = A/ω_
         voltage V_b − R_bus·(u·I)_peak                                                      (FW5)
 Velocity loop (control = velocity_loop; issue 30): the wheel under robot code's feedforward plus
 proportional feedback at the control period, core.sim.velocity_loop (VL1)-(VL9): the motor of (F1)
-with the held duty of each period, kS/kV/kA per rad/s at the wheel (VL2), LQR's kP (VL9). The shot
+with the held duty of each period, kS/kV/kA per rad/s at the wheel (VL2), LQR's kP (VL9); the
+setpoint a step to the target, or a ramp from rest at an entered acceleration or a fraction of the
+stall acceleration (V_b − kS)/kA with WPILib's discrete feedforward (VL4a), as Motion Magic Velocity
+and MAXMotion velocity run it. The shot
 is the model chosen above ((5) or the momentum model), from the wheel's speed at the shot time, as
 an instant drop (with motor_during_shot its slip phase runs at full power, as in the burst).
 `range_error_linear` is the seed's (9) whatever transfer model, losses or height are chosen: the
@@ -178,6 +181,9 @@ def _motor_fields():
 
 
 LOOP = (("control", ("velocity_loop",)),)
+SETPOINTS = ("step", "ramp")
+SETPOINT_LABELS = ("Step to the target", "Ramp at an acceleration to the target")
+RAMP = LOOP + (("setpoint_profile", ("ramp",)),)
 LOOP_FIELDS = (
     Field(
         "control",
@@ -234,6 +240,52 @@ LOOP_FIELDS = (
         when=LOOP,
         help="When the ball is shot (the wheel speed drops as the shot model says, at once); the loop "
         "is simulated to this time plus the larger of 1 s and it.",
+    ),
+    Field(
+        "setpoint_profile",
+        "Setpoint",
+        choices=SETPOINTS,
+        choice_labels=SETPOINT_LABELS,
+        default="step",
+        when=LOOP,
+        help="Step: the loop asks for the target at once (VelocityVoltage, kVelocity). Ramp: the "
+        "setpoint rises from rest at a set acceleration to the target, with kA's feedforward "
+        "(VL4a; Motion Magic Velocity, MAXMotion velocity).",
+    ),
+    Field(
+        "ramp_limit",
+        "Ramp acceleration from",
+        choices=("derived", "entered"),
+        choice_labels=("A fraction of the stall acceleration", "Entered"),
+        default="derived",
+        when=RAMP,
+        help="The ramp's acceleration: a fraction of the wheel's acceleration from rest at full "
+        "voltage, (V_b − kS)/kA (no limit, no sag), or entered.",
+    ),
+    Field(
+        "ramp_fraction",
+        "Ramp fraction",
+        "dimensionless",
+        "",
+        default=0.5,
+        min=0,
+        min_exclusive=True,
+        max=1,
+        when=RAMP + (("ramp_limit", ("derived",)),),
+        help="The ramp's acceleration as a fraction of the stall acceleration (0-1); below 1 leaves "
+        "voltage for the feedback.",
+    ),
+    Field(
+        "ramp_acceleration",
+        "Ramp acceleration",
+        "angular_acceleration",
+        "rpm/s",
+        default=3000,
+        min=0,
+        min_exclusive=True,
+        max=1e9,
+        when=RAMP + (("ramp_limit", ("entered",)),),
+        help="The wheel's setpoint acceleration (MotionMagicAcceleration, MAXMotion maxAcceleration).",
     ),
     Field(
         "feedback",
@@ -698,6 +750,14 @@ LOOP_OUTPUTS = (
         "V*s/rad",
         help="The loop's proportional gain: LQR (VL9) or entered.",
         equation="(VL9)",
+    ),
+    Output(
+        "loop_ramp_acceleration",
+        "Ramp acceleration (velocity loop)",
+        "angular_acceleration",
+        "rpm/s",
+        help="The setpoint's acceleration on a ramp: entered, or the fraction of (V_b − kS)/kA (VL4a).",
+        equation="(VL4a)",
     ),
     Output(
         "control_updates",
@@ -1636,12 +1696,21 @@ def _simulate(v, rtol: float) -> SimRun:
     if v["control"] == "velocity_loop":
         lr = velocity_loop_run(sc, v, rtol, values, warnings)
         series["loop speed"] = (lr.times, lr.speeds)
-        series["loop target"] = ([0.0, lr.times[-1]], [target, target])
+        series["loop target"] = loop_target(v, values, target, lr.times[-1])
         series["loop voltage"] = (lr.volt_t, lr.volts)
         nfev += lr.nfev
         if "loop_spin_up_time" in values:
             key["loop_spin_up_time"] = values["loop_spin_up_time"]
     return SimRun(values, key, nfev, warnings, series)
+
+
+def loop_target(v, values: dict, target: float, t_end: float) -> tuple[list, list]:
+    """The setpoint over the run, for the chart: the step's level, or the ramp and then the level."""
+    a = values.get("loop_ramp_acceleration")
+    if a is None:
+        return [0.0, t_end], [target, target]
+    t_top = min(target / a, t_end)
+    return [0.0, t_top, t_end], [0.0, a * t_top, a * t_top]
 
 
 def loop_wheel(sc: Scene, v):
@@ -1672,6 +1741,19 @@ def loop_wheel(sc: Scene, v):
     )
 
 
+def ramp_acceleration(v, ff: dict) -> float | None:
+    """The ramped setpoint's acceleration (rad/s² at the wheel), None for a step (VL4a): entered, or
+    the fraction of the stall acceleration (V_b − kS)/kA = k·(i_s − i_f)/J of (VL1)."""
+    if v["setpoint_profile"] != "ramp":
+        return None
+    if v["ramp_limit"] == "entered":
+        return v["ramp_acceleration"]
+    a = v["ramp_fraction"] * (v["voltage"] - ff["kS"]) / ff["kA"]
+    if not (math.isfinite(a) and a > 0):
+        raise InputError("ramp_fraction", "the motors cannot accelerate the wheel from rest: no ramp to take")
+    return a
+
+
 def velocity_loop_run(sc: Scene, v, rtol: float, values: dict, warnings: list):
     """The velocity-loop mode's outputs (core.sim.velocity_loop), added to `values`."""
     w = loop_wheel(sc, v)
@@ -1694,7 +1776,10 @@ def velocity_loop_run(sc: Scene, v, rtol: float, values: dict, warnings: list):
             "lengthen the control period or shoot earlier",
         )
     target = v["target_speed"]
-    loop = velocity_loop.Loop(ff["kS"], ff["kV"], kP, dt, delay, v["speed_tolerance"])
+    acceleration = ramp_acceleration(v, ff)
+    loop = velocity_loop.Loop(
+        ff["kS"], ff["kV"], kP, dt, delay, v["speed_tolerance"], kA=ff["kA"], acceleration=acceleration
+    )
     m0 = v["ball_mass"]
 
     def after_shot(omega: float) -> float:
@@ -1715,6 +1800,13 @@ def velocity_loop_run(sc: Scene, v, rtol: float, values: dict, warnings: list):
             "control_updates": lr.updates,
         }
     )
+    if acceleration is not None:
+        values["loop_ramp_acceleration"] = acceleration
+        if target / acceleration > shot_time:
+            warnings.append(
+                f"The ramp reaches the target at {target / acceleration:.3g} s, after the shot at "
+                f"{shot_time:.3g} s: raise the ramp's acceleration or shoot later."
+            )
     if lr.spin_up_time is not None:
         values["loop_spin_up_time"] = lr.spin_up_time
     else:
@@ -1746,6 +1838,7 @@ def flywheel_gains_of(solution) -> gains_code.FlywheelGains:
         raise ValueError("the gains are exported from the velocity loop: set control = velocity_loop")
     on = v["effects"]
     return gains_code.FlywheelGains(
+        acceleration=out.get("loop_ramp_acceleration"),
         kS=out["kS"],
         kV=out["kV"],
         kA=out["kA"],
