@@ -103,7 +103,7 @@ def test_every_builtin_declaration_passes():
 EXTRA = {
     "pneumatics": [{"c3_count": 1}],
     "ratio_finder": [{"target_ratio": 5000, "families": "gear_20dp"}],
-    "flywheel": [{"control": "velocity_loop", "setpoint_profile": "ramp"}],
+    "flywheel": [{"control": "velocity_loop", "setpoint_profile": "ramp"}, {"control": "limit_grid"}],
 }
 
 
