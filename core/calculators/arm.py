@@ -354,7 +354,7 @@ def gains_of(solution) -> gains_code.Gains:
     return gains_code.profiled_gains(solution, lambda v: 2 * math.pi, title="Arm", arm=True)
 
 
-DOCUMENTS = gains_code.mechanism_documents("Arm", gains_of, phoenix_note=", Arm_Cosine", revlib=False)
+DOCUMENTS = gains_code.mechanism_documents("Arm", gains_of, phoenix_note=", Arm_Cosine")
 
 CALCULATOR = Calculator(
     id="arm",
