@@ -40,8 +40,11 @@ bounded Brent on the accurate move around the best (motion.optimise)            
 Profiled move (core.sim.profiled (P1)-(P11)): the trapezoid in angle (or WPILib's exponential profile
 on the angle's kV, kA (AR9) from an entered max input, (P12)-(P15)), the feedforward (AR9) with
 kG·cos θ at the setpoint's angle, PD feedback (the LQR gains (AR10) or entered) every control period
-on the angle measured `sensor_delay` earlier, the voltage held and clamped; the up move and the down
-move are two solves (swap start and goal: the gravity helps one and loads the other)          (AR12)
+on the angle measured `sensor_delay` earlier, the voltage held and clamped                   (AR12)
+Return move: one solve runs both ways, the gravity helping one and loading the other (the down move
+is where the loop brakes and the current limits bite): from rest at the goal back to the start with
+the same gains and the same profile (a derived trapezoid keeps the first move's limits), its
+figures reported as "Return move: …" beside the first move's, its warnings prefixed (P16)   (AR13)
 """
 
 from __future__ import annotations
@@ -232,6 +235,7 @@ OUTPUTS = (
     *profiled.profile_outputs(
         ("angle", "deg"), ("angular_speed", "deg/s"), ("angular_acceleration", "deg/s**2")
     ),
+    *profiled.return_outputs(("angle", "deg"), "goal angle to start angle"),
     *STATS_OUTPUTS,
 )
 # what each shared output means here (equation, help), in this module's numbering
@@ -336,7 +340,8 @@ def simulate(v, rtol: float):
     elif v["mode"] == "profiled":
         s = setup(v)
         ff = motion.feedforward(s, 0.0)  # (AR9): kG at horizontal
-        run = profiled.run_profiled(s, v, rtol, ff, lambda q: ff["kG"] * math.cos(q))  # (AR12)
+        kG = lambda q: ff["kG"] * math.cos(q)  # noqa: E731
+        run = profiled.run_profiled(s, v, rtol, ff, kG, return_move=True)  # (AR12), (AR13)
     else:
         run = motion.run_move(setup(v), rtol, hold_q=0.0)
     run.values["moment_of_inertia"] = inertia(v)
@@ -346,7 +351,14 @@ def simulate(v, rtol: float):
     return run
 
 
-compute = compute_with_stats(simulate)
+_compute = compute_with_stats(simulate)
+
+
+def compute(values):
+    result = _compute(values)
+    if profiled.RETURN_PREFIX + "position" in result.series:  # the return plot's legend (AR13)
+        result.series_labels.update(profiled.RETURN_SERIES_LABELS)
+    return result
 
 
 def gains_of(solution) -> gains_code.Gains:
@@ -367,5 +379,6 @@ CALCULATOR = Calculator(
     exports={"ratio_finder": {"target_ratio": "best_ratio"}},  # optimise mode: the parts for that ratio
     documents=DOCUMENTS,  # profiled mode: the gains as code
     plots=motion.plots("angle", "angle", "deg", "angular_speed", "deg/s")
-    + profiled.profile_plots("angle", "angle", "deg"),
+    + profiled.profile_plots("angle", "angle", "deg")
+    + profiled.return_plots("angle", "angle", "deg"),
 )

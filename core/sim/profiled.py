@@ -52,13 +52,15 @@ Outputs:
     peak stator |I| and supply u·I per motor, lowest bus V_b − R_bus·max(u·I): over the
     integrator's step points and each period's ends (the current jumps at an update)    (P11)
     energy = ∫ N·V_b·u·I dt (regeneration negative)
+The return move (an arm's way back): (P1)-(P11) from rest at the goal to the start, q0 ↔ q1,
+with the same loop and profile                                                         (P16)
 """
 
 from __future__ import annotations
 
 import bisect
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any
 
@@ -989,6 +991,68 @@ def profile_plots(label: str, pos_q: str, pos_u: str) -> tuple:
     )
 
 
+def return_outputs(pos: tuple[str, str], other_way: str) -> tuple:
+    """The return move's figures (P16), each beside the first move's of the same name."""
+    from ..declarations import Output
+
+    back = f"The move back from the goal to the start ({other_way}), same gains and profile (P16)"
+    figures = (
+        (
+            "settle_time",
+            "settle time",
+            "time",
+            "s",
+            "from its start until within the tolerance of the start (P8)",
+        ),
+        ("overshoot", "overshoot", *pos, "farthest past the start (P9)"),
+        (
+            "final_error",
+            "steady-state error",
+            *pos,
+            "start minus position at the window's end, positive short (P9)",
+        ),
+        (
+            "peak_tracking_error",
+            "peak tracking error",
+            *pos,
+            "largest |profile − position| at the updates (P10)",
+        ),
+        ("peak_stator_current", "peak stator current", "current", "A", "per motor (P11)"),
+        ("peak_supply_current", "peak supply current", "current", "A", "per motor (P11)"),
+        ("min_bus_voltage", "min bus voltage", "voltage", "V", "the battery's minus the sag (P11)"),
+        ("energy", "energy", "energy", "J", "drawn from the battery, regeneration negative (P11)"),
+    )
+    return tuple(
+        Output(
+            RETURN_PREFIX + name,
+            f"Return move: {label}",
+            quantity,
+            unit,
+            help=f"{back}: {what}.",
+            equation="(P16)",
+        )
+        for name, label, quantity, unit, what in figures
+    )
+
+
+def return_plots(label: str, pos_q: str, pos_u: str) -> tuple:
+    """The return move's position against its profile, time from the return's start (P16)."""
+    from ..declarations import Plot
+
+    return (
+        Plot(
+            f"Return move: {label} vs profile (profiled)",
+            (RETURN_PREFIX + "position", RETURN_PREFIX + "profile"),
+            "time",
+            "time",
+            "s",
+            label,
+            pos_q,
+            pos_u,
+        ),
+    )
+
+
 def stall_acceleration(setup) -> float:
     """Acceleration toward the goal from rest at full voltage against the load at the start (M4)."""
     from .motion import electrical, field_force, friction_of
@@ -1074,11 +1138,80 @@ def loop_of(setup, v, ff: dict, kG) -> tuple[Loop, Trapezoid | Exponential, dict
 MAX_UPDATES = 5_000  # 100 s of a 20 ms loop: within one solve's budget (scene.SOLVE_NFEV)
 
 
-def run_profiled(setup, v, rtol: float, ff: dict, kG) -> SimRun:
-    """Every output of the profiled mode (the gains shown are those the loop used)."""
+def run_profiled(setup, v, rtol: float, ff: dict, kG, return_move: bool = False) -> SimRun:
+    """Every output of the profiled mode (the gains shown are those the loop used); with
+    `return_move`, the move back as well (P16)."""
     loop, profile, gains = loop_of(setup, v, ff, kG)
     pr = profiled_move(setup, loop, profile, rtol)
     extra = {**ff, **gains, "free_speed": setup.mech.free_speed}
-    if isinstance(profile, Exponential):
-        return as_sim_run(pr, extra, loop, "lower the max input")
-    return as_sim_run(pr, extra, loop)
+    slower = "lower the max input" if isinstance(profile, Exponential) else "lower the fractions or limits"
+    run = as_sim_run(pr, extra, loop, slower)
+    if return_move:
+        add_return_move(run, setup, v, loop, profile, rtol, slower)
+    return run
+
+
+# --- the return move: back from the goal to the start with the same loop and profile -------------
+#
+# Robot code holds one set of gains and one profile's constraints for both ways; the mechanism
+# leaves the goal at rest (exactly at it, not where the first move ended: the return's figures are
+# then those of a solve with start and goal swapped and the same profile, whatever the first move's
+# final error) and the loop runs the same profile toward the start:
+#     the return move = (P1)-(P11) with q0 ↔ q1, the same Loop and the same profile        (P16)
+# A derived trapezoid keeps the first move's limits (the fractions of the acceleration at stall
+# against the load at the start, (M4)): a separate solve of the way back would derive its own.
+
+RETURN_PREFIX = "return_"
+RETURN_FIGURES = (
+    "settle_time",
+    "overshoot",
+    "final_error",
+    "peak_tracking_error",
+    "peak_stator_current",
+    "peak_supply_current",
+    "min_bus_voltage",
+    "energy",
+)
+RETURN_WARNING = "Return move (goal → start): "
+RETURN_SERIES_LABELS = {RETURN_PREFIX + "position": "position", RETURN_PREFIX + "profile": "profile"}
+
+
+def reversed_setup(setup):
+    """The same mechanism and effects moving from the goal back to the start (q0 and q1 swapped).
+    The effects' parts (the field force of q, the limits, the sag) do not depend on the direction,
+    so the assembly is shared."""
+    m = setup.mech
+    return replace(setup, mech=replace(m, q0=m.q1, q1=m.q0))
+
+
+def return_move(setup, v, loop: Loop, profile: Trapezoid | Exponential, rtol: float, slower: str) -> SimRun:
+    """(P16): the move back as a SimRun of its own (its warnings unprefixed), or InputError when the
+    mechanism cannot make it (check_can_move: e.g. a counterbalance the motors cannot pull down)."""
+    from .motion import check_can_move
+    from .motor_limits import braking_warning
+
+    back = reversed_setup(setup)
+    check_can_move(back)
+    run = as_sim_run(profiled_move(back, loop, profile, rtol), {}, loop, slower)
+    braking_warning(v, run)
+    return run
+
+
+def add_return_move(
+    run: SimRun, setup, v, loop: Loop, profile: Trapezoid | Exponential, rtol: float, slower: str
+) -> None:
+    """Add the return move's figures (as return_<name>), its key results, work, position and
+    profile series and its warnings (prefixed) to `run`, the first move's."""
+    try:
+        back = return_move(setup, v, loop, profile, rtol, slower)
+    except InputError as exc:
+        run.warnings.append(f"{RETURN_WARNING}not simulated: {exc.field} {exc.message}.")
+        return
+    for name in RETURN_FIGURES:
+        if name in back.values:
+            run.values[RETURN_PREFIX + name] = back.values[name]
+    run.key.update({RETURN_PREFIX + k: x for k, x in back.key.items()})
+    run.nfev += back.nfev
+    run.series[RETURN_PREFIX + "position"] = back.series["position"]
+    run.series[RETURN_PREFIX + "profile"] = back.series["profile"]
+    run.warnings += [RETURN_WARNING + w[0].lower() + w[1:] for w in back.warnings]
