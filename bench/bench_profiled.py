@@ -11,6 +11,9 @@ Run:  .venv/bin/python bench/bench_profiled.py
   reference);
 - the current-limit grid (11 stator × 7 supply limits, elevator.simulate once, no error estimate),
   median of 3, beside one optimise-mode solve of the same elevator (the baseline); goal ≤ 2 s;
+- the arm's profiled solve (arm.simulate at the default accuracy), which runs the return move too
+  (P16), median of 30, beside the one-way solve it replaced (the same setup and run_profiled without
+  the return, measured in the same run: the baseline);
 - the flywheel's velocity loop (core.sim.velocity_loop: closed form per period, DP54 per period
   with a current limit), median of 30, beside the full-power spin-up of the same flywheel (the
   baseline, the default mode).
@@ -139,8 +142,53 @@ def flywheel_loop() -> None:
         )
 
 
+ARM_CASES = {
+    "arm, gravity": {},
+    "arm, limits + sag + friction + spring": {
+        "effects": "gravity, stator_limit, supply_limit, battery_sag, friction, counterbalance",
+        "stator_current_limit": "60 A",
+        "supply_current_limit": "40 A",
+        "sensor_delay": "10 ms",
+    },
+    "arm, exponential 8 V": {"profile_type": "exponential", "max_input": "8 V"},
+}
+
+
+def arm_return() -> None:
+    import math
+
+    from gearhead.core.calculators import arm
+    from gearhead.core.model import parse_inputs
+    from gearhead.core.registry import get
+    from gearhead.core.sim import motion, profiled
+    from gearhead.core.sim.motor_limits import braking_warning
+    from gearhead.core.sim.scene import LEVELS
+
+    rtol = LEVELS["default"]
+    calc = get("arm")
+
+    def one_way(v):  # arm.simulate's profiled branch before the return move
+        s = arm.setup(v)
+        ff = motion.feedforward(s, 0.0)
+        run = profiled.run_profiled(s, v, rtol, ff, lambda q: ff["kG"] * math.cos(q))
+        braking_warning(v, run)
+        return run
+
+    for label, raw in ARM_CASES.items():
+        v, _ = parse_inputs(calc, {**raw, "mode": "profiled"})
+        t_one = median_seconds(lambda: one_way(v), 30) * 1e3
+        t_both = median_seconds(lambda: arm.simulate(v, rtol), 30) * 1e3
+        n_one, n_both = one_way(v).nfev, arm.simulate(v, rtol).nfev
+        print(
+            f"  {label:<40} both ways {t_both:6.2f} ms  (one way {t_one:6.2f} ms, x{t_both / t_one:.2f})  "
+            f"rhs {n_both} (one way {n_one})"
+        )
+
+
 if __name__ == "__main__":
     main()
+    print("Arm profiled solve with the return move, median of 30 (baseline: the one-way solve, same arm):")
+    arm_return()
     print("Current-limit grid (median of 3):")
     grid()
     print("Flywheel velocity loop, median of 30 (baseline: the full-power spin-up, same flywheel):")
