@@ -235,7 +235,7 @@ OUTPUTS = (
     *profiled.profile_outputs(
         ("angle", "deg"), ("angular_speed", "deg/s"), ("angular_acceleration", "deg/s**2")
     ),
-    *profiled.return_outputs(("angle", "deg"), "goal angle to start angle"),
+    *profiled.return_outputs(("angle", "deg")),
     *STATS_OUTPUTS,
 )
 # what each shared output means here (equation, help), in this module's numbering

@@ -991,36 +991,20 @@ def profile_plots(label: str, pos_q: str, pos_u: str) -> tuple:
     )
 
 
-def return_outputs(pos: tuple[str, str], other_way: str) -> tuple:
+def return_outputs(pos: tuple[str, str]) -> tuple:
     """The return move's figures (P16), each beside the first move's of the same name."""
     from ..declarations import Output
 
-    back = f"The move back from the goal to the start ({other_way}), same gains and profile (P16)"
+    back = "Goal back to start, same gains and profile (P16)"
     figures = (
-        (
-            "settle_time",
-            "settle time",
-            "time",
-            "s",
-            "from its start until within the tolerance of the start (P8)",
-        ),
+        ("settle_time", "settle time", "time", "s", "until it stays within the tolerance of the start (P8)"),
         ("overshoot", "overshoot", *pos, "farthest past the start (P9)"),
-        (
-            "final_error",
-            "steady-state error",
-            *pos,
-            "start minus position at the window's end, positive short (P9)",
-        ),
-        (
-            "peak_tracking_error",
-            "peak tracking error",
-            *pos,
-            "largest |profile − position| at the updates (P10)",
-        ),
+        ("final_error", "steady-state error", *pos, "start minus position at the end (positive: short) (P9)"),
+        ("peak_tracking_error", "peak tracking error", *pos, "largest |profile − position| (P10)"),
         ("peak_stator_current", "peak stator current", "current", "A", "per motor (P11)"),
         ("peak_supply_current", "peak supply current", "current", "A", "per motor (P11)"),
-        ("min_bus_voltage", "min bus voltage", "voltage", "V", "the battery's minus the sag (P11)"),
-        ("energy", "energy", "energy", "J", "drawn from the battery, regeneration negative (P11)"),
+        ("min_bus_voltage", "min bus voltage", "voltage", "V", "battery minus the sag (P11)"),
+        ("energy", "energy", "energy", "J", "from the battery, regeneration negative (P11)"),
     )
     return tuple(
         Output(
