@@ -53,6 +53,47 @@ class Plot:
 
 
 @dataclass(frozen=True)
+class HeatMap:
+    """A chart of one value over a grid of two (e.g. the time per stator × supply current limit):
+    a coloured cell with its value for each pair, one cell marked (the pick). Listed among a
+    calculator's plots; its data is Result.heat_maps[name] (x, y, z in SI)."""
+
+    title: str
+    name: str  # key of Result.heat_maps
+    x_label: str  # the columns
+    x_quantity: str
+    x_unit: str
+    y_label: str  # the rows
+    y_quantity: str
+    y_unit: str
+    z_label: str  # the value in each cell
+    z_quantity: str
+    z_unit: str
+    series: tuple[str, ...] = ()  # no line series: code that draws lines finds none here
+
+
+@dataclass
+class HeatMapData:
+    """A heat map's values: z[row][column] at (x[column], y[row]), all SI; None where there is no
+    value (`notes` then holds a short word for the cell: why); `pick` the (row, column) marked."""
+
+    x: list[float]
+    y: list[float]
+    z: list[list[float | None]]
+    pick: tuple[int, int] | None = None
+    notes: list[list[str]] = dc_field(default_factory=list)
+
+    def as_json(self) -> dict[str, Any]:
+        return {
+            "x": self.x,
+            "y": self.y,
+            "z": self.z,
+            "pick": list(self.pick) if self.pick else None,
+            "notes": self.notes,
+        }
+
+
+@dataclass(frozen=True)
 class Column:
     """One column of a Table: a value per row, in SI like an Output."""
 
@@ -98,6 +139,7 @@ class Result:
     # what a chart's legend calls a series whose key is a slot, not a name (the motors table's
     # "curve 1" is the motor chosen for it); a key not here is its own label
     series_labels: dict[str, str] = dc_field(default_factory=dict)
+    heat_maps: dict[str, HeatMapData] = dc_field(default_factory=dict)  # the data of each HeatMap
 
 
 @dataclass(frozen=True)
@@ -122,7 +164,7 @@ class Calculator:
     section: str = ""  # where in the seed it comes from
     # Outputs that feed another calculator: {target_id: {target_field: output_name}}
     exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
-    plots: tuple[Plot, ...] = ()
+    plots: tuple[Plot | HeatMap, ...] = ()
     tables: tuple[Table, ...] = ()
     documents: tuple[Document, ...] = ()  # files for other tools (ctrl+e, `solve --document NAME`)
     # Simulated calculators: simulate(values, rtol) -> core.sim.scene.SimRun (for the accuracy ladder)
@@ -256,6 +298,8 @@ def check(calc: Calculator) -> None:
     for p in calc.plots:
         _check_unit(cid, f"plot {p.title!r} x axis", p.x_unit, p.x_quantity)
         _check_unit(cid, f"plot {p.title!r} y axis", p.y_unit, p.y_quantity)
+        if isinstance(p, HeatMap):
+            _check_unit(cid, f"plot {p.title!r} values", p.z_unit, p.z_quantity)
     for target, mapping in calc.exports.items():
         for target_field, output in mapping.items():
             if output not in out_names:

@@ -41,6 +41,10 @@ Profiled move (core.sim.profiled (P1)-(P11)): the trapezoid in angle, the feedfo
 kG·cos θ at the setpoint's angle, PD feedback (the LQR gains (AR10) or entered) every control period
 on the angle measured `sensor_delay` earlier, the voltage held and clamped; the up move and the down
 move are two solves (swap start and goal: the gravity helps one and loads the other)          (AR12)
+Current-limit grid (core.sim.limit_grid): for each stator × supply limit pair the fastest ratio of
+the full-voltage swing (AR4), its time, peak currents and energy, the pick within a supply budget;
+a pair whose motors at rest cannot beat gravity's largest torque on the path (m·g·L·cos θ at the
+angle nearest horizontal, less the counterbalance) at any ratio up to 1e5 "cannot hold"       (AR13)
 """
 
 from __future__ import annotations
@@ -50,14 +54,14 @@ from dataclasses import replace
 
 from .. import gains_code
 from ..constants import G0 as G
-from ..declarations import Calculator, Output
+from ..declarations import Calculator, Output, Result
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
-from ..sim import motion, profiled
+from ..sim import limit_grid, motion, profiled
 from ..sim.effects import Effect, Effects, Part
 from ..sim.motor_limits import braking_warning
-from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
+from ..sim.scene import STATS_OUTPUTS, accuracy_field, run_with_stats
 
 INERTIA_MODELS = ("uniform_bar", "entered")
 INERTIA_LABELS = ("Uniform bar: I = 4/3·m·L² (bar of length 2L)", "Entered moment of inertia")
@@ -104,7 +108,7 @@ EFFECTS = Effects(
 
 
 FIELDS = (
-    motion.mode_field(profiled=True),
+    motion.mode_field(profiled=True, grid=True),
     *motion.battery_motor_fields("Kraken X60", 1),
     Field(
         "ratio",
@@ -197,6 +201,7 @@ FIELDS = (
         ("voltage_per_angular_speed", "V*s/deg", 0.01),
         1.0,
     ),
+    *limit_grid.fields(),
     accuracy_field(),
 )
 
@@ -231,6 +236,7 @@ OUTPUTS = (
     *profiled.profile_outputs(
         ("angle", "deg"), ("angular_speed", "deg/s"), ("angular_acceleration", "deg/s**2")
     ),
+    *limit_grid.outputs(),
     *STATS_OUTPUTS,
 )
 # what each shared output means here (equation, help), in this module's numbering
@@ -332,6 +338,16 @@ def simulate(v, rtol: float):
         run = motion.optimise(
             lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, 1.0, hold_q=0.0
         )
+    elif v["mode"] == "limit_grid":
+        run = limit_grid.run(  # (AR13)
+            lambda values, G_=None, xp=motion.SCALAR: setup(values, G_, xp),
+            dict(v),
+            limit_grid.axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator"),
+            limit_grid.axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply"),
+            v["supply_budget"],
+            rtol,
+            1.0,
+        )
     elif v["mode"] == "profiled":
         s = setup(v)
         ff = motion.feedforward(s, 0.0)  # (AR9): kG at horizontal
@@ -345,7 +361,15 @@ def simulate(v, rtol: float):
     return run
 
 
-compute = compute_with_stats(simulate)
+def compute(values) -> Result:
+    run = run_with_stats(simulate, values)
+    return Result(
+        run.values,
+        run.warnings,
+        run.series,
+        getattr(run, "tables", {}),
+        heat_maps=getattr(run, "heat_maps", {}),
+    )
 
 
 def gains_of(solution) -> gains_code.Gains:
@@ -366,5 +390,7 @@ CALCULATOR = Calculator(
     exports={"ratio_finder": {"target_ratio": "best_ratio"}},  # optimise mode: the parts for that ratio
     documents=DOCUMENTS,  # profiled mode: the gains as code
     plots=motion.plots("angle", "angle", "deg", "angular_speed", "deg/s")
-    + profiled.profile_plots("angle", "angle", "deg"),
+    + profiled.profile_plots("angle", "angle", "deg")
+    + (limit_grid.heat_map_plot(),),
+    tables=(limit_grid.table(),),
 )
