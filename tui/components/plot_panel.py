@@ -12,7 +12,7 @@ from textual.containers import Vertical
 from textual.widgets import Select, Static
 
 from gearhead.core import units
-from gearhead.core.model import Plot, Solution
+from gearhead.core.model import HeatMap, Plot, Solution
 
 from .unit_text import pretty_unit
 
@@ -24,7 +24,7 @@ def axis_label(label: str, unit: str) -> str:
 
 
 class PlotPanel(Vertical):
-    def __init__(self, plots: tuple[Plot, ...]) -> None:
+    def __init__(self, plots: tuple[Plot | HeatMap, ...]) -> None:
         super().__init__(classes="plot-panel")
         self.plots = plots
         self.solution: Solution | None = None
@@ -77,7 +77,7 @@ class PlotPanel(Vertical):
             self._pending = None
 
     @property
-    def current(self) -> Plot:
+    def current(self) -> Plot | HeatMap:
         """The plot on screen (the one the selector shows)."""
         if len(self.plots) > 1:
             return self.plots[self.query_one("#plot-choice", Select).value]
@@ -95,6 +95,13 @@ class PlotPanel(Vertical):
             x_unit=system_unit(spec.x_unit, self.unit_system),
             y_unit=system_unit(spec.y_unit, self.unit_system),
         )
+        if isinstance(spec, HeatMap):
+            await self._show_heat_map(
+                replace(spec, z_unit=system_unit(spec.z_unit, self.unit_system)), solution
+            )
+            return
+        for view in self.query("HeatMapView"):
+            view.display = False
         from textual_plot import HiResMode, PlotWidget
 
         plots = self.query(PlotWidget)
@@ -131,6 +138,27 @@ class PlotPanel(Vertical):
         # Textual markup would swallow "[psi]": escape every label (DESIGN.md pitfall)
         plot.set_xlabel(escape(axis_label(spec.x_label, spec.x_unit)))
         plot.set_ylabel(escape(axis_label(spec.y_label, spec.y_unit)))
+
+    async def _show_heat_map(self, spec: HeatMap, solution: Solution) -> None:
+        from textual_plot import PlotWidget
+
+        from .heat_map import HeatMapView
+
+        for plot in self.query(PlotWidget):
+            plot.display = False
+        data = solution.heat_maps.get(spec.name)
+        views = self.query(HeatMapView)
+        if views:
+            view = views.first()
+        else:
+            if not self.app.is_running:
+                return
+            view = HeatMapView()
+            await self.mount(view)
+        self.query_one("#plot-empty", Static).display = data is None
+        view.display = data is not None
+        if data is not None:
+            view.show(spec, data)
 
 
 @cache
