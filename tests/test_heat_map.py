@@ -113,3 +113,23 @@ async def test_widget_draws_the_cli_text(arm_grid):
         assert view.text_lines() == [s.rstrip() for s in plain_lines(layout(spec, data, 3))[:-1]] + [
             view.text_lines()[-1]
         ]
+
+
+async def test_the_card_shows_the_heat_map_in_the_grid_mode_and_the_lines_out_of_it():
+    from gearhead.tui.app import GearheadApp
+    from tests.tui_helpers import settle
+
+    app = GearheadApp(blink=False, initial="arm", hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.current_tab
+        shown = []
+        for mode in ("limit_grid", "move", "limit_grid", "optimise"):
+            tab._take_entry("mode", mode)
+            await settle(pilot)
+            await pilot.pause()
+            await settle(pilot)
+            shown.append(tab.plot.current.title)
+            view = app.query(HeatMapView)
+            assert bool(view and view.first().display) == (mode == "limit_grid")
+        assert shown == ["Time per current-limit pair (grid)", "Angle"] * 2

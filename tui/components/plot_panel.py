@@ -89,6 +89,10 @@ class PlotPanel(Vertical):
         from gearhead.core.unit_systems import system_unit
 
         self.solution = solution
+        other = self._with_data(solution)
+        if other is not None:  # the selector's change shows it
+            self.query_one("#plot-choice", Select).value = other
+            return
         spec = self.current
         spec = replace(
             spec,
@@ -138,6 +142,23 @@ class PlotPanel(Vertical):
         # Textual markup would swallow "[psi]": escape every label (DESIGN.md pitfall)
         plot.set_xlabel(escape(axis_label(spec.x_label, spec.x_unit)))
         plot.set_ylabel(escape(axis_label(spec.y_label, spec.y_unit)))
+
+    def _has_data(self, plot: Plot | HeatMap, solution: Solution) -> bool:
+        if isinstance(plot, HeatMap):
+            return plot.name in solution.heat_maps
+        return any(solution.series.get(s, ([], []))[0] for s in plot.series)
+
+    def _with_data(self, solution: Solution) -> int | None:
+        """A heat map is the one chart of its mode (the limit grid) and the line charts have no data
+        there: the index of the chart to show instead of the one chosen when the chosen one is empty
+        and a heat map has data (or a heat map is chosen, without data, and a line chart has data)."""
+        if len(self.plots) < 2 or self._has_data(self.current, solution):
+            return None
+        chosen_map = isinstance(self.current, HeatMap)
+        for i, plot in enumerate(self.plots):
+            if isinstance(plot, HeatMap) != chosen_map and self._has_data(plot, solution):
+                return i
+        return None
 
     async def _show_heat_map(self, spec: HeatMap, solution: Solution) -> None:
         from textual_plot import PlotWidget
