@@ -37,6 +37,32 @@ travel; kS, kG in V, kV in V·s/m, kA in V·s²/m, kP in V/m, kD in V·s/m). Eac
       kP_rev = kP/V_b,  kD_rev = kD/(V_b · 1 ms)                                               (GC3)
   smartCurrentLimit is the stator limit (whole amps); REVLib has no supply current limit, said in
   a comment.
+The exponential profile (WPILib ExponentialProfile, max input U volts on the plant kV, kA; the
+profiled move's choice, core.sim.profiled (P12)-(P15)):
+- WPILib: ExponentialProfile.Constraints.fromCharacteristics(U, kV, kA) with a PIDController, the
+  profile advanced each period by the robot code (no ProfiledPIDController takes it); robotpy binds
+  it as ExponentialProfileMeterVolts only, its units labels (an arm's radians go through unchanged).
+- Phoenix 6 Motion Magic Expo (MotionMagicExpoVoltage; CTRE's Motion Magic page: "Dividing the supply
+  voltage by kV results in the maximum velocity of the profile", by kA the maximum acceleration from
+  0; MotionMagicExpo_kV in V/rps, MotionMagicExpo_kA in V/(rps/s), always volts): its profile drives
+  the whole supply voltage V_b, ours U, so the same profile (v_m = U/kV, a_0 = U/kA) takes
+      Expo_kV = kV·L·V_b/U,  Expo_kA = kA·L·V_b/U;  MotionMagicCruiseVelocity = 0 (no cap)    (GC6)
+  (V_b the entered battery voltage: the device reads its own supply, which sags).
+- REVLib: MAXMotion has no exponential profile (MAXMotionConfig.MAXMotionPositionMode offers
+  kMAXMotionTrapezoidal only): the document says so, keeps the closed loop and feedforward, and
+  leaves the profile to the roboRIO (WPILib's, sending each setpoint as a position request).
+  An arm (q the angle from horizontal in rad, L = 2π rad an arm turn): the factors make the native
+  units radians, positionConversionFactor = 2π/G, velocityConversionFactor = 2π/(60·G), and the
+  gravity term is REVLib's kCos with kCosRatio, not kG (REVLib keeps one of the two). REVLib 2026's
+  FeedForwardConfig (javadoc of kCos and kCosRatio; the "Feed Forward Control" page's table: kCos
+  "Arm/rotary mechanism gravity feedforward. Feedback sensor must be configured to 0 =
+  horizontal", kCosRatio "Converts feedback sensor readings to mechanism rotations"): kCos, in
+  volts, "is multiplied by the cosine of the absolute position of the mechanism", that position
+  being the native position times kCosRatio, which "is applied after the conversion factor and
+  should convert from those units to absolute rotations of your mechanism". So the SPARK adds
+  kCos·cos(2π·kCosRatio·q_native), and with q_native in rad
+      kCos = kG,  kCosRatio = 1/L = 1/(2π)  (arm rotations per rad)                           (GC3a)
+  which is ArmFeedforward's kG·cos θ when the encoder reads 0 with the arm horizontal, positive up.
 """
 
 from __future__ import annotations
@@ -45,6 +71,7 @@ import math
 from dataclasses import dataclass
 
 REV_LOOP_PERIOD = 1e-3  # s: the SPARK's closed loop runs at 1 kHz (GC3)
+EXPO_KA_RANGE = (1e-5, 100.0)  # V per rps/s: MotionMagicConfigs.MotionMagicExpo_kA's bounds (CTRE API docs)
 
 
 @dataclass(frozen=True)
@@ -68,6 +95,7 @@ class Gains:
     supply_limit: float | None = None
     title: str = "Elevator"
     arm: bool = False  # q is the arm's angle from horizontal (rad): ArmFeedforward, Arm_Cosine
+    max_input: float | None = None  # V: the exponential profile's U (GC6); None for a trapezoid
 
 
 def _u(g: Gains) -> str:
@@ -86,8 +114,19 @@ def _num(x: float) -> str:
 
 
 def phoenix6_values(g: Gains) -> dict[str, float]:
-    """(GC2): the Slot0 and MotionMagic values, in drum rotations."""
+    """(GC2): the Slot0 and MotionMagic values, in drum rotations ((GC6) for Motion Magic Expo)."""
     L = g.metres_per_rotation
+    if g.max_input is not None:
+        expo = {
+            "MotionMagicCruiseVelocity": 0.0,
+            "MotionMagicExpo_kV": g.kV * L * g.battery_voltage / g.max_input,
+            "MotionMagicExpo_kA": g.kA * L * g.battery_voltage / g.max_input,
+        }
+    else:
+        expo = {
+            "MotionMagicCruiseVelocity": g.max_velocity / L,
+            "MotionMagicAcceleration": g.max_acceleration / L,
+        }
     return {
         "SensorToMechanismRatio": g.ratio,
         "kS": g.kS,
@@ -96,14 +135,15 @@ def phoenix6_values(g: Gains) -> dict[str, float]:
         "kA": g.kA * L,
         "kP": g.kP * L,
         "kD": g.kD * L,
-        "MotionMagicCruiseVelocity": g.max_velocity / L,
-        "MotionMagicAcceleration": g.max_acceleration / L,
+        **expo,
     }
 
 
 def revlib_values(g: Gains) -> dict[str, float]:
-    """(GC3): the encoder's conversion factors and the closed loop's gains."""
+    """(GC3): the encoder's conversion factors and the closed loop's gains; an arm's gravity term as
+    kCos and kCosRatio (GC3a) in place of kG."""
     L, G, Vb = g.metres_per_rotation, g.ratio, g.battery_voltage
+    gravity = {"kCos": g.kG, "kCosRatio": 1.0 / L} if g.arm else {"kG": g.kG}
     return {
         "positionConversionFactor": L / G,
         "velocityConversionFactor": L / G / 60.0,
@@ -113,7 +153,7 @@ def revlib_values(g: Gains) -> dict[str, float]:
         "kS": g.kS,
         "kV": g.kV,
         "kA": g.kA,
-        "kG": g.kG,
+        **gravity,
         "cruiseVelocity": g.max_velocity,
         "maxAcceleration": g.max_acceleration,
         "allowedProfileError": g.tolerance,
@@ -130,6 +170,8 @@ def _header(g: Gains, comment: str) -> str:
 
 
 def wpilib_python(g: Gains) -> str:
+    if g.max_input is not None:
+        return _wpilib_python_exponential(g)
     return (
         _header(g, "#") + f"from wpimath.controller import {_ff(g)}, ProfiledPIDController\n"
         "from wpimath.trajectory import TrapezoidProfile\n\n"
@@ -167,6 +209,8 @@ def _usage(g: Gains) -> str:
 
 
 def wpilib_java(g: Gains) -> str:
+    if g.max_input is not None:
+        return _wpilib_java_exponential(g)
     cls = f"{g.title.replace(' ', '')}Gains"
     return (
         _header(g, "//") + f"import edu.wpi.first.math.controller.{_ff(g)};\n"
@@ -218,13 +262,14 @@ def phoenix6_java(g: Gains) -> str:
         *(
             [
                 "// Positions in arm rotations (SensorToMechanismRatio = motor turns per arm turn), 0 with the",
-                "// arm horizontal (set the sensor's offset so): Arm_Cosine needs it. Request MotionMagicVoltage.",
+                "// arm horizontal (set the sensor's offset so): Arm_Cosine needs it. "
+                f"Request {_phoenix6_request(g)}.",
             ]
             if g.arm
             else [
                 "// Positions in drum rotations (SensorToMechanismRatio = motor turns per drum turn);",
                 f"// one drum rotation = {_num(g.metres_per_rotation)} m of carriage travel. "
-                "Request MotionMagicVoltage.",
+                f"Request {_phoenix6_request(g)}.",
             ]
         ),
         "import com.ctre.phoenix6.configs.TalonFXConfiguration;",
@@ -245,26 +290,31 @@ def phoenix6_java(g: Gains) -> str:
         f"    cfg.Slot0.kP = {_num(v['kP'])}; // V per rotation",
         "    cfg.Slot0.kI = 0.0;",
         f"    cfg.Slot0.kD = {_num(v['kD'])}; // V per rps",
-        f"    cfg.MotionMagic.MotionMagicCruiseVelocity = {_num(v['MotionMagicCruiseVelocity'])}; // rps",
-        f"    cfg.MotionMagic.MotionMagicAcceleration = {_num(v['MotionMagicAcceleration'])}; // rps/s",
-        "    cfg.MotionMagic.MotionMagicJerk = 0.0; // no jerk limit: a trapezoid",
     ]
+    lines += _phoenix6_motion_magic(g, v)
     lines += _phoenix6_current_limits(g)
     lines += ["    return cfg;", "  }", "", f"  private {cls}() {{}}", "}", ""]
     return "\n".join(lines)
 
 
 def revlib_java(g: Gains) -> str:
-    if g.arm:
-        # REVLib's arm term (feedForward.kCos with kCosRatio) is not exported: its docs do not say
-        # what kCosRatio converts, and a wrong one would turn the gravity term the wrong way
-        raise ValueError("REVLib's arm feedforward (kCos, kCosRatio) is not exported; use wpilib-java")
     v = revlib_values(g)
+    u = _u(g)
     cls = f"{g.title.replace(' ', '')}SparkMaxConfig"
     lines = [
         _header(g, "//").rstrip("\n"),
-        "// Native units are SI through the encoder's conversion factors (m, m/s); the PID output is a",
+        f"// Native units are SI through the encoder's conversion factors ({u}, {u}/s); the PID output is a",
         "// duty cycle of the compensated voltage, kD per 1 ms step (the SPARK's loop runs at 1 kHz).",
+        *(
+            [
+                "// Gravity: kCos·cos(2π·kCosRatio·position), kCosRatio turning radians into arm rotations;",
+                "// zero the encoder with the arm horizontal (encoder.setPosition at a known angle, in rad)",
+                "// and make positive the arm going up (config.inverted as needed)."
+                + (" Request kMAXMotionPositionControl." if g.max_input is None else ""),
+            ]
+            if g.arm
+            else []
+        ),
         "import com.revrobotics.spark.FeedbackSensor;",
         "import com.revrobotics.spark.config.SparkMaxConfig;",
         "",
@@ -279,10 +329,18 @@ def revlib_java(g: Gains) -> str:
         lines.append(
             f"    // supply limit {g.supply_limit:g} A per motor: REVLib has none (a stator limit only)"
         )
+    gravity = (
+        [
+            f"        .kCos({_num(v['kCos'])}) // V at horizontal",
+            f"        .kCosRatio({_num(v['kCosRatio'])}); // arm rotations per rad",
+        ]
+        if g.arm
+        else [f"        .kG({_num(v['kG'])});"]
+    )
     lines += [
         "    config.encoder",
-        f"        .positionConversionFactor({_num(v['positionConversionFactor'])}) // m per motor turn",
-        f"        .velocityConversionFactor({_num(v['velocityConversionFactor'])}); // m/s per rpm",
+        f"        .positionConversionFactor({_num(v['positionConversionFactor'])}) // {u} per motor turn",
+        f"        .velocityConversionFactor({_num(v['velocityConversionFactor'])}); // {u}/s per rpm",
         "    config.closedLoop",
         "        .feedbackSensor(FeedbackSensor.kPrimaryEncoder)",
         f"        .p({_num(v['p'])})",
@@ -293,11 +351,10 @@ def revlib_java(g: Gains) -> str:
         f"        .kS({_num(v['kS'])})",
         f"        .kV({_num(v['kV'])})",
         f"        .kA({_num(v['kA'])})",
-        f"        .kG({_num(v['kG'])});",
-        "    config.closedLoop.maxMotion",
-        f"        .cruiseVelocity({_num(v['cruiseVelocity'])}) // m/s",
-        f"        .maxAcceleration({_num(v['maxAcceleration'])}) // m/s^2",
-        f"        .allowedProfileError({_num(v['allowedProfileError'])}); // m",
+        *gravity,
+    ]
+    lines += _revlib_max_motion(g, v, u)
+    lines += [
         "    return config;",
         "  }",
         "",
@@ -306,6 +363,115 @@ def revlib_java(g: Gains) -> str:
         "",
     ]
     return "\n".join(lines)
+
+
+# --- the exponential profile's documents (GC6) ------------------------------------------------------
+
+
+def _wpilib_python_exponential(g: Gains) -> str:
+    ff_args = (
+        "setpoint.position, setpoint.velocity, nxt.velocity" if g.arm else "setpoint.velocity, nxt.velocity"
+    )
+    return (
+        _header(g, "#") + f"from wpimath.controller import {_ff(g)}, PIDController\n"
+        "from wpimath.trajectory import ExponentialProfileMeterVolts\n\n"
+        f"kS = {_num(g.kS)}  # V\n"
+        f"kG = {_num(g.kG)}  # V\n"
+        f"kV = {_num(g.kV)}  # V*s/{_u(g)}\n"
+        f"kA = {_num(g.kA)}  # V*s^2/{_u(g)}\n"
+        f"kP = {_num(g.kP)}  # V/{_u(g)}\n"
+        f"kD = {_num(g.kD)}  # V*s/{_u(g)}\n"
+        f"MAX_INPUT = {_num(g.max_input)}  # V: the profile's, on top of kS and kG\n"
+        f"PERIOD = {_num(g.period)}  # s\n\n"
+        f"feedforward = {_ff(g)}(kS, kG, kV, kA, PERIOD)\n"
+        "controller = PIDController(kP, 0.0, kD, PERIOD)\n"
+        "# robotpy binds ExponentialProfile for metres and volts only; the units are labels"
+        + (" (radians go through unchanged)\n" if g.arm else "\n")
+        + "constraints = ExponentialProfileMeterVolts.Constraints.fromCharacteristics(MAX_INPUT, kV, kA)\n"
+        "profile = ExponentialProfileMeterVolts(constraints)\n"
+        "# start: setpoint = ExponentialProfileMeterVolts.State(position, 0.0); goal = ...State(target, 0.0)\n"
+        "# each period: nxt = profile.calculate(PERIOD, setpoint, goal)\n"
+        "#              volts = controller.calculate(position, nxt.position)\n"
+        f"#                      + feedforward.calculate({ff_args})\n"
+        "#              setpoint = nxt\n"
+    )
+
+
+def _wpilib_java_exponential(g: Gains) -> str:
+    cls = f"{g.title.replace(' ', '')}Gains"
+    ff_args = (
+        "setpoint.position, setpoint.velocity, next.velocity" if g.arm else "setpoint.velocity, next.velocity"
+    )
+    return (
+        _header(g, "//") + f"import edu.wpi.first.math.controller.{_ff(g)};\n"
+        "import edu.wpi.first.math.controller.PIDController;\n"
+        "import edu.wpi.first.math.trajectory.ExponentialProfile;\n\n"
+        "// Each period: var next = profile.calculate(kPeriod, setpoint, goal);\n"
+        "//   volts = controller.calculate(position, next.position)\n"
+        f"//           + feedforward.calculate({ff_args}); setpoint = next;\n"
+        f"public final class {cls} {{\n"
+        f"  public static final double kS = {_num(g.kS)}; // V\n"
+        f"  public static final double kG = {_num(g.kG)}; // V\n"
+        f"  public static final double kV = {_num(g.kV)}; // V*s/{_u(g)}\n"
+        f"  public static final double kA = {_num(g.kA)}; // V*s^2/{_u(g)}\n"
+        f"  public static final double kP = {_num(g.kP)}; // V/{_u(g)}\n"
+        f"  public static final double kD = {_num(g.kD)}; // V*s/{_u(g)}\n"
+        f"  public static final double kMaxInput = {_num(g.max_input)}; // V, on top of kS and kG\n"
+        f"  public static final double kPeriod = {_num(g.period)}; // s\n\n"
+        f"  public static {_ff(g)} feedforward() {{\n"
+        f"    return new {_ff(g)}(kS, kG, kV, kA, kPeriod);\n"
+        "  }\n\n"
+        "  public static PIDController controller() {\n"
+        "    return new PIDController(kP, 0.0, kD, kPeriod);\n"
+        "  }\n\n"
+        "  public static ExponentialProfile profile() {\n"
+        "    return new ExponentialProfile(ExponentialProfile.Constraints.fromCharacteristics(kMaxInput, kV, kA));\n"
+        "  }\n\n"
+        f"  private {cls}() {{}}\n"
+        "}\n"
+    )
+
+
+def _phoenix6_request(g: Gains) -> str:
+    return "MotionMagicVoltage" if g.max_input is None else "MotionMagicExpoVoltage"
+
+
+def _phoenix6_motion_magic(g: Gains, v: dict) -> list[str]:
+    if g.max_input is None:
+        return [
+            f"    cfg.MotionMagic.MotionMagicCruiseVelocity = {_num(v['MotionMagicCruiseVelocity'])}; // rps",
+            f"    cfg.MotionMagic.MotionMagicAcceleration = {_num(v['MotionMagicAcceleration'])}; // rps/s",
+            "    cfg.MotionMagic.MotionMagicJerk = 0.0; // no jerk limit: a trapezoid",
+        ]
+    return [
+        f"    // Motion Magic Expo: the profile of {g.max_input:g} V on kV, kA. CTRE's divides the supply voltage",
+        f"    // by Expo_kV and Expo_kA: they are kV, kA x {g.battery_voltage:g} V / {g.max_input:g} V (GC6)",
+        "    cfg.MotionMagic.MotionMagicCruiseVelocity = 0.0; // no cap: the profile's own limit",
+        f"    cfg.MotionMagic.MotionMagicExpo_kV = {_num(v['MotionMagicExpo_kV'])}; // V per rps",
+        f"    cfg.MotionMagic.MotionMagicExpo_kA = {_num(v['MotionMagicExpo_kA'])}; // V per rps/s",
+    ] + (
+        []
+        if EXPO_KA_RANGE[0] <= v["MotionMagicExpo_kA"] <= EXPO_KA_RANGE[1]
+        else [
+            "    // Expo_kA is outside CTRE's documented range (1e-05 to 100 V per rps/s): the device refuses it"
+        ]
+    )
+
+
+def _revlib_max_motion(g: Gains, v: dict, u: str) -> list[str]:
+    if g.max_input is None:
+        return [
+            "    config.closedLoop.maxMotion",
+            f"        .cruiseVelocity({_num(v['cruiseVelocity'])}) // {u}/s",
+            f"        .maxAcceleration({_num(v['maxAcceleration'])}) // {u}/s^2",
+            f"        .allowedProfileError({_num(v['allowedProfileError'])}); // {u}",
+        ]
+    return [
+        "    // MAXMotion has no exponential profile (MAXMotionConfig.MAXMotionPositionMode offers",
+        "    // kMAXMotionTrapezoidal only): no maxMotion limits here. Run WPILib's ExponentialProfile on the",
+        "    // roboRIO (the wpilib-java document) and send each setpoint as a kPosition request with the",
+        "    // feedforward's volts as its arbitrary feedforward.",
+    ]
 
 
 # --- a flywheel's velocity loop (issue 30) ---------------------------------------------------------
@@ -319,6 +485,22 @@ def revlib_java(g: Gains) -> str:
 #   turn, makes the velocity the wheel's): one wheel rotation is 2π rad, so
 #       kV_rps = 2π·kV,  kA_rps = 2π·kA,  kP_rps = 2π·kP,  kS unchanged;  target rps = ω/(2π)     (GC5)
 #   (CrossTheRoadElec/Phoenix6-Examples, java/VelocityClosedLoop: Slot0.kS/kV/kP, VelocityVoltage.)
+#   Or in rotor units (no SensorToMechanismRatio: the TalonFX's own rotor rotations), a wheel rps
+#   being G rotor rps:
+#       kV_rot = 2π·kV/G,  kA_rot = 2π·kA/G,  kP_rot = 2π·kP/G,  target rps = G·ω/(2π)            (GC5a)
+#   (kV_rot = 2π/Kv of the motor whatever G: a check.)
+# - REVLib (SparkMaxConfig, ControlType.kVelocity; REVLib-Examples at 6b03aa4, Java/SPARK/Closed Loop
+#   Control: closedLoop.feedForward.kV "in Volts" per velocity unit, setSetpoint(v, kVelocity); kV
+#   is applied in velocity mode, kA in MAXMotion modes only (FeedForwardConfig javadoc)): the
+#   encoder's factors 1/G make the native units wheel rotations and wheel rpm, one rpm = 2π/60
+#   rad/s, and the PID output is a duty of the compensated voltage V_b (GC3):
+#       kV_rpm = kV·2π/60,  kA_rpm = kA·2π/60 (per rpm/s),  p = kP·2π/(60·V_b),  kS unchanged;
+#       target rpm = 60·ω/(2π)                                                                   (GC8)
+# A ramped setpoint (VL4a) at a rad/s²: Phoenix 6 MotionMagicVelocityVoltage with
+# MotionMagicAcceleration = a/(2π) wheel rps/s (a·G/(2π) rotor rps/s; it ignores the cruise
+# velocity; CTRE's MotionMagicVelocityVoltage docs), REVLib kMAXMotionVelocityControl with
+# maxMotion.maxAcceleration = 60·a/(2π) wheel rpm/s (MAXMotionConfig javadoc: rpm/s through the
+# velocity factor), WPILib's feedforward.calculate(setpoint, next) with the PID against next.   (GC7)
 
 
 @dataclass(frozen=True)
@@ -333,18 +515,41 @@ class FlywheelGains:
     battery_voltage: float
     stator_limit: float | None = None
     supply_limit: float | None = None
+    acceleration: float | None = None  # rad/s² at the wheel: a ramped setpoint (VL4a); None: a step
 
 
-def flywheel_phoenix6_values(g: FlywheelGains) -> dict[str, float]:
-    """(GC5): Slot0 in wheel rotations per second."""
-    turn = 2 * math.pi
+def flywheel_phoenix6_values(g: FlywheelGains, rotor: bool = False) -> dict[str, float]:
+    """(GC5): Slot0 in wheel rotations per second; rotor=True: in rotor rotations per second with no
+    SensorToMechanismRatio (GC5a)."""
+    per_turn = 2 * math.pi / g.ratio if rotor else 2 * math.pi  # rad/s of the wheel per rps
     return {
-        "SensorToMechanismRatio": g.ratio,
+        **({} if rotor else {"SensorToMechanismRatio": g.ratio}),
         "kS": g.kS,
-        "kV": g.kV * turn,
-        "kA": g.kA * turn,
-        "kP": g.kP * turn,
-        "target_rps": g.target_speed / turn,
+        "kV": g.kV * per_turn,
+        "kA": g.kA * per_turn,
+        "kP": g.kP * per_turn,
+        "target_rps": g.target_speed / per_turn,
+        **({} if g.acceleration is None else {"MotionMagicAcceleration": g.acceleration / per_turn}),
+    }
+
+
+RPM_PER_RAD_S = 60.0 / (2 * math.pi)
+PHOENIX_MAX_ACCELERATION = 9999.0  # rps/s: MotionMagicConfigs.MotionMagicAcceleration's maximum
+
+
+def flywheel_revlib_values(g: FlywheelGains) -> dict[str, float]:
+    """(GC8): the encoder's factors (wheel rotations, wheel rpm) and the velocity loop's gains."""
+    per_rpm = 1.0 / RPM_PER_RAD_S  # rad/s in one rpm
+    return {
+        "positionConversionFactor": 1.0 / g.ratio,
+        "velocityConversionFactor": 1.0 / g.ratio,
+        "voltageCompensation": g.battery_voltage,
+        "p": g.kP * per_rpm / g.battery_voltage,
+        "kS": g.kS,
+        "kV": g.kV * per_rpm,
+        "kA": g.kA * per_rpm,
+        "target_rpm": g.target_speed * RPM_PER_RAD_S,
+        **({} if g.acceleration is None else {"maxAcceleration": g.acceleration * RPM_PER_RAD_S}),
     }
 
 
@@ -364,11 +569,30 @@ def flywheel_wpilib_python(g: FlywheelGains) -> str:
         f"kA = {_num(g.kA)}  # V*s^2/rad\n"
         f"kP = {_num(g.kP)}  # V*s/rad\n"
         f"TARGET_SPEED = {_num(g.target_speed)}  # rad/s at the wheel\n"
-        f"PERIOD = {_num(g.period)}  # s\n\n"
-        "feedforward = SimpleMotorFeedforwardRadians(kS, kV, kA, PERIOD)\n"
-        "controller = PIDController(kP, 0.0, 0.0, PERIOD)\n"
-        "# each period: volts = feedforward.calculate(TARGET_SPEED)\n"
-        "#                      + controller.calculate(wheel_speed_rad_per_s, TARGET_SPEED)\n"
+        f"PERIOD = {_num(g.period)}  # s\n"
+        + (
+            f"ACCELERATION = {_num(g.acceleration)}  # rad/s^2, the setpoint's ramp\n"
+            if g.acceleration
+            else ""
+        )
+        + "\nfeedforward = SimpleMotorFeedforwardRadians(kS, kV, kA, PERIOD)\n"
+        "controller = PIDController(kP, 0.0, 0.0, PERIOD)\n" + _fw_usage(g)
+    )
+
+
+def _fw_usage(g: FlywheelGains) -> str:
+    """How the loop calls them: at the target, or along the ramp (VL4a: the feedforward from the
+    setpoint to the next one, the feedback against the next one)."""
+    if g.acceleration is None:
+        return (
+            "# each period: volts = feedforward.calculate(TARGET_SPEED)\n"
+            "#                      + controller.calculate(wheel_speed_rad_per_s, TARGET_SPEED)\n"
+        )
+    return (
+        "# setpoint = 0.0 at the start; each period:\n"
+        "#   nxt = min(TARGET_SPEED, setpoint + ACCELERATION * PERIOD)\n"
+        "#   volts = feedforward.calculate(setpoint, nxt) + controller.calculate(wheel_speed_rad_per_s, nxt)\n"
+        "#   setpoint = nxt\n"
     )
 
 
@@ -382,7 +606,13 @@ def flywheel_wpilib_java(g: FlywheelGains) -> str:
         f"  public static final double kA = {_num(g.kA)}; // V*s^2/rad\n"
         f"  public static final double kP = {_num(g.kP)}; // V*s/rad\n"
         f"  public static final double kTargetSpeed = {_num(g.target_speed)}; // rad/s at the wheel\n"
-        f"  public static final double kPeriod = {_num(g.period)}; // s\n\n"
+        f"  public static final double kPeriod = {_num(g.period)}; // s\n"
+        + (
+            f"  public static final double kAcceleration = {_num(g.acceleration)}; // rad/s^2, the setpoint's ramp\n"
+            if g.acceleration
+            else ""
+        )
+        + "\n"
         "  public static SimpleMotorFeedforward feedforward() {\n"
         "    return new SimpleMotorFeedforward(kS, kV, kA, kPeriod);\n"
         "  }\n\n"
@@ -394,20 +624,35 @@ def flywheel_wpilib_java(g: FlywheelGains) -> str:
     )
 
 
-def flywheel_phoenix6_java(g: FlywheelGains) -> str:
-    v = flywheel_phoenix6_values(g)
+def flywheel_phoenix6_java(g: FlywheelGains, rotor: bool = False) -> str:
+    v = flywheel_phoenix6_values(g, rotor)
+    cls = f"Flywheel{'Rotor' if rotor else ''}TalonFXConfig"
+    units = (
+        [
+            "// Velocities in rotor rotations per second (no SensorToMechanismRatio: the motor's own);",
+            f"// the wheel turns once every {_num(g.ratio)} rotor turns.",
+        ]
+        if rotor
+        else [
+            "// Velocities in wheel rotations per second (SensorToMechanismRatio = motor turns per wheel turn)."
+        ]
+    )
     lines = [
         _fw_header(g, "//").rstrip("\n"),
-        "// Velocities in wheel rotations per second (SensorToMechanismRatio = motor turns per wheel turn).",
+        *units,
         "import com.ctre.phoenix6.configs.TalonFXConfiguration;",
-        "import com.ctre.phoenix6.controls.VelocityVoltage;",
+        f"import com.ctre.phoenix6.controls.{'VelocityVoltage' if g.acceleration is None else 'MotionMagicVelocityVoltage'};",
         "",
-        "public final class FlywheelTalonFXConfig {",
-        f"  public static final double kTargetRps = {_num(v['target_rps'])}; // wheel rotations/s",
+        f"public final class {cls} {{",
+        f"  public static final double kTargetRps = {_num(v['target_rps'])}; // {'rotor' if rotor else 'wheel'} rotations/s",
         "",
         "  public static TalonFXConfiguration config() {",
         "    var cfg = new TalonFXConfiguration();",
-        f"    cfg.Feedback.SensorToMechanismRatio = {_num(v['SensorToMechanismRatio'])};",
+        *(
+            []
+            if rotor
+            else [f"    cfg.Feedback.SensorToMechanismRatio = {_num(v['SensorToMechanismRatio'])};"]
+        ),
         f"    cfg.Slot0.kS = {_num(v['kS'])}; // V",
         f"    cfg.Slot0.kV = {_num(v['kV'])}; // V per rps",
         f"    cfg.Slot0.kA = {_num(v['kA'])}; // V per rps/s",
@@ -415,16 +660,85 @@ def flywheel_phoenix6_java(g: FlywheelGains) -> str:
         "    cfg.Slot0.kI = 0.0;",
         "    cfg.Slot0.kD = 0.0;",
     ]
+    request = "VelocityVoltage"
+    if g.acceleration is not None:
+        request = "MotionMagicVelocityVoltage"
+        a = v["MotionMagicAcceleration"]
+        lines += [
+            f"    cfg.MotionMagic.MotionMagicAcceleration = {_num(a)}; // rps/s, the setpoint's ramp",
+            "    cfg.MotionMagic.MotionMagicJerk = 0.0; // no jerk limit",
+        ]
+        if a > PHOENIX_MAX_ACCELERATION:
+            lines.append(
+                f"    // beyond the config's maximum {PHOENIX_MAX_ACCELERATION:g} rps/s: lower the ramp's acceleration"
+            )
     lines += _phoenix6_current_limits(g)
     lines += [
         "    return cfg;",
         "  }",
         "",
-        "  public static VelocityVoltage request() {",
-        "    return new VelocityVoltage(kTargetRps).withSlot(0);",
+        f"  public static {request} request() {{",
+        f"    return new {request}(kTargetRps).withSlot(0);",
         "  }",
         "",
-        "  private FlywheelTalonFXConfig() {}",
+        f"  private {cls}() {{}}",
+        "}",
+        "",
+    ]
+    return "\n".join(lines)
+
+
+def flywheel_revlib_java(g: FlywheelGains) -> str:
+    v = flywheel_revlib_values(g)
+    lines = [
+        _fw_header(g, "//").rstrip("\n"),
+        "// Native units are the wheel's through the encoder's conversion factors (rotations, rpm); the PID",
+        "// output is a duty cycle of the compensated voltage. Request ControlType."
+        + ("kVelocity." if g.acceleration is None else "kMAXMotionVelocityControl (the ramp)."),
+        "import com.revrobotics.spark.FeedbackSensor;",
+        "import com.revrobotics.spark.config.SparkMaxConfig;",
+        "",
+        "public final class FlywheelSparkMaxConfig {",
+        f"  public static final double kTargetRpm = {_num(v['target_rpm'])}; // wheel rpm",
+        "",
+        "  public static SparkMaxConfig config() {",
+        "    SparkMaxConfig config = new SparkMaxConfig();",
+        f"    config.voltageCompensation({_num(v['voltageCompensation'])});",
+    ]
+    if g.stator_limit is not None:
+        lines.append(f"    config.smartCurrentLimit({int(round(g.stator_limit))}); // A, stator")
+    if g.supply_limit is not None:
+        lines.append(
+            f"    // supply limit {g.supply_limit:g} A per motor: REVLib has none (a stator limit only)"
+        )
+    lines += [
+        "    config.encoder",
+        f"        .positionConversionFactor({_num(v['positionConversionFactor'])}) // wheel turns per motor turn",
+        f"        .velocityConversionFactor({_num(v['velocityConversionFactor'])}); // wheel rpm per motor rpm",
+        "    config.closedLoop",
+        "        .feedbackSensor(FeedbackSensor.kPrimaryEncoder)",
+        f"        .p({_num(v['p'])}) // duty per wheel rpm of error",
+        "        .i(0.0)",
+        "        .d(0.0)",
+        "        .outputRange(-1, 1);",
+        "    config.closedLoop.feedForward",
+        f"        .kS({_num(v['kS'])}) // V",
+        f"        .kV({_num(v['kV'])}) // V per wheel rpm",
+        f"        .kA({_num(v['kA'])}); // V per wheel rpm/s (MAXMotion modes only)",
+    ]
+    if g.acceleration is not None:
+        lines += [
+            "    config.closedLoop.maxMotion",
+            "        .cruiseVelocity(kTargetRpm) // wheel rpm",
+            f"        .maxAcceleration({_num(v['maxAcceleration'])}); // wheel rpm/s, the setpoint's ramp",
+        ]
+    control = "kVelocity" if g.acceleration is None else "kMAXMotionVelocityControl"
+    lines += [
+        "    return config;",
+        "  }",
+        "",
+        f"  // closedLoopController.setSetpoint(kTargetRpm, ControlType.{control})",
+        "  private FlywheelSparkMaxConfig() {}",
         "}",
         "",
     ]
@@ -492,6 +806,7 @@ def profiled_gains(solution, metres_per_rotation, **kind) -> Gains:
         metres_per_rotation=metres_per_rotation(v),
         battery_voltage=v["voltage"],
         tolerance=v["settle_tolerance"],
+        max_input=v["max_input"] if v.get("profile_type") == "exponential" else None,
         stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
         supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
         **kind,

@@ -100,7 +100,11 @@ def test_every_builtin_declaration_passes():
 
 # Outputs no preset happens to reach (the third cylinder group is empty in every built-in preset;
 # no ratio_finder preset needs three stages)
-EXTRA = {"pneumatics": [{"c3_count": 1}], "ratio_finder": [{"target_ratio": 5000, "families": "gear_20dp"}]}
+EXTRA = {
+    "pneumatics": [{"c3_count": 1}],
+    "ratio_finder": [{"target_ratio": 5000, "families": "gear_20dp"}],
+    "flywheel": [{"control": "velocity_loop", "setpoint_profile": "ramp"}, {"control": "limit_grid"}],
+}
 
 
 def _runs(calc):

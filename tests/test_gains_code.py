@@ -4,6 +4,7 @@ the elevator's documents through the CLI (`solve elevator --document NAME`)."""
 
 import math
 import re
+from dataclasses import replace
 
 import pytest
 
@@ -131,9 +132,7 @@ def test_export_is_the_designs_name_for_it(capsys):
 
 def test_arm_documents():
     """The arm's: ArmFeedforward in radians, run against robotpy; Phoenix 6 in arm rotations (2π rad)
-    with Arm_Cosine; REVLib's arm term refused with the reason, not guessed."""
-    from dataclasses import replace
-
+    with Arm_Cosine; REVLib in radians with kCos and kCosRatio (GC3a)."""
     from gearhead.core.calculators import arm as arm_calc
 
     sol = solve("arm", {"mode": "profiled", "effects": "gravity, stator_limit"})
@@ -151,8 +150,46 @@ def test_arm_documents():
     assert _number(ph, r"cfg\.Slot0\.kP") == pytest.approx(out["kP"] * 2 * math.pi, rel=1e-15)
     quarter = replace(g, max_velocity=math.pi / 2)
     assert gains_code.phoenix6_values(quarter)["MotionMagicCruiseVelocity"] == pytest.approx(0.25, rel=1e-15)
-    with pytest.raises(ValueError, match="kCosRatio"):
-        gains_code.revlib_java(g)
-    assert [d.name for d in arm_calc.CALCULATOR.documents] == ["wpilib-java", "wpilib-python", "phoenix6"]
+    rev = gains_code.revlib_java(g)
+    r = gains_code.revlib_values(g)
+    assert _number(rev, r"\.kCos") == out["kG"] and ".kG(" not in rev  # REVLib keeps one of the two
+    assert _number(rev, r"\.kCosRatio") == r["kCosRatio"] and "horizontal" in rev
+    assert [d.name for d in arm_calc.CALCULATOR.documents] == [
+        "wpilib-java",
+        "wpilib-python",
+        "phoenix6",
+        "revlib",
+    ]
     java = gains_code.wpilib_java(g)
     assert "new ArmFeedforward(kS, kG, kV, kA, kPeriod)" in java and "V*s/rad" in java
+
+
+# An arm hand case: G = 50, so one arm turn (2π rad) is 50 motor turns.
+ARM = replace(HAND, ratio=50.0, metres_per_rotation=2 * math.pi, kG=0.6, max_velocity=math.pi, arm=True)
+
+
+def test_arm_revlib_by_hand():
+    v = gains_code.revlib_values(ARM)
+    assert v["positionConversionFactor"] == pytest.approx(0.12566370614359174, rel=1e-15)  # 2π/50 rad
+    assert v["velocityConversionFactor"] == pytest.approx(0.0020943951023931952, rel=1e-15)  # 2π/3000
+    assert v["kCosRatio"] == pytest.approx(0.15915494309189535, rel=1e-15)  # 1/(2π) turns per rad
+    assert v["kCos"] == 0.6 and "kG" not in v
+    # 12.5 motor turns are a quarter arm turn: π/2 rad native, 0.25 rotations after kCosRatio
+    quarter = 12.5 * v["positionConversionFactor"]
+    assert quarter == pytest.approx(math.pi / 2, rel=1e-15)
+    assert quarter * v["kCosRatio"] == pytest.approx(0.25, rel=1e-15)
+    # 3000 motor rpm = 50 motor rps = 1 arm rps = 2π rad/s native
+    assert 3000 * v["velocityConversionFactor"] == pytest.approx(2 * math.pi, rel=1e-15)
+
+
+@pytest.mark.parametrize("motor_turns", [-20.0, -6.25, 0.0, 3.0, 6.25, 12.5, 17.0])
+def test_arm_revlib_gravity_is_wpilibs(motor_turns):
+    """The SPARK's gravity term kCos·cos(2π·kCosRatio·position) (REV's javadoc) at an encoder
+    reading, against robotpy's ArmFeedforward(kS=0, kG).calculate(angle, 0) at the arm's angle."""
+    from wpimath.controller import ArmFeedforward
+
+    v = gains_code.revlib_values(ARM)
+    native = motor_turns * v["positionConversionFactor"]
+    spark = v["kCos"] * math.cos(2 * math.pi * v["kCosRatio"] * native)
+    angle = motor_turns / ARM.ratio * 2 * math.pi  # the arm's angle from horizontal, rad
+    assert spark == pytest.approx(ArmFeedforward(0.0, ARM.kG, 0.0, 0.0).calculate(angle, 0.0), abs=1e-12)

@@ -259,9 +259,15 @@ def test_cli_solve_json_carries_spreads(capsys):
     assert spread["worst_case"]["low"] < data["outputs"]["range"]["value"] < spread["worst_case"]["high"]
     assert spread["main_input"] == "ball_mass"
     assert data["tolerance_cost"]["solves"] >= 7
-    # no tolerance: the JSON shape is unchanged
+    # no tolerance: the JSON shape is unchanged (tables: the flywheel declares its limit grid's)
     assert main(["solve", "flywheel", "--preset", preset, "--json"]) == 0
-    assert set(json.loads(capsys.readouterr().out)) == {"calculator", "inputs", "outputs", "warnings"}
+    assert set(json.loads(capsys.readouterr().out)) == {
+        "calculator",
+        "inputs",
+        "outputs",
+        "warnings",
+        "tables",
+    }
 
 
 def test_cli_solve_text_and_bad_tolerance(capsys):

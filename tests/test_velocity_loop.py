@@ -16,7 +16,8 @@ the shot, or to the window's end) is within the tolerance; Gearhead's is located
 Traces: speeds at the control updates, relative to the target (FlywheelSim steps the exact matrix
 exponential, so the two agree to rounding).
 Measured (6 cases, delays 0-30 ms): traces within 8e-13 of the target; spin-up and recovery times
-within 0.1 ms (one substep) of the oracle's sample.
+within 0.1 ms (one substep) of the oracle's sample. The same 6 with a ramped setpoint (VL4a) at
+0.5-0.95 of the stall acceleration: traces within 4.2e-13 of the target, times within 0.1 ms.
 """
 
 import math
@@ -94,7 +95,9 @@ def cases():
     return out
 
 
-def wpilib_run(c, out):
+def wpilib_run(c, out, acceleration=None):
+    """The robot loop on FlywheelSim; with an acceleration, the setpoint ramped by it each period and
+    the feedforward SimpleMotorFeedforward.calculate(setpoint, next), the PID against next."""
     base, _ = motors.lookup(c["name"], "wpilib")
     n, G, J = out["motor_count"], out["ratio"], c["J"]
     gearbox = DCMotor(base.v_spec, base.stall_torque, base.stall_current, 0.0, base.free_speed, n)
@@ -110,10 +113,16 @@ def wpilib_run(c, out):
     delay_sub = round(out["sensor_delay"] / SUB)
     history = [0.0]
     at_updates = []
+    setpoint = 0.0
     for k in range(round(window / PERIOD)):
         at_updates.append(history[-1])
         measured = history[max(k * per - delay_sub, 0)]
-        V = max(-12.0, min(12.0, ff.calculate(r) + pid.calculate(measured, r)))
+        if acceleration is None:
+            V = max(-12.0, min(12.0, ff.calculate(r) + pid.calculate(measured, r)))
+        else:
+            nxt = min(r, setpoint + acceleration * PERIOD)
+            V = max(-12.0, min(12.0, ff.calculate(setpoint, nxt) + pid.calculate(measured, nxt)))
+            setpoint = nxt
         sim.setInputVoltage(V)
         for _ in range(per):
             sim.update(SUB)
@@ -155,6 +164,60 @@ def test_velocity_loop_matches_flywheelsim(no_free_current, index):
             if name == "loop_recovery_time":
                 mine += out["shot_time"]
             assert -1e-9 <= theirs - mine <= SUB + 1e-9, (name, mine, theirs)
+
+
+@pytest.mark.parametrize("index", range(CASES))
+def test_ramped_setpoint_matches_flywheelsim(no_free_current, index):
+    """(VL4a): the ramp at a fraction of the stall acceleration, against FlywheelSim driven by
+    SimpleMotorFeedforward.calculate(setpoint, next) + PIDController against next."""
+    c = cases()[index]
+    fraction = random.Random(index).uniform(0.5, 0.95)
+    raw = c["raw"] | {"setpoint_profile": "ramp", "ramp_fraction": fraction}
+    sol = solve("flywheel", raw)
+    out = {k: v.value for k, v in sol.outputs.items()}
+    out.update({k: v.value for k, v in sol.inputs.items()})
+    a = out["loop_ramp_acceleration"]
+    assert a == pytest.approx(fraction * 12.0 / out["kA"], rel=1e-12)  # kS = 0 here
+    assert "loop_spin_up_time" in out  # each case spins up before its shot: the times are compared
+    at_updates, spin, recover = wpilib_run(c, out, acceleration=a)
+    ts, ws = sol.series["loop speed"]
+    mine_at_updates = [w for t, w in zip(ts, ws) if abs(t / PERIOD - round(t / PERIOD)) < 1e-9]
+    assert len(mine_at_updates) == len(at_updates)
+    worst = max(abs(x - y) for x, y in zip(at_updates, mine_at_updates))
+    assert worst <= TRACE_TOL * out["target_speed"], worst
+    for name, theirs in (("loop_spin_up_time", spin), ("loop_recovery_time", recover)):
+        mine = out.get(name)
+        assert (mine is None) == (theirs is None), (name, mine, theirs)
+        if mine is not None:
+            if name == "loop_recovery_time":
+                mine += out["shot_time"]
+            assert -1e-9 <= theirs - mine <= SUB + 1e-9, (name, mine, theirs)
+    # the ramp's chart: up to the target at r/a, then level
+    target_t, target_w = sol.series["loop target"]
+    assert target_t[1] == pytest.approx(out["target_speed"] / a, rel=1e-12) and target_w[0] == 0.0
+
+
+def test_ramp_feedforward_alone_tracks_the_ramp(no_free_current):
+    """A ramp's feedforward holds a wheel with no feedback on its ramp (kP = 0, no delay): the speed at
+    each update is the setpoint to rounding, which kS + kV·r alone (the step's feedforward) misses."""
+    c = cases()[0]
+    raw = c["raw"] | {
+        "setpoint_profile": "ramp",
+        "ramp_fraction": 0.5,
+        "feedback": "entered",
+        "feedback_kp": 0,
+        "sensor_delay": "0 ms",
+    }
+    sol = solve("flywheel", raw)
+    a = sol.outputs["loop_ramp_acceleration"].value
+    r, shot_time = sol.inputs["target_speed"].value, sol.inputs["shot_time"].value
+    ts, ws = sol.series["loop speed"]
+    checked = 0
+    for t, w in zip(ts, ws):
+        if t < shot_time and abs(t / PERIOD - round(t / PERIOD)) < 1e-9:
+            assert w == pytest.approx(min(a * t, r), rel=1e-9, abs=1e-9 * r), t
+            checked += 1
+    assert checked > 20 and a * 0.2 < r  # the ramp spans many updates
 
 
 def test_lqr_kp_is_wpilibs():
@@ -324,3 +387,107 @@ def test_documents_export_from_a_solution():
         assert repr(out["kS"]) in text
     phoenix = next(d for d in flywheel_calc.CALCULATOR.documents if d.name == "phoenix6").build(sol)
     assert repr(out["kP"] * 2 * math.pi) in phoenix
+
+
+HAND = gains_code.FlywheelGains(
+    kS=0.25,
+    kV=0.02,
+    kA=0.003,
+    kP=0.1,
+    period=0.02,
+    ratio=1.5,
+    target_speed=100 * math.pi,  # 3000 wheel rpm, 4500 motor rpm
+    battery_voltage=12.0,
+    stator_limit=60.0,
+    supply_limit=40.0,
+)
+
+
+def test_flywheel_revlib_units_by_hand():
+    """(GC8): wheel rotations and rpm through the factors 1/G; gains per rpm = per rad/s × 2π/60."""
+    v = gains_code.flywheel_revlib_values(HAND)
+    assert v["positionConversionFactor"] == v["velocityConversionFactor"] == pytest.approx(2 / 3, rel=1e-15)
+    assert v["kV"] == pytest.approx(0.0020943951023931952, rel=1e-15)  # 0.02 × 2π/60
+    assert v["kA"] == pytest.approx(3.141592653589793e-4, rel=1e-15)  # 0.003 × 2π/60
+    assert v["p"] == pytest.approx(8.726646259971648e-4, rel=1e-15)  # 0.1 × 2π/60 ÷ 12 V
+    assert v["target_rpm"] == pytest.approx(3000.0, rel=1e-15)
+    assert v["kS"] == 0.25
+    # 4500 motor rpm read through the factor is 3000 wheel rpm, and kV there is the feedforward's kV·ω
+    native = 4500 * v["velocityConversionFactor"]
+    assert native * v["kV"] == pytest.approx(HAND.kV * HAND.target_speed, rel=1e-15)
+    # 1 rpm of error: the duty times the compensated voltage is kP volts per rad/s × 2π/60 rad/s
+    assert v["p"] * 12.0 == pytest.approx(HAND.kP * 2 * math.pi / 60, rel=1e-15)
+    java = gains_code.flywheel_revlib_java(HAND)
+    assert f"kTargetRpm = {v['target_rpm']!r};" in java and f".kV({v['kV']!r})" in java
+    assert "smartCurrentLimit(60)" in java and "REVLib has none" in java and "kVelocity" in java
+
+
+def test_flywheel_phoenix_rotor_units_by_hand():
+    """(GC5a): per rotor rps = per wheel rps ÷ G; no SensorToMechanismRatio."""
+    v = gains_code.flywheel_phoenix6_values(HAND, rotor=True)
+    assert "SensorToMechanismRatio" not in v
+    assert v["kV"] == pytest.approx(0.08377580409572781, rel=1e-15)  # 0.02 × 2π ÷ 1.5
+    assert v["kA"] == pytest.approx(0.012566370614359173, rel=1e-15)
+    assert v["kP"] == pytest.approx(0.41887902047863906, rel=1e-15)
+    assert v["target_rps"] == pytest.approx(75.0, rel=1e-15)  # 4500 rotor rpm
+    assert v["kV"] * v["target_rps"] == pytest.approx(HAND.kV * HAND.target_speed, rel=1e-15)
+    java = gains_code.flywheel_phoenix6_java(HAND, rotor=True)
+    assert "cfg.Feedback.SensorToMechanismRatio" not in java and f"cfg.Slot0.kV = {v['kV']!r};" in java
+    assert "FlywheelRotorTalonFXConfig" in java and f"kTargetRps = {v['target_rps']!r};" in java
+
+
+@pytest.mark.parametrize("ratio", [0.6, 1.0, 2.5])
+def test_rotor_kv_is_the_motors_own(no_free_current, ratio):
+    """An independent path: per rotor rps, kV is the motor's V_spec ÷ free rps whatever the ratio."""
+    m, _ = motors.lookup("Kraken X60", "wpilib")
+    raw = {"control": "velocity_loop", "motor": "Kraken X60", "voltage": "12 V", "ratio": ratio}
+    sol = solve("flywheel", raw | {"target_speed": f"{2000 / ratio!r} rpm"})
+    g = flywheel_calc.flywheel_gains_of(sol)
+    rotor = gains_code.flywheel_phoenix6_values(g, rotor=True)
+    assert rotor["kV"] == pytest.approx(12.0 / (m.free_speed / (2 * math.pi)), rel=1e-12)
+    assert rotor["target_rps"] == pytest.approx(2000 / 60, rel=1e-12)  # the rotor at 2000 rpm
+    names = [d.name for d in flywheel_calc.CALCULATOR.documents]
+    assert names == ["wpilib-java", "wpilib-python", "phoenix6", "phoenix6-rotor", "revlib"]
+
+
+def test_ramp_exports_by_hand():
+    """(GC7): a 200π rad/s² ramp (6000 wheel rpm/s) is 100 wheel rps/s, 150 rotor rps/s at G = 1.5,
+    6000 wheel rpm/s for MAXMotion; the step's requests become the profiled ones."""
+    from dataclasses import replace
+
+    g = replace(HAND, acceleration=200 * math.pi)
+    wheel = gains_code.flywheel_phoenix6_values(g)
+    rotor = gains_code.flywheel_phoenix6_values(g, rotor=True)
+    rev = gains_code.flywheel_revlib_values(g)
+    assert wheel["MotionMagicAcceleration"] == pytest.approx(100.0, rel=1e-15)
+    assert rotor["MotionMagicAcceleration"] == pytest.approx(150.0, rel=1e-15)
+    assert rev["maxAcceleration"] == pytest.approx(6000.0, rel=1e-15)
+    java = gains_code.flywheel_phoenix6_java(g)
+    assert "new MotionMagicVelocityVoltage(kTargetRps)" in java and "MotionMagicJerk = 0.0" in java
+    assert "VelocityVoltage(kTargetRps)" not in java.replace("MotionMagicVelocityVoltage", "")
+    assert "beyond the config's maximum" not in java
+    fast = gains_code.flywheel_phoenix6_java(replace(HAND, acceleration=2 * math.pi * 10_000))
+    assert "beyond the config's maximum" in fast  # 10000 rps/s > MotionMagicAcceleration's 9999
+    revj = gains_code.flywheel_revlib_java(g)
+    assert "kMAXMotionVelocityControl" in revj and f".maxAcceleration({rev['maxAcceleration']!r})" in revj
+    namespace: dict = {}
+    exec(gains_code.flywheel_wpilib_python(g), namespace)  # noqa: S102 - our own text
+    assert namespace["ACCELERATION"] == 200 * math.pi
+    assert "feedforward.calculate(setpoint, nxt)" in gains_code.flywheel_wpilib_python(g)
+    assert "kAcceleration = 628.3185307179587;" in gains_code.flywheel_wpilib_java(g)
+    step = gains_code.flywheel_phoenix6_java(HAND)
+    assert "MotionMagic" not in step and "MotionMagic" not in gains_code.flywheel_revlib_java(HAND)
+
+
+def test_ramp_refuses_a_wheel_it_cannot_accelerate():
+    with pytest.raises(InputError) as exc:
+        solve(
+            "flywheel",
+            {
+                "control": "velocity_loop",
+                "setpoint_profile": "ramp",
+                "ramp_limit": "entered",
+                "ramp_acceleration": "0 rpm/s",
+            },
+        )
+    assert "ramp_acceleration" in str(exc.value)

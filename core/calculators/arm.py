@@ -37,7 +37,8 @@ Feedback: WPILib's LQR on the plant (θ, θ̇),
     latency-compensated (motion.lqr)                                                           (AR10)
 Optimise: G* minimising T(G): 240 ratios log-spaced about the characteristic ratio, then
 bounded Brent on the accurate move around the best (motion.optimise)                           (AR11)
-Profiled move (core.sim.profiled (P1)-(P11)): the trapezoid in angle, the feedforward (AR9) with
+Profiled move (core.sim.profiled (P1)-(P11)): the trapezoid in angle (or WPILib's exponential profile
+on the angle's kV, kA (AR9) from an entered max input, (P12)-(P15)), the feedforward (AR9) with
 kG·cos θ at the setpoint's angle, PD feedback (the LQR gains (AR10) or entered) every control period
 on the angle measured `sensor_delay` earlier, the voltage held and clamped; the up move and the down
 move are two solves (swap start and goal: the gravity helps one and loads the other)          (AR12)
@@ -377,7 +378,7 @@ def gains_of(solution) -> gains_code.Gains:
     return gains_code.profiled_gains(solution, lambda v: 2 * math.pi, title="Arm", arm=True)
 
 
-DOCUMENTS = gains_code.mechanism_documents("Arm", gains_of, phoenix_note=", Arm_Cosine", revlib=False)
+DOCUMENTS = gains_code.mechanism_documents("Arm", gains_of, phoenix_note=", Arm_Cosine")
 
 CALCULATOR = Calculator(
     id="arm",

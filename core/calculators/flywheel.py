@@ -91,9 +91,21 @@ The motor side, labelled here (A = G·τ̃s the wheel torque at stall, B = A/ω_
         voltage V_b − R_bus·(u·I)_peak                                                      (FW5)
 Velocity loop (control = velocity_loop; issue 30): the wheel under robot code's feedforward plus
 proportional feedback at the control period, core.sim.velocity_loop (VL1)-(VL9): the motor of (F1)
-with the held duty of each period, kS/kV/kA per rad/s at the wheel (VL2), LQR's kP (VL9). The shot
+with the held duty of each period, kS/kV/kA per rad/s at the wheel (VL2), LQR's kP (VL9); the
+setpoint a step to the target, or a ramp from rest at an entered acceleration or a fraction of the
+stall acceleration (V_b − kS)/kA with WPILib's discrete feedforward (VL4a), as Motion Magic Velocity
+and MAXMotion velocity run it. The shot
 is the model chosen above ((5) or the momentum model), from the wheel's speed at the shot time, as
 an instant drop (with motor_during_shot its slip phase runs at full power, as in the burst).
+Current-limit grid (control = limit_grid; issue 30): for every stator × supply limit pair (per
+motor; both limits on, with the other effects chosen) the ratio that spins the wheels up from rest
+to the target quickest at full power:
+    T(G) = J(G)·∫₀^ω_t dω/τ_w(ω; G)  ((F1) is autonomous: dt = J·dω/τ_w; scipy's quad on each
+    smooth piece between the speeds where a limit lets go; J(G) with the rotors' N·J_r·G²)   (FW6)
+    G* = argmin T over (G_max·10⁻², G_max), G_max the ratio whose free speed is the target: the
+    best of 24 log-spaced ratios, then bounded Brent on ln G between its neighbours          (FW7)
+    at G*: peak stator and supply current (FW5), battery energy J·∫ N·V_b·u·I/τ_w dω; the pick
+    is the quickest cell whose peak supply current is within the budget                     (FW8)
 `range_error_linear` is the seed's (9) whatever transfer model, losses or height are chosen: the
 momentum model's error is about twice it.
 """
@@ -107,14 +119,14 @@ from typing import Any
 from .. import gains_code
 from ..constants import G0 as G_ACC
 from ..constants import RPM
-from ..declarations import Calculator, Document, Output, Plot
+from ..declarations import Calculator, Column, Document, Output, Plot, Result, Table
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup, motor_fields, system_from
 from ..sim import motor_limits, velocity_loop
 from ..sim.effects import Effect, Effects, nothing
 from ..sim.integrate import Event, integrate
-from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stats
+from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats
 
 TABLE_WHEELS = range(1, 7)
 # Slip phase: when the wheel's time constant is this many times shorter than the slip (b·τ_end), an
@@ -160,8 +172,12 @@ SHOOTER_LABELS = (
 SECONDARY = ("dual", "compound", "hood_secondary")  # layouts with a secondary wheel set
 WITH_SPIN = ("hood", "dual", "compound", "hood_secondary")  # the ball leaves spinning
 INERTIA_MODES = ("radius_of_gyration", "moment_of_inertia")
-CONTROLS = ("full_power", "velocity_loop")
-CONTROL_LABELS = ("Full power (seed)", "Velocity loop: feedforward + kP at the control period")
+CONTROLS = ("full_power", "velocity_loop", "limit_grid")
+CONTROL_LABELS = (
+    "Full power (seed)",
+    "Velocity loop: feedforward + kP at the control period",
+    "Current-limit grid: the quickest ratio per stator × supply limit (full power)",
+)
 
 
 def _motor_fields():
@@ -178,6 +194,9 @@ def _motor_fields():
 
 
 LOOP = (("control", ("velocity_loop",)),)
+SETPOINTS = ("step", "ramp")
+SETPOINT_LABELS = ("Step to the target", "Ramp at an acceleration to the target")
+RAMP = LOOP + (("setpoint_profile", ("ramp",)),)
 LOOP_FIELDS = (
     Field(
         "control",
@@ -236,6 +255,52 @@ LOOP_FIELDS = (
         "is simulated to this time plus the larger of 1 s and it.",
     ),
     Field(
+        "setpoint_profile",
+        "Setpoint",
+        choices=SETPOINTS,
+        choice_labels=SETPOINT_LABELS,
+        default="step",
+        when=LOOP,
+        help="Step: the loop asks for the target at once (VelocityVoltage, kVelocity). Ramp: the "
+        "setpoint rises from rest at a set acceleration to the target, with kA's feedforward "
+        "(VL4a; Motion Magic Velocity, MAXMotion velocity).",
+    ),
+    Field(
+        "ramp_limit",
+        "Ramp acceleration from",
+        choices=("derived", "entered"),
+        choice_labels=("A fraction of the stall acceleration", "Entered"),
+        default="derived",
+        when=RAMP,
+        help="The ramp's acceleration: a fraction of the wheel's acceleration from rest at full "
+        "voltage, (V_b − kS)/kA (no limit, no sag), or entered.",
+    ),
+    Field(
+        "ramp_fraction",
+        "Ramp fraction",
+        "dimensionless",
+        "",
+        default=0.5,
+        min=0,
+        min_exclusive=True,
+        max=1,
+        when=RAMP + (("ramp_limit", ("derived",)),),
+        help="The ramp's acceleration as a fraction of the stall acceleration (0-1); below 1 leaves "
+        "voltage for the feedback.",
+    ),
+    Field(
+        "ramp_acceleration",
+        "Ramp acceleration",
+        "angular_acceleration",
+        "rpm/s",
+        default=3000,
+        min=0,
+        min_exclusive=True,
+        max=1e9,
+        when=RAMP + (("ramp_limit", ("entered",)),),
+        help="The wheel's setpoint acceleration (MotionMagicAcceleration, MAXMotion maxAcceleration).",
+    ),
+    Field(
         "feedback",
         "Feedback gain",
         choices=("lqr", "entered"),
@@ -278,6 +343,41 @@ LOOP_FIELDS = (
         max=1e6,
         when=LOOP + (("feedback", ("entered",)),),
         help="Volts per rad/s of wheel-speed error (PIDController kP).",
+    ),
+)
+
+GRID = (("control", ("limit_grid",)),)
+
+
+def _amps(name: str, label: str, default: float, help: str) -> Field:
+    return Field(
+        name,
+        label,
+        "current",
+        "A",
+        default=default,
+        min=0,
+        min_exclusive=True,
+        max=2000,
+        when=GRID,
+        help=help,
+    )
+
+
+# the names and defaults of core.sim.limit_grid's fields (the elevator's), shown by `control` here
+GRID_FIELDS = (
+    _amps("stator_min", "Stator limits from", 20, "The grid's first stator current limit (per motor)."),
+    _amps("stator_max", "Stator limits to", 120, "The grid's last stator current limit (per motor)."),
+    _amps("stator_step", "Stator limit step", 10, "Between the grid's stator limits."),
+    _amps("supply_min", "Supply limits from", 20, "The grid's first supply current limit (per motor)."),
+    _amps("supply_max", "Supply limits to", 80, "The grid's last supply current limit (per motor)."),
+    _amps("supply_step", "Supply limit step", 10, "Between the grid's supply limits."),
+    _amps(
+        "supply_budget",
+        "Supply budget",
+        60,
+        "The cell picked is the quickest to spin up whose peak supply current per motor stays within "
+        "this (e.g. what the breaker and the battery allow the shooter).",
     ),
 )
 
@@ -590,6 +690,7 @@ FIELDS = (
     ),
     *EFFECTS.fields(),
     *LOOP_FIELDS,
+    *GRID_FIELDS,
     accuracy_field(),
 )
 
@@ -698,6 +799,14 @@ LOOP_OUTPUTS = (
         "V*s/rad",
         help="The loop's proportional gain: LQR (VL9) or entered.",
         equation="(VL9)",
+    ),
+    Output(
+        "loop_ramp_acceleration",
+        "Ramp acceleration (velocity loop)",
+        "angular_acceleration",
+        "rpm/s",
+        help="The setpoint's acceleration on a ramp: entered, or the fraction of (V_b − kS)/kA (VL4a).",
+        equation="(VL4a)",
     ),
     Output(
         "control_updates",
@@ -875,7 +984,56 @@ OUTPUTS = (
         equation="(FW5)",
     ),
     *LOOP_OUTPUTS,
+    Output(
+        "pick_stator_limit",
+        "Pick: stator limit",
+        "current",
+        "A",
+        help="The cell quickest to spin up within the supply budget (FW8).",
+        equation="(FW8)",
+    ),
+    Output(
+        "pick_supply_limit",
+        "Pick: supply limit",
+        "current",
+        "A",
+        help="The cell quickest to spin up within the supply budget (FW8).",
+        equation="(FW8)",
+    ),
+    Output(
+        "best_ratio",
+        "Pick: best ratio",
+        help="The picked cell's ratio (motor turns per wheel turn) that spins up quickest (FW7).",
+        equation="(FW7)",
+    ),
+    Output(
+        "grid_spin_up_time",
+        "Pick: spin-up time",
+        "time",
+        "s",
+        help="From rest to the target at full power with the picked limits and ratio (FW6).",
+        equation="(FW6)",
+    ),
+    Output("grid_cells", "Grid cells", help="Stator × supply limit pairs solved (FW7).", equation="(FW7)"),
     *STATS_OUTPUTS,
+)
+
+GRID_TABLE = Table(
+    "limit_grid",
+    "Current-limit grid: the ratio quickest to spin up per stator × supply limit",
+    (
+        Column("stator_limit", "Stator", "current", "A", width=8),
+        Column("supply_limit", "Supply", "current", "A", width=8),
+        Column("ratio", "Best ratio", width=10),
+        Column("time", "Spin-up", "time", "s", width=9),
+        Column("peak_stator_current", "Peak stator", "current", "A", width=11),
+        Column("peak_supply_current", "Peak supply", "current", "A", width=11),
+        Column("energy", "Energy", "energy", "J", width=9),
+        Column("pick", "Pick", width=4),
+    ),
+    # the card shows a table by the `mode` field, which here is the inertia's: the grid's rows are
+    # in `solve --json` and its pick in the outputs (a table shown by `control` needs the card to)
+    modes=("limit_grid",),
 )
 
 
@@ -1633,15 +1791,32 @@ def _simulate(v, rtol: float) -> SimRun:
     if sc.drive is not None:
         key.update(spin_up_time=t_spin, recovery_time=values["recovery_time"])
         nfev += sc.drive.nfev
+    if v["control"] == "limit_grid":
+        rows, pick = limit_grid(v, warnings)
+        values.update(pick)
+        if "grid_spin_up_time" in pick:
+            key["grid_spin_up_time"] = pick["grid_spin_up_time"]
+        run = SimRun(values, key, nfev, warnings, series)
+        run.tables = {"limit_grid": rows}
+        return run
     if v["control"] == "velocity_loop":
         lr = velocity_loop_run(sc, v, rtol, values, warnings)
         series["loop speed"] = (lr.times, lr.speeds)
-        series["loop target"] = ([0.0, lr.times[-1]], [target, target])
+        series["loop target"] = loop_target(v, values, target, lr.times[-1])
         series["loop voltage"] = (lr.volt_t, lr.volts)
         nfev += lr.nfev
         if "loop_spin_up_time" in values:
             key["loop_spin_up_time"] = values["loop_spin_up_time"]
     return SimRun(values, key, nfev, warnings, series)
+
+
+def loop_target(v, values: dict, target: float, t_end: float) -> tuple[list, list]:
+    """The setpoint over the run, for the chart: the step's level, or the ramp and then the level."""
+    a = values.get("loop_ramp_acceleration")
+    if a is None:
+        return [0.0, t_end], [target, target]
+    t_top = min(target / a, t_end)
+    return [0.0, t_top, t_end], [0.0, a * t_top, a * t_top]
 
 
 def loop_wheel(sc: Scene, v):
@@ -1672,6 +1847,19 @@ def loop_wheel(sc: Scene, v):
     )
 
 
+def ramp_acceleration(v, ff: dict) -> float | None:
+    """The ramped setpoint's acceleration (rad/s² at the wheel), None for a step (VL4a): entered, or
+    the fraction of the stall acceleration (V_b − kS)/kA = k·(i_s − i_f)/J of (VL1)."""
+    if v["setpoint_profile"] != "ramp":
+        return None
+    if v["ramp_limit"] == "entered":
+        return v["ramp_acceleration"]
+    a = v["ramp_fraction"] * (v["voltage"] - ff["kS"]) / ff["kA"]
+    if not (math.isfinite(a) and a > 0):
+        raise InputError("ramp_fraction", "the motors cannot accelerate the wheel from rest: no ramp to take")
+    return a
+
+
 def velocity_loop_run(sc: Scene, v, rtol: float, values: dict, warnings: list):
     """The velocity-loop mode's outputs (core.sim.velocity_loop), added to `values`."""
     w = loop_wheel(sc, v)
@@ -1694,7 +1882,10 @@ def velocity_loop_run(sc: Scene, v, rtol: float, values: dict, warnings: list):
             "lengthen the control period or shoot earlier",
         )
     target = v["target_speed"]
-    loop = velocity_loop.Loop(ff["kS"], ff["kV"], kP, dt, delay, v["speed_tolerance"])
+    acceleration = ramp_acceleration(v, ff)
+    loop = velocity_loop.Loop(
+        ff["kS"], ff["kV"], kP, dt, delay, v["speed_tolerance"], kA=ff["kA"], acceleration=acceleration
+    )
     m0 = v["ball_mass"]
 
     def after_shot(omega: float) -> float:
@@ -1715,6 +1906,13 @@ def velocity_loop_run(sc: Scene, v, rtol: float, values: dict, warnings: list):
             "control_updates": lr.updates,
         }
     )
+    if acceleration is not None:
+        values["loop_ramp_acceleration"] = acceleration
+        if target / acceleration > shot_time:
+            warnings.append(
+                f"The ramp reaches the target at {target / acceleration:.3g} s, after the shot at "
+                f"{shot_time:.3g} s: raise the ramp's acceleration or shoot later."
+            )
     if lr.spin_up_time is not None:
         values["loop_spin_up_time"] = lr.spin_up_time
     else:
@@ -1734,7 +1932,126 @@ def velocity_loop_run(sc: Scene, v, rtol: float, values: dict, warnings: list):
     return lr
 
 
-compute = compute_with_stats(simulate)
+def compute(values) -> Result:
+    run = run_with_stats(simulate, values)
+    return Result(run.values, run.warnings, run.series, getattr(run, "tables", {}))
+
+
+# --- the current-limit grid (control = limit_grid) ----------------------------------------------
+
+GRID_SCAN = 24  # ratios log-spaced over the scan, before Brent refines the best
+GRID_DECADES = 2.0  # the scan spans G_max·10^-2 .. G_max: below, the spin-up only lengthens
+
+
+def grid_spin_up(v, ratio: float) -> tuple[float, Scene] | None:
+    """(FW6): the full-power spin-up time from rest to the target at this ratio under the cell's
+    limits, J·∫₀^ω_t dω/τ_w(ω) (scipy's quad on each smooth piece between the speeds where a limit
+    lets go); None when the motors cannot reach the target."""
+    from scipy.integrate import quad
+
+    w = {**v, "ratio": ratio}
+    sc, _ = scene_from(w)
+    target = v["target_speed"]
+    if target >= sc.free_speed or sc.drive.torque(target) <= 1e-9 * sc.drive.A:
+        return None
+    d = sc.drive
+    edges = [0.0, *sorted(b for b in d.boundaries if 0.0 < b < target), target]
+    total = 0.0
+    for a, b in zip(edges, edges[1:], strict=False):
+        part, _ = quad(lambda x: 1.0 / d.torque(x), a, b, epsabs=0.0, epsrel=1e-10, limit=200)
+        total += part
+    return sc.I * total, sc
+
+
+def grid_energy(sc: Scene, v) -> float:
+    """Battery energy over the spin-up, ∫ N·V_b·u·I dt = J·∫ N·V_b·u·I/τ_w dω (a change of variable:
+    dt = J·dω/τ_w)."""
+    from scipy.integrate import quad
+
+    d, target, N, Vb = sc.drive, v["target_speed"], v["motor_count"], v["voltage"]
+    edges = [0.0, *sorted(b for b in d.boundaries if 0.0 < b < target), target]
+
+    def power_per_torque(x: float) -> float:
+        u, I = d.elec(d.emf(x))
+        return N * Vb * u * I / d.torque(x)
+
+    return sc.I * sum(
+        quad(power_per_torque, a, b, epsabs=0.0, epsrel=1e-10, limit=200)[0]
+        for a, b in zip(edges, edges[1:], strict=False)
+    )
+
+
+def grid_best_ratio(v, G_max: float) -> tuple[float, float, Scene] | None:
+    """(FW7): the ratio in (G_max·10^-2, G_max) with the least spin-up time: the best of a log scan,
+    then bounded Brent on ln G between its neighbours."""
+    from scipy.optimize import minimize_scalar
+
+    lo, hi = math.log(G_max) - GRID_DECADES * math.log(10), math.log(G_max)
+    xs = [lo + (hi - lo) * i / GRID_SCAN for i in range(GRID_SCAN)]  # G_max itself never reaches
+
+    def time_at(x: float) -> float:
+        r = grid_spin_up(v, math.exp(x))
+        return math.inf if r is None else r[0]
+
+    times = [time_at(x) for x in xs]
+    i = min(range(len(xs)), key=times.__getitem__)
+    if not math.isfinite(times[i]):
+        return None
+    a, b = xs[max(i - 1, 0)], xs[i + 1] if i + 1 < len(xs) else hi
+    best = minimize_scalar(time_at, bounds=(a, b), method="bounded", options={"xatol": 1e-6})
+    x = best.x if best.fun < times[i] else xs[i]
+    G = math.exp(x)
+    t, sc = grid_spin_up(v, G)
+    return G, t, sc
+
+
+def limit_grid(v, warnings: list) -> tuple[list[dict], dict]:
+    """(FW6)-(FW8) over every stator × supply limit pair (core.sim.limit_grid's axes and pick)."""
+    from ..sim.limit_grid import MAX_CELLS, axis
+
+    stators = axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator")
+    supplies = axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply")
+    if len(stators) * len(supplies) > MAX_CELLS:
+        raise InputError("stator_step", f"the grid has more than {MAX_CELLS} cells: widen a step")
+    base = {**v, "effects": frozenset(v["effects"]) | {"stator_limit", "supply_limit"}}
+    probe, _ = scene_from(base)
+    G_max = probe.free_speed * v["ratio"] / v["target_speed"]  # the free speed is ∝ 1/G: ω_f(G) = ω_t
+    rows = []
+    for sup in supplies:
+        for st in stators:
+            row: dict[str, Any] = {"stator_limit": st, "supply_limit": sup}
+            cell = {**base, "stator_current_limit": st, "supply_current_limit": sup}
+            found = grid_best_ratio(cell, G_max)
+            if found is not None:
+                G, t, sc = found
+                ex = electrical_extremes(sc, v["target_speed"], cell)
+                row.update(
+                    ratio=G,
+                    time=t,
+                    peak_stator_current=ex["peak_stator_current"],
+                    peak_supply_current=ex["peak_supply_current"],
+                    energy=grid_energy(sc, cell),
+                )
+            rows.append(row)
+    if not any("time" in r for r in rows):
+        raise InputError("stator_min", "no pair of limits in the grid spins the wheels up to the target")
+    budget = v["supply_budget"]
+    within = [r for r in rows if "time" in r and r["peak_supply_current"] <= budget * (1 + 1e-12)]
+    pick: dict[str, Any] = {"grid_cells": len(rows)}
+    if within:
+        best = min(within, key=lambda r: r["time"])  # (FW8)
+        best["pick"] = "◆"
+        pick.update(
+            pick_stator_limit=best["stator_limit"],
+            pick_supply_limit=best["supply_limit"],
+            best_ratio=best["ratio"],
+            grid_spin_up_time=best["time"],
+        )
+    else:
+        warnings.append(
+            f"No cell keeps the peak supply current within the budget of {budget:.4g} A per motor."
+        )
+    return rows, pick
 
 
 def flywheel_gains_of(solution) -> gains_code.FlywheelGains:
@@ -1746,6 +2063,7 @@ def flywheel_gains_of(solution) -> gains_code.FlywheelGains:
         raise ValueError("the gains are exported from the velocity loop: set control = velocity_loop")
     on = v["effects"]
     return gains_code.FlywheelGains(
+        acceleration=out.get("loop_ramp_acceleration"),
         kS=out["kS"],
         kV=out["kV"],
         kA=out["kA"],
@@ -1777,6 +2095,18 @@ DOCUMENTS = (
         "CTRE Phoenix 6 TalonFXConfiguration + VelocityVoltage (Java)",
         "FlywheelTalonFXConfig.java",
         lambda sol: gains_code.flywheel_phoenix6_java(flywheel_gains_of(sol)),
+    ),
+    Document(
+        "phoenix6-rotor",
+        "CTRE Phoenix 6 TalonFXConfiguration in rotor units, no SensorToMechanismRatio (Java)",
+        "FlywheelRotorTalonFXConfig.java",
+        lambda sol: gains_code.flywheel_phoenix6_java(flywheel_gains_of(sol), rotor=True),
+    ),
+    Document(
+        "revlib",
+        "REVLib SparkMaxConfig, velocity control in wheel rpm (Java)",
+        "FlywheelSparkMaxConfig.java",
+        lambda sol: gains_code.flywheel_revlib_java(flywheel_gains_of(sol)),
     ),
 )
 
@@ -1817,4 +2147,5 @@ CALCULATOR = Calculator(
         Plot("Voltage (velocity loop)", ("loop voltage",), "time", "time", "s", "voltage", "voltage", "V"),
     ),
     documents=DOCUMENTS,  # velocity-loop mode: the gains as code
+    tables=(GRID_TABLE,),
 )

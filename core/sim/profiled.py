@@ -18,6 +18,17 @@ Trapezoid from rest to rest over the distance d with limits v_max, a_max (WPILib
     t_c = (d − a_max·t_a²)/v_peak;  T = 2·t_a + t_c                                     (P1)
     p(t) = a·t²/2 (t < t_a);  a·t_a²/2 + v_peak·(t − t_a) (t < t_a + t_c);  d − a·(T − t)²/2 (t ≤ T)
                                                                                        (P2)
+Or WPILib's ExponentialProfile (Constraints.fromCharacteristics(U, kV, kA)): the response of the
+plant kA·v̇ + kV·v = u to the input u = +U, then −U from the switch (the inflection) on, so that it
+arrives at rest at d; the feedforward's kS and kG come on top, as in WPILib (derived with sympy and
+checked against mpmath and robotpy's ExponentialProfileMeterVolts, tests/test_profiled_expo.py):
+    v_m = U/kV (Constraints.maxVelocity, approached, never reached),  τ = kA/kV,
+    a_0 = U/kA (the acceleration at rest)                                               (P12)
+    accelerating from rest:  v = v_m·(1 − e^{−t/τ}),  p = v_m·t − τ·v                  (P13)
+    braking into the goal, s = T − t:  v = v_m·(e^{s/τ} − 1),  p = d + v_m·s − τ·v       (P14)
+    the two meet where −ln(1 − w²) = D, D = d/(v_m·τ), w = v_i/v_m:  w = √(1 − e^{−D});
+    t_i = τ·(D + ln(1 + w)) (from 1 − w = e^{−D}/(1 + w): no cancellation as w → 1),
+    T = t_i + τ·ln(1 + w)  (→ d/v_m + 2τ·ln 2 for a long move)                         (P15)
 The plant between updates (per motor; the duty signed, a limit lowers its magnitude):
     E = n·q̇/Kv,  u = clamp(u_k, −b(−E), b(E)),  b the shared duty bound of the limits on
     ((E2), (E3), the duty a limit lets a driving motor rise to; mirrored for a current the other
@@ -99,6 +110,56 @@ class Trapezoid:
         if t <= T:
             left = T - t
             return self.distance - a * left * left / 2, a * left
+        return self.distance, 0.0
+
+
+@dataclass(frozen=True)
+class Exponential:
+    """Rest-to-rest WPILib ExponentialProfile over `distance` ≥ 0, input `max_input` volts on the
+    plant kV, kA (P12)-(P15); the loop reads at(t) and total_time as of a Trapezoid."""
+
+    distance: float
+    max_input: float
+    kV: float
+    kA: float
+
+    @cached_property
+    def v_max(self) -> float:
+        return self.max_input / self.kV  # (P12)
+
+    @cached_property
+    def a_max(self) -> float:
+        return self.max_input / self.kA  # (P12)
+
+    @cached_property
+    def tau(self) -> float:
+        return self.kA / self.kV  # (P12)
+
+    @cached_property
+    def switch_fraction(self) -> float:
+        """w = v_i/v_m = √(1 − e^{−D}) (P15)."""
+        return math.sqrt(-math.expm1(-self.distance / (self.v_max * self.tau)))
+
+    @cached_property
+    def inflection_time(self) -> float:
+        D = self.distance / (self.v_max * self.tau)
+        return self.tau * (D + math.log1p(self.switch_fraction))  # (P15)
+
+    @cached_property
+    def total_time(self) -> float:
+        return self.inflection_time + self.tau * math.log1p(self.switch_fraction)  # (P15)
+
+    def at(self, t: float) -> tuple[float, float]:
+        """(p, ṗ) at time t (P13), (P14)."""
+        vm, tau, T = self.v_max, self.tau, self.total_time
+        if t <= 0:
+            return 0.0, 0.0
+        if t < self.inflection_time:
+            z = t / tau
+            return vm * tau * (z + math.expm1(-z)), -vm * math.expm1(-z)  # (P13)
+        if t < T:
+            z = (T - t) / tau
+            return self.distance - vm * tau * (math.expm1(z) - z), vm * math.expm1(z)  # (P14)
         return self.distance, 0.0
 
 
@@ -411,7 +472,9 @@ class ProfiledRun:
     key: dict
 
 
-def profiled_move(setup, loop: Loop, profile: Trapezoid, rtol: float, method: str = "exp") -> ProfiledRun:
+def profiled_move(
+    setup, loop: Loop, profile: Trapezoid | Exponential, rtol: float, method: str = "exp"
+) -> ProfiledRun:
     """Simulate the loop (P1)-(P7) over the window and report (P8)-(P11)."""
     m = setup.mech
     s, d_move, q0, q1 = m.s, m.distance, m.q0, m.q1
@@ -640,7 +703,9 @@ def profiled_move(setup, loop: Loop, profile: Trapezoid, rtol: float, method: st
     return ProfiledRun(values, series, nfev, K, saturated, settled, key)
 
 
-def as_sim_run(pr: ProfiledRun, extra: dict, loop: Loop) -> SimRun:
+def as_sim_run(
+    pr: ProfiledRun, extra: dict, loop: Loop, slower: str = "lower the fractions or limits"
+) -> SimRun:
     warnings = []
     if not pr.settled:
         warnings.append(
@@ -650,7 +715,7 @@ def as_sim_run(pr: ProfiledRun, extra: dict, loop: Loop) -> SimRun:
     if pr.saturated:
         warnings.append(
             f"The loop's voltage saturated at the battery voltage in {pr.saturated} of {pr.updates} "
-            f"updates: the profile asks for more than the motors give (lower the fractions or limits)."
+            f"updates: the profile asks for more than the motors give ({slower})."
         )
     values = dict(pr.values)
     values.update(extra)
@@ -660,6 +725,12 @@ def as_sim_run(pr: ProfiledRun, extra: dict, loop: Loop) -> SimRun:
 # --- the mode's fields, outputs and run, shared by the motor scenes ------------------------------
 
 PROFILED = ("profiled",)
+PROFILE_CHOICES = ("trapezoid", "exponential")
+PROFILE_LABELS = (
+    "Trapezoid: max velocity and acceleration (WPILib TrapezoidProfile)",
+    "Exponential: max input volts on the plant's kV, kA (WPILib ExponentialProfile)",
+)
+TRAPEZOID = (("profile_type", ("trapezoid",)),)
 LIMIT_CHOICES = ("derived", "entered")
 LIMIT_LABELS = (
     "Derived: fractions of the free speed and of the acceleration at stall",
@@ -682,12 +753,38 @@ def profile_fields(
 
     return (
         Field(
+            "profile_type",
+            "Profile",
+            choices=PROFILE_CHOICES,
+            choice_labels=PROFILE_LABELS,
+            default="trapezoid",
+            modes=PROFILED,
+            help="Trapezoid: constant acceleration to a cruise velocity. Exponential: the plant's own "
+            "response to a fixed voltage, forward then back (WPILib ExponentialProfile, Phoenix 6 "
+            "Motion Magic Expo): quick off the line, slowing as the back-EMF grows.",
+        ),
+        Field(
+            "max_input",
+            "Profile max input",
+            "voltage",
+            "V",
+            default=10,
+            min=0,
+            min_exclusive=True,
+            max=1000,
+            modes=PROFILED,
+            when=(("profile_type", ("exponential",)),),
+            help="The exponential profile's voltage (ExponentialProfile.Constraints maxInput), on top "
+            "of kS and kG; at most the battery voltage. Below it leaves voltage for the feedback.",
+        ),
+        Field(
             "profile_limits",
             "Profile limits",
             choices=LIMIT_CHOICES,
             choice_labels=LIMIT_LABELS,
             default="derived",
             modes=PROFILED,
+            when=TRAPEZOID,
             help="The trapezoid's max velocity and acceleration: fractions of what the mechanism can "
             "do (free speed; acceleration from rest at full voltage against the load), or entered.",
         ),
@@ -701,7 +798,7 @@ def profile_fields(
             min_exclusive=True,
             max=1,
             modes=PROFILED,
-            when=(("profile_limits", ("derived",)),),
+            when=(*TRAPEZOID, ("profile_limits", ("derived",))),
             help="Profile max velocity as a fraction of the free speed (0-1). Velocity and acceleration "
             "fractions summing below 1 leave voltage for the feedback.",
         ),
@@ -715,7 +812,7 @@ def profile_fields(
             min_exclusive=True,
             max=1,
             modes=PROFILED,
-            when=(("profile_limits", ("derived",)),),
+            when=(*TRAPEZOID, ("profile_limits", ("derived",))),
             help="Profile max acceleration as a fraction of the acceleration from rest at full voltage "
             "against the load (0-1).",
         ),
@@ -729,7 +826,7 @@ def profile_fields(
             min_exclusive=True,
             max=1e6,
             modes=PROFILED,
-            when=(("profile_limits", ("entered",)),),
+            when=(*TRAPEZOID, ("profile_limits", ("entered",))),
             help="The trapezoid profile's cruise velocity (TrapezoidProfile.Constraints maxVelocity).",
         ),
         Field(
@@ -742,7 +839,7 @@ def profile_fields(
             min_exclusive=True,
             max=1e7,
             modes=PROFILED,
-            when=(("profile_limits", ("entered",)),),
+            when=(*TRAPEZOID, ("profile_limits", ("entered",))),
             help="The trapezoid profile's acceleration (TrapezoidProfile.Constraints maxAcceleration).",
         ),
         Field(
@@ -812,24 +909,26 @@ def profile_outputs(pos: tuple[str, str], speed: tuple[str, str], accel: tuple[s
             "Profile time",
             "time",
             "s",
-            help="The trapezoid's duration (P1).",
-            equation="(P1)",
+            help="The profile's duration: the trapezoid's (P1) or the exponential's (P15).",
+            equation="(P1), (P15)",
         ),
         Output(
             "profile_max_velocity",
             "Profile max velocity",
             speed[0],
             speed[1],
-            help="The profile's velocity limit used (P1).",
-            equation="(P1)",
+            help="The trapezoid's velocity limit used (P1); exponential: max input/kV, approached "
+            "and never reached (P12).",
+            equation="(P1), (P12)",
         ),
         Output(
             "profile_max_acceleration",
             "Profile max acceleration",
             accel[0],
             accel[1],
-            help="The profile's acceleration limit used (P1).",
-            equation="(P1)",
+            help="The trapezoid's acceleration limit used (P1); exponential: max input/kA, its "
+            "acceleration at rest (P12).",
+            equation="(P1), (P12)",
         ),
         Output(
             "overshoot",
@@ -899,13 +998,29 @@ def stall_acceleration(setup) -> float:
     return (m.force_per_amp * I0 + m.s * field_force(setup)(m.q0) - friction_of(setup)) / m.inertia
 
 
-def loop_of(setup, v, ff: dict, kG) -> tuple[Loop, Trapezoid, dict]:
+def exponential_of(setup, v, ff: dict) -> Exponential:
+    """(P12)-(P15) from the entered max input on the plant's kV, kA (ff, per unit of q)."""
+    U, Vb = v["max_input"], setup.mech.battery_voltage
+    if U > Vb:
+        raise InputError(
+            "max_input", f"is above the battery voltage ({U:.4g} V > {Vb:.4g} V): the loop cannot apply it"
+        )
+    profile = Exponential(setup.mech.distance, U, ff["kV"], ff["kA"])
+    if not (profile.kV > 0 and profile.kA > 0 and math.isfinite(profile.v_max * profile.a_max)):
+        raise InputError("max_input", "the plant's kV and kA give no exponential profile")
+    return profile
+
+
+def loop_of(setup, v, ff: dict, kG) -> tuple[Loop, Trapezoid | Exponential, dict]:
     """The loop and profile from the entries; kP, kD from LQR (motion.lqr) or entered."""
     from .motion import check_can_move, lqr
 
     check_can_move(setup)
     m = setup.mech
-    if v["profile_limits"] == "derived":
+    exponential = v.get("profile_type") == "exponential"
+    if exponential:
+        v_max = a_max = math.nan  # (P12): the profile's, below
+    elif v["profile_limits"] == "derived":
         v_max = v["velocity_fraction"] * m.free_speed
         a_max = v["acceleration_fraction"] * stall_acceleration(setup)
     else:
@@ -940,13 +1055,14 @@ def loop_of(setup, v, ff: dict, kG) -> tuple[Loop, Trapezoid, dict]:
         v["sensor_delay"],
         v["settle_tolerance"],
     )
-    profile = Trapezoid(m.distance, v_max, a_max)
+    profile = exponential_of(setup, v, ff) if exponential else Trapezoid(m.distance, v_max, a_max)
     T = profile.total_time
+    speed_field = "max_input" if exponential else "max_velocity"
     if not (math.isfinite(T) and T > 0):
-        raise InputError("max_velocity", "the profile's time is not a positive number")
+        raise InputError(speed_field, "the profile's time is not a positive number")
     updates = (T + max(SETTLE_EXTRA, T)) / v["control_period"]
     if updates > MAX_UPDATES:
-        field_name = "control_period" if T < 600 else "max_velocity"
+        field_name = "control_period" if T < 600 else speed_field
         raise InputError(
             field_name,
             f"the move needs {updates:.3g} control updates (more than {MAX_UPDATES}): "
@@ -963,4 +1079,6 @@ def run_profiled(setup, v, rtol: float, ff: dict, kG) -> SimRun:
     loop, profile, gains = loop_of(setup, v, ff, kG)
     pr = profiled_move(setup, loop, profile, rtol)
     extra = {**ff, **gains, "free_speed": setup.mech.free_speed}
+    if isinstance(profile, Exponential):
+        return as_sim_run(pr, extra, loop, "lower the max input")
     return as_sim_run(pr, extra, loop)

@@ -13,6 +13,13 @@ The robot code (WPILib SimpleMotorFeedforward + PIDController, I = D = 0), at t_
     y_k = ω(t_k − δ)  (ω(0) = 0 before δ);  e_k = r − y_k                               (VL3)
     V_k = clamp(kS·sgn r + kV·r + kP·e_k, −V_b, V_b),  u_k = V_k/V_b held over the period  (VL4)
     (a step setpoint r: SimpleMotorFeedforward.calculate(r, r) is kS·sgn r + kV·r exactly)
+A ramped setpoint (Motion Magic Velocity, MAXMotion velocity, or robot code stepping its setpoint
+by a·dt each period): r(t) = min(r, a·t), r_k = r(t_k), and as core.sim.profiled (P4), (P5) with
+WPILib's SimpleMotorFeedforward.calculate(r_k, r_{k+1}) (its discrete plant inversion, checked
+against robotpy 2026.2.2 to 1e-15):
+    e_k = r_{k+1} − y_k,  V_ff = kS·sgn r_k + (r_{k+1} − A_d·r_k)/B_d,
+    A_d = e^(−kV·dt/kA),  B_d = (1 − A_d)/kV                                            (VL4a)
+    (at r_k = r_{k+1} = r it is kS·sgn r + kV·r, the step's (VL4): the ramp's end joins it)
 Between updates, u held, (VL1) is a scalar autonomous ODE: ω is monotone on each period. With no
 current limit on (sag alone keeps I affine in E for a fixed u) it is linear and the period's
 closed form is exact (the first-order case of core.sim.profiled's exponential step (X1), written
@@ -77,6 +84,26 @@ class Loop:
     period: float
     delay: float
     tolerance: float  # rad/s
+    kA: float = 0.0  # V·s²/rad: used by a ramped setpoint only (VL4a)
+    acceleration: float | None = None  # rad/s², the ramp's; None: a step setpoint (VL4)
+
+    def setpoint(self, t: float, target: float) -> float:
+        """r(t): the target, or the ramp toward it from rest at t = 0 (VL4a)."""
+        if self.acceleration is None:
+            return target
+        return min(target, self.acceleration * t)
+
+    def command(self, k: int, target: float, measured: float) -> float:
+        """The loop's voltage at update k before the clamp: (VL4), or (VL4a) on a ramp."""
+        if self.acceleration is None:
+            sign = (target > 0) - (target < 0)
+            return self.kS * sign + self.kV * target + self.kP * (target - measured)
+        dt = self.period
+        r, r_next = self.setpoint(k * dt, target), self.setpoint((k + 1) * dt, target)
+        A_d = math.exp(-self.kV * dt / self.kA)
+        B_d = -math.expm1(-self.kV * dt / self.kA) / self.kV
+        ff = self.kS * ((r > 0) - (r < 0)) + (r_next - A_d * r) / B_d
+        return ff + self.kP * (r_next - measured)
 
 
 def feedforward_gains(w: Wheel) -> dict[str, float]:
@@ -239,7 +266,6 @@ def run_loop(
         out.peak_stator = max(out.peak_stator, abs(I))
         out.peak_supply = max(out.peak_supply, u * I)
 
-    ff = loop.kS * ((setpoint > 0) - (setpoint < 0)) + loop.kV * setpoint
     omega = 0.0
     since: float | None = 0.0 if inside(0.0) else None
     shot_done = False
@@ -248,7 +274,7 @@ def run_loop(
     for k in range(n):
         tk = k * dt
         measured = out.speed(tk - loop.delay)  # (VL3)
-        V = min(max(ff + loop.kP * (setpoint - measured), -Vb), Vb)  # (VL4)
+        V = min(max(loop.command(k, setpoint, measured), -Vb), Vb)  # (VL4), (VL4a)
         u_cmd = V / Vb
         out.volt_t += [tk, min((k + 1) * dt, t_end)]
         out.volts += [V, V]
