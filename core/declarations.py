@@ -117,9 +117,22 @@ class Table:
     # targets whose columns it all has
     exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
     modes: tuple[str, ...] = ()  # shown only in these modes of the calculator; empty means all
+    # and only when other choice fields hold one of these values (as Field.when), e.g. the
+    # flywheel's (("control", ("limit_grid",)),): its `mode` is the inertia's
+    when: tuple[tuple[str, tuple[str, ...]], ...] = ()
 
-    def shown_in(self, mode: Any) -> bool:
-        return not self.modes or mode in self.modes
+    def shown_in(self, inputs: Mapping[str, Any]) -> bool:
+        """Whether the table applies to these entries (each field's value by name)."""
+        if self.modes and inputs.get("mode") not in self.modes:
+            return False
+        for name, allowed in self.when:
+            chosen = inputs.get(name)
+            if isinstance(chosen, frozenset):  # a flags field: any of the allowed is on
+                if not chosen & set(allowed):
+                    return False
+            elif name in inputs and chosen not in allowed:
+                return False
+        return True
 
     def column(self, name: str) -> Column:
         for c in self.columns:
@@ -279,15 +292,7 @@ def check(calc: Calculator) -> None:
                     part,
                     f"shown in mode {mode!r}, which is not a mode (modes: {', '.join(modes) or 'none'})",
                 )
-        for other, allowed in f.when:
-            target = by_name.get(other)
-            if target is None or not target.choices:
-                raise DeclarationError(cid, part, f"`when` names {other!r}, which is not a choice field")
-            unknown = [a for a in allowed if a not in target.choices]
-            if unknown:
-                raise DeclarationError(
-                    cid, part, f"`when` allows {', '.join(map(repr, unknown))}, not a choice of {other!r}"
-                )
+        _check_when(cid, part, f.when, by_name)
         try:
             f.parse(f.default)
         except InputError as exc:
@@ -300,12 +305,32 @@ def check(calc: Calculator) -> None:
         _check_unit(cid, f"plot {p.title!r} y axis", p.y_unit, p.y_quantity)
         if isinstance(p, HeatMap):
             _check_unit(cid, f"plot {p.title!r} values", p.z_unit, p.z_quantity)
+    for t in calc.tables:
+        unknown_modes = [m for m in t.modes if m not in modes]
+        if unknown_modes:
+            raise DeclarationError(
+                cid, f"table {t.name!r}", f"shown in mode {unknown_modes[0]!r}, not a mode"
+            )
+        _check_when(cid, f"table {t.name!r}", t.when, by_name)
     for target, mapping in calc.exports.items():
         for target_field, output in mapping.items():
             if output not in out_names:
                 raise DeclarationError(
                     cid, f"export to {target}.{target_field}", f"{output!r} is not an output of {cid}"
                 )
+
+
+def _check_when(cid: str, part: str, when, by_name: Mapping[str, Field]) -> None:
+    """A `when` names choice fields and only their choices."""
+    for other, allowed in when:
+        target = by_name.get(other)
+        if target is None or not target.choices:
+            raise DeclarationError(cid, part, f"`when` names {other!r}, which is not a choice field")
+        unknown = [a for a in allowed if a not in target.choices]
+        if unknown:
+            raise DeclarationError(
+                cid, part, f"`when` allows {', '.join(map(repr, unknown))}, not a choice of {other!r}"
+            )
 
 
 def check_links(found: dict[str, Calculator]) -> None:

@@ -59,6 +59,10 @@ class Solution:
     series_labels: dict[str, str] = dc_field(default_factory=dict)  # Result.series_labels
     heat_maps: dict[str, HeatMapData] = dc_field(default_factory=dict)  # Result.heat_maps (SI)
 
+    def entries(self) -> dict[str, Any]:
+        """Each input's value by field name (SI), as a calculator's compute saw them."""
+        return {name: value.value for name, value in self.inputs.items()}
+
     def series_label(self, name: str) -> str:
         return self.series_labels.get(name, name)
 

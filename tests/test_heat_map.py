@@ -133,3 +133,27 @@ async def test_the_card_shows_the_heat_map_in_the_grid_mode_and_the_lines_out_of
             view = app.query(HeatMapView)
             assert bool(view and view.first().display) == (mode == "limit_grid")
         assert shown == ["Time per current-limit pair (grid)", "Angle"] * 2
+
+
+async def test_the_flywheel_card_shows_its_grid_by_control_not_by_mode():
+    """The flywheel's `mode` is the inertia's: its grid table and heat map follow `control`
+    (Table.when), shown in limit_grid and gone in full_power."""
+    from textual.widgets import DataTable
+
+    from gearhead.tui.app import GearheadApp
+    from tests.tui_helpers import settle
+
+    app = GearheadApp(blink=False, initial="flywheel", hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.current_tab
+        for control in ("limit_grid", "full_power", "limit_grid"):
+            tab._take_entry("control", control)
+            await settle(pilot)
+            await pilot.pause()
+            await settle(pilot)
+            grid = tab.query_one("#table-limit_grid", DataTable)
+            assert grid.display == (control == "limit_grid")
+            assert grid.row_count == (77 if control == "limit_grid" else 0) or not grid.display
+            view = app.query(HeatMapView)
+            assert bool(view and view.first().display) == (control == "limit_grid")

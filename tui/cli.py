@@ -326,9 +326,9 @@ def _solve(args) -> int:
         print(f"  {calc.output(name).label:<{width}}  {value.text}")
     for w in solution.warnings:
         print(f"  warning: {w}")
-    mode = solution.inputs["mode"].value if "mode" in solution.inputs else None
+    entries = solution.entries()
     for table in calc.tables:
-        if table.shown_in(mode):
+        if table.shown_in(entries):
             _print_table(table, solution.tables.get(table.name, []))
     if solution.heat_maps:
         _print_heat_maps(calc, solution)

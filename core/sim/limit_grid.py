@@ -287,12 +287,12 @@ def table():
     )
 
 
-def heat_map_plot():
+def heat_map_plot(title: str = "Time per current-limit pair (grid)", value: str = "time to goal"):
     """The time per cell, the pick marked (Result.heat_maps["limit_grid_time"])."""
     from ..declarations import HeatMap
 
     return HeatMap(
-        "Time per current-limit pair (grid)",
+        title,
         "limit_grid_time",
         "supply limit",
         "current",
@@ -300,7 +300,7 @@ def heat_map_plot():
         "stator limit",
         "current",
         "A",
-        "time to goal",
+        value,
         "time",
         "s",
     )
