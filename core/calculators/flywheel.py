@@ -207,7 +207,9 @@ LOOP_FIELDS = (
         default="full_power",
         help="Full power: the seed's spin-up at full voltage, held at the target (FW2). Velocity loop: "
         "feedforward + kP on the speed error every control period with the sensor delay, as robot "
-        "code runs it (core.sim.velocity_loop (VL1)-(VL8)); adds the loop's outputs and charts.",
+        "code runs it (core.sim.velocity_loop (VL1)-(VL8)); adds the loop's outputs and charts. "
+        "Current-limit grid: for each stator × supply limit pair the ratio that spins up quickest at "
+        "full power (FW6)-(FW8), as a table and a heat map, the quickest within the supply budget picked.",
     ),
     Field(
         "control_period",
