@@ -9,8 +9,9 @@ Run:  .venv/bin/python bench/bench_profiled.py
   (the default), the scene's DP54 per period, and a fixed 0.1 ms RK4 step (800 a period), with what
   each gives for the settle time (the 0.1 ms RK4 and the exponential integrator at 1e-10 as the
   reference);
-- the current-limit grid (11 stator × 7 supply limits, elevator.simulate once, no error estimate),
-  median of 3, beside one optimise-mode solve of the same elevator (the baseline); goal ≤ 2 s;
+- the current-limit grid (11 stator × 7 supply limits, the elevator's and the arm's simulate once, no
+  error estimate), median of 3, beside one optimise-mode solve of the same mechanism (the baseline);
+  goal ≤ 2 s;
 - the arm's profiled solve (arm.simulate at the default accuracy), which runs the return move too
   (P16), median of 30, beside the one-way solve it replaced (the same setup and run_profiled without
   the return, measured in the same run: the baseline);
@@ -87,25 +88,27 @@ def main() -> None:
 
 
 def grid() -> None:
-    from gearhead.core.calculators import elevator
+    from gearhead.core.calculators import arm, elevator
     from gearhead.core.model import parse_inputs
     from gearhead.core.registry import get
     from gearhead.core.sim.scene import LEVELS
 
     rtol = LEVELS["default"]
-    calc = get("elevator")
-    for label, effects in (("gravity", "gravity"), ("gravity + sag", "gravity, battery_sag")):
-        v_grid, _ = parse_inputs(calc, {"mode": "limit_grid", "effects": effects})
-        v_opt, _ = parse_inputs(
-            calc, {"mode": "optimise", "effects": effects + ", stator_limit, supply_limit"}
-        )
-        t_opt = median_seconds(lambda: elevator.simulate(v_opt, rtol), 3)
-        t_grid = median_seconds(lambda: elevator.simulate(v_grid, rtol), 3)
-        run = elevator.simulate(v_grid, rtol)
-        print(
-            f"  grid 11 x 7, {label:<14} {t_grid:6.3f} s  (one optimise solve {t_opt * 1e3:6.1f} ms)  "
-            f"{run.values['grid_cells']} cells, rhs {run.nfev}"
-        )
+    for module in (elevator, arm):
+        name = module.CALCULATOR.id
+        calc = get(name)
+        for label, effects in (("gravity", "gravity"), ("gravity + sag", "gravity, battery_sag")):
+            v_grid, _ = parse_inputs(calc, {"mode": "limit_grid", "effects": effects})
+            v_opt, _ = parse_inputs(
+                calc, {"mode": "optimise", "effects": effects + ", stator_limit, supply_limit"}
+            )
+            t_opt = median_seconds(lambda: module.simulate(v_opt, rtol), 3)
+            t_grid = median_seconds(lambda: module.simulate(v_grid, rtol), 3)
+            run = module.simulate(v_grid, rtol)
+            print(
+                f"  {name:<8} grid 11 x 7, {label:<14} {t_grid:6.3f} s  (one optimise solve "
+                f"{t_opt * 1e3:6.1f} ms)  {run.values['grid_cells']} cells, rhs {run.nfev}"
+            )
 
 
 def flywheel_loop() -> None:

@@ -53,6 +53,47 @@ class Plot:
 
 
 @dataclass(frozen=True)
+class HeatMap:
+    """A chart of one value over a grid of two (e.g. the time per stator × supply current limit):
+    a coloured cell with its value for each pair, one cell marked (the pick). Listed among a
+    calculator's plots; its data is Result.heat_maps[name] (x, y, z in SI)."""
+
+    title: str
+    name: str  # key of Result.heat_maps
+    x_label: str  # the columns
+    x_quantity: str
+    x_unit: str
+    y_label: str  # the rows
+    y_quantity: str
+    y_unit: str
+    z_label: str  # the value in each cell
+    z_quantity: str
+    z_unit: str
+    series: tuple[str, ...] = ()  # no line series: code that draws lines finds none here
+
+
+@dataclass
+class HeatMapData:
+    """A heat map's values: z[row][column] at (x[column], y[row]), all SI; None where there is no
+    value (`notes` then holds a short word for the cell: why); `pick` the (row, column) marked."""
+
+    x: list[float]
+    y: list[float]
+    z: list[list[float | None]]
+    pick: tuple[int, int] | None = None
+    notes: list[list[str]] = dc_field(default_factory=list)
+
+    def as_json(self) -> dict[str, Any]:
+        return {
+            "x": self.x,
+            "y": self.y,
+            "z": self.z,
+            "pick": list(self.pick) if self.pick else None,
+            "notes": self.notes,
+        }
+
+
+@dataclass(frozen=True)
 class Column:
     """One column of a Table: a value per row, in SI like an Output."""
 
@@ -76,9 +117,22 @@ class Table:
     # targets whose columns it all has
     exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
     modes: tuple[str, ...] = ()  # shown only in these modes of the calculator; empty means all
+    # and only when other choice fields hold one of these values (as Field.when), e.g. the
+    # flywheel's (("control", ("limit_grid",)),): its `mode` is the inertia's
+    when: tuple[tuple[str, tuple[str, ...]], ...] = ()
 
-    def shown_in(self, mode: Any) -> bool:
-        return not self.modes or mode in self.modes
+    def shown_in(self, inputs: Mapping[str, Any]) -> bool:
+        """Whether the table applies to these entries (each field's value by name)."""
+        if self.modes and inputs.get("mode") not in self.modes:
+            return False
+        for name, allowed in self.when:
+            chosen = inputs.get(name)
+            if isinstance(chosen, frozenset):  # a flags field: any of the allowed is on
+                if not chosen & set(allowed):
+                    return False
+            elif name in inputs and chosen not in allowed:
+                return False
+        return True
 
     def column(self, name: str) -> Column:
         for c in self.columns:
@@ -98,6 +152,7 @@ class Result:
     # what a chart's legend calls a series whose key is a slot, not a name (the motors table's
     # "curve 1" is the motor chosen for it); a key not here is its own label
     series_labels: dict[str, str] = dc_field(default_factory=dict)
+    heat_maps: dict[str, HeatMapData] = dc_field(default_factory=dict)  # the data of each HeatMap
 
 
 @dataclass(frozen=True)
@@ -122,7 +177,7 @@ class Calculator:
     section: str = ""  # where in the seed it comes from
     # Outputs that feed another calculator: {target_id: {target_field: output_name}}
     exports: Mapping[str, Mapping[str, str]] = dc_field(default_factory=dict)
-    plots: tuple[Plot, ...] = ()
+    plots: tuple[Plot | HeatMap, ...] = ()
     tables: tuple[Table, ...] = ()
     documents: tuple[Document, ...] = ()  # files for other tools (ctrl+e, `solve --document NAME`)
     # Simulated calculators: simulate(values, rtol) -> core.sim.scene.SimRun (for the accuracy ladder)
@@ -237,15 +292,7 @@ def check(calc: Calculator) -> None:
                     part,
                     f"shown in mode {mode!r}, which is not a mode (modes: {', '.join(modes) or 'none'})",
                 )
-        for other, allowed in f.when:
-            target = by_name.get(other)
-            if target is None or not target.choices:
-                raise DeclarationError(cid, part, f"`when` names {other!r}, which is not a choice field")
-            unknown = [a for a in allowed if a not in target.choices]
-            if unknown:
-                raise DeclarationError(
-                    cid, part, f"`when` allows {', '.join(map(repr, unknown))}, not a choice of {other!r}"
-                )
+        _check_when(cid, part, f.when, by_name)
         try:
             f.parse(f.default)
         except InputError as exc:
@@ -256,12 +303,34 @@ def check(calc: Calculator) -> None:
     for p in calc.plots:
         _check_unit(cid, f"plot {p.title!r} x axis", p.x_unit, p.x_quantity)
         _check_unit(cid, f"plot {p.title!r} y axis", p.y_unit, p.y_quantity)
+        if isinstance(p, HeatMap):
+            _check_unit(cid, f"plot {p.title!r} values", p.z_unit, p.z_quantity)
+    for t in calc.tables:
+        unknown_modes = [m for m in t.modes if m not in modes]
+        if unknown_modes:
+            raise DeclarationError(
+                cid, f"table {t.name!r}", f"shown in mode {unknown_modes[0]!r}, not a mode"
+            )
+        _check_when(cid, f"table {t.name!r}", t.when, by_name)
     for target, mapping in calc.exports.items():
         for target_field, output in mapping.items():
             if output not in out_names:
                 raise DeclarationError(
                     cid, f"export to {target}.{target_field}", f"{output!r} is not an output of {cid}"
                 )
+
+
+def _check_when(cid: str, part: str, when, by_name: Mapping[str, Field]) -> None:
+    """A `when` names choice fields and only their choices."""
+    for other, allowed in when:
+        target = by_name.get(other)
+        if target is None or not target.choices:
+            raise DeclarationError(cid, part, f"`when` names {other!r}, which is not a choice field")
+        unknown = [a for a in allowed if a not in target.choices]
+        if unknown:
+            raise DeclarationError(
+                cid, part, f"`when` allows {', '.join(map(repr, unknown))}, not a choice of {other!r}"
+            )
 
 
 def check_links(found: dict[str, Calculator]) -> None:

@@ -7,7 +7,7 @@ import csv
 import io
 
 from . import units
-from .model import Calculator, Plot, Solution
+from .model import Calculator, HeatMap, Plot, Solution
 
 
 def _rows(calc: Calculator, solution: Solution) -> list[tuple[str, str, str, str, str, str]]:
@@ -84,6 +84,39 @@ def plot_csv(plot: Plot, solution: Solution) -> str:
         xs, ys = solution.series.get(name, ([], []))
         label = solution.series_label(name)
         writer.writerows((label, repr(x / fx), repr(y / fy)) for x, y in zip(xs, ys))
+    return out.getvalue()
+
+
+def heat_map_csv(plot: HeatMap, solution: Solution) -> str:
+    """A heat map's cells in its display units, one (x, y, z, note, pick) row per cell."""
+    data = solution.heat_maps[plot.name]
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    heads = [
+        f"{label} [{unit}]" if unit else label
+        for label, unit in (
+            (plot.x_label, plot.x_unit),
+            (plot.y_label, plot.y_unit),
+            (plot.z_label, plot.z_unit),
+        )
+    ]
+    writer.writerow(heads + ["note", "pick"])
+    fx = units.factor(plot.x_unit, plot.x_quantity)
+    fy = units.factor(plot.y_unit, plot.y_quantity)
+    fz = units.factor(plot.z_unit, plot.z_quantity)
+    for j, y in enumerate(data.y):
+        for i, x in enumerate(data.x):
+            z = data.z[j][i]
+            note = data.notes[j][i] if j < len(data.notes) and i < len(data.notes[j]) else ""
+            writer.writerow(
+                [
+                    repr(x / fx),
+                    repr(y / fy),
+                    "" if z is None else repr(z / fz),
+                    note,
+                    "1" if data.pick == (j, i) else "",
+                ]
+            )
     return out.getvalue()
 
 

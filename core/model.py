@@ -24,6 +24,8 @@ from typing import Any
 from . import units
 from .declarations import Calculator as Calculator
 from .declarations import Column as Column
+from .declarations import HeatMap as HeatMap
+from .declarations import HeatMapData as HeatMapData
 from .declarations import Output as Output
 from .declarations import Plot as Plot
 from .declarations import Result as Result
@@ -55,6 +57,11 @@ class Solution:
     series: dict[str, tuple[list[float], list[float]]] = dc_field(default_factory=dict)
     tables: dict[str, list[dict[str, Value]]] = dc_field(default_factory=dict)
     series_labels: dict[str, str] = dc_field(default_factory=dict)  # Result.series_labels
+    heat_maps: dict[str, HeatMapData] = dc_field(default_factory=dict)  # Result.heat_maps (SI)
+
+    def entries(self) -> dict[str, Any]:
+        """Each input's value by field name (SI), as a calculator's compute saw them."""
+        return {name: value.value for name, value in self.inputs.items()}
 
     def series_label(self, name: str) -> str:
         return self.series_labels.get(name, name)
@@ -71,6 +78,8 @@ class Solution:
                 name: [{k: v.as_json() for k, v in row.items()} for row in rows]
                 for name, rows in self.tables.items()
             }
+        if self.heat_maps:  # only a solve that drew one (the limit grid) has the key
+            out["heat_maps"] = {name: data.as_json() for name, data in self.heat_maps.items()}
         return out
 
 
@@ -240,4 +249,14 @@ def solve(
         dict(result.series),
         tables,
         dict(result.series_labels),
+        _checked_heat_maps(result.heat_maps),
     )
+
+
+def _checked_heat_maps(maps: dict[str, HeatMapData]) -> dict[str, HeatMapData]:
+    """The heat maps, with the same last-resort guard as the outputs: no NaN or inf is shown."""
+    for name, data in maps.items():
+        for row in data.z:
+            if any(z is not None and not math.isfinite(z) for z in row):
+                raise InputError("(result)", f"{name} could not be computed from these inputs")
+    return dict(maps)

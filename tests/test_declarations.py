@@ -5,7 +5,7 @@ import pytest
 
 from gearhead.core import presets
 from gearhead.core.declarations import DeclarationError, check, check_links
-from gearhead.core.model import Calculator, Field, Output, Plot, Result, parse_inputs
+from gearhead.core.model import Calculator, Field, Output, Plot, Result, Table, parse_inputs
 from gearhead.core.registry import calculators
 
 
@@ -69,6 +69,9 @@ MODE = Field("mode", "Mode", choices=("a", "b"), default="a")
         ),
         (_calc([MODE, Field("x", "X", default=1, when=(("mode", ("z",)),))]), "field 'x'", "'z'"),
         (_calc([Field("x", "X", default=1), Field("x", "X2", default=2)]), "field 'x'", "more than once"),
+        (_calc([MODE], tables=(Table("t", "T", (), modes=("c",)),)), "table 't'", "mode 'c'"),
+        (_calc([MODE], tables=(Table("t", "T", (), when=(("x", ("p",)),)),)), "table 't'", "not a choice"),
+        (_calc([MODE], tables=(Table("t", "T", (), when=(("mode", ("z",)),)),)), "table 't'", "'z'"),
         (_calc(outputs=[Output("y", "Y", "force", "lbz")]), "output 'y'", "cannot show a force"),
         (_calc(outputs=[Output("y", "Y", "forse", "N")]), "output 'y'", "unknown quantity kind"),
         (

@@ -124,3 +124,39 @@ def test_no_cell_within_a_tiny_budget_warns():
     sol = solve("flywheel", GRID | {"supply_budget": "1 A"})
     assert "pick_stator_limit" not in sol.outputs
     assert any("budget" in w for w in sol.warnings)
+
+
+def test_heat_map_is_the_table_s_times_with_the_pick_marked(grid):
+    """The grid's heat map holds each row's spin-up time at (stator, supply), the picked cell marked;
+    the grid mode draws no line chart, so the card shows the map by itself."""
+    data = grid.heat_maps["limit_grid_time"]
+    assert (data.x, data.y) == ([30.0, 60.0], [40.0, 70.0, 100.0])
+    for row in grid.tables["limit_grid"]:
+        i, j = data.y.index(row["stator_limit"].value), data.x.index(row["supply_limit"].value)
+        assert data.z[i][j] == row["time"].value
+    picked = next(r for r in grid.tables["limit_grid"] if "pick" in r)
+    assert data.pick == (
+        data.y.index(picked["stator_limit"].value),
+        data.x.index(picked["supply_limit"].value),
+    )
+    assert not any(xs for xs, _ in grid.series.values())
+
+
+def test_a_cell_that_never_reaches_the_target_is_marked_not_blank():
+    """A target above the free speed at every ratio the scan allows for a limit: the cell says so in
+    the table (note) and the map (no value, a short note), never NaN."""
+    raw = GRID | {"stator_min": "1 A", "stator_max": "31 A", "stator_step": "30 A", "supply_min": "30 A"}
+    raw["supply_max"] = "30 A"
+    s = solve("flywheel", raw)
+    rows = s.tables["limit_grid"]
+    weak = next(r for r in rows if r["stator_limit"].value == 1.0)
+    assert "time" not in weak and weak["note"].value == "no arrival"
+    data = s.heat_maps["limit_grid_time"]
+    assert data.z[0] == [None] and data.notes[0] == ["—"]
+
+
+def test_the_grid_table_shows_only_under_control_limit_grid():
+    """Table.when: the flywheel's mode is the inertia's, so the table follows `control`."""
+    assert fc.GRID_TABLE.shown_in({"mode": "moment_of_inertia", "control": "limit_grid"})
+    assert not fc.GRID_TABLE.shown_in({"mode": "moment_of_inertia", "control": "velocity_loop"})
+    assert not fc.GRID_TABLE.shown_in({"mode": "moment_of_inertia", "control": "full_power"})

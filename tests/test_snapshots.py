@@ -46,3 +46,35 @@ def test_no_color_snapshot(snap_compare, monkeypatch):
         terminal_size=SIZE,
         run_before=tick_a_flag,
     )
+
+
+async def _elevator_grid_heat_map(pilot):
+    """The elevator's current-limit grid: its heat map is the chart shown (the line charts are empty)."""
+    from gearhead.core.model import HeatMap
+
+    await settle(pilot)
+    tab = pilot.app.current_tab
+    tab._take_entry("mode", "limit_grid")
+    await settle(pilot)
+    await pilot.pause()
+    await settle(pilot)
+    assert isinstance(tab.plot.current, HeatMap)
+
+
+def test_heat_map_snapshot(snap_compare):
+    """The time per stator × supply limit, a coloured cell each with its value, the pick in brackets."""
+    assert snap_compare(
+        GearheadApp(blink=False, initial="elevator", hide_timings=True),
+        terminal_size=SIZE,
+        run_before=_elevator_grid_heat_map,
+    )
+
+
+def test_heat_map_no_color_snapshot(snap_compare, monkeypatch):
+    """NO_COLOR: every cell still reads its value and the pick its brackets."""
+    monkeypatch.setenv("NO_COLOR", "1")
+    assert snap_compare(
+        GearheadApp(blink=False, initial="elevator", hide_timings=True),
+        terminal_size=SIZE,
+        run_before=_elevator_grid_heat_map,
+    )

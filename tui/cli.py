@@ -326,10 +326,12 @@ def _solve(args) -> int:
         print(f"  {calc.output(name).label:<{width}}  {value.text}")
     for w in solution.warnings:
         print(f"  warning: {w}")
-    mode = solution.inputs["mode"].value if "mode" in solution.inputs else None
+    entries = solution.entries()
     for table in calc.tables:
-        if table.shown_in(mode):
+        if table.shown_in(entries):
             _print_table(table, solution.tables.get(table.name, []))
+    if solution.heat_maps:
+        _print_heat_maps(calc, solution)
     if spread is not None:
         print("\n".join(tolerance.spread_lines(calc, solution, spread, width)))
     return 0
@@ -403,6 +405,18 @@ def _sweep(args) -> int:
         if not args.json:
             print(f"gearhead: note: {note}", file=sys.stderr)
     return 0
+
+
+def _print_heat_maps(calc, solution) -> None:
+    """Each heat map with data, as the card draws it less the colours (values, the pick in [ ])."""
+    from gearhead.core.model import HeatMap
+
+    from .components.heat_map_layout import layout, plain_lines
+
+    for spec in calc.plots:
+        if isinstance(spec, HeatMap) and spec.name in solution.heat_maps:
+            print(f"{spec.title}:")
+            print("\n".join(plain_lines(layout(spec, solution.heat_maps[spec.name]))))
 
 
 def _print_table(table, rows) -> None:

@@ -41,10 +41,14 @@ Profiled move (core.sim.profiled (P1)-(P11)): the trapezoid in angle (or WPILib'
 on the angle's kV, kA (AR9) from an entered max input, (P12)-(P15)), the feedforward (AR9) with
 kG·cos θ at the setpoint's angle, PD feedback (the LQR gains (AR10) or entered) every control period
 on the angle measured `sensor_delay` earlier, the voltage held and clamped                   (AR12)
+Current-limit grid (core.sim.limit_grid): for each stator × supply limit pair the fastest ratio of
+the full-voltage swing (AR4), its time, peak currents and energy, the pick within a supply budget;
+a pair whose motors at rest cannot beat gravity's largest torque on the path (m·g·L·cos θ at the
+angle nearest horizontal, less the counterbalance) at any ratio up to 1e5 "cannot hold"       (AR13)
 Return move: one solve runs both ways, the gravity helping one and loading the other (the down move
 is where the loop brakes and the current limits bite): from rest at the goal back to the start with
 the same gains and the same profile (a derived trapezoid keeps the first move's limits), its
-figures reported as "Return move: …" beside the first move's, its warnings prefixed (P16)   (AR13)
+figures reported as "Return move: …" beside the first move's, its warnings prefixed (P16)   (AR14)
 """
 
 from __future__ import annotations
@@ -54,14 +58,14 @@ from dataclasses import replace
 
 from .. import gains_code
 from ..constants import G0 as G
-from ..declarations import Calculator, Output
+from ..declarations import Calculator, Output, Result
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
-from ..sim import motion, profiled
+from ..sim import limit_grid, motion, profiled
 from ..sim.effects import Effect, Effects, Part
 from ..sim.motor_limits import braking_warning
-from ..sim.scene import STATS_OUTPUTS, accuracy_field, compute_with_stats
+from ..sim.scene import STATS_OUTPUTS, accuracy_field, run_with_stats
 
 INERTIA_MODELS = ("uniform_bar", "entered")
 INERTIA_LABELS = ("Uniform bar: I = 4/3·m·L² (bar of length 2L)", "Entered moment of inertia")
@@ -108,7 +112,7 @@ EFFECTS = Effects(
 
 
 FIELDS = (
-    motion.mode_field(profiled=True),
+    motion.mode_field(profiled=True, grid=True),
     *motion.battery_motor_fields("Kraken X60", 1),
     Field(
         "ratio",
@@ -201,6 +205,7 @@ FIELDS = (
         ("voltage_per_angular_speed", "V*s/deg", 0.01),
         1.0,
     ),
+    *limit_grid.fields(),
     accuracy_field(),
 )
 
@@ -236,6 +241,7 @@ OUTPUTS = (
         ("angle", "deg"), ("angular_speed", "deg/s"), ("angular_acceleration", "deg/s**2")
     ),
     *profiled.return_outputs(("angle", "deg")),
+    *limit_grid.outputs(),
     *STATS_OUTPUTS,
 )
 # what each shared output means here (equation, help), in this module's numbering
@@ -337,11 +343,21 @@ def simulate(v, rtol: float):
         run = motion.optimise(
             lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, 1.0, hold_q=0.0
         )
+    elif v["mode"] == "limit_grid":
+        run = limit_grid.run(  # (AR13)
+            lambda values, G_=None, xp=motion.SCALAR: setup(values, G_, xp),
+            dict(v),
+            limit_grid.axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator"),
+            limit_grid.axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply"),
+            v["supply_budget"],
+            rtol,
+            1.0,
+        )
     elif v["mode"] == "profiled":
         s = setup(v)
         ff = motion.feedforward(s, 0.0)  # (AR9): kG at horizontal
         kG = lambda q: ff["kG"] * math.cos(q)  # noqa: E731
-        run = profiled.run_profiled(s, v, rtol, ff, kG, return_move=True)  # (AR12), (AR13)
+        run = profiled.run_profiled(s, v, rtol, ff, kG, return_move=True)  # (AR12), (AR14)
     else:
         run = motion.run_move(setup(v), rtol, hold_q=0.0)
     run.values["moment_of_inertia"] = inertia(v)
@@ -351,12 +367,16 @@ def simulate(v, rtol: float):
     return run
 
 
-_compute = compute_with_stats(simulate)
-
-
-def compute(values):
-    result = _compute(values)
-    if profiled.RETURN_PREFIX + "position" in result.series:  # the return plot's legend (AR13)
+def compute(values) -> Result:
+    run = run_with_stats(simulate, values)
+    result = Result(
+        run.values,
+        run.warnings,
+        run.series,
+        getattr(run, "tables", {}),
+        heat_maps=getattr(run, "heat_maps", {}),
+    )
+    if profiled.RETURN_PREFIX + "position" in result.series:  # the return plot's legend (AR14)
         result.series_labels.update(profiled.RETURN_SERIES_LABELS)
     return result
 
@@ -380,5 +400,7 @@ CALCULATOR = Calculator(
     documents=DOCUMENTS,  # profiled mode: the gains as code
     plots=motion.plots("angle", "angle", "deg", "angular_speed", "deg/s")
     + profiled.profile_plots("angle", "angle", "deg")
-    + profiled.return_plots("angle", "angle", "deg"),
+    + profiled.return_plots("angle", "angle", "deg")
+    + (limit_grid.heat_map_plot(),),
+    tables=(limit_grid.table(),),
 )

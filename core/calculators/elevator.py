@@ -325,7 +325,13 @@ def simulate(v, rtol: float):
 
 def compute(values) -> Result:
     run = run_with_stats(simulate, values)
-    return Result(run.values, run.warnings, run.series, getattr(run, "tables", {}))
+    return Result(
+        run.values,
+        run.warnings,
+        run.series,
+        getattr(run, "tables", {}),
+        heat_maps=getattr(run, "heat_maps", {}),
+    )
 
 
 def gains_of(solution) -> gains_code.Gains:
@@ -347,5 +353,6 @@ CALCULATOR = Calculator(
     documents=DOCUMENTS,  # profiled mode: the gains as code
     tables=(limit_grid.table(),),
     plots=motion.plots("position", "length", "in", "speed", "ft/s")
-    + profiled.profile_plots("position", "length", "in"),
+    + profiled.profile_plots("position", "length", "in")
+    + (limit_grid.heat_map_plot(),),
 )

@@ -126,6 +126,7 @@ from ..motors import lookup, motor_fields, system_from
 from ..sim import motor_limits, velocity_loop
 from ..sim.effects import Effect, Effects, nothing
 from ..sim.integrate import Event, integrate
+from ..sim.limit_grid import heat_map_plot
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats
 
 TABLE_WHEELS = range(1, 7)
@@ -206,7 +207,9 @@ LOOP_FIELDS = (
         default="full_power",
         help="Full power: the seed's spin-up at full voltage, held at the target (FW2). Velocity loop: "
         "feedforward + kP on the speed error every control period with the sensor delay, as robot "
-        "code runs it (core.sim.velocity_loop (VL1)-(VL8)); adds the loop's outputs and charts.",
+        "code runs it (core.sim.velocity_loop (VL1)-(VL8)); adds the loop's outputs and charts. "
+        "Current-limit grid: for each stator × supply limit pair the ratio that spins up quickest at "
+        "full power (FW6)-(FW8), as a table and a heat map, the quickest within the supply budget picked.",
     ),
     Field(
         "control_period",
@@ -1030,10 +1033,9 @@ GRID_TABLE = Table(
         Column("peak_supply_current", "Peak supply", "current", "A", width=11),
         Column("energy", "Energy", "energy", "J", width=9),
         Column("pick", "Pick", width=4),
+        Column("note", "Note", width=11),
     ),
-    # the card shows a table by the `mode` field, which here is the inertia's: the grid's rows are
-    # in `solve --json` and its pick in the outputs (a table shown by `control` needs the card to)
-    modes=("limit_grid",),
+    when=GRID,  # the flywheel's `mode` is the inertia's
 )
 
 
@@ -1796,8 +1798,11 @@ def _simulate(v, rtol: float) -> SimRun:
         values.update(pick)
         if "grid_spin_up_time" in pick:
             key["grid_spin_up_time"] = pick["grid_spin_up_time"]
-        run = SimRun(values, key, nfev, warnings, series)
+        # the grid's chart is its heat map alone (the card shows it by itself when no line chart
+        # has data): the spin-up at the entered ratio is not what this mode asks
+        run = SimRun(values, key, nfev, warnings, {})
         run.tables = {"limit_grid": rows}
+        run.heat_maps = {"limit_grid_time": grid_heat_map(rows, v)}
         return run
     if v["control"] == "velocity_loop":
         lr = velocity_loop_run(sc, v, rtol, values, warnings)
@@ -1934,7 +1939,13 @@ def velocity_loop_run(sc: Scene, v, rtol: float, values: dict, warnings: list):
 
 def compute(values) -> Result:
     run = run_with_stats(simulate, values)
-    return Result(run.values, run.warnings, run.series, getattr(run, "tables", {}))
+    return Result(
+        run.values,
+        run.warnings,
+        run.series,
+        getattr(run, "tables", {}),
+        heat_maps=getattr(run, "heat_maps", {}),
+    )
 
 
 # --- the current-limit grid (control = limit_grid) ----------------------------------------------
@@ -2007,7 +2018,7 @@ def grid_best_ratio(v, G_max: float) -> tuple[float, float, Scene] | None:
 
 def limit_grid(v, warnings: list) -> tuple[list[dict], dict]:
     """(FW6)-(FW8) over every stator × supply limit pair (core.sim.limit_grid's axes and pick)."""
-    from ..sim.limit_grid import MAX_CELLS, axis
+    from ..sim.limit_grid import MAX_CELLS, NO_ARRIVAL, axis
 
     stators = axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator")
     supplies = axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply")
@@ -2032,6 +2043,8 @@ def limit_grid(v, warnings: list) -> tuple[list[dict], dict]:
                     peak_supply_current=ex["peak_supply_current"],
                     energy=grid_energy(sc, cell),
                 )
+            else:
+                row["note"] = NO_ARRIVAL  # no ratio below the target's free speed gets there
             rows.append(row)
     if not any("time" in r for r in rows):
         raise InputError("stator_min", "no pair of limits in the grid spins the wheels up to the target")
@@ -2052,6 +2065,16 @@ def limit_grid(v, warnings: list) -> tuple[list[dict], dict]:
             f"No cell keeps the peak supply current within the budget of {budget:.4g} A per motor."
         )
     return rows, pick
+
+
+def grid_heat_map(rows: list[dict], v):
+    """The spin-up time per cell (core.sim.limit_grid's heat map: a row per stator limit)."""
+    from ..sim.limit_grid import axis, heat_map
+
+    stators = axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator")
+    supplies = axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply")
+    pick = next((r for r in rows if r.get("pick")), None)
+    return heat_map(rows, stators, supplies, pick)
 
 
 def flywheel_gains_of(solution) -> gains_code.FlywheelGains:
@@ -2145,6 +2168,7 @@ CALCULATOR = Calculator(
             "rpm",
         ),
         Plot("Voltage (velocity loop)", ("loop voltage",), "time", "time", "s", "voltage", "voltage", "V"),
+        heat_map_plot("Spin-up time per current-limit pair (grid)", "spin-up time"),
     ),
     documents=DOCUMENTS,  # velocity-loop mode: the gains as code
     tables=(GRID_TABLE,),

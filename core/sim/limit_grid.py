@@ -1,12 +1,19 @@
 """The current-limit grid: for every pair of a stator and a supply current limit (per motor), the
 reduction that reaches the goal first from rest at full voltage, with its time, peak currents and
-energy; the cell to pick is the fastest whose peak supply current stays within a budget.
+energy; the cell to pick is the fastest whose peak supply current stays within a budget. Shared by
+the elevator (a constant load) and the arm (gravity's torque varying with the angle): the calculator
+gives its setup, the grid the screen.
 
+    G_hold(I_st, I_sup) = L·load/(η·N·Kt·(I0 − i_f)), the least ratio whose motors at rest beat the
+        most the load resists on the path (I0 the current at rest under the limits, the same at
+        every ratio; L the length per motor radian at n = 1): the cell's candidates start above it;
+        none holds when I0 ≤ i_f or G_hold > MAX_RATIO: the cell "cannot hold"              (LG0)
     for each supply limit I_sup (one numpy batch each; the stator limits and the candidate ratios
     broadcast against each other, (stators × 1) with (1 × ratios)):
         T(I_st, G) = motion.batch_times (exponential Euler per candidate, the arrival on a cubic)
         G*(I_st, I_sup) = argmin over CANDIDATES ratios log-spaced over ±1.5 decades about the
-        characteristic ratio (motion.characteristic_n)                                        (LG1)
+        characteristic ratio (motion.characteristic_n); when G_hold is past the middle of that
+        range, from just above G_hold up to 100·G_hold (or the range's top) instead           (LG1)
     at each cell's G*: the accurate move (motion.move, the scene's integrator) for the time and the
     energy, motion.extremes for the peak stator and supply currents and the lowest bus voltage  (LG2)
     pick = the cell with the least time among those whose peak supply current ≤ the budget      (LG3)
@@ -24,6 +31,11 @@ from .scene import SimRun
 
 CANDIDATES = 120
 MAX_CELLS = 400
+MAX_RATIO = 1e5  # the ratio field's bound: a cell that needs more cannot hold the load
+PICK = "◆"
+CANNOT_HOLD = "cannot hold"  # the motors at rest lose to the load at every ratio (LG0)
+NO_ARRIVAL = "no arrival"  # they hold it, but no ratio screened reaches the goal
+SHORT_NOTES = {CANNOT_HOLD: "hold✗", NO_ARRIVAL: "—"}  # in a heat map's cell
 
 
 def axis(lo: float, hi: float, step: float, prefix: str) -> list[float]:
@@ -36,6 +48,34 @@ def axis(lo: float, hi: float, step: float, prefix: str) -> list[float]:
     return [lo + i * step for i in range(count)]
 
 
+def hold_ratios(make_setup, base: dict, stators, supply: float, length_scale: float):
+    """G_hold per stator limit (an array, inf where no ratio holds) for one supply limit (LG0).
+    At rest the current each motor gets is set by the limits alone (E = 0 in (E1)-(E3)), the
+    same at every ratio, and the force it gives, η·N·Kt·n·(I0 − i_f) (M3), grows with n = G/L:
+    G_hold = L·load/(η·N·Kt·(I0 − i_f)), load the most the field and the friction resist on the path."""
+    import numpy as np
+
+    from . import motion
+    from .motor_limits import _Array
+
+    unit = make_setup(
+        {**base, "stator_current_limit": stators, "supply_current_limit": float(supply)},
+        np.ones_like(stators) * length_scale,  # n = 1 motor radian per unit of q
+        _Array(),
+    )
+    m = unit.mech
+    lo, hi = sorted((m.q0, m.q1))
+    points = [m.q0, m.q1] + [q for q in unit.critical if lo < q < hi]
+    field = motion.field_force(unit)
+    load = max(float(np.max(-m.s * np.asarray(field(q)))) for q in points) + motion.effect_friction(unit)
+    _, I0 = motion.electrical(m, unit.asm.slots["duty"])(0.0 * stators)
+    margin = np.asarray(I0 - m.free_current, dtype=float) * np.ones_like(stators)
+    fpa = np.asarray(m.force_per_amp, dtype=float) * np.ones_like(stators)  # η·N·Kt at n = 1
+    with np.errstate(divide="ignore", invalid="ignore"):
+        G_hold = np.where(margin > 0, length_scale * load / (fpa * margin), np.inf)
+    return np.where(load <= 0, 0.0, G_hold)  # nothing to hold against: every ratio starts moving
+
+
 def run(
     make_setup,
     values: dict,
@@ -45,7 +85,7 @@ def run(
     rtol: float,
     length_scale: float,
 ) -> SimRun:
-    """make_setup(values, ratio, xp) -> motion.Setup (the calculator's own setup)."""
+    """make_setup(values, ratio, xp) -> motion.Setup (the calculator's own setup); n = G/length_scale."""
     import numpy as np
 
     from . import motion
@@ -57,30 +97,41 @@ def run(
     base = {**values, "effects": on}
     probe = make_setup({**base, "stator_current_limit": max(stators), "supply_current_limit": max(supplies)})
     G_char = motion.characteristic_n(probe.mech) * length_scale
-    ratios = np.geomspace(G_char * 10**-1.5, G_char * 10**1.5, CANDIDATES)
+    lo_base, hi_base = G_char * 10**-1.5, G_char * 10**1.5
     st = np.asarray(stators, dtype=float)[:, None]
     rows: list[dict[str, Any]] = []
     nfev = 0
     for sup in supplies:
+        # below its G_hold (LG0) a cell's candidates cannot move: when that would leave fewer than
+        # half of the range (G_hold past its geometric middle, G_char) they start just above it
+        G_hold = hold_ratios(make_setup, base, st, float(sup), length_scale)
+        holds = G_hold * 1.001 <= MAX_RATIO
+        lo = np.where(holds & (1.001 * G_hold > G_char), 1.001 * G_hold, lo_base)
+        hi = np.maximum(hi_base, 100 * lo)
+        ratios = np.geomspace(lo, hi, CANDIDATES, axis=1)[:, :, 0]  # (stators × candidates)
         batch = make_setup(
-            {**base, "stator_current_limit": st, "supply_current_limit": float(sup)},
-            ratios[None, :],
-            _Array(),
+            {**base, "stator_current_limit": st, "supply_current_limit": float(sup)}, ratios, _Array()
         )
         times = np.asarray(motion.batch_times(batch), dtype=float) * np.ones((len(stators), CANDIDATES))
         for i, I_st in enumerate(stators):
             row: dict[str, Any] = {"stator_limit": I_st, "supply_limit": float(sup)}
             ok = np.isfinite(times[i])
-            if not ok.any():
-                rows.append(row)  # no ratio moves the load with these limits: an empty row
+            if not holds[i, 0]:
+                row["note"] = CANNOT_HOLD  # no ratio up to MAX_RATIO holds the load at rest
+                rows.append(row)
                 continue
-            G_best = float(ratios[int(np.nanargmin(np.where(ok, times[i], np.nan)))])  # (LG1)
+            if not ok.any():
+                row["note"] = NO_ARRIVAL
+                rows.append(row)
+                continue
+            G_best = float(ratios[i, int(np.nanargmin(np.where(ok, times[i], np.nan)))])  # (LG1)
             cell = make_setup(
                 {**base, "stator_current_limit": I_st, "supply_current_limit": float(sup)}, G_best
             )
             try:
                 mv = motion.move(cell, rtol)  # (LG2)
             except InputError:
+                row["note"] = NO_ARRIVAL
                 rows.append(row)
                 continue
             nfev += mv.nfev
@@ -96,9 +147,10 @@ def run(
     within = [r for r in rows if "time" in r and r["peak_supply_current"] <= budget * (1 + 1e-12)]
     warnings = []
     values_out: dict[str, Any] = {"grid_cells": len(rows)}
+    pick = None
     if within:
         pick = min(within, key=lambda r: r["time"])  # (LG3)
-        pick["pick"] = "◆"
+        pick["pick"] = PICK
         values_out.update(
             pick_stator_limit=pick["stator_limit"],
             pick_supply_limit=pick["supply_limit"],
@@ -112,11 +164,43 @@ def run(
         warnings.append(
             f"No cell keeps the peak supply current within the budget of {budget:.4g} A per motor."
         )
+    unheld = sum(r.get("note") == CANNOT_HOLD for r in rows)
     if not any("time" in r for r in rows):
+        if unheld == len(rows):
+            raise InputError(
+                "stator_min",
+                f"no pair of limits in the grid lets the motors hold the load at rest, at any ratio up "
+                f"to {MAX_RATIO:.0e}: raise the limits",
+            )
         raise InputError("stator_min", "no pair of limits in the grid moves the load to the goal")
+    if unheld:
+        warnings.append(
+            f"{unheld} cell(s) cannot hold the load at rest: with those limits the motors' current at "
+            f"rest, less their free current, needs a ratio above {MAX_RATIO:.0e} to beat the load (LG0)."
+        )
     out = SimRun(values_out, {"time_to_goal": values_out.get("time_to_goal", 0.0)}, nfev, warnings)
     out.tables = {"limit_grid": rows}  # read by the calculator's compute (a SimRun has no tables)
+    out.heat_maps = {"limit_grid_time": heat_map(rows, stators, supplies, pick)}
     return out
+
+
+def heat_map(rows, stators, supplies, pick):
+    """The time per cell as a heat map's data: a column per supply limit, a row per stator limit."""
+    from ..declarations import HeatMapData
+
+    at = {(r["stator_limit"], r["supply_limit"]): r for r in rows}
+    z, notes = [], []
+    for I_st in stators:
+        cells = [at[(I_st, float(sup))] for sup in supplies]
+        z.append([c.get("time") for c in cells])
+        notes.append([SHORT_NOTES.get(c.get("note", ""), "") for c in cells])
+    where = None
+    if pick is not None:
+        where = (
+            stators.index(pick["stator_limit"]),
+            [float(s) for s in supplies].index(pick["supply_limit"]),
+        )
+    return HeatMapData(list(map(float, supplies)), list(map(float, stators)), z, where, notes)
 
 
 def fields() -> tuple:
@@ -197,6 +281,26 @@ def table():
             Column("peak_supply_current", "Peak supply", "current", "A", width=11),
             Column("energy", "Energy", "energy", "J", width=9),
             Column("pick", "Pick", width=4),
+            Column("note", "Note", width=11),
         ),
         modes=MODES,
+    )
+
+
+def heat_map_plot(title: str = "Time per current-limit pair (grid)", value: str = "time to goal"):
+    """The time per cell, the pick marked (Result.heat_maps["limit_grid_time"])."""
+    from ..declarations import HeatMap
+
+    return HeatMap(
+        title,
+        "limit_grid_time",
+        "supply limit",
+        "current",
+        "A",
+        "stator limit",
+        "current",
+        "A",
+        value,
+        "time",
+        "s",
     )

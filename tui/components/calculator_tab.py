@@ -589,10 +589,10 @@ class CalculatorTab(Widget):
             yield grid
 
     def _show_tables(self, solution: Solution) -> None:
-        mode = solution.inputs["mode"].value if "mode" in solution.inputs else None
+        entries = solution.entries()
         for t in self.calculator.tables:
             grid = self.query_one(f"#table-{t.name}", DataTable)
-            shown = t.shown_in(mode)  # a table of another mode (the sprint's optimise table) gives way
+            shown = t.shown_in(entries)  # a table of another mode (the sprint's optimise table) gives way
             if grid.display != shown:
                 grid.display = shown
                 self.query_one(f"#table-title-{t.name}", Static).display = shown

@@ -15,7 +15,7 @@ from textual.widgets import Button, Input, Label, OptionList, Static
 from textual.widgets.option_list import Option
 
 from gearhead.core import export
-from gearhead.core.model import Calculator, Plot, Solution
+from gearhead.core.model import Calculator, HeatMap, Plot, Solution
 
 from .field_input import FieldInput
 
@@ -26,7 +26,7 @@ class ExportScreen(ModalScreen[str | None]):
     BINDINGS = [Binding("escape", "dismiss(None)", "Cancel")]
 
     def __init__(
-        self, calculator: Calculator, solution: Solution, plot: Plot | None, blink: bool = True
+        self, calculator: Calculator, solution: Solution, plot: Plot | HeatMap | None, blink: bool = True
     ) -> None:
         super().__init__()
         self.calculator = calculator
@@ -47,6 +47,11 @@ class ExportScreen(ModalScreen[str | None]):
                 (f"Plot data as CSV: {plot.title}", "csv", lambda: export.plot_csv(plot, solution))
             )
             self.names.append(f"{calculator.id}_plot.csv")
+        if isinstance(plot, HeatMap) and plot.name in solution.heat_maps:
+            self.formats.append(
+                (f"Heat map data as CSV: {plot.title}", "csv", lambda: export.heat_map_csv(plot, solution))
+            )
+            self.names.append(f"{calculator.id}_heat_map.csv")
         for doc in calculator.documents:  # files for other tools (PathPlanner, Choreo)
             self.formats.append(
                 (doc.label, doc.filename.rpartition(".")[2], lambda doc=doc: doc.build(solution))

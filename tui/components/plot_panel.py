@@ -12,7 +12,7 @@ from textual.containers import Vertical
 from textual.widgets import Select, Static
 
 from gearhead.core import units
-from gearhead.core.model import Plot, Solution
+from gearhead.core.model import HeatMap, Plot, Solution
 
 from .unit_text import pretty_unit
 
@@ -24,7 +24,7 @@ def axis_label(label: str, unit: str) -> str:
 
 
 class PlotPanel(Vertical):
-    def __init__(self, plots: tuple[Plot, ...]) -> None:
+    def __init__(self, plots: tuple[Plot | HeatMap, ...]) -> None:
         super().__init__(classes="plot-panel")
         self.plots = plots
         self.solution: Solution | None = None
@@ -77,7 +77,7 @@ class PlotPanel(Vertical):
             self._pending = None
 
     @property
-    def current(self) -> Plot:
+    def current(self) -> Plot | HeatMap:
         """The plot on screen (the one the selector shows)."""
         if len(self.plots) > 1:
             return self.plots[self.query_one("#plot-choice", Select).value]
@@ -89,12 +89,23 @@ class PlotPanel(Vertical):
         from gearhead.core.unit_systems import system_unit
 
         self.solution = solution
+        other = self._with_data(solution)
+        if other is not None:  # the selector's change shows it
+            self.query_one("#plot-choice", Select).value = other
+            return
         spec = self.current
         spec = replace(
             spec,
             x_unit=system_unit(spec.x_unit, self.unit_system),
             y_unit=system_unit(spec.y_unit, self.unit_system),
         )
+        if isinstance(spec, HeatMap):
+            await self._show_heat_map(
+                replace(spec, z_unit=system_unit(spec.z_unit, self.unit_system)), solution
+            )
+            return
+        for view in self.query("HeatMapView"):
+            view.display = False
         from textual_plot import HiResMode, PlotWidget
 
         plots = self.query(PlotWidget)
@@ -131,6 +142,44 @@ class PlotPanel(Vertical):
         # Textual markup would swallow "[psi]": escape every label (DESIGN.md pitfall)
         plot.set_xlabel(escape(axis_label(spec.x_label, spec.x_unit)))
         plot.set_ylabel(escape(axis_label(spec.y_label, spec.y_unit)))
+
+    def _has_data(self, plot: Plot | HeatMap, solution: Solution) -> bool:
+        if isinstance(plot, HeatMap):
+            return plot.name in solution.heat_maps
+        return any(solution.series.get(s, ([], []))[0] for s in plot.series)
+
+    def _with_data(self, solution: Solution) -> int | None:
+        """A heat map is the one chart of its mode (the limit grid) and the line charts have no data
+        there: the index of the chart to show instead of the one chosen when the chosen one is empty
+        and a heat map has data (or a heat map is chosen, without data, and a line chart has data)."""
+        if len(self.plots) < 2 or self._has_data(self.current, solution):
+            return None
+        chosen_map = isinstance(self.current, HeatMap)
+        for i, plot in enumerate(self.plots):
+            if isinstance(plot, HeatMap) != chosen_map and self._has_data(plot, solution):
+                return i
+        return None
+
+    async def _show_heat_map(self, spec: HeatMap, solution: Solution) -> None:
+        from textual_plot import PlotWidget
+
+        from .heat_map import HeatMapView
+
+        for plot in self.query(PlotWidget):
+            plot.display = False
+        data = solution.heat_maps.get(spec.name)
+        views = self.query(HeatMapView)
+        if views:
+            view = views.first()
+        else:
+            if not self.app.is_running:
+                return
+            view = HeatMapView()
+            await self.mount(view)
+        self.query_one("#plot-empty", Static).display = data is None
+        view.display = data is not None
+        if data is not None:
+            view.show(spec, data)
 
 
 @cache
