@@ -257,3 +257,38 @@ def test_no_entry_gives_nan_or_a_traceback(seed):
             assert any(w.startswith(profiled.RETURN_WARNING + "not simulated") for w in sol.warnings), raw
         if "return_settle_time" not in sol.outputs and "return_energy" in sol.outputs:
             assert any(w.startswith(profiled.RETURN_WARNING) and "settle" in w for w in sol.warnings), raw
+
+
+@pytest.mark.parametrize(
+    "raw",
+    [
+        {"profile_limits": "entered"},
+        {
+            **LIMITS,
+            "effects": "gravity, stator_limit, supply_limit, battery_sag, friction",
+            "profile_limits": "entered",  # derived limits are the first move's, a new solve derives its own
+        },
+        {"profile_type": "exponential", "max_input": "8 V", "travel": "-30 in"},
+    ],
+    ids=["entered trapezoid", "limits, sag, friction", "exponential, down first"],
+)
+def test_elevator_return_is_the_reversed_travel(raw):
+    """The elevator's way back (EL15): nothing on a carriage depends on where it is, so the return
+    from the goal is the solve of the opposite travel from 0, figure for figure, its profile shifted
+    by the travel (to 1e-9: positions offset by the travel round differently, 7e-12 measured)."""
+    from gearhead.core.calculators import elevator as elevator_calc
+
+    v, _ = parse_inputs(get("elevator"), {"mode": "profiled", **raw})
+    both = elevator_calc.simulate(v, RTOL)
+    reverse = elevator_calc.simulate({**v, "travel": -v["travel"]}, RTOL)
+    present = [n for n in profiled.RETURN_FIGURES if n in reverse.values]
+    assert {"overshoot", "final_error", "peak_stator_current", "energy"} <= set(present)
+    for name in present:
+        a, b = both.values[profiled.RETURN_PREFIX + name], reverse.values[name]
+        assert math.isfinite(a) and a == pytest.approx(b, rel=1e-9, abs=1e-12), name
+    ts, ys = both.series[profiled.RETURN_PREFIX + "profile"]
+    ts2, ys2 = reverse.series["profile"]
+    assert ts == ts2
+    assert [y - v["travel"] for y in ys] == pytest.approx(ys2, abs=1e-9)
+    # gravity loads the carriage one way and helps it the other: the two ways differ
+    assert both.values["return_energy"] != pytest.approx(both.values["energy"], rel=1e-3)

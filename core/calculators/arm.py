@@ -368,17 +368,7 @@ def simulate(v, rtol: float):
 
 
 def compute(values) -> Result:
-    run = run_with_stats(simulate, values)
-    result = Result(
-        run.values,
-        run.warnings,
-        run.series,
-        getattr(run, "tables", {}),
-        heat_maps=getattr(run, "heat_maps", {}),
-    )
-    if profiled.RETURN_PREFIX + "position" in result.series:  # the return plot's legend (AR14)
-        result.series_labels.update(profiled.RETURN_SERIES_LABELS)
-    return result
+    return profiled.mechanism_result(run_with_stats(simulate, values))  # the return plot's legend: (P16)
 
 
 def gains_of(solution) -> gains_code.Gains:

@@ -44,6 +44,8 @@ WPILib's exponential profile from an entered max input on kV, kA (EL10) ((P12)-(
 feedforward (EL10) with kG constant, PD feedback (the LQR gains (EL11) or entered) on the position
 measured `sensor_delay` earlier, every `control_period`, the voltage held between updates and
 clamped at the battery voltage; (EL2) with friction against the motion in either direction    (EL13)
+and the way back, goal to start with the same gains and profile (P16): gravity loads the carriage
+one way and helps it the other, where the loop brakes against it                                 (EL15)
 Current-limit grid: for each stator × supply limit pair the fastest ratio of the full-voltage move,
 its time, peak currents and energy; the pick within a supply budget (core.sim.limit_grid)     (EL14)
 """
@@ -221,6 +223,7 @@ OUTPUTS = (
         "Volts to hold the load against gravity (minus the counterbalance).",
     ),
     *profiled.profile_outputs(("length", "in"), ("speed", "ft/s"), ("acceleration", "ft/s**2")),
+    *profiled.return_outputs(("length", "in")),
     *limit_grid.outputs(),
     *EFFECTS.outputs(),
     *STATS_OUTPUTS,
@@ -314,7 +317,7 @@ def simulate(v, rtol: float):
     elif v["mode"] == "profiled":
         s = setup(v)
         ff = motion.feedforward(s, s.mech.q1)  # (EL10): kG the same all along the rail
-        run = profiled.run_profiled(s, v, rtol, ff, lambda q: ff["kG"])  # (EL13)
+        run = profiled.run_profiled(s, v, rtol, ff, lambda q: ff["kG"], return_move=True)  # (EL13), (EL15)
     else:
         run = motion.run_move(setup(v), rtol)
     braking_warning(v, run)
@@ -324,14 +327,7 @@ def simulate(v, rtol: float):
 
 
 def compute(values) -> Result:
-    run = run_with_stats(simulate, values)
-    return Result(
-        run.values,
-        run.warnings,
-        run.series,
-        getattr(run, "tables", {}),
-        heat_maps=getattr(run, "heat_maps", {}),
-    )
+    return profiled.mechanism_result(run_with_stats(simulate, values))  # the return plot's legend: (P16)
 
 
 def gains_of(solution) -> gains_code.Gains:
@@ -354,5 +350,6 @@ CALCULATOR = Calculator(
     tables=(limit_grid.table(),),
     plots=motion.plots("position", "length", "in", "speed", "ft/s")
     + profiled.profile_plots("position", "length", "in")
+    + profiled.return_plots("position", "length", "in")
     + (limit_grid.heat_map_plot(),),
 )

@@ -1160,6 +1160,23 @@ RETURN_WARNING = "Return move (goal → start): "
 RETURN_SERIES_LABELS = {RETURN_PREFIX + "position": "position", RETURN_PREFIX + "profile": "profile"}
 
 
+def mechanism_result(run: SimRun):
+    """An elevator's or arm's Result from its scene's run: the grid's tables and heat map, and the
+    return plot's legend (P16) when the way back was run."""
+    from ..declarations import Result
+
+    result = Result(
+        run.values,
+        run.warnings,
+        run.series,
+        getattr(run, "tables", {}),
+        heat_maps=getattr(run, "heat_maps", {}),
+    )
+    if RETURN_PREFIX + "position" in result.series:
+        result.series_labels.update(RETURN_SERIES_LABELS)
+    return result
+
+
 def reversed_setup(setup):
     """The same mechanism and effects moving from the goal back to the start (q0 and q1 swapped).
     The effects' parts (the field force of q, the limits, the sag) do not depend on the direction,
