@@ -309,10 +309,9 @@ def revlib_java(g: Gains) -> str:
             [
                 "// Gravity: kCos·cos(2π·kCosRatio·position), kCosRatio turning radians into arm rotations;",
                 "// zero the encoder with the arm horizontal (encoder.setPosition at a known angle, in rad)",
-                "// and make positive the arm going up (config.inverted as needed)."
-                + (" Request kMAXMotionPositionControl." if g.max_input is None else ""),
+                "// and make positive the arm going up (config.inverted as needed). Request kMAXMotionPositionControl.",
             ]
-            if g.arm
+            if g.arm and g.max_input is None
             else []
         ),
         "import com.revrobotics.spark.FeedbackSensor;",
@@ -347,12 +346,15 @@ def revlib_java(g: Gains) -> str:
         "        .i(0.0)",
         f"        .d({_num(v['d'])})",
         "        .outputRange(-1, 1);",
-        "    config.closedLoop.feedForward",
-        f"        .kS({_num(v['kS'])})",
-        f"        .kV({_num(v['kV'])})",
-        f"        .kA({_num(v['kA'])})",
-        *gravity,
     ]
+    if g.max_input is None:
+        lines += [
+            "    config.closedLoop.feedForward",
+            f"        .kS({_num(v['kS'])})",
+            f"        .kV({_num(v['kV'])})",
+            f"        .kA({_num(v['kA'])})",
+            *gravity,
+        ]
     lines += _revlib_max_motion(g, v, u)
     lines += [
         "    return config;",
@@ -408,7 +410,8 @@ def _wpilib_java_exponential(g: Gains) -> str:
         "import edu.wpi.first.math.trajectory.ExponentialProfile;\n\n"
         "// Each period: var next = profile.calculate(kPeriod, setpoint, goal);\n"
         "//   volts = controller.calculate(position, next.position)\n"
-        f"//           + feedforward.calculate({ff_args}); setpoint = next;\n"
+        f"//           + feedforward.calculateWithVelocities({ff_args}); setpoint = next;\n"
+        "// (calculateWithVelocities is the discrete feedforward; calculate(a, b) reads b as an acceleration)\n"
         f"public final class {cls} {{\n"
         f"  public static final double kS = {_num(g.kS)}; // V\n"
         f"  public static final double kG = {_num(g.kG)}; // V\n"
@@ -470,7 +473,8 @@ def _revlib_max_motion(g: Gains, v: dict, u: str) -> list[str]:
         "    // MAXMotion has no exponential profile (MAXMotionConfig.MAXMotionPositionMode offers",
         "    // kMAXMotionTrapezoidal only): no maxMotion limits here. Run WPILib's ExponentialProfile on the",
         "    // roboRIO (the wpilib-java document) and send each setpoint as a kPosition request with the",
-        "    // feedforward's volts as its arbitrary feedforward.",
+        "    // whole WPILib feedforward's volts (kS, kG, kV, kA: calculateWithVelocities) as its arbitrary",
+        "    // feedforward; so no closedLoop.feedForward is set here (it would add kS and gravity again).",
     ]
 
 
@@ -580,19 +584,31 @@ def flywheel_wpilib_python(g: FlywheelGains) -> str:
     )
 
 
-def _fw_usage(g: FlywheelGains) -> str:
+def _fw_usage(g: FlywheelGains, java: bool = False) -> str:
     """How the loop calls them: at the target, or along the ramp (VL4a: the feedforward from the
-    setpoint to the next one, the feedback against the next one)."""
+    setpoint to the next one, the feedback against the next one). Java's discrete feedforward is
+    calculateWithVelocities: its two-argument calculate is the continuous (velocity, acceleration)."""
+    c, target, accel, period = (
+        ("//", "kTargetSpeed", "kAcceleration", "kPeriod")
+        if java
+        else (
+            "#",
+            "TARGET_SPEED",
+            "ACCELERATION",
+            "PERIOD",
+        )
+    )
     if g.acceleration is None:
         return (
-            "# each period: volts = feedforward.calculate(TARGET_SPEED)\n"
-            "#                      + controller.calculate(wheel_speed_rad_per_s, TARGET_SPEED)\n"
+            f"{c} each period: volts = feedforward.calculate({target})\n"
+            f"{c}                      + controller.calculate(wheel_speed_rad_per_s, {target})\n"
         )
+    discrete = "calculateWithVelocities" if java else "calculate"
     return (
-        "# setpoint = 0.0 at the start; each period:\n"
-        "#   nxt = min(TARGET_SPEED, setpoint + ACCELERATION * PERIOD)\n"
-        "#   volts = feedforward.calculate(setpoint, nxt) + controller.calculate(wheel_speed_rad_per_s, nxt)\n"
-        "#   setpoint = nxt\n"
+        f"{c} setpoint = 0.0 at the start; each period:\n"
+        f"{c}   nxt = min({target}, setpoint + {accel} * {period})\n"
+        f"{c}   volts = feedforward.{discrete}(setpoint, nxt) + controller.calculate(wheel_speed_rad_per_s, nxt)\n"
+        f"{c}   setpoint = nxt\n"
     )
 
 
@@ -600,7 +616,8 @@ def flywheel_wpilib_java(g: FlywheelGains) -> str:
     return (
         _fw_header(g, "//") + "import edu.wpi.first.math.controller.PIDController;\n"
         "import edu.wpi.first.math.controller.SimpleMotorFeedforward;\n\n"
-        "public final class FlywheelGains {\n"
+        + _fw_usage(g, java=True)
+        + "public final class FlywheelGains {\n"
         f"  public static final double kS = {_num(g.kS)}; // V\n"
         f"  public static final double kV = {_num(g.kV)}; // V*s/rad\n"
         f"  public static final double kA = {_num(g.kA)}; // V*s^2/rad\n"

@@ -354,6 +354,22 @@ def test_java_phoenix_revlib_follow_the_choice():
     assert f"MotionMagicExpo_kV = {v['MotionMagicExpo_kV']!r};" in phoenix
     revlib = gains_code.revlib_java(g)
     assert "no exponential profile" in revlib and "kMAXMotionTrapezoidal" in revlib
+    # Java's discrete feedforward: calculate(v, next) would read next as an acceleration (the review
+    # measured 0.345 V where the loop needs 8.32 V)
+    assert "feedforward.calculateWithVelocities(setpoint.velocity, next.velocity)" in java
+    assert "feedforward.calculate(" not in java
+    # the roboRIO sends the whole feedforward as the arbitrary feedforward: the SPARK adds none
+    assert ".kS(" not in revlib and ".kG(" not in revlib and "config.closedLoop.feedForward" not in revlib
+
+
+def test_arm_java_and_revlib_with_the_exponential_profile():
+    g = arm_calc.gains_of(solve("arm", {"mode": "profiled", "profile_type": "exponential"}))
+    java = gains_code.wpilib_java(g)
+    assert "calculateWithVelocities(setpoint.position, setpoint.velocity, next.velocity)" in java
+    revlib = gains_code.revlib_java(g)
+    assert ".kCos(" not in revlib and "kMAXMotionPositionControl" not in revlib
+    trapezoid = gains_code.revlib_java(arm_calc.gains_of(solve("arm", {"mode": "profiled"})))
+    assert ".kCos(" in trapezoid and "kMAXMotionPositionControl" in trapezoid
 
 
 def test_phoenix_says_when_expo_ka_is_out_of_ctres_range():

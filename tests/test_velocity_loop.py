@@ -367,7 +367,9 @@ def test_flywheel_gains_as_code_units_by_hand():
     exec(py, namespace)  # noqa: S102 - the exported Python runs and builds WPILib's objects
     assert namespace["feedforward"].getKv() == pytest.approx(0.02)
     assert namespace["controller"].getP() == pytest.approx(0.1)
-    assert "new SimpleMotorFeedforward(kS, kV, kA, kPeriod)" in gains_code.flywheel_wpilib_java(g)
+    java = gains_code.flywheel_wpilib_java(g)
+    assert "new SimpleMotorFeedforward(kS, kV, kA, kPeriod)" in java
+    assert "feedforward.calculate(kTargetSpeed)" in java  # the step: Java's one-argument calculate
 
 
 def test_documents_export_from_a_solution():
@@ -475,6 +477,8 @@ def test_ramp_exports_by_hand():
     assert namespace["ACCELERATION"] == 200 * math.pi
     assert "feedforward.calculate(setpoint, nxt)" in gains_code.flywheel_wpilib_python(g)
     assert "kAcceleration = 628.3185307179587;" in gains_code.flywheel_wpilib_java(g)
+    # Java's discrete feedforward is calculateWithVelocities (its calculate(a, b) is continuous)
+    assert "feedforward.calculateWithVelocities(setpoint, nxt)" in gains_code.flywheel_wpilib_java(g)
     step = gains_code.flywheel_phoenix6_java(HAND)
     assert "MotionMagic" not in step and "MotionMagic" not in gains_code.flywheel_revlib_java(HAND)
 
