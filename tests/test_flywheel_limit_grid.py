@@ -160,3 +160,24 @@ def test_the_grid_table_shows_only_under_control_limit_grid():
     assert fc.GRID_TABLE.shown_in({"mode": "moment_of_inertia", "control": "limit_grid"})
     assert not fc.GRID_TABLE.shown_in({"mode": "moment_of_inertia", "control": "velocity_loop"})
     assert not fc.GRID_TABLE.shown_in({"mode": "moment_of_inertia", "control": "full_power"})
+
+
+def test_heavy_rotors_move_the_scan_below_its_first_span():
+    """(FW7) with rotors heavy enough that the quickest ratio lies below G_max/100 (each motor's
+    inertia grows as G²): the scan moves down until the optimum is inside, so 1 % either side is
+    slower on the independent integrated path (the review found the pick stuck at the span's edge,
+    17 % slower than a ratio just below)."""
+    heavy = {"motor": "Kraken X60", "ratio": 1.0, "rotor_inertia": "1 kg*m**2"}  # the review's case
+    amps = {"stator_current_limit": "40 A", "supply_current_limit": "40 A"}
+    raw = heavy | {"control": "limit_grid", "stator_min": "40 A", "stator_max": "40 A"}
+    s = solve("flywheel", raw | {"supply_min": "40 A", "supply_max": "40 A"})
+    G = s.outputs["best_ratio"].value
+    grid_time = s.outputs["grid_spin_up_time"].value
+    assert math.isfinite(grid_time)
+
+    def at(ratio: float) -> float:
+        raw_fp = heavy | amps | {"ratio": ratio, "effects": "stator_limit, supply_limit"}
+        return solve("flywheel", raw_fp).outputs["spin_up_time"].value
+
+    assert grid_time == pytest.approx(at(G), rel=1e-6)
+    assert at(G * 0.99) > at(G) < at(G * 1.01)

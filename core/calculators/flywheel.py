@@ -103,7 +103,8 @@ to the target quickest at full power:
     T(G) = J(G)·∫₀^ω_t dω/τ_w(ω; G)  ((F1) is autonomous: dt = J·dω/τ_w; scipy's quad on each
     smooth piece between the speeds where a limit lets go; J(G) with the rotors' N·J_r·G²)   (FW6)
     G* = argmin T over (G_max·10⁻², G_max), G_max the ratio whose free speed is the target: the
-    best of 24 log-spaced ratios, then bounded Brent on ln G between its neighbours          (FW7)
+    best of 24 log-spaced ratios (the span moved down 2 decades while the best is its lowest:
+    heavy rotors), then bounded Brent on ln G between its neighbours                          (FW7)
     at G*: peak stator and supply current (FW5), battery energy J·∫ N·V_b·u·I/τ_w dω; the pick
     is the quickest cell whose peak supply current is within the budget                     (FW8)
 `range_error_linear` is the seed's (9) whatever transfer model, losses or height are chosen: the
@@ -1951,7 +1952,8 @@ def compute(values) -> Result:
 # --- the current-limit grid (control = limit_grid) ----------------------------------------------
 
 GRID_SCAN = 24  # ratios log-spaced over the scan, before Brent refines the best
-GRID_DECADES = 2.0  # the scan spans G_max·10^-2 .. G_max: below, the spin-up only lengthens
+GRID_DECADES = 2.0  # the scan spans G_max·10^-2 .. G_max: below, the spin-up lengthens unless
+GRID_EXTENSIONS = 4  # the rotors dominate; then it moves down 2 decades at a time, at most this often
 
 
 def grid_spin_up(v, ratio: float) -> tuple[float, Scene] | None:
@@ -1993,19 +1995,29 @@ def grid_energy(sc: Scene, v) -> float:
 
 
 def grid_best_ratio(v, G_max: float) -> tuple[float, float, Scene] | None:
-    """(FW7): the ratio in (G_max·10^-2, G_max) with the least spin-up time: the best of a log scan,
+    """(FW7): the ratio below G_max with the least spin-up time (first in (G_max·10^-2, G_max),
+    lower while the best is the span's lowest): the best of a log scan,
     then bounded Brent on ln G between its neighbours."""
     from scipy.optimize import minimize_scalar
 
     lo, hi = math.log(G_max) - GRID_DECADES * math.log(10), math.log(G_max)
-    xs = [lo + (hi - lo) * i / GRID_SCAN for i in range(GRID_SCAN)]  # G_max itself never reaches
 
     def time_at(x: float) -> float:
         r = grid_spin_up(v, math.exp(x))
         return math.inf if r is None else r[0]
 
+    xs = [lo + (hi - lo) * i / GRID_SCAN for i in range(GRID_SCAN)]  # G_max itself never reaches
     times = [time_at(x) for x in xs]
     i = min(range(len(xs)), key=times.__getitem__)
+    # the quickest at the scan's lowest ratio (heavy rotors: each motor's own inertia grows as G²):
+    # the optimum lies below, so the scan moves down a span at a time until it is inside
+    for _ in range(GRID_EXTENSIONS):
+        if i > 0 or not math.isfinite(times[0]):
+            break
+        hi, lo = xs[1], lo - GRID_DECADES * math.log(10)
+        xs = [lo + (hi - lo) * k / GRID_SCAN for k in range(GRID_SCAN)]
+        times = [time_at(x) for x in xs]
+        i = min(range(len(xs)), key=times.__getitem__)
     if not math.isfinite(times[i]):
         return None
     a, b = xs[max(i - 1, 0)], xs[i + 1] if i + 1 < len(xs) else hi
