@@ -45,6 +45,17 @@ def test_decimals_give_the_largest_value_its_digits():
     assert decimals([], 4) is None and decimals([2e7], 4) is None
 
 
+def test_values_spanning_a_thousandfold_keep_their_digits():
+    """Fixed decimals from the largest value would print 0.04 beside 1500 as "0" (the review):
+    then every cell takes significant digits instead."""
+    assert decimals([1500.0, 0.4, 0.04, 2.0], 4) is None
+    spec = SPEC
+    data = HeatMapData([20.0, 40.0], [10.0, 30.0], [[1.5, 4e-4], [4e-5, 2e-3]], (1, 0))
+    lines = plain_lines(layout(spec, data))  # in ms: 1500, 0.4, 0.04, 2
+    assert lines[3].split() == ["10", "1500", "0.4"]
+    assert lines[4].split() == ["30", "[0.04]", "2"]
+
+
 def test_layout_in_display_units_with_the_pick_and_the_notes():
     data = HeatMapData(
         [20.0, 40.0], [10.0, 30.0], [[None, 0.25], [0.5, 0.125]], (1, 1), [["hold✗", ""], ["", ""]]

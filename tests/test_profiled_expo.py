@@ -274,14 +274,14 @@ def test_the_mode_reports_the_profile():
     [
         ("elevator", {"max_input": "0 V"}, "greater than 0"),
         ("elevator", {"max_input": "-3 V"}, "greater than 0"),
-        ("elevator", {"max_input": "12.5 V"}, "above the battery voltage"),  # the battery is 12 V
+        ("elevator", {"max_input": "12.5 V"}, "at most the battery voltage"),  # the battery is 12 V
         ("elevator", {"max_input": "nan"}, "not a finite number"),
         ("elevator", {"max_input": "inf"}, "not a finite number"),
         ("elevator", {"max_input": "1e-300 V"}, "out of range"),
         ("elevator", {"max_input": "1e-9 V", "effects": ""}, "control updates"),  # T ≈ 2e10 s
         # a huge kA (a ton of load through a huge reduction): the profile too long for the window
         ("elevator", {"effects": "", "load_mass": "2e5 lb", "ratio": 1e5}, "control updates"),
-        ("arm", {"max_input": "13 V"}, "above the battery voltage"),
+        ("arm", {"max_input": "13 V"}, "at most the battery voltage"),
         ("arm", {"effects": "", "arm_mass": "2e5 lb", "com_distance": "3.9e4 in"}, "control updates"),
     ],
 )

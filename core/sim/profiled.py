@@ -1051,7 +1051,8 @@ def exponential_of(setup, v, ff: dict) -> Exponential:
     U, Vb = v["max_input"], setup.mech.battery_voltage
     if U > Vb:
         raise InputError(
-            "max_input", f"is above the battery voltage ({U:.4g} V > {Vb:.4g} V): the loop cannot apply it"
+            "max_input",
+            f"must be at most the battery voltage, {Vb:.6g} V (entered {U:.6g} V): the loop cannot apply more",
         )
     profile = Exponential(setup.mech.distance, U, ff["kV"], ff["kA"])
     if not (profile.kV > 0 and profile.kA > 0 and math.isfinite(profile.v_max * profile.a_max)):

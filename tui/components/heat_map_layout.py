@@ -22,7 +22,11 @@ def decimals(values: list[float], digits: int) -> int | None:
     top = max((abs(v) for v in values), default=0.0)
     if not top > 0 or top >= 1e6 or top < 1e-6:
         return None
-    return max(0, digits - 1 - math.floor(math.log10(top)))
+    places = max(0, digits - 1 - math.floor(math.log10(top)))
+    least = min(abs(v) for v in values if v != 0)
+    if math.floor(math.log10(least)) + 1 + places < 2:  # values spanning 1000x: the least would lose
+        return None  # its digits (0.04 beside 1500 read "0")
+    return places
 
 
 @dataclass
