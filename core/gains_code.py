@@ -771,13 +771,13 @@ def mechanism_documents(title: str, gains_of, phoenix_note: str = "", revlib: bo
     docs = [
         Document(
             "wpilib-java",
-            f"WPILib Java: {ff} + ProfiledPIDController",
+            f"WPILib Java: {ff} + PID and motion profile",
             f"{title}Gains.java",
             lambda sol: wpilib_java(gains_of(sol)),
         ),
         Document(
             "wpilib-python",
-            f"WPILib Python (robotpy): {ff} + ProfiledPIDController",
+            f"WPILib Python (robotpy): {ff} + PID and motion profile",
             f"{snake}_gains.py",
             lambda sol: wpilib_python(gains_of(sol)),
         ),
