@@ -344,15 +344,7 @@ def simulate(v, rtol: float):
             lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, 1.0, hold_q=0.0
         )
     elif v["mode"] == "limit_grid":
-        run = limit_grid.run(  # (AR13)
-            lambda values, G_=None, xp=motion.SCALAR: setup(values, G_, xp),
-            dict(v),
-            limit_grid.axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator"),
-            limit_grid.axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply"),
-            v["supply_budget"],
-            rtol,
-            1.0,
-        )
+        run = limit_grid.run_mode(setup, v, rtol, 1.0)  # (AR13)
     elif v["mode"] == "profiled":
         s = setup(v)
         ff = motion.feedforward(s, 0.0)  # (AR9): kG at horizontal

@@ -305,15 +305,7 @@ def simulate(v, rtol: float):
             lambda G_, xp=motion.SCALAR: setup(v, G_, xp), v["ratio"], rtol, spool_factor(v)
         )
     elif v["mode"] == "limit_grid":
-        run = limit_grid.run(  # (EL14)
-            lambda values, G_=None, xp=motion.SCALAR: setup(values, G_, xp),
-            dict(v),
-            limit_grid.axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator"),
-            limit_grid.axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply"),
-            v["supply_budget"],
-            rtol,
-            spool_factor(v),
-        )
+        run = limit_grid.run_mode(setup, v, rtol, spool_factor(v))  # (EL14)
     elif v["mode"] == "profiled":
         s = setup(v)
         ff = motion.feedforward(s, s.mech.q1)  # (EL10): kG the same all along the rail

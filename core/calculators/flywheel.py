@@ -120,7 +120,7 @@ from typing import Any
 from .. import gains_code
 from ..constants import G0 as G_ACC
 from ..constants import RPM
-from ..declarations import Calculator, Column, Document, Output, Plot, Result, Table
+from ..declarations import Calculator, Document, Output, Plot, Result
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup, motor_fields, system_from
@@ -128,6 +128,7 @@ from ..sim import motor_limits, velocity_loop
 from ..sim.effects import Effect, Effects, nothing
 from ..sim.integrate import Event, integrate
 from ..sim.limit_grid import heat_map_plot
+from ..sim.limit_grid import table as grid_table
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats
 
 TABLE_WHEELS = range(1, 7)
@@ -1022,21 +1023,8 @@ OUTPUTS = (
     *STATS_OUTPUTS,
 )
 
-GRID_TABLE = Table(
-    "limit_grid",
-    "Current-limit grid: the ratio quickest to spin up per stator × supply limit",
-    (
-        Column("stator_limit", "Stator", "current", "A", width=8),
-        Column("supply_limit", "Supply", "current", "A", width=8),
-        Column("ratio", "Best ratio", width=10),
-        Column("time", "Spin-up", "time", "s", width=9),
-        Column("peak_stator_current", "Peak stator", "current", "A", width=11),
-        Column("peak_supply_current", "Peak supply", "current", "A", width=11),
-        Column("energy", "Energy", "energy", "J", width=9),
-        Column("pick", "Pick", width=4),
-        Column("note", "Note", width=11),
-    ),
-    when=GRID,  # the flywheel's `mode` is the inertia's
+GRID_TABLE = grid_table(  # the flywheel's `mode` is the inertia's: shown by `control`
+    "Current-limit grid: the ratio quickest to spin up per stator × supply limit", "Spin-up", (), GRID
 )
 
 

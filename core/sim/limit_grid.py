@@ -76,6 +76,19 @@ def hold_ratios(make_setup, base: dict, stators, supply: float, length_scale: fl
     return np.where(load <= 0, 0.0, G_hold)  # nothing to hold against: every ratio starts moving
 
 
+def run_mode(make_setup, v: dict, rtol: float, length_scale: float) -> SimRun:
+    """The grid mode of a mechanism: `run` over the axes and budget its fields give."""
+    return run(
+        make_setup,
+        dict(v),
+        axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator"),
+        axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply"),
+        v["supply_budget"],
+        rtol,
+        length_scale,
+    )
+
+
 def run(
     make_setup,
     values: dict,
@@ -266,24 +279,31 @@ def outputs() -> tuple:
     )
 
 
-def table():
+def table(
+    title: str = "Current-limit grid: the fastest ratio per stator × supply limit",
+    time_label: str = "Time",
+    modes: tuple[str, ...] = MODES,
+    when: tuple = (),
+):
+    """The grid's rows (a mechanism's mode; the flywheel's, shown by its own choice: `when`)."""
     from ..declarations import Column, Table
 
     return Table(
         "limit_grid",
-        "Current-limit grid: the fastest ratio per stator × supply limit",
+        title,
         (
             Column("stator_limit", "Stator", "current", "A", width=8),
             Column("supply_limit", "Supply", "current", "A", width=8),
             Column("ratio", "Best ratio", width=10),
-            Column("time", "Time", "time", "s", width=9),
+            Column("time", time_label, "time", "s", width=9),
             Column("peak_stator_current", "Peak stator", "current", "A", width=11),
             Column("peak_supply_current", "Peak supply", "current", "A", width=11),
             Column("energy", "Energy", "energy", "J", width=9),
             Column("pick", "Pick", width=4),
             Column("note", "Note", width=11),
         ),
-        modes=MODES,
+        modes=modes,
+        when=when,
     )
 
 
