@@ -127,6 +127,7 @@ from ..motors import lookup, motor_fields, system_from
 from ..sim import motor_limits, velocity_loop
 from ..sim.effects import Effect, Effects, nothing
 from ..sim.integrate import Event, integrate
+from ..sim.limit_grid import fields as grid_fields
 from ..sim.limit_grid import heat_map_plot
 from ..sim.limit_grid import table as grid_table
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats
@@ -354,37 +355,8 @@ LOOP_FIELDS = (
 GRID = (("control", ("limit_grid",)),)
 
 
-def _amps(name: str, label: str, default: float, help: str) -> Field:
-    return Field(
-        name,
-        label,
-        "current",
-        "A",
-        default=default,
-        min=0,
-        min_exclusive=True,
-        max=2000,
-        when=GRID,
-        help=help,
-    )
-
-
-# the names and defaults of core.sim.limit_grid's fields (the elevator's), shown by `control` here
-GRID_FIELDS = (
-    _amps("stator_min", "Stator limits from", 20, "The grid's first stator current limit (per motor)."),
-    _amps("stator_max", "Stator limits to", 120, "The grid's last stator current limit (per motor)."),
-    _amps("stator_step", "Stator limit step", 10, "Between the grid's stator limits."),
-    _amps("supply_min", "Supply limits from", 20, "The grid's first supply current limit (per motor)."),
-    _amps("supply_max", "Supply limits to", 80, "The grid's last supply current limit (per motor)."),
-    _amps("supply_step", "Supply limit step", 10, "Between the grid's supply limits."),
-    _amps(
-        "supply_budget",
-        "Supply budget",
-        60,
-        "The cell picked is the quickest to spin up whose peak supply current per motor stays within "
-        "this (e.g. what the breaker and the battery allow the shooter).",
-    ),
-)
+# the names, defaults and ranges of core.sim.limit_grid's fields (the elevator's), shown by `control`
+GRID_FIELDS = grid_fields((), GRID, "the quickest to spin up", "the shooter")
 
 FIELDS = (
     Field(

@@ -36,6 +36,7 @@ PICK = "◆"
 CANNOT_HOLD = "cannot hold"  # the motors at rest lose to the load at every ratio (LG0)
 NO_ARRIVAL = "no arrival"  # they hold it, but no ratio screened reaches the goal
 SHORT_NOTES = {CANNOT_HOLD: "hold✗", NO_ARRIVAL: "—"}  # in a heat map's cell
+MODES = ("limit_grid",)  # the mode of a mechanism (elevator, arm) that runs the grid
 
 
 def axis(lo: float, hi: float, step: float, prefix: str) -> list[float]:
@@ -216,7 +217,13 @@ def heat_map(rows, stators, supplies, pick):
     return HeatMapData(list(map(float, supplies)), list(map(float, stators)), z, where, notes)
 
 
-def fields() -> tuple:
+def fields(
+    modes: tuple[str, ...] = MODES,
+    when: tuple = (),
+    picked: str = "the fastest",
+    what: str = "the mechanism",
+) -> tuple:
+    """The grid's ranges and budget (a mechanism's mode; the flywheel's shown by its own choice)."""
     from ..fields import Field
 
     def amps(name, label, default, help, min_=0.0):
@@ -229,7 +236,8 @@ def fields() -> tuple:
             min=min_,
             min_exclusive=True,
             max=2000,
-            modes=MODES,
+            modes=modes,
+            when=when,
             help=help,
         )
 
@@ -244,13 +252,10 @@ def fields() -> tuple:
             "supply_budget",
             "Supply budget",
             60,
-            "The cell picked is the fastest whose peak supply current "
-            "per motor stays within this (e.g. what the breaker and the battery allow the mechanism).",
+            f"The cell picked is {picked} whose peak supply current "
+            f"per motor stays within this (e.g. what the breaker and the battery allow {what}).",
         ),
     )
-
-
-MODES = ("limit_grid",)
 
 
 def outputs() -> tuple:
