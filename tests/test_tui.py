@@ -621,6 +621,33 @@ async def test_a_pasted_preset_loads_whatever_its_line_breaks(newline):
         assert card(app).entries["load"] == "44 lbf"
 
 
+@pytest.mark.parametrize("kind", ["preset text", "path"])
+async def test_a_paste_while_the_list_has_the_keys_reaches_the_path_box(kind):
+    """The load dialog opens with its list focused and invites pasting a preset's text: a paste
+    there was dropped (tmux: ctrl+o, then a paste, did nothing)."""
+    from textual import events
+    from textual.widgets import OptionList
+
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        await pilot.press("ctrl+o")
+        await settle(pilot)
+        listing = app.screen.query_one("#preset-list", OptionList)
+        assert app.screen.focused is listing
+        if kind == "path":
+            listing.post_message(events.Paste("/tmp/robot.toml"))
+            await settle(pilot)
+            path = app.screen.query_one("#preset-path", Input)
+            assert path.value == "/tmp/robot.toml" and app.screen.focused is path
+            return
+        text = "\n".join(['calculator = "gear_ratio"', 'name = "pasted"', "[inputs]", 'load = "44 lbf"', ""])
+        listing.post_message(events.Paste(text))
+        await settle(pilot)
+        assert app.screen is app.home
+        assert card(app).entries["load"] == "44 lbf"
+
+
 async def test_a_one_line_paste_into_the_path_box_is_inserted_once():
     from textual import events
 

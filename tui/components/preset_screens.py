@@ -135,10 +135,22 @@ class PresetPathInput(FieldInput):
         """A paste with a line break (LF, CRLF or a lone CR, as some terminals send it) is a
         preset's text; one line is a path, inserted by Input as usual (once: this handler runs
         before Input's own and leaves it alone)."""
-        if "\n" in event.text.strip() or "\r" in event.text.strip() or _carries_preset(event.text):
+        if self._is_preset(event.text):
             event.stop()
             event.prevent_default()
             self.post_message(self.PresetPasted(event.text.replace("\r\n", "\n").replace("\r", "\n")))
+
+    @staticmethod
+    def _is_preset(text: str) -> bool:
+        return "\n" in text.strip() or "\r" in text.strip() or _carries_preset(text)
+
+    def take_paste(self, text: str) -> None:
+        """A paste made while another part of the dialog had the keys, taken as if made here."""
+        self.focus()
+        if self._is_preset(text):
+            self.post_message(self.PresetPasted(text.replace("\r\n", "\n").replace("\r", "\n")))
+        elif text:
+            self.insert_text_at_cursor(text.splitlines()[0])
 
 
 class LoadPresetScreen(ModalScreen[presets.Preset | None]):
@@ -152,6 +164,12 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
         self.blink = blink
         self.found = presets.listing(calc_id)
         self.type_ahead = TypeAhead()  # letters on the list jump to the preset they name
+
+    def on_paste(self, event: events.Paste) -> None:
+        """A paste on the list (which has the keys when the dialog opens) goes to the path entry:
+        the dialog invites pasting a preset's text, and the list dropped it."""
+        event.stop()
+        self.query_one("#preset-path", PresetPathInput).take_paste(event.text)
 
     def on_key(self, event: events.Key) -> None:
         listing = self.query_one("#preset-list", OptionList)
