@@ -107,6 +107,7 @@ async def test_preset_save_then_load_round_trip():
         await type_into(pilot, "load", "10 lbf")
         await pilot.press("ctrl+o")
         await pilot.pause()
+        await pilot.press("down")  # from the path box to the list
         options = app.screen.query_one(OptionList)
         index = next(
             i
@@ -623,8 +624,8 @@ async def test_a_pasted_preset_loads_whatever_its_line_breaks(newline):
 
 @pytest.mark.parametrize("kind", ["preset text", "path"])
 async def test_a_paste_while_the_list_has_the_keys_reaches_the_path_box(kind):
-    """The load dialog opens with its list focused and invites pasting a preset's text: a paste
-    there was dropped (tmux: ctrl+o, then a paste, did nothing)."""
+    """The load dialog invites pasting a preset's text: a paste while its list has the keys (↓ from
+    the path box) was dropped (tmux: ctrl+o, then a paste, did nothing)."""
     from textual import events
     from textual.widgets import OptionList
 
@@ -633,6 +634,7 @@ async def test_a_paste_while_the_list_has_the_keys_reaches_the_path_box(kind):
         await settle(pilot)
         await pilot.press("ctrl+o")
         await settle(pilot)
+        await pilot.press("down")
         listing = app.screen.query_one("#preset-list", OptionList)
         assert app.screen.focused is listing
         if kind == "path":
@@ -727,14 +729,15 @@ async def test_a_choice_list_matches_a_word_inside_a_label():
 
 
 async def test_letters_on_the_load_list_pick_the_preset_they_name():
-    """ctrl+o, then "vex" and Enter loads "VEX lift, 2 V5 red" (the third): the load list has the
-    choice lists' type-ahead (letters did nothing there, and Enter loaded the first preset)."""
+    """ctrl+o, ↓ to the list, then "vex" and Enter loads "VEX lift, 2 V5 red" (the third): the
+    load list has the choice lists' type-ahead (letters did nothing there, and Enter loaded the
+    first preset)."""
     app = GearheadApp(blink=False, initial="gear_ratio")
     async with app.run_test(size=SIZE) as pilot:
         await settle(pilot)
         tab = card(app)
         await pilot.press("ctrl+o")
         await settle(pilot)
-        await pilot.press("v", "e", "x", "enter")
+        await pilot.press("down", "v", "e", "x", "enter")
         await settle(pilot)
         assert tab.entries["motor"] == "V5 100 rpm (red)"

@@ -55,6 +55,7 @@ async def test_loading_a_preset_resets_the_fields_it_omits():
         assert tab.solution.inputs["gravity"].value == pytest.approx(1.62)
         await pilot.press("ctrl+o")
         await pilot.pause()
+        await pilot.press("down")  # from the path box to the list
         options = app.screen.query_one(OptionList)
         options.highlighted = next(
             i

@@ -202,3 +202,36 @@ async def test_ctrl_s_writes_the_changes_into_the_file_keeping_its_comments(tmp_
     again = workbook.solve(workbook.load(path))
     assert again.cards["lift"].solution.outputs["ratio"].value == approx(want)
     assert again.cards["lift"].solution.inputs["radius"].value == approx(1.5 * 0.0254)
+
+
+@pytest.mark.parametrize("answer", ["escape", "d", "s"])
+async def test_leaving_a_workbook_with_unsaved_edits_asks(tmp_path: Path, answer):
+    """Esc on an edited workbook asks: Esc stays (the edit kept), d discards and closes, s saves
+    and closes (Esc dropped every edit with no question). Unedited, Esc closes at once."""
+    from gearhead.tui.components.leave_screen import LeaveScreen
+
+    path = tmp_path / "robot.toml"
+    path.write_text(TEXT, encoding="utf-8")
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.load(path))
+    async with app.run_test(size=(140, 40)) as pilot:
+        screen = await opened(pilot, app)
+        await settled(pilot, screen)
+        screen.robot.sheet.focus()
+        assert screen.robot.sheet.move_to_field("mass")
+        await pilot.press(*keys_of("40"), "enter")
+        await settled(pilot, screen)
+        await pilot.press("escape")
+        await pilot.pause()
+        assert isinstance(app.screen, LeaveScreen)
+        await pilot.press(answer)
+        await pilot.pause()
+        await pilot.pause()
+        if answer == "escape":
+            assert app.screen is screen and screen.robot.entries["mass"] == "40"
+            await pilot.press("ctrl+s")  # saved: Esc now closes without a question
+            await pilot.pause()
+            await pilot.press("escape")
+            await pilot.pause()
+        assert not isinstance(app.screen, (WorkbookScreen, LeaveScreen))
+    saved = 'mass = "40 lb"' in path.read_text(encoding="utf-8")
+    assert saved == (answer != "d")

@@ -216,9 +216,28 @@ class GearheadApp(App):
     _quitting = False  # ctrl+q taken: no card is mounted meanwhile, no other key acts
 
     @guarded
+    def action_command_palette(self) -> None:
+        """Textual's palette, with PageUp/PageDown safe as it opens (command_palette.py)."""
+        from textual.command import CommandPalette
+
+        from .components.command_palette import GearheadCommandPalette
+
+        if self.use_command_palette and not CommandPalette.is_open(self):
+            self.push_screen(GearheadCommandPalette(id="--command-palette"))
+
     async def action_quit(self) -> None:
         """Quit once the cards being mounted are: a quit pruned the screen a card was mounting
-        into (F2 then ctrl+q in one burst: a MountError on the way out)."""
+        into (F2 then ctrl+q in one burst: a MountError on the way out). An open workbook with
+        unsaved changes asks first (save, discard, stay)."""
+        from .components.workbook_screen import WorkbookScreen
+
+        book = next((s for s in self.screen_stack if isinstance(s, WorkbookScreen)), None)
+        if book is not None and not self._quitting and book.unsaved_changes():
+            book.leave(lambda: self.call_later(self._quit_now))
+            return
+        await self._quit_now()
+
+    async def _quit_now(self) -> None:
         self._quitting = True
         try:
             for mount in [*self._strip_mounts.values(), *self._mounting.values()]:

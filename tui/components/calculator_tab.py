@@ -210,6 +210,12 @@ class CalculatorTab(Widget):
         hint = f.kind.entry_hint(f)
         if hint:
             line.append(f"  ({hint})", style="dim")
+        error = self.sheet.errors.get(f.name)
+        if error:  # the whole message, first: the status line and the glance cut it
+            shown = Text()
+            shown.append(f"⚠ {error}\n", style="bold red")
+            shown.append_text(line)
+            line = shown
         if self._mounted:
             self.help_line.update(line)
 

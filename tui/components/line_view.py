@@ -4,8 +4,10 @@ from __future__ import annotations
 
 from rich.style import Style
 from textual.geometry import Region
+from textual.screen import Screen
 from textual.scroll_view import ScrollView
 from textual.strip import Strip
+from textual.widget import Widget
 
 
 class LineView(ScrollView):
@@ -24,3 +26,33 @@ class LineView(ScrollView):
             return super().render_lines(crop)
         finally:
             self._base_style = None
+
+    def show_lines(self, top: int, count: int) -> None:
+        """Scroll lines top..top+count into view: in this widget, and on a narrow screen, where
+        the card scrolls as a whole and this widget is as tall as its lines, in the nearest
+        scrolling container (Textual's scroll_visible shows a widget, not a line of it)."""
+        self.scroll_to_region(Region(0, top, 1, count), animate=False, force=True)
+        self.call_after_refresh(self._show_lines_in_container, top, count)
+
+    def _show_lines_in_container(self, top: int, count: int) -> None:
+        if not self.is_mounted:
+            return
+        container = next(
+            (node for node in self.ancestors if isinstance(node, Widget) and node.allow_vertical_scroll), None
+        )
+        if container is None or isinstance(container, Screen):
+            return
+        screen_y = self.content_region.y + top - self.scroll_offset.y
+        y = screen_y - container.content_region.y + container.scroll_offset.y
+        container.scroll_to_region(Region(0, y, 1, count), animate=False, force=True)
+
+    def page_lines(self) -> int:
+        """How many lines PageUp/PageDown move: the part of this widget in sight (its own height,
+        or on a narrow screen its scrolling container's)."""
+        container = next(
+            (node for node in self.ancestors if isinstance(node, Widget) and node.allow_vertical_scroll), None
+        )
+        visible = self.scrollable_content_region.height
+        if container is not None and not isinstance(container, Screen):
+            visible = min(visible, container.scrollable_content_region.height)
+        return max(1, visible - 1)

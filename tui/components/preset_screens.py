@@ -17,8 +17,10 @@ from textual.widgets.option_list import Option
 from gearhead.core import presets
 from gearhead.core.errors import InputError
 
+from ..guard import guarded
 from .choice_screen import TypeAhead
 from .field_input import FieldInput
+from .tick_box import TickBox
 
 
 class SavePresetScreen(ModalScreen[Path | None]):
@@ -44,7 +46,7 @@ class SavePresetScreen(ModalScreen[Path | None]):
             yield name
             yield desc
             yield Static("", id="save-target")  # the file the name gives, and whether it exists
-            yield Checkbox("Overwrite an existing preset of that name", id="overwrite")
+            yield TickBox("Overwrite an existing preset of that name", id="overwrite")
             yield Static("", id="save-error", classes="field-error")
             with Horizontal(classes="dialog-buttons"):
                 yield Button("Save", variant="primary", id="save")
@@ -74,6 +76,7 @@ class SavePresetScreen(ModalScreen[Path | None]):
 
     @on(Input.Submitted)
     @on(Button.Pressed, "#save")
+    @guarded
     def _save(self) -> None:
         name = self.query_one("#preset-name", Input).value.strip()
         error = self.query_one("#save-error", Static)
@@ -154,9 +157,14 @@ class PresetPathInput(FieldInput):
 
 
 class LoadPresetScreen(ModalScreen[presets.Preset | None]):
-    """Pick a built-in or user preset for this calculator, or type a file path."""
+    """Pick a built-in or user preset for this calculator, or type a file path.
+
+    The path box has the keys when it opens: what is typed goes there, and Enter loads only that
+    path (the list had them: letters vanished into its type-ahead and Enter loaded the highlighted
+    preset over the entries). ↓ or Tab reaches the list; Enter there loads the preset highlighted."""
 
     BINDINGS = [Binding("escape", "dismiss(None)", "Cancel")]
+    AUTO_FOCUS = "#preset-path"
 
     def __init__(self, calc_id: str, blink: bool = True) -> None:
         super().__init__()
@@ -173,6 +181,13 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
 
     def on_key(self, event: events.Key) -> None:
         listing = self.query_one("#preset-list", OptionList)
+        path = self.query_one("#preset-path", PresetPathInput)
+        if self.focused is path and event.key == "down" and listing.option_count:
+            event.stop()
+            listing.focus()
+            if listing.highlighted is None:
+                listing.highlighted = 0
+            return
         if self.focused is listing and self.type_ahead.key(
             event, listing, [(str(i), p.name) for i, p in enumerate(self.found)]
         ):
@@ -199,10 +214,12 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
                 yield Button("Cancel", id="cancel")
 
     @on(OptionList.OptionHighlighted, "#preset-list")
+    @guarded
     def _preview(self, event: OptionList.OptionHighlighted) -> None:
         self.query_one("#preset-preview", Static).update(preview(self.found[int(event.option.id)]))
 
     @on(OptionList.OptionSelected)
+    @guarded
     def _picked(self, event: OptionList.OptionSelected) -> None:
         self.dismiss(self.found[int(event.option.id)])
 
@@ -211,6 +228,7 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
         self.dismiss(None)
 
     @on(Button.Pressed, "#browse")
+    @guarded
     def _browse(self) -> None:
         """Browse the file system for a .toml preset (textual-fspicker's open dialog)."""
         from textual_fspicker import FileOpen, Filters
@@ -222,6 +240,9 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
             start,
             title=f"Open a {self.calc_id} preset",
             filters=Filters(("*.toml", lambda p: p.suffix.lower() == ".toml"), ("Any file", lambda _: True)),
+            # its completer globs what is typed: `**a` raised ValueError in a worker and ended the
+            # app (textual-fspicker 1.0.1, issue 41); the list beside it still browses
+            suggest_completions=False,
         )
 
         def chosen(path: Path | None) -> None:
@@ -232,6 +253,7 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
         self.app.push_screen(dialog, chosen)
 
     @on(PresetPathInput.PresetPasted)
+    @guarded
     def _from_text(self, event: PresetPathInput.PresetPasted) -> None:
         import tomllib
 
@@ -260,8 +282,14 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
 
     @on(Input.Submitted, "#preset-path")
     def _from_path(self, event: Input.Submitted) -> None:
+        if not event.value.strip():
+            self.query_one("#load-error", Static).update(
+                Text("path: type a preset file path, or ↓ to pick one from the list", style="bold red")
+            )
+            return
         self._load_path(event.value)
 
+    @guarded
     def _load_path(self, text: str) -> None:
         try:
             if "\0" in text:  # the OS refuses such a name (Path raises ValueError deep inside)

@@ -172,12 +172,26 @@ class ResultsList(LineView, can_focus=True):
         self.refresh()
         first = next(i for i, (r, _) in enumerate(self._lines) if r == self.cursor)
         count = len(self._label_lines[self.cursor])
-        self.scroll_to_region(Region(0, first, 1, count), animate=False, force=True)
+        self.show_lines(first, count)
         self.on_cursor(self.rows[self.cursor].name)
 
+    def _row_a_page_away(self, direction: int) -> int:
+        """The row a page of lines (what is in sight) above or below the cursor's."""
+        firsts = [
+            next(i for i, (r, _) in enumerate(self._lines) if r == row) for row in range(len(self.rows))
+        ]
+        if not firsts:
+            return 0
+        goal = firsts[self.cursor] + direction * self.page_lines()
+        if direction > 0:
+            return next((i for i, line in enumerate(firsts) if line >= goal), len(firsts) - 1)
+        return next((i for i in range(len(firsts) - 1, -1, -1) if firsts[i] <= goal), 0)
+
     def on_key(self, event: events.Key) -> None:
-        moves = {"down": 1, "up": -1, "pagedown": 10, "pageup": -10}
-        if event.key in moves:
+        moves = {"down": 1, "up": -1}
+        if event.key in ("pagedown", "pageup"):
+            self.move_to(self._row_a_page_away(1 if event.key == "pagedown" else -1))
+        elif event.key in moves:
             self.move_to(self.cursor + moves[event.key])
         elif event.key == "home":
             self.move_to(0)

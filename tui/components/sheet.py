@@ -184,21 +184,31 @@ class Sheet(LineView, can_focus=True):
 
     # ---- what is drawn ----------------------------------------------------------------
     def set_visible(self, fields: tuple[Field, ...]) -> None:
-        """The fields the mode and choices show; the cursor stays on its field if shown."""
+        """The fields the mode and choices show. The cursor stays on its stop (the field and, on
+        a flags field, the flag) whatever rows appear or vanish around it; if its field is
+        hidden, on the nearest shown stop above it."""
         if fields == self.shown_fields:
             return
-        current = self.current_field
+        before = [(s.field.name, s.option) for s in self.stops]
+        at = self.cursor
         self.shown_fields = fields
         self._build()
-        names = [s.field.name for s in self.stops]
-        if current is not None and current.name in names:
-            self.cursor = names.index(current.name)
+        after = [(s.field.name, s.option) for s in self.stops]
+        for place in [before[i] for i in range(min(at, len(before) - 1), -1, -1)]:
+            if place in after:
+                self.cursor = after.index(place)
+                break
+        else:
+            self.cursor = 0
         self.cursor = min(self.cursor, max(0, len(self.stops) - 1))
+        self.scroll_to_cursor()
 
     def set_errors(self, errors: dict[str, str]) -> None:
         if errors != self.errors:
             self.errors = dict(errors)
             self._build()
+            if self.current_field is not None and self.has_focus:
+                self.on_cursor(self.current_field)  # the help line shows the row's error whole
 
     def _build(self) -> None:
         """Stops and lines from the visible fields, their labels wrapped to the label column."""
@@ -219,9 +229,8 @@ class Sheet(LineView, can_focus=True):
             if message:
                 width = max(20, (self.scrollable_content_region.width or 100) - LABEL_CELLS - 2 * GAP - 1)
                 wrapped = Content("⚠ " + message).wrap(width)
-                for k, line in enumerate(wrapped[:2]):
-                    text = line.plain + ("…" if k == 1 and len(wrapped) > 2 else "")
-                    lines.append(Line(None, error=text))
+                for line in wrapped:  # the whole message (the view follows the cursor to it)
+                    lines.append(Line(None, error=line.plain))
         self.stops, self.lines, self._first_line = stops, lines, first
         self._laid_out_width = self.size.width
         self.virtual_size = Size(self.size.width, len(lines))
@@ -352,6 +361,15 @@ class Sheet(LineView, can_focus=True):
                 return True
         return False
 
+    def _stop_a_page_away(self, direction: int) -> int:
+        """The stop a page of lines (what is in sight) above or below the cursor's."""
+        if not self.stops:
+            return 0
+        goal = self._first_line[self.cursor] + direction * self.page_lines()
+        if direction > 0:
+            return next((i for i, line in enumerate(self._first_line) if line >= goal), len(self.stops) - 1)
+        return next((i for i in range(len(self.stops) - 1, -1, -1) if self._first_line[i] <= goal), 0)
+
     def scroll_to_cursor(self) -> None:
         if not self.stops:
             return
@@ -361,7 +379,7 @@ class Sheet(LineView, can_focus=True):
             self.lines[bottom].stop == self.cursor or self.lines[bottom].stop is None
         ):
             bottom += 1
-        self.scroll_to_region(Region(0, top, 1, bottom - top), animate=False, force=True)
+        self.show_lines(top, bottom - top)
 
     def on_focus(self) -> None:
         self.refresh()
@@ -383,7 +401,10 @@ class Sheet(LineView, can_focus=True):
     def _cell_key(self, event: events.Key) -> bool:
         stop = self.current_stop
         key = event.key
-        moves = {"tab": 1, "down": 1, "shift+tab": -1, "up": -1, "pagedown": 10, "pageup": -10}
+        moves = {"tab": 1, "down": 1, "shift+tab": -1, "up": -1}
+        if key in ("pagedown", "pageup"):
+            self.move_to(self._stop_a_page_away(1 if key == "pagedown" else -1))
+            return True
         if key in moves:
             target = self.cursor + moves[key]
             if key in ("tab", "shift+tab") and not 0 <= target < len(self.stops):

@@ -25,6 +25,7 @@ from gearhead.core.sweep import cell_text
 
 from .field_input import FieldInput
 from .plot_panel import COLOURS, axis_label
+from .tick_box import TickBox, TickList
 from .unit_text import pretty_unit
 
 PROGRESS_AFTER_S = 0.2
@@ -135,7 +136,7 @@ class SweepScreen(ModalScreen[None]):
                     entry.cursor_blink = self.blink
                     yield entry
                 yield Label(Text(pretty_unit(f.unit)), id="sweep-unit")
-                yield Checkbox("log", id="sweep-log", compact=True)
+                yield TickBox("log", id="sweep-log", compact=True)
             with Horizontal(classes="sweep-body"):
                 outputs = [
                     o
@@ -147,7 +148,7 @@ class SweepScreen(ModalScreen[None]):
                 first = next(
                     (o.name for o in outputs if o.name in self.shown), outputs[0].name if outputs else None
                 )
-                yield SelectionList[str](
+                yield TickList[str](
                     *[(Text(o.label), o.name, o.name == first) for o in outputs], id="sweep-outputs"
                 )
                 yield Vertical(id="sweep-plot")

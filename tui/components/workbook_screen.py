@@ -214,6 +214,7 @@ class WorkbookScreen(Screen):
         self._wb_running = False
         self._wb_pending = None  # the latest request not yet taken up by the solving thread
         self._wb_pushed: dict[tuple[str, str], Any] = {}  # (card, field) -> the linked value last set
+        self._saved: dict[str, dict[str, Any]] = {}  # per card ("" the Robot card): entries last saved
 
     def compose(self) -> ComposeResult:
         from gearhead.core.registry import get
@@ -260,6 +261,7 @@ class WorkbookScreen(Screen):
     @guarded
     def on_mount(self) -> None:
         self.sub_title = self.book.name
+        self._saved = self._own_entries()
         self.request_solve()
         self.robot.sheet.focus()
 
@@ -280,8 +282,40 @@ class WorkbookScreen(Screen):
         current = ids.index(tabs.active) if tabs.active in ids else 0
         tabs.active = ids[(current + step) % len(ids)]
 
+    def _own_entries(self) -> dict[str, dict[str, Any]]:
+        """What was typed on the screen, per card ("" the Robot card): what a save writes."""
+        return {
+            "": {n: self.robot.entries[n] for n in self.robot.edited},
+            **{name: {k: tab.entries[k] for k in tab.edited} for name, tab in self.cards.items()},
+        }
+
+    def unsaved_changes(self) -> int:
+        """Entries that differ from the file (as opened or last saved)."""
+        now, saved = self._own_entries(), self._saved
+        return sum(
+            1 for card, entries in now.items() for k, v in entries.items() if saved.get(card, {}).get(k) != v
+        )
+
+    @guarded
     def action_close(self) -> None:
-        self.app.pop_screen()
+        """Esc: leave the workbook; with unsaved changes, ask first (they were dropped silently)."""
+        self.leave(self.app.pop_screen)
+
+    def leave(self, then) -> None:
+        """Run `then` (close the screen, quit the app) once the unsaved changes are saved or
+        discarded; nothing if the user stays."""
+        changes = self.unsaved_changes()
+        if not changes:
+            then()
+            return
+        from ..guard import guard
+        from .leave_screen import DISCARD, SAVE, LeaveScreen
+
+        def answered(choice: str | None) -> None:
+            if choice == DISCARD or (choice == SAVE and self.action_save()):
+                then()
+
+        self.app.push_screen(LeaveScreen(f"Workbook {self.book.name!r}", changes), guard(self, answered))
 
     def action_not_here(self) -> None:
         self.app.notify(
@@ -292,7 +326,7 @@ class WorkbookScreen(Screen):
         )
 
     @guarded
-    def action_save(self) -> None:
+    def action_save(self) -> bool:
         """ctrl+s: the variables and card inputs changed here, written into the workbook's file
         (core.workbook.save: its comments and layout kept); links stay as the file has them."""
         from pathlib import Path
@@ -302,7 +336,7 @@ class WorkbookScreen(Screen):
         path = Path(self.book.source)
         if not path.is_file():
             self.app.notify("This workbook has no file to save to.", severity="warning", markup=False)
-            return
+            return False
         variables = {n: self._with_unit(n, self.robot.entries[n]) for n in sorted(self.robot.edited)}
         inputs = {}
         for name, tab in self.cards.items():
@@ -312,9 +346,11 @@ class WorkbookScreen(Screen):
             workbook.save(path, variables, inputs)
         except OSError as exc:
             self.app.notify(f"Could not save {path}: {exc.strerror or exc}", severity="error", markup=False)
-            return
+            return False
+        self._saved = self._own_entries()
         changed = len(variables) + sum(len(v) for v in inputs.values())
         self.app.notify(f"Saved {changed} change(s) to {path}", title="Workbook saved", markup=False)
+        return True
 
     # ---- solving ------------------------------------------------------------------------
     def request_solve(self) -> None:

@@ -1,0 +1,51 @@
+"""Asked before unsaved edits are left behind: save, discard, or stay."""
+
+from __future__ import annotations
+
+from rich.text import Text
+from textual import on
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Horizontal, Vertical
+from textual.screen import ModalScreen
+from textual.widgets import Button, Label, Static
+
+SAVE, DISCARD, STAY = "save", "discard", "stay"
+
+
+class LeaveScreen(ModalScreen[str]):
+    """Dismissed with SAVE, DISCARD or STAY (Esc)."""
+
+    BINDINGS = [
+        Binding("escape", f"dismiss('{STAY}')", "Stay"),
+        Binding("s", f"dismiss('{SAVE}')", "Save", show=False),
+        Binding("d", f"dismiss('{DISCARD}')", "Discard", show=False),
+    ]
+    DEFAULT_CSS = """
+    LeaveScreen { align: center middle; }
+    """
+
+    def __init__(self, what: str, changes: int) -> None:
+        super().__init__()
+        self.what, self.changes = what, changes
+
+    def compose(self) -> ComposeResult:
+        with Vertical(classes="dialog"):
+            yield Label(Text(f"{self.what} has unsaved changes"), classes="dialog-title")
+            yield Static(
+                Text(
+                    f"{self.changes} entr{'y' if self.changes == 1 else 'ies'} changed since it was "
+                    "opened or last saved. s saves them to its file, d discards them, Esc stays."
+                )
+            )
+            with Horizontal(classes="dialog-buttons"):
+                yield Button("Save", variant="primary", id=SAVE)
+                yield Button("Discard", variant="error", id=DISCARD)
+                yield Button("Stay", id=STAY)
+
+    def on_mount(self) -> None:
+        self.query_one(f"#{STAY}", Button).focus()  # Enter by habit keeps the work
+
+    @on(Button.Pressed)
+    def _pressed(self, event: Button.Pressed) -> None:
+        self.dismiss(event.button.id or STAY)
