@@ -26,7 +26,7 @@ async def finished(pilot) -> SweepScreen:
     assert isinstance(screen, SweepScreen)
     for _ in range(400):
         await pilot.pause(0.01)
-        if screen.result is not None and not screen._running:
+        if screen.result is not None and not screen._sweeping:
             break
     await settle(pilot)
     return screen
@@ -85,10 +85,10 @@ async def test_escape_cancels_a_running_sweep_and_the_card_stays_usable():
         screen.query_one("#sweep-points").focus()
         await pilot.press("enter")
         await pilot.pause(0.4)
-        assert screen._running and screen.query_one("#sweep-progress").display
+        assert screen._sweeping and screen.query_one("#sweep-progress").display
         await pilot.press("escape")
         await pilot.pause()
-        assert not screen._running and "cancelled" in str(screen.query_one("#sweep-status").render())
+        assert not screen._sweeping and "cancelled" in str(screen.query_one("#sweep-status").render())
         await pilot.press("escape")
         await settle(pilot)
         assert not isinstance(app.screen, SweepScreen)

@@ -127,3 +127,191 @@ async def test_tick_boxes_read_x_or_blank_without_colour():
         assert lines and all(line.startswith(("[x]", "[ ]")) for line in lines), lines
         for i, line in enumerate(lines):
             assert line.startswith("[x]") == (outputs.get_option_at_index(i).value in picked), line
+
+
+@pytest.mark.parametrize("delay", [0.1, 0.2, 0.3])
+def test_keys_typed_from_the_first_instant_are_kept(tmp_path, delay):
+    """Tab Tab 3 typed 0.1-0.3 s after launch, before the first card exists: they land on it, in
+    order (they reached no widget and were lost: Motors stayed 1)."""
+    import os
+    import shutil
+    import subprocess
+    import sys
+    import time
+    import uuid
+
+    from tests.test_keystrokes import ROOT
+
+    tmux = shutil.which("tmux")
+    if tmux is None:
+        pytest.skip("tmux is not installed (.ci/run installs it)")
+    env = {k: v for k, v in os.environ.items() if k not in ("NO_COLOR", "TMUX", "COLUMNS", "LINES")}
+    env["XDG_CONFIG_HOME"] = str(tmp_path / "config")
+    socket = f"gearhead-early-{uuid.uuid4().hex[:8]}"
+
+    def run(*args: str) -> str:
+        return subprocess.run(
+            [tmux, "-L", socket, *args], capture_output=True, text=True, env=env, timeout=20
+        ).stdout
+
+    run(
+        "new-session",
+        "-d",
+        "-s",
+        "app",
+        "-x",
+        "140",
+        "-y",
+        "45",
+        f"cd {ROOT} && {sys.executable} -m gearhead.tui",
+    )
+    try:
+        time.sleep(delay)
+        for key in ("Tab", "Tab", "3"):
+            run("send-keys", "-t", "app", key)
+        motors = ""
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline:
+            rows = [
+                line
+                for line in run("capture-pane", "-p", "-t", "app").splitlines()
+                if line.startswith("│ Motors ")
+            ]
+            motors = rows[0].split()[2] if rows else ""
+            if motors == "3" and "Free current" in "".join(rows):
+                break
+            time.sleep(0.2)
+        assert motors == "3", run("capture-pane", "-p", "-t", "app")
+    finally:
+        run("kill-server")
+
+
+async def test_ctrl_g_is_shown_only_where_something_can_be_sent():
+    """The elevator's one move has no best ratio to send: no ^g on the key bar (it was shown, and
+    said "Nothing to send in this mode"); its optimise mode has one: ^g is shown."""
+    from gearhead.tui.components.key_bar import KeyBar
+
+    app = GearheadApp(blink=False, hide_timings=True, initial="elevator")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = card(app)
+        assert tab.entries["mode"] == "move"
+        bar = app.screen.query_one(KeyBar)
+        assert "Send to…" not in [label for _, label, _ in bar.keys]
+        tab._take_entry("mode", "optimise")
+        await settle(pilot)
+        assert "Send to…" in [label for _, label, _ in bar.keys]
+
+
+async def test_the_send_notice_shows_what_the_target_sheet_shows():
+    """ctrl+g's notice: the values as the receiving sheet shows them (6 significant digits), not
+    the full-precision entries (float noise such as 0.6035000000000001)."""
+    import re
+
+    app = GearheadApp(blink=False, hide_timings=True, initial="lead_screw")
+    notified = []
+    notify = app.notify
+
+    def keep(message, *args, **kwargs):
+        notified.append(str(message))
+        return notify(message, *args, **kwargs)
+
+    app.notify = keep
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        await pilot.press("ctrl+g")
+        await settle(pilot)
+        sent = next(n for n in notified if "=" in n)
+        numbers = re.findall(r"[-+]?\d[\d.]*(?:e[-+]?\d+)?", sent)
+        assert numbers and all(len(re.sub(r"\D", "", x.split("e")[0]).lstrip("0")) <= 6 for x in numbers), (
+            sent
+        )
+        target = card(app, "gear_ratio")
+        assert app.current_calculator == "gear_ratio"
+        for name in ("load", "radius"):
+            assert target.calculator.field(name).label in sent
+
+
+@pytest.mark.parametrize("keys", [["enter", "enter"], ["enter", "escape"], ["escape", "escape"]])
+async def test_two_closing_keys_in_one_burst_close_a_dialog_once(keys):
+    """Enter Enter on a choice list in one burst: the first picks and closes it; the second was a
+    second dismiss that popped the card's screen (ScreenStackError: the app ended)."""
+    from textual import events
+
+    from gearhead.tui.components.choice_screen import ChoiceScreen
+
+    app = GearheadApp(blink=False, hide_timings=True, initial="elevator")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = card(app)
+        tab.sheet.focus()
+        tab.sheet.move_to_field("mode")
+        await pilot.press("enter")
+        await settle(pilot)
+        assert isinstance(app.screen, ChoiceScreen)
+        for k in keys:
+            app.post_message(events.Key(k, "\r" if k == "enter" else "\x1b"))
+        await settle(pilot)
+        assert app.is_running and app.screen is app.home
+        assert app.focused is tab.sheet
+
+
+@pytest.fixture
+def app_in_tmux(tmp_path):
+    from tests.test_keystrokes import TMUX, Terminal
+
+    if TMUX is None:
+        pytest.skip("tmux is not installed (.ci/run installs it)")
+    term = Terminal(tmp_path)
+    try:
+        yield term
+    finally:
+        term.close()
+
+
+def _flags(screen: str) -> dict[str, str]:
+    """The flags drawn on the form: name -> 'x' or ' ' (the Effects rows)."""
+    import re
+
+    found = {}
+    for line in screen.splitlines():
+        hit = re.match(r"│ .{32}  \[(x| )\] ([a-z][a-z ]+?)\s{2,}", line)
+        if hit:
+            found[hit.group(2)] = hit.group(1)
+    return found
+
+
+@pytest.mark.parametrize(
+    "fkey,digit,seen", [("F2", "4", "Spool diameter"), ("F1", "1", "Free speed"), ("F2", "3", "Distance")]
+)
+def test_space_twice_on_every_effect_in_a_real_terminal(app_in_tmux, fkey, digit, seen):
+    terminal = app_in_tmux
+    """tmux: on the elevator, motor and sprint cards, Space on each effect turns that one flag
+    over and a second Space turns it back (the cursor jumped to the first flag: the second Space
+    turned gravity off)."""
+    import time
+
+    from tests.test_keystrokes import _cursor_label, _open
+
+    _open(terminal, fkey, digit, seen)
+    for _ in range(40):
+        if _cursor_label(terminal.screen()) == "Effects":
+            break
+        terminal.keys("Down")
+        time.sleep(0.1)
+    assert _cursor_label(terminal.screen()) == "Effects", terminal.screen()
+    names = list(_flags(terminal.screen()))
+    assert len(names) >= 3, terminal.screen()
+
+    def settled_flags() -> dict[str, str]:
+        time.sleep(0.4)
+        return _flags(terminal.screen())
+
+    for name in names:
+        before = settled_flags()
+        terminal.keys("Space")
+        once = settled_flags()
+        assert {k for k in before if once.get(k) != before[k]} == {name}, (name, before, once)
+        terminal.keys("Space")
+        assert settled_flags() == before, name
+        terminal.keys("Down")

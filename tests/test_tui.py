@@ -275,7 +275,7 @@ async def test_notices_render_without_crashing():
             str(Content.from_markup(message) if markup else Content(message)) for message, markup in notified
         ]
         assert any(s.startswith("Saved ") and s.endswith("odd_name.toml") for s in shown), shown
-        assert any("load = " in s and "radius = " in s for s in shown), shown
+        assert any("Load = " in s and "Load radius = " in s for s in shown), shown
 
 
 async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatch):

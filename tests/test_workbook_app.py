@@ -235,3 +235,23 @@ async def test_leaving_a_workbook_with_unsaved_edits_asks(tmp_path: Path, answer
         assert not isinstance(app.screen, (WorkbookScreen, LeaveScreen))
     saved = 'mass = "40 lb"' in path.read_text(encoding="utf-8")
     assert saved == (answer != "d")
+
+
+async def test_at_80x24_the_robot_cards_requirements_sit_above_the_key_bar():
+    """The requirements box ends above the key bar, so End on it shows the last requirement (the
+    panes were as tall as their content: the last requirements fell under the key bar)."""
+    from importlib.resources import files
+
+    from gearhead.tui.components.key_bar import KeyBar
+
+    book = workbook.load(Path(str(files("gearhead.examples") / "robot_2027.toml")))
+    app = GearheadApp(blink=False, hide_timings=True, workbook=book)
+    async with app.run_test(size=(80, 24)) as pilot:
+        screen = await opened(pilot, app)
+        await settled(pilot, screen)
+        box = screen.query_one("#requirements-box")
+        bar = screen.query_one(KeyBar)
+        await pilot.pause()
+        assert box.region.height >= 3
+        assert box.region.bottom <= bar.region.y, (box.region, bar.region)
+        assert screen.region.contains_region(box.region)

@@ -41,6 +41,16 @@ def exact_text(value, output) -> str:
     return f"{shown!r} {output.unit}".rstrip()
 
 
+def sent_text(values: dict[str, str], target) -> str:
+    """What ctrl+g sent, as the target's sheet shows it (6 significant digits: the entries keep
+    every digit, the notice showed float noise such as 12.700000000000001)."""
+    from .components.sheet import shown_entry
+
+    return ", ".join(
+        f"{target.field(k).label} = {shown_entry(target.field(k), v)}" for k, v in values.items()
+    )
+
+
 class GearheadApp(App):
     CSS_PATH = Path(__file__).with_name("gearhead.tcss")  # absolute: subclasses live elsewhere
     TITLE = "Gearhead"
@@ -97,6 +107,7 @@ class GearheadApp(App):
         self._started = False  # the first frame is on screen
         self._pick_armed = False  # the last key was an F-key: a digit now picks a calculator
         self._picking = False  # ... and the key being handled is the one after it
+        self._early_keys: list[events.Key] | None = []  # keys read before the first card is built
         self.unit_system = "calculator" if settings_file is None else settings_file.get("units", "calculator")
 
     def compose(self) -> ComposeResult:
@@ -146,9 +157,12 @@ class GearheadApp(App):
     @guarded
     async def on_ready(self) -> None:
         self._started = True
-        tab = await self.card(self.current_calculator)
-        if self.workbook is not None:
-            self.open_workbook(self.workbook)
+        try:
+            tab = await self.card(self.current_calculator)
+            if self.workbook is not None:
+                await self.open_workbook(self.workbook)
+        finally:
+            self._release_early_keys()
         if self.open_text:  # e.g. a served page's ?p=gh1:… (tui/serve.py)
             from gearhead.core import share
             from gearhead.core.errors import InputError
@@ -163,17 +177,29 @@ class GearheadApp(App):
             if preset is not None:
                 await self.open_preset(preset, tab)
 
-    def open_workbook(self, book) -> None:
-        """Show a workbook's cards over the calculator cards (Esc returns to them)."""
+    def open_workbook(self, book):
+        """Show a workbook's cards over the calculator cards (Esc returns to them); awaitable."""
         from .components.workbook_screen import WorkbookScreen
 
-        self.push_screen(WorkbookScreen(book, self.blink, self.hide_timings))
+        return self.push_screen(WorkbookScreen(book, self.blink, self.hide_timings))
+
+    def _release_early_keys(self) -> None:
+        """Keys typed before the first card could take them, posted again in the order typed,
+        now that it has the keys (they went to no widget and were lost: issue 40). Keys read
+        meanwhile wait in the app's queue behind these."""
+        early, self._early_keys = self._early_keys, None
+        for key in early or ():
+            self.post_message(events.Key(key.key, key.character))
 
     async def on_event(self, event: events.Event) -> None:
         """Every key the app reads (before its bindings): an F-key arms the pick of a calculator by
         the next key, and any key ends it, so only F-key-then-digit picks (the digit's priority
         binding asks check_action, which reads this)."""
         if isinstance(event, events.Key) and not event.is_forwarded:
+            if self._early_keys is not None:  # the first card is not built yet: kept for it
+                self._early_keys.append(event)
+                event.stop()
+                return
             self._picking, self._pick_armed = self._pick_armed, False
         await super().on_event(event)
 
@@ -303,7 +329,7 @@ class GearheadApp(App):
                 return False
             calc = tab.calculator
             if action == "send":
-                return bool(calc.exports) or any(t.exports for t in calc.tables)
+                return tab.can_send()
             return calc.simulate is not None
         return True
 
@@ -546,7 +572,7 @@ class GearheadApp(App):
             target.set_entries(values)
             self.show_calculator(target_id)
             self.notify(
-                ", ".join(f"{k} = {v}" for k, v in values.items()),
+                sent_text(values, target.calculator),
                 markup=False,
                 title=f"Sent to {target.calculator.title}",
             )
@@ -564,7 +590,7 @@ class GearheadApp(App):
                 target.set_entries(values)
                 self.show_calculator(target_id)
                 self.notify(
-                    ", ".join(f"{k} = {v}" for k, v in values.items()),
+                    sent_text(values, target.calculator),
                     markup=False,
                     title=f"Sent to {target.calculator.title}",
                 )

@@ -11,13 +11,14 @@ from textual import work
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical
-from textual.screen import ModalScreen
 from textual.widgets import DataTable, Label, Static
 
 from gearhead.core.model import Calculator
 
+from .dialog import Dialog
 
-class AccuracyScreen(ModalScreen[None]):
+
+class AccuracyScreen(Dialog[None]):
     BINDINGS = [Binding("escape", "dismiss(None)", "Close")]
 
     def __init__(self, calculator: Calculator, values: dict[str, Any], hide_timings: bool = False) -> None:

@@ -64,6 +64,7 @@ class CalculatorTab(Widget):
         self._preferred_units: dict[str, str] = {}  # output -> unit the preference gave last solve
         self.preset_meta = ("", "")  # name and description of the preset last loaded here
         self._solving = False  # a solve thread is running
+        self._sendable: bool | None = None  # ctrl+g had something to send at the last solve
         self._dirty = False  # entries changed since the running solve started
         self._solve_seconds = 0.0  # wall time of the last whole solve
         self._estimating: set[int] = set()  # threads computing a shown solution's error estimate
@@ -454,6 +455,10 @@ class CalculatorTab(Widget):
             status = self._spread_status()
         self.status.update(status, layout=False)
         self.glance.update(self._glance_text(solution), layout=False)
+        sendable = self.can_send()
+        if sendable != self._sendable:  # the key bar shows ^g only where it sends something
+            self._sendable = sendable
+            self.app.refresh_bindings()
 
     def _rows(self, solution: Solution) -> list[ResultRow]:
         from gearhead.core.tolerance import spread_text
@@ -615,6 +620,16 @@ class CalculatorTab(Widget):
                 )
             if 0 < cursor < grid.row_count:
                 grid.move_cursor(row=cursor, animate=False)
+
+    def can_send(self) -> bool:
+        """Whether ctrl+g has something to send now: a result another calculator takes (in this
+        mode: drivetrain's forward mode has no ratio), or a table row that fills one."""
+        calc, solution = self.calculator, self.solution
+        if solution is None:
+            return bool(calc.exports) or any(t.exports for t in calc.tables)
+        if any(out in solution.outputs for mapping in calc.exports.values() for out in mapping.values()):
+            return True
+        return any(t.exports and solution.tables.get(t.name) for t in calc.tables)
 
     def selected_row(self):
         """(Table, row of Values) under the cursor of the table last focused, or None."""

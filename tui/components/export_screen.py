@@ -10,17 +10,17 @@ from textual import on
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
-from textual.screen import ModalScreen
 from textual.widgets import Button, Input, Label, OptionList, Static
 from textual.widgets.option_list import Option
 
 from gearhead.core import export
 from gearhead.core.model import Calculator, HeatMap, Plot, Solution
 
+from .dialog import Dialog
 from .field_input import FieldInput
 
 
-class ExportScreen(ModalScreen[str | None]):
+class ExportScreen(Dialog[str | None]):
     """Dismisses with a message for the notice ("Copied …", "Saved …"), or None if cancelled."""
 
     BINDINGS = [Binding("escape", "dismiss(None)", "Cancel")]

@@ -7,13 +7,14 @@ from textual import on
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
-from textual.screen import ModalScreen
 from textual.widgets import Button, Label, Static
+
+from .dialog import Dialog
 
 SAVE, DISCARD, STAY = "save", "discard", "stay"
 
 
-class LeaveScreen(ModalScreen[str]):
+class LeaveScreen(Dialog[str]):
     """Dismissed with SAVE, DISCARD or STAY (Esc)."""
 
     BINDINGS = [

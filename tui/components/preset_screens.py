@@ -10,7 +10,6 @@ from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
 from textual.message import Message
-from textual.screen import ModalScreen
 from textual.widgets import Button, Checkbox, Input, Label, OptionList, Static
 from textual.widgets.option_list import Option
 
@@ -19,11 +18,12 @@ from gearhead.core.errors import InputError
 
 from ..guard import guarded
 from .choice_screen import TypeAhead
+from .dialog import Dialog
 from .field_input import FieldInput
 from .tick_box import TickBox
 
 
-class SavePresetScreen(ModalScreen[Path | None]):
+class SavePresetScreen(Dialog[Path | None]):
     """Ask for a name and description; write to the user preset folder (never silently overwrite)."""
 
     BINDINGS = [Binding("escape", "dismiss(None)", "Cancel")]
@@ -156,7 +156,7 @@ class PresetPathInput(FieldInput):
             self.insert_text_at_cursor(text.splitlines()[0])
 
 
-class LoadPresetScreen(ModalScreen[presets.Preset | None]):
+class LoadPresetScreen(Dialog[presets.Preset | None]):
     """Pick a built-in or user preset for this calculator, or type a file path.
 
     The path box has the keys when it opens: what is typed goes there, and Enter loads only that

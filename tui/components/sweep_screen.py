@@ -14,7 +14,6 @@ from textual import on, work
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
-from textual.screen import ModalScreen
 from textual.widgets import Checkbox, DataTable, Input, Label, ProgressBar, Select, SelectionList, Static
 from textual.worker import get_current_worker
 
@@ -23,6 +22,7 @@ from gearhead.core.errors import InputError
 from gearhead.core.model import Calculator, Field
 from gearhead.core.sweep import cell_text
 
+from .dialog import Dialog
 from .field_input import FieldInput
 from .plot_panel import COLOURS, axis_label
 from .tick_box import TickBox, TickList
@@ -45,8 +45,8 @@ def default_range(f: Field, entry: Any) -> tuple[str, str]:
     """Half to one and a half times the current value (whole numbers: ±3 within bounds), as text."""
     from gearhead.core import tolerance
 
-    nominal, _ = tolerance.split(entry)
-    try:
+    try:  # the row may hold a wrong entry ('5 mm ± 1 ± 1'): the range starts from the default
+        nominal, _ = tolerance.split(entry)
         x = f.parse(nominal)
     except InputError:
         x = f.parse(f.default)
@@ -62,7 +62,7 @@ def default_range(f: Field, entry: Any) -> tuple[str, str]:
     return units.format_number(lo), units.format_number(hi)
 
 
-class SweepScreen(ModalScreen[None]):
+class SweepScreen(Dialog[None]):
     DEFAULT_CSS = """
     SweepScreen { align: center middle; }
     .sweep-dialog { width: 124; max-width: 100%; height: 44; max-height: 100%; padding: 0 1;
@@ -106,7 +106,7 @@ class SweepScreen(ModalScreen[None]):
         self.blink = blink
         self.hide_timings = hide_timings
         self.result = None  # the last finished core.sweep.Sweep
-        self._running = False
+        self._sweeping = False  # a sweep runs (not `_running`: that is Textual's MessagePump state)
         self._started = 0.0
 
     # ---- layout ----------------------------------------------------------------------------
@@ -174,7 +174,7 @@ class SweepScreen(ModalScreen[None]):
     def run_sweep(self) -> None:
         from gearhead.core import sweep
 
-        if self._running:
+        if self._sweeping:
             self.workers.cancel_group(self, "sweep")
         status = self.query_one("#sweep-status", Static)
         try:
@@ -182,7 +182,7 @@ class SweepScreen(ModalScreen[None]):
         except InputError as exc:
             status.update(Text(f"{exc.field}: {exc.message}", style="bold red"))
             return
-        self._running = True
+        self._sweeping = True
         self._started = time.perf_counter()
         status.update(Text("… sweeping", style="dim"))
         bar = self.query_one("#sweep-progress", ProgressBar)
@@ -191,7 +191,7 @@ class SweepScreen(ModalScreen[None]):
         self._sweep_in_thread(spec)
 
     def _maybe_show_progress(self) -> None:
-        if self._running:
+        if self._sweeping:
             self.query_one("#sweep-progress").display = True
 
     @work(thread=True, exclusive=True, group="sweep")
@@ -228,7 +228,7 @@ class SweepScreen(ModalScreen[None]):
         self.query_one("#sweep-progress", ProgressBar).update(total=total, progress=done)
 
     async def _done(self, result, error: InputError | None) -> None:
-        self._running = False
+        self._sweeping = False
         self.query_one("#sweep-progress").display = False
         status = self.query_one("#sweep-status", Static)
         if error is not None:
@@ -238,9 +238,9 @@ class SweepScreen(ModalScreen[None]):
         await self._draw()
 
     def action_cancel_or_close(self) -> None:
-        if self._running:
+        if self._sweeping:
             self.workers.cancel_group(self, "sweep")
-            self._running = False
+            self._sweeping = False
             self.query_one("#sweep-progress").display = False
             self.query_one("#sweep-status", Static).update(Text("cancelled", style="yellow"))
             return

@@ -192,6 +192,12 @@ class RobotCard(Vertical):
 class WorkbookScreen(Screen):
     """One workbook: a strip of its cards (Robot first), the card chosen below it."""
 
+    # the panes fill what the strip and the key bar leave (a ContentSwitcher is as tall as its
+    # content: the Robot card's last requirements fell under the key bar, out of every key's reach)
+    DEFAULT_CSS = """
+    WorkbookScreen #workbook-panes { height: 1fr; }
+    """
+
     BINDINGS = [
         Binding("escape", "close", "Close workbook"),
         Binding("ctrl+s", "save", "Save workbook"),
