@@ -93,6 +93,35 @@ def check_card(tab) -> None:
         assert shown[name] == pretty_quantity(value.text), (name, shown[name], value.text)
 
 
+async def check_toggle_keeps_cursor(pilot) -> None:
+    """Where the burst left the cursor on a flag or a yes/no row: Space leaves the cursor on that
+    very stop (field and flag), whatever rows the toggle shows or hides, and a second Space
+    restores the entries (issue 40: the cursor jumped to the field's first flag)."""
+    app = pilot.app
+    if app.screen is not app.home or not app.card_ready(app.current_calculator):
+        return
+    tab = app.current_tab
+    sheet = tab.sheet
+    stop = sheet.current_stop
+    if (
+        stop is None
+        or sheet.editing
+        or app.focused is not sheet
+        or stop.shape not in ("checkbox", "checkboxes")
+    ):
+        return
+    place = (stop.field.name, stop.option)
+    before = dict(tab.entries)
+    for _ in range(2):
+        app.post_message(_key("space"))
+        await settle(pilot)
+        here = sheet.current_stop
+        assert (here.field.name, here.option) == place
+    assert {k: str(v) for k, v in tab.entries.items() if k != place[0]} == {
+        k: str(v) for k, v in before.items() if k != place[0]
+    }
+
+
 @pytest.mark.parametrize("start", ["motor", "elevator", "beam"])
 def test_what_a_card_shows_is_its_entries_and_their_results(start):
     import asyncio
@@ -115,6 +144,7 @@ def test_what_a_card_shows_is_its_entries_and_their_results(start):
                 for tab in list(app._cards.values()):
                     if app.card_ready(tab.calculator.id):
                         check_card(tab)
+                await check_toggle_keeps_cursor(pilot)
             runs.append(len(bursts))
 
     @settings(
