@@ -315,3 +315,29 @@ def test_space_twice_on_every_effect_in_a_real_terminal(app_in_tmux, fkey, digit
         terminal.keys("Space")
         assert settled_flags() == before, name
         terminal.keys("Down")
+
+
+async def test_ctrl_r_on_a_card_with_a_tolerance_runs_the_nominal_values():
+    """ctrl+r with '15 lb ± 1 lb' on the elevator: the accuracy view opens on the nominal values
+    (parse_inputs refused the ±: an internal-error notice and a logged traceback)."""
+    from gearhead.tui.components.accuracy_screen import AccuracyScreen
+
+    app = GearheadApp(blink=False, hide_timings=True, initial="elevator")
+    notified = []
+    notify = app.notify
+
+    def keep(message, *args, **kwargs):
+        notified.append((str(message), kwargs.get("severity", "information")))
+        return notify(message, *args, **kwargs)
+
+    app.notify = keep
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = card(app)
+        tab._take_entry("load_mass", "15 lb ± 1 lb")
+        await settle(pilot)
+        assert tab.error is None
+        await pilot.press("ctrl+r")
+        await settle(pilot)
+        assert isinstance(app.screen, AccuracyScreen)
+        assert not [m for m, severity in notified if severity == "error"], notified

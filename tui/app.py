@@ -611,9 +611,21 @@ class GearheadApp(App):
         if tab.solution is None or tab.error is not None:
             self.notify("Fix the highlighted input first.", severity="error")
             return
+        from gearhead.core.errors import InputError
         from gearhead.core.model import parse_inputs
+        from gearhead.core.tolerance import split_inputs
 
-        values, _ = parse_inputs(tab.calculator, tab.entries)
+        try:  # the nominal values: a tolerance (`15 lb ± 1 lb`) is not what the ladder varies
+            nominal, tolerances = split_inputs(tab.calculator, tab.entries)
+            values, _ = parse_inputs(tab.calculator, nominal)
+        except InputError as exc:
+            self.notify(str(exc), severity="error", markup=False)
+            return
+        if tolerances:
+            self.notify(
+                f"The accuracy view runs the nominal values (tolerances on {', '.join(tolerances)} aside).",
+                markup=False,
+            )
         from .components.accuracy_screen import AccuracyScreen
 
         self.push_screen(AccuracyScreen(tab.calculator, values, self.hide_timings))

@@ -52,8 +52,24 @@ class AccuracyScreen(Dialog[None]):
     def run_ladder(self) -> None:
         from gearhead.core.sim.scene import REFERENCE_RTOL, ladder
 
-        rungs, reference = ladder(self.calculator.simulate, self.values)
+        try:
+            rungs, reference = ladder(self.calculator.simulate, self.values)
+        except Exception as exc:  # a wrong entry, or a bug (logged): said here, the app keeps running
+            from gearhead.core.errors import InputError
+
+            from ..bug_log import record
+            from ..guard import internal_error
+
+            if isinstance(exc, InputError):
+                text = str(exc)
+            else:
+                text = internal_error(exc, record(exc, "gearhead (the app) accuracy ladder"))
+            self.app.call_from_thread(self._failed, text)
+            return
         self.app.call_from_thread(self._show, rungs, reference.nfev, REFERENCE_RTOL)
+
+    def _failed(self, text: str) -> None:
+        self.query_one("#ladder-status", Static).update(Text(text, style="bold red"))
 
     async def _show(self, rungs, ref_nfev: int, ref_rtol: float) -> None:
         self.rungs = rungs

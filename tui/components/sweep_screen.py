@@ -217,6 +217,14 @@ class SweepScreen(Dialog[None]):
             error = None
         except InputError as exc:
             result, error = None, exc
+        except Exception as exc:  # a bug: said in the status line and logged; the dialog stays
+            from ..bug_log import record
+            from ..guard import internal_error
+
+            result, error = (
+                None,
+                InputError("sweep", internal_error(exc, record(exc, "gearhead (the app) sweep"))),
+            )
         if worker.is_cancelled:
             return
         try:
