@@ -341,3 +341,31 @@ async def test_ctrl_r_on_a_card_with_a_tolerance_runs_the_nominal_values():
         await settle(pilot)
         assert isinstance(app.screen, AccuracyScreen)
         assert not [m for m, severity in notified if severity == "error"], notified
+
+
+async def test_no_chart_takes_the_keys():
+    """Charts allow no pan or zoom, yet a focused PlotWidget panned on the arrow keys, and on a
+    chart without a size yet divided by zero: the app ended (key storm: Tab onto the sweep's chart,
+    then an arrow). No chart, on a card or in the sweep, can be focused."""
+    from textual_plot import PlotWidget
+
+    app = GearheadApp(blink=False, hide_timings=True, initial="motor")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        card(app).sheet.move_to_field("voltage")
+        await pilot.press("ctrl+w")
+        await settle(pilot)
+        await pilot.press("enter")  # run the sweep: its chart is drawn
+        await settle(pilot)
+        for _ in range(30):
+            await pilot.pause(0.05)
+            if app.screen.result is not None:
+                break
+        charts = [*app.home.query(PlotWidget), *app.screen.query(PlotWidget)]
+        assert len(charts) >= 2
+        assert not [c for c in charts if c.focusable], charts
+        for _ in range(12):
+            await pilot.press("tab")
+            assert not isinstance(app.focused, PlotWidget)
+        await pilot.press("left", "right", "up", "down")
+        assert app.is_running

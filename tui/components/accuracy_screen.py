@@ -94,9 +94,9 @@ class AccuracyScreen(Dialog[None]):
                 style="dim",
             )
         )
-        from textual_plot import PlotWidget
+        from .plot_panel import quiet_plot_widget
 
-        plot = PlotWidget(allow_pan_and_zoom=False)
+        plot = quiet_plot_widget()(allow_pan_and_zoom=False)
         await self.query_one("#ladder-plot").mount(plot)
         floor = 1e-17  # an exact hit still needs a place on a log axis
         xs = [

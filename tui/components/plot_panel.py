@@ -114,7 +114,7 @@ class PlotPanel(Vertical):
         else:
             if not self.app.is_running:  # closing: a widget mounted now would never be composed
                 return
-            plot = _quiet_plot_widget()(allow_pan_and_zoom=False)
+            plot = quiet_plot_widget()(allow_pan_and_zoom=False)
             await self.mount(plot)
             if not plot.children:  # the app closed while it mounted: nothing to draw into
                 return
@@ -183,13 +183,16 @@ class PlotPanel(Vertical):
 
 
 @cache
-def _quiet_plot_widget():
+def quiet_plot_widget():
     """textual-plot's PlotWidget, quiet when the app closes while it is being mounted: its
     children are then never composed, and its on_mount and margin watchers query them (a
     traceback on the way out). Built on first use: textual-plot loads after the first frame."""
     from textual_plot import PlotWidget
 
-    class QuietPlotWidget(PlotWidget):
+    # not focusable: our charts allow no pan or zoom, yet a focused PlotWidget still pans on
+    # the arrow keys, and on a chart with no size yet that divided by zero and ended the app
+    # (a key storm: Tab onto the sweep's chart, then an arrow)
+    class QuietPlotWidget(PlotWidget, can_focus=False):
         def on_mount(self, event) -> None:
             if not self.children:  # Textual runs PlotWidget.on_mount next unless prevented
                 event.prevent_default()

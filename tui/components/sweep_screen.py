@@ -285,6 +285,8 @@ class SweepScreen(Dialog[None]):
     async def _draw(self) -> None:
         from textual_plot import HiResMode, PlotWidget
 
+        from .plot_panel import quiet_plot_widget
+
         result = self.result
         calc = self.calculator
         vary = result.varies[0]
@@ -293,7 +295,7 @@ class SweepScreen(Dialog[None]):
         # the plot
         holder = self.query_one("#sweep-plot")
         plots = holder.query(PlotWidget)
-        plot = plots.first() if plots else PlotWidget(allow_pan_and_zoom=False)
+        plot = plots.first() if plots else quiet_plot_widget()(allow_pan_and_zoom=False)
         if not plots:
             await holder.mount(plot)
         plot.clear()
