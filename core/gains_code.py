@@ -199,12 +199,37 @@ def _usage(g: Gains) -> str:
             "# each period: sp = controller.getSetpoint(); u = controller.calculate(angle)\n"
             "#             nxt = controller.getSetpoint()  # after calculate: the next setpoint\n"
             "#             volts = u + feedforward.calculate(sp.position, sp.velocity, nxt.velocity)\n"
-            "# (WPILib inverts the arm's gravity over the period; Gearhead's loop takes kG·cos of the\n"
-            "#  setpoint angle and the linear inversion: the two differ a little)\n"
+            + _arm_ff_note("#")
         )
     return (
         "# each period: v = controller.getSetpoint().velocity; u = controller.calculate(position)\n"
         "#             volts = u + feedforward.calculate(v, controller.getSetpoint().velocity)\n"
+    )
+
+
+def _arm_ff_note(c: str) -> str:
+    """What ArmFeedforward's discrete calculate computes (WPILib 2026.2.2, core.sim.profiled (P5a)):
+    the card simulates that, not an inversion of the plant."""
+    return (
+        f"{c} (WPILib 2026.2.2's ArmFeedforward: kS*sgn(v) + kV*v + kA*(next - v)/period + kG*cos(angle)\n"
+        f"{c}  while kA < 0.1 V*s^2/rad, else an RK4 inversion of the arm; Gearhead's card simulates it)\n"
+    )
+
+
+def _java_usage(g: Gains) -> str:
+    """How the Java loop calls the feedforward: calculateWithVelocities is the discrete one, as the
+    card simulates ((P5), (P5a)); ArmFeedforward's calculate(a, b) reads (angle, velocity),
+    ElevatorFeedforward's (velocity, acceleration): neither is the next velocity."""
+    args = "sp.position, sp.velocity, next.velocity" if g.arm else "sp.velocity, next.velocity"
+    return (
+        "// Each period: var sp = controller.getSetpoint(); double u = controller.calculate(position);\n"
+        "//   var next = controller.getSetpoint(); // after calculate: the next setpoint\n"
+        f"//   volts = u + feedforward.calculateWithVelocities({args});\n"
+        + (
+            _arm_ff_note("//")
+            if g.arm
+            else "// (calculateWithVelocities is the discrete feedforward; calculate(a, b) reads b as an acceleration)\n"
+        )
     )
 
 
@@ -216,7 +241,8 @@ def wpilib_java(g: Gains) -> str:
         _header(g, "//") + f"import edu.wpi.first.math.controller.{_ff(g)};\n"
         "import edu.wpi.first.math.controller.ProfiledPIDController;\n"
         "import edu.wpi.first.math.trajectory.TrapezoidProfile;\n\n"
-        f"public final class {cls} {{\n"
+        + _java_usage(g)
+        + f"public final class {cls} {{\n"
         f"  public static final double kS = {_num(g.kS)}; // V\n"
         f"  public static final double kG = {_num(g.kG)}; // V\n"
         f"  public static final double kV = {_num(g.kV)}; // V*s/{_u(g)}\n"
@@ -254,11 +280,18 @@ def _phoenix6_current_limits(g) -> list[str]:
     return lines
 
 
+DEVICE_LOOP_NOTE = (
+    "// This loop runs on the motor controller with its own profile and continuous feedforward (kV*v +\n"
+    "// kA*a at the profile's targets), not the roboRIO loop of the WPILib documents that the card simulates."
+)
+
+
 def phoenix6_java(g: Gains) -> str:
     v = phoenix6_values(g)
     cls = f"{g.title.replace(' ', '')}TalonFXConfig"
     lines = [
         _header(g, "//").rstrip("\n"),
+        DEVICE_LOOP_NOTE,
         *(
             [
                 "// Positions in arm rotations (SensorToMechanismRatio = motor turns per arm turn), 0 with the",
@@ -303,6 +336,7 @@ def revlib_java(g: Gains) -> str:
     cls = f"{g.title.replace(' ', '')}SparkMaxConfig"
     lines = [
         _header(g, "//").rstrip("\n"),
+        DEVICE_LOOP_NOTE,
         f"// Native units are SI through the encoder's conversion factors ({u}, {u}/s); the PID output is a",
         "// duty cycle of the compensated voltage, kD per 1 ms step (the SPARK's loop runs at 1 kHz).",
         *(
@@ -395,7 +429,7 @@ def _wpilib_python_exponential(g: Gains) -> str:
         "# each period: nxt = profile.calculate(PERIOD, setpoint, goal)\n"
         "#              volts = controller.calculate(position, nxt.position)\n"
         f"#                      + feedforward.calculate({ff_args})\n"
-        "#              setpoint = nxt\n"
+        "#              setpoint = nxt\n" + (_arm_ff_note("#") if g.arm else "")
     )
 
 
@@ -411,8 +445,12 @@ def _wpilib_java_exponential(g: Gains) -> str:
         "// Each period: var next = profile.calculate(kPeriod, setpoint, goal);\n"
         "//   volts = controller.calculate(position, next.position)\n"
         f"//           + feedforward.calculateWithVelocities({ff_args}); setpoint = next;\n"
-        "// (calculateWithVelocities is the discrete feedforward; calculate(a, b) reads b as an acceleration)\n"
-        f"public final class {cls} {{\n"
+        + (
+            _arm_ff_note("//")
+            if g.arm
+            else "// (calculateWithVelocities is the discrete feedforward; calculate(a, b) reads b as an acceleration)\n"
+        )
+        + f"public final class {cls} {{\n"
         f"  public static final double kS = {_num(g.kS)}; // V\n"
         f"  public static final double kG = {_num(g.kG)}; // V\n"
         f"  public static final double kV = {_num(g.kV)}; // V*s/{_u(g)}\n"

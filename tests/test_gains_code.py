@@ -193,3 +193,27 @@ def test_arm_revlib_gravity_is_wpilibs(motor_turns):
     spark = v["kCos"] * math.cos(2 * math.pi * v["kCosRatio"] * native)
     angle = motor_turns / ARM.ratio * 2 * math.pi  # the arm's angle from horizontal, rad
     assert spark == pytest.approx(ArmFeedforward(0.0, ARM.kG, 0.0, 0.0).calculate(angle, 0.0), abs=1e-12)
+
+
+@pytest.mark.parametrize("max_input", [None, 8.0])
+def test_arm_documents_say_what_armfeedforward_computes(max_input):
+    """WPILib 2026.2.2's ArmFeedforward.calculate(angle, v, next) inverts no gravity while kA < 0.1
+    (core.sim.profiled (P5a)): no document says it does; Java's calculate(a, b) is (angle, velocity)
+    for an arm, not (velocity, acceleration); the Java trapezoid documents show the discrete call."""
+    arm = replace(ARM, max_input=max_input)
+    docs = [
+        gains_code.wpilib_python(arm),
+        gains_code.wpilib_java(arm),
+        gains_code.phoenix6_java(arm),
+        gains_code.revlib_java(arm),
+    ]
+    for text in docs:
+        assert "inverts" not in text and "reads b as an acceleration" not in text, text
+    for text in docs[:2]:
+        assert "kA*(next - v)/period + kG*cos(angle)" in text and "kA < 0.1" in text
+    java = gains_code.wpilib_java(replace(ARM, max_input=None))
+    assert "feedforward.calculateWithVelocities(sp.position, sp.velocity, next.velocity)" in java
+    elevator = gains_code.wpilib_java(HAND)
+    assert "feedforward.calculateWithVelocities(sp.velocity, next.velocity)" in elevator
+    for text in (gains_code.phoenix6_java(arm), gains_code.revlib_java(HAND)):
+        assert "not the roboRIO loop" in text

@@ -219,7 +219,7 @@ def test_arm_exponential_integrator_agrees_with_dp54():
     v, _ = parse_inputs(calc, raw)
     s = arm_calc.setup(v)
     ff = motion.feedforward(s, 0.0)
-    loop, profile, _ = profiled.loop_of(s, v, ff, lambda q: ff["kG"] * math.cos(q))
+    loop, profile, _ = profiled.loop_of(s, v, ff, lambda q: ff["kG"] * math.cos(q), arm=True)
     exp = profiled.profiled_move(s, loop, profile, 1e-9)
     dp = profiled.profiled_move(s, loop, profile, 1e-11, method="DP54")
     assert exp.settled and dp.settled

@@ -24,7 +24,7 @@ import random
 import mpmath as mp
 import pytest
 from wpilib.simulation import ElevatorSim, SingleJointedArmSim
-from wpimath.controller import ElevatorFeedforward, PIDController
+from wpimath.controller import ArmFeedforward, ElevatorFeedforward, PIDController
 from wpimath.system.plant import DCMotor
 from wpimath.trajectory import ExponentialProfileMeterVolts as WpiExponential
 
@@ -113,15 +113,15 @@ def test_profile_is_wpilibs(seed):
 # --- the whole loop against WPILib's parts (the oracle world of tests/test_profiled_wpilib.py) ------
 
 
-def expo_loop(out: dict, sim, start: float, goal: float, window: float, read, kG_of):
+def expo_loop(out: dict, sim, start: float, goal: float, window: float, read, feedforward):
     """Robot code with an exponential profile (WPILib's ElevatorExponentialProfile example, the PID on
     the roboRIO as ProfiledPIDController runs it): each period next = profile.calculate(dt, setpoint,
-    goal); volts = pid.calculate(measured, next.position) + ff(setpoint.velocity, next.velocity)."""
+    goal); volts = pid.calculate(measured, next.position) + feedforward(setpoint, next), WPILib's
+    ElevatorFeedforward or ArmFeedforward as the exported documents call them."""
     profile = WpiExponential(
         WpiExponential.Constraints.fromCharacteristics(out["max_input"], out["kV"], out["kA"])
     )
     pid = PIDController(out["kP"], 0.0, out["kD"], PERIOD)
-    linear = ElevatorFeedforward(out["kS"], 0.0, out["kV"], out["kA"], PERIOD)
     setpoint, target = WpiExponential.State(start, 0.0), WpiExponential.State(goal, 0.0)
     delay_sub = round(out["sensor_delay"] / SUB)
     per = round(PERIOD / SUB)
@@ -132,7 +132,7 @@ def expo_loop(out: dict, sim, start: float, goal: float, window: float, read, kG
         measured = history[max(k * per - delay_sub, 0)]
         nxt = profile.calculate(PERIOD, setpoint, target)
         volts = pid.calculate(measured, nxt.position)
-        volts += linear.calculate(setpoint.velocity, nxt.velocity) + kG_of(setpoint.position)
+        volts += feedforward(setpoint, nxt)
         setpoint = nxt
         sim.setInputVoltage(max(-12.0, min(12.0, volts)))
         for _ in range(per):
@@ -230,15 +230,22 @@ def test_exponential_elevator_loop_matches_wpilib(oracle_world, index):  # noqa:
         0.0,
         [0.0, 0.0],
     )
+    ff = ElevatorFeedforward(out["kS"], out["kG"], out["kV"], out["kA"], PERIOD)
     at_updates, settle = expo_loop(
-        out, sim, 0.0, out["travel"], ts[-1], lambda s: s.getPosition(), lambda r: out["kG"]
+        out,
+        sim,
+        0.0,
+        out["travel"],
+        ts[-1],
+        lambda s: s.getPosition(),
+        lambda sp, nxt: ff.calculate(sp.velocity, nxt.velocity),
     )
     check_against(out, ts, qs, at_updates, settle, abs(out["travel"]))
 
 
 @pytest.mark.parametrize("index", range(3))
 def test_exponential_arm_loop_matches_wpilib(oracle_world, index):  # noqa: F811
-    """The arm's profile is on its angle's kV, kA; gravity is the feedforward's kG·cos(setpoint)."""
+    """The arm's profile is on its angle's kV, kA; the feedforward WPILib's ArmFeedforward (P5a)."""
     c = arm_cases()[index]
     out, ts, qs = solved("arm", c)
     m, L = out["arm_mass"], out["com_distance"]
@@ -246,8 +253,15 @@ def test_exponential_arm_loop_matches_wpilib(oracle_world, index):  # noqa: F811
     sim = SingleJointedArmSim(
         gearbox(c), c["ratio"], 4 / 3 * m * L * L, 2 * L, -10.0, 10.0, True, start, [0.0, 0.0]
     )
+    ff = ArmFeedforward(out["kS"], out["kG"], out["kV"], out["kA"], PERIOD)
     at_updates, settle = expo_loop(
-        out, sim, start, goal, ts[-1], lambda s: s.getAngle(), lambda r: out["kG"] * math.cos(r)
+        out,
+        sim,
+        start,
+        goal,
+        ts[-1],
+        lambda s: s.getAngle(),
+        lambda sp, nxt: ff.calculate(sp.position, sp.velocity, nxt.velocity),
     )
     check_against(out, ts, qs, at_updates, settle, abs(goal - start))
 
