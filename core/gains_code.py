@@ -63,6 +63,12 @@ profiled move's choice, core.sim.profiled (P12)-(P15)):
   kCos·cos(2π·kCosRatio·q_native), and with q_native in rad
       kCos = kG,  kCosRatio = 1/L = 1/(2π)  (arm rotations per rad)                           (GC3a)
   which is ArmFeedforward's kG·cos θ when the encoder reads 0 with the arm horizontal, positive up.
+Ranges: a Phoenix 6 value outside CTRE's documented bounds (PHOENIX6_RANGES, e.g. MotionMagicAcceleration
+0 to 9999 rps/s, MotionMagicExpo_kV 0.001 to 100 V per rps, SensorToMechanismRatio ±1000) is marked
+OUT OF RANGE on its line and listed, with its range, at the top of the document               (GC9)
+Controllers: phoenix6 (TalonFXConfiguration) is written only for the Talon FX motors (Falcon 500,
+Kraken X60, X44), revlib (SparkMaxConfig on the primary encoder) only for REV's brushless NEOs; any
+other motor is refused with the pairs that work (the WPILib documents take any)            (GC10)
 """
 
 from __future__ import annotations
@@ -71,7 +77,87 @@ import math
 from dataclasses import dataclass
 
 REV_LOOP_PERIOD = 1e-3  # s: the SPARK's closed loop runs at 1 kHz (GC3)
-EXPO_KA_RANGE = (1e-5, 100.0)  # V per rps/s: MotionMagicConfigs.MotionMagicExpo_kA's bounds (CTRE API docs)
+
+# Phoenix 6's documented bounds of each value a document writes (phoenix6 26.3.0, configs/
+# config_groups.py: "Minimum Value", "Maximum Value" of FeedbackConfigs, Slot0Configs,
+# MotionMagicConfigs, CurrentLimitsConfigs; the same in CTRE's Java and C++ API pages). A value
+# outside is marked on its line and listed at the top of the document (GC9).
+PHOENIX6_RANGES = {
+    "SensorToMechanismRatio": (-1000.0, 1000.0, ""),
+    "kS": (-128.0, 127.0, "V"),
+    "kG": (-128.0, 127.0, "V"),
+    "kV": (0.0, 3.4e38, ""),
+    "kA": (0.0, 3.4e38, ""),
+    "kP": (0.0, 3.4e38, ""),
+    "kD": (0.0, 3.4e38, ""),
+    "MotionMagicCruiseVelocity": (0.0, 9999.0, "rps"),
+    "MotionMagicAcceleration": (0.0, 9999.0, "rps/s"),
+    "MotionMagicExpo_kV": (0.001, 100.0, "V per rps"),
+    "MotionMagicExpo_kA": (1e-5, 100.0, "V per rps/s"),
+    "StatorCurrentLimit": (0.0, 800.0, "A"),
+    "SupplyCurrentLimit": (0.0, 800.0, "A"),
+}
+EXPO_KA_RANGE = PHOENIX6_RANGES["MotionMagicExpo_kA"][:2]
+# What each document's controller can drive (GC10): TalonFXConfiguration is the Talon FX's, built
+# into these motors; SparkMaxConfig's closed loop on the primary encoder is a REV brushless motor's
+# (its hall sensor). The WPILib documents run on the roboRIO with any motor controller.
+PHOENIX6_MOTORS = (
+    "Falcon 500",
+    "Falcon 500 FOC",
+    "Kraken X60",
+    "Kraken X60 FOC",
+    "Kraken X44",
+    "Kraken X44 FOC",
+)
+REVLIB_MOTORS = ("NEO", "NEO 550", "NEO 2.0", "NEO Vortex")
+
+
+def check_controller(document: str, motor: str) -> None:
+    """(GC10): a ValueError naming the pairs that work when `document` cannot drive `motor`."""
+    allowed = {"phoenix6": PHOENIX6_MOTORS, "revlib": REVLIB_MOTORS}[document]
+    if not motor or motor in allowed:
+        return
+    raise ValueError(
+        f"the {document} document configures a "
+        f"{'Talon FX' if document == 'phoenix6' else 'SPARK MAX'}, which cannot drive a {motor}. "
+        f"Pairs that work: phoenix6 with {', '.join(PHOENIX6_MOTORS)}; revlib with "
+        f"{', '.join(REVLIB_MOTORS)}; wpilib-java and wpilib-python with any motor (the loop on the roboRIO)"
+    )
+
+
+def phoenix6_out_of_range(values: dict[str, float]) -> list[str]:
+    """(GC9): each value outside Phoenix 6's documented bounds, said with its range."""
+    out = []
+    for name, x in values.items():
+        if name not in PHOENIX6_RANGES:
+            continue
+        lo, hi, unit = PHOENIX6_RANGES[name]
+        if not lo <= x <= hi:
+            out.append(
+                f"{name} = {x:.6g} is outside CTRE's documented range {lo:g} to {hi:g}{' ' + unit if unit else ''}"
+            )
+    return out
+
+
+def _flag_phoenix6(lines: list[str], values: dict[str, float], hint: str) -> list[str]:
+    """(GC9): mark each out-of-range value's line and list them at the top (after the header)."""
+    problems = phoenix6_out_of_range(values)
+    if not problems:
+        return lines
+    marked = []
+    for line in lines:
+        for name in values:
+            if f".{name} = " in line and any(p.startswith(f"{name} = ") for p in problems):
+                lo, hi, unit = PHOENIX6_RANGES[name]
+                line += f" // OUT OF RANGE: {lo:g} to {hi:g}{' ' + unit if unit else ''}"
+        marked.append(line)
+    at = next(i for i, line in enumerate(marked) if line.startswith("import "))
+    note = [
+        "// OUT OF RANGE for Phoenix 6 (the device refuses these values; the lines are marked):",
+        *(f"//   {p}" for p in problems),
+        f"// {hint}",
+    ]
+    return marked[:at] + note + marked[at:]
 
 
 @dataclass(frozen=True)
@@ -96,6 +182,7 @@ class Gains:
     title: str = "Elevator"
     arm: bool = False  # q is the arm's angle from horizontal (rad): ArmFeedforward, Arm_Cosine
     max_input: float | None = None  # V: the exponential profile's U (GC6); None for a trapezoid
+    motor: str = ""  # Gearhead's motor name: which controllers can drive it (GC10); "" unchecked
 
 
 def _u(g: Gains) -> str:
@@ -287,6 +374,7 @@ DEVICE_LOOP_NOTE = (
 
 
 def phoenix6_java(g: Gains) -> str:
+    check_controller("phoenix6", g.motor)
     v = phoenix6_values(g)
     cls = f"{g.title.replace(' ', '')}TalonFXConfig"
     lines = [
@@ -327,10 +415,16 @@ def phoenix6_java(g: Gains) -> str:
     lines += _phoenix6_motion_magic(g, v)
     lines += _phoenix6_current_limits(g)
     lines += ["    return cfg;", "  }", "", f"  private {cls}() {{}}", "}", ""]
-    return "\n".join(lines)
+    limits = {"StatorCurrentLimit": g.stator_limit, "SupplyCurrentLimit": g.supply_limit}
+    hint = (
+        "Lower the ratio, the max input or the profile's limits, or re-solve for a mechanism whose "
+        "values fit: Phoenix 6 keeps the value in range, not the one Gearhead simulated."
+    )
+    return "\n".join(_flag_phoenix6(lines, v | {k: x for k, x in limits.items() if x is not None}, hint))
 
 
 def revlib_java(g: Gains) -> str:
+    check_controller("revlib", g.motor)
     v = revlib_values(g)
     u = _u(g)
     cls = f"{g.title.replace(' ', '')}SparkMaxConfig"
@@ -490,13 +584,7 @@ def _phoenix6_motion_magic(g: Gains, v: dict) -> list[str]:
         "    cfg.MotionMagic.MotionMagicCruiseVelocity = 0.0; // no cap: the profile's own limit",
         f"    cfg.MotionMagic.MotionMagicExpo_kV = {_num(v['MotionMagicExpo_kV'])}; // V per rps",
         f"    cfg.MotionMagic.MotionMagicExpo_kA = {_num(v['MotionMagicExpo_kA'])}; // V per rps/s",
-    ] + (
-        []
-        if EXPO_KA_RANGE[0] <= v["MotionMagicExpo_kA"] <= EXPO_KA_RANGE[1]
-        else [
-            "    // Expo_kA is outside CTRE's documented range (1e-05 to 100 V per rps/s): the device refuses it"
-        ]
-    )
+    ]
 
 
 def _revlib_max_motion(g: Gains, v: dict, u: str) -> list[str]:
@@ -558,6 +646,7 @@ class FlywheelGains:
     stator_limit: float | None = None
     supply_limit: float | None = None
     acceleration: float | None = None  # rad/s² at the wheel: a ramped setpoint (VL4a); None: a step
+    motor: str = ""  # Gearhead's motor name (GC10); "" unchecked
 
 
 def flywheel_phoenix6_values(g: FlywheelGains, rotor: bool = False) -> dict[str, float]:
@@ -680,6 +769,7 @@ def flywheel_wpilib_java(g: FlywheelGains) -> str:
 
 
 def flywheel_phoenix6_java(g: FlywheelGains, rotor: bool = False) -> str:
+    check_controller("phoenix6", g.motor)
     v = flywheel_phoenix6_values(g, rotor)
     cls = f"Flywheel{'Rotor' if rotor else ''}TalonFXConfig"
     units = (
@@ -723,7 +813,7 @@ def flywheel_phoenix6_java(g: FlywheelGains, rotor: bool = False) -> str:
             f"    cfg.MotionMagic.MotionMagicAcceleration = {_num(a)}; // rps/s, the setpoint's ramp",
             "    cfg.MotionMagic.MotionMagicJerk = 0.0; // no jerk limit",
         ]
-        if a > PHOENIX_MAX_ACCELERATION:
+        if a > PHOENIX_MAX_ACCELERATION:  # (GC9), said where the ramp is set as before
             lines.append(
                 f"    // beyond the config's maximum {PHOENIX_MAX_ACCELERATION:g} rps/s: lower the ramp's acceleration"
             )
@@ -740,10 +830,16 @@ def flywheel_phoenix6_java(g: FlywheelGains, rotor: bool = False) -> str:
         "}",
         "",
     ]
-    return "\n".join(lines)
+    limits = {"StatorCurrentLimit": g.stator_limit, "SupplyCurrentLimit": g.supply_limit}
+    values = {k: x for k, x in v.items() if k != "target_rps"} | {
+        k: x for k, x in limits.items() if x is not None
+    }
+    hint = "Lower the ratio or the ramp's acceleration: Phoenix 6 keeps the value in range, not this one."
+    return "\n".join(_flag_phoenix6(lines, values, hint))
 
 
 def flywheel_revlib_java(g: FlywheelGains) -> str:
+    check_controller("revlib", g.motor)
     v = flywheel_revlib_values(g)
     lines = [
         _fw_header(g, "//").rstrip("\n"),
@@ -862,6 +958,7 @@ def profiled_gains(solution, metres_per_rotation, **kind) -> Gains:
         battery_voltage=v["voltage"],
         tolerance=v["settle_tolerance"],
         max_input=v["max_input"] if v.get("profile_type") == "exponential" else None,
+        motor=v["motor"],
         stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
         supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
         **kind,

@@ -117,16 +117,22 @@ def document(capsys, *args):
     return code, out.out, out.err
 
 
+MOTOR_OF = {"phoenix6": "Kraken X60", "revlib": "NEO"}  # a motor each controller drives (GC10)
+
+
 @pytest.mark.parametrize("name", ["wpilib-java", "wpilib-python", "phoenix6", "revlib"])
 def test_documents_through_the_cli(capsys, name):
-    code, text, _ = document(capsys, "--set", "mode=profiled", "--document", name)
+    motor = MOTOR_OF.get(name, "Falcon 500")
+    code, text, _ = document(capsys, "--set", "mode=profiled", "--set", f"motor={motor}", "--document", name)
     assert code == 0 and ("kP" in text or ".p(" in text)
     code, text, err = document(capsys, "--document", name)  # the full-voltage move has no profile
     assert code == 2 and text == "" and "mode = profiled" in err and "Traceback" not in err
 
 
 def test_export_is_the_designs_name_for_it(capsys):
-    code, text, _ = document(capsys, "--set", "mode=profiled", "--export", "phoenix6")
+    code, text, _ = document(
+        capsys, "--set", "mode=profiled", "--set", "motor=Kraken X60", "--export", "phoenix6"
+    )
     assert code == 0 and "cfg.Slot0.kP" in text
 
 
@@ -150,7 +156,7 @@ def test_arm_documents():
     assert _number(ph, r"cfg\.Slot0\.kP") == pytest.approx(out["kP"] * 2 * math.pi, rel=1e-15)
     quarter = replace(g, max_velocity=math.pi / 2)
     assert gains_code.phoenix6_values(quarter)["MotionMagicCruiseVelocity"] == pytest.approx(0.25, rel=1e-15)
-    rev = gains_code.revlib_java(g)
+    rev = gains_code.revlib_java(replace(g, motor="NEO"))  # the default arm's Kraken: a Talon FX's
     r = gains_code.revlib_values(g)
     assert _number(rev, r"\.kCos") == out["kG"] and ".kG(" not in rev  # REVLib keeps one of the two
     assert _number(rev, r"\.kCosRatio") == r["kCosRatio"] and "horizontal" in rev
@@ -217,3 +223,84 @@ def test_arm_documents_say_what_armfeedforward_computes(max_input):
     assert "feedforward.calculateWithVelocities(sp.velocity, next.velocity)" in elevator
     for text in (gains_code.phoenix6_java(arm), gains_code.revlib_java(HAND)):
         assert "not the roboRIO loop" in text
+
+
+def _cli(capsys, calc, *args):
+    code = main(["solve", calc, *args])
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+@pytest.mark.parametrize(
+    "calc, args, line",
+    [
+        # the issue's reproducers: Expo_kV 107.4 V per rps (> 100), SensorToMechanismRatio 1500
+        # (> 1000), MotionMagicAcceleration 88 620 rps/s (> 9999; a Kraken X60: a NEO is refused)
+        (
+            "arm",
+            ["--set", "ratio=300", "--set", "profile_type=exponential", "--set", "max_input=4 V"],
+            "MotionMagicExpo_kV = 107.4",
+        ),
+        ("arm", ["--set", "ratio=1500"], "SensorToMechanismRatio = 1500"),
+        (
+            "elevator",
+            [
+                *("--set", "ratio=4", "--set", "spool_diameter=0.5 in", "--set", "load_mass=5 lb"),
+                *("--set", "acceleration_fraction=0.9", "--set", "motor=Kraken X60"),
+            ],
+            "MotionMagicAcceleration = 88620",
+        ),
+    ],
+)
+def test_phoenix6_values_outside_ctres_ranges_are_flagged(capsys, calc, args, line):
+    """(GC9): each value outside Phoenix 6's documented bounds is listed with its range at the top and
+    marked on its line."""
+    code, text, _ = _cli(capsys, calc, "--set", "mode=profiled", *args, "--document", "phoenix6")
+    assert code == 0
+    top = text.split("import ")[0]
+    assert "OUT OF RANGE for Phoenix 6" in top and line in top and "documented range" in top
+    name = line.split(" = ")[0]
+    (marked,) = [x for x in text.splitlines() if f".{name} = " in x]
+    assert "// OUT OF RANGE:" in marked
+    # in range: no flag
+    code, text, _ = _cli(
+        capsys, calc, "--set", "mode=profiled", "--set", "motor=Kraken X60", "--document", "phoenix6"
+    )
+    assert code == 0 and "OUT OF RANGE" not in text
+
+
+@pytest.mark.parametrize(
+    "calc, motor, name",
+    [
+        ("elevator", "NEO", "phoenix6"),
+        ("arm", "Kraken X60", "revlib"),
+        ("elevator", "CIM", "revlib"),
+        ("arm", "NEO Vortex", "phoenix6"),
+    ],
+)
+def test_a_controller_that_cannot_drive_the_motor_is_refused(capsys, calc, motor, name):
+    """(GC10): phoenix6 (a Talon FX) for a NEO, revlib (a SPARK MAX on its primary encoder) for a
+    Kraken X60: refused with the pairs that work, not written."""
+    code, text, err = _cli(
+        capsys, calc, "--set", "mode=profiled", "--set", f"motor={motor}", "--document", name
+    )
+    assert code == 2 and text == "" and "Traceback" not in err
+    assert f"cannot drive a {motor}" in err and "Pairs that work" in err
+    assert "phoenix6 with Falcon 500" in err and "revlib with NEO" in err
+    for other in ("wpilib-java", "wpilib-python"):
+        code, text, _ = _cli(
+            capsys, calc, "--set", "mode=profiled", "--set", f"motor={motor}", "--document", other
+        )
+        assert code == 0 and text
+
+
+def test_flywheel_documents_refuse_the_wrong_controller():
+    from gearhead.core.calculators import flywheel as flywheel_calc
+
+    sol = solve(
+        "flywheel", {"control": "velocity_loop", "motor": "NEO", "ratio": 1, "target_speed": "3000 rpm"}
+    )
+    docs = {d.name: d for d in flywheel_calc.CALCULATOR.documents}
+    with pytest.raises(ValueError, match="cannot drive a NEO"):
+        docs["phoenix6"].build(sol)
+    assert "SparkMaxConfig" in docs["revlib"].build(sol)

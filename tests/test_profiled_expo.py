@@ -20,6 +20,7 @@ bang-bang move is the time-optimal move from where it is).
 
 import math
 import random
+from dataclasses import replace
 
 import mpmath as mp
 import pytest
@@ -358,7 +359,7 @@ def test_java_phoenix_revlib_follow_the_choice():
     assert "ExponentialProfile.Constraints.fromCharacteristics(kMaxInput, kV, kA)" in java
     assert "TrapezoidProfile" not in java and "ProfiledPIDController" not in java
     assert java.count("{") == java.count("}") and java.count("(") == java.count(")")
-    phoenix = gains_code.phoenix6_java(g)
+    phoenix = gains_code.phoenix6_java(replace(g, motor="Kraken X60"))  # a Talon FX's (GC10)
     assert "MotionMagicExpoVoltage" in phoenix and "MotionMagicAcceleration" not in phoenix
     # (GC6): Expo_kV = kV·L·V_b/U per rps, so the supply voltage over it is the profile's U/kV
     v = gains_code.phoenix6_values(g)
@@ -366,7 +367,7 @@ def test_java_phoenix_revlib_follow_the_choice():
     assert g.battery_voltage / v["MotionMagicExpo_kV"] * L == pytest.approx(8.0 / g.kV, rel=1e-14)
     assert g.battery_voltage / v["MotionMagicExpo_kA"] * L == pytest.approx(8.0 / g.kA, rel=1e-14)
     assert f"MotionMagicExpo_kV = {v['MotionMagicExpo_kV']!r};" in phoenix
-    revlib = gains_code.revlib_java(g)
+    revlib = gains_code.revlib_java(g)  # the default elevator's NEO
     assert "no exponential profile" in revlib and "kMAXMotionTrapezoidal" in revlib
     # Java's discrete feedforward: calculate(v, next) would read next as an acceleration (the review
     # measured 0.345 V where the loop needs 8.32 V)
@@ -380,16 +381,16 @@ def test_arm_java_and_revlib_with_the_exponential_profile():
     g = arm_calc.gains_of(solve("arm", {"mode": "profiled", "profile_type": "exponential"}))
     java = gains_code.wpilib_java(g)
     assert "calculateWithVelocities(setpoint.position, setpoint.velocity, next.velocity)" in java
-    revlib = gains_code.revlib_java(g)
+    revlib = gains_code.revlib_java(replace(g, motor="NEO"))  # a SPARK MAX's (GC10)
     assert ".kCos(" not in revlib and "kMAXMotionPositionControl" not in revlib
-    trapezoid = gains_code.revlib_java(arm_calc.gains_of(solve("arm", {"mode": "profiled"})))
+    trapezoid = gains_code.revlib_java(
+        replace(arm_calc.gains_of(solve("arm", {"mode": "profiled"})), motor="NEO")
+    )
     assert ".kCos(" in trapezoid and "kMAXMotionPositionControl" in trapezoid
 
 
 def test_phoenix_says_when_expo_ka_is_out_of_ctres_range():
-    from dataclasses import replace
-
-    sol = solve("elevator", {"mode": "profiled", "profile_type": "exponential"})
+    sol = solve("elevator", {"mode": "profiled", "profile_type": "exponential", "motor": "Kraken X60"})
     g = elevator_calc.gains_of(sol)
     assert "outside CTRE's documented range" not in gains_code.phoenix6_java(g)
     heavy = replace(g, kA=1e4)  # 1e4 V·s²/m × 0.12 m a rotation × 12/10: 1440 V per rps/s

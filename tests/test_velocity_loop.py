@@ -385,6 +385,10 @@ def test_documents_export_from_a_solution():
     )
     out = {k: v.value for k, v in sol.outputs.items()}
     for d in flywheel_calc.CALCULATOR.documents:
+        if d.name == "revlib":  # a SPARK MAX cannot drive a Kraken X60 (gains_code (GC10))
+            with pytest.raises(ValueError, match="cannot drive a Kraken X60"):
+                d.build(sol)
+            continue
         text = d.build(sol)
         assert repr(out["kS"]) in text
     phoenix = next(d for d in flywheel_calc.CALCULATOR.documents if d.name == "phoenix6").build(sol)
