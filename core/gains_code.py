@@ -69,6 +69,7 @@ OUT OF RANGE on its line and listed, with its range, at the top of the document 
 Controllers: phoenix6 (TalonFXConfiguration) is written only for the Talon FX motors (Falcon 500,
 Kraken X60, X44), revlib (SparkMaxConfig on the primary encoder) only for REV's brushless NEOs; any
 other motor is refused with the pairs that work (the WPILib documents take any)            (GC10)
+Numbers: every exported number to 12 significant digits (export_number), the card's unrounded (GC11)
 """
 
 from __future__ import annotations
@@ -193,11 +194,22 @@ def _ff(g: Gains) -> str:
     return "ArmFeedforward" if g.arm else "ElevatorFeedforward"
 
 
-def _num(x: float) -> str:
-    """A float as a literal Java and Python both read back to the same double."""
+EXPORT_DIGITS = 12  # significant digits of an exported number (GC11)
+
+
+def export_number(x: float) -> float:
+    """(GC11): x to EXPORT_DIGITS significant digits. An entry is typed with a handful of digits and
+    a unit conversion (135 lb = 61.23496995 kg, 34 in = 0.8636 m) is exact within 12, so 12 keep
+    every digit the entries give and drop a double's arithmetic noise (61.23496995000001): the
+    exported loop differs from the card's by under 1e-12 of each value. The card keeps full precision."""
     if not math.isfinite(x):
         raise ValueError(f"{x} cannot be exported")
-    return repr(float(x))
+    return float(f"{float(x):.{EXPORT_DIGITS}g}")
+
+
+def _num(x: float) -> str:
+    """A float as a literal Java and Python both read back to the same double, rounded (GC11)."""
+    return repr(export_number(x))
 
 
 def phoenix6_values(g: Gains) -> dict[str, float]:

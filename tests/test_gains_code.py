@@ -81,14 +81,18 @@ def test_java_files_carry_the_values():
     ph = gains_code.phoenix6_java(HAND)
     v = gains_code.phoenix6_values(HAND)
     for name in ("kS", "kG", "kV", "kA", "kP", "kD"):
-        assert _number(ph, rf"cfg\.Slot0\.{name}") == v[name]
-    assert _number(ph, r"MotionMagicCruiseVelocity") == v["MotionMagicCruiseVelocity"]
+        assert _number(ph, rf"cfg\.Slot0\.{name}") == gains_code.export_number(v[name])  # 12 digits (GC11)
+    assert _number(ph, r"MotionMagicCruiseVelocity") == gains_code.export_number(
+        v["MotionMagicCruiseVelocity"]
+    )
     assert _number(ph, r"SensorToMechanismRatio") == 12.0
     assert _number(ph, r"StatorCurrentLimit") == 40.0 and _number(ph, r"SupplyCurrentLimit") == 30.0
     assert "GravityTypeValue.Elevator_Static" in ph
     rev = gains_code.revlib_java(HAND)
     r = gains_code.revlib_values(HAND)
-    assert _number(rev, r"\.p") == r["p"] and _number(rev, r"\.d") == r["d"]
+    assert _number(rev, r"\.p") == gains_code.export_number(r["p"]) and _number(
+        rev, r"\.d"
+    ) == gains_code.export_number(r["d"])
     assert _number(rev, r"\.cruiseVelocity") == 1.5 and _number(rev, r"smartCurrentLimit") == 40
     assert "REVLib has none" in rev  # the supply limit is said, not dropped silently
     java = gains_code.wpilib_java(HAND)
@@ -102,12 +106,18 @@ def test_wpilib_python_runs_against_robotpy():
     namespace: dict = {}
     exec(gains_code.wpilib_python(elevator_calc.gains_of(sol)), namespace)  # noqa: S102 - our own text
     ff, pid = namespace["feedforward"], namespace["controller"]
-    assert (ff.getKs(), ff.getKg(), ff.getKv(), ff.getKa()) == (out["kS"], out["kG"], out["kV"], out["kA"])
-    assert (pid.getP(), pid.getD(), pid.getPeriod()) == (out["kP"], out["kD"], 0.02)
+    assert (ff.getKs(), ff.getKg(), ff.getKv(), ff.getKa()) == tuple(
+        map(gains_code.export_number, (out["kS"], out["kG"], out["kV"], out["kA"]))
+    )
+    assert (pid.getP(), pid.getD(), pid.getPeriod()) == (
+        gains_code.export_number(out["kP"]),
+        gains_code.export_number(out["kD"]),
+        0.02,
+    )
     c = pid.getConstraints()
     assert (c.maxVelocity, c.maxAcceleration) == (
-        out["profile_max_velocity"],
-        out["profile_max_acceleration"],
+        gains_code.export_number(out["profile_max_velocity"]),
+        gains_code.export_number(out["profile_max_acceleration"]),
     )
 
 
@@ -148,18 +158,25 @@ def test_arm_documents():
     exec(gains_code.wpilib_python(g), namespace)  # noqa: S102 - our own text
     ff, pid = namespace["feedforward"], namespace["controller"]
     assert type(ff).__name__ == "ArmFeedforward"
-    assert (ff.getKs(), ff.getKg(), ff.getKv(), ff.getKa()) == (out["kS"], out["kG"], out["kV"], out["kA"])
-    assert (pid.getP(), pid.getD()) == (out["kP"], out["kD"])
+    assert (ff.getKs(), ff.getKg(), ff.getKv(), ff.getKa()) == tuple(
+        map(gains_code.export_number, (out["kS"], out["kG"], out["kV"], out["kA"]))
+    )
+    assert (pid.getP(), pid.getD()) == (
+        gains_code.export_number(out["kP"]),
+        gains_code.export_number(out["kD"]),
+    )
     ph = gains_code.phoenix6_java(g)
     assert "GravityTypeValue.Arm_Cosine" in ph and "horizontal" in ph
     # a gain per radian times 2π rad a rotation; 90°/s = 0.25 rps
-    assert _number(ph, r"cfg\.Slot0\.kP") == pytest.approx(out["kP"] * 2 * math.pi, rel=1e-15)
+    assert _number(ph, r"cfg\.Slot0\.kP") == pytest.approx(out["kP"] * 2 * math.pi, rel=1e-11)
     quarter = replace(g, max_velocity=math.pi / 2)
     assert gains_code.phoenix6_values(quarter)["MotionMagicCruiseVelocity"] == pytest.approx(0.25, rel=1e-15)
     rev = gains_code.revlib_java(replace(g, motor="NEO"))  # the default arm's Kraken: a Talon FX's
     r = gains_code.revlib_values(g)
-    assert _number(rev, r"\.kCos") == out["kG"] and ".kG(" not in rev  # REVLib keeps one of the two
-    assert _number(rev, r"\.kCosRatio") == r["kCosRatio"] and "horizontal" in rev
+    assert (
+        _number(rev, r"\.kCos") == gains_code.export_number(out["kG"]) and ".kG(" not in rev
+    )  # REVLib keeps one of the two
+    assert _number(rev, r"\.kCosRatio") == gains_code.export_number(r["kCosRatio"]) and "horizontal" in rev
     assert [d.name for d in arm_calc.CALCULATOR.documents] == [
         "wpilib-java",
         "wpilib-python",
