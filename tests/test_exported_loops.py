@@ -226,6 +226,7 @@ def arm_cases():
             "sensor_delay": "5 ms",
             "velocity_fraction": 0.4,
             "acceleration_fraction": 0.2,
+            "stator_current_limit": "150 A",  # the derived acceleration's (40 A cannot lift it)
         }
     )
     return out

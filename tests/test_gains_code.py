@@ -252,7 +252,8 @@ def _cli(capsys, calc, *args):
     "calc, args, line",
     [
         # the reproducers: Expo_kV 107.4 V per rps (> 100), SensorToMechanismRatio 1500
-        # (> 1000), MotionMagicAcceleration 88 620 rps/s (> 9999; a Kraken X60: a NEO is refused)
+        # (> 1000), MotionMagicAcceleration > 9999 rps/s (a Kraken X60: a NEO is refused; the derived
+        # acceleration at a 120 A stator limit: at the default 40 A it is 9053 rps/s, in range)
         (
             "arm",
             ["--set", "ratio=300", "--set", "profile_type=exponential", "--set", "max_input=4 V"],
@@ -264,8 +265,9 @@ def _cli(capsys, calc, *args):
             [
                 *("--set", "ratio=4", "--set", "spool_diameter=0.5 in", "--set", "load_mass=5 lb"),
                 *("--set", "acceleration_fraction=0.9", "--set", "motor=Kraken X60"),
+                *("--set", "stator_current_limit=120 A"),
             ],
-            "MotionMagicAcceleration = 88620",
+            "MotionMagicAcceleration = 28579",
         ),
     ],
 )

@@ -153,7 +153,12 @@ def test_stator_limit_bites_on_the_way_up_only():
     stall acceleration: the way up (against gravity, friction) reaches 30 A, the way down not.
     (At 40 A both do: WPILib's ArmFeedforward (P5a) does not invert the plant, the feedback makes
     up the lag, and its kicks reach 40 A on the way down too.)"""
-    raw = {"mode": "profiled", "effects": "gravity, stator_limit, friction", "stator_current_limit": "30 A"}
+    raw = {
+        "mode": "profiled",
+        "effects": "gravity, stator_limit, friction",
+        "stator_current_limit": "30 A",
+        "acceleration_fraction": 0.3,
+    }
     out = {k: x.value for k, x in solve("arm", raw).outputs.items()}
     assert out["peak_stator_current"] == pytest.approx(30.0, rel=1e-9)
     assert out["return_peak_stator_current"] < 30.0 * (1 - 1e-3)

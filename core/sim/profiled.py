@@ -58,6 +58,9 @@ Outputs:
     energy = ∫ N·V_b·u·I dt (regeneration negative)
 The return move (an arm's way back): (P1)-(P11) from rest at the goal to the start, q0 ↔ q1,
 with the same loop and profile                                                         (P16)
+A derived trapezoid: v_max = velocity_fraction·(free speed), a_max = acceleration_fraction·(the
+acceleration from rest against the load at the start with each motor's current at the stator
+current limit entry, or its stall current if lower: (M4) with I capped)                 (P17)
 """
 
 from __future__ import annotations
@@ -861,7 +864,8 @@ def profile_fields(
             modes=PROFILED,
             when=TRAPEZOID,
             help="The trapezoid's max velocity and acceleration: fractions of what the mechanism can "
-            "do (free speed; acceleration from rest at full voltage against the load), or entered.",
+            "do (free speed; acceleration from rest against the load at the stator current "
+            "limit), or entered.",
         ),
         Field(
             "velocity_fraction",
@@ -882,14 +886,18 @@ def profile_fields(
             "Acceleration fraction",
             "dimensionless",
             "",
-            default=0.3,
+            default=0.1,
             min=0,
             min_exclusive=True,
             max=1,
             modes=PROFILED,
             when=(*TRAPEZOID, ("profile_limits", ("derived",))),
-            help="Profile max acceleration as a fraction of the acceleration from rest at full voltage "
-            "against the load (0-1).",
+            help="Profile max acceleration as a fraction (0-1) of the acceleration from rest against "
+            "the load with each motor at its stator current limit (the stator_limit effect's "
+            "entry, 40 A unless changed, used even with that effect off; the stall current if "
+            "lower). The default 0.1 keeps the default elevator's and arm's moves within a 40 A "
+            "stator limit (peaks 36 A, 23 A): the feedforward's step each period and the feedback "
+            "draw more than the profile's acceleration alone.",
         ),
         Field(
             "max_velocity",
@@ -1110,13 +1118,34 @@ def return_plots(label: str, pos_q: str, pos_u: str) -> tuple:
     )
 
 
-def stall_acceleration(setup) -> float:
-    """Acceleration toward the goal from rest at full voltage against the load at the start (M4)."""
+def stall_acceleration(setup, current_cap: float | None = None) -> float:
+    """Acceleration toward the goal from rest at full voltage against the load at the start (M4);
+    with `current_cap`, each motor's current at most that (A) (P17)."""
     from .motion import electrical, field_force, friction_of
 
     m = setup.mech
     _, I0 = electrical(m, setup.asm.slots["duty"])(0.0)
+    if current_cap is not None:
+        I0 = min(I0, current_cap)
     return (m.force_per_amp * I0 + m.s * field_force(setup)(m.q0) - friction_of(setup)) / m.inertia
+
+
+def derived_acceleration(setup, v) -> float:
+    """(P17): the derived trapezoid's max acceleration, acceleration_fraction of the acceleration
+    from rest against the load at the start with each motor at its stator current limit (the
+    stator_current_limit entry, whether or not the stator_limit effect is on; its stall current
+    when lower). A team sets a stator limit (40 A by default here) and profiles within it: the
+    full-voltage stall acceleration of a light load on FRC motors is tens of g at hundreds of amps."""
+    cap = v.get("stator_current_limit")
+    a = stall_acceleration(setup, cap)
+    if not a > 0:
+        raise InputError(
+            "acceleration_fraction",
+            f"the derived profile accelerates from rest with each motor at the stator current limit, "
+            f"{cap:.4g} A, which cannot move the load at the start: raise stator_current_limit (the "
+            "stator_limit effect shows it) or enter the profile limits (profile_limits = entered)",
+        )
+    return v["acceleration_fraction"] * a
 
 
 def exponential_of(setup, v, ff: dict) -> Exponential:
@@ -1144,7 +1173,7 @@ def loop_of(setup, v, ff: dict, kG, arm: bool = False) -> tuple[Loop, Trapezoid 
         v_max = a_max = math.nan  # (P12): the profile's, below
     elif v["profile_limits"] == "derived":
         v_max = v["velocity_fraction"] * m.free_speed
-        a_max = v["acceleration_fraction"] * stall_acceleration(setup)
+        a_max = derived_acceleration(setup, v)  # (P17)
     else:
         v_max, a_max = v["max_velocity"], v["max_acceleration"]
     if v["feedback"] == "lqr":
