@@ -383,6 +383,11 @@ DEVICE_LOOP_NOTE = (
     "// This loop runs on the motor controller with its own profile and continuous feedforward (kV*v +\n"
     "// kA*a at the profile's targets), not the roboRIO loop of the WPILib documents that the card simulates."
 )
+# REVLib with the exponential profile: the profile and feedforward stay on the roboRIO, the PID moves
+REV_EXPO_LOOP_NOTE = (
+    "// The PID runs on the SPARK (1 kHz) on setpoints the roboRIO sends: not quite the roboRIO loop of\n"
+    "// the WPILib documents that the card simulates."
+)
 
 
 def phoenix6_java(g: Gains) -> str:
@@ -442,7 +447,7 @@ def revlib_java(g: Gains) -> str:
     cls = f"{g.title.replace(' ', '')}SparkMaxConfig"
     lines = [
         _header(g, "//").rstrip("\n"),
-        DEVICE_LOOP_NOTE,
+        DEVICE_LOOP_NOTE if g.max_input is None else REV_EXPO_LOOP_NOTE,
         f"// Native units are SI through the encoder's conversion factors ({u}, {u}/s); the PID output is a",
         "// duty cycle of the compensated voltage, kD per 1 ms step (the SPARK's loop runs at 1 kHz).",
         *(

@@ -239,7 +239,9 @@ def test_arm_documents_say_what_armfeedforward_computes(max_input):
     elevator = gains_code.wpilib_java(HAND)
     assert "feedforward.calculateWithVelocities(sp.velocity, next.velocity)" in elevator
     for text in (gains_code.phoenix6_java(arm), gains_code.revlib_java(HAND)):
-        assert "not the roboRIO loop" in text
+        assert "not the roboRIO loop" in text and "its own profile" in text
+    expo_rev = gains_code.revlib_java(replace(HAND, max_input=8.0))  # the profile stays on the roboRIO
+    assert "its own profile" not in expo_rev and "setpoints the roboRIO sends" in expo_rev
 
 
 def _cli(capsys, calc, *args):
