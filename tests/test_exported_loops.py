@@ -96,8 +96,13 @@ def run_mechanism(sim, ns: dict, out: dict, start: float, goal: float, arm: bool
 
     controller, feedforward = ns["controller"], ns["feedforward"]
     period = ns["PERIOD"]
-    controller.reset(start, 0.0)
-    controller.setGoal(TrapezoidProfile.State(goal, 0.0))
+    expo = "profile" in ns  # the exponential profile's document: the profile advanced by the code
+    if expo:
+        State = type(ns["profile"]).State
+        setpoint, target = State(start, 0.0), State(goal, 0.0)
+    else:
+        controller.reset(start, 0.0)
+        controller.setGoal(TrapezoidProfile.State(goal, 0.0))
     per = round(period / SUB)
     delay_sub = round(out["sensor_delay"] / SUB)
     Vb, n = out["voltage"], out["motor_count"]
@@ -105,9 +110,15 @@ def run_mechanism(sim, ns: dict, out: dict, start: float, goal: float, arm: bool
     read = sim.getAngle if arm else sim.getPosition
     for k in range(round(window / period)):
         measured = history[max(k * per - delay_sub, 0)]
-        sp = controller.getSetpoint()
-        u = controller.calculate(measured)
-        nxt = controller.getSetpoint()
+        if expo:  # as its comment: nxt = profile.calculate(PERIOD, setpoint, goal); PID to nxt
+            sp = setpoint
+            nxt = ns["profile"].calculate(period, setpoint, target)
+            u = controller.calculate(measured, nxt.position)
+            setpoint = nxt
+        else:
+            sp = controller.getSetpoint()
+            u = controller.calculate(measured)
+            nxt = controller.getSetpoint()
         if arm:
             volts = u + feedforward.calculate(sp.position, sp.velocity, nxt.velocity)
         else:
@@ -303,6 +314,20 @@ def test_arm_card_runs_its_exported_loop(oracle_world, index):
     out, theirs = arm_oracle(PROFILED | arm_cases()[index])
     assert (out["kA"] >= 0.1) == (index == 4)  # the last case takes ArmFeedforward's RK4 branch
     assert_agree(out, theirs, abs(out["goal_angle"] - out["start_angle"]))
+
+
+@pytest.mark.parametrize("calc", ["arm", "elevator"])
+def test_exponential_documents_run_as_the_card(oracle_world, calc):
+    """The exponential profile's wpilib-python document (ExponentialProfile advanced by the code,
+    PIDController to the next setpoint, the feedforward from the setpoint to the next) as well."""
+    expo = {"profile_type": "exponential", "max_input": "8 V"}
+    if calc == "arm":
+        out, theirs = arm_oracle(PROFILED | arm_cases()[1] | expo)
+        span = abs(out["goal_angle"] - out["start_angle"])
+    else:
+        out, theirs = elevator_oracle(PROFILED | elevator_cases()[0] | expo)
+        span = abs(out["travel"])
+    assert_agree(out, theirs, span)
 
 
 @pytest.mark.parametrize("index", range(4))
