@@ -69,6 +69,7 @@ OUT OF RANGE on its line and listed, with its range, at the top of the document 
 Controllers: phoenix6 (TalonFXConfiguration) is written only for the Talon FX motors (Falcon 500,
 Kraken X60, X44), revlib (SparkMaxConfig on the primary encoder) only for REV's brushless NEOs; any
 other motor is refused with the pairs that work (the WPILib documents take any)            (GC10)
+WPILib: a negative kP, kD, kV or kA (or a period ≤ 0), which its constructors throw on, is refused (GC12)
 Numbers: every exported number to 12 significant digits (export_number), the card's unrounded (GC11)
 """
 
@@ -124,6 +125,22 @@ def check_controller(document: str, motor: str) -> None:
         f"Pairs that work: phoenix6 with {', '.join(PHOENIX6_MOTORS)}; revlib with "
         f"{', '.join(REVLIB_MOTORS)}; wpilib-java and wpilib-python with any motor (the loop on the roboRIO)"
     )
+
+
+def check_wpilib(g) -> None:
+    """(GC12): WPILib 2026.2.2 takes no negative gain (PIDController: "Kp must be a non-negative
+    number", Kd likewise; ArmFeedforward, ElevatorFeedforward, SimpleMotorFeedforward: kv, ka) nor a
+    period ≤ 0: Java's constructors throw IllegalArgumentException, C++'s and robotpy's report the
+    error and zero the gains (no feedback, measured in robotpy). Such a document is refused, naming
+    the value and the range (LQR gives a negative kP or kD for some tolerances and delays)."""
+    for name in ("kP", "kD", "kV", "kA", "period"):
+        x = getattr(g, name, 0.0)
+        if x < 0 or (name == "period" and x <= 0):
+            raise ValueError(
+                f"{name} = {x:.6g}: WPILib takes {name} {'> 0' if name == 'period' else '≥ 0'} (Java "
+                "throws IllegalArgumentException, C++ and robotpy zero the gains); enter the feedback gains "
+                "(feedback = entered) or change the LQR tolerances or the sensor delay"
+            )
 
 
 def phoenix6_out_of_range(values: dict[str, float]) -> list[str]:
@@ -269,6 +286,7 @@ def _header(g: Gains, comment: str) -> str:
 
 
 def wpilib_python(g: Gains) -> str:
+    check_wpilib(g)
     if g.max_input is not None:
         return _wpilib_python_exponential(g)
     return (
@@ -333,6 +351,7 @@ def _java_usage(g: Gains) -> str:
 
 
 def wpilib_java(g: Gains) -> str:
+    check_wpilib(g)
     if g.max_input is not None:
         return _wpilib_java_exponential(g)
     cls = f"{g.title.replace(' ', '')}Gains"
@@ -710,6 +729,7 @@ def _fw_header(g: FlywheelGains, comment: str) -> str:
 
 
 def flywheel_wpilib_python(g: FlywheelGains) -> str:
+    check_wpilib(g)
     return (
         _fw_header(g, "#") + "from wpimath.controller import PIDController, SimpleMotorFeedforwardRadians\n\n"
         f"kS = {_num(g.kS)}  # V\n"
@@ -757,6 +777,7 @@ def _fw_usage(g: FlywheelGains, java: bool = False) -> str:
 
 
 def flywheel_wpilib_java(g: FlywheelGains) -> str:
+    check_wpilib(g)
     return (
         _fw_header(g, "//") + "import edu.wpi.first.math.controller.PIDController;\n"
         "import edu.wpi.first.math.controller.SimpleMotorFeedforward;\n\n"

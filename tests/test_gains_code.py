@@ -325,3 +325,20 @@ def test_flywheel_documents_refuse_the_wrong_controller():
     with pytest.raises(ValueError, match="cannot drive a NEO"):
         docs["phoenix6"].build(sol)
     assert "SparkMaxConfig" in docs["revlib"].build(sol)
+
+
+def test_wpilib_documents_refuse_gains_wpilib_throws_on(capsys):
+    """(GC12): LQR gives kP = -55.5 V/m, kD = -0.27 V·s/m here (a 20 ms delay on a light
+    elevator); WPILib's PIDController takes none (Java throws, C++ and robotpy zero the gains), so
+    the WPILib documents are refused naming the value and the range (Phoenix 6 flags its
+    own range, kP ≥ 0)."""
+    from wpimath.controller import PIDController
+
+    raw = ["--set", "mode=profiled", "--set", "sensor_delay=20 ms", "--set", "q_position=0.305 in"]
+    raw += ["--set", "q_velocity=66.7 in/s", "--set", "ratio=6.806212814446597"]
+    assert PIDController(-55.5, 0.0, -0.27).getP() == 0.0  # robotpy zeroes them (Java throws)
+    for name in ("wpilib-java", "wpilib-python"):
+        code, text, err = _cli(capsys, "elevator", *raw, "--document", name)
+        assert code == 2 and text == "" and "kP = -55.49" in err and "≥ 0" in err, err
+    code, text, _ = _cli(capsys, "elevator", *raw, "--set", "motor=Kraken X60", "--document", "phoenix6")
+    assert code == 0 and "OUT OF RANGE" in text.split("import ")[0]
