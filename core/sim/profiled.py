@@ -811,7 +811,7 @@ PROFILE_LABELS = (
 TRAPEZOID = (("profile_type", ("trapezoid",)),)
 LIMIT_CHOICES = ("derived", "entered")
 LIMIT_LABELS = (
-    "Derived: fractions of the free speed and of the acceleration at stall",
+    "Derived: fractions of the free speed and of the acceleration at the stator limit",
     "Entered: max velocity and acceleration",
 )
 FEEDBACK_CHOICES = ("lqr", "entered")
@@ -1246,8 +1246,8 @@ def run_profiled(setup, v, rtol: float, ff: dict, kG, return_move: bool = False,
 # then those of a solve with start and goal swapped and the same profile, whatever the first move's
 # final error) and the loop runs the same profile toward the start:
 #     the return move = (P1)-(P11) with q0 ↔ q1, the same Loop and the same profile        (P16)
-# A derived trapezoid keeps the first move's limits (the fractions of the acceleration at stall
-# against the load at the start, (M4)): a separate solve of the way back would derive its own.
+# A derived trapezoid keeps the first move's limits (the fractions of the acceleration at the stator
+# limit against the load at the start, (P17)): a separate solve of the way back would derive its own.
 
 RETURN_PREFIX = "return_"
 RETURN_FIGURES = (
