@@ -63,6 +63,14 @@ profiled move's choice, core.sim.profiled (P12)-(P15)):
   kCos·cos(2π·kCosRatio·q_native), and with q_native in rad
       kCos = kG,  kCosRatio = 1/L = 1/(2π)  (arm rotations per rad)                           (GC3a)
   which is ArmFeedforward's kG·cos θ when the encoder reads 0 with the arm horizontal, positive up.
+Ranges: a Phoenix 6 value outside CTRE's documented bounds (PHOENIX6_RANGES, e.g. MotionMagicAcceleration
+0 to 9999 rps/s, MotionMagicExpo_kV 0.001 to 100 V per rps, SensorToMechanismRatio ±1000) is marked
+OUT OF RANGE on its line and listed, with its range, at the top of the document               (GC9)
+Controllers: phoenix6 (TalonFXConfiguration) is written only for the Talon FX motors (Falcon 500,
+Kraken X60, X44), revlib (SparkMaxConfig on the primary encoder) only for REV's brushless NEOs; any
+other motor is refused with the pairs that work (the WPILib documents take any)            (GC10)
+WPILib: a negative kP, kD, kV or kA (or a period ≤ 0), which its constructors throw on, is refused (GC12)
+Numbers: every exported number to 12 significant digits (export_number), the card's unrounded (GC11)
 """
 
 from __future__ import annotations
@@ -71,7 +79,103 @@ import math
 from dataclasses import dataclass
 
 REV_LOOP_PERIOD = 1e-3  # s: the SPARK's closed loop runs at 1 kHz (GC3)
-EXPO_KA_RANGE = (1e-5, 100.0)  # V per rps/s: MotionMagicConfigs.MotionMagicExpo_kA's bounds (CTRE API docs)
+
+# Phoenix 6's documented bounds of each value a document writes (phoenix6 26.3.0, configs/
+# config_groups.py: "Minimum Value", "Maximum Value" of FeedbackConfigs, Slot0Configs,
+# MotionMagicConfigs, CurrentLimitsConfigs; the same in CTRE's Java and C++ API pages). A value
+# outside is marked on its line and listed at the top of the document (GC9).
+PHOENIX6_RANGES = {
+    "SensorToMechanismRatio": (-1000.0, 1000.0, ""),
+    "kS": (-128.0, 127.0, "V"),
+    "kG": (-128.0, 127.0, "V"),
+    "kV": (0.0, 3.4e38, ""),
+    "kA": (0.0, 3.4e38, ""),
+    "kP": (0.0, 3.4e38, ""),
+    "kD": (0.0, 3.4e38, ""),
+    "MotionMagicCruiseVelocity": (0.0, 9999.0, "rps"),
+    "MotionMagicAcceleration": (0.0, 9999.0, "rps/s"),
+    "MotionMagicExpo_kV": (0.001, 100.0, "V per rps"),
+    "MotionMagicExpo_kA": (1e-5, 100.0, "V per rps/s"),
+    "StatorCurrentLimit": (0.0, 800.0, "A"),
+    "SupplyCurrentLimit": (0.0, 800.0, "A"),
+}
+EXPO_KA_RANGE = PHOENIX6_RANGES["MotionMagicExpo_kA"][:2]
+# What each document's controller can drive (GC10): TalonFXConfiguration is the Talon FX's, built
+# into these motors; SparkMaxConfig's closed loop on the primary encoder is a REV brushless motor's
+# (its hall sensor). The WPILib documents run on the roboRIO with any motor controller.
+PHOENIX6_MOTORS = (
+    "Falcon 500",
+    "Falcon 500 FOC",
+    "Kraken X60",
+    "Kraken X60 FOC",
+    "Kraken X44",
+    "Kraken X44 FOC",
+)
+REVLIB_MOTORS = ("NEO", "NEO 550", "NEO 2.0", "NEO Vortex")
+
+
+def check_controller(document: str, motor: str) -> None:
+    """(GC10): a ValueError naming the pairs that work when `document` cannot drive `motor`."""
+    allowed = {"phoenix6": PHOENIX6_MOTORS, "revlib": REVLIB_MOTORS}[document]
+    if not motor or motor in allowed:
+        return
+    raise ValueError(
+        f"the {document} document configures a "
+        f"{'Talon FX' if document == 'phoenix6' else 'SPARK MAX'}, which cannot drive a {motor}. "
+        f"Pairs that work: phoenix6 with {', '.join(PHOENIX6_MOTORS)}; revlib with "
+        f"{', '.join(REVLIB_MOTORS)}; wpilib-java and wpilib-python with any motor (the loop on the roboRIO)"
+    )
+
+
+def check_wpilib(g) -> None:
+    """(GC12): WPILib 2026.2.2 takes no negative gain (PIDController: "Kp must be a non-negative
+    number", Kd likewise; ArmFeedforward, ElevatorFeedforward, SimpleMotorFeedforward: kv, ka) nor a
+    period ≤ 0: Java's constructors throw IllegalArgumentException, C++'s and robotpy's report the
+    error and zero the gains (no feedback, measured in robotpy). Such a document is refused, naming
+    the value and the range (LQR gives a negative kP or kD for some tolerances and delays)."""
+    for name in ("kP", "kD", "kV", "kA", "period"):
+        x = getattr(g, name, 0.0)
+        if x < 0 or (name == "period" and x <= 0):
+            raise ValueError(
+                f"{name} = {x:.6g}: WPILib takes {name} {'> 0' if name == 'period' else '≥ 0'} (Java "
+                "throws IllegalArgumentException, C++ and robotpy zero the gains); enter the feedback gains "
+                "(feedback = entered) or change the LQR tolerances or the sensor delay"
+            )
+
+
+def phoenix6_out_of_range(values: dict[str, float]) -> list[str]:
+    """(GC9): each value outside Phoenix 6's documented bounds, said with its range."""
+    out = []
+    for name, x in values.items():
+        if name not in PHOENIX6_RANGES:
+            continue
+        lo, hi, unit = PHOENIX6_RANGES[name]
+        if not lo <= x <= hi:
+            out.append(
+                f"{name} = {x:.6g} is outside CTRE's documented range {lo:g} to {hi:g}{' ' + unit if unit else ''}"
+            )
+    return out
+
+
+def _flag_phoenix6(lines: list[str], values: dict[str, float], hint: str) -> list[str]:
+    """(GC9): mark each out-of-range value's line and list them at the top (after the header)."""
+    problems = phoenix6_out_of_range(values)
+    if not problems:
+        return lines
+    marked = []
+    for line in lines:
+        for name in values:
+            if f".{name} = " in line and any(p.startswith(f"{name} = ") for p in problems):
+                lo, hi, unit = PHOENIX6_RANGES[name]
+                line += f" // OUT OF RANGE: {lo:g} to {hi:g}{' ' + unit if unit else ''}"
+        marked.append(line)
+    at = next(i for i, line in enumerate(marked) if line.startswith("import "))
+    note = [
+        "// OUT OF RANGE for Phoenix 6 (the device refuses these values; the lines are marked):",
+        *(f"//   {p}" for p in problems),
+        f"// {hint}",
+    ]
+    return marked[:at] + note + marked[at:]
 
 
 @dataclass(frozen=True)
@@ -96,6 +200,7 @@ class Gains:
     title: str = "Elevator"
     arm: bool = False  # q is the arm's angle from horizontal (rad): ArmFeedforward, Arm_Cosine
     max_input: float | None = None  # V: the exponential profile's U (GC6); None for a trapezoid
+    motor: str = ""  # Gearhead's motor name: which controllers can drive it (GC10); "" unchecked
 
 
 def _u(g: Gains) -> str:
@@ -106,11 +211,22 @@ def _ff(g: Gains) -> str:
     return "ArmFeedforward" if g.arm else "ElevatorFeedforward"
 
 
-def _num(x: float) -> str:
-    """A float as a literal Java and Python both read back to the same double."""
+EXPORT_DIGITS = 12  # significant digits of an exported number (GC11)
+
+
+def export_number(x: float) -> float:
+    """(GC11): x to EXPORT_DIGITS significant digits. An entry is typed with a handful of digits and
+    a unit conversion (135 lb = 61.23496995 kg, 34 in = 0.8636 m) is exact within 12, so 12 keep
+    every digit the entries give and drop a double's arithmetic noise (61.23496995000001): the
+    exported loop differs from the card's by under 1e-12 of each value. The card keeps full precision."""
     if not math.isfinite(x):
         raise ValueError(f"{x} cannot be exported")
-    return repr(float(x))
+    return float(f"{float(x):.{EXPORT_DIGITS}g}")
+
+
+def _num(x: float) -> str:
+    """A float as a literal Java and Python both read back to the same double, rounded (GC11)."""
+    return repr(export_number(x))
 
 
 def phoenix6_values(g: Gains) -> dict[str, float]:
@@ -170,6 +286,7 @@ def _header(g: Gains, comment: str) -> str:
 
 
 def wpilib_python(g: Gains) -> str:
+    check_wpilib(g)
     if g.max_input is not None:
         return _wpilib_python_exponential(g)
     return (
@@ -199,8 +316,7 @@ def _usage(g: Gains) -> str:
             "# each period: sp = controller.getSetpoint(); u = controller.calculate(angle)\n"
             "#             nxt = controller.getSetpoint()  # after calculate: the next setpoint\n"
             "#             volts = u + feedforward.calculate(sp.position, sp.velocity, nxt.velocity)\n"
-            "# (WPILib inverts the arm's gravity over the period; Gearhead's loop takes kG·cos of the\n"
-            "#  setpoint angle and the linear inversion: the two differ a little)\n"
+            + _arm_ff_note("#")
         )
     return (
         "# each period: v = controller.getSetpoint().velocity; u = controller.calculate(position)\n"
@@ -208,7 +324,34 @@ def _usage(g: Gains) -> str:
     )
 
 
+def _arm_ff_note(c: str) -> str:
+    """What ArmFeedforward's discrete calculate computes (WPILib 2026.2.2, core.sim.profiled (P5a)):
+    the card simulates that, not an inversion of the plant."""
+    return (
+        f"{c} (WPILib 2026.2.2's ArmFeedforward: kS*sgn(v) + kV*v + kA*(next - v)/period + kG*cos(angle)\n"
+        f"{c}  while kA < 0.1 V*s^2/rad, else an RK4 inversion of the arm; Gearhead's card simulates it)\n"
+    )
+
+
+def _java_usage(g: Gains) -> str:
+    """How the Java loop calls the feedforward: calculateWithVelocities is the discrete one, as the
+    card simulates ((P5), (P5a)); ArmFeedforward's calculate(a, b) reads (angle, velocity),
+    ElevatorFeedforward's (velocity, acceleration): neither is the next velocity."""
+    args = "sp.position, sp.velocity, next.velocity" if g.arm else "sp.velocity, next.velocity"
+    return (
+        "// Each period: var sp = controller.getSetpoint(); double u = controller.calculate(position);\n"
+        "//   var next = controller.getSetpoint(); // after calculate: the next setpoint\n"
+        f"//   volts = u + feedforward.calculateWithVelocities({args});\n"
+        + (
+            _arm_ff_note("//")
+            if g.arm
+            else "// (calculateWithVelocities is the discrete feedforward; calculate(a, b) reads b as an acceleration)\n"
+        )
+    )
+
+
 def wpilib_java(g: Gains) -> str:
+    check_wpilib(g)
     if g.max_input is not None:
         return _wpilib_java_exponential(g)
     cls = f"{g.title.replace(' ', '')}Gains"
@@ -216,7 +359,8 @@ def wpilib_java(g: Gains) -> str:
         _header(g, "//") + f"import edu.wpi.first.math.controller.{_ff(g)};\n"
         "import edu.wpi.first.math.controller.ProfiledPIDController;\n"
         "import edu.wpi.first.math.trajectory.TrapezoidProfile;\n\n"
-        f"public final class {cls} {{\n"
+        + _java_usage(g)
+        + f"public final class {cls} {{\n"
         f"  public static final double kS = {_num(g.kS)}; // V\n"
         f"  public static final double kG = {_num(g.kG)}; // V\n"
         f"  public static final double kV = {_num(g.kV)}; // V*s/{_u(g)}\n"
@@ -254,11 +398,24 @@ def _phoenix6_current_limits(g) -> list[str]:
     return lines
 
 
+DEVICE_LOOP_NOTE = (
+    "// This loop runs on the motor controller with its own profile and continuous feedforward (kV*v +\n"
+    "// kA*a at the profile's targets), not the roboRIO loop of the WPILib documents that the card simulates."
+)
+# REVLib with the exponential profile: the profile and feedforward stay on the roboRIO, the PID moves
+REV_EXPO_LOOP_NOTE = (
+    "// The PID runs on the SPARK (1 kHz) on setpoints the roboRIO sends: not quite the roboRIO loop of\n"
+    "// the WPILib documents that the card simulates."
+)
+
+
 def phoenix6_java(g: Gains) -> str:
+    check_controller("phoenix6", g.motor)
     v = phoenix6_values(g)
     cls = f"{g.title.replace(' ', '')}TalonFXConfig"
     lines = [
         _header(g, "//").rstrip("\n"),
+        DEVICE_LOOP_NOTE,
         *(
             [
                 "// Positions in arm rotations (SensorToMechanismRatio = motor turns per arm turn), 0 with the",
@@ -294,15 +451,22 @@ def phoenix6_java(g: Gains) -> str:
     lines += _phoenix6_motion_magic(g, v)
     lines += _phoenix6_current_limits(g)
     lines += ["    return cfg;", "  }", "", f"  private {cls}() {{}}", "}", ""]
-    return "\n".join(lines)
+    limits = {"StatorCurrentLimit": g.stator_limit, "SupplyCurrentLimit": g.supply_limit}
+    hint = (
+        "Lower the ratio, the max input or the profile's limits, or re-solve for a mechanism whose "
+        "values fit: Phoenix 6 keeps the value in range, not the one Gearhead simulated."
+    )
+    return "\n".join(_flag_phoenix6(lines, v | {k: x for k, x in limits.items() if x is not None}, hint))
 
 
 def revlib_java(g: Gains) -> str:
+    check_controller("revlib", g.motor)
     v = revlib_values(g)
     u = _u(g)
     cls = f"{g.title.replace(' ', '')}SparkMaxConfig"
     lines = [
         _header(g, "//").rstrip("\n"),
+        DEVICE_LOOP_NOTE if g.max_input is None else REV_EXPO_LOOP_NOTE,
         f"// Native units are SI through the encoder's conversion factors ({u}, {u}/s); the PID output is a",
         "// duty cycle of the compensated voltage, kD per 1 ms step (the SPARK's loop runs at 1 kHz).",
         *(
@@ -395,7 +559,7 @@ def _wpilib_python_exponential(g: Gains) -> str:
         "# each period: nxt = profile.calculate(PERIOD, setpoint, goal)\n"
         "#              volts = controller.calculate(position, nxt.position)\n"
         f"#                      + feedforward.calculate({ff_args})\n"
-        "#              setpoint = nxt\n"
+        "#              setpoint = nxt\n" + (_arm_ff_note("#") if g.arm else "")
     )
 
 
@@ -411,8 +575,12 @@ def _wpilib_java_exponential(g: Gains) -> str:
         "// Each period: var next = profile.calculate(kPeriod, setpoint, goal);\n"
         "//   volts = controller.calculate(position, next.position)\n"
         f"//           + feedforward.calculateWithVelocities({ff_args}); setpoint = next;\n"
-        "// (calculateWithVelocities is the discrete feedforward; calculate(a, b) reads b as an acceleration)\n"
-        f"public final class {cls} {{\n"
+        + (
+            _arm_ff_note("//")
+            if g.arm
+            else "// (calculateWithVelocities is the discrete feedforward; calculate(a, b) reads b as an acceleration)\n"
+        )
+        + f"public final class {cls} {{\n"
         f"  public static final double kS = {_num(g.kS)}; // V\n"
         f"  public static final double kG = {_num(g.kG)}; // V\n"
         f"  public static final double kV = {_num(g.kV)}; // V*s/{_u(g)}\n"
@@ -452,13 +620,7 @@ def _phoenix6_motion_magic(g: Gains, v: dict) -> list[str]:
         "    cfg.MotionMagic.MotionMagicCruiseVelocity = 0.0; // no cap: the profile's own limit",
         f"    cfg.MotionMagic.MotionMagicExpo_kV = {_num(v['MotionMagicExpo_kV'])}; // V per rps",
         f"    cfg.MotionMagic.MotionMagicExpo_kA = {_num(v['MotionMagicExpo_kA'])}; // V per rps/s",
-    ] + (
-        []
-        if EXPO_KA_RANGE[0] <= v["MotionMagicExpo_kA"] <= EXPO_KA_RANGE[1]
-        else [
-            "    // Expo_kA is outside CTRE's documented range (1e-05 to 100 V per rps/s): the device refuses it"
-        ]
-    )
+    ]
 
 
 def _revlib_max_motion(g: Gains, v: dict, u: str) -> list[str]:
@@ -520,6 +682,7 @@ class FlywheelGains:
     stator_limit: float | None = None
     supply_limit: float | None = None
     acceleration: float | None = None  # rad/s² at the wheel: a ramped setpoint (VL4a); None: a step
+    motor: str = ""  # Gearhead's motor name (GC10); "" unchecked
 
 
 def flywheel_phoenix6_values(g: FlywheelGains, rotor: bool = False) -> dict[str, float]:
@@ -566,6 +729,7 @@ def _fw_header(g: FlywheelGains, comment: str) -> str:
 
 
 def flywheel_wpilib_python(g: FlywheelGains) -> str:
+    check_wpilib(g)
     return (
         _fw_header(g, "#") + "from wpimath.controller import PIDController, SimpleMotorFeedforwardRadians\n\n"
         f"kS = {_num(g.kS)}  # V\n"
@@ -613,6 +777,7 @@ def _fw_usage(g: FlywheelGains, java: bool = False) -> str:
 
 
 def flywheel_wpilib_java(g: FlywheelGains) -> str:
+    check_wpilib(g)
     return (
         _fw_header(g, "//") + "import edu.wpi.first.math.controller.PIDController;\n"
         "import edu.wpi.first.math.controller.SimpleMotorFeedforward;\n\n"
@@ -642,6 +807,7 @@ def flywheel_wpilib_java(g: FlywheelGains) -> str:
 
 
 def flywheel_phoenix6_java(g: FlywheelGains, rotor: bool = False) -> str:
+    check_controller("phoenix6", g.motor)
     v = flywheel_phoenix6_values(g, rotor)
     cls = f"Flywheel{'Rotor' if rotor else ''}TalonFXConfig"
     units = (
@@ -685,7 +851,7 @@ def flywheel_phoenix6_java(g: FlywheelGains, rotor: bool = False) -> str:
             f"    cfg.MotionMagic.MotionMagicAcceleration = {_num(a)}; // rps/s, the setpoint's ramp",
             "    cfg.MotionMagic.MotionMagicJerk = 0.0; // no jerk limit",
         ]
-        if a > PHOENIX_MAX_ACCELERATION:
+        if a > PHOENIX_MAX_ACCELERATION:  # (GC9), said where the ramp is set as before
             lines.append(
                 f"    // beyond the config's maximum {PHOENIX_MAX_ACCELERATION:g} rps/s: lower the ramp's acceleration"
             )
@@ -702,10 +868,16 @@ def flywheel_phoenix6_java(g: FlywheelGains, rotor: bool = False) -> str:
         "}",
         "",
     ]
-    return "\n".join(lines)
+    limits = {"StatorCurrentLimit": g.stator_limit, "SupplyCurrentLimit": g.supply_limit}
+    values = {k: x for k, x in v.items() if k != "target_rps"} | {
+        k: x for k, x in limits.items() if x is not None
+    }
+    hint = "Lower the ratio or the ramp's acceleration: Phoenix 6 keeps the value in range, not this one."
+    return "\n".join(_flag_phoenix6(lines, values, hint))
 
 
 def flywheel_revlib_java(g: FlywheelGains) -> str:
+    check_controller("revlib", g.motor)
     v = flywheel_revlib_values(g)
     lines = [
         _fw_header(g, "//").rstrip("\n"),
@@ -824,6 +996,7 @@ def profiled_gains(solution, metres_per_rotation, **kind) -> Gains:
         battery_voltage=v["voltage"],
         tolerance=v["settle_tolerance"],
         max_input=v["max_input"] if v.get("profile_type") == "exponential" else None,
+        motor=v["motor"],
         stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
         supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
         **kind,

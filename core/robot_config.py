@@ -50,6 +50,7 @@ import math
 from dataclasses import dataclass, fields
 
 from .constants import RPM
+from .gains_code import export_number
 from .motors import lookup, motor_names, system
 
 KINDS = ("swerve", "tank", "mecanum")
@@ -212,24 +213,25 @@ def pathplanner_settings(cfg: RobotConfig) -> dict:
         )
     holonomic = cfg.kind in ("swerve", "mecanum")
     current_limit = float(cfg.current_limit) * cfg.motor_count / _PATHPLANNER_MOTORS
+    r = export_number  # 12 significant digits: no float noise (0.8635999999999999 is 0.8636)
     out: dict = {
-        "robotWidth": float(cfg.bumper_width),
-        "robotLength": float(cfg.bumper_length),
+        "robotWidth": r(cfg.bumper_width),
+        "robotLength": r(cfg.bumper_length),
         "holonomicMode": holonomic,
-        "robotMass": float(cfg.mass),
-        "robotMOI": float(cfg.moi),
-        "robotTrackwidth": float(cfg.trackwidth),
-        "driveWheelRadius": float(cfg.wheel_radius),
-        "driveGearing": float(cfg.gearing),
-        "maxDriveSpeed": float(cfg.max_speed),
+        "robotMass": r(cfg.mass),
+        "robotMOI": r(cfg.moi),
+        "robotTrackwidth": r(cfg.trackwidth),
+        "driveWheelRadius": r(cfg.wheel_radius),
+        "driveGearing": r(cfg.gearing),
+        "maxDriveSpeed": r(cfg.max_speed),
         "driveMotorType": motor_type,
-        "driveCurrentLimit": current_limit,
-        "wheelCOF": float(cfg.wheel_cof),
+        "driveCurrentLimit": r(current_limit),
+        "wheelCOF": r(cfg.wheel_cof),
     }
     if holonomic:
         for corner, (x, y) in cfg.module_positions().items():
-            out[f"{corner}ModuleX"] = float(x)
-            out[f"{corner}ModuleY"] = float(y)
+            out[f"{corner}ModuleX"] = r(x)
+            out[f"{corner}ModuleY"] = r(y)
     out["bumperOffsetX"] = 0.0
     out["bumperOffsetY"] = 0.0
     return out
@@ -237,12 +239,11 @@ def pathplanner_settings(cfg: RobotConfig) -> dict:
 
 def _expr(si: float, unit: str = "", per_unit: float = 1.0) -> dict:
     """Choreo's {"exp", "val"}: `exp` a mathjs expression in `unit` (worth `per_unit` SI each),
-    `val` its SI value, the two consistent (val is what exp evaluates to)."""
-    number = float(si) / per_unit
-    text = format(number, ".12g")
-    if float(text) != number and per_unit == 1.0:
-        text = repr(number)  # exact in SI units: val stays the value given
-    val = float(si) if per_unit == 1.0 else float(text) * per_unit
+    `val` its SI value, the two consistent (val is what exp evaluates to, to 12 digits); the number
+    to 12 significant digits (core.gains_code.export_number: "61.23496995 kg", not the float
+    noise of 61.23496995000001)."""
+    text = format(export_number(float(si) / per_unit), ".12g")
+    val = float(text) if per_unit == 1.0 else export_number(float(text) * per_unit)
     return {"exp": f"{text} {unit}" if unit else text, "val": val}
 
 

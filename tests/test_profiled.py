@@ -219,7 +219,7 @@ def test_arm_exponential_integrator_agrees_with_dp54():
     v, _ = parse_inputs(calc, raw)
     s = arm_calc.setup(v)
     ff = motion.feedforward(s, 0.0)
-    loop, profile, _ = profiled.loop_of(s, v, ff, lambda q: ff["kG"] * math.cos(q))
+    loop, profile, _ = profiled.loop_of(s, v, ff, lambda q: ff["kG"] * math.cos(q), arm=True)
     exp = profiled.profiled_move(s, loop, profile, 1e-9)
     dp = profiled.profiled_move(s, loop, profile, 1e-11, method="DP54")
     assert exp.settled and dp.settled
@@ -229,3 +229,27 @@ def test_arm_exponential_integrator_agrees_with_dp54():
     # N·V_b·(peak supply current)·(window)
     gross = 2 * 12 * dp.values["peak_supply_current"] * dp.updates * loop.period
     assert exp.values["energy"] == pytest.approx(dp.values["energy"], abs=1e-7 * gross)
+
+
+def test_derived_acceleration_is_a_fraction_of_what_the_stator_limit_gives():
+    """(P17): the default profile a team would use. Before, the elevator's default asked 0.3 of the
+    full-voltage stall acceleration (117 m/s², 12 g, peak 84 A per NEO); now acceleration_fraction
+    (0.1) of the acceleration from rest with each motor at the 40 A stator limit, by hand:
+    (η·N·Kt·n·(40 A − i_f) − m·g)/m, and the default move stays within 40 A."""
+    sol = solve("elevator", {"mode": "profiled"})
+    out = {k: x.value for k, x in sol.outputs.items()}
+    v = {k: x.value for k, x in sol.inputs.items()}
+    s = elevator_calc.setup(v)
+    m = s.mech
+    by_hand = (m.force_per_amp * 40.0 - m.loss_force - v["load_mass"] * 9.80665) / m.inertia
+    assert v["acceleration_fraction"] == 0.1
+    assert out["profile_max_acceleration"] == pytest.approx(0.1 * by_hand, rel=1e-12)
+    assert out["profile_max_acceleration"] < 2 * 9.80665  # under 2 g (was 12 g)
+    assert out["peak_stator_current"] < 40.0
+    arm = solve("arm", {"mode": "profiled"})
+    assert arm.outputs["peak_stator_current"].value < 40.0  # was 186 A on the default Kraken
+    # a cap that cannot lift the load is said, naming the field
+    heavy = {"mode": "profiled", "load_mass": "60 lb", "stator_current_limit": "5 A"}
+    with pytest.raises(InputError) as err:
+        solve("elevator", heavy)
+    assert err.value.field == "acceleration_fraction" and "stator current limit, 5 A" in err.value.message

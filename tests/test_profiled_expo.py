@@ -20,11 +20,12 @@ bang-bang move is the time-optimal move from where it is).
 
 import math
 import random
+from dataclasses import replace
 
 import mpmath as mp
 import pytest
 from wpilib.simulation import ElevatorSim, SingleJointedArmSim
-from wpimath.controller import ElevatorFeedforward, PIDController
+from wpimath.controller import ArmFeedforward, ElevatorFeedforward, PIDController
 from wpimath.system.plant import DCMotor
 from wpimath.trajectory import ExponentialProfileMeterVolts as WpiExponential
 
@@ -113,15 +114,15 @@ def test_profile_is_wpilibs(seed):
 # --- the whole loop against WPILib's parts (the oracle world of tests/test_profiled_wpilib.py) ------
 
 
-def expo_loop(out: dict, sim, start: float, goal: float, window: float, read, kG_of):
+def expo_loop(out: dict, sim, start: float, goal: float, window: float, read, feedforward):
     """Robot code with an exponential profile (WPILib's ElevatorExponentialProfile example, the PID on
     the roboRIO as ProfiledPIDController runs it): each period next = profile.calculate(dt, setpoint,
-    goal); volts = pid.calculate(measured, next.position) + ff(setpoint.velocity, next.velocity)."""
+    goal); volts = pid.calculate(measured, next.position) + feedforward(setpoint, next), WPILib's
+    ElevatorFeedforward or ArmFeedforward as the exported documents call them."""
     profile = WpiExponential(
         WpiExponential.Constraints.fromCharacteristics(out["max_input"], out["kV"], out["kA"])
     )
     pid = PIDController(out["kP"], 0.0, out["kD"], PERIOD)
-    linear = ElevatorFeedforward(out["kS"], 0.0, out["kV"], out["kA"], PERIOD)
     setpoint, target = WpiExponential.State(start, 0.0), WpiExponential.State(goal, 0.0)
     delay_sub = round(out["sensor_delay"] / SUB)
     per = round(PERIOD / SUB)
@@ -132,7 +133,7 @@ def expo_loop(out: dict, sim, start: float, goal: float, window: float, read, kG
         measured = history[max(k * per - delay_sub, 0)]
         nxt = profile.calculate(PERIOD, setpoint, target)
         volts = pid.calculate(measured, nxt.position)
-        volts += linear.calculate(setpoint.velocity, nxt.velocity) + kG_of(setpoint.position)
+        volts += feedforward(setpoint, nxt)
         setpoint = nxt
         sim.setInputVoltage(max(-12.0, min(12.0, volts)))
         for _ in range(per):
@@ -230,15 +231,22 @@ def test_exponential_elevator_loop_matches_wpilib(oracle_world, index):  # noqa:
         0.0,
         [0.0, 0.0],
     )
+    ff = ElevatorFeedforward(out["kS"], out["kG"], out["kV"], out["kA"], PERIOD)
     at_updates, settle = expo_loop(
-        out, sim, 0.0, out["travel"], ts[-1], lambda s: s.getPosition(), lambda r: out["kG"]
+        out,
+        sim,
+        0.0,
+        out["travel"],
+        ts[-1],
+        lambda s: s.getPosition(),
+        lambda sp, nxt: ff.calculate(sp.velocity, nxt.velocity),
     )
     check_against(out, ts, qs, at_updates, settle, abs(out["travel"]))
 
 
 @pytest.mark.parametrize("index", range(3))
 def test_exponential_arm_loop_matches_wpilib(oracle_world, index):  # noqa: F811
-    """The arm's profile is on its angle's kV, kA; gravity is the feedforward's kG·cos(setpoint)."""
+    """The arm's profile is on its angle's kV, kA; the feedforward WPILib's ArmFeedforward (P5a)."""
     c = arm_cases()[index]
     out, ts, qs = solved("arm", c)
     m, L = out["arm_mass"], out["com_distance"]
@@ -246,8 +254,15 @@ def test_exponential_arm_loop_matches_wpilib(oracle_world, index):  # noqa: F811
     sim = SingleJointedArmSim(
         gearbox(c), c["ratio"], 4 / 3 * m * L * L, 2 * L, -10.0, 10.0, True, start, [0.0, 0.0]
     )
+    ff = ArmFeedforward(out["kS"], out["kG"], out["kV"], out["kA"], PERIOD)
     at_updates, settle = expo_loop(
-        out, sim, start, goal, ts[-1], lambda s: s.getAngle(), lambda r: out["kG"] * math.cos(r)
+        out,
+        sim,
+        start,
+        goal,
+        ts[-1],
+        lambda s: s.getAngle(),
+        lambda sp, nxt: ff.calculate(sp.position, sp.velocity, nxt.velocity),
     )
     check_against(out, ts, qs, at_updates, settle, abs(goal - start))
 
@@ -318,11 +333,17 @@ def test_wpilib_python_runs_against_robotpy():
     namespace: dict = {}
     exec(text, namespace)  # noqa: S102 - our own text
     ff, pid, profile = namespace["feedforward"], namespace["controller"], namespace["profile"]
-    assert (ff.getKs(), ff.getKg(), ff.getKv(), ff.getKa()) == (out["kS"], out["kG"], out["kV"], out["kA"])
-    assert (pid.getP(), pid.getD(), pid.getPeriod()) == (out["kP"], out["kD"], 0.02)
+    assert (ff.getKs(), ff.getKg(), ff.getKv(), ff.getKa()) == tuple(
+        map(gains_code.export_number, (out["kS"], out["kG"], out["kV"], out["kA"]))
+    )
+    assert (pid.getP(), pid.getD(), pid.getPeriod()) == (
+        gains_code.export_number(out["kP"]),
+        gains_code.export_number(out["kD"]),
+        0.02,
+    )
     c = namespace["constraints"]
-    assert (c.maxInput, c.A, c.B) == (9.0, -out["kV"] / out["kA"], 1.0 / out["kA"])
-    assert c.maxVelocity() == pytest.approx(out["profile_max_velocity"], rel=1e-15)
+    assert (c.maxInput, c.A, c.B) == pytest.approx((9.0, -out["kV"] / out["kA"], 1.0 / out["kA"]), rel=1e-11)
+    assert c.maxVelocity() == pytest.approx(out["profile_max_velocity"], rel=1e-11)  # (GC11)
     d = -sol.inputs["travel"].value
     T = profile.timeLeftUntil(WpiExponential.State(0, 0), WpiExponential.State(d, 0))
     assert T == pytest.approx(out["profile_time"], rel=1e-9)
@@ -334,7 +355,7 @@ def test_arm_python_runs_against_robotpy():
     namespace: dict = {}
     exec(gains_code.wpilib_python(arm_calc.gains_of(sol)), namespace)  # noqa: S102 - our own text
     c = namespace["constraints"]
-    assert (c.maxInput, c.A, c.B) == (10.0, -out["kV"] / out["kA"], 1.0 / out["kA"])
+    assert (c.maxInput, c.A, c.B) == pytest.approx((10.0, -out["kV"] / out["kA"], 1.0 / out["kA"]), rel=1e-11)
 
 
 def test_java_phoenix_revlib_follow_the_choice():
@@ -344,15 +365,15 @@ def test_java_phoenix_revlib_follow_the_choice():
     assert "ExponentialProfile.Constraints.fromCharacteristics(kMaxInput, kV, kA)" in java
     assert "TrapezoidProfile" not in java and "ProfiledPIDController" not in java
     assert java.count("{") == java.count("}") and java.count("(") == java.count(")")
-    phoenix = gains_code.phoenix6_java(g)
+    phoenix = gains_code.phoenix6_java(replace(g, motor="Kraken X60"))  # a Talon FX's (GC10)
     assert "MotionMagicExpoVoltage" in phoenix and "MotionMagicAcceleration" not in phoenix
     # (GC6): Expo_kV = kV·L·V_b/U per rps, so the supply voltage over it is the profile's U/kV
     v = gains_code.phoenix6_values(g)
     L = g.metres_per_rotation
     assert g.battery_voltage / v["MotionMagicExpo_kV"] * L == pytest.approx(8.0 / g.kV, rel=1e-14)
     assert g.battery_voltage / v["MotionMagicExpo_kA"] * L == pytest.approx(8.0 / g.kA, rel=1e-14)
-    assert f"MotionMagicExpo_kV = {v['MotionMagicExpo_kV']!r};" in phoenix
-    revlib = gains_code.revlib_java(g)
+    assert f"MotionMagicExpo_kV = {gains_code.export_number(v['MotionMagicExpo_kV'])!r};" in phoenix
+    revlib = gains_code.revlib_java(g)  # the default elevator's NEO
     assert "no exponential profile" in revlib and "kMAXMotionTrapezoidal" in revlib
     # Java's discrete feedforward: calculate(v, next) would read next as an acceleration (the review
     # measured 0.345 V where the loop needs 8.32 V)
@@ -366,16 +387,16 @@ def test_arm_java_and_revlib_with_the_exponential_profile():
     g = arm_calc.gains_of(solve("arm", {"mode": "profiled", "profile_type": "exponential"}))
     java = gains_code.wpilib_java(g)
     assert "calculateWithVelocities(setpoint.position, setpoint.velocity, next.velocity)" in java
-    revlib = gains_code.revlib_java(g)
+    revlib = gains_code.revlib_java(replace(g, motor="NEO"))  # a SPARK MAX's (GC10)
     assert ".kCos(" not in revlib and "kMAXMotionPositionControl" not in revlib
-    trapezoid = gains_code.revlib_java(arm_calc.gains_of(solve("arm", {"mode": "profiled"})))
+    trapezoid = gains_code.revlib_java(
+        replace(arm_calc.gains_of(solve("arm", {"mode": "profiled"})), motor="NEO")
+    )
     assert ".kCos(" in trapezoid and "kMAXMotionPositionControl" in trapezoid
 
 
 def test_phoenix_says_when_expo_ka_is_out_of_ctres_range():
-    from dataclasses import replace
-
-    sol = solve("elevator", {"mode": "profiled", "profile_type": "exponential"})
+    sol = solve("elevator", {"mode": "profiled", "profile_type": "exponential", "motor": "Kraken X60"})
     g = elevator_calc.gains_of(sol)
     assert "outside CTRE's documented range" not in gains_code.phoenix6_java(g)
     heavy = replace(g, kA=1e4)  # 1e4 V·s²/m × 0.12 m a rotation × 12/10: 1440 V per rps/s

@@ -26,7 +26,7 @@ import random
 
 import pytest
 from wpilib.simulation import ElevatorSim, SingleJointedArmSim
-from wpimath.controller import ElevatorFeedforward, ProfiledPIDController
+from wpimath.controller import ArmFeedforward, ElevatorFeedforward, ProfiledPIDController
 from wpimath.system.plant import DCMotor
 from wpimath.trajectory import TrapezoidProfile
 
@@ -169,13 +169,11 @@ def test_profiled_move_matches_wpilib(oracle_world, index):
     assert math.isfinite(out["peak_tracking_error"])
 
 
-# --- the arm: SingleJointedArmSim, the same loop; the feedforward (P5) with kG·cos(setpoint angle) ---
+# --- the arm: SingleJointedArmSim, the same loop; the feedforward WPILib's ArmFeedforward ---------
 #
-# Gearhead's arm feedforward is (P5) with kG(r) = kG·cos r: WPILib's linear inversion of the plant
-# (ElevatorFeedforward's, kG = 0 there) plus kG·cos of the current setpoint's angle. WPILib's
-# ArmFeedforward.calculate(angle, velocity, nextVelocity) instead inverts the plant with gravity
-# varying over the period (a Newton solve): a different, slightly better, feedforward. The oracle here
-# builds Gearhead's formula from WPILib's parts, so the loop and the plant are what is compared.
+# Gearhead's arm feedforward is (P5a): WPILib 2026.2.2's ArmFeedforward.calculate(angle, velocity,
+# nextVelocity) itself (kS·sgn v + kV·v + kA·Δv/dt + kG·cos θ below kA = 0.1, an RK4 inversion of
+# the arm's plant above); the oracle calls WPILib's class, so the loop and the plant are compared.
 # The arm: Gearhead's uniform bar (I = 4/3·m·L²) is WPILib's rod of length 2L (its gravity 3g/(2ℓ)).
 # Measured (4 cases, up and down moves, delays 5-20 ms): traces within 1.0e-8 of the swing (the
 # arm's plant is not linear: SingleJointedArmSim's RKDP at 0.1 ms and Gearhead's (X1) with its b term
@@ -220,7 +218,7 @@ def wpilib_arm_run(c: dict, out: dict, window: float, tol: float):
     pid = ProfiledPIDController(out["kP"], 0.0, out["kD"], constraints, PERIOD_MS / 1000)
     pid.reset(start, 0.0)
     pid.setGoal(TrapezoidProfile.State(goal, 0.0))
-    linear = ElevatorFeedforward(out["kS"], 0.0, out["kV"], out["kA"], PERIOD_MS / 1000)
+    arm_ff = ArmFeedforward(out["kS"], out["kG"], out["kV"], out["kA"], PERIOD_MS / 1000)
     delay_sub = round(out["sensor_delay"] / SUB)
     per = round(PERIOD_MS / 1000 / SUB)
     history = [start]
@@ -230,7 +228,7 @@ def wpilib_arm_run(c: dict, out: dict, window: float, tol: float):
         measured = history[max(k * per - delay_sub, 0)]
         r_now, v_now = pid.getSetpoint().position, pid.getSetpoint().velocity
         fb = pid.calculate(measured)
-        ff = linear.calculate(v_now, pid.getSetpoint().velocity) + out["kG"] * math.cos(r_now)
+        ff = arm_ff.calculate(r_now, v_now, pid.getSetpoint().velocity)
         sim.setInputVoltage(max(-12.0, min(12.0, fb + ff)))
         for _ in range(per):
             sim.update(SUB)
@@ -261,3 +259,20 @@ def test_profiled_arm_matches_wpilib(oracle_world, index):
     assert (mine is None) == (settle is None)
     if mine is not None:
         assert abs(mine - settle) <= SUB + 1e-9, (mine, settle)
+
+
+@pytest.mark.parametrize("kA", [0.003, 0.05, 0.099, 0.1, 0.3, 2.0])
+def test_arm_feedforward_is_wpilibs(kA):
+    """(P5a) against robotpy 2026.2.2's ArmFeedforward.calculate(angle, v, v_next) on both sides of
+    its kA = 0.1 switch: the plain formula below, its RK4 inversion of the arm's plant above."""
+    from gearhead.core.sim import profiled
+
+    rng = random.Random(int(kA * 1000))
+    for _ in range(200):
+        kS, kG, kV = rng.uniform(0, 0.5), rng.uniform(-1, 2), rng.uniform(0.5, 5)
+        dt = rng.choice([0.005, 0.01, 0.02])
+        theta, v = rng.uniform(-3, 3), rng.uniform(-6, 6)
+        v_next = v + rng.uniform(-1, 1) * rng.choice([0.01, 0.3, 3])
+        theirs = ArmFeedforward(kS, kG, kV, kA, dt).calculate(theta, v, v_next)
+        mine = profiled.arm_feedforward(kS, kG, kV, kA, dt, theta, v, v_next)
+        assert mine == pytest.approx(theirs, rel=1e-9, abs=1e-9), (kS, kG, kV, dt, theta, v, v_next)

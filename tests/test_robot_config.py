@@ -318,14 +318,14 @@ def test_choreo_swerve_values_in_si_by_hand():
     assert config["vmax"]["exp"].endswith(" rpm")
     assert float(config["vmax"]["exp"].split()[0]) == pytest.approx(597.6 / RPM, rel=1e-3)
     # tmax: one Kraken X60 at 60 A, kT·(60 A − 2 A) = 7.09/(366 − 2)·58 N·m
-    assert config["tmax"]["val"] == pytest.approx(7.09 / 364 * 58, rel=1e-12)
+    assert config["tmax"]["val"] == pytest.approx(7.09 / 364 * 58, rel=1e-11)
     assert config["differentialTrackWidth"]["val"] == pytest.approx(0.57785)
 
 
 def test_choreo_differential_tmax_is_one_sides_motors():
     cfg = tank()  # 3 NEOs a side
     config = choreo_project(cfg, "Tank")["config"]
-    assert config["tmax"]["val"] == pytest.approx(3 * cfg.motor_max_torque, rel=1e-12)
+    assert config["tmax"]["val"] == pytest.approx(3 * cfg.motor_max_torque, rel=1e-11)
     assert config["differentialTrackWidth"] == {"exp": "0.6 m", "val": 0.6}
 
 
@@ -381,3 +381,24 @@ def test_config_refuses_what_cannot_be_a_robot(changes, words):
 def test_tank_needs_an_even_motor_count():
     with pytest.raises(ValueError, match="even"):
         tank(motor_count=3)
+
+
+def test_exports_carry_no_float_noise(capsys):
+    """(GC11): the default sprint's 34 in bumpers and 135 lb robot are 0.8636 m and 61.23496995 kg
+    in PathPlanner's settings.json and Choreo's .chor (they were 0.8635999999999999 and
+    61.23496995000001, and Choreo's exp "61.23496995000001 kg"); every number has at most 12
+    significant digits; the card keeps full precision."""
+    from gearhead.core.model import solve
+    from gearhead.tui.cli import main
+
+    assert main(["solve", "sprint", "--document", "pathplanner"]) == 0
+    settings = json.loads(capsys.readouterr().out)
+    assert settings["robotWidth"] == 0.8636 and settings["robotMass"] == 61.23496995
+    assert main(["solve", "sprint", "--document", "choreo"]) == 0
+    text = capsys.readouterr().out
+    chor = json.loads(text)
+    assert chor["config"]["mass"] == {"exp": "61.23496995 kg", "val": 61.23496995}
+    for number in re.findall(r"-?\d+\.\d+(?:e[-+]\d+)?", text):
+        assert len(number.lstrip("-").replace(".", "").split("e")[0].lstrip("0")) <= 12, number
+    sol = solve("sprint", {})
+    assert sol.inputs["robot_mass"].value == 61.23496995000001  # the card keeps its value (pint's)

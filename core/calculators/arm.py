@@ -38,9 +38,12 @@ Feedback: WPILib's LQR on the plant (θ, θ̇),
 Optimise: G* minimising T(G): 240 ratios log-spaced about the characteristic ratio, then
 bounded Brent on the accurate move around the best (motion.optimise)                           (AR11)
 Profiled move (core.sim.profiled (P1)-(P11)): the trapezoid in angle (or WPILib's exponential profile
-on the angle's kV, kA (AR9) from an entered max input, (P12)-(P15)), the feedforward (AR9) with
-kG·cos θ at the setpoint's angle, PD feedback (the LQR gains (AR10) or entered) every control period
-on the angle measured `sensor_delay` earlier, the voltage held and clamped                   (AR12)
+on the angle's kV, kA (AR9) from an entered max input, (P12)-(P15)), the feedforward (AR9) as
+WPILib 2026.2.2's ArmFeedforward.calculate(angle, velocity, nextVelocity) computes it at the
+setpoint (P5a: kS·sgn ω + kV·ω + kA·Δω/dt + kG·cos θ for kA < 0.1 V·s²/rad, its RK4 inversion of
+the arm's plant above; the exported code calls that class), PD feedback (the LQR gains (AR10) or
+entered) every control period on the angle measured `sensor_delay` earlier, the voltage held and
+clamped                                                                                      (AR12)
 Current-limit grid (core.sim.limit_grid): for each stator × supply limit pair the fastest ratio of
 the full-voltage swing (AR4), its time, peak currents and energy, the pick within a supply budget;
 a pair whose motors at rest cannot beat gravity's largest torque on the path (m·g·L·cos θ at the
@@ -349,7 +352,7 @@ def simulate(v, rtol: float):
         s = setup(v)
         ff = motion.feedforward(s, 0.0)  # (AR9): kG at horizontal
         kG = lambda q: ff["kG"] * math.cos(q)  # noqa: E731
-        run = profiled.run_profiled(s, v, rtol, ff, kG, return_move=True)  # (AR12), (AR14)
+        run = profiled.run_profiled(s, v, rtol, ff, kG, return_move=True, arm=True)  # (AR12), (AR14)
     else:
         run = motion.run_move(setup(v), rtol, hold_q=0.0)
     run.values["moment_of_inertia"] = inertia(v)

@@ -39,7 +39,8 @@ kV is this kV/η (they agree at η = 1). Feedback: WPILib's LQR on the plant (x,
 Optimise: G* minimising T(G): 240 ratios log-spaced about the characteristic ratio
 (d = v_free·τ), then bounded Brent on the accurate move around the best (motion.optimise)       (EL12)
 Profiled move: the loop robot code runs (core.sim.profiled (P1)-(P11)): a trapezoid from rest to rest
-(limits entered, or fractions of v_free and of the acceleration from rest at full voltage), or
+(limits entered, or fractions of v_free and of the acceleration from rest at the stator current
+limit, (P17)), or
 WPILib's exponential profile from an entered max input on kV, kA (EL10) ((P12)-(P15)), the
 feedforward (EL10) with kG constant, PD feedback (the LQR gains (EL11) or entered) on the position
 measured `sensor_delay` earlier, every `control_period`, the voltage held between updates and

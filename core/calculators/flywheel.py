@@ -2069,6 +2069,7 @@ def flywheel_gains_of(solution) -> gains_code.FlywheelGains:
         battery_voltage=v["voltage"],
         stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
         supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
+        motor=v["motor"],  # which controllers can drive it (gains_code (GC10))
     )
 
 

@@ -12,6 +12,10 @@ the updates t_k = k·dt, k = 0, 1, ...:
     V_ff = kS·sgn(ṙ_k) + kG(r_k) + (ṙ_{k+1} − A_d·ṙ_k)/B_d,  A = −kV/kA, B = 1/kA,
            A_d = e^{A·dt}, B_d = (A_d − 1)·B/A   (ElevatorFeedforward.Calculate(current, next);
            kS·sgn(ṙ_{k+1}) + kG + kV·ṙ_{k+1} when kA < 1e-9)                         (P5)
+    an arm's, kG(r) = kG·cos r, is WPILib's ArmFeedforward.Calculate(r_k, ṙ_k, ṙ_{k+1}) instead, as
+    2026.2.2 computes it: kS·sgn(ṙ_k) + kV·ṙ_k + kA·(ṙ_{k+1} − ṙ_k)/dt + kG·cos r_k when kA < 0.1
+    (no inversion of the plant: a period's lag the feedback makes up), else that refined by its
+    Newton iteration on one RK4 step of the arm's plant (arm_feedforward)                (P5a)
     V_k = clamp(V_fb + V_ff, −V_b, V_b),  duty u_k = V_k/V_b, held over [t_k, t_{k+1})  (P6)
 Trapezoid from rest to rest over the distance d with limits v_max, a_max (WPILib TrapezoidProfile):
     t_a = v_max/a_max;  if a_max·t_a² > d: t_a = √(d/a_max) (a triangle), v_peak = a_max·t_a;
@@ -54,6 +58,9 @@ Outputs:
     energy = ∫ N·V_b·u·I dt (regeneration negative)
 The return move (an arm's way back): (P1)-(P11) from rest at the goal to the start, q0 ↔ q1,
 with the same loop and profile                                                         (P16)
+A derived trapezoid: v_max = velocity_fraction·(free speed), a_max = acceleration_fraction·(the
+acceleration from rest against the load at the start with each motor's current at the stator
+current limit entry, or its stall current if lower: (M4) with I capped)                 (P17)
 """
 
 from __future__ import annotations
@@ -178,9 +185,14 @@ class Loop:
     period: float
     delay: float
     tolerance: float
+    arm: bool = False  # kG(q) = kG·cos q: WPILib ArmFeedforward's calculate (P5a), not (P5)
 
     def feedforward(self, r: float, v: float, v_next: float) -> float:
-        """(P5): WPILib ElevatorFeedforward.Calculate(currentVelocity, nextVelocity), kG at r."""
+        """(P5): WPILib ElevatorFeedforward.Calculate(currentVelocity, nextVelocity), kG at r;
+        an arm's (P5a), ArmFeedforward.Calculate(currentAngle, currentVelocity, nextVelocity)."""
+        if self.arm:
+            # kG(q) is kG·cos q for an arm: its value at horizontal is ArmFeedforward's kG
+            return arm_feedforward(self.kS, self.kG(0.0), self.kV, self.kA, self.period, r, v, v_next)
         kG = self.kG(r)
         if self.kA < 1e-9:
             return self.kS * _sgn(v_next) + kG + self.kV * v_next
@@ -193,6 +205,70 @@ class Loop:
 
 def _sgn(x: float) -> float:
     return (x > 0) - (x < 0)
+
+
+ARM_KA_SOLVE = 0.1  # V·s²/rad: ArmFeedforward uses the plain formula below this (P5a)
+
+
+def arm_feedforward(kS, kG, kV, kA, dt, angle, v, v_next) -> float:
+    """(P5a): WPILib 2026.2.2 ArmFeedforward::Calculate(currentAngle, currentVelocity, nextVelocity)
+    (wpimath/src/main/native/cpp/controller/ArmFeedforward.cpp at v2026.2.2; Java's
+    calculateWithVelocities calls it through JNI), kG the volts at horizontal:
+    - kA < 0.1: kS·sgn(v) + kV·v + kA·(v_next − v)/dt + kG·cos θ, no inversion of the plant;
+    - else that formula as the first guess of u, refined by WPILib's own Newton iteration on the
+      squared miss c(u) = (v_next − ω₁(u))², ω₁ the speed after one RK4 step over dt of
+      θ̇ = ω, kA·ω̇ = u − kS·sgn ω − kV·ω − kG·cos θ from (θ, v): u ← u − c'/max(c'', 1e-4), the
+      step halved while c grows, at most 50 times, stopping when |c'| no longer falls by 1e-10 of
+      itself. Its derivatives are exact (sgn's taken as 0, as Sleipnir's autodiff does); the
+      regularised c'' leaves u short of the root when (dt/kA)² < 5e-5, as WPILib's does."""
+    guess = kS * _sgn(v) + kV * v + kA * (v_next - v) / dt + kG * math.cos(angle)
+    if kA < ARM_KA_SOLVE:
+        return guess
+
+    # second-order forward derivatives in u: each quantity as (value, d/du, d²/du²)
+    def f(x0, x1, u):
+        c, sn = math.cos(x0[0]), math.sin(x0[0])
+        cos = (c, -sn * x0[1], -c * x0[1] ** 2 - sn * x0[2])
+        ks = kS * _sgn(x1[0])
+        acc = tuple(
+            ((u if i == 0 else (1.0 if i == 1 else 0.0)) - kV * x1[i] - kG * cos[i]) / kA for i in range(3)
+        )
+        acc = (acc[0] - ks / kA, acc[1], acc[2])
+        return x1, acc
+
+    def add(x, k, h):
+        return tuple(x[i] + h * k[i] for i in range(3))
+
+    def cost(u):
+        th, om = (angle, 0.0, 0.0), (v, 0.0, 0.0)
+        a1, b1 = f(th, om, u)
+        a2, b2 = f(add(th, a1, dt / 2), add(om, b1, dt / 2), u)
+        a3, b3 = f(add(th, a2, dt / 2), add(om, b2, dt / 2), u)
+        _, b4 = f(add(th, a3, dt), add(om, b3, dt), u)
+        w = tuple(v * (i == 0) + dt / 6 * (b1[i] + 2 * b2[i] + 2 * b3[i] + b4[i]) for i in range(3))
+        r = v_next - w[0]
+        return r * r, -2 * r * w[1], 2 * w[1] ** 2 - 2 * r * w[2]
+
+    u = guess
+    c, g, H = cost(u)
+    error_k, error_k1 = math.inf, abs(g)
+    for _ in range(50):
+        if not error_k1 < (1.0 - 1e-10) * error_k:
+            break
+        error_k = error_k1
+        step = -g / max(H, 1e-4)
+        alpha, trial = 1.0, u + step
+        c_trial = cost(trial)[0]
+        for _ in range(1100):  # halving to below a double's resolution of any step
+            if not c_trial > c:
+                break
+            alpha *= 0.5
+            trial = u + alpha * step
+            c_trial = cost(trial)[0]
+        u = trial
+        c, g, H = cost(u)
+        error_k1 = abs(g)
+    return u
 
 
 def driver(mech, duty_bound):
@@ -735,7 +811,7 @@ PROFILE_LABELS = (
 TRAPEZOID = (("profile_type", ("trapezoid",)),)
 LIMIT_CHOICES = ("derived", "entered")
 LIMIT_LABELS = (
-    "Derived: fractions of the free speed and of the acceleration at stall",
+    "Derived: fractions of the free speed and of the acceleration at the stator limit",
     "Entered: max velocity and acceleration",
 )
 FEEDBACK_CHOICES = ("lqr", "entered")
@@ -788,7 +864,8 @@ def profile_fields(
             modes=PROFILED,
             when=TRAPEZOID,
             help="The trapezoid's max velocity and acceleration: fractions of what the mechanism can "
-            "do (free speed; acceleration from rest at full voltage against the load), or entered.",
+            "do (free speed; acceleration from rest against the load at the stator current "
+            "limit), or entered.",
         ),
         Field(
             "velocity_fraction",
@@ -809,14 +886,18 @@ def profile_fields(
             "Acceleration fraction",
             "dimensionless",
             "",
-            default=0.3,
+            default=0.1,
             min=0,
             min_exclusive=True,
             max=1,
             modes=PROFILED,
             when=(*TRAPEZOID, ("profile_limits", ("derived",))),
-            help="Profile max acceleration as a fraction of the acceleration from rest at full voltage "
-            "against the load (0-1).",
+            help="Profile max acceleration as a fraction (0-1) of the acceleration from rest against "
+            "the load with each motor at its stator current limit (the stator_limit effect's "
+            "entry, 40 A unless changed, used even with that effect off; the stall current if "
+            "lower). The default 0.1 keeps the default elevator's and arm's moves within a 40 A "
+            "stator limit (peaks 36 A, 23 A): the feedforward's step each period and the feedback "
+            "draw more than the profile's acceleration alone.",
         ),
         Field(
             "max_velocity",
@@ -1037,13 +1118,34 @@ def return_plots(label: str, pos_q: str, pos_u: str) -> tuple:
     )
 
 
-def stall_acceleration(setup) -> float:
-    """Acceleration toward the goal from rest at full voltage against the load at the start (M4)."""
+def stall_acceleration(setup, current_cap: float | None = None) -> float:
+    """Acceleration toward the goal from rest at full voltage against the load at the start (M4);
+    with `current_cap`, each motor's current at most that (A) (P17)."""
     from .motion import electrical, field_force, friction_of
 
     m = setup.mech
     _, I0 = electrical(m, setup.asm.slots["duty"])(0.0)
+    if current_cap is not None:
+        I0 = min(I0, current_cap)
     return (m.force_per_amp * I0 + m.s * field_force(setup)(m.q0) - friction_of(setup)) / m.inertia
+
+
+def derived_acceleration(setup, v) -> float:
+    """(P17): the derived trapezoid's max acceleration, acceleration_fraction of the acceleration
+    from rest against the load at the start with each motor at its stator current limit (the
+    stator_current_limit entry, whether or not the stator_limit effect is on; its stall current
+    when lower). A team sets a stator limit (40 A by default here) and profiles within it: the
+    full-voltage stall acceleration of a light load on FRC motors is tens of g at hundreds of amps."""
+    cap = v.get("stator_current_limit")
+    a = stall_acceleration(setup, cap)
+    if not a > 0:
+        raise InputError(
+            "acceleration_fraction",
+            f"the derived profile accelerates from rest with each motor at the stator current limit, "
+            f"{cap:.4g} A, which cannot move the load at the start: raise stator_current_limit (the "
+            "stator_limit effect shows it) or enter the profile limits (profile_limits = entered)",
+        )
+    return v["acceleration_fraction"] * a
 
 
 def exponential_of(setup, v, ff: dict) -> Exponential:
@@ -1060,7 +1162,7 @@ def exponential_of(setup, v, ff: dict) -> Exponential:
     return profile
 
 
-def loop_of(setup, v, ff: dict, kG) -> tuple[Loop, Trapezoid | Exponential, dict]:
+def loop_of(setup, v, ff: dict, kG, arm: bool = False) -> tuple[Loop, Trapezoid | Exponential, dict]:
     """The loop and profile from the entries; kP, kD from LQR (motion.lqr) or entered."""
     from .motion import check_can_move, lqr
 
@@ -1071,7 +1173,7 @@ def loop_of(setup, v, ff: dict, kG) -> tuple[Loop, Trapezoid | Exponential, dict
         v_max = a_max = math.nan  # (P12): the profile's, below
     elif v["profile_limits"] == "derived":
         v_max = v["velocity_fraction"] * m.free_speed
-        a_max = v["acceleration_fraction"] * stall_acceleration(setup)
+        a_max = derived_acceleration(setup, v)  # (P17)
     else:
         v_max, a_max = v["max_velocity"], v["max_acceleration"]
     if v["feedback"] == "lqr":
@@ -1103,6 +1205,7 @@ def loop_of(setup, v, ff: dict, kG) -> tuple[Loop, Trapezoid | Exponential, dict
         v["control_period"],
         v["sensor_delay"],
         v["settle_tolerance"],
+        arm,
     )
     profile = exponential_of(setup, v, ff) if exponential else Trapezoid(m.distance, v_max, a_max)
     T = profile.total_time
@@ -1123,10 +1226,10 @@ def loop_of(setup, v, ff: dict, kG) -> tuple[Loop, Trapezoid | Exponential, dict
 MAX_UPDATES = 5_000  # 100 s of a 20 ms loop: within one solve's budget (scene.SOLVE_NFEV)
 
 
-def run_profiled(setup, v, rtol: float, ff: dict, kG, return_move: bool = False) -> SimRun:
+def run_profiled(setup, v, rtol: float, ff: dict, kG, return_move: bool = False, arm: bool = False) -> SimRun:
     """Every output of the profiled mode (the gains shown are those the loop used); with
-    `return_move`, the move back as well (P16)."""
-    loop, profile, gains = loop_of(setup, v, ff, kG)
+    `return_move`, the move back as well (P16); `arm`: kG(q) = kG·cos q, ArmFeedforward's (P5a)."""
+    loop, profile, gains = loop_of(setup, v, ff, kG, arm)
     pr = profiled_move(setup, loop, profile, rtol)
     extra = {**ff, **gains, "free_speed": setup.mech.free_speed}
     slower = "lower the max input" if isinstance(profile, Exponential) else "lower the fractions or limits"
@@ -1143,8 +1246,8 @@ def run_profiled(setup, v, rtol: float, ff: dict, kG, return_move: bool = False)
 # then those of a solve with start and goal swapped and the same profile, whatever the first move's
 # final error) and the loop runs the same profile toward the start:
 #     the return move = (P1)-(P11) with q0 ↔ q1, the same Loop and the same profile        (P16)
-# A derived trapezoid keeps the first move's limits (the fractions of the acceleration at stall
-# against the load at the start, (M4)): a separate solve of the way back would derive its own.
+# A derived trapezoid keeps the first move's limits (the fractions of the acceleration at the stator
+# limit against the load at the start, (P17)): a separate solve of the way back would derive its own.
 
 RETURN_PREFIX = "return_"
 RETURN_FIGURES = (
