@@ -369,3 +369,22 @@ async def test_no_chart_takes_the_keys():
             assert not isinstance(app.focused, PlotWidget)
         await pilot.press("left", "right", "up", "down")
         assert app.is_running
+
+
+async def test_a_missing_preset_path_is_said_once_right_under_the_path_box(tmp_path):
+    """At 80x24 the load dialog is cut at the bottom: the error sits under the path box, and a
+    missing file is said plainly (it read 'not a usable file path (…: file not found)')."""
+    from textual.widgets import Input, Static
+
+    app = GearheadApp(blink=False, hide_timings=True, initial="motor")
+    async with app.run_test(size=(80, 24)) as pilot:
+        await settle(pilot)
+        await pilot.press("ctrl+o")
+        await settle(pilot)
+        app.screen.query_one("#preset-path", Input).value = str(tmp_path / "nothing.toml")
+        await pilot.press("enter")
+        await settle(pilot)
+        error = app.screen.query_one("#load-error", Static)
+        text = str(error.render())
+        assert "nothing.toml" in text and "usable" not in text, text
+        assert app.screen.region.contains_region(error.region) and error.region.height >= 1

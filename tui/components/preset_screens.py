@@ -200,15 +200,18 @@ class LoadPresetScreen(Dialog[presets.Preset | None]):
                 Option(Text(f"{p.name}  ({'built-in' if p.builtin else 'yours'})"), id=str(i))
                 for i, p in enumerate(self.found)
             ]
-            yield OptionList(*options, id="preset-list")
-            # what the highlighted preset holds, before loading it
-            yield Static("", id="preset-preview")
+            # the path box first (it has the keys) and its error right under it: on a small
+            # terminal the dialog is cut at the bottom, and an error below the list went unseen
             path = PresetPathInput(
-                placeholder="…or a preset file path, then Enter (or paste a preset's text)", id="preset-path"
+                placeholder="A preset file path, then Enter (or paste a preset's text); ↓ the list",
+                id="preset-path",
             )
             path.cursor_blink = self.blink
             yield path
             yield Static("", id="load-error", classes="field-error")
+            yield OptionList(*options, id="preset-list")
+            # what the highlighted preset holds, before loading it
+            yield Static("", id="preset-preview")
             with Horizontal(classes="dialog-buttons"):
                 yield Button("Browse files…", id="browse")
                 yield Button("Cancel", id="cancel")
@@ -303,6 +306,8 @@ class LoadPresetScreen(Dialog[presets.Preset | None]):
                     preset = workbook.load(Path(text).expanduser())
                 else:
                     preset = presets.load(Path(text).expanduser())
+            except InputError:  # (an InputError is a ValueError: said as it is)
+                raise
             except (ValueError, RuntimeError) as exc:  # an unusable path ('~nosuchuser/x')
                 raise InputError("preset", f"not a usable file path ({exc})", text[:80]) from None
         except InputError as exc:
