@@ -197,8 +197,17 @@ def quiet_plot_widget():
             if not self.children:  # Textual runs PlotWidget.on_mount next unless prevented
                 event.prevent_default()
 
-        def _update_margin_sizes(self) -> None:
+        # the margin watchers lay out the children: none to lay out yet (module docstring above)
+        def watch_margin_top(self) -> None:
             if self.children:
-                super()._update_margin_sizes()
+                super().watch_margin_top()
+
+        def watch_margin_bottom(self) -> None:
+            if self.children:
+                super().watch_margin_bottom()
+
+        def watch_margin_left(self) -> None:
+            if self.children:
+                super().watch_margin_left()
 
     return QuietPlotWidget
