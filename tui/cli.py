@@ -88,14 +88,26 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
+def _keep_quit_key() -> None:
+    """The app is starting: ctrl+\\ typed before Textual puts the terminal in raw mode sent
+    SIGQUIT and ended it (exit 131, seen in a key storm). Ignored from here on; once the app runs,
+    the key is a key like any other."""
+    import signal
+
+    if hasattr(signal, "SIGQUIT") and sys.stdin is not None and sys.stdin.isatty():
+        signal.signal(signal.SIGQUIT, signal.SIG_IGN)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     from . import workbook_cli
 
     given = list(sys.argv[1:] if argv is None else argv)
     if len(given) == 1 and given[0].endswith(".toml") and not given[0].startswith("-"):
+        _keep_quit_key()
         return workbook_cli.app(given[0], argv)  # `gearhead robot.toml`: the app with that workbook
     args = _parser().parse_args(argv)
     if args.command is None:
+        _keep_quit_key()
         if not _terminal():  # with no terminal the app waited for keys that never come
             _complain(
                 "the app needs a terminal (standard input and output); from a script use "
