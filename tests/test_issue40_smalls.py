@@ -2,7 +2,11 @@
 
 from pathlib import Path
 
+import pytest
+
 from gearhead.core import sweep
+from gearhead.core.errors import InputError
+from gearhead.core.model import solve
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -17,3 +21,33 @@ def test_sweep_status_is_ok_where_every_point_gives_the_same_note():
     # a warning particular to a point stays in that point's row
     varied = sweep.run("flywheel", {}, ["voltage=10..12:3"])
     assert all(len(p.warnings) == 1 and "VEX 393" in p.warnings[0] for p in varied.points)
+
+
+@pytest.mark.parametrize(
+    "typed, quoted",
+    [("²", "'²'"), ("5 kg²", "'5 kg²'"), ("5 m²", "'5 m²'"), ("2 kg·m²", "'2 kg·m²'")],
+)
+def test_a_superscript_in_a_mass_is_quoted_as_typed(typed, quoted):
+    with pytest.raises(InputError) as exc:
+        solve("elevator", {"load_mass": typed})
+    assert exc.value.field == "load_mass"
+    assert exc.value.message.startswith(quoted) and "**" not in exc.value.message
+
+
+def test_superscripts_read_where_the_unit_makes_sense():
+    assert solve("arm", {"moment_of_inertia": "2 kg·m²"}).inputs["moment_of_inertia"].value == 2.0
+    si = solve("flywheel", {"wheel_inertia": "2 lb·in²"}).inputs["wheel_inertia"].value
+    assert si == pytest.approx(2 * 0.45359237 * 0.0254**2, rel=1e-12)
+
+
+@pytest.mark.parametrize("typed", ["5e-400 m", "5e-400 m*s"])
+def test_a_tiny_number_with_the_wrong_unit_says_the_unit_is_wrong(typed):
+    with pytest.raises(InputError) as exc:
+        solve("elevator", {"load_mass": typed})
+    assert "is not a mass" in exc.value.message and "too small" in exc.value.message
+
+
+def test_a_tiny_number_with_a_right_unit_says_only_too_small():
+    with pytest.raises(InputError) as exc:
+        solve("elevator", {"load_mass": "5e-400 lb*2"})
+    assert "too small" in exc.value.message and "not a mass" not in exc.value.message
