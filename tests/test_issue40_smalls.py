@@ -51,3 +51,17 @@ def test_a_tiny_number_with_a_right_unit_says_only_too_small():
     with pytest.raises(InputError) as exc:
         solve("elevator", {"load_mass": "5e-400 lb*2"})
     assert "too small" in exc.value.message and "not a mass" not in exc.value.message
+
+
+def test_pneumatics_with_the_compressor_off_says_the_tank_is_empty_and_shows_the_forces_it_gets():
+    """The default match with the compressor off: 15 unregulated-by-then strokes take the storage to
+    0.0069 psi (each shares the tank's air), never exactly 0: it read "Tank emptied: no", and a push
+    force of 106 lbf (at the 60 psi entered) beside a warning that the lowest was 0.024 lbf."""
+    sol = solve("pneumatics", {"effects": "regulator"})
+    out = sol.outputs
+    assert out["final_pressure"].value < 0.01 * 6894.757
+    assert out["tank_empty"].value is True
+    assert any(w.startswith("The tank empties at t = ") for w in sol.warnings)
+    (short,) = [w for w in sol.warnings if "short of air" in w]
+    shown = f"{out['push_force_1'].value / 4.4482216152605:.4g} lbf push"
+    assert shown in short and out["push_force_1"].value < 0.03 * 4.4482216152605
