@@ -1,12 +1,14 @@
 """Issue 40's smaller things, each pinned by a test that failed before its fix."""
 
+import json
 from pathlib import Path
 
 import pytest
 
-from gearhead.core import sweep
+from gearhead.core import presets, sweep
 from gearhead.core.errors import InputError
 from gearhead.core.model import solve
+from gearhead.tui.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -65,3 +67,34 @@ def test_pneumatics_with_the_compressor_off_says_the_tank_is_empty_and_shows_the
     (short,) = [w for w in sol.warnings if "short of air" in w]
     shown = f"{out['push_force_1'].value / 4.4482216152605:.4g} lbf push"
     assert shown in short and out["push_force_1"].value < 0.03 * 4.4482216152605
+
+
+def test_the_tank_sprint_preset_is_a_tank_and_pathplanner_takes_it(capsys):
+    code = main(
+        [
+            "solve",
+            "sprint",
+            "--preset",
+            str(ROOT / "presets/sprint/tank_6neo_kitbot.toml"),
+            "--document",
+            "pathplanner",
+        ]
+    )
+    out = capsys.readouterr()
+    assert code == 0, out.err
+    pp = json.loads(out.out)
+    assert pp["holonomicMode"] is False and pp["driveGearing"] == 10.71
+
+
+def test_every_builtin_drive_preset_names_the_drive_it_solves():
+    """A preset whose name or description says tank or swerve gives the sprint's `drive` for it
+    (the field's default is swerve: a tank preset without it solved as a swerve)."""
+    for p in presets.listing():
+        if not p.builtin or p.calculator != "sprint":
+            continue
+        words = f"{p.name} {p.description}".lower()
+        drive = p.inputs.get("drive")
+        if "tank" in words:
+            assert drive == "tank", p.name
+        if "swerve" in words:
+            assert drive is not None and drive != "tank" and drive != "mecanum", p.name
