@@ -8,6 +8,7 @@ import pytest
 from gearhead.core import presets, sweep
 from gearhead.core.errors import InputError
 from gearhead.core.model import solve
+from gearhead.core.motors import motor_names
 from gearhead.tui.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -98,3 +99,14 @@ def test_every_builtin_drive_preset_names_the_drive_it_solves():
             assert drive == "tank", p.name
         if "swerve" in words:
             assert drive is not None and drive != "tank" and drive != "mecanum", p.name
+
+
+def test_the_motor_tabs_default_torque_solves_for_every_motor(capsys):
+    """`solve motor --set motor=NeveRest` (and REV HD Hex) exited 2: the default torque (0.2 N·m)
+    was above their stall torque (0.173 and 0.105 N·m)."""
+    for name in ("NeveRest", "REV HD Hex"):
+        assert main(["solve", "motor", "--set", f"motor={name}"]) == 0, capsys.readouterr().err
+    for name in motor_names():
+        for source in ("wpilib", "recalc"):
+            for effects in ("", "stator_limit, supply_limit, battery_sag"):
+                solve("motor", {"motor": name, "source": source, "effects": effects})
