@@ -1,15 +1,18 @@
 """Issue 40's smaller things, each pinned by a test that failed before its fix."""
 
 import json
+import math
 from pathlib import Path
 
 import pytest
 
-from gearhead.core import presets, sweep
+from gearhead.core import motors, presets, sweep
+from gearhead.core.calculators import flywheel as flywheel_calc
 from gearhead.core.errors import InputError
 from gearhead.core.model import solve
 from gearhead.core.motors import motor_names
 from gearhead.tui.cli import main
+from tests import test_velocity_loop as vl_tests
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -110,3 +113,64 @@ def test_the_motor_tabs_default_torque_solves_for_every_motor(capsys):
         for source in ("wpilib", "recalc"):
             for effects in ("", "stator_limit, supply_limit, battery_sag"):
                 solve("motor", {"motor": name, "source": source, "effects": effects})
+
+
+@pytest.fixture
+def vl_no_free_current(monkeypatch):
+    """The seed motor with no free current on both sides (tests/test_velocity_loop.py's fixture)."""
+    real = flywheel_calc.lookup
+
+    def lookup(name, source):
+        m, note = real(name, source)
+        return vl_tests.no_loss(m), note
+
+    monkeypatch.setattr(flywheel_calc, "lookup", lookup)
+
+
+def _flywheelsim_recovery(c, out):
+    """tests/test_velocity_loop.py's FlywheelSim loop with the shot at an update instant, by the
+    loop's stated rule: the sample taken at the shot's instant is the speed before the shot (what
+    a reading then, or a whole number of periods later through the delay, gets); the shot follows."""
+    from wpilib.simulation import FlywheelSim
+    from wpimath.controller import PIDController, SimpleMotorFeedforwardRadians
+    from wpimath.system.plant import DCMotor, LinearSystemId
+
+    SUB, PERIOD = vl_tests.SUB, vl_tests.PERIOD
+    base, _ = motors.lookup(c["name"], "wpilib")
+    gearbox = DCMotor(
+        base.v_spec, base.stall_torque, base.stall_current, 0.0, base.free_speed, out["motor_count"]
+    )
+    sim = FlywheelSim(LinearSystemId.flywheelSystem(gearbox, c["J"], out["ratio"]), gearbox)
+    ff = SimpleMotorFeedforwardRadians(out["kS"], out["kV"], out["kA"], PERIOD)
+    pid = PIDController(out["kP"], 0.0, 0.0, PERIOD)
+    r, tol = out["target_speed"], out["speed_tolerance"]
+    beta = out["ball_mass"] * 1.4 * (out["wheel_diameter"] / 4) ** 2 / c["J"]
+    shot_sub, per = round(out["shot_time"] / SUB), round(PERIOD / SUB)
+    delay_sub = round(out["sensor_delay"] / SUB)
+    history = [0.0]
+    for k in range(round((out["shot_time"] + max(1.0, out["shot_time"])) / PERIOD)):
+        measured = history[max(k * per - delay_sub, 0)]
+        sim.setInputVoltage(max(-12.0, min(12.0, ff.calculate(r) + pid.calculate(measured, r))))
+        for _ in range(per):
+            sim.update(SUB)
+            history.append(sim.getAngularVelocity())
+            if len(history) - 1 == shot_sub:
+                sim.setState([sim.getAngularVelocity() / math.sqrt(1 + beta)])
+    for i in range(len(history) - 1, shot_sub - 1, -1):
+        if abs(history[i] - r) > tol:
+            return (i + 1) * SUB - out["shot_time"]
+    return 0.0
+
+
+@pytest.mark.parametrize(
+    "index, delay", [(0, "20 ms"), (2, "20 ms"), (4, "20 ms"), (0, "40 ms"), (2, "40 ms")]
+)
+def test_a_whole_period_delay_reads_the_speed_before_a_shot_at_an_update(vl_no_free_current, index, delay):
+    """A shot at an update instant (1.5 s, a 20 ms loop) and a delay of one or two periods: the
+    delayed reading got the speed after the shot (recovery 6-16 % off FlywheelSim); now within one
+    0.1 ms substep of it, as off the grid."""
+    c = vl_tests.cases()[index]
+    sol = solve("flywheel", {**c["raw"], "shot_time": "1.5 s", "sensor_delay": delay})
+    out = {k: v.value for k, v in sol.outputs.items()} | {k: v.value for k, v in sol.inputs.items()}
+    mine, theirs = out["loop_recovery_time"], _flywheelsim_recovery(c, out)
+    assert theirs > 0 and -1e-9 <= theirs - mine <= vl_tests.SUB + 1e-9, (mine, theirs)
