@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from gearhead.core import motors, presets, sweep
+from gearhead.core import motors, presets, recalc, sweep
 from gearhead.core.calculators import flywheel as flywheel_calc
 from gearhead.core.errors import InputError
 from gearhead.core.model import solve
@@ -174,3 +174,47 @@ def test_a_whole_period_delay_reads_the_speed_before_a_shot_at_an_update(vl_no_f
     out = {k: v.value for k, v in sol.outputs.items()} | {k: v.value for k, v in sol.inputs.items()}
     mine, theirs = out["loop_recovery_time"], _flywheelsim_recovery(c, out)
     assert theirs > 0 and -1e-9 <= theirs - mine <= vl_tests.SUB + 1e-9, (mine, theirs)
+
+
+def _linear_link(**params) -> str:
+    from urllib.parse import urlencode
+
+    return "https://www.reca.lc/linear?" + urlencode(
+        {k: v if isinstance(v, str) else json.dumps(v) for k, v in params.items()}
+    )
+
+
+def test_a_cascade_recalc_link_says_what_it_does_to_the_gains():
+    """ReCalc's shown gains leave `cascade` out (computeElevatorFeedforwardGains has no cascade
+    input); its simulation doubles the first stage's load (linear.ts CASCADE_LOAD_FACTOR = 2), as a
+    2-stage cascade does. The import keeps the physics and says so, with the factors."""
+    plain, cascade = (recalc.to_preset(_linear_link(cascade=c)) for c in ("false", "true"))
+    gains = [
+        {k: solve("elevator", p.inputs).outputs[k].value for k in ("kG", "kV", "kA")}
+        for p in (plain, cascade)
+    ]
+    assert gains[1]["kG"] == pytest.approx(2 * gains[0]["kG"], rel=1e-12)
+    assert gains[1]["kA"] == pytest.approx(2 * gains[0]["kA"], rel=1e-12)
+    assert gains[1]["kV"] == pytest.approx(gains[0]["kV"] / 2, rel=1e-12)
+    (note,) = [w for w in cascade.warnings if "cascade" in w]
+    assert "kG and kA come out 2×" in note and "kV ½×" in note
+    assert not any("cascade" in w for w in plain.warnings)
+
+
+def test_recalc_has_data_for_every_motor_a_link_names():
+    """'ReCalc (dyno) has no data for Falcon 500 FOC / AndyMark 9015' was false: Motor.ts lists
+    'Falcon 500 (FOC)' (6080 rpm, 5.84 N·m, 304 A, 1.5 A) and 'AM-9015' (14270 rpm, 0.36 N·m, 71 A,
+    3.7 A) at tervay/recalc 03511cb4."""
+    for theirs, ours in recalc.MOTORS.items():
+        assert motors.lookup(ours, "recalc")[1] is None, theirs
+    for name, figures in (
+        ("Falcon 500 FOC", (6080, 5.84, 304, 1.5)),
+        ("AndyMark 9015", (14270, 0.36, 71, 3.7)),
+    ):
+        m, _ = motors.lookup(name, "recalc")
+        assert m.source == "recalc"
+        got = (m.free_speed * 60 / (2 * math.pi), m.stall_torque, m.stall_current, m.free_current)
+        assert got == pytest.approx(figures, rel=1e-12)
+    link = _linear_link(motor={"name": "Falcon 500 (FOC)", "quantity": 2})
+    preset = recalc.to_preset(link)
+    assert not any("no data" in w for w in solve("elevator", preset.inputs).warnings + preset.warnings)
