@@ -218,3 +218,47 @@ def test_recalc_has_data_for_every_motor_a_link_names():
     link = _linear_link(motor={"name": "Falcon 500 (FOC)", "quantity": 2})
     preset = recalc.to_preset(link)
     assert not any("no data" in w for w in solve("elevator", preset.inputs).warnings + preset.warnings)
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["solve", "elevator", "--preset", "builtin:elevator/two_neo"],
+        ["solve", "elevator", "--preset", "builtin:two_neo"],
+        ["sweep", "gear_ratio", "--preset", "builtin:elevator_neo", "--vary", "radius=0.5 in..1 in:2"],
+        ["accuracy", "trebuchet", "--preset", "builtin:trebuchet/seed_kastmaskin.toml"],
+        ["share", "builtin:elevator/two_neo"],
+        ["import", "builtin:sprint/tank_6neo_kitbot"],
+        ["check", "builtin:robot_2027"],
+        ["solve", "builtin:robot_2027"],
+        ["sweep", "builtin:robot_2027", "--vary", "robot_mass=110 lb..150 lb:2", "--output", "sprint_5_m"],
+    ],
+)
+def test_builtin_names_work_wherever_a_preset_or_workbook_is_taken(argv, capsys, tmp_path, monkeypatch):
+    """`--preset builtin:…` worked in a workbook's card only; `solve` read it as a file name."""
+    monkeypatch.chdir(tmp_path)  # not the repository: nothing found by a relative path
+    assert main(argv) == 0, capsys.readouterr().err
+
+
+def test_builtin_names_load_as_the_files_and_a_wrong_one_is_named(capsys, tmp_path, monkeypatch):
+    from gearhead.core import share
+
+    want = presets.load(ROOT / "presets/elevator/two_neo.toml")
+    for text in ("builtin:elevator/two_neo", "builtin:two_neo", " builtin:elevator/two_neo.toml "):
+        got = share.load_any(text)  # also what ctrl+o's path entry reads
+        assert (got.calculator, got.inputs, got.builtin) == (want.calculator, want.inputs, True)
+    monkeypatch.chdir(tmp_path)
+    assert main(["solve", "elevator", "--preset", "builtin:no_such"]) == 2
+    err = capsys.readouterr().err
+    assert "--preset: 'builtin:no_such' is no built-in preset" in err
+    assert main(["check", "builtin:no_such"]) == 2
+    assert "builtin:robot_2027" in capsys.readouterr().err
+
+
+def test_a_workbook_card_takes_a_builtin_preset_by_its_bare_name(tmp_path):
+    from gearhead.core import workbook
+
+    path = tmp_path / "robot.toml"
+    path.write_text('[cards.lift]\npreset = "builtin:two_neo"\n', encoding="utf-8")
+    wb = workbook.load(path)
+    assert wb.cards["lift"].calculator == "elevator"
