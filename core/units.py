@@ -212,7 +212,9 @@ def _check_kind_of_tiny(s: str, raw: str, field: str, kind: str) -> None:
         if isinstance(q, float):
             return
         q.to(SI_UNITS[kind] or "dimensionless")
-    except (InputError, pint.errors.DimensionalityError):
+    except InputError as exc:  # another mistake besides (an unknown unit): both said
+        raise InputError(field, f"{exc.message}; and the number {_UNDERFLOW}") from None
+    except pint.errors.DimensionalityError:
         raise InputError(
             field,
             f"{shown(raw)} is not {_a(kind)} (expected units like {example_unit(kind)}), and its "

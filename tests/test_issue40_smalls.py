@@ -262,3 +262,9 @@ def test_a_workbook_card_takes_a_builtin_preset_by_its_bare_name(tmp_path):
     path.write_text('[cards.lift]\npreset = "builtin:two_neo"\n', encoding="utf-8")
     wb = workbook.load(path)
     assert wb.cards["lift"].calculator == "elevator"
+
+
+def test_a_tiny_number_with_an_unknown_unit_says_both():
+    with pytest.raises(InputError) as exc:
+        solve("elevator", {"load_mass": "5e-400 foo"})
+    assert "'foo' is not a unit I know" in exc.value.message and "too small" in exc.value.message
