@@ -268,3 +268,17 @@ def test_a_tiny_number_with_an_unknown_unit_says_both():
     with pytest.raises(InputError) as exc:
         solve("elevator", {"load_mass": "5e-400 foo"})
     assert "'foo' is not a unit I know" in exc.value.message and "too small" in exc.value.message
+
+
+def test_every_builtin_recalc_preset_uses_recalcs_motor_data():
+    """'ReCalc v2 defaults' presets defaulted to WPILib's motor figures (source = wpilib): ReCalc's
+    defaults run on its own (dyno) data, as an imported ReCalc link does."""
+    from gearhead.core.registry import get
+
+    checked = 0
+    for p in presets.listing():
+        fields = {f.name for f in get(p.calculator).fields}
+        if p.builtin and "source" in fields and "recalc" in f"{p.name} {p.description}".lower():
+            assert p.inputs.get("source") == "recalc", p.name
+            checked += 1
+    assert checked == 3  # the dual and compound shooters, the motors table
