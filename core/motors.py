@@ -102,6 +102,10 @@ _RECALC_ADDED = [
     ("BaneBots 550", 19300, 0.488, 85, 1.4, None),
     ("Snowblower", 100, 7.90893775, 24, 5, None),
     ("Modern Robotics", 5900, 0.19, 11, 0.3, None),
+    # issue 40: ReCalc lists these two as well (Motor.ts 'Falcon 500 (FOC)', 'AM-9015'); without them a
+    # ReCalc import of either said "ReCalc (dyno) has no data" and used WPILib's (the same figures)
+    ("Falcon 500 FOC", 6080, 5.84, 304, 1.5, 1.25),
+    ("AndyMark 9015", 14270, 0.36, 71, 3.7, None),
 ]
 
 # goBILDA 5203-series Yellow Jacket planetary gear motors at 12 V, at the gearbox output (goBILDA's product

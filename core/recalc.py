@@ -185,7 +185,7 @@ MOTORS = {
     "MiniCIM": "MiniCIM",
     "BAG": "BAG",
     "AM-9015": "AndyMark 9015",
-    "BaneBots 550": "BaneBots RS550",
+    "BaneBots 550": "BaneBots 550",  # ReCalc's own figures (WPILib's RS550 differs: 0.38 vs 0.488 N*m)
     "NeveRest": "NeveRest",
     "HD Hex": "REV HD Hex",
     "Core Hex": "REV Core Hex",
@@ -335,6 +335,14 @@ def _linear(link: _Link) -> dict:
     if link.value("cascade"):
         inputs["rigging"] = "cascade"
         inputs["stages"] = 2  # ReCalc's cascade: the carriage moves twice the rope (CASCADE_TRAVEL_FACTOR)
+        # ReCalc's simulation doubles the load on the first stage (linear.ts CASCADE_LOAD_FACTOR), as
+        # Gearhead's cascade does; its shown gains (computeElevatorFeedforwardGains) leave it out
+        link.notes.append(
+            "cascade: a 2-stage cascade (rigging = cascade, stages = 2): the spool holds twice the load "
+            "and the carriage moves twice the rope, as in ReCalc's simulation, so kG and kA come out 2× "
+            "and kV ½× the gains ReCalc shows (its gains leave the cascade out); gains here are per "
+            "metre of carriage travel"
+        )
     else:
         inputs["rigging"] = "continuous"
     effects = link.limits(inputs)

@@ -154,6 +154,10 @@ def load_any(text: str | Path) -> Preset:
     entry take. A file of that name wins over reading the text as a code."""
     import os
 
+    from . import builtin
+
+    if builtin.is_builtin(text) and not os.path.isfile(text):  # builtin:CALC/NAME, wherever installed
+        return load(builtin.preset_path(text), builtin=True)
     if isinstance(text, str) and not os.path.isfile(text):
         found = from_text(text)
         if found is not None:

@@ -422,12 +422,26 @@ def run(
             points.append(Point(shown, {}, [], error))
         if progress is not None:
             progress(i + 1, len(grid))
+    notes += _shared_warnings(points)
     chosen = list(outputs)
     if not chosen:
         sample = next((p.outputs for p in points if p.error is None), None)
         chosen = numeric_outputs(calc, sample)
     cost.wall_time = time.perf_counter() - t0
     return Sweep(calc, specs, chosen, points, cost, stopped, notes, display_units=display_units)
+
+
+def _shared_warnings(points: list[Point]) -> list[str]:
+    """The warnings every solved point gives (two or more points), taken off the points and returned
+    to be said once: a row's status then says what is particular to it, "ok" when nothing is (the
+    elevator's "closed form, no integration" repeated in every row said nothing about any row)."""
+    solved = [p for p in points if p.error is None]
+    if len(solved) < 2:
+        return []
+    shared = [w for w in solved[0].warnings if all(w in p.warnings for p in solved[1:])]
+    for p in solved:
+        p.warnings = [w for w in p.warnings if w not in shared]
+    return [f"at every point: {w}" for w in shared]
 
 
 # ---------------------------------------------------------------------------------------------

@@ -161,19 +161,25 @@ def parse(text: str | float | int, unit: str, kind: str, field: str) -> float:
             raise InputError(field, f"{shown(text)} is not a finite number") from None
     else:
         s = normalise(text, field, kind)
+        raw = str(text).strip()  # messages quote this, not the form read ("kg·m²", not "kg*m**(2)")
         typed = _NUMBER_AND_UNIT.match(s)
         known = typed and typed["unit"] and stored_factor(typed["unit"], kind)  # "20 in": no pint
         if _NUMBER.match(s) or known:
             number = typed["number"] if known else s
-            value = _literal(number, s, field) * (known or factor(unit, kind))
+            value = _literal(number, raw, field) * (known or factor(unit, kind))
             if value == 0 and float(number) != 0:  # a tiny number in a unit smaller than SI's
-                raise InputError(field, f"{shown(s)} {_UNDERFLOW}")
+                raise InputError(field, f"{shown(raw)} {_UNDERFLOW}")
         else:
-            q = _evaluate(s, field, kind)
+            try:
+                q = _evaluate(s, field, kind, raw)
+            except InputError as exc:
+                if _UNDERFLOW in exc.message:  # "5e-400 m" in a mass: the unit is wrong too, say so
+                    _check_kind_of_tiny(s, raw, field, kind)
+                raise
             if isinstance(q, float):  # plain numbers only: in the display unit, like a bare number
                 value = q * factor(unit, kind)
             else:
-                value = _to_si(q, s, field, kind)
+                value = _to_si(q, raw, field, kind)
     if not math.isfinite(value):
         raise InputError(field, f"{shown(text)} is not a finite number")
     return value
@@ -188,7 +194,32 @@ _NUMBER_AND_UNIT = re.compile(
     r"^\s*(?P<number>[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?)\s*(?P<unit>(?:[^\W\d_]|%)\S*)\s*$"
 )
 
+_NUMBER_TEXT = r"(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?"
 _UNDERFLOW = "is too small to hold (it would read as 0); enter 0, or a size above 1e-300"
+
+
+def _check_kind_of_tiny(s: str, raw: str, field: str, kind: str) -> None:
+    """For an entry with a number too small to hold: an InputError saying both, when its units are
+    not of the field's kind (each tiny number read as 1 to find its units); nothing otherwise."""
+    import pint
+
+    def one(m: re.Match) -> str:
+        tiny = float(m.group()) == 0 and re.search(r"[1-9]", re.split("[eE]", m.group())[0])
+        return "1" if tiny else m.group()
+
+    try:
+        q = _evaluate(re.sub(_NUMBER_TEXT, one, s), field, kind)
+        if isinstance(q, float):
+            return
+        q.to(SI_UNITS[kind] or "dimensionless")
+    except InputError as exc:  # another mistake besides (an unknown unit): both said
+        raise InputError(field, f"{exc.message}; and the number {_UNDERFLOW}") from None
+    except pint.errors.DimensionalityError:
+        raise InputError(
+            field,
+            f"{shown(raw)} is not {_a(kind)} (expected units like {example_unit(kind)}), and its "
+            f"number {_UNDERFLOW}",
+        ) from None
 
 
 def _literal(number: str, typed: str, field: str) -> float:
@@ -235,9 +266,10 @@ def normalise(text: object, field: str, kind: str = "dimensionless") -> str:
     s = s.strip()
     if not s:
         raise InputError(field, f"is empty; enter {_a(kind)}")
+    typed = s  # messages quote what was typed ("²"), not the form read below ("**(2)")
     for ch in s:  # before NFKC, which turns "½" into "1⁄2" and then "1½" would read as 11/2
         if unicodedata.category(ch) == "No" and ch not in "⁰¹²³⁴⁵⁶⁷⁸⁹":
-            raise InputError(field, f"{shown(s)}: write {ch!r} with the digits 0-9 (e.g. 1/2 for ½)")
+            raise InputError(field, f"{shown(typed)}: write {ch!r} with the digits 0-9 (e.g. 1/2 for ½)")
     s = _SUPERSCRIPT_RUN.sub(lambda m: "**(" + m.group().translate(_SUPERSCRIPTS) + ")", s)
     s = unicodedata.normalize("NFKC", s).translate(_TYPESET)
     if len(s) > MAX_INPUT_CHARS:
@@ -247,26 +279,26 @@ def normalise(text: object, field: str, kind: str = "dimensionless") -> str:
             continue
         problem = _character_problem(ch)
         if problem:
-            raise InputError(field, f"{shown(s)} {problem}")
+            raise InputError(field, f"{shown(typed)} {problem}")
     if _TWO_NUMBERS.search(s):
         raise InputError(
             field,
-            f"{shown(s)} has two numbers in a row; write one number (1.5, not "
+            f"{shown(typed)} has two numbers in a row; write one number (1.5, not "
             f"1 1/2), or an operator between them (3*4)",
         )
     if _UNDERSCORED_NUMBER.search(s):
-        raise InputError(field, f"{shown(s)}: write numbers without '_' (1000, not 1_000)")
+        raise InputError(field, f"{shown(typed)}: write numbers without '_' (1000, not 1_000)")
     signs = _TWO_SIGNS.search(s)
     if signs:  # "--5" read as +5: a doubled sign reverses what was meant as often as not
         raise InputError(
-            field, f"{shown(s)} has two signs in a row ({signs.group()!r}); write one sign (-5, not --5)"
+            field, f"{shown(typed)} has two signs in a row ({signs.group()!r}); write one sign (-5, not --5)"
         )
     for m in re.finditer("%", s):
         before = s[: m.start()].rstrip()
         if before.endswith("%"):  # "50 %%" read as 0.005
-            raise InputError(field, f"{shown(s)} has % twice; write it once (50 %)")
+            raise InputError(field, f"{shown(typed)} has % twice; write it once (50 %)")
         if not before or before[-1] not in "0123456789.)":  # "%" alone read as 1 %
-            raise InputError(field, f"{shown(s)}: % needs a number before it (50 %)")
+            raise InputError(field, f"{shown(typed)}: % needs a number before it (50 %)")
     return s
 
 
@@ -302,11 +334,12 @@ _TOKEN = re.compile(
 )
 
 
-def _tokens(s: str, field: str, kind: str) -> list:
+def _tokens(s: str, field: str, kind: str, typed: str | None = None) -> list:
     """pint-style tokens (tokenize.TokenInfo) of a screened, preprocessed expression."""
     import token as tokenlib
     from tokenize import TokenInfo
 
+    quoted = shown(s if typed is None else typed)
     out, pos = [], 0
     types = {"number": tokenlib.NUMBER, "name": tokenlib.NAME, "op": tokenlib.OP}
     while pos < len(s):
@@ -314,19 +347,20 @@ def _tokens(s: str, field: str, kind: str) -> list:
         if not m:
             if s[pos:].isspace():
                 break
-            raise InputError(field, f"cannot read {shown(s)} as {_a(kind)}: unexpected {s[pos]!r}")
+            raise InputError(field, f"cannot read {quoted} as {_a(kind)}: unexpected {s[pos]!r}")
         kind_of = m.lastgroup
         if kind_of == "number" and out and out[-1].type == tokenlib.NUMBER:
-            raise InputError(field, f"{shown(s)} is not a number (two numbers run together)")
+            raise InputError(field, f"{quoted} is not a number (two numbers run together)")
         out.append(TokenInfo(types[kind_of], m.group(kind_of), (1, m.start(kind_of)), (1, m.end()), s))
         pos = m.end()
     out.append(TokenInfo(tokenlib.ENDMARKER, "", (1, len(s)), (1, len(s)), s))
     return out
 
 
-def _evaluate(s: str, field: str, kind: str):
+def _evaluate(s: str, field: str, kind: str, raw: str | None = None):
     """A float (only plain numbers were typed) or a pint Quantity, from a screened entry; every
-    operation checked, and the whole bounded by MAX_EXPONENT and PARSE_BUDGET_S."""
+    operation checked, and the whole bounded by MAX_EXPONENT and PARSE_BUDGET_S. Messages quote
+    `raw` (what was typed) when given."""
     import time
 
     import pint
@@ -337,8 +371,8 @@ def _evaluate(s: str, field: str, kind: str):
     Quantity = ureg.Quantity
     collecting = _collector_time()
     deadline = time.thread_time() - collecting.spent() + PARSE_BUDGET_S
-    typed = shown(s)
-    s_typed = s
+    typed = shown(s if raw is None else raw)
+    s_typed = s if raw is None else raw
 
     def fail(why: str):
         raise InputError(field, f"{typed} {why}")
@@ -422,7 +456,7 @@ def _evaluate(s: str, field: str, kind: str):
         fail("has unbalanced parentheses")
     for pre in ureg.preprocessors:  # "%" -> " percent "
         s = pre(s)
-    tokens = _tokens(string_preprocessor(s), field, kind)
+    tokens = _tokens(string_preprocessor(s), field, kind, raw)
     try:
         tree = build_eval_tree(tokens)
     except Exception:  # pint's tree builder raises several types on an incomplete expression

@@ -266,9 +266,11 @@ class Workbook:
 def load(path: str | Path, sets: Mapping[str, Any] | None = None) -> Workbook:
     """Read, check and order a workbook file; any problem is an InputError naming the file.
     `sets`: variables' entries that replace the file's (the command line's --set NAME=VALUE)."""
-    from . import presets
+    from . import builtin, presets
 
-    src = str(path)
+    src = str(path)  # messages name the workbook as given ("builtin:robot_2027")
+    if builtin.is_builtin(path):  # an example workbook, wherever pip put it
+        path = builtin.workbook_path(src)
     try:
         text = presets.read_text(path)
     except InputError as exc:
@@ -582,11 +584,13 @@ def raise_in(exc: InputError, where: str, src: str):
 
 
 def _preset_path(text: str, folder: Path) -> Path:
-    from . import presets
+    from . import builtin
 
-    if text.startswith(BUILTIN_PREFIX):
-        rest = text[len(BUILTIN_PREFIX) :].strip().removesuffix(".toml")
-        return presets.builtin_dir() / f"{rest}.toml"
+    if text.startswith(BUILTIN_PREFIX):  # builtin:CALC/NAME, or builtin:NAME when only one has it
+        try:
+            return builtin.preset_path(text)
+        except InputError:
+            pass  # the card's preset is then reported missing, with the file and card, as before
     path = Path(text).expanduser()
     return path if path.is_absolute() else folder / path
 

@@ -109,7 +109,8 @@ def test_every_reference_motor_is_present():
     ]:
         assert n in names
     # 18 before issue 31, which added Minion (Adv Hall), Thrifty Pulsar, BaneBots 550, Snowblower, Modern Robotics
-    assert len([m for m in motors.MOTORS if m.source == "recalc"]) == 23
+    # and 25 since issue 40 (Falcon 500 FOC, AndyMark 9015: ReCalc lists both)
+    assert len([m for m in motors.MOTORS if m.source == "recalc"]) == 25
 
 
 def test_motors_only_recalc_has_say_so_when_wpilib_is_asked():

@@ -102,7 +102,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     from . import workbook_cli
 
     given = list(sys.argv[1:] if argv is None else argv)
-    if len(given) == 1 and given[0].endswith(".toml") and not given[0].startswith("-"):
+    workbook_named = given[:1] and (given[0].endswith(".toml") or given[0].startswith("builtin:"))
+    if len(given) == 1 and workbook_named and not given[0].startswith("-"):
         _keep_quit_key()
         return workbook_cli.app(given[0], argv)  # `gearhead robot.toml`: the app with that workbook
     args = _parser().parse_args(argv)

@@ -22,7 +22,9 @@ def is_workbook(argument: str | None) -> bool:
     """Whether `solve`/`sweep`'s first argument names a workbook file rather than a calculator id."""
     # no file-system look-up: a calculator id never ends in .toml nor holds a slash (and a look-up
     # of a 5000-character name raises)
-    return bool(argument) and (argument.endswith(".toml") or "/" in argument or "\\" in argument)
+    return bool(argument) and (
+        argument.endswith(".toml") or "/" in argument or "\\" in argument or argument.startswith("builtin:")
+    )
 
 
 def add_parser(sub) -> None:

@@ -258,7 +258,9 @@ LOOP_FIELDS = (
         max=60,
         when=LOOP,
         help="When the ball is shot (the wheel speed drops as the shot model says, at once); the loop "
-        "is simulated to this time plus the larger of 1 s and it.",
+        "is simulated to this time plus the larger of 1 s and it. A shot at a loop update comes after "
+        "that update's measurement: a reading of that instant, then or through the delay, is the "
+        "speed before the shot.",
     ),
     Field(
         "setpoint_profile",

@@ -27,7 +27,7 @@ FIELDS = motor_fields() + (
         "Operating torque",
         "torque",
         "N*m",
-        default=0.2,
+        default=0.05,  # under every motor's stall torque (REV HD Hex: 0.105 N*m): any motor chosen solves
         min=0,
         help="Torque τ at the gearbox output for the operating point (eqs. 8-10).",
     ),

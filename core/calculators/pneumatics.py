@@ -48,6 +48,11 @@ RELIEF = 125 * PSI  # FRC relief valve
 SLACK = 1 + 1e-12  # field bounds: a value typed exactly at a bound parses a bit off it (unit factors)
 GROUPS = 3
 MIN_PERIOD = 0.1  # s; a valve cannot cycle faster, and it bounds the work of a match
+# A stroke whose chamber gets under this fraction of its working pressure has under 1 % of its force:
+# the tank is as good as empty. Without it "emptied" meant a storage at exactly 0 psi, which
+# unregulated strokes (each shares the tank's air: P·V/(V + A·L)) approach but never reach: a tank
+# at 0.0069 psi after 15 firings read "Tank emptied: no".
+EMPTY_FRACTION = 0.01
 MAX_FIRINGS = SOLVE_NFEV // 30  # with the compressor on: 2 runs × ≥ 15 evaluations per firing
 ADVICE = (
     "match_length",
@@ -393,7 +398,8 @@ OUTPUTS = (
         "tank_empty",
         "Tank emptied",
         equation="(81)",
-        help="Whether a stroke found the storage at atmospheric pressure (the stroke is incomplete).",
+        help="Whether a stroke's chamber got under 1 % of its working pressure (under 1 % of its force; "
+        "the storage at or near atmospheric pressure).",
     ),
     *[
         o
@@ -405,7 +411,8 @@ OUTPUTS = (
                 "force",
                 "lbf",
                 equation="(82)",
-                help="π·D²/4 at its push pressure.",
+                help="π·D²/4 at the lowest pressure an extend stroke got in the match: its push "
+                "pressure, or less when the storage could not supply it (N4).",
             ),
             Output(
                 f"pull_force_{i}",
@@ -413,7 +420,8 @@ OUTPUTS = (
                 "force",
                 "lbf",
                 equation="(83)",
-                help="π·(D² − d²)/4 at its pull pressure.",
+                help="π·(D² − d²)/4 at the lowest pressure a retract stroke got in the match: its "
+                "pull pressure, or less when the storage could not supply it (N4).",
             ),
         )
     ],
@@ -529,9 +537,9 @@ def short_of_pressure(gs: list[dict], lows: dict[int, list]) -> list[str]:
             f"Cylinder group {g['index']} is short of air from t = {t:.4g} s: its {stroke} stroke there "
             f"ends at {P_cyl / PSI:.4g} psi, below its {setting / PSI:.4g} psi working pressure (storage "
             f"{P_storage / PSI:.4g} psi before the stroke). At the pressures available its lowest "
-            f"forces in the match are {push:.4g} lbf push and {pull:.4g} lbf pull; the push and pull "
-            f"forces shown are at the pressures entered ({g['A_push'] * g['P_push'] / LBF:.4g} and "
-            f"{g['A_pull'] * g['P_pull'] / LBF:.4g} lbf)."
+            f"forces in the match are {push:.4g} lbf push and {pull:.4g} lbf pull (the forces shown); at "
+            f"the pressures entered they would be {g['A_push'] * g['P_push'] / LBF:.4g} and "
+            f"{g['A_pull'] * g['P_pull'] / LBF:.4g} lbf."
         )
     return out
 
@@ -607,14 +615,19 @@ def simulate(v, rtol: float) -> SimRun:
         P_before = P
         chambers: list[tuple[float, float]] = []
         P = fire(P, g, V, regulator, absolute, chambers)
+        working = (g["P_push"], g["P_pull"])
         low = lows.setdefault(g["index"], [math.inf, math.inf, None])
         for k, ((P_storage, P_cyl), setting) in enumerate(zip(chambers, (g["P_push"], g["P_pull"]))):
             low[k] = min(low[k], P_cyl)
             if low[2] is None and P_cyl < setting:  # (N4): the first stroke short of its pressure
                 low[2] = (tf, ("push", "pull")[k], P_storage, P_cyl, setting)
-        if P == 0.0 and not empty:
+        if not empty and (P == 0.0 or any(c < EMPTY_FRACTION * w for (_, c), w in zip(chambers, working))):
             empty = True
-            warnings.append(f"The tank empties at t = {tf:.3g} s: strokes after that are incomplete.")
+            warnings.append(
+                f"The tank empties at t = {tf:.3g} s: from then a stroke gets under "
+                f"{EMPTY_FRACTION * 100:g} % of its working pressure (storage {P / PSI:.3g} psi), too little "
+                f"to move a load."
+            )
         ts.append(tf)
         Ps.append(P)
         if has_comp and (not switch or P <= asm.params["switch_on"]) and P < top:
@@ -630,16 +643,17 @@ def simulate(v, rtol: float) -> SimRun:
         "firings": len(schedule) - 1,
         "tank_empty": empty,
     }
-    for g in gs:
-        values[f"push_force_{g['index']}"] = g["A_push"] * g["P_push"]  # (82)
-        values[f"pull_force_{g['index']}"] = g["A_pull"] * g["P_pull"]  # (83)
+    for g in gs:  # (82), (83) at the lowest chamber pressure of the match (N4); unfired: as entered
+        low = lows.get(g["index"], [g["P_push"], g["P_pull"]])
+        values[f"push_force_{g['index']}"] = g["A_push"] * low[0]
+        values[f"pull_force_{g['index']}"] = g["A_pull"] * low[1]
     warnings += short_of_pressure(gs, lows)
     if not has_comp:
         warnings.append("No compressor: pressure only falls; answered in closed form (no integration).")
     if gs and not regulator:
         warnings.append(
             "No regulator: cylinders get storage pressure, so the air used follows the tank; "
-            "the forces shown are at the push/pull pressures entered."
+            "the forces shown are at the lowest pressure a stroke got."
         )
     return SimRun(
         values,

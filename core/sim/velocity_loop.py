@@ -164,13 +164,18 @@ class LoopRun:
     nfev: int = 0
 
     def speed(self, t: float) -> float:
-        """ω(t) on the run so far (0 before the start)."""
+        """ω(t) as a sample taken at t reads it (0 before the start): at a shot's instant the speed
+        before the shot, as a measurement at that instant comes before the shot (module docstring),
+        whether it is read then or a whole number of periods later through the delay. So the
+        period ending at t, not the one starting there (t − δ lands on a period's start to within
+        rounding: k·dt − m·dt, hence the margin)."""
         if t <= 0 or not self.periods:
             return 0.0
+        t_before = t - 1e-12 * max(1.0, abs(t))
         lo, hi = 0, len(self.periods) - 1
-        while lo < hi:  # the last period starting at or before t
+        while lo < hi:  # the last period starting before t
             mid = (lo + hi + 1) // 2
-            if self.periods[mid].t0 <= t:
+            if self.periods[mid].t0 < t_before:
                 lo = mid
             else:
                 hi = mid - 1
