@@ -171,7 +171,7 @@ def test_keys_typed_from_the_first_instant_are_kept(tmp_path, delay):
         for key in ("C-\\", "Tab", "Tab", "3"):
             run("send-keys", "-t", "app", key)
         motors = ""
-        deadline = time.monotonic() + 20
+        deadline = time.monotonic() + 40  # a loaded CI machine takes seconds to the first card
         while time.monotonic() < deadline:
             rows = [
                 line
@@ -179,7 +179,7 @@ def test_keys_typed_from_the_first_instant_are_kept(tmp_path, delay):
                 if line.startswith("│ Motors ")
             ]
             motors = rows[0].split()[2] if rows else ""
-            if motors == "3" and "Free current" in "".join(rows):
+            if motors == "3":
                 break
             time.sleep(0.2)
         assert motors == "3", run("capture-pane", "-p", "-t", "app")
