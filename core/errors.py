@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Iterable
 
 ECHO_CHARS = 40  # a message quotes at most this much of an entry, so it stays one short line
@@ -10,10 +11,21 @@ ECHO_CHARS = 40  # a message quotes at most this much of an entry, so it stays o
 def shown(text: object, limit: int = ECHO_CHARS) -> str:
     """What the user typed, quoted for a message: at most `limit` characters then "…", with line
     breaks and control characters escaped (repr), so a message is always one line."""
-    s = str(text)
+    s = as_text(text)
     if len(s) > limit:
         s = s[:limit] + "…"
     return repr(s)
+
+
+def as_text(value: object) -> str:
+    """str(value), except an integer past Python's int-to-str limit (4 300 digits, where str
+    raises ValueError), which is described by its size instead."""
+    try:
+        return str(value)
+    except ValueError:
+        if isinstance(value, int):
+            return f"<an integer of more than {sys.get_int_max_str_digits()} digits>"
+        raise
 
 
 class InputError(ValueError):

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from . import units
-from .errors import InputError, shown
+from .errors import InputError, as_text, shown
 
 # Beyond these magnitudes (in SI) no robot part exists, and products of such values overflow
 # or underflow; rejecting them keeps every formula finite without per-field guesswork.
@@ -209,7 +209,7 @@ class Integer(Kind):
             if not math.isfinite(as_float) or as_float != int(as_float):
                 raise InputError(f.name, f"{shown(text)} is not a whole number")
             value = int(as_float)
-        return self.checked(f, value, str(value))
+        return self.checked(f, value, as_text(value))  # str() refuses past 4 300 digits
 
     def holds(self, f, value):
         return isinstance(value, int) and not isinstance(value, bool)
