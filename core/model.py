@@ -219,6 +219,8 @@ def solve(
 ) -> Solution:
     """Parse, compute and format one calculator. Raises InputError on any bad entry."""
     calc = get(calc_id)
+    if raw is not None and not isinstance(raw, Mapping):  # solve("motor", [1, 2]): named, not a TypeError
+        raise InputError("inputs", f"must be a mapping of field names to entries, got {type(raw).__name__}")
     raw, notices = retire(calc.fields, raw or {})  # once per solve: parse_inputs is told so
     values, texts = parse_inputs(calc, raw, notices, retired=True)
     with last_resort():
