@@ -590,3 +590,38 @@ def test_any_python_value_in_any_field_of_the_api_is_solved_or_refused_by_name(c
             raise
         code, err = 70, repr(exc)
     _outcome("api", code, err)
+
+
+async def test_the_load_dialog_opens_with_bad_user_presets_beside_good_ones():
+    """A user preset of a 5 000-digit integer made ctrl+o raise (ValueError in tomllib) and never open."""
+    from textual.widgets import OptionList
+
+    from gearhead.tui.app import GearheadApp
+    from tests.tui_helpers import settle
+
+    folder = presets.user_dir() / "gear_ratio"
+    folder.mkdir(parents=True)
+    (folder / "huge.toml").write_text(
+        f'calculator = "gear_ratio"\nname = "huge"\n[inputs]\nload = {HUGE}\n', encoding="utf-8"
+    )
+    (folder / "big.toml").write_text(
+        f'calculator = "gear_ratio"\nname = "big"\n[inputs]\nload = {BIG}\n', encoding="utf-8"
+    )
+    presets.save(presets.Preset("gear_ratio", "good one", inputs={"load": "20 lbf"}))
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        await pilot.press("ctrl+o")
+        await pilot.pause()
+        options = app.screen.query_one(OptionList)
+        prompts = [str(options.get_option_at_index(i).prompt) for i in range(options.option_count)]
+        assert any("good one" in p for p in prompts) and not any("huge" in p for p in prompts)
+
+
+def test_the_readme_states_the_sweeps_budget():
+    from gearhead.core import sweep
+
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    section = readme.split("## Sweeps and tolerances", 1)[1].split("\n## ", 1)[0]
+    assert f"{sweep.SWEEP_SECONDS:g} s of the sweeping thread's CPU" in section
+    assert f"{sweep.MAX_POINTS:,}".replace(",", " ") + " points" in section
