@@ -87,8 +87,9 @@ def decode_text(text: str) -> str:
         digits = version.group(1).lstrip("0") or "0"
         # compared by length first: int() of a 5 000-digit version raised (Python's int-to-str limit)
         newer = len(digits) > 9 or int(digits) > VERSION
+        said = digits if len(digits) <= 9 else shown(digits, 12)
         why = (
-            f"version {digits if len(digits) <= 9 else shown(digits, 12)} is newer than this Gearhead reads ({VERSION}); upgrade Gearhead"
+            f"version {said} is newer than this Gearhead reads ({VERSION}); upgrade Gearhead"
             if newer
             else f"version {digits} is not a Gearhead share code version (this Gearhead reads {PREFIX})"
         )
