@@ -623,3 +623,20 @@ def test_the_readme_states_the_sweeps_budget():
     section = readme.split("## Sweeps and tolerances", 1)[1].split("\n## ", 1)[0]
     assert f"{sweep.SWEEP_SECONDS:g} s of the sweeping thread's CPU" in section
     assert f"{sweep.MAX_POINTS:,}".replace(",", " ") + " points" in section
+
+
+async def test_the_app_shows_a_workbook_with_a_temperature_variable():
+    """A workbook variable in degC was a KeyError '' on reading: in the app a raw traceback."""
+    from gearhead.core import workbook
+    from gearhead.tui.app import GearheadApp
+    from tests.test_workbook_app import opened, requirement_line, settled
+
+    text = _temperature_workbook(
+        'temperature = "20 degC"\nmass = "10 lb"',
+        '[[requirements]]\nname = "Cool enough"\ncheck = "temperature < 30 degC"',
+    )
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.from_text(text, "t.toml"))
+    async with app.run_test(size=(140, 40)) as pilot:
+        screen = await opened(pilot, app)
+        await settled(pilot, screen)
+        assert requirement_line(screen).startswith("✔ Cool enough")
