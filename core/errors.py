@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Iterable
 
 ECHO_CHARS = 40  # a message quotes at most this much of an entry, so it stays one short line
@@ -10,10 +11,20 @@ ECHO_CHARS = 40  # a message quotes at most this much of an entry, so it stays o
 def shown(text: object, limit: int = ECHO_CHARS) -> str:
     """What the user typed, quoted for a message: at most `limit` characters then "…", with line
     breaks and control characters escaped (repr), so a message is always one line."""
-    s = str(text)
+    s = as_text(text)
     if len(s) > limit:
         s = s[:limit] + "…"
     return repr(s)
+
+
+def as_text(value: object) -> str:
+    """str(value), except an integer past Python's int-to-str limit (4 300 digits, where str
+    raises ValueError), alone or in a container, which is described instead."""
+    try:
+        return str(value)
+    except ValueError:  # only the int-to-str limit raises it here (also inside a list: [10**5000])
+        digits = f"an integer of more than {sys.get_int_max_str_digits()} digits"
+        return f"<{digits}>" if isinstance(value, int) else f"<a {type(value).__name__} holding {digits}>"
 
 
 class InputError(ValueError):
@@ -25,7 +36,9 @@ class InputError(ValueError):
         self.source = source  # e.g. a preset file path
         where = f"{source if source.isprintable() else repr(source)}: " if source else ""
         # a field name may itself be what the user typed (an unknown --set NAME): cap it in the text
-        name = field if len(field) <= ECHO_CHARS and field.isprintable() else shown(field)
+        # (or, through the Python API, not a string at all: solve("motor", {1: 2}))
+        plain = isinstance(field, str) and len(field) <= ECHO_CHARS and field.isprintable()
+        name = field if plain else shown(field)
         super().__init__(f"{where}{name}: {message}")
 
     @property

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from . import units
-from .errors import InputError, shown
+from .errors import InputError, as_text, shown
 
 # Beyond these magnitudes (in SI) no robot part exists, and products of such values overflow
 # or underflow; rejecting them keeps every formula finite without per-field guesswork.
@@ -57,7 +57,7 @@ def flags_text(items: Any) -> str:
 def _flag_names(value: Any) -> set[str]:
     if isinstance(value, (list, tuple, set, frozenset)):
         return set(value)
-    return {x for x in str(value).replace(",", " ").split() if x}
+    return {x for x in as_text(value).replace(",", " ").split() if x}
 
 
 class Kind:
@@ -103,13 +103,13 @@ class Kind:
 
     def preview_text(self, f: Field, saved: Any) -> str:
         """A value as a preset saved it, for a person to read (the load dialog's preview)."""
-        return str(saved)
+        return as_text(saved)
 
     def entry_text(self, f: Field, entered: Any) -> str:
         """The text shown (and reported in JSON) for what was entered."""
         if isinstance(entered, bool):
             return "true" if entered else "false"
-        return str(entered)
+        return as_text(entered)  # str() refuses an int past 4 300 digits
 
     def reported(self, f: Field, value: Any) -> tuple[Any, str]:
         """(value, SI unit) as JSON reports a parsed input."""
@@ -131,7 +131,7 @@ class Kind:
 
     def entry(self, f: Field, value: Any) -> Any:
         """A stored or sent value (preset, send-to) as the widget holds it."""
-        return str(value)
+        return as_text(value)
 
     def stored(self, f: Field, entry: Any) -> Any:
         """What a preset stores for the widget's entry."""
@@ -151,7 +151,12 @@ class Quantity(Kind):
     with_unit = True
 
     def parse(self, f, raw):
-        return self.checked(f, units.parse(raw, f.unit, f.quantity, f.name), str(raw))
+        typed = as_text(raw)  # str() refuses an int past 4 300 digits, even inside a list
+        return self.checked(
+            f,
+            units.parse(raw if isinstance(raw, (str, int, float)) else typed, f.unit, f.quantity, f.name),
+            typed,
+        )
 
     def checked(self, f, value, typed):
         if value != 0 and not (MAGNITUDE_FLOOR <= abs(value) <= MAGNITUDE_CEILING):
@@ -201,7 +206,7 @@ class Integer(Kind):
         if isinstance(raw, numbers.Integral):
             value = int(raw)
         else:
-            text = units.normalise(raw, f.name)  # the same screening as a quantity: "−2", "３"
+            text = units.normalise(as_text(raw), f.name)  # the same screening as a quantity: "−2", "３"
             try:
                 as_float = float(text)
             except ValueError:
@@ -209,7 +214,7 @@ class Integer(Kind):
             if not math.isfinite(as_float) or as_float != int(as_float):
                 raise InputError(f.name, f"{shown(text)} is not a whole number")
             value = int(as_float)
-        return self.checked(f, value, str(value))
+        return self.checked(f, value, as_text(value))  # str() refuses past 4 300 digits
 
     def holds(self, f, value):
         return isinstance(value, int) and not isinstance(value, bool)
@@ -249,7 +254,7 @@ class Choice(Kind):
         return value in f.choices
 
     def preview_text(self, f, saved):
-        return f.label_of(saved) if saved in f.choices else str(saved)  # a stale name as saved
+        return f.label_of(saved) if saved in f.choices else as_text(saved)  # a stale name as saved
 
     def widget(self, f):
         return Widget("select", tuple((c, f.label_of(c)) for c in f.choices), f.unit or None)
@@ -291,7 +296,7 @@ class Flags(Kind):
     def entry_text(self, f, entered):
         if isinstance(entered, (str, list, tuple, set, frozenset)):
             return flags_text(entered)
-        return str(entered)
+        return as_text(entered)
 
     def reported(self, f, value):
         return sorted(value), ""
@@ -312,7 +317,7 @@ class Boolean(Kind):
     def parse(self, f, raw):
         if isinstance(raw, bool):
             return raw
-        text = str(raw).strip().lower()
+        text = as_text(raw).strip().lower()
         if text in ("true", "yes", "on", "1"):
             return True
         if text in ("false", "no", "off", "0"):
@@ -335,7 +340,7 @@ class Boolean(Kind):
         return bool(f.default)
 
     def entry(self, f, value):
-        return value if isinstance(value, bool) else str(value).lower() in ("true", "yes", "1", "on")
+        return value if isinstance(value, bool) else as_text(value).lower() in ("true", "yes", "1", "on")
 
 
 QUANTITY, INTEGER, CHOICE, FLAGS, BOOLEAN = Quantity(), Integer(), Choice(), Flags(), Boolean()

@@ -30,7 +30,7 @@ from .declarations import Output as Output
 from .declarations import Plot as Plot
 from .declarations import Result as Result
 from .declarations import Table as Table
-from .errors import InputError, raise_all
+from .errors import InputError, raise_all, shown
 from .fields import Field as Field
 from .registry import get
 from .sim.effects import retire
@@ -83,6 +83,9 @@ class Solution:
         return out
 
 
+MAX_UNKNOWN_LISTED = 5  # unknown names reported one by one; more are counted, the first few named
+
+
 def parse_inputs(
     calc: Calculator, raw: Mapping[str, Any], ignored: list[str] | None = None, *, retired: bool = False
 ) -> tuple[dict[str, Any], dict[str, str]]:
@@ -102,11 +105,18 @@ def parse_inputs(
     if not retired:
         raw, _ = retire(calc.fields, raw)  # a name retired from a flags field: what replaced it
     known = {f.name for f in calc.fields}
-    errors = [
-        InputError(name, f"unknown field for {calc.id} (fields: {', '.join(sorted(known))})")
-        for name in raw
-        if name not in known
-    ]
+    unknown = [name for name in raw if name not in known]
+    fields = ", ".join(sorted(known))
+    errors = [InputError(name, f"unknown field for {calc.id} (fields: {fields})") for name in unknown]
+    if len(unknown) > MAX_UNKNOWN_LISTED:  # a file of 60 000 junk keys: one line, not 60 000
+        rest = ", ".join(shown(n, 20) for n in unknown[1:MAX_UNKNOWN_LISTED])
+        errors = [
+            InputError(
+                unknown[0],
+                f"unknown field for {calc.id}, and {len(unknown) - 1} more unknown names ({rest}, …) "
+                f"(fields: {fields})",
+            )
+        ]
     mode = None
     if "mode" in known:
         try:
@@ -123,6 +133,7 @@ def parse_inputs(
                 values[f.name] = f.parse(entered)
             except InputError as exc:
                 errors.append(exc)
+                continue  # no text: the entry is refused (and its text may not be writable: [1, 2])
         else:
             try:
                 values[f.name] = f.parse(entered)
@@ -208,6 +219,8 @@ def solve(
 ) -> Solution:
     """Parse, compute and format one calculator. Raises InputError on any bad entry."""
     calc = get(calc_id)
+    if raw is not None and not isinstance(raw, Mapping):  # solve("motor", [1, 2]): named, not a TypeError
+        raise InputError("inputs", f"must be a mapping of field names to entries, got {type(raw).__name__}")
     raw, notices = retire(calc.fields, raw or {})  # once per solve: parse_inputs is told so
     values, texts = parse_inputs(calc, raw, notices, retired=True)
     with last_resort():

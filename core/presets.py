@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import os
 import re
+import sys
 import tomllib
 from dataclasses import dataclass
 from dataclasses import field as dc_field
@@ -133,8 +134,21 @@ def parse_text(text: str, src: str = "<preset>") -> dict[str, Any]:
         return tomllib.loads(text.lstrip("\ufeff"))
     except tomllib.TOMLDecodeError as exc:
         raise InputError("preset", f"malformed TOML: {_first_line(exc)}", src) from None
+    except ValueError:  # int() of a literal past Python's int-to-str limit, inside tomllib
+        line = _long_integer_line(text)
+        raise InputError(
+            "preset",
+            f"an integer of more than {sys.get_int_max_str_digits()} digits{line}; no entry needs one",
+            src,
+        ) from None
     except RecursionError:  # tomllib recurses once per level of nested arrays and tables
         raise InputError("preset", "malformed TOML: arrays or tables nested too deeply", src) from None
+
+
+def _long_integer_line(text: str) -> str:
+    """' on line N' of the first run of more digits than int() reads, else ''."""
+    found = re.search(f"[0-9_]{{{sys.get_int_max_str_digits() + 1},}}", text)
+    return f" on line {text.count(chr(10), 0, found.start()) + 1}" if found else ""
 
 
 def _first_line(exc: Exception) -> str:
@@ -325,14 +339,23 @@ def _scan(calc_id: str | None) -> tuple[list[Preset], list[InputError]]:
     for root, builtin in ((builtin_dir(), True), (user_dir(), False)):
         if not root.is_dir():
             continue
-        dirs = [root / calc_id] if calc_id else sorted(p for p in root.iterdir() if p.is_dir())
-        for d in dirs:
-            for path in sorted(d.glob("*.toml")):
-                try:
-                    p = load(path, builtin=builtin)
-                except InputError as exc:
-                    bad.append(exc)
-                    continue
-                if calc_id is None or p.calculator == calc_id:
-                    found.append(p)
+        try:
+            dirs = [root / calc_id] if calc_id else sorted(p for p in root.iterdir() if p.is_dir())
+            files = [path for d in dirs for path in sorted(d.glob("*.toml"))]
+        except OSError as exc:  # an unreadable folder: named, and the built-in presets still listed
+            bad.append(InputError("presets", f"cannot list the folder ({_os_reason(exc)})", str(root)))
+            continue
+        for path in files:
+            try:
+                p = load(path, builtin=builtin)
+            except InputError as exc:
+                bad.append(exc)
+                continue
+            except Exception as exc:  # noqa: BLE001 - a reader's bug: one bad file never hides the others
+                bad.append(
+                    InputError("preset", f"could not be read ({type(exc).__name__}: {exc})", str(path))
+                )
+                continue
+            if calc_id is None or p.calculator == calc_id:
+                found.append(p)
     return found, bad

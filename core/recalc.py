@@ -216,6 +216,38 @@ def pint_units(units: str) -> str:
     return "".join(out)
 
 
+def _same_shape(value: Any, default: Any) -> bool:
+    """Whether a parsed JSON value has the shape of ReCalc's default: an object with the same keys,
+    each member of its default's type (a number for a number), or a list (its items are checked
+    where it is read)."""
+    if isinstance(default, dict):
+        return (
+            isinstance(value, dict)
+            and set(value) == set(default)
+            and all(_same_shape(value[k], default[k]) for k in default)
+        )
+    if isinstance(default, bool) or isinstance(value, bool):
+        return isinstance(value, bool) and isinstance(default, bool)
+    if isinstance(default, (int, float)):
+        return isinstance(value, (int, float))
+    return type(value) is type(default)
+
+
+def _finite(value: Any) -> bool:
+    """Whether every number in a parsed JSON value is a finite float (json reads Infinity, NaN,
+    1e400 as inf, and integers of any size)."""
+    if isinstance(value, dict):
+        return all(_finite(v) for v in value.values())
+    if isinstance(value, list):
+        return all(_finite(v) for v in value)
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        try:
+            return math.isfinite(float(value))
+        except OverflowError:
+            return False
+    return True
+
+
 class _Link:
     """One ReCalc link's parameters, read as ReCalc reads them, with the notes of the import."""
 
@@ -247,12 +279,14 @@ class _Link:
             if isinstance(default, str):
                 return text
             value = json.loads(text)
-            if type(value) is not type(default) or (isinstance(default, dict) and set(value) != set(default)):
+            if not _same_shape(value, default):  # {"name": ["x"]}: a list where a name goes
                 raise ValueError(text)
-            return value
         except (ValueError, TypeError, RecursionError):
             self.notes.append(f"{name}: {shown(text)} is not what ReCalc writes there; ReCalc's default used")
             return default
+        if not _finite(value):  # 1e400, a 400-digit integer, Infinity, NaN: past any robot
+            raise InputError(name, f"{shown(text)} holds a number past the finite range", SOURCE)
+        return value
 
     def quantity(self, name: str) -> str:
         """A measurement as text Gearhead's fields read ('60 in', '4.5 in**2*lb')."""

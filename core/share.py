@@ -84,11 +84,14 @@ def decode_text(text: str) -> str:
         raise InputError("share code", f"is too long ({len(code)} characters)")
     version = _ANY_PREFIX.match(code)
     if version.group(0) != PREFIX:
-        number = int(version.group(1))
+        digits = version.group(1).lstrip("0") or "0"
+        # compared by length first: int() of a 5 000-digit version raised (Python's int-to-str limit)
+        newer = len(digits) > 9 or int(digits) > VERSION
+        said = digits if len(digits) <= 9 else shown(digits, 12)
         why = (
-            f"version {number} is newer than this Gearhead reads ({VERSION}); upgrade Gearhead"
-            if number > VERSION
-            else f"version {number} is not a Gearhead share code version (this Gearhead reads {PREFIX})"
+            f"version {said} is newer than this Gearhead reads ({VERSION}); upgrade Gearhead"
+            if newer
+            else f"version {digits} is not a Gearhead share code version (this Gearhead reads {PREFIX})"
         )
         raise InputError("share code", why)
     body = code[version.end() :].rstrip("=")  # base64's padding, left off, is harmless if kept

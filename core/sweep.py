@@ -75,11 +75,16 @@ def _spaced(start: float, stop: float, n: int, log: bool) -> list[float]:
     """n points from start to stop inclusive; the endpoints are exactly what was typed."""
     if n == 1:
         return [start]
-    if log:
+    if log and math.isfinite(stop / start) and stop / start != 0:
         ratio = stop / start
         inner = [start * ratio ** (i / (n - 1)) for i in range(1, n - 1)]
-    else:
+    elif log:  # in logarithms: stop/start overflows for 1e-200..1e200 lbf (4.4e200/4.4e-200 is inf)
+        sign, a, b = math.copysign(1.0, start), math.log(abs(start)), math.log(abs(stop))
+        inner = [sign * math.exp(a + (b - a) * i / (n - 1)) for i in range(1, n - 1)]
+    elif math.isfinite(stop - start):
         inner = [start + (stop - start) * i / (n - 1) for i in range(1, n - 1)]
+    else:  # -1e308..1e308: the span overflows; each point weighs the ends instead
+        inner = [start * (1 - i / (n - 1)) + stop * (i / (n - 1)) for i in range(1, n - 1)]
     return [start, *inner, stop]
 
 

@@ -451,8 +451,14 @@ def _variable(name: str, value: Any, src: str) -> Variable:
     if isinstance(value, bool):
         return Variable(name, value, value, None, None, text=True)
     if isinstance(value, (int, float)):
-        if isinstance(value, float) and not math.isfinite(value):
-            raise InputError(where, "is not a finite number", src)
+        try:
+            finite = math.isfinite(value)
+        except OverflowError:  # an int past float's range (a 400-digit TOML integer)
+            raise InputError(
+                where, f"{shown(value)} is too large for a number (at most about 1.8e308)", src
+            ) from None
+        if not finite:
+            raise InputError(where, f"{shown(value)} is not a finite number", src)
         return Variable(name, value, value, None, None)
     if not isinstance(value, str):
         raise InputError(where, f"must be a string, number or boolean, got {type(value).__name__}", src)
@@ -481,6 +487,8 @@ def _unit_of(written: str, q: Any) -> tuple[str, str]:
     if not _is_quantity(q):
         return "", "dimensionless"
     kind = kind_of(q)
+    if not kind:  # a unit pint knows that no field takes (degC, K, mol): kept as written, kind ''
+        return f"{q.units:~}", ""
     m = re.match(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*(?P<unit>.*?)\s*$", written)
     unit = m.group("unit") if m else ""
     if unit:
@@ -1310,6 +1318,12 @@ def _display_unit(wb: Workbook, r: Requirement) -> str:
 # The workbook as one calculator: variables in, requirement margins out (sweeps and tolerances)
 
 
+def studied(v: Variable) -> bool:
+    """Whether a sweep or worst case can vary `v`: its unit is one of a kind Gearhead's fields
+    take (a temperature in degC or K, an amount in mol are compared, not varied)."""
+    return v.kind in units.SI_UNITS
+
+
 def as_calculator(wb: Workbook):
     """A Calculator whose fields are the workbook's plain variables (numbers and quantities) and
     whose outputs are the requirements' margins (SI), so core.sweep and core.tolerance study a
@@ -1319,7 +1333,7 @@ def as_calculator(wb: Workbook):
 
     fields = []
     for v in wb.variables.values():
-        if v.expr is not None or v.text:
+        if v.expr is not None or v.text or not studied(v):
             continue
         if isinstance(v.nominal, int) and not isinstance(v.nominal, bool):
             fields.append(Field(v.name, v.name, default=v.nominal, integer=True))

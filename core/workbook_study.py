@@ -20,7 +20,7 @@ from . import tolerance
 from .errors import InputError
 from .model import parse_inputs
 from .sim import integrate
-from .workbook import Workbook, as_calculator
+from .workbook import Workbook, as_calculator, studied
 
 
 def run_sweep(
@@ -141,6 +141,11 @@ def worst_case(wb: Workbook, cancelled: Callable[[], bool] | None = None) -> Wor
         _, values, tols, notes = tolerance.parse(calc, entries)
     except InputError as exc:
         raise exc.from_source(wb.source) from None
+    notes = notes + [  # never dropped silently
+        f"{v.name}: its tolerance is not analysed ({v.unit} is a unit no Gearhead field takes)"
+        for v in wb.variables.values()
+        if v.tolerance and not studied(v)
+    ]
     nominal = sweeps.evaluate(calc, values)
     if not tols:
         notes = notes + ['no variable carries a tolerance (write e.g. robot_mass = "125 lb ± 5 lb")']
