@@ -333,6 +333,11 @@ def problems(calc_id: str | None = None) -> list[InputError]:
     return _scan(calc_id)[1]
 
 
+def scan(calc_id: str | None = None) -> tuple[list[Preset], list[InputError]]:
+    """`listing` and `problems` from one pass over the folders (the load dialog shows both)."""
+    return _scan(calc_id)
+
+
 def _scan(calc_id: str | None) -> tuple[list[Preset], list[InputError]]:
     found: list[Preset] = []
     bad: list[InputError] = []

@@ -170,7 +170,9 @@ class LoadPresetScreen(Dialog[presets.Preset | None]):
         super().__init__()
         self.calc_id = calc_id
         self.blink = blink
-        self.found = presets.listing(calc_id)
+        # a user preset that cannot be read is listed (greyed, not loadable) with why: it was
+        # skipped without a word, and before that it kept the dialog from opening
+        self.found, self.bad = presets.scan(calc_id)
         self.type_ahead = TypeAhead()  # letters on the list jump to the preset they name
 
     def on_paste(self, event: events.Paste) -> None:
@@ -199,6 +201,9 @@ class LoadPresetScreen(Dialog[presets.Preset | None]):
             options = [
                 Option(Text(f"{p.name}  ({'built-in' if p.builtin else 'yours'})"), id=str(i))
                 for i, p in enumerate(self.found)
+            ] + [
+                Option(Text(f"✗ {printable(str(exc))}", style="red"), id=f"bad-{i}", disabled=True)
+                for i, exc in enumerate(self.bad)
             ]
             # the path box first (it has the keys) and its error right under it: on a small
             # terminal the dialog is cut at the bottom, and an error below the list went unseen
@@ -219,11 +224,15 @@ class LoadPresetScreen(Dialog[presets.Preset | None]):
     @on(OptionList.OptionHighlighted, "#preset-list")
     @guarded
     def _preview(self, event: OptionList.OptionHighlighted) -> None:
+        if not (event.option.id or "").isdigit():
+            return
         self.query_one("#preset-preview", Static).update(preview(self.found[int(event.option.id)]))
 
     @on(OptionList.OptionSelected)
     @guarded
     def _picked(self, event: OptionList.OptionSelected) -> None:
+        if not (event.option.id or "").isdigit():
+            return
         self.dismiss(self.found[int(event.option.id)])
 
     @on(Button.Pressed, "#cancel")
