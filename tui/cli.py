@@ -434,9 +434,7 @@ def _print_table(table, rows) -> None:
 def _preset_out(args, calc, raw: dict, solution) -> int:
     """--preset-out: the solved inputs as a whole preset (every field: defaults for those not
     given), '-' to stdout alone so it pipes into a file or another tool, else a new file."""
-    from pathlib import Path
-
-    from gearhead.core import share
+    from gearhead.core import atomic_file, share
     from gearhead.core.export import preset_toml
 
     inputs = {f.name: f.kind.initial_entry(f) for f in calc.fields}
@@ -448,16 +446,8 @@ def _preset_out(args, calc, raw: dict, solution) -> int:
     if args.preset_out == "-":
         sys.stdout.write(text)
         return 0
-    path = Path(args.preset_out).expanduser()
-    try:
-        with open(path, "x", encoding="utf-8") as fh:  # "x": never overwrite silently
-            fh.write(text)
-    except FileExistsError:
-        raise InputError("--preset-out", "file exists; choose another name", str(path)) from None
-    except (OSError, ValueError) as exc:  # a missing folder, no permission, a NUL in the name
-        raise InputError(
-            "--preset-out", f"cannot write ({getattr(exc, 'strerror', None) or exc})", str(path)
-        ) from None
+    # whole or not at all: a full disk used to leave a 0-byte file (then "exists" on a retry)
+    path = atomic_file.write_text(args.preset_out, text, field="--preset-out")
     width = max(len(calc.output(k).label) for k in solution.outputs)
     print(f"{calc.title} ({calc.id}): preset written to {path}", file=sys.stderr)
     if args.json:

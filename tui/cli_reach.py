@@ -61,8 +61,6 @@ def _share(args) -> int:
 
 
 def _import(args) -> int:
-    from pathlib import Path
-
     import tomli_w
 
     from gearhead.core import presets, share
@@ -76,7 +74,7 @@ def _import(args) -> int:
     if args.out is None:
         sys.stdout.write(tomli_w.dumps(preset.as_toml()))
         return 0
-    path = presets.save(preset, Path(args.out).expanduser())  # refuses an existing file
+    path = presets.save(preset, args.out, field="--out")  # refuses an existing file
     from .cli import _printable
 
     # a name is shown escaped, as `presets` lists it: a shared code's could hold an escape sequence
