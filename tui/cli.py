@@ -7,7 +7,7 @@ import json
 import sys
 from collections.abc import Sequence
 
-from gearhead.core.errors import InputError, shown
+from gearhead.core.errors import InputError, printable, shown
 
 from . import cli_reach
 
@@ -225,7 +225,8 @@ def _logged(exc: BaseException, argv) -> str:
 def _complain(message: str, kind: str = "") -> None:
     """One line on stderr, whatever the message holds (an InputError is one line already; this
     keeps it so for any text that reaches here)."""
-    line = " ".join(message.split()) if not message.isprintable() else message
+    # line breaks become spaces; any other control character (an ESC in a file's text) is shown
+    line = printable(" ".join(message.split())) if not message.isprintable() else message
     print(f"gearhead: {kind}{line}", file=sys.stderr)
 
 
@@ -535,11 +536,7 @@ def _bounds(f) -> dict:
     }
 
 
-def _printable(text: str) -> str:
-    """`text` with control and other invisible characters escaped (ESC as \\x1b)."""
-    if text.isprintable():
-        return text
-    return "".join(ch if ch.isprintable() else ascii(ch)[1:-1] for ch in text)
+_printable = printable  # core.errors.printable: the one function every print of file text uses
 
 
 def _calculators(args) -> int:
