@@ -98,7 +98,7 @@ def write_bytes(
             raise FileExists(field, path)
         if old is not None and not stat.S_ISREG(old.st_mode):  # a folder, /dev/null, a FIFO
             raise WriteError(field, "not a regular file", path)
-        _write(target, data, None if old is None else stat.S_IMODE(old.st_mode), overwrite, field)
+        _write(target, data, old, overwrite, field)
     except WriteError:
         raise
     except (OSError, ValueError) as exc:  # ValueError: e.g. a name the OS cannot encode
@@ -107,15 +107,20 @@ def write_bytes(
     return path
 
 
-def _write(target: Path, data: bytes, mode: int | None, overwrite: bool, field: str) -> None:
+def _write(target: Path, data: bytes, old: os.stat_result | None, overwrite: bool, field: str) -> None:
     folder = target.parent
+    mode = None if old is None else stat.S_IMODE(old.st_mode)
     fd, tmp = _temporary(folder)
     try:
         view = memoryview(data)
         while view:  # os.write may write less than asked
             view = view[os.write(fd, view) :]
-        if mode is not None:
-            os.fchmod(fd, mode)  # keep the replaced file's mode (a save must not make 0664 0600)
+        if old is not None:  # keep the replaced file's owner, then mode (a save made 0664 0600)
+            _keep_owner(fd, old)  # first: a change of owner may clear set-id bits
+            if tmp is None:
+                os.fchmod(fd, mode)
+            else:
+                os.chmod(tmp, mode)  # by name: os.fchmod is not on Windows before Python 3.13
         os.fsync(fd)
         if tmp is None:  # anonymous and whole: name it (linkat following /proc's link to the file)
             link = _linker(fd)
@@ -141,6 +146,17 @@ def _write(target: Path, data: bytes, mode: int | None, overwrite: bool, field: 
 
 # O_TMPFILE (Linux) with /proc to name the file once written (tests switch it off to try the other way)
 _ANONYMOUS = {"ok": hasattr(os, "O_TMPFILE") and os.path.isdir("/proc/self/fd")}
+
+
+def _keep_owner(fd: int, old: os.stat_result) -> None:
+    """The replaced file's owner and group, where we may set them (root saving a user's file;
+    a group we belong to). Not being allowed is not a failure: the mode is what matters."""
+    if not hasattr(os, "fchown") or (old.st_uid, old.st_gid) == (os.geteuid(), os.getegid()):
+        return
+    try:
+        os.fchown(fd, old.st_uid, old.st_gid)
+    except OSError:
+        pass
 
 
 def _linker(fd: int):

@@ -264,3 +264,16 @@ async def test_the_export_dialog_shows_why_a_path_cannot_be_written(target, tmp_
         shown = str(app.screen.query_one("#export-error", Static).render())
         assert "cannot write" in shown and app.is_running
     assert os.listdir(tmp_path) == []
+
+
+def test_a_replaced_file_keeps_its_owner_where_we_may_set_it(tmp_path, temporaries):
+    """Root saving a user's workbook made it root's (and, with mkstemp, 0600): the user lost it."""
+    if not hasattr(os, "geteuid") or os.geteuid() != 0:
+        pytest.skip("changing a file's owner needs root")
+    path = tmp_path / "robot.toml"
+    path.write_bytes(BOOK.read_bytes())
+    os.chown(path, 1234, 2345)
+    os.chmod(path, 0o664)
+    workbook.save(path, {"mass": "12 lb"})
+    info = path.stat()
+    assert (info.st_uid, info.st_gid, stat.S_IMODE(info.st_mode)) == (1234, 2345, 0o664)
