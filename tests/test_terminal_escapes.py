@@ -137,3 +137,19 @@ def test_fuzzed_workbooks_print_no_raw_control_character(
     code, text = run(command[0], str(path), *command[1:])
     assert code in (0, 1, 2), text  # never 70
     assert raw_controls(text) == [], text
+
+
+def test_share_import_and_preset_out_print_file_text_escaped(tmp_path):
+    """`share`/`import` printed a preset's warnings (which quote the file) and `--preset-out` its
+    path as they were."""
+    from gearhead.core import share
+    from gearhead.core.presets import Preset
+
+    code = share.encode(Preset("motor", "x\x1b[2J", "", {"motor_count": 2}))
+    out = tmp_path / "p\x1b[2J.toml"
+    for args in (
+        ["import", code, "--out", str(out)],
+        ["solve", "motor", "--preset-out", str(tmp_path / "q\x1b[2J.toml")],
+    ):
+        status, text = run(*args)
+        assert status == 0 and "\\x1b[2J" in text and raw_controls(text) == [], (args, text)

@@ -450,7 +450,7 @@ def _preset_out(args, calc, raw: dict, solution) -> int:
     # whole or not at all: a full disk used to leave a 0-byte file (then "exists" on a retry)
     path = atomic_file.write_text(args.preset_out, text, field="--preset-out")
     width = max(len(calc.output(k).label) for k in solution.outputs)
-    print(f"{calc.title} ({calc.id}): preset written to {path}", file=sys.stderr)
+    print(f"{calc.title} ({calc.id}): preset written to {printable(path)}", file=sys.stderr)
     if args.json:
         print(json.dumps(solution.as_json(), allow_nan=False))
         return 0
