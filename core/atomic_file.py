@@ -98,7 +98,10 @@ def write_bytes(
             raise FileExists(field, path)
         if old is not None and not stat.S_ISREG(old.st_mode):  # a folder, /dev/null, a FIFO
             raise WriteError(field, "not a regular file", path)
-        _write(target, data, old, overwrite, field)
+        try:
+            _write(target, data, old, overwrite, field, _ANONYMOUS["ok"])
+        except _CannotName:  # /proc's link refused (a locked-down container): a named temporary
+            _write(target, data, old, overwrite, field, False)
     except WriteError:
         raise
     except (OSError, ValueError) as exc:  # ValueError: e.g. a name the OS cannot encode
@@ -107,10 +110,16 @@ def write_bytes(
     return path
 
 
-def _write(target: Path, data: bytes, old: os.stat_result | None, overwrite: bool, field: str) -> None:
+class _CannotName(Exception):
+    """An anonymous temporary file could not be given a name (linkat through /proc refused)."""
+
+
+def _write(
+    target: Path, data: bytes, old: os.stat_result | None, overwrite: bool, field: str, anonymous: bool
+) -> None:
     folder = target.parent
     mode = None if old is None else stat.S_IMODE(old.st_mode)
-    fd, tmp = _temporary(folder)
+    fd, tmp = _temporary(folder, anonymous)
     try:
         view = memoryview(data)
         while view:  # os.write may write less than asked
@@ -129,9 +138,14 @@ def _write(target: Path, data: bytes, old: os.stat_result | None, overwrite: boo
                     link(target)  # fails if the name was taken meanwhile
                 except FileExistsError:
                     raise FileExists(field, target) from None
+                except OSError as exc:
+                    raise _CannotName from exc
                 _sync_folder(folder)
                 return
-            tmp = _hidden_name(folder, link)
+            try:
+                tmp = _hidden_name(folder, link)
+            except OSError as exc:
+                raise _CannotName from exc
         if overwrite:
             os.replace(tmp, target)
         else:
@@ -173,10 +187,10 @@ def _linker(fd: int):
     return link
 
 
-def _temporary(folder: Path) -> tuple[int, Path | None]:
+def _temporary(folder: Path, anonymous: bool) -> tuple[int, Path | None]:
     """An open file in `folder` to write into: anonymous (None) where O_TMPFILE works, else a new
     hidden name. Created 0666 less the umask, as any new file (mkstemp would make it 0600)."""
-    if _ANONYMOUS["ok"]:
+    if anonymous:
         try:
             return os.open(folder, os.O_TMPFILE | os.O_WRONLY, 0o666), None
         except OSError as exc:

@@ -277,3 +277,21 @@ def test_a_replaced_file_keeps_its_owner_where_we_may_set_it(tmp_path, temporari
     workbook.save(path, {"mass": "12 lb"})
     info = path.stat()
     assert (info.st_uid, info.st_gid, stat.S_IMODE(info.st_mode)) == (1234, 2345, 0o664)
+
+
+def test_where_proc_cannot_name_the_file_a_named_temporary_serves(tmp_path, monkeypatch):
+    """A locked-down /proc (linkat refused): the write falls back to a named temporary file."""
+    if not atomic_file._ANONYMOUS["ok"]:
+        pytest.skip("O_TMPFILE is not available here")
+
+    def refused(fd):
+        def link(name):
+            raise PermissionError(1, "Operation not permitted")
+
+        return link
+
+    monkeypatch.setattr(atomic_file, "_linker", refused)
+    path = tmp_path / "x.txt"
+    atomic_file.write_text(path, "one")
+    atomic_file.write_text(path, "two", overwrite=True)
+    assert path.read_text() == "two" and os.listdir(tmp_path) == ["x.txt"]
