@@ -27,6 +27,19 @@ def as_text(value: object) -> str:
         return f"<{digits}>" if isinstance(value, int) else f"<a {type(value).__name__} holding {digits}>"
 
 
+def printable(text: object, keep_newlines: bool = False) -> str:
+    """`text` with every control or other invisible character made visible (ESC as \\x1b, a
+    line break as \\n unless `keep_newlines`), so text read from a file (a workbook's name, a
+    requirement's note, a preset's name) cannot act on the terminal it is printed to. Every CLI
+    print of such text goes through here."""
+    s = str(text)
+    if s.isprintable():
+        return s
+    if keep_newlines:
+        return "\n".join(printable(line) for line in s.split("\n"))
+    return "".join(ch if ch.isprintable() else ascii(ch)[1:-1] for ch in s)
+
+
 class InputError(ValueError):
     """A user entry is wrong. `field` names it, `message` says what is wrong."""
 

@@ -18,6 +18,7 @@ min=0, max=1)` is 0 to 1 inch. A kind converts bounds to SI (`bound_si`) once, o
 
 from __future__ import annotations
 
+import decimal
 import math
 import numbers
 from collections.abc import Mapping
@@ -31,6 +32,9 @@ from .errors import InputError, as_text, shown
 # or underflow; rejecting them keeps every formula finite without per-field guesswork.
 MAGNITUDE_FLOOR = 1e-15
 MAGNITUDE_CEILING = 1e15
+# The largest whole number any integer field takes (a field's own max may be smaller): below 2**53,
+# so every accepted count is exact as a float too, as the formulas use it
+MAX_WHOLE = 10**15
 BOUND_SLACK = 1e-12  # relative: unit conversion may land a typed bound one rounding step outside
 
 
@@ -205,16 +209,40 @@ class Integer(Kind):
             raise InputError(f.name, f"expected a whole number, got {raw!r}")
         if isinstance(raw, numbers.Integral):
             value = int(raw)
+        elif isinstance(raw, float):
+            if not math.isfinite(raw) or raw != int(raw):
+                raise InputError(f.name, f"{shown(raw)} is not a whole number")
+            value = int(raw)
         else:
             text = units.normalise(as_text(raw), f.name)  # the same screening as a quantity: "−2", "３"
+            # read exactly (Decimal, not float): 9007199254740993 stayed …992 through a float
             try:
-                as_float = float(text)
-            except ValueError:
+                exact = decimal.Decimal(text)
+            except (decimal.InvalidOperation, ValueError):
                 raise InputError(f.name, f"{shown(text)} is not a whole number") from None
-            if not math.isfinite(as_float) or as_float != int(as_float):
+            if not exact.is_finite() or exact != exact.to_integral_value():
                 raise InputError(f.name, f"{shown(text)} is not a whole number")
-            value = int(as_float)
-        return self.checked(f, value, as_text(value))  # str() refuses past 4 300 digits
+            if exact.adjusted() > len(str(MAX_WHOLE)):  # '1e999999999': no int of a billion digits
+                raise InputError(
+                    f.name, f"{shown(text)} is too large: a whole number here is at most {MAX_WHOLE}"
+                )
+            if abs(exact) > MAX_WHOLE:
+                raise InputError(
+                    f.name, f"{shown(text)} is too large: a whole number here is at most {MAX_WHOLE}"
+                )
+            value = int(exact)
+        if abs(value) > MAX_WHOLE:  # before str(value): a TOML integer of 5 000 digits has no str
+            digits = int(value.bit_length() * math.log10(2)) + 1
+            raise InputError(
+                f.name,
+                f"a number of about {digits} digits is too large: a whole number here is at most {MAX_WHOLE}",
+            )
+        return self.checked(f, value, str(value))
+
+    def checked(self, f, value, typed):
+        if abs(value) > MAX_WHOLE:  # every whole-number field, whatever its own max
+            raise InputError(f.name, f"{shown(typed)} is too large: must be at most {MAX_WHOLE}")
+        return check_bounds(f, value, typed)
 
     def holds(self, f, value):
         return isinstance(value, int) and not isinstance(value, bool)

@@ -257,69 +257,35 @@ def slug(name: str) -> str:
     return s
 
 
-def save(preset: Preset, path: str | Path | None = None, overwrite: bool = False) -> Path:
-    """Write atomically. Refuses to replace an existing file unless overwrite=True; of two saves of
-    the same new name at once exactly one succeeds (the file is linked into place, which fails if
-    the name exists). A new file gets the mode the umask gives; a replaced one keeps its mode."""
-    import secrets
-
+def save(
+    preset: Preset, path: str | Path | None = None, overwrite: bool = False, field: str = "preset"
+) -> Path:
+    """Write atomically (core.atomic_file: whole or not at all, a replaced file keeps its mode, a
+    symlink is written through). Refuses to replace an existing file unless overwrite=True; of
+    two saves of the same new name at once exactly one succeeds. A new file gets the mode the umask
+    gives. A file that cannot be written raises atomic_file.WriteError (an InputError) naming
+    `field` and the path."""
     import tomli_w
+
+    from . import atomic_file
 
     from_dict(preset.as_toml(), "<unsaved preset>")  # never write a preset we could not load
     if path is None:
         path = user_dir() / preset.calculator / f"{slug(preset.name)}.toml"
-    path = Path(path)
-    if path.exists() and not overwrite:
-        raise _exists(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    data = tomli_w.dumps(preset.as_toml()).encode("utf-8")
-    while True:  # our own temporary name: mkstemp would create it 0600 whatever the umask says
-        tmp = path.parent / f".{path.name[:60]}.{secrets.token_hex(6)}.tmp"
-        try:
-            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o666)
-            break
-        except FileExistsError:
-            continue
+    path = atomic_file.expand(path, field)
     try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-            fh.flush()
-            os.fsync(fh.fileno())
-        if overwrite:
-            try:
-                os.chmod(tmp, os.stat(path).st_mode & 0o7777)  # keep the replaced file's mode
-            except FileNotFoundError:
-                pass
-            os.replace(tmp, path)
-        else:
-            _place_new(tmp, path)
-    finally:
-        if os.path.lexists(tmp):
-            os.unlink(tmp)
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except (OSError, ValueError) as exc:  # /proc, /dev/null/x, a read-only folder, a long name
+        raise atomic_file.WriteError(field, getattr(exc, "strerror", None) or str(exc), path) from None
+    try:
+        atomic_file.write_text(path, tomli_w.dumps(preset.as_toml()), overwrite=overwrite, field=field)
+    except atomic_file.FileExists:
+        raise atomic_file.FileExists(field, path, _EXISTS) from None
     preset.path = path
     return path
 
 
-def _place_new(tmp: Path, path: Path) -> None:
-    """Move the written `tmp` to `path`, which must not exist: a hard link fails if it does, and
-    the whole file appears at once. Where hard links are not supported, an exclusively created
-    empty file claims the name and the temporary file then replaces it."""
-    try:
-        os.link(tmp, path)
-        return
-    except FileExistsError:
-        raise _exists(path) from None
-    except (OSError, NotImplementedError, AttributeError):
-        pass  # e.g. FAT or some network file systems: no hard links
-    try:
-        os.close(os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
-    except FileExistsError:
-        raise _exists(path) from None
-    os.replace(tmp, path)
-
-
-def _exists(path: Path) -> InputError:
-    return InputError("preset", "file exists; choose another name or overwrite explicitly", str(path))
+_EXISTS = "file exists; choose another name or overwrite explicitly"
 
 
 def listing(calc_id: str | None = None) -> list[Preset]:

@@ -3,8 +3,11 @@
 Reading. An entry is split at '±' (or ASCII '+-', '+/-'); the nominal is read by Field.parse as any
 entry is, the tolerance by the same unit parser:
     3.5 in ± 0.01 in     absolute, any unit of the field's kind
-    3.5 in ± 0.01        a bare tolerance is in the nominal's unit (here inches); after an
-                         expression ('2 ft + 3 in ± 1') it is refused: it needs its unit
+    3.5 in ± 0.01        a bare tolerance is in the nominal's unit (here inches), whatever its
+                         form ('± (0.01)', '± 0.01*1'); after an expression ('2 ft + 3 in ± 1')
+                         it is refused: it needs its unit
+    20 ± 1 mm            refused as ambiguous on a field with a unit (20 of the field's unit
+                         ± 1 mm, or (20 ± 1) mm?): give the value its unit
     12 V ± 5 %           a tolerance in % is relative to the nominal...
     10 % ± 2 %           ...unless the nominal is itself in % (then it is percentage points)
 The whole box nominal ± tolerance must lie inside the field's bounds.
@@ -179,15 +182,28 @@ def _half_width(f, nominal_text: str, tol_text: str, nominal: float) -> float:
             raise InputError(f.name, f"cannot read the tolerance {tol_text!r} (expected e.g. '5 %')")
         half = float(number) / 100 * abs(nominal)  # relative to the nominal
     else:
-        if _NUMBER.match(tol_text) and not _NUMBER.match(nominal_text) and not _plain_unit(nominal_unit, m):
+        # a tolerance without a unit, whatever its form ('0.1', '(0.1)', '0.1*1'): '50.8 mm ± (0.1)'
+        # was ± 0.1 in on an inch field while '50.8 mm ± 0.1' was ± 0.1 mm
+        bare = not tol_text.endswith("%") and units.is_plain_number(tol_text, f.name, f.quantity)
+        if bare and not _NUMBER.match(nominal_text) and not _plain_unit(nominal_unit, m):
             # '2 ft + 3 in ± 1' took "ft + 3 in" as the unit (± 15 in), '3.5 in * 2 ± 0.1' "in * 2"
             raise InputError(
                 f.name,
                 f"the tolerance {tol_text!r} has no unit and {nominal_text!r} is an expression: "
                 f"give the tolerance its unit (± {tol_text.strip()} {f.unit or '%'})",
             )
-        if _NUMBER.match(tol_text) and nominal_unit:
-            tol_text = f"{tol_text.strip()} {nominal_unit}"  # a bare tolerance is in the nominal's unit
+        if not bare and not nominal_unit and f.unit not in ("", "%") and not tol_text.endswith("%"):
+            # '20 ± 1 mm' on an inch field read as 20 in ± 1 mm: refused, the two readings differ
+            t = _NUMBER_THEN_UNIT.match(tol_text)
+            other = t.group("unit") if t and t.group("unit") else "its unit"
+            raise InputError(
+                f.name,
+                f"'{nominal_text} ± {tol_text}' is ambiguous: the value has no unit and the tolerance "
+                f"has one; write '{nominal_text} {other} ± {tol_text}' or '{nominal_text} {f.unit} ± {tol_text}'",
+            )
+        if bare and nominal_unit:  # a bare tolerance is in the nominal's unit
+            number = tol_text.strip() if _NUMBER.match(tol_text) else f"({tol_text.strip()})"
+            tol_text = f"{number} {nominal_unit}"
         half = units.parse(tol_text, f.unit, f.quantity, f.name)
     if not math.isfinite(half) or half < 0:
         raise InputError(f.name, f"the tolerance {tol_text!r} must be a positive amount")

@@ -101,5 +101,9 @@ def generate() -> dict[str, float]:
 
 
 if __name__ == "__main__":
-    FACTOR_TABLE.write_text(json.dumps(generate(), indent=0, sort_keys=True) + "\n", encoding="utf-8")
+    from gearhead.core import atomic_file  # every write goes through it (a developer's too)
+
+    atomic_file.write_text(
+        FACTOR_TABLE, json.dumps(generate(), indent=0, sort_keys=True) + "\n", overwrite=True
+    )
     print(f"wrote {len(stored_factors.__wrapped__())} factors to {FACTOR_TABLE}")

@@ -357,6 +357,13 @@ def _tokens(s: str, field: str, kind: str, typed: str | None = None) -> list:
     return out
 
 
+def is_plain_number(text: str, field: str, kind: str = "dimensionless") -> bool:
+    """Whether an entry is a number without a unit, whatever its form ('0.1', '(0.1)', '0.1*1',
+    'pi'): what a tolerance is when it takes its value's unit. An InputError when it cannot be read."""
+    s = normalise(text, field, kind)
+    return bool(_NUMBER.match(s)) or isinstance(_evaluate(s, field, kind), float)
+
+
 def _evaluate(s: str, field: str, kind: str, raw: str | None = None):
     """A float (only plain numbers were typed) or a pint Quantity, from a screened entry; every
     operation checked, and the whole bounded by MAX_EXPONENT and PARSE_BUDGET_S. Messages quote

@@ -381,11 +381,11 @@ def save(
     """Write the app's edits into the workbook file: each variable's entry and each card's own
     input given here, the rest of the file (comments, order, layout) as it was (tomlkit). A card
     read from a preset gets an inputs table for what was changed on it. The file is replaced
-    whole (written beside it, then renamed), never left half written."""
-    import os
-    import tempfile
-
+    whole (core.atomic_file: written beside it, then renamed; its mode kept; a symlink written
+    through to its target), never left half written; a failure raises atomic_file.WriteError."""
     import tomlkit
+
+    from . import atomic_file
 
     path = Path(path)
     doc = tomlkit.parse(path.read_text(encoding="utf-8"))
@@ -401,14 +401,7 @@ def save(
             table["inputs"] = tomlkit.table()
         for key, value in values.items():
             table["inputs"][key] = value
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8") as out:
-            out.write(tomlkit.dumps(doc))
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
+    atomic_file.write_text(path, tomlkit.dumps(doc), overwrite=True, field="workbook")
 
 
 def is_workbook_file(path: str | Path) -> bool:

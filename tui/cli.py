@@ -7,7 +7,7 @@ import json
 import sys
 from collections.abc import Sequence
 
-from gearhead.core.errors import InputError, shown
+from gearhead.core.errors import InputError, printable, shown
 
 from . import cli_reach
 
@@ -238,7 +238,8 @@ def _logged(exc: BaseException, argv) -> str:
 def _complain(message: str, kind: str = "") -> None:
     """One line on stderr, whatever the message holds (an InputError is one line already; this
     keeps it so for any text that reaches here)."""
-    line = " ".join(message.split()) if not message.isprintable() else message
+    # line breaks become spaces; any other control character (an ESC in a file's text) is shown
+    line = printable(" ".join(message.split())) if not message.isprintable() else message
     print(f"gearhead: {kind}{line}", file=sys.stderr)
 
 
@@ -447,9 +448,7 @@ def _print_table(table, rows) -> None:
 def _preset_out(args, calc, raw: dict, solution) -> int:
     """--preset-out: the solved inputs as a whole preset (every field: defaults for those not
     given), '-' to stdout alone so it pipes into a file or another tool, else a new file."""
-    from pathlib import Path
-
-    from gearhead.core import share
+    from gearhead.core import atomic_file, share
     from gearhead.core.export import preset_toml
 
     inputs = {f.name: f.kind.initial_entry(f) for f in calc.fields}
@@ -461,18 +460,10 @@ def _preset_out(args, calc, raw: dict, solution) -> int:
     if args.preset_out == "-":
         sys.stdout.write(text)
         return 0
-    path = Path(args.preset_out).expanduser()
-    try:
-        with open(path, "x", encoding="utf-8") as fh:  # "x": never overwrite silently
-            fh.write(text)
-    except FileExistsError:
-        raise InputError("--preset-out", "file exists; choose another name", str(path)) from None
-    except (OSError, ValueError) as exc:  # a missing folder, no permission, a NUL in the name
-        raise InputError(
-            "--preset-out", f"cannot write ({getattr(exc, 'strerror', None) or exc})", str(path)
-        ) from None
+    # whole or not at all: a full disk used to leave a 0-byte file (then "exists" on a retry)
+    path = atomic_file.write_text(args.preset_out, text, field="--preset-out")
     width = max(len(calc.output(k).label) for k in solution.outputs)
-    print(f"{calc.title} ({calc.id}): preset written to {path}", file=sys.stderr)
+    print(f"{calc.title} ({calc.id}): preset written to {printable(path)}", file=sys.stderr)
     if args.json:
         print(json.dumps(solution.as_json(), allow_nan=False))
         return 0
@@ -558,11 +549,7 @@ def _bounds(f) -> dict:
     }
 
 
-def _printable(text: str) -> str:
-    """`text` with control and other invisible characters escaped (ESC as \\x1b)."""
-    if text.isprintable():
-        return text
-    return "".join(ch if ch.isprintable() else ascii(ch)[1:-1] for ch in text)
+_printable = printable  # core.errors.printable: the one function every print of file text uses
 
 
 def _calculators(args) -> int:

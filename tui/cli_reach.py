@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import sys
 
-from gearhead.core.errors import InputError
+from gearhead.core.errors import InputError, printable
 
 COMMANDS = ("share", "import", "serve")
 
@@ -54,31 +54,30 @@ def _share(args) -> int:
 
     preset = _load(args.preset)
     for warning in preset.warnings:
-        print(f"gearhead: warning: {warning}", file=sys.stderr)
+        print(f"gearhead: warning: {printable(warning)}", file=sys.stderr)  # may quote the file
     code = share.encode(preset)
     print(share.link(code, args.link) if args.link else code)
     return 0
 
 
 def _import(args) -> int:
-    from pathlib import Path
-
     import tomli_w
 
     from gearhead.core import presets, share
 
     preset = _load(args.text)
     for warning in preset.warnings:  # what a ReCalc link held that Gearhead has no field for
-        print(f"gearhead: note: {warning}", file=sys.stderr)
+        print(f"gearhead: note: {printable(warning)}", file=sys.stderr)
     if args.code:
         print(share.encode(preset))
         return 0
     if args.out is None:
         sys.stdout.write(tomli_w.dumps(preset.as_toml()))
         return 0
-    path = presets.save(preset, Path(args.out).expanduser())  # refuses an existing file
-    from .cli import _printable
-
+    path = presets.save(preset, args.out, field="--out")  # refuses an existing file
     # a name is shown escaped, as `presets` lists it: a shared code's could hold an escape sequence
-    print(f"{_printable(preset.name)} ({preset.calculator}): preset written to {path}", file=sys.stderr)
+    print(
+        f"{printable(preset.name)} ({printable(preset.calculator)}): preset written to {printable(path)}",
+        file=sys.stderr,
+    )
     return 0

@@ -3,8 +3,6 @@
 
 from __future__ import annotations
 
-import os
-import tempfile
 import tomllib
 from pathlib import Path
 
@@ -29,18 +27,12 @@ def load() -> dict:
 
 
 def save(settings: dict) -> Path:
-    """Write atomically (temporary file, then rename)."""
+    """Write atomically (core.atomic_file); a failure raises its WriteError, an OSError."""
     import tomli_w
+
+    from gearhead.core import atomic_file
 
     path = config_file()
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=".config.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(tomli_w.dumps(settings))
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    atomic_file.write_text(path, tomli_w.dumps(settings), overwrite=True, field="settings")
     return path

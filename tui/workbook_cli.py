@@ -13,9 +13,16 @@ from __future__ import annotations
 import json
 import sys
 
-from gearhead.core.errors import InputError, shown
+from gearhead.core.errors import InputError, printable, shown
 
 EXIT_FAILS = 1
+
+
+def _say(line: str = "") -> None:
+    """One line of the text output. A workbook's names, notes, text variables and the messages
+    quoting them come from the file: any control character in them is shown escaped (an ESC in
+    `name` cleared the screen)."""
+    print(printable(line, keep_newlines=True))
 
 
 def is_workbook(argument: str | None) -> bool:
@@ -98,18 +105,20 @@ def check(args) -> int:
     yes, no = _marks()
     passed = sum(1 for c in outcome.checks if c.holds)
     failed = len(outcome.checks) - passed
-    print(
-        f"{wb.name} ({wb.source}): {len(outcome.checks)} requirement{'s' if len(outcome.checks) != 1 else ''}, "
+    _say(
+        f"{printable(wb.name)} ({printable(wb.source)}): {len(outcome.checks)} requirement{'s' if len(outcome.checks) != 1 else ''}, "
         f"{passed} hold{'s' if passed == 1 else ''}, {failed} fail{'s' if failed == 1 else ''}"
     )
-    width = max((len(c.requirement.name or c.requirement.check) for c in outcome.checks), default=0)
+    width = max(
+        (len(printable(c.requirement.name or c.requirement.check)) for c in outcome.checks), default=0
+    )
     for c in outcome.checks:
         r = c.requirement
-        label = r.name or r.check
+        label = printable(r.name or r.check)
         line = f"  {yes if c.holds else no} {label:<{width}}  {c.text()}"
         if r.name:
-            line += f"   [{r.check}]"
-        print(line)
+            line += f"   [{printable(r.check)}]"
+        _say(line)
         if worst is not None and c.holds is not None:
             low = worst.low(r.key)
             if worst.spread is not None and r.key in worst.spread.outputs:
@@ -119,24 +128,24 @@ def check(args) -> int:
 
                 spread = worst.spread.outputs[r.key]
                 shown_low = units.format_quantity(low, o.unit, o.quantity)
-                print(f"    {mark} worst case: margin {shown_low} ({spread.worst_case_method})")
+                _say(f"    {mark} worst case: margin {shown_low} ({spread.worst_case_method})")
                 for why in spread.infeasible:  # a corner where the robot could not be solved
-                    print(f"      not solved in the tolerance box: {why}")
+                    _say(f"      not solved in the tolerance box: {why}")
     for name, card in outcome.cards.items():
         if card.error:
-            print(f"  card {name} ({card.calculator}) not solved: {card.error}")
+            _say(f"  card {name} ({card.calculator}) not solved: {card.error}")
     for card in wb.cards.values():
         for warning in card.warnings:
-            print(f"  warning: {warning}")
+            _say(f"  warning: {warning}")
     if worst is not None:
         if worst.spread is not None:
-            print(
+            _say(
                 f"  tolerances: {', '.join(t.entry for t in worst.spread.tolerances)}; {worst.spread.cost.text()}"
             )
         for note in worst.notes:
-            print(f"  note: {note}")
+            _say(f"  note: {note}")
     elif any(v.tolerance for v in wb.variables.values()):
-        print("  note: tolerances on variables are not analysed here: add --worst-case")
+        _say("  note: tolerances on variables are not analysed here: add --worst-case")
     return 0 if holds else EXIT_FAILS
 
 
@@ -155,28 +164,28 @@ def solve(args) -> int:
     if args.json:
         print(json.dumps(outcome.as_json(with_cards=True), allow_nan=False))
         return 0
-    print(f"{wb.name} ({wb.source})")
+    _say(f"{printable(wb.name)} ({printable(wb.source)})")
     for name, card in outcome.cards.items():
         calc = get(card.calculator)
-        print(f"\n[{name}] {calc.title} ({calc.id})")
+        _say(f"\n[{printable(name)}] {calc.title} ({calc.id})")
         for field_name, ref in card.links.items():
             entry = (
                 card.solution.inputs[field_name].text if card.solution else card.entries.get(field_name, "")
             )
-            print(f"  {calc.field(field_name).label} {ref}  → {entry}")
+            _say(f"  {calc.field(field_name).label} {ref}  → {entry}")
         if card.error:
-            print(f"  not solved: {card.error}")
+            _say(f"  not solved: {card.error}")
             continue
         width = max((len(calc.output(k).label) for k in card.solution.outputs), default=0)
         for key, value in card.solution.outputs.items():
-            print(f"  {calc.output(key).label:<{width}}  {value.text}")
+            _say(f"  {calc.output(key).label:<{width}}  {value.text}")
         for w in card.solution.warnings:
-            print(f"  warning: {w}")
+            _say(f"  warning: {w}")
     yes, no = _marks()
     if outcome.checks:
-        print("\nRequirements")
+        _say("\nRequirements")
     for c in outcome.checks:
-        print(f"  {yes if c.holds else no} {c.requirement.name or c.requirement.check}  {c.text()}")
+        _say(f"  {yes if c.holds else no} {printable(c.requirement.name or c.requirement.check)}  {c.text()}")
     return 0
 
 
@@ -193,13 +202,13 @@ def sweep(args) -> int:
     if args.json:
         print(json.dumps(result.as_json(), allow_nan=False))
     elif args.csv:
-        sys.stdout.write(result.csv_text())
+        sys.stdout.write(printable(result.csv_text(), keep_newlines=True))  # names from the file
     else:
-        print(text_table(result, None))
-        print("(each column: the requirement's margin; negative where it fails)")
+        _say(text_table(result, None))
+        _say("(each column: the requirement's margin; negative where it fails)")
     for note in result.notes:
         if not args.json:
-            print(f"gearhead: note: {note}", file=sys.stderr)
+            print(f"gearhead: note: {printable(note)}", file=sys.stderr)
     return 0
 
 

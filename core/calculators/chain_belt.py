@@ -161,8 +161,9 @@ FIELDS = (
         integer=True,
         default=100,
         min=1,
+        max=100_000,  # a bound like every count's (was none: 1e308 links gave a 9.8e306 in C-C)
         modes=("center_from_links",),
-        help="Chain links or belt teeth l; length L = l·p (66).",
+        help="Chain links or belt teeth l; length L = l·p (66). At most 100 000.",
     ),
     Field(
         "target_center",

@@ -3,8 +3,6 @@ clipboard or written to a new file (never over an existing one)."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from rich.text import Text
 from textual import on
 from textual.app import ComposeResult
@@ -13,7 +11,7 @@ from textual.containers import Horizontal, Vertical
 from textual.widgets import Button, Input, Label, OptionList, Static
 from textual.widgets.option_list import Option
 
-from gearhead.core import export
+from gearhead.core import atomic_file, export
 from gearhead.core.model import Calculator, HeatMap, Plot, Solution
 
 from .dialog import Dialog
@@ -119,15 +117,13 @@ class ExportScreen(Dialog[str | None]):
         text = self._built(build)
         if text is None:
             return
-        path = Path(raw).expanduser()
-        try:
-            with path.open("x", encoding="utf-8", newline="") as fh:  # "x": never overwrite
-                fh.write(text)
-        except FileExistsError:
+        try:  # whole or not at all, never over an existing file; ~nosuchuser is refused by name
+            path = atomic_file.write_text(raw, text, field="file")
+        except atomic_file.FileExists:
             error.update(Text(f"file: {raw[:60]} exists; choose another name", style="bold red"))
             return
-        except OSError as exc:
-            error.update(Text(f"file: cannot write ({exc.strerror or type(exc).__name__})", style="bold red"))
+        except atomic_file.WriteError as exc:
+            error.update(Text(f"file: cannot write ({exc.reason})", style="bold red"))
             return
         self.dismiss(f"Saved {label.lower()} to {path}")
 

@@ -14,7 +14,7 @@ from textual.widgets import Button, Checkbox, Input, Label, OptionList, Static
 from textual.widgets.option_list import Option
 
 from gearhead.core import presets
-from gearhead.core.errors import InputError
+from gearhead.core.errors import InputError, printable
 
 from ..guard import guarded
 from .choice_screen import TypeAhead

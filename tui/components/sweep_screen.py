@@ -17,7 +17,7 @@ from textual.containers import Horizontal, Vertical
 from textual.widgets import Checkbox, DataTable, Input, Label, ProgressBar, Select, SelectionList, Static
 from textual.worker import get_current_worker
 
-from gearhead.core import units
+from gearhead.core import atomic_file, units
 from gearhead.core.errors import InputError
 from gearhead.core.model import Calculator, Field
 from gearhead.core.sweep import cell_text
@@ -376,14 +376,13 @@ class SweepScreen(Dialog[None]):
         for n in range(1, 1000):
             path = Path(f"{base}.csv" if n == 1 else f"{base}_{n}.csv")
             try:
-                with path.open("x", encoding="utf-8", newline="") as fh:
-                    fh.write(text)
+                atomic_file.write_text(path, text)  # whole or not at all
                 break
-            except FileExistsError:
+            except atomic_file.FileExists:
                 continue
-            except OSError as exc:
+            except atomic_file.WriteError as exc:
                 self.notify(
-                    f"Copied to the clipboard; cannot write a file ({exc.strerror or type(exc).__name__})",
+                    f"Copied to the clipboard; cannot write a file ({exc.reason})",
                     severity="warning",
                     markup=False,
                 )
