@@ -612,8 +612,13 @@ async def test_the_load_dialog_opens_with_bad_user_presets_beside_good_ones():
         await pilot.press("ctrl+o")
         await pilot.pause()
         options = app.screen.query_one(OptionList)
-        prompts = [str(options.get_option_at_index(i).prompt) for i in range(options.option_count)]
-        assert any("good one" in p for p in prompts) and not any("huge" in p for p in prompts)
+        listed = [options.get_option_at_index(i) for i in range(options.option_count)]
+        good = [o for o in listed if "good one" in str(o.prompt)]
+        bad = [o for o in listed if str(o.prompt).startswith("✗")]
+        assert good and not good[0].disabled
+        # the unreadable ones are listed, greyed (not loadable), each with its file and why
+        assert len(bad) == 2 and all(o.disabled for o in bad)
+        assert any("huge.toml" in str(o.prompt) and "digits" in str(o.prompt) for o in bad)
 
 
 def test_the_readme_states_the_sweeps_budget():
