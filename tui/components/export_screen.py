@@ -3,8 +3,6 @@ clipboard or written to a new file (never over an existing one)."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from rich.text import Text
 from textual import on
 from textual.app import ComposeResult
@@ -15,8 +13,10 @@ from textual.widgets import Button, Input, Label, OptionList, Static
 from textual.widgets.option_list import Option
 
 from gearhead.core import export
+from gearhead.core.errors import InputError
 from gearhead.core.model import Calculator, HeatMap, Plot, Solution
 
+from .. import served_paths
 from .field_input import FieldInput
 
 
@@ -119,7 +119,11 @@ class ExportScreen(ModalScreen[str | None]):
         text = self._built(build)
         if text is None:
             return
-        path = Path(raw).expanduser()
+        try:
+            path = served_paths.check(raw)  # a served session: only in the Gearhead folder
+        except InputError as exc:
+            error.update(Text(str(exc), style="bold red"))
+            return
         try:
             with path.open("x", encoding="utf-8", newline="") as fh:  # "x": never overwrite
                 fh.write(text)

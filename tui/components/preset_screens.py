@@ -17,6 +17,7 @@ from textual.widgets.option_list import Option
 from gearhead.core import presets
 from gearhead.core.errors import InputError
 
+from .. import served_paths
 from .choice_screen import TypeAhead
 from .field_input import FieldInput
 
@@ -266,15 +267,17 @@ class LoadPresetScreen(ModalScreen[presets.Preset | None]):
         try:
             if "\0" in text:  # the OS refuses such a name (Path raises ValueError deep inside)
                 raise InputError("preset", "a file path cannot contain a NUL character", repr(text)[:80])
-            try:
-                from gearhead.core import share, workbook
+            from gearhead.core import share, workbook
 
-                if share.from_text_kind(text):
+            # a served session: a file only in the Gearhead folder (its InputError, as it is)
+            path = None if share.from_text_kind(text) else served_paths.check(text)
+            try:
+                if path is None:
                     preset = share.load_any(text)
-                elif workbook.is_workbook_file(Path(text).expanduser()):  # opens as one: its cards
-                    preset = workbook.load(Path(text).expanduser())
+                elif workbook.is_workbook_file(path):  # opens as one: its cards
+                    preset = workbook.load(path)
                 else:
-                    preset = presets.load(Path(text).expanduser())
+                    preset = presets.load(path)
             except (ValueError, RuntimeError) as exc:  # an unusable path ('~nosuchuser/x')
                 raise InputError("preset", f"not a usable file path ({exc})", text[:80]) from None
         except InputError as exc:
