@@ -489,9 +489,12 @@ def test_a_session_has_a_memory_bound():
     import aiohttp
 
     async def one_session(server_pid: int, port: int) -> str:
-        async with aiohttp.ClientSession() as session, session.ws_connect(f"http://127.0.0.1:{port}/ws"):
-            assert until(lambda: session_apps(server_pid), 20) is not None
-            return limit(session_apps(server_pid)[0])
+        url = f"http://127.0.0.1:{port}/ws"
+        async with aiohttp.ClientSession() as session, session.ws_connect(url, max_msg_size=0) as ws:
+            while (await asyncio.wait_for(ws.receive(), 30)).type != aiohttp.WSMsgType.BINARY:
+                pass  # until the app draws: it has set its bound by then
+            (app,) = session_apps(server_pid)
+            return limit(app)
 
     with server() as (process, port):
         assert asyncio.run(one_session(process.pid, port)) == str(serve.SESSION_MEMORY_MB * 1024 * 1024)

@@ -114,9 +114,12 @@ async def _end(app_service: AppService) -> None:
     """Kill the app's process if it has not quit (a long computation, or a full pipe)."""
     # textual-serve 1.1.3 gives no public handle to the process it started: its attribute is read here
     process = getattr(app_service, "_process", None)
-    if process is None or process.returncode is not None:
+    if process is None:
         return
-    with suppress(ProcessLookupError):
-        process.kill()
-    with suppress(TimeoutError):
-        await asyncio.wait_for(process.wait(), 5)
+    if process.returncode is None:
+        with suppress(ProcessLookupError):
+            process.kill()
+        with suppress(TimeoutError):
+            await asyncio.wait_for(process.wait(), 5)
+    if process.returncode not in (0, None):  # e.g. -9 (killed), or out of its memory bound
+        log.info("gearhead: a session's app ended with status %s", process.returncode)
