@@ -576,7 +576,8 @@ def test_static_lists_nothing_and_a_long_name_is_a_404():
 
 def test_malformed_websocket_messages_are_ignored_without_a_traceback():
     """Each of these printed a traceback with local variables to the console and ended the
-    session; now they are ignored and the session still answers a ping."""
+    session; now they are ignored and the session still answers a ping. A malformed HTTP request
+    is a 400 and one line."""
     import aiohttp
 
     bad = ['not json', '[]', '{}', '[1]', '["stdin", 5]', '["stdin", "\\ud800"]', '["resize", {}]',
@@ -598,6 +599,16 @@ def test_malformed_websocket_messages_are_ignored_without_a_traceback():
 
     with server() as (process, port):
         asyncio.run(asyncio.wait_for(scenario(port), 60))
+        for raw in (  # HTTP that aiohttp cannot parse: a 400, said in one line
+            b"GARBAGE\r\n\r\n",
+            b"GET / HTTP/1.1\r\nHost: 127.0.0.1\r\nX: \x00\x01\r\n\r\n",
+            b"GET /" + b"a" * 20000 + b" HTTP/1.1\r\n\r\n",
+        ):
+            with socket.create_connection(("127.0.0.1", port)) as sock:
+                sock.sendall(raw)
+                sock.settimeout(10)
+                assert b" 400 " in sock.recv(100)
+        time.sleep(1)
         process.terminate()
         out, err = process.communicate(timeout=20)
     assert "Traceback" not in out + err and "locals" not in out + err, out + err

@@ -83,6 +83,18 @@ def needs_token(host: str, url: str) -> bool:
     return not (is_loopback(host) and is_loopback(urlsplit(url).hostname or ""))
 
 
+def one_line_for_malformed_requests(record) -> bool:
+    """A logging filter: aiohttp logs a request it cannot parse (a bad header, a line over 8 KB)
+    with a traceback; it is the client's error, said in one line."""
+    from aiohttp.http_exceptions import HttpProcessingError
+
+    error = record.exc_info[1] if record.exc_info else None
+    if isinstance(error, HttpProcessingError):
+        reason = (error.message or type(error).__name__).splitlines()[0][:100]
+        record.msg, record.args, record.exc_info = f"{record.getMessage()}: {error.code} {reason}", (), None
+    return True
+
+
 def make_server(
     host: str,
     port: int,
@@ -119,10 +131,10 @@ def make_server(
 
         def initialize_logging(self) -> None:
             # no local variables in a traceback: they hold the token and whatever a request sent
+            handler = RichHandler(show_path=False, show_time=False, console=self.console)
+            handler.addFilter(one_line_for_malformed_requests)
             logging.basicConfig(
-                level="DEBUG" if self.debug else "INFO",
-                format="%(message)s",
-                handlers=[RichHandler(show_path=False, show_time=False, console=self.console)],
+                level="DEBUG" if self.debug else "INFO", format="%(message)s", handlers=[handler]
             )
 
         def _allowed(self, request) -> bool:
