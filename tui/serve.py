@@ -18,6 +18,7 @@ when its client goes; a served app reads and writes files only in the Gearhead f
 from __future__ import annotations
 
 import ipaddress
+import os
 import secrets
 import shlex
 import sys
@@ -38,7 +39,7 @@ def is_loopback(host: str) -> bool:
         return False
 
 
-MAX_SESSIONS = 4  # apps at once (each a process of 60-150 MB), unless --max-sessions says otherwise
+MAX_SESSIONS = 4  # apps at once (each a process of 60-220 MB resident), unless --max-sessions says otherwise
 SESSION_MEMORY_MB = 2048  # address space of one app (Linux): normal use peaked at 1.3 GB (221 MB resident)
 
 
@@ -64,7 +65,7 @@ def app_command(memory_mb: int = 0, allow_paths: list[str] = (), open_code: str 
         words += ["--allow-paths", folder]
     if open_code is not None:
         words += ["--open", open_code]
-    return "exec " + shlex.join(words)
+    return ("exec " if os.name == "posix" else "") + shlex.join(words)
 
 
 def public_url(host: str, port: int) -> str:
@@ -294,7 +295,7 @@ def run(args) -> int:
     if needs_token(args.host, url):
         token = secrets.token_urlsafe(18)
         print(
-            f"gearhead: warning: serving on {args.host}, beyond this machine: anyone who can reach it and has "
+            f"gearhead: warning: serving on {url if is_loopback(args.host) else args.host}, beyond this machine: anyone who can reach it and has "
             f"the token can use the app, including its file dialogs (which reach this machine's files).\n"
             f"gearhead: open {url}/?token={token}",
             file=sys.stderr,
