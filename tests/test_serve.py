@@ -6,9 +6,12 @@ is installed (.ci/run installs it)."""
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
+import os
 import re
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -268,3 +271,423 @@ def test_a_request_from_another_sites_page_is_refused():
     with running(GEARHEAD, "serve", "--host", "0.0.0.0", "--port", str(port)):
         assert wait_for(f"http://127.0.0.1:{port}/") == 403
         assert status(f"http://127.0.0.1:{port}/?token=%C3%A9") == 403
+
+
+# Hostile clients (issue 41): real HTTP and websocket clients on 127.0.0.1, every wait bounded.
+
+
+def first_lines(process, count: int, timeout: float = 30) -> list[str]:
+    """The first `count` lines of the process's stderr ("" for each it has not written in time)."""
+    import queue
+    import threading
+
+    lines: queue.Queue[str] = queue.Queue()
+    threading.Thread(
+        target=lambda: [lines.put(process.stderr.readline()) for _ in range(count)], daemon=True
+    ).start()
+    deadline, got = time.monotonic() + timeout, []
+    for _ in range(count):
+        try:
+            got.append(lines.get(timeout=max(0.0, deadline - time.monotonic())))
+        except queue.Empty:
+            got.append("")
+    return got
+
+
+def status(url: str, **headers) -> int:
+    try:
+        with urllib.request.urlopen(urllib.request.Request(url, headers=headers), timeout=5) as r:
+            return r.status
+    except urllib.error.HTTPError as e:
+        return e.code
+
+
+def ws_status(url: str, **headers) -> int:
+    """The status of a websocket opening (101: a session started; it is closed at once)."""
+    import aiohttp
+
+    async def attempt() -> int:
+        async with aiohttp.ClientSession() as session:
+            try:
+                async with session.ws_connect(url, headers=headers):
+                    return 101
+            except aiohttp.WSServerHandshakeError as exc:
+                return exc.status
+
+    return asyncio.run(asyncio.wait_for(attempt(), 30))
+
+
+def session_apps(server_pid: int) -> list[int]:
+    """The pids of the served apps under the server (Linux: /proc)."""
+    children: dict[int, list[int]] = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                ppid = int((entry / "stat").read_text().rsplit(")", 1)[1].split()[1])
+            except (OSError, IndexError, ValueError):
+                continue
+            children.setdefault(ppid, []).append(int(entry.name))
+    found, todo = [], [server_pid]
+    while todo:
+        for child in children.get(todo.pop(), []):
+            todo.append(child)
+            try:
+                if b"gearhead.tui.served" in Path(f"/proc/{child}/cmdline").read_bytes():
+                    found.append(child)
+            except OSError:
+                pass
+    return found
+
+
+def rss_mb(pid: int) -> float:
+    try:
+        line = next(x for x in Path(f"/proc/{pid}/status").read_text().splitlines() if x.startswith("VmRSS"))
+    except (OSError, StopIteration):
+        return 0.0
+    return int(line.split()[1]) / 1024
+
+
+def until(condition, timeout: float, step: float = 0.2) -> float | None:
+    """Seconds until `condition()` holds, or None if it never did within `timeout`."""
+    start = time.monotonic()
+    while time.monotonic() - start < timeout:
+        if condition():
+            return time.monotonic() - start
+        time.sleep(step)
+    return None
+
+
+LINUX = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc (Linux)")
+
+
+@contextmanager
+def server(*flags: str):
+    port = free_port()
+    with running(GEARHEAD, "serve", "--port", str(port), *flags) as process:
+        assert wait_for(f"http://127.0.0.1:{port}/") in (200, 403)
+        yield process, port
+
+
+def test_a_rebound_host_name_is_refused_on_the_loopback():
+    """DNS rebinding: a page of evil.example whose name now resolves to 127.0.0.1 sends its own name
+    as Host (and Origin); the page, its websocket and the static files are refused (the websocket
+    was a 101: a session that could export anywhere). The loopback by any name, on this port, is
+    served."""
+    with server() as (_, port):
+        base, evil = f"http://127.0.0.1:{port}", f"evil.example:{port}"
+        assert status(f"{base}/", Host=evil, Origin=f"http://{evil}") == 403
+        assert ws_status(f"{base}/ws", Host=evil, Origin=f"http://{evil}") == 403
+        assert status(f"{base}/", Host=evil) == 403
+        assert status(f"{base}/static/js/textual.js", Host=evil) == 403
+        assert status(f"{base}/", Host=f"127.0.0.1:{port + 1}") == 403  # another port: another server
+        assert status(f"{base}/", Host=f"127.0.0.1:{port}x") == 403
+        for name in ("127.0.0.1", "localhost", "[::1]", "127.1.2.3", "LOCALHOST"):
+            assert status(f"{base}/", Host=f"{name}:{port}") == 200, name
+        assert status(f"{base}/", Host=f"127.0.0.1:{port}", Origin=f"http://localhost:{port}") == 200
+
+
+def test_a_token_whenever_the_host_is_not_the_loopback():
+    """On the loopback behind a --public-url naming another host (a proxy), that Host is served
+    but only with the token, which the server prints; the loopback itself needs none."""
+    port = free_port()
+    url = f"http://gearhead.example:{port}"
+    with running(GEARHEAD, "serve", "--port", str(port), "--public-url", url) as process:
+        assert wait_for(f"http://127.0.0.1:{port}/") == 200
+        warning, opening = first_lines(process, 2)
+        assert "warning" in warning
+        token = re.search(r"\?token=([\w-]+)", opening)[1]
+        base, named = f"http://127.0.0.1:{port}", f"gearhead.example:{port}"
+        assert status(f"{base}/", Host=named) == 403
+        assert ws_status(f"{base}/ws", Host=named) == 403
+        assert status(f"{base}/?token={token}", Host=named) == 200
+        assert ws_status(f"{base}/ws", Host=named, Cookie=f"gearhead_token={token}") == 101
+        assert ws_status(f"{base}/ws") == 101  # the loopback
+
+
+def test_sessions_are_capped_and_a_closed_one_frees_its_place():
+    import aiohttp
+
+    async def scenario(port: int) -> None:
+        base = f"http://127.0.0.1:{port}/ws"
+        async with aiohttp.ClientSession() as session:
+            first = await session.ws_connect(base)
+            second = await session.ws_connect(base)
+            with pytest.raises(aiohttp.WSServerHandshakeError) as refused:
+                await session.ws_connect(base)
+            assert refused.value.status == 503
+            await first.close()
+            deadline = time.monotonic() + 20
+            while True:  # its app ends, then a new session is let in
+                try:
+                    third = await session.ws_connect(base)
+                    break
+                except aiohttp.WSServerHandshakeError:
+                    assert time.monotonic() < deadline, "a closed session never freed its place"
+                    await asyncio.sleep(0.3)
+            await third.close()
+            await second.close()
+
+    assert serve.MAX_SESSIONS == 4
+    with server("--max-sessions", "2") as (_, port):
+        asyncio.run(asyncio.wait_for(scenario(port), 60))
+
+
+CURSOR = re.compile(rb"\x1b\[(\d+);(\d+)H")
+
+
+@LINUX
+def test_a_huge_terminal_is_capped():
+    """/ws?width=100000&height=100000 drove one session past 3.5 GB in 40 s: the app gets at most
+    MAX_WIDTH x MAX_HEIGHT (its screen, drawn with ESC[row;colH, stays inside), at its usual
+    memory; a resize message is capped alike, and one that is no size is ignored."""
+    import aiohttp
+
+    async def scenario(server_pid: int, port: int) -> None:
+        url = f"http://127.0.0.1:{port}/ws?width=100000&height=100000"
+        async with aiohttp.ClientSession() as session, session.ws_connect(url, max_msg_size=0) as ws:
+
+            async def screen(seconds: float) -> bytes:
+                got, deadline = b"", time.monotonic() + seconds
+                while time.monotonic() < deadline:
+                    try:
+                        message = await asyncio.wait_for(ws.receive(), 1)
+                    except TimeoutError:
+                        continue
+                    if message.type == aiohttp.WSMsgType.BINARY:
+                        got += message.data
+                    elif message.type != aiohttp.WSMsgType.TEXT:
+                        break
+                return got
+
+            first = await screen(25)
+            assert b"Stall torque" in first, "the first card was never drawn"
+            for data in ({"width": 100000, "height": 100000}, {"width": "x"}, {"width": None, "height": []}):
+                await ws.send_json(["resize", data])
+            drawn = first + await screen(5)
+            rows = [int(m[1]) for m in CURSOR.finditer(drawn)]
+            cols = [int(m[2]) for m in CURSOR.finditer(drawn)]
+            from gearhead.tui import serve_session
+
+            assert max(rows) <= serve_session.MAX_HEIGHT and max(cols) <= serve_session.MAX_WIDTH
+            (app,) = session_apps(server_pid)
+            memory = rss_mb(app)
+            print(f"a 100000 x 100000 session: {memory:.0f} MB after its first screen")
+            assert memory < 400
+
+    with server() as (process, port):
+        asyncio.run(asyncio.wait_for(scenario(process.pid, port), 90))
+
+
+@LINUX
+def test_a_session_has_a_memory_bound():
+    """Each app's address space is bounded (RLIMIT_AS; --session-memory, 0 for none)."""
+
+    def limit(pid: int) -> str:
+        line = next(x for x in Path(f"/proc/{pid}/limits").read_text().splitlines() if "address space" in x)
+        return line.split()[3]
+
+    import aiohttp
+
+    async def one_session(server_pid: int, port: int) -> str:
+        url = f"http://127.0.0.1:{port}/ws"
+        async with aiohttp.ClientSession() as session, session.ws_connect(url, max_msg_size=0) as ws:
+            while (await asyncio.wait_for(ws.receive(), 30)).type != aiohttp.WSMsgType.BINARY:
+                pass  # until the app draws: it has set its bound by then
+            (app,) = session_apps(server_pid)
+            return limit(app)
+
+    with server() as (process, port):
+        assert asyncio.run(one_session(process.pid, port)) == str(serve.SESSION_MEMORY_MB * 1024 * 1024)
+    with server("--session-memory", "512") as (process, port):
+        assert asyncio.run(one_session(process.pid, port)) == str(512 * 1024 * 1024)
+    with server("--session-memory", "0") as (process, port):
+        assert asyncio.run(one_session(process.pid, port)) == "unlimited"
+
+
+def raw_websocket(port: int) -> socket.socket:
+    """A websocket opened by hand, its 101 read: the test then reads nothing more."""
+    sock = socket.create_connection(("127.0.0.1", port))
+    sock.sendall(
+        f"GET /ws HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+        "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n".encode()
+    )
+    assert sock.recv(100).startswith(b"HTTP/1.1 101")
+    return sock
+
+
+def alive(pids: list[int]) -> bool:
+    for pid in pids:
+        try:
+            if b"gearhead.tui.served" in Path(f"/proc/{pid}/cmdline").read_bytes():
+                return True
+        except OSError:
+            pass
+    return False
+
+
+@LINUX
+def test_a_session_ends_when_its_client_goes():
+    """A client that opens the websocket then stops reading (and answering pings) left its app
+    alive 20 s and more: it ends within HEARTBEAT and a half, and the rest of the grace. A client
+    that closes its socket ends its app at once; a server killed with SIGKILL takes its apps along
+    (an orphaned app with a huge terminal grew to 12.8 GB)."""
+    with server() as (process, port):
+        with raw_websocket(port):
+            quiet = time.monotonic()
+            assert until(lambda: session_apps(process.pid), 20) is not None
+            assert until(lambda: not session_apps(process.pid), 40) is not None, "the app outlived its client"
+            lived = time.monotonic() - quiet
+        print(f"an abandoned session's app lived {lived:.1f} s")
+        assert lived < 15
+
+        with raw_websocket(port):
+            assert until(lambda: session_apps(process.pid), 20) is not None
+        gone = until(lambda: not session_apps(process.pid), 20)
+        print(f"a closed session's app ended in {gone} s")
+        assert gone is not None and gone < 5
+
+        with raw_websocket(port):
+            assert until(lambda: session_apps(process.pid), 20) is not None
+            apps = session_apps(process.pid)
+            time.sleep(3)  # the app has started (and set its parent-death signal)
+            process.kill()
+            process.wait(10)
+            try:
+                assert until(lambda: not alive(apps), 15) is not None, "an app outlived its server"
+            finally:
+                for pid in apps:  # this test's own processes, should they remain
+                    with contextlib.suppress(OSError):
+                        os.kill(pid, signal.SIGKILL)
+
+
+def test_static_lists_nothing_and_a_long_name_is_a_404():
+    with server() as (process, port):
+        base = f"http://127.0.0.1:{port}"
+        assert status(f"{base}/static/js/textual.js") == 200  # the page's own files
+        assert status(f"{base}/static/") in (403, 404)
+        assert status(f"{base}/static/js/") in (403, 404)
+        assert status(f"{base}/static/" + "a" * 5000) == 404
+        assert status(f"{base}/static/" + "a/" * 2000) == 404
+        process.terminate()
+        out, err = process.communicate(timeout=20)
+    assert "Traceback" not in out + err
+    assert "textual.js" not in out + err or "Index of" not in out + err
+
+
+def test_malformed_websocket_messages_are_ignored_without_a_traceback():
+    """Each of these printed a traceback with local variables to the console and ended the
+    session; now they are ignored and the session still answers a ping. A malformed HTTP request
+    is a 400 and one line."""
+    import aiohttp
+
+    bad = ['not json', '[]', '{}', '[1]', '["stdin", 5]', '["stdin", "\\ud800"]', '["resize", {}]',
+           '["resize", "x"]', '["resize", {"width": 1e999, "height": 3}]', "[" * 100_000 + "]" * 100_000]  # fmt: skip
+
+    async def scenario(port: int) -> None:
+        async with aiohttp.ClientSession() as session:
+            async with session.ws_connect(f"http://127.0.0.1:{port}/ws", max_msg_size=0) as ws:
+                for text in bad:
+                    await ws.send_str(text)
+                await ws.send_json(["ping", "still here"])
+                deadline = time.monotonic() + 30
+                while time.monotonic() < deadline:
+                    message = await asyncio.wait_for(ws.receive(), 30)
+                    if message.type == aiohttp.WSMsgType.TEXT and message.json() == ["pong", "still here"]:
+                        return
+                    assert message.type in (aiohttp.WSMsgType.TEXT, aiohttp.WSMsgType.BINARY), message
+                raise AssertionError("no pong")
+
+    with server() as (process, port):
+        asyncio.run(asyncio.wait_for(scenario(port), 60))
+        for raw in (  # HTTP that aiohttp cannot parse: a 400, said in one line
+            b"GARBAGE\r\n\r\n",
+            b"GET / HTTP/1.1\r\nHost: 127.0.0.1\r\nX: \x00\x01\r\n\r\n",
+            b"GET /" + b"a" * 20000 + b" HTTP/1.1\r\n\r\n",
+        ):
+            with socket.create_connection(("127.0.0.1", port)) as sock:
+                sock.sendall(raw)
+                sock.settimeout(10)
+                assert b" 400 " in sock.recv(100)
+        time.sleep(1)
+        process.terminate()
+        out, err = process.communicate(timeout=20)
+    assert "Traceback" not in out + err and "locals" not in out + err, out + err
+
+
+def test_bad_serve_options_are_refused_by_name(tmp_path):
+    for flags, name in [
+        (["--max-sessions", "0"], "--max-sessions"),
+        (["--session-memory", "10"], "--session-memory"),
+        (["--allow-paths", str(tmp_path / "none")], "--allow-paths"),
+    ]:
+        out = subprocess.run([GEARHEAD, "serve", *flags], capture_output=True, text=True, timeout=60)
+        assert out.returncode == 2 and name in out.stderr, (flags, out.stderr)
+
+
+def test_a_served_session_reads_and_writes_only_in_the_gearhead_folder(tmp_path, monkeypatch):
+    """tui/served_paths.check, which the export and load dialogs call: in the terminal app every
+    path; in a served session (confined) the Gearhead folder, its exports/ working folder, and
+    what --allow-paths adds; '..' and a symlink out of the folder are outside."""
+    from gearhead.core.errors import InputError
+    from gearhead.tui import served_paths
+
+    monkeypatch.setattr(served_paths, "_allowed", None)
+    outside = tmp_path / "elsewhere"
+    outside.mkdir()
+    assert served_paths.check(str(outside / "x.md")) == outside / "x.md"  # the terminal app
+    monkeypatch.chdir(served_paths.confine())
+    folder = served_paths.gearhead_folder()
+    assert served_paths.check("motor_results.md").resolve() == folder / "exports" / "motor_results.md"
+    assert served_paths.check(str(folder / "presets" / "motor" / "a.toml"))
+    (folder / "link").symlink_to(outside)
+    for bad in (str(outside / "x.md"), "/etc/passwd", "../../x.md", str(folder / "link" / "x.md"), "~/x.md"):
+        with pytest.raises(InputError, match="served session reads and writes only in"):
+            served_paths.check(bad)
+    served_paths.confine([str(outside)])
+    assert served_paths.check(str(outside / "x.md")) == outside / "x.md"
+    monkeypatch.setattr(served_paths, "_allowed", None)
+
+
+async def test_the_export_and_load_dialogs_refuse_a_path_outside(tmp_path, monkeypatch):
+    """A served session's ctrl+e (Save to file) and ctrl+o (a path, Enter) outside the folder:
+    the dialog says why, and nothing is written or read."""
+    from textual.app import App
+    from textual.widgets import Input, Static
+
+    from gearhead.core.model import solve
+    from gearhead.core.presets import Preset, save
+    from gearhead.core.registry import get
+    from gearhead.tui import served_paths
+    from gearhead.tui.components.export_screen import ExportScreen
+    from gearhead.tui.components.preset_screens import LoadPresetScreen
+
+    monkeypatch.chdir(served_paths.confine())
+    outside = tmp_path / "elsewhere"
+    outside.mkdir()
+    preset = save(Preset("motor", "two", "", {"motor_count": 2}), outside / "two.toml")
+    try:
+        async with App().run_test(size=(120, 40)) as pilot:
+            pilot.app.push_screen(ExportScreen(get("motor"), solve("motor", {}), None, blink=False))
+            await pilot.pause()
+            path = pilot.app.screen.query_one("#export-path", Input)
+            path.value = str(outside / "out.md")
+            path.focus()
+            await pilot.press("enter")
+            await pilot.pause()
+            error = str(pilot.app.screen.query_one("#export-error", Static).render())
+            assert "served session" in error and not (outside / "out.md").exists()
+            path.value = "out.md"
+            await pilot.press("enter")
+            await pilot.pause()
+            assert (served_paths.gearhead_folder() / "exports" / "out.md").exists()
+
+            pilot.app.push_screen(LoadPresetScreen("motor", blink=False))
+            await pilot.pause()
+            pilot.app.screen.query_one("#preset-path", Input).value = str(preset)
+            pilot.app.screen.query_one("#preset-path", Input).focus()
+            await pilot.press("enter")
+            await pilot.pause()
+            error = str(pilot.app.screen.query_one("#load-error", Static).render())
+            assert "served session" in error and isinstance(pilot.app.screen, LoadPresetScreen)
+    finally:
+        monkeypatch.setattr(served_paths, "_allowed", None)

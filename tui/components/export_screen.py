@@ -12,8 +12,10 @@ from textual.widgets import Button, Input, Label, OptionList, Static
 from textual.widgets.option_list import Option
 
 from gearhead.core import atomic_file, export
+from gearhead.core.errors import InputError
 from gearhead.core.model import Calculator, HeatMap, Plot, Solution
 
+from .. import served_paths
 from .dialog import Dialog
 from .field_input import FieldInput
 
@@ -117,8 +119,13 @@ class ExportScreen(Dialog[str | None]):
         text = self._built(build)
         if text is None:
             return
+        try:
+            path = served_paths.check(raw)  # a served session: only in the Gearhead folder
+        except InputError as exc:
+            error.update(Text(str(exc), style="bold red"))
+            return
         try:  # whole or not at all, never over an existing file; ~nosuchuser is refused by name
-            path = atomic_file.write_text(raw, text, field="file")
+            path = atomic_file.write_text(path, text, field="file")
         except atomic_file.FileExists:
             error.update(Text(f"file: {raw[:60]} exists; choose another name", style="bold red"))
             return

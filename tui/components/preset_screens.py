@@ -16,6 +16,7 @@ from textual.widgets.option_list import Option
 from gearhead.core import presets
 from gearhead.core.errors import InputError, printable
 
+from .. import served_paths
 from ..guard import guarded
 from .choice_screen import TypeAhead
 from .dialog import Dialog
@@ -306,15 +307,17 @@ class LoadPresetScreen(Dialog[presets.Preset | None]):
         try:
             if "\0" in text:  # the OS refuses such a name (Path raises ValueError deep inside)
                 raise InputError("preset", "a file path cannot contain a NUL character", repr(text)[:80])
-            try:
-                from gearhead.core import share, workbook
+            from gearhead.core import share, workbook
 
-                if share.from_text_kind(text):
+            # a served session: a file only in the Gearhead folder (its InputError, as it is)
+            path = None if share.from_text_kind(text) else served_paths.check(text)
+            try:
+                if path is None:
                     preset = share.load_any(text)
-                elif workbook.is_workbook_file(Path(text).expanduser()):  # opens as one: its cards
-                    preset = workbook.load(Path(text).expanduser())
+                elif workbook.is_workbook_file(path):  # opens as one: its cards
+                    preset = workbook.load(path)
                 else:
-                    preset = presets.load(Path(text).expanduser())
+                    preset = presets.load(path)
             except InputError:  # (an InputError is a ValueError: said as it is)
                 raise
             except (ValueError, RuntimeError) as exc:  # an unusable path ('~nosuchuser/x')
