@@ -389,3 +389,26 @@ async def test_a_missing_preset_path_is_said_once_right_under_the_path_box(tmp_p
         text = str(error.render())
         assert "nothing.toml" in text and "usable" not in text, text
         assert app.screen.region.contains_region(error.region) and error.region.height >= 1
+
+
+@pytest.mark.parametrize("name", ["builtin:robot_2027", "builtin:gear_ratio/vex_lift_v5"])
+async def test_ctrl_o_takes_a_builtin_name(name):
+    """ctrl+o, `builtin:NAME`, Enter: the example workbook or the built-in preset opens (the path
+    box read the name as a file: 'file not found')."""
+    from textual.widgets import Input
+
+    from gearhead.tui.components.workbook_screen import WorkbookScreen
+
+    app = GearheadApp(blink=False, hide_timings=True, initial="gear_ratio")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        before = dict(card(app).entries)
+        await pilot.press("ctrl+o")
+        await settle(pilot)
+        app.screen.query_one("#preset-path", Input).value = name
+        await pilot.press("enter")
+        await settle(pilot)
+        if "/" in name:
+            assert app.screen is app.home and card(app).entries != before
+        else:
+            assert isinstance(app.screen, WorkbookScreen)

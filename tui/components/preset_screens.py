@@ -127,6 +127,17 @@ def _carries_preset(text: str) -> bool:
     return len(text) <= MAX_PASTE and share.from_text_kind(text) is not None
 
 
+def _builtin_workbook(text: str) -> bool:
+    """Whether `builtin:NAME` names an example workbook (else a preset)."""
+    from gearhead.core import builtin
+
+    try:
+        builtin.workbook_path(text)
+    except InputError:
+        return False
+    return True
+
+
 class PresetPathInput(FieldInput):
     """The load dialog's path entry; a multi-line paste is a preset's text (ctrl+y elsewhere)."""
 
@@ -307,12 +318,16 @@ class LoadPresetScreen(Dialog[presets.Preset | None]):
         try:
             if "\0" in text:  # the OS refuses such a name (Path raises ValueError deep inside)
                 raise InputError("preset", "a file path cannot contain a NUL character", repr(text)[:80])
-            from gearhead.core import share, workbook
+            from gearhead.core import builtin, share, workbook
 
-            # a served session: a file only in the Gearhead folder (its InputError, as it is)
-            path = None if share.from_text_kind(text) else served_paths.check(text)
+            # a share code, a link or builtin:NAME (shipped with Gearhead) is no path; a file, in
+            # a served session, only in the Gearhead folder (its InputError, as it is)
+            carried = share.from_text_kind(text) or builtin.is_builtin(text.strip())
+            path = None if carried else served_paths.check(text)
             try:
-                if path is None:
+                if path is None and builtin.is_builtin(text.strip()) and _builtin_workbook(text.strip()):
+                    preset = workbook.load(builtin.workbook_path(text.strip()))
+                elif path is None:
                     preset = share.load_any(text)
                 elif workbook.is_workbook_file(path):  # opens as one: its cards
                     preset = workbook.load(path)
