@@ -99,13 +99,12 @@ def _keep_quit_key() -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    from . import workbook_cli
 
     given = list(sys.argv[1:] if argv is None else argv)
     workbook_named = given[:1] and (given[0].endswith(".toml") or given[0].startswith("builtin:"))
     if len(given) == 1 and workbook_named and not given[0].startswith("-"):
         _keep_quit_key()
-        return workbook_cli.app(given[0], argv)  # `gearhead robot.toml`: the app with that workbook
+        return _workbook_app(given[0], argv)  # `gearhead robot.toml`: the app with that workbook
     args = _parser().parse_args(argv)
     if args.command is None:
         _keep_quit_key()
@@ -150,6 +149,29 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_IO
     except Exception as exc:  # a bug: one line for the user, the traceback in the log for us
         return _internal(exc, argv)
+
+
+def _workbook_app(path: str, argv) -> int:
+    """`gearhead robot.toml`: the app, showing the workbook's cards (a bad file: exit 2, one line)."""
+    from gearhead.core import workbook
+
+    if not _terminal():
+        _complain(
+            "the app needs a terminal; from a script use `gearhead check FILE` or `gearhead solve FILE`"
+        )
+        return EXIT_BAD_INPUT
+    try:
+        book = workbook.load(path)
+    except InputError as exc:
+        _complain(str(exc))
+        return EXIT_BAD_INPUT
+    from .app import run
+
+    try:
+        failure = run(workbook=book)
+    except Exception as exc:  # before the app or after it (its settings, the terminal)
+        return _internal(exc, argv)
+    return 0 if failure is None else _app_failure(failure)
 
 
 def _internal(exc: Exception, argv) -> int:

@@ -210,28 +210,3 @@ def sweep(args) -> int:
         if not args.json:
             print(f"gearhead: note: {printable(note)}", file=sys.stderr)
     return 0
-
-
-def app(path: str, argv) -> int:
-    """`gearhead robot.toml`: the app, showing the workbook's cards (a bad file: exit 2, one line)."""
-    from gearhead.core import workbook
-
-    from . import cli
-
-    if not cli._terminal():
-        cli._complain(
-            "the app needs a terminal; from a script use `gearhead check FILE` or `gearhead solve FILE`"
-        )
-        return cli.EXIT_BAD_INPUT
-    try:
-        book = workbook.load(path)
-    except InputError as exc:
-        cli._complain(str(exc))
-        return cli.EXIT_BAD_INPUT
-    from .app import run
-
-    try:
-        failure = run(workbook=book)
-    except Exception as exc:  # before the app or after it (its settings, the terminal)
-        return cli._internal(exc, argv)
-    return 0 if failure is None else cli._app_failure(failure)
