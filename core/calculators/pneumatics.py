@@ -398,8 +398,7 @@ OUTPUTS = (
         "tank_empty",
         "Tank emptied",
         equation="(81)",
-        help="Whether a stroke's chamber got under 1 % of its working pressure (under 1 % of its force; "
-        "the storage at or near atmospheric pressure).",
+        help="Whether a stroke got under 1 % of its working pressure (1 % of its force): storage near 0 psig.",
     ),
     *[
         o
@@ -411,8 +410,7 @@ OUTPUTS = (
                 "force",
                 "lbf",
                 equation="(82)",
-                help="π·D²/4 at the lowest pressure an extend stroke got in the match: its push "
-                "pressure, or less when the storage could not supply it (N4).",
+                help="π·D²/4 × the lowest pressure an extend stroke got: its push pressure or less (N4).",
             ),
             Output(
                 f"pull_force_{i}",
@@ -420,8 +418,7 @@ OUTPUTS = (
                 "force",
                 "lbf",
                 equation="(83)",
-                help="π·(D² − d²)/4 at the lowest pressure a retract stroke got in the match: its "
-                "pull pressure, or less when the storage could not supply it (N4).",
+                help="π·(D² − d²)/4 × the lowest pressure a retract stroke got: its pull pressure or less (N4).",
             ),
         )
     ],
