@@ -13,6 +13,7 @@ from textual import events
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.content import Content
+from textual.message import Message
 from textual.screen import Screen
 from textual.widgets import Tab, Tabs
 
@@ -183,13 +184,21 @@ class GearheadApp(App):
 
         return self.push_screen(WorkbookScreen(book, self.blink, self.hide_timings))
 
+    class EarlyKeysReleased(Message):
+        """Posted once the first card has the keys: what was typed before it is taken now."""
+
     def _release_early_keys(self) -> None:
-        """Keys typed before the first card could take them, posted again in the order typed,
-        now that it has the keys (they went to no widget and were lost: issue 40). Keys read
-        meanwhile wait in the app's queue behind these."""
+        # a message, not a loop here: keys read while the card was being built wait in the queue
+        # ahead of it, and are kept too (re-posting the early ones put them behind those)
+        self.post_message(self.EarlyKeysReleased())
+
+    @guarded
+    async def on_gearhead_app_early_keys_released(self, message: EarlyKeysReleased) -> None:
+        """Keys typed before the first card could take them (they went to no widget and were
+        lost: issue 40), taken in the order typed, before any key read after this."""
         early, self._early_keys = self._early_keys, None
         for key in early or ():
-            self.post_message(events.Key(key.key, key.character))
+            await self.on_event(events.Key(key.key, key.character))
 
     async def on_event(self, event: events.Event) -> None:
         """Every key the app reads (before its bindings): an F-key arms the pick of a calculator by
