@@ -98,6 +98,10 @@ def write_bytes(
             raise FileExists(field, path)
         if old is not None and not stat.S_ISREG(old.st_mode):  # a folder, /dev/null, a FIFO
             raise WriteError(field, "not a regular file", path)
+        if old is not None:
+            # a rename needs only the folder's permission: a read-only file would be replaced.
+            # Opened for writing (not truncated) as before this helper: refused the same way
+            os.close(os.open(target, os.O_WRONLY))
         try:
             _write(target, data, old, overwrite, field, _ANONYMOUS["ok"])
         except _CannotName:  # /proc's link refused (a locked-down container): a named temporary

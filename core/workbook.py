@@ -465,6 +465,8 @@ def _variable(name: str, value: Any, src: str) -> Variable:
         raise exc.from_source(src) from None
     try:
         q = evaluate(parse_expression(nominal, where, src), Scope({}, {}, {}), where, src)
+    except OffsetUnitError:
+        raise  # a quantity pint would misread, not a word
     except InputError:
         if tol is None:  # a word ('Kraken X60', '775pro', a material): a field that takes it reads it
             return Variable(name, value, value, None, None, text=True)
@@ -473,6 +475,18 @@ def _variable(name: str, value: Any, src: str) -> Variable:
         return Variable(name, value, value, None, None, text=True)
     unit, kind = _unit_of(nominal, q)
     return Variable(name, value, nominal, tol, None, unit, kind)
+
+
+OFFSET_UNITS = ("degree_Celsius", "degree_Fahrenheit", "degree_Reaumur")
+
+
+class OffsetUnitError(InputError):
+    """A unit with an offset used where pint would read it as an absolute temperature."""
+
+
+def _has_offset(x: Any) -> bool:
+    """Whether a quantity's units hold a unit with an offset (degC, degF)."""
+    return _is_quantity(x) and any(name in OFFSET_UNITS for name, _ in x.unit_items())
 
 
 def _unit_of(written: str, q: Any) -> tuple[str, str]:
@@ -742,6 +756,23 @@ def evaluate(expr: Expr, scope: Scope, where: str, src: str) -> Any:
             return UNKNOWN
         number(left, ast.unparse(node.left).replace(_KEYWORD_PREFIX, ""))
         number(right, ast.unparse(node.right).replace(_KEYWORD_PREFIX, ""))
+        if _has_offset(left) or _has_offset(right):
+            # only '20 degC' (a number times the unit, the whole entry): pint reads degC inside a
+            # compound or a product as an absolute temperature ('5 degC/s' was 278.15 K/s)
+            top = expr.tree.operand if isinstance(expr.tree, ast.UnaryOp) else expr.tree
+            plain_product = (
+                node is top
+                and isinstance(node.op, ast.Mult)
+                and (isinstance(left, float) or isinstance(right, float))
+            )
+            if not plain_product:
+                raise OffsetUnitError(
+                    where,
+                    f"{shown(expr.text)}: uses a unit with an offset (degC, degF) in arithmetic or a "
+                    "compound unit: write the temperature alone, or in K or degR (delta_degC for a "
+                    "difference)",
+                    src,
+                )
         import pint
 
         try:

@@ -235,9 +235,12 @@ def arm_cases():
             "start_angle": "-30 deg",
             "goal_angle": "45 deg",
             "sensor_delay": "5 ms",
-            "velocity_fraction": 0.4,
-            "acceleration_fraction": 0.2,
-            "stator_current_limit": "150 A",  # the derived acceleration's (40 A cannot lift it)
+            # the limits the derived profile gives at a 150 A stator limit (0.4 and 0.2 of it): a
+            # derived profile reads that limit only with the stator_limit effect on, and this test
+            # world has gravity alone (40 A cannot lift this arm)
+            "profile_limits": "entered",
+            "max_velocity": "10.053096491487338 rad/s",
+            "max_acceleration": "5.188252111653548 rad/s**2",
         }
     )
     return out

@@ -267,7 +267,7 @@ def _cli(capsys, calc, *args):
             [
                 *("--set", "ratio=4", "--set", "spool_diameter=0.5 in", "--set", "load_mass=5 lb"),
                 *("--set", "acceleration_fraction=0.9", "--set", "motor=Kraken X60"),
-                *("--set", "stator_current_limit=120 A"),
+                *("--set", "effects=gravity, stator_limit", "--set", "stator_current_limit=120 A"),
             ],
             "MotionMagicAcceleration = 28579",
         ),

@@ -250,6 +250,11 @@ def test_derived_acceleration_is_a_fraction_of_what_the_stator_limit_gives():
     assert arm.outputs["peak_stator_current"].value < 40.0  # was 186 A on the default Kraken
     # a cap that cannot lift the load is said, naming the field
     heavy = {"mode": "profiled", "load_mass": "60 lb", "stator_current_limit": "5 A"}
+    heavy["effects"] = "gravity, stator_limit"  # a hidden row changes nothing: the limit is the effect's
     with pytest.raises(InputError) as err:
         solve("elevator", heavy)
-    assert err.value.field == "acceleration_fraction" and "stator current limit, 5 A" in err.value.message
+    assert err.value.field == "stator_current_limit" and "5 A" in err.value.message
+    # with the effect off, 40 A per motor; 400 lb is more than 2 NEOs lift at 40 A on this ratio
+    with pytest.raises(InputError) as err:
+        solve("elevator", {"mode": "profiled", "load_mass": "400 lb"})
+    assert err.value.field == "acceleration_fraction" and "40 A" in err.value.message

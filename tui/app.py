@@ -260,18 +260,23 @@ class GearheadApp(App):
         if self.use_command_palette and not CommandPalette.is_open(self):
             self.push_screen(GearheadCommandPalette(id="--command-palette"))
 
+    @guarded
     async def action_quit(self) -> None:
         """Quit once the cards being mounted are: a quit pruned the screen a card was mounting
         into (F2 then ctrl+q in one burst: a MountError on the way out). An open workbook with
-        unsaved changes asks first (save, discard, stay)."""
+        unsaved changes asks first (save, discard, stay), once however often ctrl+q is pressed."""
+        from .components.leave_screen import LeaveScreen
         from .components.workbook_screen import WorkbookScreen
 
+        if isinstance(self.screen, LeaveScreen):
+            return  # already asked
         book = next((s for s in self.screen_stack if isinstance(s, WorkbookScreen)), None)
         if book is not None and not self._quitting and book.unsaved_changes():
             book.leave(lambda: self.call_later(self._quit_now))
             return
         await self._quit_now()
 
+    @guarded
     async def _quit_now(self) -> None:
         self._quitting = True
         try:

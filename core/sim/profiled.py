@@ -894,8 +894,7 @@ def profile_fields(
             when=(*TRAPEZOID, ("profile_limits", ("derived",))),
             help="Profile max acceleration as a fraction (0-1) of the acceleration from rest against "
             "the load with each motor at its stator current limit (the stator_limit effect's "
-            "entry, 40 A unless changed, used even with that effect off; the stall current if "
-            "lower). The default 0.1 keeps the default elevator's and arm's moves within a 40 A "
+            "entry when that effect is on, else 40 A; the stall current if lower). The default 0.1 keeps the default elevator's and arm's moves within a 40 A "
             "stator limit (peaks 36 A, 23 A): the feedforward's step each period and the feedback "
             "draw more than the profile's acceleration alone.",
         ),
@@ -1130,20 +1129,32 @@ def stall_acceleration(setup, current_cap: float | None = None) -> float:
     return (m.force_per_amp * I0 + m.s * field_force(setup)(m.q0) - friction_of(setup)) / m.inertia
 
 
+DERIVED_CURRENT_CAP = 40.0  # A per motor: the derived profile's current with no stator limit on
+
+
 def derived_acceleration(setup, v) -> float:
     """(P17): the derived trapezoid's max acceleration, acceleration_fraction of the acceleration
     from rest against the load at the start with each motor at its stator current limit (the
-    stator_current_limit entry, whether or not the stator_limit effect is on; its stall current
-    when lower). A team sets a stator limit (40 A by default here) and profiles within it: the
+    stator_current_limit entry with the stator_limit effect on, else DERIVED_CURRENT_CAP; its
+    stall current when lower). A team sets a stator limit (40 A by default here) and profiles within it: the
     full-voltage stall acceleration of a light load on FRC motors is tens of g at hundreds of amps."""
-    cap = v.get("stator_current_limit")
+    # the limit entered when the stator_limit effect is on (its row is shown); else a team's
+    # usual 40 A: a hidden row must change nothing (the CLI says so of a value set there)
+    limited = "stator_limit" in (v.get("effects") or ())
+    cap = v["stator_current_limit"] if limited else DERIVED_CURRENT_CAP
     a = stall_acceleration(setup, cap)
     if not a > 0:
         raise InputError(
-            "acceleration_fraction",
-            f"the derived profile accelerates from rest with each motor at the stator current limit, "
-            f"{cap:.4g} A, which cannot move the load at the start: raise stator_current_limit (the "
-            "stator_limit effect shows it) or enter the profile limits (profile_limits = entered)",
+            "stator_current_limit" if limited else "acceleration_fraction",
+            f"the derived profile accelerates from rest with each motor at {cap:.4g} A"
+            f"{' (the stator current limit)' if limited else ''}, which cannot move the load at the "
+            "start: "
+            + (
+                "raise stator_current_limit"
+                if limited
+                else "turn on the stator_limit effect and raise its limit"
+            )
+            + " or enter the profile limits (profile_limits = entered)",
         )
     return v["acceleration_fraction"] * a
 

@@ -230,7 +230,8 @@ class LoadPresetScreen(Dialog[presets.Preset | None]):
             # what the highlighted preset holds, before loading it
             yield Static("", id="preset-preview")
             with Horizontal(classes="dialog-buttons"):
-                yield Button("Browse files…", id="browse")
+                # a served session may not look around the serving machine's folders
+                yield Button("Browse files…", id="browse", disabled=served_paths.confined())
                 yield Button("Cancel", id="cancel")
 
     @on(OptionList.OptionHighlighted, "#preset-list")

@@ -337,11 +337,28 @@ class WorkbookScreen(Screen):
         (core.workbook.save: its comments and layout kept); links stay as the file has them."""
         from pathlib import Path
 
-        from gearhead.core import workbook
+        from gearhead.core import builtin, workbook
+        from gearhead.core.errors import InputError
+
+        from .. import served_paths
 
         path = Path(self.book.source)
         if not path.is_file():
             self.app.notify("This workbook has no file to save to.", severity="warning", markup=False)
+            return False
+        if path.resolve().parent == builtin.examples_dir():  # shipped with Gearhead: never rewritten
+            self.app.notify(
+                f"{path.name} is the example shipped with Gearhead, not saved over: copy it "
+                f"(cp {path} my_robot.toml) and open the copy to keep changes.",
+                severity="warning",
+                markup=False,
+                timeout=15,
+            )
+            return False
+        try:
+            served_paths.check(str(path))  # a served session: only in the Gearhead folder
+        except InputError as exc:
+            self.app.notify(str(exc), severity="error", markup=False)
             return False
         variables = {n: self._with_unit(n, self.robot.entries[n]) for n in sorted(self.robot.edited)}
         inputs = {}
