@@ -73,15 +73,7 @@ def import_graph(core: pathlib.Path = CORE) -> dict[str, set[str]]:
     """{module: the core modules it imports}, every import statement counted, plus the registry's
     importlib loading of each calculator module."""
     modules = _modules(core)
-    graph: dict[str, set[str]] = {}
-    for module, path in modules.items():
-        tree = ast.parse(path.read_text(encoding="utf-8"))
-        edges: set[str] = set()
-        for node in ast.walk(tree):
-            if isinstance(node, (ast.Import, ast.ImportFrom)):
-                edges |= _targets(module, path.name == "__init__.py", node, modules)
-        edges.discard(module)
-        graph[module] = edges
+    graph = package_graph(core)
     registry = modules["core.registry"].read_text(encoding="utf-8")
     assert "importlib.import_module" in registry, "the registry no longer loads by name: update this test"
     graph["core.registry"] |= {m for m in modules if m.startswith("core.calculators.")}
