@@ -228,17 +228,6 @@ class Terminal:
         self.tmux("kill-server")
 
 
-@pytest.fixture
-def terminal(tmp_path):
-    if TMUX is None:
-        pytest.skip("tmux is not installed (.ci/run installs it)")
-    term = Terminal(tmp_path)
-    try:
-        yield term
-    finally:
-        term.close()
-
-
 def _settle(term: Terminal, label: str, expected: str) -> str:
     try:
         # returns as soon as it is there: the long timeout only costs time on a failure, and a

@@ -258,19 +258,6 @@ async def test_two_closing_keys_in_one_burst_close_a_dialog_once(keys):
         assert app.focused is tab.sheet
 
 
-@pytest.fixture
-def app_in_tmux(tmp_path):
-    from tests.test_keystrokes import TMUX, Terminal
-
-    if TMUX is None:
-        pytest.skip("tmux is not installed (.ci/run installs it)")
-    term = Terminal(tmp_path)
-    try:
-        yield term
-    finally:
-        term.close()
-
-
 def _flags(screen: str) -> dict[str, str]:
     """The flags drawn on the form: name -> 'x' or ' ' (the Effects rows)."""
     import re
@@ -286,8 +273,7 @@ def _flags(screen: str) -> dict[str, str]:
 @pytest.mark.parametrize(
     "fkey,digit,seen", [("F2", "4", "Spool diameter"), ("F1", "1", "Free speed"), ("F2", "3", "Distance")]
 )
-def test_space_twice_on_every_effect_in_a_real_terminal(app_in_tmux, fkey, digit, seen):
-    terminal = app_in_tmux
+def test_space_twice_on_every_effect_in_a_real_terminal(terminal, fkey, digit, seen):
     """tmux: on the elevator, motor and sprint cards, Space on each effect turns that one flag
     over and a second Space turns it back (the cursor jumped to the first flag: the second Space
     turned gravity off)."""

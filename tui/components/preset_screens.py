@@ -127,17 +127,6 @@ def _carries_preset(text: str) -> bool:
     return len(text) <= MAX_PASTE and share.from_text_kind(text) is not None
 
 
-def _builtin_workbook(text: str) -> bool:
-    """Whether `builtin:NAME` names an example workbook (else a preset)."""
-    from gearhead.core import builtin
-
-    try:
-        builtin.workbook_path(text)
-    except InputError:
-        return False
-    return True
-
-
 class PresetPathInput(FieldInput):
     """The load dialog's path entry; a multi-line paste is a preset's text (ctrl+y elsewhere)."""
 
@@ -326,8 +315,13 @@ class LoadPresetScreen(Dialog[presets.Preset | None]):
             carried = share.from_text_kind(text) or builtin.is_builtin(text.strip())
             path = None if carried else served_paths.check(text)
             try:
-                if path is None and builtin.is_builtin(text.strip()) and _builtin_workbook(text.strip()):
-                    preset = workbook.load(builtin.workbook_path(text.strip()))
+                if path is None and builtin.is_builtin(text.strip()):
+                    try:  # an example workbook, else a built-in preset
+                        book = builtin.workbook_path(text.strip())
+                    except InputError:
+                        preset = share.load_any(text)
+                    else:
+                        preset = workbook.load(book)
                 elif path is None:
                     preset = share.load_any(text)
                 elif workbook.is_workbook_file(path):  # opens as one: its cards
