@@ -1906,8 +1906,8 @@ def compute(values) -> Result:
         run.values,
         run.warnings,
         run.series,
-        getattr(run, "tables", {}),
-        heat_maps=getattr(run, "heat_maps", {}),
+        run.tables,
+        heat_maps=run.heat_maps,
     )
 
 

@@ -193,7 +193,7 @@ def run(
             f"rest, less their free current, needs a ratio above {MAX_RATIO:.0e} to beat the load (LG0)."
         )
     out = SimRun(values_out, {"time_to_goal": values_out.get("time_to_goal", 0.0)}, nfev, warnings)
-    out.tables = {"limit_grid": rows}  # read by the calculator's compute (a SimRun has no tables)
+    out.tables = {"limit_grid": rows}
     out.heat_maps = {"limit_grid_time": heat_map(rows, stators, supplies, pick)}
     return out
 

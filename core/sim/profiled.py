@@ -1284,8 +1284,8 @@ def mechanism_result(run: SimRun):
         run.values,
         run.warnings,
         run.series,
-        getattr(run, "tables", {}),
-        heat_maps=getattr(run, "heat_maps", {}),
+        run.tables,
+        heat_maps=run.heat_maps,
     )
     if RETURN_PREFIX + "position" in result.series:
         result.series_labels.update(RETURN_SERIES_LABELS)

@@ -91,6 +91,8 @@ class SimRun:
     nfev: int
     warnings: list[str] = field(default_factory=list)
     series: dict[str, tuple[list[float], list[float]]] = field(default_factory=dict)  # plots
+    tables: dict[str, list[dict[str, Any]]] = field(default_factory=dict)  # rows of each Table
+    heat_maps: dict[str, Any] = field(default_factory=dict)  # HeatMapData of each HeatMap
 
 
 Simulate = Callable[[Mapping[str, Any], float], SimRun]
