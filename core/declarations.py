@@ -141,6 +141,15 @@ class Table:
         raise KeyError(name)
 
 
+@dataclass(frozen=True)
+class PendingEstimate:
+    """A scene's error estimate not computed yet (a solve asked with estimate="later"): the value
+    a compute function leaves in Result.values["error_estimate"]; `compute()` gives the estimate
+    (within its own solve budget). core.model.finish_estimate runs it."""
+
+    compute: Callable[[], float]
+
+
 @dataclass
 class Result:
     """What a compute function returns: output values in SI, and warnings for the user."""

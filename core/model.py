@@ -15,9 +15,9 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from dataclasses import field as dc_field
 from typing import Any
 
@@ -27,6 +27,7 @@ from .declarations import Column as Column
 from .declarations import HeatMap as HeatMap
 from .declarations import HeatMapData as HeatMapData
 from .declarations import Output as Output
+from .declarations import PendingEstimate
 from .declarations import Plot as Plot
 from .declarations import Result as Result
 from .declarations import Table as Table
@@ -58,6 +59,9 @@ class Solution:
     tables: dict[str, list[dict[str, Value]]] = dc_field(default_factory=dict)
     series_labels: dict[str, str] = dc_field(default_factory=dict)  # Result.series_labels
     heat_maps: dict[str, HeatMapData] = dc_field(default_factory=dict)  # Result.heat_maps (SI)
+    # a solve asked with estimate="later": its "error_estimate" output reads "…" until
+    # finish_estimate(solution) runs this (the second step; None once done or never asked)
+    pending_estimate: Callable[[], Value] | None = None
 
     def entries(self) -> dict[str, Any]:
         """Each input's value by field name (SI), as a calculator's compute saw them."""
@@ -214,18 +218,34 @@ def check_display_units(calc: Calculator, display_units: Mapping[str, str] | Non
     return display_units
 
 
+ESTIMATE = "error_estimate"  # a scene's output that may come in a second step (finish_estimate)
+ESTIMATE_PENDING_TEXT = "…"
+ESTIMATE_OVER_BUDGET_TEXT = "— (over one solve's budget)"
+
+
 def solve(
-    calc_id: str, raw: Mapping[str, Any] | None = None, display_units: Mapping[str, str] | None = None
+    calc_id: str,
+    raw: Mapping[str, Any] | None = None,
+    display_units: Mapping[str, str] | None = None,
+    estimate: str = "now",
 ) -> Solution:
-    """Parse, compute and format one calculator. Raises InputError on any bad entry."""
+    """Parse, compute and format one calculator. Raises InputError on any bad entry.
+
+    estimate="later": a simulated calculator leaves its error estimate for a second step
+    (Solution.pending_estimate, run by finish_estimate); the others solve as with "now"."""
     calc = get(calc_id)
+    if estimate not in ("now", "later"):
+        raise ValueError(f"estimate is 'now' or 'later', not {estimate!r}")
     if raw is not None and not isinstance(raw, Mapping):  # solve("motor", [1, 2]): named, not a TypeError
         raise InputError("inputs", f"must be a mapping of field names to entries, got {type(raw).__name__}")
     raw, notices = retire(calc.fields, raw or {})  # once per solve: parse_inputs is told so
     values, texts = parse_inputs(calc, raw, notices, retired=True)
+    later = estimate == "later" and any(o.name == ESTIMATE for o in calc.outputs)
     with last_resort():
-        result = calc.compute(values)
+        # a calculator with the error estimate output (a scene) takes `estimate` (scene.run_with_stats)
+        result = calc.compute(values, estimate="later") if later else calc.compute(values)
     display_units = check_display_units(calc, display_units)
+    pending = None
     inputs = {}
     for f in calc.fields:
         value, si_unit = f.kind.reported(f, values[f.name])
@@ -235,6 +255,10 @@ def solve(
         if o.name not in result.values:
             continue
         v = result.values[o.name]
+        if isinstance(v, PendingEstimate):
+            pending = _estimate_step(v, o, display_units.get(o.name, o.unit))
+            outputs[o.name] = Value(None, "", ESTIMATE_PENDING_TEXT)
+            continue
         if isinstance(v, float) and not math.isfinite(v):
             # Last-resort guard: a calculator must never show NaN/inf. Tests assert it never fires.
             raise InputError("(result)", f"{o.name} could not be computed from these inputs")
@@ -263,7 +287,36 @@ def solve(
         tables,
         dict(result.series_labels),
         _checked_heat_maps(result.heat_maps),
+        pending,
     )
+
+
+def _estimate_step(pending: PendingEstimate, o: Output, unit: str) -> Callable[[], Value]:
+    """The second step of a solve asked with estimate="later": the estimate's Value, or a dash
+    when it does not fit in one solve's budget (the results above it stand)."""
+
+    def step() -> Value:
+        try:
+            with last_resort():
+                value = pending.compute()
+        except InputError:
+            return Value(None, "", ESTIMATE_OVER_BUDGET_TEXT)
+        if not math.isfinite(value):  # the last-resort guard: never NaN or inf on screen
+            return Value(None, "", "— (could not be computed)")
+        return format_value(value, o.quantity, unit)
+
+    return step
+
+
+def finish_estimate(solution: Solution) -> Solution:
+    """The solution with its error estimate computed (the second step of estimate="later"); the
+    same solution when none is pending. Raises integrate.Cancelled when the caller's budget
+    cancels it (the app: the entries changed meanwhile)."""
+    if solution.pending_estimate is None:
+        return solution
+    value = solution.pending_estimate()
+    outputs = {name: (value if name == ESTIMATE else v) for name, v in solution.outputs.items()}
+    return replace(solution, outputs=outputs, pending_estimate=None)
 
 
 def _checked_heat_maps(maps: dict[str, HeatMapData]) -> dict[str, HeatMapData]:

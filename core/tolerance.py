@@ -54,7 +54,6 @@ LINEAR_ENOUGH = (
 DEFAULT_SAMPLES = 1000
 DEFAULT_SEED = 0
 MIN_SAMPLES = 100  # a time budget never cuts Monte Carlo below this
-APP_BUDGET_S = 2.0  # a card's solve: Monte Carlo stops here (a slow scene would keep the card busy)
 # The budget of one spread, whatever the calculator costs per solve (a default beam's rectangular
 # tube is 0.23 s a solve: its spread took 202 s CPU). Counted across every phase (the points along
 # each input, the corners, the optimiser, Monte Carlo); the optimiser may use half of it.
@@ -291,7 +290,7 @@ class _Probe:
 
     def __call__(self, xs: tuple[float, ...]) -> Outcome:
         if self.cancelled is not None and self.cancelled():
-            raise Cancelled
+            raise integrate.Cancelled("cancelled")  # the one cancellation every solve raises
         self.check()
         values = dict(self.base)
         for t, x in zip(self.tols, xs):
@@ -299,10 +298,6 @@ class _Probe:
         outcome = evaluate(self.calc, values)
         self.cost.add(outcome)
         return outcome
-
-
-class Cancelled(Exception):
-    """Raised inside a spread run when its cancel check turns true."""
 
 
 def _number(v: Any) -> float | None:
@@ -330,7 +325,7 @@ def spread(
     """Worst case and statistical spread of `outputs` (default: every numeric output) over the box.
 
     method: 'auto' (first-order where it is exact enough, else Monte Carlo), 'first-order', or
-    'monte-carlo'. Raises Cancelled if `cancelled()` turns true. With `budget_s`, Monte Carlo stops
+    'monte-carlo'. Raises integrate.Cancelled if `cancelled()` turns true. With `budget_s`, Monte Carlo stops
     once the run has taken that long (after at least MIN_SAMPLES samples) and says so.
     """
     if method not in ("auto", "first-order", "monte-carlo"):
@@ -626,15 +621,6 @@ def solve(
     )
     result.notes = notes + result.notes
     return solution, result, result.notes
-
-
-def solve_entries(calc_id: str, entries: Mapping[str, Any], display_units: Mapping[str, str] | None = None):
-    """What a card solves: (Solution, Spread or None). Entries without ± go straight to
-    core.model.solve, so a card without tolerances costs what it did."""
-    if not any(isinstance(v, str) and _PLUS_MINUS.search(v) for v in entries.values()):
-        return model.solve(calc_id, entries, display_units), None
-    solution, result, _ = solve(calc_id, entries, display_units, budget_s=APP_BUDGET_S)
-    return solution, result
 
 
 def shown_unit(calc: Calculator, solution, name: str) -> str:

@@ -181,8 +181,9 @@ def test_an_exception_that_reaches_textual_is_one_line_and_exit_70(pane, tmp_pat
 
 
 async def test_a_bug_in_a_solve_thread_is_a_notice_and_a_logged_traceback(state_home, monkeypatch):
-    """The error estimate of a simulation runs in the solve thread after the results are shown:
-    before, an exception there ended the thread silently (the row kept its '…', nothing logged)."""
+    """The error estimate of a simulation runs in a worker after the results are shown: an
+    exception there is a notice and a logged traceback (before, it ended the thread silently: the
+    row kept its '…', nothing logged)."""
     app = GearheadApp(blink=False, initial="pneumatics")
     notices = []
     notify = app.notify
@@ -192,19 +193,18 @@ async def test_a_bug_in_a_solve_thread_is_a_notice_and_a_logged_traceback(state_
         return notify(message, *args, **kwargs)
 
     app.notify = keep
-    monkeypatch.setattr(CalculatorTab, "_run_estimate", _boom)
+    monkeypatch.setattr("gearhead.core.model.finish_estimate", _boom)
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
-        app.current_tab.set_entries({})  # solved again: a warm simulation defers its estimate
+        app.current_tab.set_entries({"tank_volume": "1.5 L"})  # a card's later solves defer it
         await settle(pilot)
         for _ in range(100):
             if notices:
                 break
             await pilot.pause(0.05)
-        # one per solve whose estimate was deferred (the first too, if an earlier test warmed it)
         assert notices and all(severity == "error" for _, severity in notices)
         assert all(m.startswith(f"internal error (TypeError: {INJECTED}) (traceback in ") for m, _ in notices)
-    assert "_solve_in_thread" in next(state_home.rglob("gearhead.log")).read_text()
+    assert "_estimate_worker" in next(state_home.rglob("gearhead.log")).read_text()
 
 
 def test_a_bug_before_the_app_starts_is_the_same_one_line(state_home, monkeypatch, capsys):

@@ -63,7 +63,7 @@ async def test_a_bug_in_the_app_is_a_status_line_and_a_logged_traceback(state_ho
     app = GearheadApp(blink=False, initial="gear_ratio")
     async with app.run_test(size=(140, 45)) as pilot:
         await settle(pilot)
-        monkeypatch.setattr("gearhead.core.tolerance.solve_entries", _boom)
+        monkeypatch.setattr("gearhead.core.solving.solve", _boom)
         app.current_tab.set_entries({"voltage": "11"})
         await settle(pilot)
         status = str(app.current_tab.query_one(".status", Static).render())

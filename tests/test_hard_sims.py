@@ -379,6 +379,7 @@ async def test_typing_cancels_a_running_simulation_in_the_app(monkeypatch):
     """The app's worker polls `cancel` (the entries changed) between integration steps: a running
     simulation is dropped at once, not run to its end, and the latest entries are solved."""
     import asyncio
+    import threading
 
     from textual import events
 
@@ -389,9 +390,11 @@ async def test_typing_cancels_a_running_simulation_in_the_app(monkeypatch):
 
     real_solve = gearhead.core.model.solve
     outcomes: list[str] = []
+    running = threading.Event()
 
-    def slow_then_real(calc_id, raw=None, display_units=None):
+    def slow_then_real(calc_id, raw=None, *args):
         if not outcomes:  # the first solve after the key: an integration of minutes unless cancelled
+            running.set()
             try:
                 with ig.budget(max_seconds=20):  # (a bound for this test, should the cancel not come)
                     ig.integrate(lambda t, y: [math.cos(t)], 0.0, 1e9, [0.0], rtol=1e-12, max_steps=10**9)
@@ -401,7 +404,7 @@ async def test_typing_cancels_a_running_simulation_in_the_app(monkeypatch):
                 raise
         else:
             outcomes.append("solved")
-        return real_solve(calc_id, raw, display_units)
+        return real_solve(calc_id, raw, *args)
 
     app = GearheadApp(blink=False, initial="pneumatics")
     async with app.run_test(size=(140, 45)) as pilot:
@@ -414,7 +417,11 @@ async def test_typing_cancels_a_running_simulation_in_the_app(monkeypatch):
         assert tab.entries["match_length"] in ("150", 150)
         app.post_message(events.Key("enter", "\r"))  # edit it, the cursor at the end
         app.post_message(events.Key("backspace", "\x7f"))  # 150 -> 15: starts the slow solve
-        await asyncio.sleep(0.3)
+        for _ in range(200):  # until it runs (a solve cancelled before it begins never runs)
+            if running.is_set():
+                break
+            await asyncio.sleep(0.02)
+        await asyncio.sleep(0.1)
         app.post_message(events.Key("0", "0"))  # 15 -> 150 while it runs
         for _ in range(100):
             await asyncio.sleep(0.05)

@@ -20,8 +20,7 @@ from textual import events
 
 from gearhead.core.errors import InputError
 from gearhead.core.sim.scene import VOLATILE
-from gearhead.core.tolerance import solve_entries
-from gearhead.core.unit_systems import display_units
+from gearhead.core.solving import solve as solve_card
 from gearhead.tui.app import GearheadApp
 from gearhead.tui.components.results import FRESH, STALE
 from gearhead.tui.components.sheet import GAP, LABEL_CELLS
@@ -74,9 +73,8 @@ def check_card(tab) -> None:
             sheet.buffer,
         )
     # the results: those of exactly these entries
-    preferred = display_units(calc, tab.unit_system, tab.entries)
-    try:
-        solution, _ = solve_entries(calc.id, tab.entries, {**preferred, **tab.display_units})
+    try:  # the card's own solve (the one the CLI makes)
+        solution = solve_card(calc, tab.entries, tab.display_units, tab.unit_system).solution
     except InputError as exc:
         assert tab.error is not None and tab.error.field == exc.field, (exc, tab.error)
         assert tab.results.state == STALE or tab.solution is None

@@ -327,7 +327,7 @@ def _display_units(args) -> dict[str, str]:
 
 
 def _solve(args) -> int:
-    from gearhead.core.model import solve
+    from gearhead.core import solving
     from gearhead.core.registry import get
 
     calc = get(args.calculator)
@@ -335,17 +335,9 @@ def _solve(args) -> int:
         raise InputError("--preset-out", "is empty; give a file name, or - to print the preset")
     display_units = _display_units(args)
     raw = _raw_inputs(args, calc)
-    spread = None
-    if any(isinstance(v, str) and ("±" in v or "+-" in v or "+/-" in v) for v in raw.values()):
-        from gearhead.core import tolerance  # only then: a plain solve starts as fast as before
-
-        solution, spread, notes = tolerance.solve(
-            calc.id, raw, display_units, args.spread, args.samples, args.seed
-        )
-        if spread is None:  # every tolerance dropped (zero, unused field): the notes say why
-            solution.warnings.extend(notes)
-    else:
-        solution = solve(calc.id, raw, display_units)  # a bad input exits 2 before any preset is written
+    # the card's own solve (a bad input exits 2 before any preset is written)
+    solved = solving.solve(calc, raw, display_units, method=args.spread, samples=args.samples, seed=args.seed)
+    solution, spread = solved.solution, solved.spread
     said = {w.partition(":")[0] for w in solution.warnings}  # an invalid unused entry is said already
     solution.warnings.extend(w for w in _unused_sets(calc, args, raw) if w.partition(":")[0] not in said)
     if args.preset_out is not None:
@@ -353,7 +345,12 @@ def _solve(args) -> int:
     if args.document is not None:
         return _document(calc, args.document, solution)
     if args.json:
-        data = solution.as_json() if spread is None else tolerance.as_json(solution, spread)
+        if spread is None:
+            data = solution.as_json()
+        else:
+            from gearhead.core import tolerance
+
+            data = tolerance.as_json(solution, spread)
         print(json.dumps(data, allow_nan=False))
         return 0
     width = max(len(calc.output(k).label) for k in solution.outputs)
@@ -369,6 +366,8 @@ def _solve(args) -> int:
     if solution.heat_maps:
         _print_heat_maps(calc, solution)
     if spread is not None:
+        from gearhead.core import tolerance
+
         print("\n".join(tolerance.spread_lines(calc, solution, spread, width)))
     return 0
 

@@ -319,8 +319,10 @@ def simulate(v, rtol: float):
     return run
 
 
-def compute(values) -> Result:
-    return profiled.mechanism_result(run_with_stats(simulate, values))  # the return plot's legend: (P16)
+def compute(values, estimate: str = "now") -> Result:
+    return profiled.mechanism_result(
+        run_with_stats(simulate, values, estimate=estimate)
+    )  # the return plot's legend: (P16)
 
 
 def gains_of(solution) -> gains_code.Gains:

@@ -1900,8 +1900,8 @@ def velocity_loop_run(sc: Scene, v, rtol: float, values: dict, warnings: list):
     return lr
 
 
-def compute(values) -> Result:
-    run = run_with_stats(simulate, values)
+def compute(values, estimate: str = "now") -> Result:
+    run = run_with_stats(simulate, values, estimate=estimate)
     return Result(
         run.values,
         run.warnings,

@@ -690,8 +690,8 @@ def seed_step(v) -> tuple[float, float, tuple[list[float], list[float]]]:
     return low, P, (ts, Ps)
 
 
-def compute(v) -> Result:
-    run = run_with_stats(simulate, v, ADVICE)  # a retired effect is read before (effects.retire)
+def compute(v, estimate: str = "now") -> Result:
+    run = run_with_stats(simulate, v, ADVICE, estimate)  # a retired effect is read before (effects.retire)
     seed_min, seed_final, seed_trace = seed_step(v)
     run.series["spreadsheet, 1 s"] = seed_trace
     run.values["seed_min_pressure"] = seed_min

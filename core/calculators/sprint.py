@@ -1158,9 +1158,9 @@ def simulate(v: Mapping[str, Any], rtol: float) -> SimRun:
     return run
 
 
-def compute(values: Mapping[str, Any]) -> Result:
+def compute(values: Mapping[str, Any], estimate: str = "now") -> Result:
     result_of = compute_with_stats(simulate)
-    result = result_of(values)
+    result = result_of(values, estimate)
     if values["mode"] == "optimise":
         rtol = 1e-6
         rows = []

@@ -631,8 +631,8 @@ def refine(v, beta: float, l: float, lo: float, hi: float) -> tuple[float, float
     return beta, l, start, True
 
 
-def compute(v) -> Result:
-    run = run_with_stats(simulate, v, ADVICE)
+def compute(v, estimate: str = "now") -> Result:
+    run = run_with_stats(simulate, v, ADVICE, estimate)
     if optimising(v):
         with solve_budget(OPTIMISE_ADVICE, max_nfev=OPTIMISE_NFEV):
             _optimise(v, run)

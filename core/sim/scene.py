@@ -11,11 +11,10 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
-from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..declarations import Output, Result
+from ..declarations import Output, PendingEstimate, Result
 from ..errors import InputError
 from ..fields import Field
 from .integrate import BudgetExceeded, budget
@@ -114,55 +113,42 @@ def relative_difference(a: Mapping[str, float], b: Mapping[str, float]) -> float
 
 
 def run_with_stats(
-    simulate: Simulate, values: Mapping[str, Any], advice: tuple[str, str] = DEFAULT_ADVICE
+    simulate: Simulate,
+    values: Mapping[str, Any],
+    advice: tuple[str, str] = DEFAULT_ADVICE,
+    estimate: str = "now",
 ) -> SimRun:
     """The run at the chosen accuracy, with error estimate, evaluations and wall time added, all
-    within one solve's budget (`advice` says what to change when it is not enough)."""
+    within one solve's budget (`advice` says what to change when it is not enough).
+
+    estimate="later": the error estimate is left as a PendingEstimate, a second step the caller
+    runs once the results are shown (the app: the estimate's run at 100x tighter tolerance can
+    cost more than the run itself, 36 of the pneumatics card's 62 ms a key). The CLI, sweeps and
+    tolerances take it "now", with the results."""
+    if estimate not in ("now", "later"):
+        raise ValueError(f"estimate is 'now' or 'later', not {estimate!r}")
     with solve_budget(advice):
-        return _run_with_stats(simulate, values, advice)
-
-
-# The app shows a scene's results before its error estimate (the estimate's run at 100x tighter
-# tolerance can cost more than the run itself: 36 of the pneumatics tab's 62 ms a key). Inside
-# deferred_estimate() the first run leaves "error_estimate" out and appends a function that
-# computes it; the app calls it after showing the results, and drops it if a key came meanwhile.
-# The CLI and --json never defer: they print the estimate with the results.
-_DEFERRED: ContextVar[list[Callable[[], float]] | None] = ContextVar("deferred_estimate", default=None)
-_WARMED: set[Simulate] = set()  # scenes that have run once in this process (imports paid)
-
-
-@contextmanager
-def deferred_estimate() -> Iterator[list[Callable[[], float]]]:
-    """Within: the first scene run leaves its error estimate out and appends a function computing
-    it (within its own solve budget) to the list yielded."""
-    pending: list[Callable[[], float]] = []
-    token = _DEFERRED.set(pending)
-    try:
-        yield pending
-    finally:
-        _DEFERRED.reset(token)
+        return _run_with_stats(simulate, values, advice, later=estimate == "later")
 
 
 def _run_with_stats(
-    simulate: Simulate, values: Mapping[str, Any], advice: tuple[str, str] = DEFAULT_ADVICE
+    simulate: Simulate, values: Mapping[str, Any], advice: tuple[str, str], later: bool
 ) -> SimRun:
     rtol = LEVELS[values["accuracy"]]
-    pending = _DEFERRED.get()
-    defer = pending is not None and not pending and simulate in _WARMED
-    # Otherwise the check runs first: it pays the one-off costs (lazy imports of scipy and numpy,
-    # caches), so the wall time shown is what the chosen accuracy costs, not what starting up costs.
-    check = None if defer else simulate(values, rtol / ESTIMATE_FACTOR)
-    _WARMED.add(simulate)
+    # Now: the check runs first, so it pays the one-off costs (lazy imports of scipy, caches) and
+    # the wall time shown is what the chosen accuracy costs, not what starting up costs. (The app
+    # asks "later" only once its card has solved once: the imports are paid by then.)
+    check = None if later else simulate(values, rtol / ESTIMATE_FACTOR)
     run, wall = timed(simulate, values, rtol)
     if not run.nfev:
         run.values["error_estimate"] = 0.0  # closed form: nothing was integrated
-    elif defer:
+    elif later:
 
-        def later() -> float:
+        def estimate() -> float:
             with solve_budget(advice):
                 return _estimate(simulate, values, rtol, run.key)
 
-        pending.append(later)
+        run.values["error_estimate"] = PendingEstimate(estimate)
     else:
         run.values["error_estimate"] = _estimate(simulate, values, rtol, run.key, check.key)
     run.values["rhs_evaluations"] = run.nfev
@@ -194,8 +180,8 @@ def _estimate(
 def compute_with_stats(simulate: Simulate, advice: tuple[str, str] = DEFAULT_ADVICE):
     """A calculator's compute function that is just its scene run with the cost figures added."""
 
-    def compute(values: Mapping[str, Any]) -> Result:
-        run = run_with_stats(simulate, values, advice)
+    def compute(values: Mapping[str, Any], estimate: str = "now") -> Result:
+        run = run_with_stats(simulate, values, advice, estimate)
         return Result(run.values, run.warnings, run.series)
 
     return compute

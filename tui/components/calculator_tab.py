@@ -2,50 +2,70 @@
 
 The form is one Sheet (sheet.py: a row per field, spreadsheet keys), the results one ResultsList
 (results.py); beside them the calculator's charts and tables, its warnings and a status line.
-Every change of an entry is solved at once in a thread (one solve at a time per card, latest
-wins), so the interface never waits for pint or scipy. A solution is tagged with the entries it
-was solved from and shown only while they are the entries on screen.
+
+The path of a key: the sheet hands the card a changed entry; `solve` starts a Textual thread
+worker on the entries on screen (one per card: a newer solve cancels the older, which stops at its
+next integration step); the worker solves through core.solving.solve, the CLI's own solve, and
+posts `Solved` carrying the key of what it solved; the card draws it only while that key is still
+the card's (card_text.py builds every text). A scene's error estimate is a second step: once its
+results are drawn, another worker runs core.model.finish_estimate and posts `Estimated`. No other
+thread touches the card; nothing waits.
 """
 
 from __future__ import annotations
 
-from threading import Event, get_ident
-from types import SimpleNamespace
+from time import perf_counter
 from typing import Any
 
 from rich.text import Text
+from textual import work
 from textual.app import ComposeResult
 from textual.containers import Horizontal, Vertical, VerticalScroll
+from textual.message import Message
 from textual.widget import Widget
 from textual.widgets import DataTable, Static
+from textual.worker import Worker, WorkerState, get_current_worker
 
 from gearhead.core.errors import InputError
 from gearhead.core.model import Calculator, Field, Solution
-from gearhead.core.sim.scene import VOLATILE
 
-from ..guard import guard, guarded
-from .results import FRESH, PENDING, STALE, ResultRow, ResultsList
+from ..guard import guard, guarded, report
+from . import card_text
+from .results import FRESH, PENDING, STALE, WAITING, ResultsList
 from .sheet import Sheet
-from .unit_text import pretty_quantity, pretty_unit
 
 BUSY_AFTER_S = 0.1  # a solve running longer than this shows '… solving'
 
 
-def _entries_key(entries: dict[str, Any], display_units: dict[str, str], system: str) -> tuple:
+def entries_key(entries: dict[str, Any], chosen_units: dict[str, str], system: str) -> tuple:
     """What a solution was solved from: the entries, the units chosen and the units preference."""
     return (
         tuple(sorted((k, repr(v)) for k, v in entries.items())),
-        tuple(sorted(display_units.items())),
+        tuple(sorted(chosen_units.items())),
         system,
     )
 
 
 class CalculatorTab(Widget):
     """The whole card for one calculator. Its handlers and the callbacks the sheet, the results
-    list, timers and solve threads call are @guarded: a bug in one is a notification and a logged
-    traceback (guard.py), and the card keeps what was typed."""
+    list and timers call are @guarded: a bug in one is a notification and a logged traceback
+    (guard.py), and the card keeps what was typed."""
 
     sheet_class = Sheet  # the form's class (a workbook card's refuses edits on its linked rows)
+
+    class Solved(Message):
+        """A solve's outcome (core.solving.Solved, or the InputError) for the entries of `key`."""
+
+        def __init__(self, key: tuple, solved, error: InputError | None, seconds: float) -> None:
+            super().__init__()
+            self.key, self.solved, self.error, self.seconds = key, solved, error, seconds
+
+    class Estimated(Message):
+        """The error estimate of `before` (a shown solution): `after` has it in place of "…"."""
+
+        def __init__(self, key: tuple, before: Solution, after: Solution) -> None:
+            super().__init__()
+            self.key, self.before, self.after = key, before, after
 
     def __init__(
         self, calculator: Calculator, blink: bool = True, hide_timings: bool = False, **kwargs
@@ -55,23 +75,22 @@ class CalculatorTab(Widget):
         self.blink = blink
         self.hide_timings = hide_timings  # snapshot tests: no wall-clock figures on screen
         self.entries: dict[str, Any] = {f.name: self.initial_entry(f) for f in calculator.fields}
-        self.solution: Solution | None = None  # the last valid solution
-        self.solution_key: tuple | None = None  # what it was solved from (_entries_key)
-        self.error: InputError | None = None  # what is wrong with the entries on screen
-        self.error_key: tuple | None = None
         self.display_units: dict[str, str] = {}  # output -> unit the user chose (Enter on a result)
         self.unit_system = "calculator"  # the units preference (core.unit_systems), set by the app
-        self._preferred_units: dict[str, str] = {}  # output -> unit the preference gave last solve
         self.preset_meta = ("", "")  # name and description of the preset last loaded here
-        self._solving = False  # a solve thread is running
+        # what is shown: the last valid solve, and what is wrong with the entries on screen
+        self.solution: Solution | None = None
+        self.solution_key: tuple | None = None  # what it was solved from (entries_key)
+        self.spread = None  # its core.tolerance.Spread, or None
+        self.shown_units: dict[str, str] = {}  # output -> unit its results are shown in
+        self.error: InputError | None = None
+        self.error_key: tuple | None = None
+        self.asked: tuple | None = None  # the key of the latest solve asked for
+        self._estimate = None  # the worker computing the shown solution's error estimate
         self._sendable: bool | None = None  # ctrl+g had something to send at the last solve
-        self._dirty = False  # entries changed since the running solve started
-        self._solve_seconds = 0.0  # wall time of the last whole solve
-        self._estimating: set[int] = set()  # threads computing a shown solution's error estimate
         self._shown_by = None  # (mode, choices) the visible rows were chosen for
         self._warnings_text: str | None = None
-        self._show_generation = 0  # solutions shown so far (a pending estimate belongs to the last)
-        self.spread = None  # the last solve's core.tolerance.Spread, or None
+        self._warnings_lines = -1  # lines the warnings took when last shown (-1: unknown, lay out)
         self._mounted = False
 
     @staticmethod
@@ -109,7 +128,7 @@ class CalculatorTab(Widget):
                 self.results = ResultsList(
                     on_select=self._cycle_unit, on_cursor=self._explain_output, classes="results"
                 )
-                self.results.value_width = value_width(calc)
+                self.results.value_width = card_text.value_width(calc)
                 widest = max((len(o.equation) for o in calc.outputs), default=0)
                 self.results.equation_width = max(widest, 3) if widest else 0
                 yield self.results
@@ -138,7 +157,7 @@ class CalculatorTab(Widget):
         self._apply_mode()
         self.solve()
 
-    # ---- entries ------------------------------------------------------------------------
+    # ---- entries in -----------------------------------------------------------------------
     @guarded
     def _take_entry(self, name: str, value: Any) -> None:
         """The sheet changed an entry (a key, a toggle, a choice): solved at once."""
@@ -179,7 +198,7 @@ class CalculatorTab(Widget):
         merged = dict(self.entries)
         for name, value in values.items():
             f = self.calculator.field(name)
-            merged[name] = in_field_unit(f, f.kind.entry(f, value))
+            merged[name] = card_text.in_field_unit(f, f.kind.entry(f, value))
         self.entries = merged
         self.sheet.editing = False
         self._entries_changed()
@@ -203,32 +222,6 @@ class CalculatorTab(Widget):
             ChoiceScreen(field.label, spec.options, self.entries.get(field.name)), guard(self, chosen)
         )
 
-    # ---- the help line ------------------------------------------------------------------
-    @guarded
-    def _explain_field(self, f: Field) -> None:
-        line = Text(f.label + ": ", style="bold")
-        line.append(f.help or "")
-        hint = f.kind.entry_hint(f)
-        if hint:
-            line.append(f"  ({hint})", style="dim")
-        error = self.sheet.errors.get(f.name)
-        if error:  # the whole message, first: the status line and the glance cut it
-            shown = Text()
-            shown.append(f"⚠ {error}\n", style="bold red")
-            shown.append_text(line)
-            line = shown
-        if self._mounted:
-            self.help_line.update(line)
-
-    @guarded
-    def _explain_output(self, name: str) -> None:
-        out = self.calculator.output(name)
-        line = Text(out.label + (f" {out.equation}" if out.equation else "") + ": ", style="bold")
-        line.append(out.help or "see the help of the fields it comes from")
-        line.append("  (Enter: next unit)", style="dim")
-        self._append_spread(name, line)
-        self.help_line.update(line)
-
     @guarded
     def _cycle_unit(self, name: str) -> None:
         """Show the chosen result in the next common unit of its kind (mm → cm → m → in → ft …)."""
@@ -240,7 +233,7 @@ class CalculatorTab(Widget):
         value = self.solution.outputs.get(name)
         if value is None or isinstance(value.value, (bool, str, int)):
             return
-        shown = self.display_units.get(name) or self._preferred_units.get(name, out.unit)
+        shown = self.display_units.get(name) or self.shown_units.get(name, out.unit)
         unit = units.next_unit(shown, out.quantity, out.unit)
         if unit != shown:
             self.display_units = {**self.display_units, name: unit}
@@ -254,117 +247,58 @@ class CalculatorTab(Widget):
             self.plot.unit_system = system
         self.solve()
 
-    # ---- solving -----------------------------------------------------------------------
-    # No fixed typing pause: a closed-form solve takes ~0.1 ms, so every change is solved at
-    # once, in a thread (the first use of pint or scipy must not freeze typing). At most one solve
-    # runs per card; changes meanwhile mark it dirty, and when the running solve ends its result
-    # is dropped and the latest entries are solved instead (latest wins, nothing queues).
+    # ---- solve out ------------------------------------------------------------------------
     @property
     def key(self) -> tuple:
         """What the card on screen asks to be solved."""
-        return _entries_key(self.entries, self.display_units, self.unit_system)
-
-    def solve(self) -> None:
-        self._dirty = True
-        if not self._solving:
-            self._start_solve()
+        return entries_key(self.entries, self.display_units, self.unit_system)
 
     @property
     def busy(self) -> bool:
-        """A solve is running or waiting to run, or a shown solve's error estimate is being
-        computed, or its chart is waiting to be drawn (tests wait for this to clear)."""
+        """The entries on screen are not solved and drawn yet: their solve, their error estimate or
+        their chart is still to come (tests wait for this to clear)."""
         plot = self.plot if self._mounted else None
-        return self._solving or self._dirty or bool(self._estimating) or (plot is not None and plot.pending)
+        waiting = self.asked is not None and self.asked not in (self.solution_key, self.error_key)
+        return waiting or self._estimate is not None or (plot is not None and plot.pending)
 
-    # A solve that took less than WAIT_S last time is waited for, that long: its result is then
-    # drawn in the frame that echoes the key, where a result from a thread waits for the next frame.
-    WAIT_S = 0.008
+    def solve(self) -> None:
+        """Solve the entries on screen in a worker. The worker group is exclusive: starting one
+        cancels the card's previous solve (a solve not begun never runs; a running one stops at its
+        next integration step or tolerance sample, or ends and its result is dropped)."""
+        self.asked = key = self.key
+        if self._estimate is not None:  # the shown solution's estimate is no longer wanted
+            self._estimate.cancel()
+            self._estimate = None
+        if self.solution is not None and self.solution_key != key:
+            self.results.show(self._rows(self.solution), WAITING)  # dimmed: not these entries' results
+        # a card's first solve takes its error estimate with it: the estimate's run goes first and
+        # pays the scene's one-off imports, so the time shown is what the accuracy costs
+        estimate = "later" if self.solution is not None else "now"
+        self._solve_worker(key, dict(self.entries), dict(self.display_units), self.unit_system, estimate)
+        self.set_timer(BUSY_AFTER_S, self._mark_busy)
 
-    def _start_solve(self) -> None:
-        from threading import Lock, Thread
+    @work(thread=True, exclusive=True, group="solve", exit_on_error=False)
+    def _solve_worker(self, key: tuple, entries: dict, chosen: dict, system: str, estimate: str) -> None:
+        from gearhead.core import solving
+        from gearhead.core.sim.integrate import Cancelled
 
-        self._dirty = False
-        self._solving = True
-        key = self.key
-        args = (dict(self.entries), dict(self.display_units), self.unit_system)
-        handoff = SimpleNamespace(waiting=True, result=None, lock=Lock(), done=Event())
-        Thread(
-            target=self._solve_in_thread, args=(args, key, handoff), name="gearhead-solve", daemon=True
-        ).start()
-        if self._solve_seconds < self.WAIT_S:
-            handoff.done.wait(self.WAIT_S)
-        with handoff.lock:
-            handoff.waiting = False
-            result = handoff.result
-        if result is not None:
-            self._solve_done(*result)
-        else:
-            self._show_pending()
-            self.set_timer(BUSY_AFTER_S, self._mark_busy)
-
-    def _solve_in_thread(self, args: tuple, key: tuple, handoff: SimpleNamespace) -> None:
-        solution, error, pending = self._solve_entries(*args)
-        try:
-            with handoff.lock:
-                in_time = handoff.waiting
-                if in_time:  # _start_solve is waiting: it shows the result itself
-                    handoff.result = (solution, error, key)
-                    handoff.done.set()
-            if not in_time:
-                self.app.call_from_thread(self._solve_done, solution, error, key)
-            if pending:
-                # once the frame with the results is drawn (this thread would hold the GIL from
-                # it), and only if they are the ones on screen: now their error estimate
-                drawn = Event()
-                self.app.call_from_thread(self.call_after_refresh, drawn.set)
-                drawn.wait(1.0)
-                shown = solution.solution
-                if self.solution is shown:
-                    self.app.call_from_thread(
-                        self._estimate_done, shown, self._run_estimate(pending[0], shown)
-                    )
-        except RuntimeError:  # the app closed while this solve ran
-            pass
-        except Exception as exc:  # a bug in the error estimate: logged and said, as a handler's
-            from ..guard import report
-
-            try:
-                self.app.call_from_thread(report, self, exc, "CalculatorTab._solve_in_thread")
-            except RuntimeError:  # the app closed meanwhile: the log alone
-                from ..bug_log import record
-
-                record(exc, "gearhead (the app) CalculatorTab._solve_in_thread")
-        finally:
-            self._estimating.discard(get_ident())
-
-    def _solve_entries(self, entries: dict[str, Any], display_units: dict[str, str], system: str):
-        """(solution, error, pending error estimate) of these entries; never raises."""
-        from time import perf_counter
-
-        from gearhead.core import unit_systems
-        from gearhead.core.sim.integrate import Cancelled, budget
-        from gearhead.core.sim.scene import deferred_estimate
-        from gearhead.core.tolerance import solve_entries  # entries may carry '± tolerance'
-
+        worker = get_current_worker()
         started = perf_counter()
-        pending: list = []
-        spread = None
         try:
-            preferred = unit_systems.display_units(self.calculator, system, entries)
-            self._preferred_units = preferred
-            # a simulation polls this between steps: a change meanwhile drops it (latest wins)
-            with budget(cancel=lambda: self._dirty), deferred_estimate() as pending:
-                solution, spread = solve_entries(self.calculator.id, entries, {**preferred, **display_units})
-            if pending and spread is None:
-                # shown first with "…" in its row; computed below, after the results are on screen
-                solution = self._estimate_pending(solution)
-            else:
-                pending = []  # with tolerances every solve is whole (the spread needs each estimate)
+            solved = solving.solve(
+                self.calculator,
+                entries,
+                chosen,
+                system,
+                estimate=estimate,
+                spread_seconds=solving.CARD_SPREAD_SECONDS,
+                cancelled=lambda: worker.is_cancelled,
+            )
             error = None
-        except Cancelled:  # only when _dirty: _solve_done starts the solve of the latest entries
-            solution, error = None, None
+        except Cancelled:  # a newer solve of the card runs: it posts
+            return
         except InputError as exc:
-            solution, error = None, exc
+            solved, error = None, exc
             if exc.__cause__ is not None:  # the last-resort guard fired: keep the traceback
                 from ..bug_log import record
 
@@ -373,73 +307,71 @@ class CalculatorTab(Widget):
             from ..bug_log import record
 
             path = record(exc, f"{self.calculator.id} {entries!r}")
-            solution, error = (
-                None,
-                InputError(
-                    "(result)",
-                    f"internal error: {type(exc).__name__}: {exc}"
-                    + (f" (traceback in {path})" if path else ""),
-                ),
+            solved = None
+            error = InputError(
+                "(result)",
+                f"internal error: {type(exc).__name__}: {exc}" + (f" (traceback in {path})" if path else ""),
             )
-        if solution is not None:
-            solution = SimpleNamespace(solution=solution, spread=spread)
-        self._solve_seconds = perf_counter() - started  # the whole solve (an optimiser's search too)
-        return solution, error, pending
+        self.post_message(self.Solved(key, solved, error, perf_counter() - started))
+
+    @work(thread=True, exclusive=True, group="estimate", exit_on_error=False)
+    def _estimate_worker(self, key: tuple, solution: Solution) -> None:
+        from gearhead.core.model import finish_estimate
+        from gearhead.core.sim.integrate import Cancelled, budget
+
+        worker = get_current_worker()
+        try:
+            with budget(cancel=lambda: worker.is_cancelled):
+                after = finish_estimate(solution)
+        except Cancelled:
+            return
+        # a bug raises out of here: the worker's ERROR state comes back as a message (below)
+        self.post_message(self.Estimated(key, solution, after))
 
     @guarded
-    def _solve_done(self, solved, error: InputError | None, key: tuple) -> None:
-        self._solving = False
-        if not self._mounted or not self.is_attached:
-            return  # the app closed, or the card was removed, meanwhile
-        if self._dirty or key != self.key:  # entries changed while solving: already stale
-            self._start_solve()
-            return
-        if solved is None and error is None:  # cancelled, and nothing newer asked for
-            self._start_solve()
-            return
-        self._show(solved, error, key)
+    def on_worker_state_changed(self, event: Worker.StateChanged) -> None:
+        """A bug in the error estimate: a notice and a logged traceback; the results above stand."""
+        if event.state == WorkerState.ERROR and event.worker.group == "estimate":
+            if event.worker is self._estimate:
+                self._estimate = None
+            report(self, event.worker.error, "CalculatorTab._estimate_worker")
 
     @guarded
     def _mark_busy(self) -> None:
-        if self._solving:
+        if self._mounted and self.asked not in (self.solution_key, self.error_key):
             self.status.update(Text("… solving", style="yellow"), layout=False)
-
-    def _show_pending(self) -> None:
-        """The entries on screen are being solved: no result of other entries is drawn."""
-        if self.solution is not None and self.solution_key != self.key:
-            self.results.show(self._rows(self.solution), PENDING)
-
-    def _show(self, solved, error: InputError | None, key: tuple) -> None:
-        if error is not None:
-            self.error, self.error_key = error, key
-            names = {f.name for f in self.calculator.fields}
-            # every wrong entry is marked on its row (parse_inputs reports them all: InputErrors)
-            marks: dict[str, str] = {}
-            for e in error.errors:
-                if e.field in names:
-                    marks.setdefault(e.field, e.message)
-            self.sheet.set_errors(marks)
-            try:  # the label the user sees on the form, not the internal field name
-                where = self.calculator.field(error.field).label
-            except KeyError:
-                where = error.field
-            if len(error.errors) > 1:
-                where = f"{where} (and {len(error.errors) - 1} more)"
             if self.solution is not None:
-                self.results.show(self._rows(self.solution), STALE)
-            self.status.update(
-                Text(f"✗ {where}: {error.message} (results show the last valid inputs)", style="red"),
-                layout=False,
-            )
-            self.glance.update(Text(f"✗ {where}: {error.message}", style="red"), layout=False)
-            if self.plot is not None and not self.plot.has_class("stale"):
-                self.plot.add_class("stale")
-            return
+                self.results.show(self._rows(self.solution), PENDING)
+
+    # ---- draw -----------------------------------------------------------------------------
+    @guarded
+    def on_calculator_tab_solved(self, message: Solved) -> None:
+        message.stop()
+        if message.key != self.key or not self._mounted:
+            return  # solved from entries no longer on screen: the latest solve is running
+        if message.error is not None:
+            self._show_error(message.error, message.key)
+        else:
+            self._show_solved(message.solved, message.key, message.seconds)
+
+    def _show_error(self, error: InputError, key: tuple) -> None:
+        calc = self.calculator
+        self.error, self.error_key = error, key
+        self.sheet.set_errors(card_text.error_marks(calc, error))
+        if self.solution is not None:
+            self.results.show(self._rows(self.solution), STALE)
+        self.status.update(card_text.error_status(calc, error), layout=False)
+        self.glance.update(card_text.error_glance(calc, error), layout=False)
+        if self.plot is not None and not self.plot.has_class("stale"):
+            self.plot.add_class("stale")
+
+    def _show_solved(self, solved, key: tuple, seconds: float) -> None:
+        calc = self.calculator
         self.error = self.error_key = None
         self.sheet.set_errors({})
         solution = solved.solution
         self.solution, self.solution_key, self.spread = solution, key, solved.spread
-        self._show_generation += 1
+        self.shown_units = solved.units
         self.results.show(self._rows(solution), FRESH)
         if self.plot is not None:
             if self.plot.has_class("stale"):
@@ -447,40 +379,31 @@ class CalculatorTab(Widget):
             self.plot.show_soon(solution)
         self._show_tables(solution)
         self._show_warnings(solution.warnings)
-        status = Text(
-            "✓ solved" if self.hide_timings else f"✓ solved in {_duration(self._solve_seconds)}",
-            style="green",
-        )
-        if self.spread is not None:
-            status = self._spread_status()
-        self.status.update(status, layout=False)
-        self.glance.update(self._glance_text(solution), layout=False)
+        self.status.update(card_text.solved_status(seconds, self.spread, self.hide_timings), layout=False)
+        self.glance.update(card_text.glance(calc, solution), layout=False)
         sendable = self.can_send()
         if sendable != self._sendable:  # the key bar shows ^g only where it sends something
             self._sendable = sendable
             self.app.refresh_bindings()
+        if solution.pending_estimate is not None:  # the second step, "…" in its row till then
+            self._estimate = self._estimate_worker(key, solution)
 
-    def _rows(self, solution: Solution) -> list[ResultRow]:
-        from gearhead.core.tolerance import spread_text
+    @guarded
+    def on_calculator_tab_estimated(self, message: Estimated) -> None:
+        message.stop()
+        if message.before is not self.solution or not self._mounted:
+            return  # a newer solve is (or will be) on screen
+        self._estimate = None
+        self.solution = message.after
+        if self.solution_key == self.key and self.error is None:
+            self.results.show(self._rows(self.solution), FRESH)
 
-        rows = []
+    def _rows(self, solution: Solution):
         spread = self.spread if solution is self.solution else None
-        for name, value in solution.outputs.items():
-            out = self.calculator.output(name)
-            text = "(hidden)" if self.hide_timings and name in VOLATILE else pretty_quantity(value.text)
-            extra = ""
-            if spread is not None:
-                s = spread.outputs.get(name)
-                extra = spread_text(self.calculator, solution, s) if s else ""
-                if s and s.main_input and s.low != s.high and len(spread.tolerances) > 1:
-                    extra += f"  {s.main_input}"
-            rows.append(ResultRow(name, out.label, text, out.equation, extra))
-        return rows
+        return card_text.result_rows(self.calculator, solution, spread, self.hide_timings)
 
     def _show_warnings(self, warnings: list[str]) -> None:
-        text = "\n".join("! " + w for w in warnings)
-        if self.spread is not None and self.spread.notes:  # e.g. 'backdrivable changes within the tolerances'
-            text = "\n".join([text] * bool(text) + [f"± {n}" for n in self.spread.notes])
+        text = card_text.warnings_text(warnings, self.spread)
         if text == self._warnings_text:
             return
         # the box grows with its text: a layout repaints every widget of the screen, so only a
@@ -495,90 +418,15 @@ class CalculatorTab(Widget):
         if self.warnings_box.display != bool(text):
             self.warnings_box.display = bool(text)
 
-    _warnings_lines = -1  # lines the warnings took when last shown (-1: unknown, lay out)
-
-    # ---- tolerances (core/tolerance.py): a worst-case column while any entry carries '±' --------
-    def _spread_status(self) -> Text:
-        result = self.spread
-        worst = (
-            "optimiser"
-            if any("optimiser" in s.worst_case_method for s in result.outputs.values())
-            else "corners"
-        )
-        line = Text(f"✓ solved; tolerances: worst case by {worst}, σ first-order", style="green")
-        if result.samples:
-            line.append(f" (* Monte Carlo, {result.samples} samples, seed {result.seed})")
-        wall = "(hidden)" if self.hide_timings else f"{result.cost.wall_time * 1e3:.0f} ms"
-        line.append(
-            f"; {result.cost.solves} solves, {result.cost.rhs_evaluations} RHS evaluations, {wall}",
-            style="dim",
-        )
-        return line
-
-    def _append_spread(self, name: str, line: Text) -> None:
-        """With tolerances, the help line of a result also gives its spread in full: worst case and
-        how it was found, σ and how, and the input that contributes most."""
-        from gearhead.core import units
-        from gearhead.core.tolerance import short_method, shown_unit
-
-        s = self.spread.outputs.get(name) if self.spread is not None and self.solution is not None else None
-        if s is None or name not in self.solution.outputs:
-            return
-        o = self.calculator.output(name)
-        unit = shown_unit(self.calculator, self.solution, name)
-
-        def q(v):
-            return f"{units.format_number(units.to_unit(v, unit, o.quantity))} {unit}".rstrip()
-
-        worst, stat = short_method(s)
-        line.append(f"\nWorst case {q(s.low)} .. {q(s.high)} ({s.worst_case_method}); σ {q(s.std)} ({stat})")
-        if s.main_input and s.low != s.high:
-            line.append(f"; mostly {s.main_input} ({s.shares[s.main_input] * 100:.0f} % of the variance)")
-
-    # ---- the error estimate of a scene, after its results (core/sim/scene.py deferred_estimate) ----
-    ESTIMATE = "error_estimate"
-
-    def _estimate_pending(self, solution: Solution) -> Solution:
-        """The solution with "…" in the estimate's row (in table order), until it arrives."""
-        from dataclasses import replace
-
-        from gearhead.core.model import Value
-
-        outputs = {}
-        for o in self.calculator.outputs:
-            if o.name in solution.outputs:
-                outputs[o.name] = solution.outputs[o.name]
-            elif o.name == self.ESTIMATE:
-                outputs[o.name] = Value(None, "", "…")
-        self._estimating.add(get_ident())
-        return replace(solution, outputs=outputs)
-
-    def _run_estimate(self, estimate, solution: Solution):
-        """The estimate's Value, None if a key came meanwhile (the next solve replaces it), or a
-        dash when it does not fit in one solve's budget (the results above it stand)."""
-        from gearhead.core.model import Value, format_value
-        from gearhead.core.sim.integrate import Cancelled, budget
-
-        shown = self._show_generation
-        try:
-            with budget(cancel=lambda: self._dirty or self._solving or self._show_generation != shown):
-                value = estimate()
-        except Cancelled:
-            return None
-        except InputError:
-            return Value(None, "", "— (over one solve's budget)")
-        o = self.calculator.output(self.ESTIMATE)
-        return format_value(
-            value, o.quantity, self.display_units.get(o.name) or self._preferred_units.get(o.name, o.unit)
-        )
+    # ---- the help line ----------------------------------------------------------------------
+    @guarded
+    def _explain_field(self, f: Field) -> None:
+        if self._mounted:
+            self.help_line.update(card_text.field_help(f, self.sheet.errors.get(f.name)))
 
     @guarded
-    def _estimate_done(self, solution: Solution, value) -> None:
-        if value is None or solution is not self.solution or not self._mounted:
-            return  # a newer solve is (or will be) on screen
-        solution.outputs[self.ESTIMATE] = value
-        if self.solution_key == self.key and self.error is None:
-            self.results.show(self._rows(solution), FRESH)
+    def _explain_output(self, name: str) -> None:
+        self.help_line.update(card_text.output_help(self.calculator, name, self.solution, self.spread))
 
     # ---- tables of alternatives (core.model.Table) -------------------------------------
     def _compose_tables(self) -> ComposeResult:
@@ -595,7 +443,7 @@ class CalculatorTab(Widget):
             )
             for c in t.columns:
                 if not c.hidden:
-                    head = f"{c.label} [{pretty_unit(c.unit)}]" if c.unit else c.label
+                    head = card_text.table_header(c)
                     grid.add_column(Text(head), key=c.name, width=max(c.width, len(head)))
             yield grid
 
@@ -610,17 +458,11 @@ class CalculatorTab(Widget):
             cursor = grid.cursor_row
             grid.clear()
             for n, row in enumerate(solution.tables.get(t.name, [])):
-                grid.add_row(
-                    *(
-                        Text(pretty_quantity(row[c.name].text)) if c.name in row else Text("")
-                        for c in t.columns
-                        if not c.hidden
-                    ),
-                    key=str(n),
-                )
+                grid.add_row(*card_text.table_cells(t, row), key=str(n))
             if 0 < cursor < grid.row_count:
                 grid.move_cursor(row=cursor, animate=False)
 
+    # ---- what the app and tests read --------------------------------------------------------
     def can_send(self) -> bool:
         """Whether ctrl+g has something to send now: a result another calculator takes (in this
         mode: drivetrain's forward mode has no ratio), or a table row that fills one."""
@@ -642,61 +484,7 @@ class CalculatorTab(Widget):
                 return t, rows[grid.cursor_row]
         return None
 
-    GLANCE_RESULTS = 3  # the first results of a calculator are its headline ones
-
-    def _glance_text(self, solution: Solution) -> Text:
-        line = Text("✓ ", style="green")
-        for i, (name, value) in enumerate(list(solution.outputs.items())[: self.GLANCE_RESULTS]):
-            if i:
-                line.append("  ·  ", style="dim")
-            line.append(self.calculator.output(name).label + " ", style="dim")
-            line.append(pretty_quantity(value.text), style="bold")
-        return line
-
-    # ---- what tests and the app read ------------------------------------------------------
     def shown_values(self) -> dict[str, str]:
         """The result texts the list draws now (name -> text; "…" while pending)."""
         state = self.results.state
         return {r.name: ("…" if state == PENDING else r.value) for r in self.results.rows}
-
-
-def in_field_unit(f: Field, entry: Any) -> Any:
-    """A quantity entry written `number unit` in another unit than the field's, as the same
-    amount in the field's unit with every digit (`0.1016 m` in an `in` field: `4.0 in`, shown
-    `4`). Anything else (an expression, a tolerance, a bad entry) is kept as it is."""
-    from .sheet import _ENTRY
-
-    if not (f.kind.with_unit and f.unit and isinstance(entry, str)):
-        return entry
-    match = _ENTRY.match(entry)
-    if match is None or not match.group(2) or match.group(2) == f.unit:
-        return entry
-    from gearhead.core import units
-
-    try:
-        si = units.parse(entry, f.unit, f.quantity, f.name)
-        return f"{units.to_unit(si, f.unit, f.quantity)!r} {f.unit}"
-    except (InputError, ValueError, ArithmeticError):
-        return entry
-
-
-def value_width(calc: Calculator) -> int:
-    """The widest value text a result of `calc` can show: a number as units.format_number writes
-    it at its widest ("-1.2346e-05") and the widest unit the output may be shown in (its own, the
-    ring Enter walks, and the units preferences)."""
-    from rich.cells import cell_len
-
-    from gearhead.core import units
-    from gearhead.core.unit_systems import SYSTEMS, system_unit
-
-    widest = 0
-    for o in calc.outputs:
-        ring = (o.unit,) + units.COMMON_UNITS.get(o.quantity, ())
-        ring += tuple(system_unit(u, system) for u in ring for system in SYSTEMS)
-        unit = max(cell_len(pretty_unit(u)) for u in ring if u is not None)
-        widest = max(widest, len("-1.2346e-05") + (1 + unit if unit else 0))
-    return max(widest, 12)
-
-
-def _duration(seconds: float) -> str:
-    return f"{seconds * 1e3:.1f} ms" if seconds < 1 else f"{seconds:.2f} s"

@@ -24,7 +24,10 @@ from textual.strip import Strip
 from .line_view import LineView
 from .unit_text import fit_cells
 
-FRESH, STALE, PENDING = "fresh", "stale", "pending"
+# the rows are the solution of the entries on screen (fresh); of the last valid entries, the ones
+# on screen being wrong (stale); of earlier entries while the current are solved (waiting: dimmed,
+# then pending: "…" once the solve has taken a moment)
+FRESH, STALE, WAITING, PENDING = "fresh", "stale", "waiting", "pending"
 
 
 @dataclass(frozen=True)
