@@ -265,6 +265,8 @@ def integrate(
     )
 
 
+# ---- LSODA, Radau, BDF: scipy's solve_ivp, each evaluation charged -------------------------------
+
 # One stiff run's evaluations, whatever budget encloses it (the accuracy ladder's is 4 solves'):
 # scipy's dense output keeps about 1 KB a step, two evaluations a step, so this caps it near 200 MB.
 STIFF_NFEV = 400_000
@@ -312,12 +314,12 @@ def integrate_stiff(
     method: str = "LSODA",
     peak_from_steps: str | None = None,
 ) -> Run:
-    """integrate's scipy methods (LSODA, Radau, BDF; integrate(..., method=...) calls this): the
-    problem by scipy's solve_ivp, every evaluation charged (charged). Our events map to solve_ivp's;
-    dense output always. If scipy's event root finder finds no sign change on
-    its own interpolant (a non-terminal event on a step the interpolant smooths over), the run is
-    repeated without the non-terminal events and, when `peak_from_steps` names one, every step
-    point is reported as its crossing instead."""
+    """integrate's scipy methods (LSODA, Radau, BDF; integrate(..., method=...) calls this, and the
+    scenes that named it before the one interface still do): the problem by scipy's solve_ivp, every
+    evaluation charged (charged). Our events map to solve_ivp's; dense output always. If scipy's
+    event root finder finds no sign change on its own interpolant (a non-terminal event on a step
+    the interpolant smooths over), the run is repeated without the non-terminal events and, when
+    `peak_from_steps` names one, every step point is reported as its crossing instead."""
     from scipy.integrate import solve_ivp
 
     # LSODA's own complaints ("repeated convergence failures") would reach the terminal; its outcome
@@ -366,6 +368,9 @@ def integrate_stiff(
         message=str(sol.message),
         sol=lambda t: [float(x) for x in dense_output(t)],
     )
+
+
+# ---- DP54: Dormand–Prince 5(4) ------------------------------------------------------------------
 
 
 def _norm(v, y0, y1, rtol, atol) -> float:
