@@ -30,8 +30,8 @@ F_fric is the motors' own loss (M3) plus the friction effect (Coulomb, against t
 q̇ = 0 the mechanism sticks while |η·N·Kt·n·I + F_field| ≤ F_fric (both constant there for the rest
 of the period: the duty is held, E = 0 and q does not change), else moves toward that force. Each
 period is integrated from t_k to t_{k+1} by core.sim.integrate's EXP method ((X1)-(X3), exponential
-in the speed: DP54 is held to steps ≈ 3τ there), with a terminal event where q̇ passes 0 (the friction changes sign
-there) and the band events below.
+in the speed: DP54 is held to steps ≈ 3τ there), with a terminal event where q̇ passes 0 (the
+friction changes sign there) and the band events below.
 Outputs:
     settle time: the first t after which |q − goal| ≤ tol up to the end of the window, the band
     edges located as events on the dense output (continuous, not on the update grid)      (P8)
