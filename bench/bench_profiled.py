@@ -77,7 +77,7 @@ def main() -> None:
         loop, profile, _ = profiled.loop_of(s, v, ff, lambda q: ff["kG"])
         ref = profiled.profiled_move(s, loop, profile, 1e-10).values["settle_time"]
         print(f"  {label} (settle time at 1e-10: {ref:.9f} s)")
-        for method, tol in (("exp", 1e-6), ("exp", 1e-9), ("DP54", 1e-6), ("DP54", 1e-9), ("RK4", 0.0)):
+        for method, tol in (("EXP", 1e-6), ("EXP", 1e-9), ("DP54", 1e-6), ("DP54", 1e-9), ("RK4", 0.0)):
             run = profiled.profiled_move(s, loop, profile, tol, method=method)
             wall = median_seconds(lambda: profiled.profiled_move(s, loop, profile, tol, method=method), 3)
             name = "RK4, fixed 0.1 ms" if method == "RK4" else f"{method}, rtol {tol:.0e}"

@@ -1,4 +1,5 @@
-"""The DP54 integrator: convergence with tolerance, event location, agreement with scipy, bounded work."""
+"""The integrator: DP54's convergence with tolerance, event location, agreement with scipy, bounded
+work; every method behind the one interface, charged to the budget."""
 
 import math
 
@@ -90,3 +91,81 @@ def test_zero_first_step_falls_back_to_the_heuristic():
     start makes it 0, which used to spin 100 000 zero-length steps and raise."""
     run = integrate(oscillator, 0.0, 10.0, [1.0, 0.0], rtol=1e-8, atol=1e-10, first_step=0.0)
     assert abs(run.y[-1][0] - math.cos(10)) < 1e-6 and run.steps < 1000
+
+
+# ---- one interface: every method behind integrate(..., method=...) (issue 42 item 3) -------------
+
+
+def plant(t, y):
+    """ṗ = w, ẇ = 1 − 5w, ė = w²: the 3-state form EXP takes (c = 1), exact for its (X1)."""
+    return [y[1], 1.0 - 5.0 * y[1], y[1] * y[1]]
+
+
+def plant_p(t):
+    return t / 5 - (1 - math.exp(-5 * t)) / 25
+
+
+OPTIONS = {"DP54": {}, "EXP": {"scale": 1.0}, "RK4": {"step": 1e-3}, "LSODA": {}, "Radau": {}, "BDF": {}}
+
+
+@pytest.mark.parametrize("method", list(OPTIONS))
+def test_every_method_is_one_call_returning_one_run_type(method):
+    """The same problem, events and dense output through integrate's `method`: a Run each time."""
+    from gearhead.core.sim.integrate import METHODS, Run
+
+    assert set(METHODS) == set(OPTIONS)
+    reach = Event("reach", lambda t, y: y[0] - plant_p(1.0), +1)
+    half = Event("half", lambda t, y: y[1] - 0.1, +1, terminal=False)
+    run = integrate(
+        plant,
+        0.0,
+        2.0,
+        [0.0, 0.0, 0.0],
+        1e-9,
+        1e-12,
+        [reach, half],
+        dense=True,
+        method=method,
+        **OPTIONS[method],
+    )
+    assert type(run) is Run and run.nfev > 0
+    assert run.event == "reach" and run.t[-1] == pytest.approx(1.0, abs=1e-5)
+    [(name, t_half, _)] = run.crossings
+    assert name == "half" and t_half == pytest.approx(math.log(2) / 5, abs=1e-5)
+    assert run.at(0.5)[0] == pytest.approx(plant_p(0.5), abs=1e-7)
+
+
+@pytest.mark.parametrize("method", list(OPTIONS))
+def test_every_method_is_charged_to_the_budget(method):
+    """Every method's evaluations count against `with budget(...)`, and a cancel stops each one."""
+    from gearhead.core.sim.integrate import BudgetExceeded, Cancelled, budget
+
+    wave = lambda t, y: [math.cos(50 * t), -y[1] + math.sin(50 * t), 0.0]  # noqa: E731
+    opts = {**OPTIONS[method], "step": 1e-4} if method == "RK4" else OPTIONS[method]
+    with pytest.raises(BudgetExceeded), budget(max_nfev=200):
+        integrate(wave, 0.0, 100.0, [0.0, 0.0, 0.0], 1e-10, 1e-12, method=method, **opts)
+    with pytest.raises(Cancelled), budget(cancel=lambda: True):
+        integrate(wave, 0.0, 100.0, [0.0, 0.0, 0.0], 1e-10, 1e-12, method=method, **opts)
+    with budget() as spent:
+        run = integrate(plant, 0.0, 0.5, [0.0, 0.0, 0.0], 1e-8, 1e-10, method=method, **OPTIONS[method])
+    assert spent.nfev >= run.nfev - 8  # scipy's are charged 8 at a time
+
+
+def test_a_method_refuses_an_option_it_does_not_take():
+    with pytest.raises(TypeError, match="step"):
+        integrate(plant, 0.0, 1.0, [0.0, 0.0, 0.0], method="DP54", step=0.1)
+    with pytest.raises(TypeError, match="step"):
+        integrate(plant, 0.0, 1.0, [0.0, 0.0, 0.0], method="RK4")
+    with pytest.raises(TypeError, match="RK45"):
+        integrate(plant, 0.0, 1.0, [0.0, 0.0, 0.0], method="RK45")
+    with pytest.raises(TypeError, match="restart"):
+        integrate(plant, 0.0, 1.0, [0.0, 0.0, 0.0], method="Radau", restart=("x",))
+
+
+def test_integrate_stiff_is_the_interface_s_scipy_method():
+    """integrate_stiff (kept for its callers) returns the same Run as integrate(method=...)."""
+    from gearhead.core.sim.integrate import integrate_stiff
+
+    a = integrate_stiff(plant, 0.0, 1.0, [0.0, 0.0, 0.0], 1e-8, 1e-10, method="Radau")
+    b = integrate(plant, 0.0, 1.0, [0.0, 0.0, 0.0], 1e-8, 1e-10, method="Radau")
+    assert type(a) is type(b) and (a.t, a.y, a.nfev) == (b.t, b.y, b.nfev)

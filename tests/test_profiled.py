@@ -16,24 +16,24 @@ from gearhead.core.errors import InputError
 from gearhead.core.model import parse_inputs, solve
 from gearhead.core.motors import lookup
 from gearhead.core.registry import get
-from gearhead.core.sim import motion, profiled
+from gearhead.core.sim import motion, profiled, profiles
 from gearhead.core.sim.motion import Mechanism
 
 
 def test_trapezoid_by_hand():
     # d = 1 m, v = 2 m/s, a = 4 m/s²: t_a = 0.5 s covers 0.5 m each way, so no cruise at v = 2;
     # a·t_a² = 1 = d exactly: the trapezoid has no cruise, T = 1 s
-    p = profiled.Trapezoid(1.0, 2.0, 4.0)
+    p = profiles.Trapezoid(1.0, 2.0, 4.0)
     assert p.total_time == pytest.approx(1.0, rel=1e-15)
     assert p.at(0.25) == pytest.approx((4 * 0.25**2 / 2, 1.0), rel=1e-15)
     # d = 3 m: cruise (3 − 1)/2 = 1 s, T = 2 s; at 1 s: 0.5 + 2·0.5 = 1.5 m at 2 m/s
-    p = profiled.Trapezoid(3.0, 2.0, 4.0)
+    p = profiles.Trapezoid(3.0, 2.0, 4.0)
     assert p.total_time == pytest.approx(2.0, rel=1e-15)
     assert p.at(1.0) == pytest.approx((1.5, 2.0), rel=1e-15)
     assert p.at(1.75) == pytest.approx((3 - 4 * 0.25**2 / 2, 1.0), rel=1e-15)
     assert p.at(5.0) == (3.0, 0.0)
     # a triangle: d = 0.25 m never reaches 2 m/s: t_a = √(0.25/4) = 0.25 s, peak 1 m/s, T = 0.5 s
-    p = profiled.Trapezoid(0.25, 2.0, 4.0)
+    p = profiles.Trapezoid(0.25, 2.0, 4.0)
     assert (p.accel_time, p.peak_speed, p.total_time) == pytest.approx((0.25, 1.0, 0.5), rel=1e-15)
 
 
@@ -43,7 +43,7 @@ def test_trapezoid_is_wpilibs(seed):
     a time, as ProfiledPIDController does."""
     rng = random.Random(seed)
     d, v, a = rng.uniform(0.05, 2), rng.uniform(0.2, 3), rng.uniform(0.5, 40)
-    mine = profiled.Trapezoid(d, v, a)
+    mine = profiles.Trapezoid(d, v, a)
     wp = TrapezoidProfile(TrapezoidProfile.Constraints(v, a))
     state, goal = TrapezoidProfile.State(0, 0), TrapezoidProfile.State(d, 0)
     for k in range(1, round(mine.total_time / 0.02) + 5):
@@ -258,3 +258,19 @@ def test_derived_acceleration_is_a_fraction_of_what_the_stator_limit_gives():
     with pytest.raises(InputError) as err:
         solve("elevator", {"mode": "profiled", "load_mass": "400 lb"})
     assert err.value.field == "acceleration_fraction" and "40 A" in err.value.message
+
+
+@pytest.mark.parametrize("method", ["EXP", "DP54", "RK4"])
+def test_every_period_goes_through_the_shared_integrator(monkeypatch, method):
+    """The profiled move keeps no integrator of its own: each of its methods is core.sim.integrate's."""
+    s, loop, profile = _prepared({})
+    seen = []
+    real = profiled.integrate
+
+    def spy(*args, **kwargs):
+        seen.append(kwargs["method"])
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(profiled, "integrate", spy)
+    run = profiled.profiled_move(s, loop, profile, 1e-6, method=method)
+    assert len(seen) >= run.updates and set(seen) == {method}

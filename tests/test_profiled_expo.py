@@ -1,4 +1,4 @@
-"""WPILib's exponential profile as the profiled move's choice (core.sim.profiled.Exponential, (P12)-(P15),
+"""WPILib's exponential profile as the profiled move's choice (core.sim.profiles.Exponential, (P12)-(P15),
 issue 30): one case against mpmath (the plant integrated by its Taylor series and the switch found by
 root-finding, not the closed form), seeded random cases against robotpy's ExponentialProfileMeterVolts,
 the whole loop against WPILib's parts (ElevatorSim / SingleJointedArmSim, ExponentialProfile re-planned
@@ -34,7 +34,7 @@ from gearhead.core.calculators import arm as arm_calc
 from gearhead.core.calculators import elevator as elevator_calc
 from gearhead.core.errors import InputError
 from gearhead.core.model import solve
-from gearhead.core.sim.profiled import Exponential
+from gearhead.core.sim.profiles import Exponential
 from tests.test_profiled_wpilib import FRC, PERIOD_MS, SUB, TRACE_TOL, oracle_world  # noqa: F401
 
 PERIOD = PERIOD_MS / 1000

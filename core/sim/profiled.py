@@ -17,22 +17,8 @@ the updates t_k = k·dt, k = 0, 1, ...:
     (no inversion of the plant: a period's lag the feedback makes up), else that refined by its
     Newton iteration on one RK4 step of the arm's plant (arm_feedforward)                (P5a)
     V_k = clamp(V_fb + V_ff, −V_b, V_b),  duty u_k = V_k/V_b, held over [t_k, t_{k+1})  (P6)
-Trapezoid from rest to rest over the distance d with limits v_max, a_max (WPILib TrapezoidProfile):
-    t_a = v_max/a_max;  if a_max·t_a² > d: t_a = √(d/a_max) (a triangle), v_peak = a_max·t_a;
-    t_c = (d − a_max·t_a²)/v_peak;  T = 2·t_a + t_c                                     (P1)
-    p(t) = a·t²/2 (t < t_a);  a·t_a²/2 + v_peak·(t − t_a) (t < t_a + t_c);  d − a·(T − t)²/2 (t ≤ T)
-                                                                                       (P2)
-Or WPILib's ExponentialProfile (Constraints.fromCharacteristics(U, kV, kA)): the response of the
-plant kA·v̇ + kV·v = u to the input u = +U, then −U from the switch (the inflection) on, so that it
-arrives at rest at d; the feedforward's kS and kG come on top, as in WPILib (derived with sympy and
-checked against mpmath and robotpy's ExponentialProfileMeterVolts, tests/test_profiled_expo.py):
-    v_m = U/kV (Constraints.maxVelocity, approached, never reached),  τ = kA/kV,
-    a_0 = U/kA (the acceleration at rest)                                               (P12)
-    accelerating from rest:  v = v_m·(1 − e^{−t/τ}),  p = v_m·t − τ·v                  (P13)
-    braking into the goal, s = T − t:  v = v_m·(e^{s/τ} − 1),  p = d + v_m·s − τ·v       (P14)
-    the two meet where −ln(1 − w²) = D, D = d/(v_m·τ), w = v_i/v_m:  w = √(1 − e^{−D});
-    t_i = τ·(D + ln(1 + w)) (from 1 − w = e^{−D}/(1 + w): no cancellation as w → 1),
-    T = t_i + τ·ln(1 + w)  (→ d/v_m + 2τ·ln 2 for a long move)                         (P15)
+The profile r(t): WPILib's TrapezoidProfile (P1), (P2), its limits entered or derived from the
+mechanism (P17), or its ExponentialProfile (P12)-(P15), all in core.sim.profiles.
 The plant between updates (per motor; the duty signed, a limit lowers its magnitude):
     E = n·q̇/Kv,  u = clamp(u_k, −b(−E), b(E)),  b the shared duty bound of the limits on
     ((E2), (E3), the duty a limit lets a driving motor rise to; mirrored for a current the other
@@ -43,9 +29,9 @@ The plant between updates (per motor; the duty signed, a limit lowers its magnit
 F_fric is the motors' own loss (M3) plus the friction effect (Coulomb, against the motion). At
 q̇ = 0 the mechanism sticks while |η·N·Kt·n·I + F_field| ≤ F_fric (both constant there for the rest
 of the period: the duty is held, E = 0 and q does not change), else moves toward that force. Each
-period is integrated from t_k to t_{k+1} by the exponential step below ((X1)-(X3): the scene's DP54
-is held to steps ≈ 3τ there), with a terminal event where q̇ passes 0 (the friction changes sign
-there) and the band events below.
+period is integrated from t_k to t_{k+1} by core.sim.integrate's EXP method ((X1)-(X3), exponential
+in the speed: DP54 is held to steps ≈ 3τ there), with a terminal event where q̇ passes 0 (the
+friction changes sign there) and the band events below.
 Outputs:
     settle time: the first t after which |q − goal| ≤ tol up to the end of the window, the band
     edges located as events on the dense output (continuous, not on the update grid)      (P8)
@@ -58,9 +44,6 @@ Outputs:
     energy = ∫ N·V_b·u·I dt (regeneration negative)
 The return move (an arm's way back): (P1)-(P11) from rest at the goal to the start, q0 ↔ q1,
 with the same loop and profile                                                         (P16)
-A derived trapezoid: v_max = velocity_fraction·(free speed), a_max = acceleration_fraction·(the
-acceleration from rest against the load at the start with each motor's current at the stator
-current limit entry, or its stall current if lower: (M4) with I capped)                 (P17)
 """
 
 from __future__ import annotations
@@ -68,108 +51,17 @@ from __future__ import annotations
 import bisect
 import math
 from dataclasses import dataclass, replace
-from functools import cached_property
 from typing import Any
 
 from ..errors import InputError
 from .integrate import Event, integrate
+from .profiles import Exponential, Trapezoid, derived_acceleration, exponential_of
 from .scene import SimRun
 
 SETTLE_EXTRA = 1.0  # s: the window is the profile's time plus the larger of this and that time
 MAX_PIECES = 50  # friction reversals within one period beyond which the mechanism is held stuck
 STEP_CAP = 20_000  # DP54 steps per period (stiff: held to ≈ 3τ by stability)
-
-
-@dataclass(frozen=True)
-class Trapezoid:
-    """Rest-to-rest trapezoid over `distance` ≥ 0 (P1), (P2)."""
-
-    distance: float
-    v_max: float
-    a_max: float
-
-    @cached_property
-    def accel_time(self) -> float:
-        t_a = self.v_max / self.a_max
-        return math.sqrt(self.distance / self.a_max) if self.a_max * t_a * t_a > self.distance else t_a
-
-    @cached_property
-    def peak_speed(self) -> float:
-        return self.a_max * self.accel_time
-
-    @cached_property
-    def cruise_time(self) -> float:
-        t_a = self.accel_time
-        return max(0.0, self.distance - self.a_max * t_a * t_a) / self.peak_speed
-
-    @cached_property
-    def total_time(self) -> float:
-        return 2 * self.accel_time + self.cruise_time
-
-    def at(self, t: float) -> tuple[float, float]:
-        """(p, ṗ) at time t (P2)."""
-        a, t_a, T = self.a_max, self.accel_time, self.total_time
-        if t <= 0:
-            return 0.0, 0.0
-        if t < t_a:
-            return a * t * t / 2, a * t
-        if t < t_a + self.cruise_time:
-            v = self.peak_speed
-            return a * t_a * t_a / 2 + v * (t - t_a), v
-        if t <= T:
-            left = T - t
-            return self.distance - a * left * left / 2, a * left
-        return self.distance, 0.0
-
-
-@dataclass(frozen=True)
-class Exponential:
-    """Rest-to-rest WPILib ExponentialProfile over `distance` ≥ 0, input `max_input` volts on the
-    plant kV, kA (P12)-(P15); the loop reads at(t) and total_time as of a Trapezoid."""
-
-    distance: float
-    max_input: float
-    kV: float
-    kA: float
-
-    @cached_property
-    def v_max(self) -> float:
-        return self.max_input / self.kV  # (P12)
-
-    @cached_property
-    def a_max(self) -> float:
-        return self.max_input / self.kA  # (P12)
-
-    @cached_property
-    def tau(self) -> float:
-        return self.kA / self.kV  # (P12)
-
-    @cached_property
-    def switch_fraction(self) -> float:
-        """w = v_i/v_m = √(1 − e^{−D}) (P15)."""
-        return math.sqrt(-math.expm1(-self.distance / (self.v_max * self.tau)))
-
-    @cached_property
-    def inflection_time(self) -> float:
-        D = self.distance / (self.v_max * self.tau)
-        return self.tau * (D + math.log1p(self.switch_fraction))  # (P15)
-
-    @cached_property
-    def total_time(self) -> float:
-        return self.inflection_time + self.tau * math.log1p(self.switch_fraction)  # (P15)
-
-    def at(self, t: float) -> tuple[float, float]:
-        """(p, ṗ) at time t (P13), (P14)."""
-        vm, tau, T = self.v_max, self.tau, self.total_time
-        if t <= 0:
-            return 0.0, 0.0
-        if t < self.inflection_time:
-            z = t / tau
-            return vm * tau * (z + math.expm1(-z)), -vm * math.expm1(-z)  # (P13)
-        if t < T:
-            z = (T - t) / tau
-            return self.distance - vm * tau * (math.expm1(z) - z), vm * math.expm1(z)  # (P14)
-        return self.distance, 0.0
+FIXED_STEP = 1e-4  # s: the reference's step (method RK4, bench/bench_profiled.py)
 
 
 @dataclass(frozen=True)
@@ -293,252 +185,6 @@ def driver(mech, duty_bound):
     return drive
 
 
-# --- the integrator of one period: exponential in the speed ------------------------------------
-#
-# The back-EMF damps the speed with the mechanical time constant τ = kA/kV, often far below the
-# control period (0.2-6 ms against 20 ms in FRC elevators): an explicit method (the scene's DP54)
-# is held to steps ≈ 3τ by stability there, hundreds of evaluations a period. The plant is
-#     ṗ = c·w,  ẇ = f(p, w),  ė = g(p, w)   (scaled position, speed, energy)
-# with f affine in w except where a current limit or the sag bends it. Exponential Rosenbrock-Euler
-# in w (J = ∂f/∂w at the step's start, by a difference quotient), with the position's pull on f
-# taken as a forcing growing linearly over the step, b = c·w·∂f/∂p (an arm's gravity; 0 and not
-# evaluated when the field force does not vary, as on an elevator):
-#     ẇ ≈ f₀ + J·(w − w₀) + b·s  ⇒  w(s) = w₀ + s·φ₁(sJ)·f₀ + s²·φ₂(sJ)·b,
-#     p(s) = p₀ + c·(w₀·s + s²·φ₂(sJ)·f₀ + s³·φ₃(sJ)·b),
-#     φ₁(z) = (e^z − 1)/z,  φ₂(z) = (e^z − 1 − z)/z²,  φ₃(z) = (e^z − 1 − z − z²/2)/z³        (X1)
-# is exact for f affine in w and independent of p (an elevator with no limit binding: one step a
-# period), second order otherwise. Its error is what the linear model misses: with the defect at
-# the step's end δ = f(p₁, w₁) − (f₀ + J·(w₁ − w) + b·h) (it sees a limit letting go inside the step,
-# the sag's curve and an arm's gravity changing with p), e_w = δ·min(h, 1/|J|) and
-# e_p = c·e_w·h; the step adapted as h·(tol/err)^(1/2) (X2). The energy rate g is linearised in w
-# like f, G = ∂g/∂w: ∫g dt = g₀·h + G·(Δp/c − w·h), exact where (X1) is, its error h·δ_g (X3).
-# Events are located on (X1) of the step (the speed is monotone on it: at most one stop). Cost:
-# f at the step's end (the next step's start) and the difference quotients: 2 evaluations a step
-# (3 with b).
-
-
-def _phi(z: float) -> tuple[float, float, float]:
-    """φ₁, φ₂, φ₃ of (X1): φ₃(z) = (e^z − 1 − z − z²/2)/z³; their series near 0."""
-    if abs(z) < 2e-3:
-        return (
-            1 + z / 2 + z * z / 6 + z**3 / 24,
-            0.5 + z / 6 + z * z / 24 + z**3 / 120,
-            1 / 6 + z / 24 + z * z / 120 + z**3 / 720,
-        )
-    e1 = math.expm1(z)
-    return e1 / z, (e1 - z) / (z * z), (e1 - z - z * z / 2) / (z * z * z)
-
-
-def _beyond_noise(defect: float, f: float, dw: float, w: float) -> float:
-    return max(0.0, abs(defect) - 1e-9 * abs(f) * abs(dw) / (abs(w) + 1.0) - 1e-15 * abs(f))
-
-
-class ExpRun:
-    """One period (or the part of it before a stop), as integrate's Run offers it."""
-
-    def __init__(self):
-        self.t: list[float] = []
-        self.y: list[list[float]] = []
-        self.segments: list[tuple] = []  # (t0, h, p, w, f0, J, c, b)
-        self.crossings: list = []
-        self.event: str | None = None
-        self.nfev = 0
-
-    @property
-    def dense(self):
-        return [(t0, h, None) for t0, h, *_ in self.segments]
-
-    def at(self, t: float) -> list[float]:
-        for t0, h, *rest in self.segments:
-            if t0 <= t <= t0 + h:
-                return _exp_state(t - t0, *rest)
-        raise ValueError(f"t = {t} outside the integrated span")
-
-
-def _exp_state(s: float, p, w, f0, J, c, b=0.0) -> list[float]:
-    ph1, ph2, ph3 = _phi(s * J)
-    return [p + c * (s * w + s * s * (ph2 * f0 + s * ph3 * b)), w + s * (ph1 * f0 + s * ph2 * b)]
-
-
-def integrate_exp(
-    rhs,
-    c: float,
-    t0: float,
-    t1: float,
-    y0,
-    rtol: float,
-    events=(),
-    first_step=None,
-    restart=(),
-    max_steps: int = 200_000,
-    p_coupled: bool = False,
-) -> ExpRun:
-    """(X1)-(X3) from t0 to t1; rhs(t, y) -> [c·w, f, g] (the scene's own right-hand side)."""
-    from .integrate import charge
-
-    run = ExpRun()
-    t, y = t0, list(y0)
-    run.t.append(t)
-    run.y.append(list(y))
-    h = min(first_step or (t1 - t0), t1 - t0)
-    k0 = rhs(t, y)
-    g_prev = [ev.g(t, y) for ev in events]
-    atol = rtol
-
-    def slope(tt, yy, kk):
-        """(∂f/∂w, ∂g/∂w, b = c·w·∂f/∂p) by difference quotients (b only when f depends on p)."""
-        dw = 1e-6 * (abs(yy[1]) + 1.0)
-        k2 = rhs(tt, [yy[0], yy[1] + dw, yy[2]])
-        if not p_coupled:
-            return (k2[1] - kk[1]) / dw, (k2[2] - kk[2]) / dw, 0.0
-        dp = 1e-6 * (abs(yy[0]) + 1.0)
-        k3 = rhs(tt, [yy[0] + dp, yy[1], yy[2]])
-        return (k2[1] - kk[1]) / dw, (k2[2] - kk[2]) / dw, c * yy[1] * (k3[1] - kk[1]) / dp
-
-    extra = 2 if p_coupled else 1
-    J0, G0, b0 = slope(t, y, k0)
-    nfev = 1 + extra
-    for _ in range(max_steps):
-        charge(2)
-        last = t + h >= t1 - 1e-15 * max(1.0, abs(t1))
-        if last:
-            h = t1 - t
-        end = _exp_state(h, y[0], y[1], k0[1], J0, c, b0)
-        t_end = t1 if last else t + h
-        k1 = rhs(t_end, end + [0.0])
-        nfev += 1
-        dw = end[1] - y[1]
-        # (X2): the defect of the linear model at the step's end
-        e_w = _beyond_noise(k1[1] - k0[1] - J0 * dw - b0 * h, k0[1], dw, y[1]) * min(
-            h, 1.0 / max(abs(J0), 1e-300)
-        )
-        e_e = _beyond_noise(k1[2] - k0[2] - G0 * dw, k0[2], dw, y[1]) * h
-        err = max(
-            e_w / (atol + rtol * max(abs(end[1]), abs(dw))),
-            c * e_w * h / (atol + rtol * max(abs(end[0]), abs(end[0] - y[0]))),
-            e_e / (atol + rtol * max(abs(y[2]), h * abs(k0[2]))),
-        )
-        if err > 1.0 and h > 1e-12 * max(1.0, abs(t)):
-            h *= max(0.2, 0.9 * err**-0.5)
-            continue
-        seg = (t, h, y[0], y[1], k0[1], J0, c, b0)
-        hit = None
-        for idx, ev in enumerate(events):
-            g_old, g_new = g_prev[idx], ev.g(t_end, end)
-            if (g_old < 0 <= g_new and ev.direction >= 0) or (g_old > 0 >= g_new and ev.direction <= 0):
-                te = _locate(ev, seg, g_old)
-                if ev.name in restart and abs(te - t0) <= 1e-10 * (t1 - t0):
-                    pass
-                elif ev.terminal:
-                    if hit is None or te < hit[0]:
-                        hit = (te, ev)
-                else:
-                    run.crossings.append((ev.name, te, _exp_state(te - t, *seg[2:])))
-            g_prev[idx] = g_new
-        if hit is not None:
-            te = hit[0]
-            s_ = te - t
-            run.segments.append((t, s_, *seg[2:]))
-            ye = _exp_state(s_, *seg[2:])
-            run.t.append(te)
-            run.y.append(ye + [y[2] + s_ * k0[2] + G0 * ((ye[0] - y[0]) / c - y[1] * s_)])  # (X3)
-            run.crossings = [cr for cr in run.crossings if cr[1] <= te]
-            run.event = hit[1].name
-            run.nfev = nfev
-            return run
-        run.segments.append(seg)
-        energy = y[2] + h * k0[2] + G0 * ((end[0] - y[0]) / c - y[1] * h)  # (X3)
-        t, y, k0 = t_end, end + [energy], k1
-        run.t.append(t)
-        run.y.append(y)
-        if last:
-            run.nfev = nfev
-            return run
-        J0, G0, b0 = slope(t, y, k0)
-        nfev += extra
-        h *= min(4.0, max(0.2, 0.9 * err**-0.5)) if err > 0 else 4.0
-    raise RuntimeError(f"integration did not finish in {max_steps} steps (t = {t:.6g})")
-
-
-def _locate(ev, seg, g_old: float) -> float:
-    """The event's time on the step's (X1), by Brent's method (the speed is monotone on it)."""
-    from scipy.optimize import brentq
-
-    t, h = seg[0], seg[1]
-    f = lambda th: ev.g(t + th, _exp_state(th, *seg[2:]))  # noqa: E731
-    f_end = f(h)
-    if f_end == 0 or (f_end > 0) == (f(0.0) > 0):
-        return t + h
-    return t + brentq(f, 0.0, h, xtol=1e-15, rtol=1e-15, maxiter=200)
-
-
-# --- the reference it is measured against (bench/bench_profiled.py): a fixed 0.1 ms step ---------
-
-FIXED_STEP = 1e-4  # s
-
-
-class FixedRun(ExpRun):
-    """Steps of classical RK4 with the state linear between them (what `at` and the events see)."""
-
-    def at(self, t: float) -> list[float]:
-        i = max(0, min(bisect.bisect_right(self.t, t) - 1, len(self.t) - 2))
-        t0, t1 = self.t[i], self.t[i + 1]
-        th = (t - t0) / (t1 - t0) if t1 > t0 else 0.0
-        return [a + th * (b - a) for a, b in zip(self.y[i], self.y[i + 1])]
-
-    @property
-    def dense(self):
-        return []
-
-
-def integrate_rk4(rhs, t0: float, t1: float, y0, step: float, events=(), restart=()) -> FixedRun:
-    """Classical RK4 at a fixed step (the last one shortened to end at t1); an event is located by
-    linear interpolation between the steps it falls between."""
-    from .integrate import charge
-
-    run = FixedRun()
-    t, y = t0, list(y0)
-    run.t.append(t)
-    run.y.append(list(y))
-    g_prev = [ev.g(t, y) for ev in events]
-    n = max(1, math.ceil((t1 - t0) / step - 1e-9))
-    for i in range(n):
-        charge(4)
-        h = (t1 - t) if i == n - 1 else step
-        k1 = rhs(t, y)
-        k2 = rhs(t + h / 2, [a + h / 2 * b for a, b in zip(y, k1)])
-        k3 = rhs(t + h / 2, [a + h / 2 * b for a, b in zip(y, k2)])
-        k4 = rhs(t + h, [a + h * b for a, b in zip(y, k3)])
-        y1 = [a + h / 6 * (b + 2 * c + 2 * d + e) for a, b, c, d, e in zip(y, k1, k2, k3, k4)]
-        run.nfev += 4
-        t_new = t1 if i == n - 1 else t + h
-        hit = None
-        for idx, ev in enumerate(events):
-            g_old, g_new = g_prev[idx], ev.g(t_new, y1)
-            if (g_old < 0 <= g_new and ev.direction >= 0) or (g_old > 0 >= g_new and ev.direction <= 0):
-                th = g_old / (g_old - g_new) if g_old != g_new else 1.0
-                te = t + th * h
-                ye = [a + th * (b - a) for a, b in zip(y, y1)]
-                if ev.name in restart and i == 0 and th < 1e-9:
-                    pass
-                elif ev.terminal:
-                    if hit is None or te < hit[0]:
-                        hit = (te, ev, ye)
-                else:
-                    run.crossings.append((ev.name, te, ye))
-            g_prev[idx] = g_new
-        if hit is not None:
-            run.t.append(hit[0])
-            run.y.append(hit[2])
-            run.crossings = [c for c in run.crossings if c[1] <= hit[0]]
-            run.event = hit[1].name
-            return run
-        t, y = t_new, y1
-        run.t.append(t)
-        run.y.append(list(y))
-    return run
-
-
 @dataclass
 class ProfiledRun:
     values: dict
@@ -551,9 +197,10 @@ class ProfiledRun:
 
 
 def profiled_move(
-    setup, loop: Loop, profile: Trapezoid | Exponential, rtol: float, method: str = "exp"
+    setup, loop: Loop, profile: Trapezoid | Exponential, rtol: float, method: str = "EXP"
 ) -> ProfiledRun:
-    """Simulate the loop (P1)-(P7) over the window and report (P8)-(P11)."""
+    """Simulate the loop (P1)-(P7) over the window and report (P8)-(P11). `method`: the periods'
+    integrator (core.sim.integrate): EXP, or DP54 or RK4 (a fixed 0.1 ms step) as references."""
     m = setup.mech
     s, d_move, q0, q1 = m.s, m.distance, m.q0, m.q1
     from .motion import field_force, friction_of
@@ -574,6 +221,13 @@ def profiled_move(
     goal_s = s  # goal in scaled position (q1 − q0)/d
     tol_s = loop.tolerance / d
     ff_field = field_force(setup)
+    # the method's own options: EXP's plant ṗ = c·w in these scaled units, an arm's gravity pulling
+    # on the speed; DP54's step cap a period; RK4's fixed step
+    options = {
+        "EXP": {"scale": v_ref / d, "p_coupled": field is not None and setup.varying},
+        "DP54": {"max_steps": STEP_CAP},
+        "RK4": {"step": FIXED_STEP},
+    }.get(method, {})
 
     def net_force_at_rest(u_cmd: float, q: float) -> float:
         _, I = drive(u_cmd, 0.0)
@@ -681,35 +335,20 @@ def profiled_move(
             else:
                 dirn = 1.0 if y[1] > 0 else -1.0
             stop = Event("stop", (lambda dn: lambda t_, yy: dn * yy[1])(dirn), -1, terminal=True)
-            if method == "DP54":
-                run = integrate(
-                    make_rhs(u_cmd, dirn),
-                    t,
-                    t_next,
-                    y,
-                    rtol=rtol,
-                    atol=rtol,
-                    events=[stop, *band],
-                    max_steps=STEP_CAP,
-                    first_step=h,
-                    dense=True,
-                    restart=restart,
-                )
-            elif method == "RK4":
-                run = integrate_rk4(make_rhs(u_cmd, dirn), t, t_next, y, FIXED_STEP, [stop, *band], restart)
-            else:
-                run = integrate_exp(
-                    make_rhs(u_cmd, dirn),
-                    v_ref / d,
-                    t,
-                    t_next,
-                    y,
-                    rtol,
-                    [stop, *band],
-                    h,
-                    restart,
-                    p_coupled=field is not None and setup.varying,
-                )
+            run = integrate(
+                make_rhs(u_cmd, dirn),
+                t,
+                t_next,
+                y,
+                rtol=rtol,
+                atol=rtol,
+                events=[stop, *band],
+                first_step=h,
+                dense=True,
+                restart=restart,
+                method=method,
+                **options,
+            )
             nfev += run.nfev
             if run.dense:
                 h = min(dt, max(abs(hs) for _, hs, _ in run.dense))
@@ -1115,62 +754,6 @@ def return_plots(label: str, pos_q: str, pos_u: str) -> tuple:
             pos_u,
         ),
     )
-
-
-def stall_acceleration(setup, current_cap: float | None = None) -> float:
-    """Acceleration toward the goal from rest at full voltage against the load at the start (M4);
-    with `current_cap`, each motor's current at most that (A) (P17)."""
-    from .motion import electrical, field_force, friction_of
-
-    m = setup.mech
-    _, I0 = electrical(m, setup.asm.slots["duty"])(0.0)
-    if current_cap is not None:
-        I0 = min(I0, current_cap)
-    return (m.force_per_amp * I0 + m.s * field_force(setup)(m.q0) - friction_of(setup)) / m.inertia
-
-
-DERIVED_CURRENT_CAP = 40.0  # A per motor: the derived profile's current with no stator limit on
-
-
-def derived_acceleration(setup, v) -> float:
-    """(P17): the derived trapezoid's max acceleration, acceleration_fraction of the acceleration
-    from rest against the load at the start with each motor at its stator current limit (the
-    stator_current_limit entry with the stator_limit effect on, else DERIVED_CURRENT_CAP; its
-    stall current when lower). A team sets a stator limit (40 A by default here) and profiles within it: the
-    full-voltage stall acceleration of a light load on FRC motors is tens of g at hundreds of amps."""
-    # the limit entered when the stator_limit effect is on (its row is shown); else a team's
-    # usual 40 A: a hidden row must change nothing (the CLI says so of a value set there)
-    limited = "stator_limit" in (v.get("effects") or ())
-    cap = v["stator_current_limit"] if limited else DERIVED_CURRENT_CAP
-    a = stall_acceleration(setup, cap)
-    if not a > 0:
-        raise InputError(
-            "stator_current_limit" if limited else "acceleration_fraction",
-            f"the derived profile accelerates from rest with each motor at {cap:.4g} A"
-            f"{' (the stator current limit)' if limited else ''}, which cannot move the load at the "
-            "start: "
-            + (
-                "raise stator_current_limit"
-                if limited
-                else "turn on the stator_limit effect and raise its limit"
-            )
-            + " or enter the profile limits (profile_limits = entered)",
-        )
-    return v["acceleration_fraction"] * a
-
-
-def exponential_of(setup, v, ff: dict) -> Exponential:
-    """(P12)-(P15) from the entered max input on the plant's kV, kA (ff, per unit of q)."""
-    U, Vb = v["max_input"], setup.mech.battery_voltage
-    if U > Vb:
-        raise InputError(
-            "max_input",
-            f"must be at most the battery voltage, {Vb:.6g} V (entered {U:.6g} V): the loop cannot apply more",
-        )
-    profile = Exponential(setup.mech.distance, U, ff["kV"], ff["kA"])
-    if not (profile.kV > 0 and profile.kA > 0 and math.isfinite(profile.v_max * profile.a_max)):
-        raise InputError("max_input", "the plant's kV and kA give no exponential profile")
-    return profile
 
 
 def loop_of(setup, v, ff: dict, kG, arm: bool = False) -> tuple[Loop, Trapezoid | Exponential, dict]:
