@@ -22,7 +22,7 @@ against robotpy 2026.2.2 to 1e-15):
     (at r_k = r_{k+1} = r it is kS·sgn r + kV·r, the step's (VL4): the ramp's end joins it)
 Between updates, u held, (VL1) is a scalar autonomous ODE: ω is monotone on each period. With no
 current limit on (sag alone keeps I affine in E for a fixed u) it is linear and the period's
-closed form is exact (the first-order case of core.sim.profiled's exponential step (X1), written
+closed form is exact (the first-order case of core.sim.integrate's exponential step, method EXP (X1), written
 out: no Jacobian to form):
     ω̇ = α − λ·ω,  λ = k·G/(Kv·R'·J),  α = k·(u·V_b/R' − i_f)/J,  R' = R + u²·R_bus
     ω(s) = ω_ss + (ω₀ − ω_ss)·e^(−λ·s),  ω_ss = α/λ                                      (VL5)
