@@ -586,6 +586,26 @@ def test_an_equality_margin_has_the_sign_of_its_verdict(a, op, b, holds):
     assert (margin >= 0) is holds
 
 
+def test_a_workbook_sweep_is_core_sweep_s_loop(monkeypatch):
+    """The workbook's sweep runs through core.sweep.run (issue 42 item 3: it had a copy of the
+    loop): past the CPU budget it stops with sweep's note, which says what to change; progress is
+    reported as for a calculator's sweep."""
+    import itertools
+
+    from gearhead.core import workbook_study
+    from gearhead.core.sim import integrate
+
+    wb = book(with_requirements("lift.current_per_motor < 100 A"))
+    calls = []
+    done = workbook_study.run_sweep(wb, ["mass=10 lb..30 lb:3"], progress=lambda i, n: calls.append(i))
+    assert calls == [1, 2, 3] and len(done.points) == 3
+    real, looks = integrate.cpu_clock, itertools.count()
+    monkeypatch.setattr(integrate, "cpu_clock", lambda: real() + 100.0 * next(looks))
+    result = workbook_study.run_sweep(wb, ["mass=10 lb..30 lb:50"])
+    assert 1 <= len(result.points) < 50
+    assert any("sweep's budget" in n and "fewer points" in n for n in result.notes), result.notes
+
+
 def test_a_sweep_of_a_whole_number_over_a_huge_range_picks_its_points(capsys):
     """intake_ratio = 1..1e19 in 3 points: len(range(...)) overflowed (a traceback, exit 70). A
     whole number is now at most 10^15 (core.fields.MAX_WHOLE): 1e19 is refused by name, and the
