@@ -1,4 +1,4 @@
-"""Workbooks (core/workbook.py, tui/workbook_cli.py): references, arithmetic, order, cycles, unknown
+"""Workbooks (core/workbook/, tui/workbook_cli.py): references, arithmetic, order, cycles, unknown
 names, unit mismatches, requirements and margins, the CLI's exit codes, sweeps and worst cases."""
 
 import json
@@ -579,7 +579,7 @@ check = "lift.time_to_goal < 10 s"
 def test_an_equality_margin_has_the_sign_of_its_verdict(a, op, b, holds):
     """== and != margins are negative exactly when the check fails, as the inequalities' are (a
     worst case takes the least margin: '!=' at 5 m ± 1 m read ✔ with margin 0 where x = 5 m fails)."""
-    from gearhead.core.workbook import _holds
+    from gearhead.core.workbook.solving import _holds
 
     verdict, margin = _holds(a, b, op)
     assert verdict is holds
@@ -592,8 +592,8 @@ def test_a_workbook_sweep_is_core_sweep_s_loop(monkeypatch):
     reported as for a calculator's sweep."""
     import itertools
 
-    from gearhead.core import workbook_study
     from gearhead.core.sim import integrate
+    from gearhead.core.workbook import study as workbook_study
 
     wb = book(with_requirements("lift.current_per_motor < 100 A"))
     calls = []

@@ -1,8 +1,8 @@
 """Sweeps and tolerances over a workbook: its variables in, each requirement's margin out.
 
-The workbook is seen as one calculator (core.workbook.as_calculator: fields = its plain variables,
-outputs = the requirements' margins in SI), so a sweep is core.sweep's points and table, and the
-worst case core.tolerance's corners (and optimiser where a margin is not monotone). A margin is
+The workbook is seen as one calculator (core.workbook.solving.as_calculator: fields = its plain
+variables, outputs = the requirements' margins in SI), so a sweep is core.sweep's points and table,
+and the worst case core.tolerance's corners (and optimiser where a margin is not monotone). A margin is
 how far a requirement holds (negative: fails); a requirement holds in the worst case when its
 lowest margin over the tolerance box is not negative. Cards that read no varied variable are
 solved once (core.workbook caches each card's solve by its entries).
@@ -14,10 +14,11 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from . import sweep as sweeps
-from . import tolerance
-from .errors import InputError
-from .workbook import Workbook, as_calculator, studied
+from .. import sweep as sweeps
+from .. import tolerance
+from ..errors import InputError
+from .book import Workbook
+from .solving import as_calculator, studied
 
 
 def run_sweep(
