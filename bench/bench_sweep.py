@@ -38,11 +38,11 @@ def inputs(calc: str, name: str) -> dict:
 def main() -> None:
     rows = []
     gear = inputs("gear_ratio", "elevator_neo")
-    t, s = best(lambda: sweep.run("gear_ratio", gear, ["radius=0.5 in..1.5 in:200"]), 7)
+    t, s = best(lambda: sweep.run(get("gear_ratio"), gear, ["radius=0.5 in..1.5 in:200"]), 7)
     rows.append(("200-point sweep, gear_ratio (closed form)", t, 0.050, s.cost.text()))
 
     treb = inputs("trebuchet", "seed_kastmaskin")
-    t, s = best(lambda: sweep.run("trebuchet", treb, ["release_angle=30 deg..60 deg:200"]), 2)
+    t, s = best(lambda: sweep.run(get("trebuchet"), treb, ["release_angle=30 deg..60 deg:200"]), 2)
     rows.append(("200 trebuchet throws (release-angle sweep)", t, 1.0, s.cost.text()))
 
     toleranced = {**gear, "load": "40 lbf ± 10 %", "radius": "0.75 in ± 0.02 in", "voltage": "12 V ± 0.5 V"}

@@ -34,7 +34,6 @@ from .model import (
     parse_inputs,
     uncomputable,
 )
-from .registry import get
 from .sim import integrate  # integrate.cpu_clock read at each use (tests slow it down)
 from .sim.effects import retire
 
@@ -349,7 +348,7 @@ def numeric_outputs(calc: Calculator, sample: Mapping[str, Any] | None = None) -
 
 
 def run(
-    calc_id: str,
+    calc: Calculator,
     raw: Mapping[str, Any],
     varies: Sequence[str | Vary],
     outputs: Sequence[str] = (),
@@ -357,13 +356,14 @@ def run(
     progress: Callable[[int, int], None] | None = None,
     cancelled: Callable[[], bool] | None = None,
 ) -> Sweep:
-    """Sweep `varies` (one or two 'NAME=START..STOP[:N][:log]' or Vary) from the inputs `raw`.
+    """Sweep `varies` (one or two 'NAME=START..STOP[:N][:log]' or Vary) of `calc` from the inputs
+    `raw`. `calc` is the calculator itself, not an id: a workbook seen as one calculator
+    (core.workbook.as_calculator) is swept by this same loop.
 
     Two varies make a grid: the first varies slowest. `progress(done, total)` is called as points
     finish; when `cancelled()` turns true the sweep stops and returns the points it has.
     """
     t0 = time.perf_counter()
-    calc = get(calc_id)
     specs = [v if isinstance(v, Vary) else parse_vary(calc, v) for v in varies]
     if not 1 <= len(specs) <= 2:
         raise InputError("--vary", f"sweep one input (a table) or two (a grid), not {len(specs)}")

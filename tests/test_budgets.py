@@ -215,8 +215,9 @@ def test_a_sweep_of_slow_solves_stops_at_its_budget_and_says_so(monkeypatch):
     """20 000 points of a default beam (0.23 s a solve) would run 77 minutes: a sweep has a CPU
     budget, and past it keeps the points it has with a note saying why and what to change."""
     from gearhead.core import sweep
+    from gearhead.core.registry import get
 
     _slow_clock(monkeypatch, 20.0)  # 20 s of computing per look: the budget is spent by point 16
-    result = sweep.run("motor", {}, ["voltage=6..12:200"])
+    result = sweep.run(get("motor"), {}, ["voltage=6..12:200"])
     assert 10 <= len(result.points) < 200
     assert any("sweep's budget" in n and "fewer points" in n for n in result.notes), result.notes

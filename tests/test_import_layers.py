@@ -51,7 +51,15 @@ def _targets(module: str, is_package: bool, node: ast.Import | ast.ImportFrom, k
         for i in range(1, len(parts) + 1):  # `import a.b.c` loads a, a.b and a.b.c
             if ".".join(parts[:i]) in known:
                 found.add(".".join(parts[:i]))
-    return found
+    # A module's own packages are loaded before it runs, so loading a sibling through them is no
+    # edge to them (a package's __init__ may name its parts: core.workbook); reading a name their
+    # __init__ defines (`from . import NAME`, NAME no module) still is.
+    ancestors = {".".join(module.split(".")[:i]) for i in range(1, len(module.split(".")))}
+    if isinstance(node, ast.ImportFrom):
+        read = {prefix} if any(f"{prefix}.{a.name}" not in known for a in node.names) else set()
+    else:
+        read = {n.removeprefix("gearhead.") for n in (a.name for a in node.names)}
+    return {m for m in found if m not in ancestors or m in read}
 
 
 def package_graph(root: pathlib.Path) -> dict[str, set[str]]:
@@ -149,3 +157,22 @@ def test_the_checker_sees_a_cycle_through_a_function_level_import(tmp_path):
     assert find_cycle(import_graph(core)) is None
     (core / "calculators" / "c.py").write_text("from ..registry import importlib\n")
     assert find_cycle(import_graph(core)) == ["core.calculators.c", "core.registry", "core.calculators.c"]
+
+
+def test_a_package_naming_its_parts_is_no_cycle_but_reading_its_names_back_is(tmp_path):
+    """A package whose __init__ re-exports its modules (core.workbook) is no cycle: a module loads
+    its siblings through the package, which is already loading. A module that reads a name the
+    __init__ defines (the __init__ importing that module) is one."""
+    core = tmp_path / "core"
+    (core / "calculators").mkdir(parents=True)
+    (core / "pkg").mkdir()
+    (core / "__init__.py").write_text("")
+    (core / "calculators" / "__init__.py").write_text("")
+    (core / "registry.py").write_text("import importlib\n# importlib.import_module by name\n")
+    (core / "units.py").write_text("")
+    (core / "pkg" / "__init__.py").write_text("from .a import x\nfrom .b import y\n")
+    (core / "pkg" / "a.py").write_text("from .. import units\nx = 1\n")
+    (core / "pkg" / "b.py").write_text("from .a import x\nfrom ..units import *\ny = x\n")
+    assert find_cycle(import_graph(core)) is None
+    (core / "pkg" / "b.py").write_text("from . import x\ny = x\n")  # x from the __init__
+    assert find_cycle(import_graph(core)) == ["core.pkg", "core.pkg.b", "core.pkg"]

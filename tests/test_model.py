@@ -174,7 +174,7 @@ def test_a_new_numeric_kind_sweeps_and_a_new_quantity_kind_carries_a_tolerance(m
     monkeypatch.setitem(registry.calculators(), "toy_hex", calc)
     vary = sweep.parse_vary(calc, "code=0xfffe..0x10001")
     assert (vary.start, vary.stop, vary.points) == (0xFFFE, 0x10001, 4)
-    study = sweep.run("toy_hex", {}, [vary])
+    study = sweep.run(calc, {}, [vary])
     assert [p.inputs["code"] for p in study.points] == [0xFFFE, 0xFFFF, 0x10000, 0x10001]
     assert [p.outputs.get("double") for p in study.points] == [2 * 0xFFFE, 2 * 0xFFFF, None, None]
     assert "too large: must be at most 65535" in study.points[2].error

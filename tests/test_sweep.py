@@ -49,7 +49,7 @@ def assert_point_is_solve(calc_id: str, raw: dict, point: sweep.Point, notes=())
 
 def test_sweep_points_equal_single_solves_closed_form():
     raw = preset_inputs("gear_ratio", "elevator_neo")
-    result = sweep.run("gear_ratio", raw, ["radius=0.5 in..1.5 in:11"])
+    result = sweep.run(get("gear_ratio"), raw, ["radius=0.5 in..1.5 in:11"])
     assert len(result.points) == 11
     assert result.points[0].inputs["radius"] == pytest.approx(0.0127, rel=1e-15)
     assert result.points[-1].inputs["radius"] == pytest.approx(0.0381, rel=1e-15)
@@ -62,7 +62,7 @@ def test_sweep_points_equal_single_solves_closed_form():
 
 def test_sweep_with_infeasible_points_gives_the_reason():
     raw = preset_inputs("gear_ratio", "elevator_neo")
-    result = sweep.run("gear_ratio", raw, ["radius=-0.5 in..1 in:7"])
+    result = sweep.run(get("gear_ratio"), raw, ["radius=-0.5 in..1 in:7"])
     bad = [p for p in result.points if p.error]
     good = [p for p in result.points if not p.error]
     assert bad and good
@@ -84,7 +84,7 @@ def test_sweep_with_infeasible_points_gives_the_reason():
 )
 def test_sweep_points_equal_single_solves(calc_id, preset, vary):
     raw = preset_inputs(calc_id, preset)
-    result = sweep.run(calc_id, raw, [vary])
+    result = sweep.run(get(calc_id), raw, [vary])
     assert len(result.points) >= 4
     for p in result.points:
         assert_point_is_solve(calc_id, raw, p, result.notes)
@@ -92,7 +92,7 @@ def test_sweep_points_equal_single_solves(calc_id, preset, vary):
 
 def test_whole_number_sweep_every_value_and_bounds_as_rows():
     raw = preset_inputs("flywheel", "nbn_seed_single_wheel")
-    result = sweep.run("flywheel", raw, ["wheel_count=0..3"])
+    result = sweep.run(get("flywheel"), raw, ["wheel_count=0..3"])
     assert [p.inputs["wheel_count"] for p in result.points] == [0, 1, 2, 3]
     assert result.points[0].error is not None and "too small" in result.points[0].error
     assert all(p.error is None for p in result.points[1:])
@@ -105,7 +105,7 @@ def test_log_spacing_and_endpoints_exact():
 
 def test_grid_first_input_slowest_and_exact():
     raw = preset_inputs("gear_ratio", "elevator_neo")
-    result = sweep.run("gear_ratio", raw, ["radius=0.5 in..1 in:3", "load=20 lbf..60 lbf:4"], ["ratio"])
+    result = sweep.run(get("gear_ratio"), raw, ["radius=0.5 in..1 in:3", "load=20 lbf..60 lbf:4"], ["ratio"])
     assert len(result.points) == 12
     radii = [p.inputs["radius"] for p in result.points]
     assert radii[:4] == [radii[0]] * 4 and radii[4] > radii[0]
@@ -119,13 +119,29 @@ def test_cancel_keeps_the_points_solved():
     calls = []
     raw = preset_inputs("gear_ratio", "elevator_neo")
     result = sweep.run(
-        "gear_ratio",
+        get("gear_ratio"),
         raw,
         ["radius=0.5 in..1.5 in:50"],
         progress=lambda done, total: calls.append(done),
         cancelled=lambda: len(calls) >= 3,
     )
     assert result.cancelled and len(result.points) == 3
+
+
+def test_a_sweep_takes_the_calculator_itself():
+    """sweep.run takes a Calculator, not an id (issue 42 item 3): one the registry does not hold
+    (a workbook seen as one calculator) is swept by the same loop, each point its own solve."""
+    from gearhead.core import workbook
+
+    text = 'name = "w"\n[variables]\nmass = "10 lb"\nmass_limit = "= mass * 2"\n'
+    text += '[[requirements]]\nname = "light"\ncheck = "mass < 25 lb"\n'
+    wb = workbook.from_text(text, "w.toml")
+    result = sweep.run(workbook.as_calculator(wb), {}, ["mass=10 lb..30 lb:3"], ["light"])
+    assert [p.error for p in result.points] == [None] * 3
+    assert [p.inputs["mass"] for p in result.points] == pytest.approx([x * 0.45359237 for x in (10, 20, 30)])
+    for p in result.points:
+        assert p.outputs["light"] == workbook.solve(wb, p.inputs).checks[0].margin_si
+    assert result.calculator.id == "workbook" and result.cost.solves == 3
 
 
 @pytest.mark.parametrize(
@@ -148,7 +164,7 @@ def test_cancel_keeps_the_points_solved():
 )
 def test_bad_vary_is_a_message(text, words):
     with pytest.raises(InputError) as exc:
-        sweep.run("gear_ratio", {}, [text])
+        sweep.run(get("gear_ratio"), {}, [text])
     assert words in str(exc.value)
 
 
@@ -188,9 +204,13 @@ def test_a_retired_flag_is_read_once_for_the_whole_sweep_with_its_notice():
     what replaced it at every point, and the notice is the sweep's, once."""
     base = load(ROOT / "presets" / "flywheel" / "nbn_seed_single_wheel.toml").inputs
     vary = ["ball_mass=0.05 kg..0.07 kg:3"]
-    old = sweep.run("flywheel", {**base, "effects": "momentum"}, vary, ["ball_speed", "wheel_speed_after"])
-    new = sweep.run("flywheel", {**base, "transfer": "momentum"}, vary, ["ball_speed", "wheel_speed_after"])
-    energy = sweep.run("flywheel", base, vary, ["ball_speed", "wheel_speed_after"])
+    old = sweep.run(
+        get("flywheel"), {**base, "effects": "momentum"}, vary, ["ball_speed", "wheel_speed_after"]
+    )
+    new = sweep.run(
+        get("flywheel"), {**base, "transfer": "momentum"}, vary, ["ball_speed", "wheel_speed_after"]
+    )
+    energy = sweep.run(get("flywheel"), base, vary, ["ball_speed", "wheel_speed_after"])
 
     def values(study):
         return [{k: v for k, v in p.outputs.items() if k not in VOLATILE} for p in study.points]

@@ -4,6 +4,7 @@ table equal to core.sweep's, Esc cancels then closes, ctrl+e writes CSV; one sna
 import pytest
 
 from gearhead.core import sweep
+from gearhead.core.registry import get
 from gearhead.tui.app import GearheadApp
 from gearhead.tui.components.sweep_screen import SweepScreen, default_range
 from tests.tui_helpers import card, settle, type_into
@@ -40,7 +41,7 @@ async def test_ctrl_w_sweeps_the_focused_field_and_table_is_core_sweep():
         assert screen.field_name == "radius"
         tab = app.query_one("#calc-gear_ratio")
         start, stop = default_range(tab.calculator.field("radius"), tab.entries["radius"])
-        want = sweep.run("gear_ratio", tab.entries, [f"radius={start}..{stop}:21"])
+        want = sweep.run(get("gear_ratio"), tab.entries, [f"radius={start}..{stop}:21"])
         got = screen.result
         assert [p.inputs for p in got.points] == [p.inputs for p in want.points]
         assert [p.outputs for p in got.points] == [p.outputs for p in want.points]

@@ -1,4 +1,4 @@
-"""Workbooks (core/workbook.py, tui/workbook_cli.py): references, arithmetic, order, cycles, unknown
+"""Workbooks (core/workbook/, tui/workbook_cli.py): references, arithmetic, order, cycles, unknown
 names, unit mismatches, requirements and margins, the CLI's exit codes, sweeps and worst cases."""
 
 import json
@@ -579,11 +579,31 @@ check = "lift.time_to_goal < 10 s"
 def test_an_equality_margin_has_the_sign_of_its_verdict(a, op, b, holds):
     """== and != margins are negative exactly when the check fails, as the inequalities' are (a
     worst case takes the least margin: '!=' at 5 m ± 1 m read ✔ with margin 0 where x = 5 m fails)."""
-    from gearhead.core.workbook import _holds
+    from gearhead.core.workbook.solving import _holds
 
     verdict, margin = _holds(a, b, op)
     assert verdict is holds
     assert (margin >= 0) is holds
+
+
+def test_a_workbook_sweep_is_core_sweep_s_loop(monkeypatch):
+    """The workbook's sweep runs through core.sweep.run (issue 42 item 3: it had a copy of the
+    loop): past the CPU budget it stops with sweep's note, which says what to change; progress is
+    reported as for a calculator's sweep."""
+    import itertools
+
+    from gearhead.core.sim import integrate
+    from gearhead.core.workbook import study as workbook_study
+
+    wb = book(with_requirements("lift.current_per_motor < 100 A"))
+    calls = []
+    done = workbook_study.run_sweep(wb, ["mass=10 lb..30 lb:3"], progress=lambda i, n: calls.append(i))
+    assert calls == [1, 2, 3] and len(done.points) == 3
+    real, looks = integrate.cpu_clock, itertools.count()
+    monkeypatch.setattr(integrate, "cpu_clock", lambda: real() + 100.0 * next(looks))
+    result = workbook_study.run_sweep(wb, ["mass=10 lb..30 lb:50"])
+    assert 1 <= len(result.points) < 50
+    assert any("sweep's budget" in n and "fewer points" in n for n in result.notes), result.notes
 
 
 def test_a_sweep_of_a_whole_number_over_a_huge_range_picks_its_points(capsys):

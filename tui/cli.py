@@ -425,7 +425,7 @@ def _sweep(args) -> int:
     calc = get(args.calculator)
     display_units = _display_units(args)
     raw, tolerances = tolerance.split_inputs(calc, _raw_inputs(args, calc))
-    result = sweep.run(calc.id, raw, args.varies, args.outputs, display_units)
+    result = sweep.run(calc, raw, args.varies, args.outputs, display_units)
     if tolerances:
         result.notes.append(
             f"tolerances on {', '.join(tolerances)} are not swept: the nominal values are used"

@@ -1,4 +1,4 @@
-"""The command line of workbooks (core/workbook.py): `check`, and `solve`/`sweep` given a .toml file.
+"""The command line of workbooks (core/workbook/): `check`, and `solve`/`sweep` given a .toml file.
 
     gearhead check ROBOT.toml [--set VAR=VALUE ...] [--worst-case] [--json]
     gearhead solve ROBOT.toml [--set VAR=VALUE ...] [--json]
@@ -89,7 +89,7 @@ def check(args) -> int:
     outcome = workbook.solve(wb)
     worst = None
     if args.worst_case:
-        from gearhead.core import workbook_study
+        from gearhead.core.workbook import study as workbook_study
 
         worst = workbook_study.worst_case(wb)
     holds = outcome.all_hold and (
@@ -190,8 +190,8 @@ def solve(args) -> int:
 
 
 def sweep(args) -> int:
-    from gearhead.core import workbook_study
     from gearhead.core.sweep import text_table
+    from gearhead.core.workbook import study as workbook_study
 
     if args.preset is not None or args.units:
         raise InputError(

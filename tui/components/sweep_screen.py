@@ -210,7 +210,7 @@ class SweepScreen(Dialog[None]):
         try:
             raw, tolerances = tolerance.split_inputs(self.calculator, self.entries)
             result = sweep.run(
-                self.calculator.id, raw, [spec], progress=progress, cancelled=lambda: worker.is_cancelled
+                self.calculator, raw, [spec], progress=progress, cancelled=lambda: worker.is_cancelled
             )
             if tolerances:
                 result.notes.append(f"tolerances on {', '.join(tolerances)} not swept: nominal values used")

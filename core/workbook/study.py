@@ -1,8 +1,8 @@
 """Sweeps and tolerances over a workbook: its variables in, each requirement's margin out.
 
-The workbook is seen as one calculator (core.workbook.as_calculator: fields = its plain variables,
-outputs = the requirements' margins in SI), so a sweep is core.sweep's points and table, and the
-worst case core.tolerance's corners (and optimiser where a margin is not monotone). A margin is
+The workbook is seen as one calculator (core.workbook.solving.as_calculator: fields = its plain
+variables, outputs = the requirements' margins in SI), so a sweep is core.sweep's points and table,
+and the worst case core.tolerance's corners (and optimiser where a margin is not monotone). A margin is
 how far a requirement holds (negative: fails); a requirement holds in the worst case when its
 lowest margin over the tolerance box is not negative. Cards that read no varied variable are
 solved once (core.workbook caches each card's solve by its entries).
@@ -10,27 +10,27 @@ solved once (core.workbook caches each card's solve by its entries).
 
 from __future__ import annotations
 
-import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from . import sweep as sweeps
-from . import tolerance
-from .errors import InputError
-from .model import parse_inputs
-from .sim import integrate
-from .workbook import Workbook, as_calculator, studied
+from .. import sweep as sweeps
+from .. import tolerance
+from ..errors import InputError
+from .book import Workbook
+from .solving import as_calculator, studied
 
 
 def run_sweep(
     wb: Workbook,
     varies: Sequence[str],
     outputs: Sequence[str] = (),
+    progress: Callable[[int, int], None] | None = None,
     cancelled: Callable[[], bool] | None = None,
 ) -> sweeps.Sweep:
-    """Sweep one variable (a table) or two (a grid): each point solves the whole workbook."""
-    t0 = time.perf_counter()
+    """Sweep one variable (a table) or two (a grid): each point solves the whole workbook, through
+    core.sweep.run's loop. What is checked here first is said in a workbook's words (a variable,
+    a requirement), not a calculator's (an input, an output)."""
     calc = as_calculator(wb)
     if not calc.fields:
         raise InputError(
@@ -50,43 +50,10 @@ def run_sweep(
     for name in outputs:
         if name not in known:
             raise InputError(name, f"is not a requirement of the workbook (requirements: {', '.join(known)})")
-    base, _ = parse_inputs(calc, {})  # the file's values; the varied ones replaced per point
-    fields = [calc.field(v.name) for v in specs]
-    axes = [v.values(f) for v, f in zip(specs, fields)]
-    grid = [(x,) for x in axes[0]] if len(axes) == 1 else [(x, y) for x in axes[0] for y in axes[1]]
-    if len(grid) > sweeps.MAX_POINTS:
-        raise InputError("--vary", f"{len(grid)} points is more than {sweeps.MAX_POINTS}")
-    cost = sweeps.Cost()
-    points: list[sweeps.Point] = []
-    notes: list[str] = []
-    stopped = False
-    started = integrate.cpu_clock()
-    for i, xs in enumerate(grid):
-        if cancelled is not None and cancelled():
-            stopped = True
-            break
-        if integrate.cpu_clock() - started > sweeps.SWEEP_SECONDS:
-            notes.append(f"stopped after {i} of {len(grid)} points: the sweep's budget is spent")
-            break
-        values = dict(base)
-        error = None
-        for f, x in zip(fields, xs):
-            try:
-                values[f.name] = sweeps.checked(f, x)
-            except InputError as exc:
-                error = str(exc)
-        if error is None:
-            outcome = sweeps.evaluate(calc, values)
-            cost.add(outcome)
-            points.append(
-                sweeps.Point(
-                    {f.name: values[f.name] for f in fields}, outcome.outputs, outcome.warnings, outcome.error
-                )
-            )
-        else:
-            points.append(sweeps.Point({f.name: x for f, x in zip(fields, xs)}, {}, [], error))
-    cost.wall_time = time.perf_counter() - t0
-    return sweeps.Sweep(calc, specs, list(outputs) or known, points, cost, stopped, notes)
+    # every requirement a column, even one with no margin (a comparison of text): named, not picked
+    # by the first point's numbers as a calculator's outputs are
+    chosen = list(outputs) or known
+    return sweeps.run(calc, {}, specs, chosen, progress=progress, cancelled=cancelled)
 
 
 @dataclass
