@@ -1,4 +1,4 @@
-"""A workbook in the app (core/workbook.py): a Robot card and one card per workbook card.
+"""A workbook in the app (core/workbook/): a Robot card and one card per workbook card.
 
 The Robot card lists the variables (a Sheet over core.workbook.as_calculator's fields: every plain
 number or quantity, editable) and the requirements, each ✔ or ✘ with its values. Each workbook card
