@@ -20,10 +20,10 @@ from typing import Any
 from rich.text import Text
 from textual import work
 from textual.app import ComposeResult
-from textual.containers import Horizontal, Vertical, VerticalScroll
+from textual.containers import Horizontal, Vertical
 from textual.message import Message
 from textual.widget import Widget
-from textual.widgets import DataTable, Static
+from textual.widgets import Static
 from textual.worker import Worker, WorkerState, get_current_worker
 
 from gearhead.core.errors import InputError
@@ -31,6 +31,7 @@ from gearhead.core.model import Calculator, Field, Solution
 
 from ..guard import guard, guarded, report
 from . import card_text
+from .card_parts import Tables, Warnings
 from .results import FRESH, PENDING, STALE, WAITING, ResultsList
 from .sheet import Sheet
 
@@ -89,8 +90,6 @@ class CalculatorTab(Widget):
         self._estimate = None  # the worker computing the shown solution's error estimate
         self._sendable: bool | None = None  # ctrl+g had something to send at the last solve
         self._shown_by = None  # (mode, choices) the visible rows were chosen for
-        self._warnings_text: str | None = None
-        self._warnings_lines = -1  # lines the warnings took when last shown (-1: unknown, lay out)
         self._mounted = False
 
     @staticmethod
@@ -139,12 +138,13 @@ class CalculatorTab(Widget):
                     self.plot = PlotPanel(calc.plots)
                     self.plot.unit_system = self.unit_system
                     yield self.plot
-                yield from self._compose_tables()
+                self.tables = Tables(calc)
+                yield from self.tables.compose()
                 # long or many warnings scroll in a box of their own instead of pushing the
                 # status line out of the pane
-                with VerticalScroll(classes="warnings-box"):
-                    self.warnings = Static("", classes="warnings")
-                    yield self.warnings
+                self.warnings_part = Warnings()
+                self.warnings, self.warnings_box = self.warnings_part.text_widget, self.warnings_part.box
+                yield from self.warnings_part.compose()
                 self.status = Static("", classes="status")
                 yield self.status
 
@@ -152,7 +152,6 @@ class CalculatorTab(Widget):
     def on_mount(self) -> None:
         self.glance = self.query_one(".glance", Static)
         self.help_line = self.query_one(".help-line", Static)
-        self.warnings_box = self.query_one(".warnings-box")
         self._mounted = True
         self._apply_mode()
         self.solve()
@@ -377,7 +376,7 @@ class CalculatorTab(Widget):
             if self.plot.has_class("stale"):
                 self.plot.remove_class("stale")
             self.plot.show_soon(solution)
-        self._show_tables(solution)
+        self.tables.show(solution)
         self._show_warnings(solution.warnings)
         self.status.update(card_text.solved_status(seconds, self.spread, self.hide_timings), layout=False)
         self.glance.update(card_text.glance(calc, solution), layout=False)
@@ -403,20 +402,7 @@ class CalculatorTab(Widget):
         return card_text.result_rows(self.calculator, solution, spread, self.hide_timings)
 
     def _show_warnings(self, warnings: list[str]) -> None:
-        text = card_text.warnings_text(warnings, self.spread)
-        if text == self._warnings_text:
-            return
-        # the box grows with its text: a layout repaints every widget of the screen, so only a
-        # text that takes another number of lines asks for one (drivetrain's warnings quote
-        # numbers that change with each key)
-        content = Text(text, style="yellow")
-        width = self.warnings.content_region.width
-        lines = len(content.wrap(self.app.console, width)) if width and text else (0 if not text else -1)
-        same_height = lines >= 0 and lines == self._warnings_lines and self.warnings_box.display == bool(text)
-        self._warnings_text, self._warnings_lines = text, lines
-        self.warnings.update(content, layout=not same_height)
-        if self.warnings_box.display != bool(text):
-            self.warnings_box.display = bool(text)
+        self.warnings_part.show(card_text.warnings_text(warnings, self.spread))
 
     # ---- the help line ----------------------------------------------------------------------
     @guarded
@@ -427,40 +413,6 @@ class CalculatorTab(Widget):
     @guarded
     def _explain_output(self, name: str) -> None:
         self.help_line.update(card_text.output_help(self.calculator, name, self.solution, self.spread))
-
-    # ---- tables of alternatives (core.model.Table) -------------------------------------
-    def _compose_tables(self) -> ComposeResult:
-        """A scrollable table per declared Table, its header holding each column's unit."""
-        for t in self.calculator.tables:
-            yield Static(
-                Text(t.title, style="bold"), classes="result-table-title", id=f"table-title-{t.name}"
-            )
-            grid = DataTable(
-                classes="result-table", id=f"table-{t.name}", cursor_type="row", zebra_stripes=True
-            )
-            grid.tooltip = (
-                "ctrl+g sends the row under the cursor to the calculator it feeds" if t.exports else None
-            )
-            for c in t.columns:
-                if not c.hidden:
-                    head = card_text.table_header(c)
-                    grid.add_column(Text(head), key=c.name, width=max(c.width, len(head)))
-            yield grid
-
-    def _show_tables(self, solution: Solution) -> None:
-        entries = solution.entries()
-        for t in self.calculator.tables:
-            grid = self.query_one(f"#table-{t.name}", DataTable)
-            shown = t.shown_in(entries)  # a table of another mode (the sprint's optimise table) gives way
-            if grid.display != shown:
-                grid.display = shown
-                self.query_one(f"#table-title-{t.name}", Static).display = shown
-            cursor = grid.cursor_row
-            grid.clear()
-            for n, row in enumerate(solution.tables.get(t.name, [])):
-                grid.add_row(*card_text.table_cells(t, row), key=str(n))
-            if 0 < cursor < grid.row_count:
-                grid.move_cursor(row=cursor, animate=False)
 
     # ---- what the app and tests read --------------------------------------------------------
     def can_send(self) -> bool:
@@ -475,14 +427,7 @@ class CalculatorTab(Widget):
 
     def selected_row(self):
         """(Table, row of Values) under the cursor of the table last focused, or None."""
-        if self.solution is None:
-            return None
-        for t in self.calculator.tables:
-            grid = self.query_one(f"#table-{t.name}", DataTable)
-            rows = self.solution.tables.get(t.name, [])
-            if t.exports and 0 <= grid.cursor_row < len(rows):
-                return t, rows[grid.cursor_row]
-        return None
+        return self.tables.selected_row(self.solution)
 
     def shown_values(self) -> dict[str, str]:
         """The result texts the list draws now (name -> text; "…" while pending)."""

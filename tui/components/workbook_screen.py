@@ -11,15 +11,17 @@ each card then solves as it does for any entry.
 from __future__ import annotations
 
 import dataclasses
-import threading
 from typing import Any
 
 from rich.text import Text
+from textual import work
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical, VerticalScroll
+from textual.message import Message
 from textual.screen import Screen
 from textual.widgets import ContentSwitcher, Static, Tab, Tabs
+from textual.worker import get_current_worker
 
 from gearhead.core.errors import InputError
 
@@ -215,10 +217,8 @@ class WorkbookScreen(Screen):
         self.hide_timings = hide_timings
         self.robot_calc = robot_calculator(book)
         self.outcome = None  # the last core.workbook.Outcome shown
-        self._wb_generation = 0  # solves asked for; a thread's result older than the last is dropped
-        self._wb_lock = threading.Lock()
-        self._wb_running = False
-        self._wb_pending = None  # the latest request not yet taken up by the solving thread
+        self._wb_generation = 0  # solves asked for; a worker's result older than the last is dropped
+        self._wb_shown = 0  # the request whose result is shown
         self._wb_pushed: dict[tuple[str, str], Any] = {}  # (card, field) -> the linked value last set
         self._saved: dict[str, dict[str, Any]] = {}  # per card ("" the Robot card): entries last saved
 
@@ -376,19 +376,20 @@ class WorkbookScreen(Screen):
         return True
 
     # ---- solving ------------------------------------------------------------------------
+    class Solved(Message):
+        """The workbook solved (core.workbook.Outcome, or the InputError) for request `generation`."""
+
+        def __init__(self, generation: int, result) -> None:
+            super().__init__()
+            self.generation, self.result = generation, result
+
     def request_solve(self) -> None:
-        """Solve the workbook with what is on screen, in a thread; a request while one runs is
-        taken up when it ends (latest wins)."""
+        """Solve the workbook with what is on screen in a worker, as a card solves: a newer request
+        cancels the running one (it stops at its next integration step) and only the latest is shown."""
         self._wb_generation += 1
         variables = {name: self._with_unit(name, entry) for name, entry in self.robot.entries.items()}
         inputs = {name: tab.own_inputs() for name, tab in self.cards.items()}
-        job = (self._wb_generation, variables, inputs)
-        with self._wb_lock:
-            self._wb_pending = job
-            if self._wb_running:
-                return
-            self._wb_running = True
-        threading.Thread(target=self._solve_loop, name="gearhead-workbook", daemon=True).start()
+        self._solve_worker(self._wb_generation, variables, inputs)
 
     def _with_unit(self, name: str, entry: Any) -> Any:
         """A bare number typed on a Robot card row is in the unit the row shows (as on any card):
@@ -404,34 +405,36 @@ class WorkbookScreen(Screen):
 
     @property
     def busy(self) -> bool:
-        return self._wb_running
+        return self._wb_shown != self._wb_generation
 
-    def _solve_loop(self) -> None:
+    @work(thread=True, exclusive=True, group="workbook", exit_on_error=False)
+    def _solve_worker(self, generation: int, variables: dict, inputs: dict) -> None:
         from gearhead.core import workbook
+        from gearhead.core.sim.integrate import Cancelled, budget
 
-        while True:
-            with self._wb_lock:
-                job, self._wb_pending = self._wb_pending, None
-                if job is None:
-                    self._wb_running = False
-                    return
-            generation, variables, inputs = job
-            try:
-                book = workbook.edited(self.book, variables, inputs)
-                result: Any = workbook.solve(book)
-            except InputError as exc:
-                result = exc
-            except Exception as exc:  # a bug: said on the Robot card, logged; the screen keeps working
-                from ..bug_log import record
+        worker = get_current_worker()
+        try:
+            with budget(cancel=lambda: worker.is_cancelled):
+                result: Any = workbook.solve(workbook.edited(self.book, variables, inputs))
+        except Cancelled:  # a newer request runs: it posts
+            return
+        except InputError as exc:
+            result = exc
+        except Exception as exc:  # a bug: said on the Robot card, logged; the screen keeps working
+            from ..bug_log import record
 
-                path = record(exc, "gearhead (the app) workbook solve")
-                result = InputError(
-                    "(workbook)", f"internal error: {type(exc).__name__}: {exc} (traceback in {path})"
-                )
-            try:
-                self.app.call_from_thread(self._show, generation, result)
-            except RuntimeError:  # the app closed meanwhile
-                return
+            path = record(exc, "gearhead (the app) workbook solve")
+            result = InputError(
+                "(workbook)", f"internal error: {type(exc).__name__}: {exc} (traceback in {path})"
+            )
+        self.post_message(self.Solved(generation, result))
+
+    @guarded
+    def on_workbook_screen_solved(self, message: Solved) -> None:
+        message.stop()
+        if message.generation == self._wb_generation:
+            self._wb_shown = message.generation
+        self._show(message.generation, message.result)
 
     @guarded
     def _show(self, generation: int, result) -> None:

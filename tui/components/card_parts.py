@@ -1,0 +1,101 @@
+"""Two parts of a card below its results: the tables of alternatives and the warnings box. Each
+composes into the card's results pane as before (same widgets, same classes) and draws itself
+from a solution; the card only hands them what it solved."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from rich.text import Text
+from textual.containers import VerticalScroll
+from textual.widget import Widget
+from textual.widgets import DataTable, Static
+
+from gearhead.core.model import Calculator, Solution
+
+from . import card_text
+
+
+class Tables:
+    """A title and a scrollable DataTable per declared Table (core.model.Table), each column's
+    unit in its header; a table of another mode (the sprint's optimise table) is hidden."""
+
+    def __init__(self, calculator: Calculator) -> None:
+        self.calculator = calculator
+        self.grids: dict[str, tuple[Static, DataTable]] = {}
+
+    def compose(self) -> Iterator[Widget]:
+        for t in self.calculator.tables:
+            title = Static(
+                Text(t.title, style="bold"), classes="result-table-title", id=f"table-title-{t.name}"
+            )
+            grid = DataTable(
+                classes="result-table", id=f"table-{t.name}", cursor_type="row", zebra_stripes=True
+            )
+            grid.tooltip = (
+                "ctrl+g sends the row under the cursor to the calculator it feeds" if t.exports else None
+            )
+            for c in t.columns:
+                if not c.hidden:
+                    head = card_text.table_header(c)
+                    grid.add_column(Text(head), key=c.name, width=max(c.width, len(head)))
+            self.grids[t.name] = (title, grid)
+            yield title
+            yield grid
+
+    def show(self, solution: Solution) -> None:
+        entries = solution.entries()
+        for t in self.calculator.tables:
+            title, grid = self.grids[t.name]
+            shown = t.shown_in(entries)
+            if grid.display != shown:
+                grid.display = title.display = shown
+            cursor = grid.cursor_row
+            grid.clear()
+            for n, row in enumerate(solution.tables.get(t.name, [])):
+                grid.add_row(*card_text.table_cells(t, row), key=str(n))
+            if 0 < cursor < grid.row_count:
+                grid.move_cursor(row=cursor, animate=False)
+
+    def selected_row(self, solution: Solution | None):
+        """(Table, row of Values) under the cursor of the first table that sends rows, or None."""
+        if solution is None:
+            return None
+        for t in self.calculator.tables:
+            rows = solution.tables.get(t.name, [])
+            grid = self.grids[t.name][1]
+            if t.exports and 0 <= grid.cursor_row < len(rows):
+                return t, rows[grid.cursor_row]
+        return None
+
+
+class Warnings:
+    """The warnings box: it grows with its text, scrolls when long, and hides when empty."""
+
+    def __init__(self) -> None:
+        self.box = VerticalScroll(classes="warnings-box")
+        self.text_widget = Static("", classes="warnings")
+        self.text: str | None = None
+        self.lines = -1  # lines the text took when last shown (-1: unknown, lay out)
+
+    def compose(self) -> Iterator[Widget]:
+        with self.box:
+            yield self.text_widget
+
+    def show(self, text: str) -> None:
+        if text == self.text:
+            return
+        # a layout repaints every widget of the screen, so only a text that takes another number
+        # of lines asks for one (drivetrain's warnings quote numbers that change with each key)
+        content = Text(text, style="yellow")
+        width = self.text_widget.content_region.width
+        lines = (
+            len(content.wrap(self.text_widget.app.console, width))
+            if width and text
+            else (0 if not text else -1)
+        )
+        same_height = lines >= 0 and lines == self.lines and self.box.display == bool(text)
+        self.text, self.lines = text, lines
+        self.text_widget.update(content, layout=not same_height)
+        if self.box.display != bool(text):
+            self.box.display = bool(text)
