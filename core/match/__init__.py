@@ -1,0 +1,16 @@
+"""The match: a whole robot on one battery (issue 43), the foundations in pure computation.
+
+    battery.py   the lead-acid battery: open-circuit voltage against state of charge, resistance,
+                 capacity, Peukert-weighted charge, energy                              (M1-M5)
+    bus.py       the bus voltage from every supply current together: affine (motor) loads in closed
+                 form, constant-power (stator-limited) loads as a quadratic whose branch is followed
+                 continuously in time                                                  (M6-M9)
+    brownout.py  the roboRIO's brownout as a state machine with hysteresis, crossings located in
+                 time                                                                 (M10-M11)
+    breaker.py   breakers: a trip-time table and a first-order thermal state calibrated to reproduce
+                 it exactly from cold                                                 (M12-M15)
+    timeline.py  a match integrated over synthetic loads, and its outputs             (M16-M18)
+
+SI inside: volts, amperes, ohms, seconds, coulombs, joules (amp-hours and watt-hours only in the
+outputs that name them). Not yet wired to the workbook's [match] table, the CLI or the app.
+"""
