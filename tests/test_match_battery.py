@@ -45,8 +45,12 @@ def test_constant_current_charge_is_i_t_and_the_peukert_runtime_empties_the_batt
     ).run()
     assert r.charge_ah == pytest.approx(54.0 * t / 3600, rel=1e-9)
     assert r.peukert_charge_ah == pytest.approx(18.0, rel=1e-9)
-    assert r.end_soc == pytest.approx(0.0, abs=1e-9)
-    assert r.end_ocv == pytest.approx(11.94, abs=1e-8)
+    assert r.end_available == pytest.approx(0.0, abs=1e-9)  # empty at 54 A
+    # the open-circuit voltage follows the plain charge (M3): 6.4675 Ah of 18 drawn
+    s = 1 - 54.0 * t / 3600 / 18
+    assert r.end_soc == pytest.approx(s, rel=1e-9)
+    assert s == pytest.approx(0.64070, abs=1e-5)  # on the upper row pair: 12.54 V + 0.36 V·(s − 0.5)
+    assert r.end_ocv == pytest.approx(12.54 + (12.72 - 12.54) * (s - 0.5) / 0.5, rel=1e-9)
     assert r.brownouts == ()
     assert r.peak_current == 54.0 and r.rms_current == pytest.approx(54.0, rel=1e-9)
     assert r.shares == {"base": 0.0, "load": pytest.approx(1.0, rel=1e-12)}

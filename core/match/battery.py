@@ -4,11 +4,15 @@ resistance whose voltage falls with the charge drawn.
     V_oc(s) = the table's open-circuit voltage at state of charge s, linear between its rows,
               held at the end rows outside them                                               (M1)
     R = R_internal + R_wiring;   the bus: V = V_oc(s) − R·I  (I the battery current)           (M2)
-    s(t) = s₀ − Q_p(t)/C,   C = capacity_ah·3600 C (the capacity at the `rated_hours` rate)    (M3)
+    s(t) = s₀ − Q(t)/C,   Q = ∫I dt,   C = capacity_ah·3600 C (the capacity at the rated rate)  (M3)
+        The open-circuit voltage follows this plain charge: at rest the cells' voltage is set by
+        the acid's concentration, which Faraday's law ties to the charge passed, whatever the rate.
     Peukert: at a constant current I a full battery lasts  t = H·(C_Ah/(I·H))^k  hours,
         H = rated_hours, k = the Peukert exponent. Equivalently the charge drawn is weighted:
         dQ_p/dt = I·(I/I_H)^(k−1),  I_H = C_Ah/H (the rated current, 0.9 A for 18 Ah at 20 h), and
-        the battery is empty when Q_p = C, which gives back the runtime above for constant I:
+        the battery is empty (can no longer hold its voltage at the rates drawn) when Q_p = C, so
+        s_p = s₀ − Q_p/C is the charge still available at those rates; it gives back the runtime
+        above for constant I:
         C/(I·(I/I_H)^(k−1)) = H·(C_Ah/(I·H))^k · 3600 s.  A charging (negative) current is counted
         plain, dQ_p/dt = I (no charge efficiency is modelled).                                 (M4)
         The plain charge is dQ/dt = I; both are reported (Ah = C/3600).
@@ -133,9 +137,10 @@ class Battery:
             return current
         return current * (current / self.rated_current) ** (self.peukert - 1.0)
 
-    def soc(self, q_peukert: float) -> float:
-        """s (M3) after the Peukert-weighted charge `q_peukert` (C) was drawn."""
-        return self.start_soc - q_peukert / self.capacity
+    def soc(self, charge: float) -> float:
+        """s₀ − charge/C: the state of charge s (M3) after the plain charge `charge` (C) was drawn,
+        or the available fraction s_p (M4) after the Peukert-weighted one."""
+        return self.start_soc - charge / self.capacity
 
     def runtime(self, current: float) -> float:
         """Seconds a full battery lasts at a constant `current` (M4): H·(C_Ah/(I·H))^k hours."""

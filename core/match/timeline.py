@@ -9,7 +9,7 @@ between every load's start and stop, so no step straddles a switch) is
 
 with dQ/dt = I, dQ_p/dt by (M4), dE_oc/dt = V_oc·I, dE_bus/dt = V·I, dE_R/dt = I²·R (M5),
 dq_i/dt = I_i (each load's charge), dθ/dt by (M12) for the main breaker (the battery current) and
-each load's channel breaker that has a trip table. At each (t, y): s = s₀ − Q_p/C (M3),
+each load's channel breaker that has a trip table. At each (t, y): s = s₀ − Q/C (M3),
 V_oc = V_oc(s) (M1), the bus from the loads running (M7-M9), I_i = a_i + b_i·V + p_i/V,
 I = I_base + Σ I_i.
 
@@ -28,9 +28,12 @@ to what they asked at V*: the energy balance (M5) still holds; the time spent so
 
 Outputs (`MatchResult`): the lowest bus voltage and when, the time below the brownout voltage, the
 brownouts (start, length, the loads running), charge plain and Peukert-weighted (Ah), energy (Wh:
-from the cells, to the bus, burnt in R), end state of charge and open-circuit voltage, peak and RMS
+from the cells, to the bus, burnt in R), end state of charge and open-circuit voltage (and the
+charge still available at the rates drawn, s_p of M4), peak and RMS
 battery current, each load's share of the charge, each breaker's worst margin (1 − θ_max) and trip
-time. The trace (t, V, I) is sampled at the solver's steps, every `trace_step`, and each switch.
+time. The trace (t, V, I) is sampled at the solver's steps, every `trace_step` (20 ms by default,
+a robot loop) and at each switch; the lowest voltage, the time below the brownout voltage, the peak
+current and θ_max are read from it (a load step and a switch are in it exactly).
 
     RMS current = √(∫I²dt / length)                                                          (M17)
     share_i = q_i / Q                                                                         (M18)
@@ -126,7 +129,8 @@ class MatchResult:
     energy_cells_wh: float
     energy_bus_wh: float
     energy_loss_wh: float
-    end_soc: float
+    end_soc: float  # s (M3), from the plain charge
+    end_available: float  # s_p (M4), from the Peukert-weighted charge: ≤ 0 means empty at these rates
     end_ocv: float
     peak_current: float
     rms_current: float
@@ -148,7 +152,7 @@ class Match:
     base_load: float = 0.0
     loads: tuple[Load, ...] = ()
     main_breaker: Breaker = Breaker(MAIN_RATING, name="main_breaker")
-    trace_step: float = 0.005
+    trace_step: float = 0.02  # s: the robot loop's 20 ms; switches and trips are events, not this grid
     rtol: float = 1e-9
 
     def __post_init__(self):
@@ -239,7 +243,7 @@ class _Run:
             raise InputError(
                 "loads", f"the match needs more than {MAX_EVALS} evaluations (loads too fast-varying?)"
             )
-        voc = self.bat.ocv(self.bat.soc(y[1]))
+        voc = self.bat.ocv(self.bat.soc(y[0]))  # (M3): the plain charge sets V_oc
         on = [i for i in active if self.enabled or not self.m.loads[i].brownout_disables]
         terms = {i: self.terms(i, t) for i in on}
         A = self.m.base_load + sum(a for a, _, _ in terms.values())
@@ -408,7 +412,7 @@ class _Run:
         shares = {"base": m.base_load * m.length / Q if Q else 0.0}
         for i, ld in enumerate(m.loads):
             shares[ld.name] = y[6 + i] / Q if Q else 0.0
-        soc = self.bat.soc(y[1])
+        soc = self.bat.soc(y[0])
         out = [_breaker(m.main_breaker, max(abs(a) for a in amps), theta_max[0], trips[0])]
         for i, ld in enumerate(m.loads):
             if ld.breaker is None:
@@ -432,6 +436,7 @@ class _Run:
             energy_bus_wh=y[3] / 3600.0,
             energy_loss_wh=y[4] / 3600.0,
             end_soc=soc,
+            end_available=self.bat.soc(y[1]),
             end_ocv=self.bat.ocv(soc),
             peak_current=max(amps),
             rms_current=math.sqrt(max(y[5], 0.0) / m.length),
