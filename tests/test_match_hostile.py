@@ -38,6 +38,8 @@ def _err(**kwargs) -> InputError:
         ({"loads": [Load("base", constant_current(1.0))]}, "loads[0].name"),
         ({"loads": [Load("x", "not a function")]}, "loads[0].terms"),
         ({"loads": ["drive"]}, "loads[0]"),
+        ({"loads": [Load("x", constant_current(1.0), brownout_disables="no")]}, "loads[0].brownout_disables"),
+        ({"loads": [Load("x", constant_current(1.0), breaker=40)]}, "loads[0].breaker"),
         ({"loads": "drive"}, "loads"),
         ({"loads": [Load(f"l{i}", constant_current(0.001)) for i in range(100_000)]}, "loads"),
         ({"battery": "fresh"}, "battery"),
@@ -60,6 +62,7 @@ def test_zero_capacity_is_named():
         (lambda t: (float("nan"), 0.0, 0.0), "a = 'nan'"),
         (lambda t: (1.0, 0.0, float("inf")), "p = 'inf'"),
         (lambda t: ("5", 0.0, 0.0), "a = '5'"),
+        (lambda t: (True, 0.0, 0.0), "a = 'True'"),
         (lambda t: (1.0, -0.5, 0.0), "b = -0.5"),
         (lambda t: (1.0, 0.0), "ValueError"),
         (lambda t: 1 / 0, "ZeroDivisionError"),
@@ -107,3 +110,11 @@ def test_a_collapsing_bus_stays_finite_and_balanced():
     values = [r.min_voltage, r.charge_ah, r.peukert_charge_ah, r.energy_cells_wh, r.rms_current, r.end_soc]
     assert all(math.isfinite(x) for x in values)
     assert all(math.isfinite(v) for v in r.volts) and all(math.isfinite(i) for i in r.amps)
+
+
+def test_numpy_numbers_are_numbers():
+    """A load function written with numpy returns numpy floats: accepted as the floats they are."""
+    np = pytest.importorskip("numpy")
+    load = Load("np", lambda t: (np.float64(10.0), np.float32(0.0), np.float64(0.0)), 0.0, 2.0)
+    r = Match(battery=FLAT, length=2.0, loads=(load,)).run()
+    assert r.charge_ah * 3600 == pytest.approx(20.0, rel=1e-9)

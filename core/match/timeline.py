@@ -48,6 +48,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from numbers import Real
 
 from gearhead.core.errors import InputError, shown
 from gearhead.core.match.battery import AH, Battery
@@ -192,6 +193,11 @@ class Match:
             stop = number(f"{where}.stop", load.stop, low=0.0, high=MAX_LENGTH)
             if stop <= start:
                 raise InputError(f"{where}.stop", f"must be after the start {start:g} s, got {stop:g} s")
+            if not isinstance(load.brownout_disables, bool):
+                raise InputError(
+                    f"{where}.brownout_disables",
+                    f"must be true or false, got {shown(load.brownout_disables)}",
+                )
             if load.breaker is not None and not isinstance(load.breaker, Breaker):
                 raise InputError(f"{where}.breaker", f"must be a Breaker, got {shown(load.breaker)}")
         object.__setattr__(self, "loads", tuple(loads))
@@ -229,7 +235,7 @@ class _Run:
             ) from None
         out = []
         for name, x in (("a", a), ("b", b), ("p", p)):
-            if isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x):
+            if isinstance(x, bool) or not isinstance(x, Real) or not math.isfinite(x):
                 raise InputError(where, f"gave {name} = {shown(x)} at t = {t:.6g} s; must be a finite number")
             out.append(float(x))
         if out[1] < 0:
