@@ -149,3 +149,25 @@ def test_core_match_imports_only_errors_units_numpy_scipy():
                     name == x or name.startswith(x + ".") for x in allowed
                 )
                 assert ok, f"{path.name} imports {name}"
+
+
+def test_timeline_follows_the_branch_nearest_the_last_bus_voltage():
+    """Flat 12.5 V, 0.02 Ω. 1900 W of constant power (at most 1953 W): roots (12.5 ± √4.25)/2 =
+    7.2808 V and 5.2192 V. After a 400 A piece (bus 4.5 V) the 1900 W piece starts on the lower root
+    (nearest 4.5 V) and stays there; alone from the start it sits on the upper root."""
+    from gearhead.core.match.battery import Battery
+    from gearhead.core.match.brownout import Controller
+    from gearhead.core.match.timeline import Load, Match, constant_current, constant_power
+
+    flat = Battery(ocv_table=((0.5, 12.5),), resistance=0.02)
+    low = Controller(brownout=1.0, recovery=2.0)  # keep the outputs on: only the branch matters here
+    upper, lower = (12.5 + 4.25**0.5) / 2, (12.5 - 4.25**0.5) / 2
+    power = Load("p", constant_power(1900.0), 1.0, 2.0, brownout_disables=False)
+    amps = Load("i", constant_current(400.0), 0.0, 1.0, brownout_disables=False)
+    r = Match(battery=flat, controller=low, length=2.0, loads=(amps, power), trace_step=0.1).run()
+    during = [v for t, v in zip(r.times, r.volts) if 1.0 < t < 2.0]
+    assert during and all(v == pytest.approx(lower, rel=1e-12) for v in during)
+    assert r.min_voltage == pytest.approx(4.5, rel=1e-12)
+    alone = Match(battery=flat, controller=low, length=2.0, loads=(power,), trace_step=0.1).run()
+    during = [v for t, v in zip(alone.times, alone.volts) if 1.0 < t < 2.0]
+    assert during and all(v == pytest.approx(upper, rel=1e-12) for v in during)
