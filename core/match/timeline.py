@@ -380,7 +380,6 @@ class _Run:
                         brownouts.append(BrownoutResult(bo_start, t_stop, bo_loads))
                         self.enabled = True
                 t = t_stop
-        sample(L, y, [i for i, ld in enumerate(m.loads) if ld.start <= L < ld.stop])
         if not self.enabled:
             brownouts.append(BrownoutResult(bo_start, L, bo_loads))
         return self._result(y, times, volts, amps, cols, load_peak, theta_max, trips, brownouts)
