@@ -118,3 +118,13 @@ def test_numpy_numbers_are_numbers():
     load = Load("np", lambda t: (np.float64(10.0), np.float32(0.0), np.float64(0.0)), 0.0, 2.0)
     r = Match(battery=FLAT, length=2.0, loads=(load,)).run()
     assert r.charge_ah * 3600 == pytest.approx(20.0, rel=1e-9)
+
+
+def test_a_load_starting_at_the_end_never_draws():
+    """A load may start at the match's length (an event past the end is refused, one at it runs for
+    no time): it shows nowhere, not even in the peak current."""
+    r = Match(
+        battery=FLAT, length=2.0, base_load=1.0, loads=(Load("late", constant_current(500.0), 2.0, 3.0),)
+    ).run()
+    assert r.peak_current == 1.0 and r.shares["late"] == 0.0
+    assert r.min_voltage == pytest.approx(12.5 - 0.015, rel=1e-12)
