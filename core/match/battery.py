@@ -22,7 +22,7 @@ resistance whose voltage falls with the charge drawn.
 Defaults and where each comes from:
   - capacity 18 Ah: frc-docs, Robot Battery Basics ("a single 12V 18Ah SLA ... AGM battery"),
     https://docs.wpilib.org/en/stable/docs/hardware/hardware-basics/robot-battery.html
-    (wpilibsuite/frc-docs source/docs/hardware/hardware-basics/robot-battery.rst); the 20 h rate is
+    (wpilibsuite/frc-docs source/docs/hardware/hardware-basics/robot-battery.rst at 0173fbc); the 20 h rate is
     the rating of the NP18-12 the frc-docs brownout page links (farnell.com/datasheets/575631.pdf:
     its name, 18 Ah, is the 20-hour capacity).
   - internal resistance 0.015 Ω: the same frc-docs page, "Ideal internal resistance should be less

@@ -2,7 +2,7 @@
 
 From frc-docs, "roboRIO Brownout and Understanding Current Draw"
 (https://docs.wpilib.org/en/stable/docs/software/roborio-info/roborio-brownouts.html; source
-wpilibsuite/frc-docs source/docs/software/roborio-info/roborio-brownouts.rst):
+wpilibsuite/frc-docs source/docs/software/roborio-info/roborio-brownouts.rst at commit c6315dc):
   - Stage 2, output disable: "When the voltage drops below 6.3V, the controller will enter the
     brownout protection state": PWM outputs disabled, "CAN-based motor controllers are sent an
     explicit disable command", relays driven low, the 6 V/5 V/3.3 V user rails and the pneumatics
