@@ -4,11 +4,11 @@ The form is one Sheet (sheet.py: a row per field, spreadsheet keys), the results
 (results.py); beside them the calculator's charts and tables, its warnings and a status line.
 
 The path of a key: the sheet hands the card a changed entry; `solve` starts a Textual thread
-worker on the entries on screen (one per card: a newer solve cancels the older, which stops at its
-next integration step); the worker solves through core.solving.solve, the CLI's own solve, and
+worker on the entries on screen (one per card: a newer solve cancels the older, which never starts
+or stops at its next integration step); the worker solves through core.solving.solve, the CLI's own solve, and
 posts `Solved` carrying the key of what it solved; the card draws it only while that key is still
 the card's (card_text.py builds every text). A scene's error estimate is a second step: once its
-results are drawn, another worker runs core.model.finish_estimate and posts `Estimated`. No other
+results are shown, another worker runs core.model.finish_estimate and posts `Estimated`. No other
 thread touches the card; nothing waits.
 """
 
