@@ -124,12 +124,9 @@ from ..declarations import Calculator, Document, Output, Plot, Result
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup, motor_fields, system_from
-from ..sim import motor_limits, velocity_loop
+from ..sim import limit_grid, motor_limits, velocity_loop
 from ..sim.effects import Effect, Effects, nothing
-from ..sim.integrate import Event, integrate
-from ..sim.limit_grid import fields as grid_fields
-from ..sim.limit_grid import heat_map_plot
-from ..sim.limit_grid import table as grid_table
+from ..sim.integrate import Event, integrate, integrate_stiff
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats
 
 TABLE_WHEELS = range(1, 7)
@@ -358,7 +355,7 @@ GRID = (("control", ("limit_grid",)),)
 
 
 # the names, defaults and ranges of core.sim.limit_grid's fields (the elevator's), shown by `control`
-GRID_FIELDS = grid_fields((), GRID, "the quickest to spin up", "the shooter")
+GRID_FIELDS = limit_grid.fields((), GRID, "the quickest to spin up", "the shooter")
 
 FIELDS = (
     Field(
@@ -997,7 +994,7 @@ OUTPUTS = (
     *STATS_OUTPUTS,
 )
 
-GRID_TABLE = grid_table(  # the flywheel's `mode` is the inertia's: shown by `control`
+GRID_TABLE = limit_grid.table(  # the flywheel's `mode` is the inertia's: shown by `control`
     "Current-limit grid: the ratio quickest to spin up per stator × supply limit", "Spin-up", (), GRID
 )
 
@@ -1339,7 +1336,7 @@ def slip_phase_limited(
         du/dτ = t₀/(I·ω₀)·(τ_w(u·ω₀) − r_w·F),  dv/dτ = 1,  until u = v (rolling)          (FW3')
     held at u_t once there (the torque there exceeds r_w·F, as it got there). τ_w is continuous
     with kinks where a limit lets go; the integrator's step control takes them. Stiff (b·span
-    beyond STIFF, b the full-duty slope), scipy's Radau integrates it instead."""
+    beyond STIFF, b the full-duty slope), scipy's Radau integrates it instead (integrate_stiff)."""
     d = sc.drive
     k = t0 / (sc.I * omega0)
     rw_F = sc.r_w * sc.grip
@@ -1349,47 +1346,24 @@ def slip_phase_limited(
 
     if u_t <= 1.0 and rhs(0.0, [u_t, 0.0])[0] >= 0:  # at the target and the motor can hold it
         return omega0, sc.s * sc.r_w * omega0, t0, 0
+    events = [Event("rolling", lambda t, y: y[0] - y[1], -1)]
+    if u_t > 1.0:
+        events.append(Event("target", lambda t, y: y[0] - u_t, +1))
     run = None
     if b * span <= STIFF:
-        events = [Event("rolling", lambda t, y: y[0] - y[1], -1)]
-        if u_t > 1.0:
-            events.append(Event("target", lambda t, y: y[0] - u_t, +1))
         try:
             run = integrate(rhs, 0.0, span, [1.0, 0.0], rtol=rtol, atol=rtol * 1e-3, events=events)
-            (u, v_end), event, nfev = run.y[-1], run.event, run.nfev
         except RuntimeError:  # beyond what a step-size controller can follow: Radau below
             run = None
     if run is None:
-        from scipy.integrate import solve_ivp
-
-        def rolling(t, y):
-            return y[0] - y[1]
-
-        def at_target(t, y):
-            return y[0] - u_t
-
-        rolling.terminal, rolling.direction = True, -1
-        at_target.terminal, at_target.direction = True, +1
-        from ..sim.integrate import charged
-
-        sol = solve_ivp(
-            charged(rhs),  # within the solve's budget, as every integration
-            (0.0, span),
-            [1.0, 0.0],
-            method="Radau",
-            rtol=max(rtol, 1e-12),
-            atol=max(rtol, 1e-12) * 1e-3,
-            events=[rolling, at_target] if u_t > 1.0 else [rolling],
-        )
-        u, v_end = sol.y[0][-1], sol.y[1][-1]
-        hit = [i for i, ts in enumerate(sol.t_events) if len(ts)]
-        event = ("rolling", "target")[hit[0]] if hit else None
-        nfev = sol.nfev
+        tol = max(rtol, 1e-12)
+        run = integrate_stiff(rhs, 0.0, span, [1.0, 0.0], tol, tol * 1e-3, events, "Radau")
+    (u, v_end), event = run.y[-1], run.event
     if event == "target":  # held at the target until the ball catches up: v = τ = u_t
         u = v_end = u_t
     elif event != "rolling":  # cannot happen by the bound on span; the end point is the answer
         u = v_end = min(u, v_end)
-    return u * omega0, sc.s * sc.r_w * omega0 * v_end, v_end * t0, nfev
+    return u * omega0, sc.s * sc.r_w * omega0 * v_end, v_end * t0, run.nfev
 
 
 def slip_closed_form(a: float, b: float, u_t: float, span: float) -> tuple[float, float]:
@@ -1757,16 +1731,15 @@ def _simulate(v, rtol: float) -> SimRun:
         key.update(spin_up_time=t_spin, recovery_time=values["recovery_time"])
         nfev += sc.drive.nfev
     if v["control"] == "limit_grid":
-        rows, pick = limit_grid(v, warnings)
-        values.update(pick)
-        if "grid_spin_up_time" in pick:
-            key["grid_spin_up_time"] = pick["grid_spin_up_time"]
+        grid = limit_grid.run_cells(v, rtol, grid_cells, GRID_PICK, GRID_NONE)
+        values.update(grid.values)
+        if "grid_spin_up_time" in grid.values:
+            key["grid_spin_up_time"] = grid.values["grid_spin_up_time"]
         # the grid's chart is its heat map alone (the card shows it by itself when no line chart
         # has data): the spin-up at the entered ratio is not what this mode asks
-        run = SimRun(values, key, nfev, warnings, {})
-        run.tables = {"limit_grid": rows}
-        run.heat_maps = {"limit_grid_time": grid_heat_map(rows, v)}
-        return run
+        return SimRun(
+            values, key, nfev, warnings + grid.warnings, tables=grid.tables, heat_maps=grid.heat_maps
+        )
     if v["control"] == "velocity_loop":
         lr = velocity_loop_run(sc, v, rtol, values, warnings)
         series["loop speed"] = (lr.times, lr.speeds)
@@ -1990,17 +1963,16 @@ def grid_best_ratio(v, G_max: float) -> tuple[float, float, Scene] | None:
     return G, t, sc
 
 
-def limit_grid(v, warnings: list) -> tuple[list[dict], dict]:
-    """(FW6)-(FW8) over every stator × supply limit pair (core.sim.limit_grid's axes and pick)."""
-    from ..sim.limit_grid import MAX_CELLS, NO_ARRIVAL, axis
+# the pick's columns -> the flywheel's outputs (FW8), and the error when no cell gets there
+GRID_PICK = {"ratio": "best_ratio", "time": "grid_spin_up_time"}
+GRID_NONE = "no pair of limits in the grid spins the wheels up to the target"
 
-    stators = axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator")
-    supplies = axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply")
-    if len(stators) * len(supplies) > MAX_CELLS:
-        raise InputError("stator_step", f"the grid has more than {MAX_CELLS} cells: widen a step")
-    base = {**v, "effects": frozenset(v["effects"]) | {"stator_limit", "supply_limit"}}
+
+def grid_cells(base: dict, stators: list[float], supplies: list[float], rtol: float):
+    """(FW6)-(FW8)'s cells for core.sim.limit_grid (its axes, pick, table and heat map): the
+    quickest ratio per stator × supply limit pair, its spin-up time, peak currents and energy."""
     probe, _ = scene_from(base)
-    G_max = probe.free_speed * v["ratio"] / v["target_speed"]  # the free speed is ∝ 1/G: ω_f(G) = ω_t
+    G_max = probe.free_speed * base["ratio"] / base["target_speed"]  # ω_f(G) ∝ 1/G: ω_f(G_max) = ω_t
     rows = []
     for sup in supplies:
         for st in stators:
@@ -2009,7 +1981,7 @@ def limit_grid(v, warnings: list) -> tuple[list[dict], dict]:
             found = grid_best_ratio(cell, G_max)
             if found is not None:
                 G, t, sc = found
-                ex = electrical_extremes(sc, v["target_speed"], cell)
+                ex = electrical_extremes(sc, base["target_speed"], cell)
                 row.update(
                     ratio=G,
                     time=t,
@@ -2018,37 +1990,9 @@ def limit_grid(v, warnings: list) -> tuple[list[dict], dict]:
                     energy=grid_energy(sc, cell),
                 )
             else:
-                row["note"] = NO_ARRIVAL  # no ratio below the target's free speed gets there
+                row["note"] = limit_grid.NO_ARRIVAL  # no ratio below the target's free speed gets there
             rows.append(row)
-    if not any("time" in r for r in rows):
-        raise InputError("stator_min", "no pair of limits in the grid spins the wheels up to the target")
-    budget = v["supply_budget"]
-    within = [r for r in rows if "time" in r and r["peak_supply_current"] <= budget * (1 + 1e-12)]
-    pick: dict[str, Any] = {"grid_cells": len(rows)}
-    if within:
-        best = min(within, key=lambda r: r["time"])  # (FW8)
-        best["pick"] = "◆"
-        pick.update(
-            pick_stator_limit=best["stator_limit"],
-            pick_supply_limit=best["supply_limit"],
-            best_ratio=best["ratio"],
-            grid_spin_up_time=best["time"],
-        )
-    else:
-        warnings.append(
-            f"No cell keeps the peak supply current within the budget of {budget:.4g} A per motor."
-        )
-    return rows, pick
-
-
-def grid_heat_map(rows: list[dict], v):
-    """The spin-up time per cell (core.sim.limit_grid's heat map: a row per stator limit)."""
-    from ..sim.limit_grid import axis, heat_map
-
-    stators = axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator")
-    supplies = axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply")
-    pick = next((r for r in rows if r.get("pick")), None)
-    return heat_map(rows, stators, supplies, pick)
+    return rows, 0  # scipy's quad and Brent: no integrator evaluations to charge
 
 
 def flywheel_gains_of(solution) -> gains_code.FlywheelGains:
@@ -2143,7 +2087,7 @@ CALCULATOR = Calculator(
             "rpm",
         ),
         Plot("Voltage (velocity loop)", ("loop voltage",), "time", "time", "s", "voltage", "voltage", "V"),
-        heat_map_plot("Spin-up time per current-limit pair (grid)", "spin-up time"),
+        limit_grid.heat_map_plot("Spin-up time per current-limit pair (grid)", "spin-up time"),
     ),
     documents=DOCUMENTS,  # velocity-loop mode: the gains as code
     tables=(GRID_TABLE,),
