@@ -124,7 +124,7 @@ from ..declarations import Calculator, Document, Output, Plot, Result
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup, motor_fields, system_from
-from ..sim import limit_grid, motor_limits, velocity_loop
+from ..sim import limit_grid, motion, motor_limits, velocity_loop
 from ..sim.effects import Effect, Effects, nothing
 from ..sim.integrate import Event, integrate, integrate_stiff
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats
@@ -198,6 +198,13 @@ LOOP = (("control", ("velocity_loop",)),)
 SETPOINTS = ("step", "ramp")
 SETPOINT_LABELS = ("Step to the target", "Ramp at an acceleration to the target")
 RAMP = LOOP + (("setpoint_profile", ("ramp",)),)
+LQR = LOOP + (("feedback", ("lqr",)),)
+# the loop's period and delay and LQR's tolerances: the declarations every loop shares (one state,
+# the wheel's speed, in rpm)
+SHARED = {
+    f.name: f
+    for f in motion.feedback_fields(None, "", 0, "angular_speed", "rpm", 100, when=LOOP, lqr_when=LQR)
+}
 LOOP_FIELDS = (
     Field(
         "control",
@@ -211,28 +218,8 @@ LOOP_FIELDS = (
         "Current-limit grid: for each stator × supply limit pair the ratio that spins up quickest at "
         "full power (FW6)-(FW8), as a table and a heat map, the quickest within the supply budget picked.",
     ),
-    Field(
-        "control_period",
-        "Control period",
-        "time",
-        "ms",
-        default=20,
-        min=0.1,
-        max=1000,
-        when=LOOP,
-        help="The loop's update period; the voltage is held between updates (VL4).",
-    ),
-    Field(
-        "sensor_delay",
-        "Sensor delay",
-        "time",
-        "ms",
-        default=0,
-        min=0,
-        max=1000,
-        when=LOOP,
-        help="The measured speed is the wheel's this long ago (VL3); LQR's kP is latency-compensated.",
-    ),
+    SHARED["control_period"],
+    SHARED["sensor_delay"],
     Field(
         "speed_tolerance",
         "Speed tolerance",
@@ -314,30 +301,8 @@ LOOP_FIELDS = (
         when=LOOP,
         help="The velocity loop's kP: WPILib's LQR for the 1-state velocity system (VL9), or your own.",
     ),
-    Field(
-        "q_velocity",
-        "LQR speed tolerance",
-        "angular_speed",
-        "rpm",
-        default=100,
-        min=0,
-        min_exclusive=True,
-        max=1e6,
-        when=LOOP + (("feedback", ("lqr",)),),
-        help="Q = 1/q²: the speed error LQR weighs against the voltage below (VL9).",
-    ),
-    Field(
-        "r_volts",
-        "LQR voltage tolerance",
-        "voltage",
-        "V",
-        default=12,
-        min=0,
-        min_exclusive=True,
-        max=1000,
-        when=LOOP + (("feedback", ("lqr",)),),
-        help="R = 1/r²: the control effort LQR allows (VL9).",
-    ),
+    SHARED["q_velocity"],
+    SHARED["r_volts"],
     Field(
         "feedback_kp",
         "kP",
@@ -353,9 +318,7 @@ LOOP_FIELDS = (
 
 GRID = (("control", ("limit_grid",)),)
 
-
-# the names, defaults and ranges of core.sim.limit_grid's fields (the elevator's), shown by `control`
-GRID_FIELDS = limit_grid.fields((), GRID, "the quickest to spin up", "the shooter")
+GRID_FIELDS = limit_grid.fields((), GRID)  # core.sim.limit_grid's, shown by `control`
 
 FIELDS = (
     Field(

@@ -260,13 +260,9 @@ def heat_map(rows, stators, supplies, pick):
     return HeatMapData(list(map(float, supplies)), list(map(float, stators)), z, where, notes)
 
 
-def fields(
-    modes: tuple[str, ...] = MODES,
-    when: tuple = (),
-    picked: str = "the fastest",
-    what: str = "the mechanism",
-) -> tuple:
-    """The grid's ranges and budget (a mechanism's mode; the flywheel's shown by its own choice)."""
+def fields(modes: tuple[str, ...] = MODES, when: tuple = ()) -> tuple:
+    """The grid's ranges and budget (a mechanism's mode; the flywheel's shown by its own choice),
+    declared once: the same words wherever they appear (tests/test_shared_fields.py)."""
     from ..fields import Field
 
     def amps(name, label, default, help, min_=0.0):
@@ -295,8 +291,8 @@ def fields(
             "supply_budget",
             "Supply budget",
             60,
-            f"The cell picked is {picked} whose peak supply current "
-            f"per motor stays within this (e.g. what the breaker and the battery allow {what}).",
+            "The cell picked is the quickest (least time) whose peak supply current per motor "
+            "stays within this (e.g. what the breaker and the battery allow).",
         ),
     )
 
