@@ -101,3 +101,18 @@ def test_the_stiff_slip_phase_integrates_through_integrate_stiff(monkeypatch):
     one = fw.shot(sc, 622.0, 0.2268, 622.0, 1e-10)
     assert methods == ["Radau"] and one.nfev > 0
     assert one.omega_after == pytest.approx(436.0158161592423, rel=1e-6)  # the closed form's ω*
+
+
+def test_the_flywheel_documents_are_gains_codes():
+    """The flywheel's documents come from gains_code's builder (as the elevator's and the arm's), its
+    gains from gains_code's reading of a solution; the numbers live apart from the templates."""
+    from gearhead.core import gains_code, gains_numbers
+
+    want = gains_code.flywheel_documents(fw.gains_of)
+    assert [(d.name, d.label, d.filename) for d in fw.DOCUMENTS] == [
+        (d.name, d.label, d.filename) for d in want
+    ]
+    assert fw.gains_of is gains_numbers.velocity_loop_gains
+    for name in ("phoenix6_values", "revlib_values", "flywheel_phoenix6_values", "export_number", "Gains"):
+        assert getattr(gains_code, name) is getattr(gains_numbers, name), name  # re-exported, one copy
+    assert not [n for n in vars(gains_numbers) if n.endswith("_java") or n.endswith("_python")]

@@ -120,7 +120,7 @@ from typing import Any
 from .. import gains_code
 from ..constants import G0 as G_ACC
 from ..constants import RPM
-from ..declarations import Calculator, Document, Output, Plot, Result
+from ..declarations import Calculator, Output, Plot, Result
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup, motor_fields, system_from
@@ -1958,62 +1958,8 @@ def grid_cells(base: dict, stators: list[float], supplies: list[float], rtol: fl
     return rows, 0  # scipy's quad and Brent: no integrator evaluations to charge
 
 
-def flywheel_gains_of(solution) -> gains_code.FlywheelGains:
-    """The velocity loop's gains for the exports (core.gains_code (GC4), (GC5)); a ValueError when
-    the solution is not of that mode."""
-    v = {name: value.value for name, value in solution.inputs.items()}
-    out = {name: value.value for name, value in solution.outputs.items()}
-    if v.get("control") != "velocity_loop" or "kP" not in out:
-        raise ValueError("the gains are exported from the velocity loop: set control = velocity_loop")
-    on = v["effects"]
-    return gains_code.FlywheelGains(
-        acceleration=out.get("loop_ramp_acceleration"),
-        kS=out["kS"],
-        kV=out["kV"],
-        kA=out["kA"],
-        kP=out["kP"],
-        period=v["control_period"],
-        ratio=v["ratio"],
-        target_speed=v["target_speed"],
-        battery_voltage=v["voltage"],
-        stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
-        supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
-        motor=v["motor"],  # which controllers can drive it (gains_code (GC10))
-    )
-
-
-DOCUMENTS = (
-    Document(
-        "wpilib-java",
-        "WPILib Java: SimpleMotorFeedforward + PIDController",
-        "FlywheelGains.java",
-        lambda sol: gains_code.flywheel_wpilib_java(flywheel_gains_of(sol)),
-    ),
-    Document(
-        "wpilib-python",
-        "WPILib Python (robotpy): SimpleMotorFeedforward + PIDController",
-        "flywheel_gains.py",
-        lambda sol: gains_code.flywheel_wpilib_python(flywheel_gains_of(sol)),
-    ),
-    Document(
-        "phoenix6",
-        "CTRE Phoenix 6 TalonFXConfiguration + VelocityVoltage (Java)",
-        "FlywheelTalonFXConfig.java",
-        lambda sol: gains_code.flywheel_phoenix6_java(flywheel_gains_of(sol)),
-    ),
-    Document(
-        "phoenix6-rotor",
-        "CTRE Phoenix 6 TalonFXConfiguration in rotor units, no SensorToMechanismRatio (Java)",
-        "FlywheelRotorTalonFXConfig.java",
-        lambda sol: gains_code.flywheel_phoenix6_java(flywheel_gains_of(sol), rotor=True),
-    ),
-    Document(
-        "revlib",
-        "REVLib SparkMaxConfig, velocity control in wheel rpm (Java)",
-        "FlywheelSparkMaxConfig.java",
-        lambda sol: gains_code.flywheel_revlib_java(flywheel_gains_of(sol)),
-    ),
-)
+gains_of = gains_code.velocity_loop_gains  # the velocity loop's gains for the exports (GC4)-(GC8)
+DOCUMENTS = gains_code.flywheel_documents(gains_of)
 
 
 CALCULATOR = Calculator(
