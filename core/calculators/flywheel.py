@@ -755,6 +755,7 @@ LOOP_OUTPUTS = (
     ),
 )
 
+GRID_OUTPUTS = {o.name: o for o in limit_grid.outputs()}  # the pick's limits and the cell count
 OUTPUTS = (
     Output(
         "ball_speed",
@@ -923,22 +924,8 @@ OUTPUTS = (
         equation="(FW5)",
     ),
     *LOOP_OUTPUTS,
-    Output(
-        "pick_stator_limit",
-        "Pick: stator limit",
-        "current",
-        "A",
-        help="The cell quickest to spin up within the supply budget (FW8).",
-        equation="(FW8)",
-    ),
-    Output(
-        "pick_supply_limit",
-        "Pick: supply limit",
-        "current",
-        "A",
-        help="The cell quickest to spin up within the supply budget (FW8).",
-        equation="(FW8)",
-    ),
+    GRID_OUTPUTS["pick_stator_limit"],
+    GRID_OUTPUTS["pick_supply_limit"],
     Output(
         "best_ratio",
         "Pick: best ratio",
@@ -953,7 +940,7 @@ OUTPUTS = (
         help="From rest to the target at full power with the picked limits and ratio (FW6).",
         equation="(FW6)",
     ),
-    Output("grid_cells", "Grid cells", help="Stator × supply limit pairs solved (FW7).", equation="(FW7)"),
+    GRID_OUTPUTS["grid_cells"],
     *STATS_OUTPUTS,
 )
 
