@@ -1,8 +1,10 @@
 """The current-limit grid: for every pair of a stator and a supply current limit (per motor), the
 reduction that reaches the goal first from rest at full voltage, with its time, peak currents and
-energy; the cell to pick is the fastest whose peak supply current stays within a budget. Shared by
-the elevator (a constant load) and the arm (gravity's torque varying with the angle): the calculator
-gives its setup, the grid the screen.
+energy; the cell to pick is the fastest whose peak supply current stays within a budget. The grid
+(its axes, the pick, the table and the heat map: `grid`, `run_cells`) is shared by every calculator
+that offers it; a calculator gives its cells. The elevator (a constant load) and the arm (gravity's
+torque varying with the angle) give their setup and the screen below solves the cells
+(mechanism_cells, run_mode); the flywheel gives its own ((FW6)-(FW8): the spin-up to a speed).
 
     G_hold(I_st, I_sup) = L·load/(η·N·Kt·(I0 − i_f)), the least ratio whose motors at rest beat the
         most the load resists on the path (I0 the current at rest under the limits, the same at
