@@ -674,19 +674,26 @@ def feedback_fields(
     velocity loop, whose one state is the speed (no q_position). `when`: shown only then;
     `lqr_when`: the tolerances' own condition (default `when`)."""
     lqr_when = when if lqr_when is None else lqr_when
-    fields = (
-        Field(
-            "q_position",
-            "LQR position tolerance",
-            position_quantity or "",
-            position_unit,
-            default=q_pos,
-            min=0,
-            min_exclusive=True,
-            max=3.9e4,
-            when=lqr_when,
-            help="LQR state tolerance on position (WPILib qelms[0]): the error you accept.",
-        ),
+    position = (
+        ()
+        if position_quantity is None
+        else (
+            Field(
+                "q_position",
+                "LQR position tolerance",
+                position_quantity,
+                position_unit,
+                default=q_pos,
+                min=0,
+                min_exclusive=True,
+                max=3.9e4,
+                when=lqr_when,
+                help="LQR state tolerance on position (WPILib qelms[0]): the error you accept.",
+            ),
+        )
+    )
+    return (
+        *position,
         Field(
             "q_velocity",
             "LQR velocity tolerance",
@@ -738,7 +745,6 @@ def feedback_fields(
             "does (0: none).",
         ),
     )
-    return fields if position_quantity is not None else fields[1:]
 
 
 def common_outputs(
