@@ -457,7 +457,7 @@ def test_rotor_kv_is_the_motors_own(no_free_current, ratio):
     m, _ = motors.lookup("Kraken X60", "wpilib")
     raw = {"control": "velocity_loop", "motor": "Kraken X60", "voltage": "12 V", "ratio": ratio}
     sol = solve("flywheel", raw | {"target_speed": f"{2000 / ratio!r} rpm"})
-    g = flywheel_calc.flywheel_gains_of(sol)
+    g = flywheel_calc.gains_of(sol)
     rotor = gains_code.flywheel_phoenix6_values(g, rotor=True)
     assert rotor["kV"] == pytest.approx(12.0 / (m.free_speed / (2 * math.pi)), rel=1e-12)
     assert rotor["target_rps"] == pytest.approx(2000 / 60, rel=1e-12)  # the rotor at 2000 rpm

@@ -120,16 +120,13 @@ from typing import Any
 from .. import gains_code
 from ..constants import G0 as G_ACC
 from ..constants import RPM
-from ..declarations import Calculator, Document, Output, Plot, Result
+from ..declarations import Calculator, Output, Plot, Result
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup, motor_fields, system_from
-from ..sim import motor_limits, velocity_loop
+from ..sim import limit_grid, motion, motor_limits, velocity_loop
 from ..sim.effects import Effect, Effects, nothing
-from ..sim.integrate import Event, integrate
-from ..sim.limit_grid import fields as grid_fields
-from ..sim.limit_grid import heat_map_plot
-from ..sim.limit_grid import table as grid_table
+from ..sim.integrate import Event, integrate, integrate_stiff
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats
 
 TABLE_WHEELS = range(1, 7)
@@ -201,6 +198,13 @@ LOOP = (("control", ("velocity_loop",)),)
 SETPOINTS = ("step", "ramp")
 SETPOINT_LABELS = ("Step to the target", "Ramp at an acceleration to the target")
 RAMP = LOOP + (("setpoint_profile", ("ramp",)),)
+LQR = LOOP + (("feedback", ("lqr",)),)
+# the loop's period and delay and LQR's tolerances: the declarations every loop shares (one state,
+# the wheel's speed, in rpm)
+SHARED = {
+    f.name: f
+    for f in motion.feedback_fields(None, "", 0, "angular_speed", "rpm", 100, when=LOOP, lqr_when=LQR)
+}
 LOOP_FIELDS = (
     Field(
         "control",
@@ -214,28 +218,8 @@ LOOP_FIELDS = (
         "Current-limit grid: for each stator × supply limit pair the ratio that spins up quickest at "
         "full power (FW6)-(FW8), as a table and a heat map, the quickest within the supply budget picked.",
     ),
-    Field(
-        "control_period",
-        "Control period",
-        "time",
-        "ms",
-        default=20,
-        min=0.1,
-        max=1000,
-        when=LOOP,
-        help="The loop's update period; the voltage is held between updates (VL4).",
-    ),
-    Field(
-        "sensor_delay",
-        "Sensor delay",
-        "time",
-        "ms",
-        default=0,
-        min=0,
-        max=1000,
-        when=LOOP,
-        help="The measured speed is the wheel's this long ago (VL3); LQR's kP is latency-compensated.",
-    ),
+    SHARED["control_period"],
+    SHARED["sensor_delay"],
     Field(
         "speed_tolerance",
         "Speed tolerance",
@@ -317,30 +301,8 @@ LOOP_FIELDS = (
         when=LOOP,
         help="The velocity loop's kP: WPILib's LQR for the 1-state velocity system (VL9), or your own.",
     ),
-    Field(
-        "q_velocity",
-        "LQR speed tolerance",
-        "angular_speed",
-        "rpm",
-        default=100,
-        min=0,
-        min_exclusive=True,
-        max=1e6,
-        when=LOOP + (("feedback", ("lqr",)),),
-        help="Q = 1/q²: the speed error LQR weighs against the voltage below (VL9).",
-    ),
-    Field(
-        "r_volts",
-        "LQR voltage tolerance",
-        "voltage",
-        "V",
-        default=12,
-        min=0,
-        min_exclusive=True,
-        max=1000,
-        when=LOOP + (("feedback", ("lqr",)),),
-        help="R = 1/r²: the control effort LQR allows (VL9).",
-    ),
+    SHARED["q_velocity"],
+    SHARED["r_volts"],
     Field(
         "feedback_kp",
         "kP",
@@ -356,9 +318,7 @@ LOOP_FIELDS = (
 
 GRID = (("control", ("limit_grid",)),)
 
-
-# the names, defaults and ranges of core.sim.limit_grid's fields (the elevator's), shown by `control`
-GRID_FIELDS = grid_fields((), GRID, "the quickest to spin up", "the shooter")
+GRID_FIELDS = limit_grid.fields((), GRID)  # core.sim.limit_grid's, shown by `control`
 
 FIELDS = (
     Field(
@@ -795,6 +755,7 @@ LOOP_OUTPUTS = (
     ),
 )
 
+GRID_OUTPUTS = {o.name: o for o in limit_grid.outputs()}  # the pick's limits and the cell count
 OUTPUTS = (
     Output(
         "ball_speed",
@@ -963,22 +924,8 @@ OUTPUTS = (
         equation="(FW5)",
     ),
     *LOOP_OUTPUTS,
-    Output(
-        "pick_stator_limit",
-        "Pick: stator limit",
-        "current",
-        "A",
-        help="The cell quickest to spin up within the supply budget (FW8).",
-        equation="(FW8)",
-    ),
-    Output(
-        "pick_supply_limit",
-        "Pick: supply limit",
-        "current",
-        "A",
-        help="The cell quickest to spin up within the supply budget (FW8).",
-        equation="(FW8)",
-    ),
+    GRID_OUTPUTS["pick_stator_limit"],
+    GRID_OUTPUTS["pick_supply_limit"],
     Output(
         "best_ratio",
         "Pick: best ratio",
@@ -993,11 +940,11 @@ OUTPUTS = (
         help="From rest to the target at full power with the picked limits and ratio (FW6).",
         equation="(FW6)",
     ),
-    Output("grid_cells", "Grid cells", help="Stator × supply limit pairs solved (FW7).", equation="(FW7)"),
+    GRID_OUTPUTS["grid_cells"],
     *STATS_OUTPUTS,
 )
 
-GRID_TABLE = grid_table(  # the flywheel's `mode` is the inertia's: shown by `control`
+GRID_TABLE = limit_grid.table(  # the flywheel's `mode` is the inertia's: shown by `control`
     "Current-limit grid: the ratio quickest to spin up per stator × supply limit", "Spin-up", (), GRID
 )
 
@@ -1339,7 +1286,7 @@ def slip_phase_limited(
         du/dτ = t₀/(I·ω₀)·(τ_w(u·ω₀) − r_w·F),  dv/dτ = 1,  until u = v (rolling)          (FW3')
     held at u_t once there (the torque there exceeds r_w·F, as it got there). τ_w is continuous
     with kinks where a limit lets go; the integrator's step control takes them. Stiff (b·span
-    beyond STIFF, b the full-duty slope), scipy's Radau integrates it instead."""
+    beyond STIFF, b the full-duty slope), scipy's Radau integrates it instead (integrate_stiff)."""
     d = sc.drive
     k = t0 / (sc.I * omega0)
     rw_F = sc.r_w * sc.grip
@@ -1349,47 +1296,24 @@ def slip_phase_limited(
 
     if u_t <= 1.0 and rhs(0.0, [u_t, 0.0])[0] >= 0:  # at the target and the motor can hold it
         return omega0, sc.s * sc.r_w * omega0, t0, 0
+    events = [Event("rolling", lambda t, y: y[0] - y[1], -1)]
+    if u_t > 1.0:
+        events.append(Event("target", lambda t, y: y[0] - u_t, +1))
     run = None
     if b * span <= STIFF:
-        events = [Event("rolling", lambda t, y: y[0] - y[1], -1)]
-        if u_t > 1.0:
-            events.append(Event("target", lambda t, y: y[0] - u_t, +1))
         try:
             run = integrate(rhs, 0.0, span, [1.0, 0.0], rtol=rtol, atol=rtol * 1e-3, events=events)
-            (u, v_end), event, nfev = run.y[-1], run.event, run.nfev
         except RuntimeError:  # beyond what a step-size controller can follow: Radau below
             run = None
     if run is None:
-        from scipy.integrate import solve_ivp
-
-        def rolling(t, y):
-            return y[0] - y[1]
-
-        def at_target(t, y):
-            return y[0] - u_t
-
-        rolling.terminal, rolling.direction = True, -1
-        at_target.terminal, at_target.direction = True, +1
-        from ..sim.integrate import charged
-
-        sol = solve_ivp(
-            charged(rhs),  # within the solve's budget, as every integration
-            (0.0, span),
-            [1.0, 0.0],
-            method="Radau",
-            rtol=max(rtol, 1e-12),
-            atol=max(rtol, 1e-12) * 1e-3,
-            events=[rolling, at_target] if u_t > 1.0 else [rolling],
-        )
-        u, v_end = sol.y[0][-1], sol.y[1][-1]
-        hit = [i for i, ts in enumerate(sol.t_events) if len(ts)]
-        event = ("rolling", "target")[hit[0]] if hit else None
-        nfev = sol.nfev
+        tol = max(rtol, 1e-12)
+        run = integrate_stiff(rhs, 0.0, span, [1.0, 0.0], tol, tol * 1e-3, events, "Radau")
+    (u, v_end), event = run.y[-1], run.event
     if event == "target":  # held at the target until the ball catches up: v = τ = u_t
         u = v_end = u_t
     elif event != "rolling":  # cannot happen by the bound on span; the end point is the answer
         u = v_end = min(u, v_end)
-    return u * omega0, sc.s * sc.r_w * omega0 * v_end, v_end * t0, nfev
+    return u * omega0, sc.s * sc.r_w * omega0 * v_end, v_end * t0, run.nfev
 
 
 def slip_closed_form(a: float, b: float, u_t: float, span: float) -> tuple[float, float]:
@@ -1757,16 +1681,15 @@ def _simulate(v, rtol: float) -> SimRun:
         key.update(spin_up_time=t_spin, recovery_time=values["recovery_time"])
         nfev += sc.drive.nfev
     if v["control"] == "limit_grid":
-        rows, pick = limit_grid(v, warnings)
-        values.update(pick)
-        if "grid_spin_up_time" in pick:
-            key["grid_spin_up_time"] = pick["grid_spin_up_time"]
+        grid = limit_grid.run_cells(v, rtol, grid_cells, GRID_PICK, GRID_NONE)
+        values.update(grid.values)
+        if "grid_spin_up_time" in grid.values:
+            key["grid_spin_up_time"] = grid.values["grid_spin_up_time"]
         # the grid's chart is its heat map alone (the card shows it by itself when no line chart
         # has data): the spin-up at the entered ratio is not what this mode asks
-        run = SimRun(values, key, nfev, warnings, {})
-        run.tables = {"limit_grid": rows}
-        run.heat_maps = {"limit_grid_time": grid_heat_map(rows, v)}
-        return run
+        return SimRun(
+            values, key, nfev, warnings + grid.warnings, tables=grid.tables, heat_maps=grid.heat_maps
+        )
     if v["control"] == "velocity_loop":
         lr = velocity_loop_run(sc, v, rtol, values, warnings)
         series["loop speed"] = (lr.times, lr.speeds)
@@ -1990,17 +1913,16 @@ def grid_best_ratio(v, G_max: float) -> tuple[float, float, Scene] | None:
     return G, t, sc
 
 
-def limit_grid(v, warnings: list) -> tuple[list[dict], dict]:
-    """(FW6)-(FW8) over every stator × supply limit pair (core.sim.limit_grid's axes and pick)."""
-    from ..sim.limit_grid import MAX_CELLS, NO_ARRIVAL, axis
+# the pick's columns -> the flywheel's outputs (FW8), and the error when no cell gets there
+GRID_PICK = {"ratio": "best_ratio", "time": "grid_spin_up_time"}
+GRID_NONE = "no pair of limits in the grid spins the wheels up to the target"
 
-    stators = axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator")
-    supplies = axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply")
-    if len(stators) * len(supplies) > MAX_CELLS:
-        raise InputError("stator_step", f"the grid has more than {MAX_CELLS} cells: widen a step")
-    base = {**v, "effects": frozenset(v["effects"]) | {"stator_limit", "supply_limit"}}
+
+def grid_cells(base: dict, stators: list[float], supplies: list[float], rtol: float):
+    """(FW6)-(FW8)'s cells for core.sim.limit_grid (its axes, pick, table and heat map): the
+    quickest ratio per stator × supply limit pair, its spin-up time, peak currents and energy."""
     probe, _ = scene_from(base)
-    G_max = probe.free_speed * v["ratio"] / v["target_speed"]  # the free speed is ∝ 1/G: ω_f(G) = ω_t
+    G_max = probe.free_speed * base["ratio"] / base["target_speed"]  # ω_f(G) ∝ 1/G: ω_f(G_max) = ω_t
     rows = []
     for sup in supplies:
         for st in stators:
@@ -2009,7 +1931,7 @@ def limit_grid(v, warnings: list) -> tuple[list[dict], dict]:
             found = grid_best_ratio(cell, G_max)
             if found is not None:
                 G, t, sc = found
-                ex = electrical_extremes(sc, v["target_speed"], cell)
+                ex = electrical_extremes(sc, base["target_speed"], cell)
                 row.update(
                     ratio=G,
                     time=t,
@@ -2018,95 +1940,13 @@ def limit_grid(v, warnings: list) -> tuple[list[dict], dict]:
                     energy=grid_energy(sc, cell),
                 )
             else:
-                row["note"] = NO_ARRIVAL  # no ratio below the target's free speed gets there
+                row["note"] = limit_grid.NO_ARRIVAL  # no ratio below the target's free speed gets there
             rows.append(row)
-    if not any("time" in r for r in rows):
-        raise InputError("stator_min", "no pair of limits in the grid spins the wheels up to the target")
-    budget = v["supply_budget"]
-    within = [r for r in rows if "time" in r and r["peak_supply_current"] <= budget * (1 + 1e-12)]
-    pick: dict[str, Any] = {"grid_cells": len(rows)}
-    if within:
-        best = min(within, key=lambda r: r["time"])  # (FW8)
-        best["pick"] = "◆"
-        pick.update(
-            pick_stator_limit=best["stator_limit"],
-            pick_supply_limit=best["supply_limit"],
-            best_ratio=best["ratio"],
-            grid_spin_up_time=best["time"],
-        )
-    else:
-        warnings.append(
-            f"No cell keeps the peak supply current within the budget of {budget:.4g} A per motor."
-        )
-    return rows, pick
+    return rows, 0  # scipy's quad and Brent: no integrator evaluations to charge
 
 
-def grid_heat_map(rows: list[dict], v):
-    """The spin-up time per cell (core.sim.limit_grid's heat map: a row per stator limit)."""
-    from ..sim.limit_grid import axis, heat_map
-
-    stators = axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator")
-    supplies = axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply")
-    pick = next((r for r in rows if r.get("pick")), None)
-    return heat_map(rows, stators, supplies, pick)
-
-
-def flywheel_gains_of(solution) -> gains_code.FlywheelGains:
-    """The velocity loop's gains for the exports (core.gains_code (GC4), (GC5)); a ValueError when
-    the solution is not of that mode."""
-    v = {name: value.value for name, value in solution.inputs.items()}
-    out = {name: value.value for name, value in solution.outputs.items()}
-    if v.get("control") != "velocity_loop" or "kP" not in out:
-        raise ValueError("the gains are exported from the velocity loop: set control = velocity_loop")
-    on = v["effects"]
-    return gains_code.FlywheelGains(
-        acceleration=out.get("loop_ramp_acceleration"),
-        kS=out["kS"],
-        kV=out["kV"],
-        kA=out["kA"],
-        kP=out["kP"],
-        period=v["control_period"],
-        ratio=v["ratio"],
-        target_speed=v["target_speed"],
-        battery_voltage=v["voltage"],
-        stator_limit=v["stator_current_limit"] if "stator_limit" in on else None,
-        supply_limit=v["supply_current_limit"] if "supply_limit" in on else None,
-        motor=v["motor"],  # which controllers can drive it (gains_code (GC10))
-    )
-
-
-DOCUMENTS = (
-    Document(
-        "wpilib-java",
-        "WPILib Java: SimpleMotorFeedforward + PIDController",
-        "FlywheelGains.java",
-        lambda sol: gains_code.flywheel_wpilib_java(flywheel_gains_of(sol)),
-    ),
-    Document(
-        "wpilib-python",
-        "WPILib Python (robotpy): SimpleMotorFeedforward + PIDController",
-        "flywheel_gains.py",
-        lambda sol: gains_code.flywheel_wpilib_python(flywheel_gains_of(sol)),
-    ),
-    Document(
-        "phoenix6",
-        "CTRE Phoenix 6 TalonFXConfiguration + VelocityVoltage (Java)",
-        "FlywheelTalonFXConfig.java",
-        lambda sol: gains_code.flywheel_phoenix6_java(flywheel_gains_of(sol)),
-    ),
-    Document(
-        "phoenix6-rotor",
-        "CTRE Phoenix 6 TalonFXConfiguration in rotor units, no SensorToMechanismRatio (Java)",
-        "FlywheelRotorTalonFXConfig.java",
-        lambda sol: gains_code.flywheel_phoenix6_java(flywheel_gains_of(sol), rotor=True),
-    ),
-    Document(
-        "revlib",
-        "REVLib SparkMaxConfig, velocity control in wheel rpm (Java)",
-        "FlywheelSparkMaxConfig.java",
-        lambda sol: gains_code.flywheel_revlib_java(flywheel_gains_of(sol)),
-    ),
-)
+gains_of = gains_code.velocity_loop_gains  # the velocity loop's gains for the exports (GC4)-(GC8)
+DOCUMENTS = gains_code.flywheel_documents(gains_of)
 
 
 CALCULATOR = Calculator(
@@ -2143,7 +1983,7 @@ CALCULATOR = Calculator(
             "rpm",
         ),
         Plot("Voltage (velocity loop)", ("loop voltage",), "time", "time", "s", "voltage", "voltage", "V"),
-        heat_map_plot("Spin-up time per current-limit pair (grid)", "spin-up time"),
+        limit_grid.heat_map_plot("Spin-up time per current-limit pair (grid)", "spin-up time"),
     ),
     documents=DOCUMENTS,  # velocity-loop mode: the gains as code
     tables=(GRID_TABLE,),

@@ -1,8 +1,10 @@
 """The current-limit grid: for every pair of a stator and a supply current limit (per motor), the
 reduction that reaches the goal first from rest at full voltage, with its time, peak currents and
-energy; the cell to pick is the fastest whose peak supply current stays within a budget. Shared by
-the elevator (a constant load) and the arm (gravity's torque varying with the angle): the calculator
-gives its setup, the grid the screen.
+energy; the cell to pick is the fastest whose peak supply current stays within a budget. The grid
+(its axes, the pick, the table and the heat map: `grid`, `run_cells`) is shared by every calculator
+that offers it; a calculator gives its cells. The elevator (a constant load) and the arm (gravity's
+torque varying with the angle) give their setup and the screen below solves the cells
+(mechanism_cells, run_mode); the flywheel gives its own ((FW6)-(FW8): the spin-up to a speed).
 
     G_hold(I_st, I_sup) = L·load/(η·N·Kt·(I0 − i_f)), the least ratio whose motors at rest beat the
         most the load resists on the path (I0 the current at rest under the limits, the same at
@@ -78,16 +80,9 @@ def hold_ratios(make_setup, base: dict, stators, supply: float, length_scale: fl
 
 
 def run_mode(make_setup, v: dict, rtol: float, length_scale: float) -> SimRun:
-    """The grid mode of a mechanism: `run` over the axes and budget its fields give."""
-    return run(
-        make_setup,
-        dict(v),
-        axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator"),
-        axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply"),
-        v["supply_budget"],
-        rtol,
-        length_scale,
-    )
+    """The grid mode of a mechanism: its cells by (LG0)-(LG2) over the axes and budget its fields
+    give. make_setup(values, ratio, xp) -> motion.Setup (the calculator's own setup); n = G/length_scale."""
+    return run_cells(v, rtol, mechanism_cells(make_setup, length_scale))
 
 
 def run(
@@ -99,65 +94,51 @@ def run(
     rtol: float,
     length_scale: float,
 ) -> SimRun:
-    """make_setup(values, ratio, xp) -> motion.Setup (the calculator's own setup); n = G/length_scale."""
-    import numpy as np
+    """A mechanism's grid over the given axes and budget (run_mode with the axes given)."""
+    return grid(values, stators, supplies, budget, rtol, mechanism_cells(make_setup, length_scale))
 
-    from . import motion
-    from .motor_limits import _Array
 
+# What a mechanism's pick reports: the row's column -> the output it fills (LG3)
+MECHANISM_PICK = {
+    "ratio": "best_ratio",
+    "time": "time_to_goal",
+    "peak_stator_current": "peak_stator_current",
+    "peak_supply_current": "peak_supply_current",
+    "energy": "energy",
+}
+MECHANISM_NONE = "no pair of limits in the grid moves the load to the goal"
+
+
+def run_cells(
+    v: dict, rtol: float, cells, pick_as: dict = MECHANISM_PICK, none_arrive: str = MECHANISM_NONE
+) -> SimRun:
+    """The grid over the axes and budget the fields (`fields`) give, each cell solved by `cells`."""
+    stators = axis(v["stator_min"], v["stator_max"], v["stator_step"], "stator")
+    supplies = axis(v["supply_min"], v["supply_max"], v["supply_step"], "supply")
+    return grid(dict(v), stators, supplies, v["supply_budget"], rtol, cells, pick_as, none_arrive)
+
+
+def grid(
+    values: dict,
+    stators: list[float],
+    supplies: list[float],
+    budget: float,
+    rtol: float,
+    cells,
+    pick_as: dict = MECHANISM_PICK,
+    none_arrive: str = MECHANISM_NONE,
+) -> SimRun:
+    """Every stator × supply limit pair (both limits on, with the other effects chosen), the pick
+    within the budget (LG3), the table's rows and the heat map. `cells(base, stators, supplies,
+    rtol) -> (rows, nfev)`: a row per cell, supply limit outer and stator limit inner, each with
+    stator_limit, supply_limit and either the columns of `pick_as` (ratio, time, peak currents,
+    energy) or a note (CANNOT_HOLD, NO_ARRIVAL). `pick_as` names the output each column of the
+    pick fills; `none_arrive` is the error when no cell arrives. The values are grid_cells and
+    the pick's; the key the pick's time (0 when no cell is within the budget)."""
     if len(stators) * len(supplies) > MAX_CELLS:
         raise InputError("stator_step", f"the grid has more than {MAX_CELLS} cells: widen a step")
-    on = frozenset(values["effects"]) | {"stator_limit", "supply_limit"}
-    base = {**values, "effects": on}
-    probe = make_setup({**base, "stator_current_limit": max(stators), "supply_current_limit": max(supplies)})
-    G_char = motion.characteristic_n(probe.mech) * length_scale
-    lo_base, hi_base = G_char * 10**-1.5, G_char * 10**1.5
-    st = np.asarray(stators, dtype=float)[:, None]
-    rows: list[dict[str, Any]] = []
-    nfev = 0
-    for sup in supplies:
-        # below its G_hold (LG0) a cell's candidates cannot move: when that would leave fewer than
-        # half of the range (G_hold past its geometric middle, G_char) they start just above it
-        G_hold = hold_ratios(make_setup, base, st, float(sup), length_scale)
-        holds = G_hold * 1.001 <= MAX_RATIO
-        lo = np.where(holds & (1.001 * G_hold > G_char), 1.001 * G_hold, lo_base)
-        hi = np.maximum(hi_base, 100 * lo)
-        ratios = np.geomspace(lo, hi, CANDIDATES, axis=1)[:, :, 0]  # (stators × candidates)
-        batch = make_setup(
-            {**base, "stator_current_limit": st, "supply_current_limit": float(sup)}, ratios, _Array()
-        )
-        times = np.asarray(motion.batch_times(batch), dtype=float) * np.ones((len(stators), CANDIDATES))
-        for i, I_st in enumerate(stators):
-            row: dict[str, Any] = {"stator_limit": I_st, "supply_limit": float(sup)}
-            ok = np.isfinite(times[i])
-            if not holds[i, 0]:
-                row["note"] = CANNOT_HOLD  # no ratio up to MAX_RATIO holds the load at rest
-                rows.append(row)
-                continue
-            if not ok.any():
-                row["note"] = NO_ARRIVAL
-                rows.append(row)
-                continue
-            G_best = float(ratios[i, int(np.nanargmin(np.where(ok, times[i], np.nan)))])  # (LG1)
-            cell = make_setup(
-                {**base, "stator_current_limit": I_st, "supply_current_limit": float(sup)}, G_best
-            )
-            try:
-                mv = motion.move(cell, rtol)  # (LG2)
-            except InputError:
-                row["note"] = NO_ARRIVAL
-                rows.append(row)
-                continue
-            nfev += mv.nfev
-            ex = motion.extremes(cell, mv.max_speed)
-            row.update(
-                ratio=G_best,
-                time=mv.time,
-                peak_stator_current=ex["peak_stator_current"],
-                peak_supply_current=ex["peak_supply_current"],
-                energy=abs(mv.energy),
-            )
-            rows.append(row)
+    base = {**values, "effects": frozenset(values["effects"]) | {"stator_limit", "supply_limit"}}
+    rows, nfev = cells(base, stators, supplies, rtol)
     within = [r for r in rows if "time" in r and r["peak_supply_current"] <= budget * (1 + 1e-12)]
     warnings = []
     values_out: dict[str, Any] = {"grid_cells": len(rows)}
@@ -165,15 +146,8 @@ def run(
     if within:
         pick = min(within, key=lambda r: r["time"])  # (LG3)
         pick["pick"] = PICK
-        values_out.update(
-            pick_stator_limit=pick["stator_limit"],
-            pick_supply_limit=pick["supply_limit"],
-            best_ratio=pick["ratio"],
-            time_to_goal=pick["time"],
-            peak_stator_current=pick["peak_stator_current"],
-            peak_supply_current=pick["peak_supply_current"],
-            energy=pick["energy"],
-        )
+        values_out.update(pick_stator_limit=pick["stator_limit"], pick_supply_limit=pick["supply_limit"])
+        values_out.update({out: pick[col] for col, out in pick_as.items()})
     else:
         warnings.append(
             f"No cell keeps the peak supply current within the budget of {budget:.4g} A per motor."
@@ -186,16 +160,87 @@ def run(
                 f"no pair of limits in the grid lets the motors hold the load at rest, at any ratio up "
                 f"to {MAX_RATIO:.0e}: raise the limits",
             )
-        raise InputError("stator_min", "no pair of limits in the grid moves the load to the goal")
+        raise InputError("stator_min", none_arrive)
     if unheld:
         warnings.append(
             f"{unheld} cell(s) cannot hold the load at rest: with those limits the motors' current at "
             f"rest, less their free current, needs a ratio above {MAX_RATIO:.0e} to beat the load (LG0)."
         )
-    out = SimRun(values_out, {"time_to_goal": values_out.get("time_to_goal", 0.0)}, nfev, warnings)
-    out.tables = {"limit_grid": rows}
-    out.heat_maps = {"limit_grid_time": heat_map(rows, stators, supplies, pick)}
-    return out
+    time_out = pick_as["time"]
+    return SimRun(
+        values_out,
+        {time_out: values_out.get(time_out, 0.0)},
+        nfev,
+        warnings,
+        tables={"limit_grid": rows},
+        heat_maps={"limit_grid_time": heat_map(rows, stators, supplies, pick)},
+    )
+
+
+def mechanism_cells(make_setup, length_scale: float):
+    """A mechanism's cells (LG0)-(LG2): per supply limit one numpy batch of every stator limit's
+    candidate ratios, then the accurate move at each cell's best."""
+
+    def cells(base: dict, stators: list[float], supplies: list[float], rtol: float):
+        import numpy as np
+
+        from . import motion
+        from .motor_limits import _Array
+
+        probe = make_setup(
+            {**base, "stator_current_limit": max(stators), "supply_current_limit": max(supplies)}
+        )
+        G_char = motion.characteristic_n(probe.mech) * length_scale
+        lo_base, hi_base = G_char * 10**-1.5, G_char * 10**1.5
+        st = np.asarray(stators, dtype=float)[:, None]
+        rows: list[dict[str, Any]] = []
+        nfev = 0
+        for sup in supplies:
+            # below its G_hold (LG0) a cell's candidates cannot move: when that would leave fewer
+            # than half of the range (G_hold past its geometric middle, G_char) they start above it
+            G_hold = hold_ratios(make_setup, base, st, float(sup), length_scale)
+            holds = G_hold * 1.001 <= MAX_RATIO
+            lo = np.where(holds & (1.001 * G_hold > G_char), 1.001 * G_hold, lo_base)
+            hi = np.maximum(hi_base, 100 * lo)
+            ratios = np.geomspace(lo, hi, CANDIDATES, axis=1)[:, :, 0]  # (stators × candidates)
+            batch = make_setup(
+                {**base, "stator_current_limit": st, "supply_current_limit": float(sup)}, ratios, _Array()
+            )
+            times = np.asarray(motion.batch_times(batch), dtype=float) * np.ones((len(stators), CANDIDATES))
+            for i, I_st in enumerate(stators):
+                row: dict[str, Any] = {"stator_limit": I_st, "supply_limit": float(sup)}
+                ok = np.isfinite(times[i])
+                if not holds[i, 0]:
+                    row["note"] = CANNOT_HOLD  # no ratio up to MAX_RATIO holds the load at rest
+                    rows.append(row)
+                    continue
+                if not ok.any():
+                    row["note"] = NO_ARRIVAL
+                    rows.append(row)
+                    continue
+                G_best = float(ratios[i, int(np.nanargmin(np.where(ok, times[i], np.nan)))])  # (LG1)
+                cell = make_setup(
+                    {**base, "stator_current_limit": I_st, "supply_current_limit": float(sup)}, G_best
+                )
+                try:
+                    mv = motion.move(cell, rtol)  # (LG2)
+                except InputError:
+                    row["note"] = NO_ARRIVAL
+                    rows.append(row)
+                    continue
+                nfev += mv.nfev
+                ex = motion.extremes(cell, mv.max_speed)
+                row.update(
+                    ratio=G_best,
+                    time=mv.time,
+                    peak_stator_current=ex["peak_stator_current"],
+                    peak_supply_current=ex["peak_supply_current"],
+                    energy=abs(mv.energy),
+                )
+                rows.append(row)
+        return rows, nfev
+
+    return cells
 
 
 def heat_map(rows, stators, supplies, pick):
@@ -217,13 +262,9 @@ def heat_map(rows, stators, supplies, pick):
     return HeatMapData(list(map(float, supplies)), list(map(float, stators)), z, where, notes)
 
 
-def fields(
-    modes: tuple[str, ...] = MODES,
-    when: tuple = (),
-    picked: str = "the fastest",
-    what: str = "the mechanism",
-) -> tuple:
-    """The grid's ranges and budget (a mechanism's mode; the flywheel's shown by its own choice)."""
+def fields(modes: tuple[str, ...] = MODES, when: tuple = ()) -> tuple:
+    """The grid's ranges and budget (a mechanism's mode; the flywheel's shown by its own choice),
+    declared once: the same words wherever they appear (tests/test_shared_fields.py)."""
     from ..fields import Field
 
     def amps(name, label, default, help, min_=0.0):
@@ -252,8 +293,8 @@ def fields(
             "supply_budget",
             "Supply budget",
             60,
-            f"The cell picked is {picked} whose peak supply current "
-            f"per motor stays within this (e.g. what the breaker and the battery allow {what}).",
+            "The cell picked is the quickest (least time) whose peak supply current per motor "
+            "stays within this (e.g. what the breaker and the battery allow).",
         ),
     )
 

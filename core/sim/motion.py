@@ -658,25 +658,42 @@ def mode_field(profiled: bool = False, grid: bool = False) -> Field:
 
 
 def feedback_fields(
-    position_quantity: str,
+    position_quantity: str | None,
     position_unit: str,
     q_pos: float,
     speed_quantity: str,
     speed_unit: str,
     q_vel: float,
+    *,
+    when: tuple = (),
+    lqr_when: tuple | None = None,
 ) -> tuple[Field, ...]:
+    """The LQR tolerances and the loop's period and delay, one declaration for every loop (the
+    mechanisms' position loop, the flywheel's velocity loop): their names, labels, limits and help
+    are the same wherever they appear (tests/test_shared_fields.py). `position_quantity` None: a
+    velocity loop, whose one state is the speed (no q_position). `when`: shown only then;
+    `lqr_when`: the tolerances' own condition (default `when`)."""
+    lqr_when = when if lqr_when is None else lqr_when
+    position = (
+        ()
+        if position_quantity is None
+        else (
+            Field(
+                "q_position",
+                "LQR position tolerance",
+                position_quantity,
+                position_unit,
+                default=q_pos,
+                min=0,
+                min_exclusive=True,
+                max=3.9e4,
+                when=lqr_when,
+                help="LQR state tolerance on position (WPILib qelms[0]): the error you accept.",
+            ),
+        )
+    )
     return (
-        Field(
-            "q_position",
-            "LQR position tolerance",
-            position_quantity,
-            position_unit,
-            default=q_pos,
-            min=0,
-            min_exclusive=True,
-            max=3.9e4,
-            help="LQR state tolerance on position (WPILib qelms[0]): the error you accept.",
-        ),
+        *position,
         Field(
             "q_velocity",
             "LQR velocity tolerance",
@@ -686,7 +703,9 @@ def feedback_fields(
             min=0,
             min_exclusive=True,
             max=3.9e5,
-            help="LQR state tolerance on velocity (WPILib qelms[1]).",
+            when=lqr_when,
+            help="LQR state tolerance on velocity (WPILib's qelms entry for it): the speed error you "
+            "accept, Q = 1/q².",
         ),
         Field(
             "r_volts",
@@ -697,7 +716,8 @@ def feedback_fields(
             min=0,
             min_exclusive=True,
             max=100,
-            help="LQR input tolerance (WPILib relms): the voltage you are willing to apply.",
+            when=lqr_when,
+            help="LQR input tolerance (WPILib relms): the voltage you are willing to apply, R = 1/r².",
         ),
         Field(
             "control_period",
@@ -707,8 +727,9 @@ def feedback_fields(
             default=20,
             min=0.1,
             max=1000,
-            help="Loop period dt the gains are discretised for (roboRIO: 20 ms; on a motor "
-            "controller: 1 ms).",
+            when=when,
+            help="Loop period dt: the gains are discretised for it and the voltage is held between "
+            "updates (roboRIO: 20 ms; on a motor controller: 1 ms).",
         ),
         Field(
             "sensor_delay",
@@ -718,8 +739,10 @@ def feedback_fields(
             default=0,
             min=0,
             max=1000,
-            help="Measurement latency; the gains are latency-compensated as WPILib's "
-            "LinearQuadraticRegulator.latencyCompensate does (0: none).",
+            when=when,
+            help="Measurement latency: the loop acts on the state measured this long ago; the LQR "
+            "gains are latency-compensated as WPILib's LinearQuadraticRegulator.latencyCompensate "
+            "does (0: none).",
         ),
     )
 
