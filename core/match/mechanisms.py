@@ -139,6 +139,7 @@ class _Mech:
         on = s.asm.on
         self.I_st = s.values["stator_current_limit"] if "stator_limit" in on else None
         self.I_sup = s.values["supply_current_limit"] if "supply_limit" in on else None
+        self.stiff = motion.estimated_time(s) / motion.time_constant(m) >= motion.STIFF
         self.e_ref = 1e-3 * m.count * m.battery_voltage**2 / m.R * self.d / self.v_ref
 
     def branches(self) -> tuple[str, ...]:
@@ -368,6 +369,7 @@ class _Run:
         restart: tuple[str, ...] = ()
         held = None
         prefer = None
+        last_event = None
         while t < self.length:
             pieces += 1
             charge(1)
@@ -412,17 +414,11 @@ class _Run:
             )
             events = self._events(config, root, dirs, enabled, t >= ready)
             rhs = self._rhs(config, root, dirs)
-            run = integrate(
-                rhs,
-                t,
-                t1,
-                y,
-                rtol=self.rtol,
-                atol=self.rtol,
-                events=events,
-                max_steps=MAX_STEPS,
-                restart=restart,
-            )
+            stiff = any(self.mechs[k].stiff for k, c in enumerate(config) if c not in (COAST, DONE))
+            run = self._piece(rhs, t, t1, y, events, restart, stiff)
+            if run.t[-1] <= t and run.event is not None and run.event == last_event:
+                raise InputError("moves", f"the run makes no progress at {t:.6g} s (switch {run.event})")
+            last_event = run.event
             for tk, yk in zip(run.t[1:], run.y[1:]):
                 self._record(tk, yk, config, self.bus(yk, config, root), trace)
             t, y = run.t[-1], list(run.y[-1])
@@ -465,6 +461,30 @@ class _Run:
             trace,
             pieces,
         )
+
+    def _piece(self, rhs, t, t1, y, events, restart, stiff):
+        """One piece: DP54 (its restart skips the switch just handled), or scipy's LSODA where a
+        mechanism is stiff by its card's own rule (motion.move: estimated time over the time
+        constant ≥ motion.STIFF), or where DP54 runs out of steps (stiffer than estimated)."""
+        if not stiff:
+            try:
+                return integrate(
+                    rhs,
+                    t,
+                    t1,
+                    y,
+                    rtol=self.rtol,
+                    atol=self.rtol,
+                    events=events,
+                    max_steps=MAX_STEPS,
+                    restart=restart,
+                )
+            except RuntimeError:
+                pass
+        run = integrate(rhs, t, t1, y, rtol=self.rtol, atol=self.rtol, events=events, method="LSODA")
+        if run.status == -1:
+            raise InputError("moves", f"the run could not be integrated at {t:.6g} s ({run.message})")
+        return run
 
     def _drive(self, k, y, br, V):
         """η·N·Kt·n·I + s·F_field: the force toward the goal before friction (B1)."""
