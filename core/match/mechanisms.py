@@ -437,6 +437,8 @@ class _Run:
             elif run.event == "recovery":
                 enabled = True
                 brownouts.append((b_start, t))
+            elif run.event is not None and run.event.startswith("turn"):
+                y[5 + 3 * int(run.event[4:])] = 0.0  # the located stop: the rest rule decides (B1)
             elif run.event is not None and run.event.startswith("goal"):
                 k = int(run.event[4:])
                 self.results[k].arrival = t
