@@ -47,13 +47,13 @@ def card(calc, raw):
     }
 
 
-def alone(calc, raw, R_batt, V_b=12.0):
+def alone(calc, raw, R_batt, V_b=12.0, accuracy="default"):
     """The card's move alone on a battery with a flat open-circuit voltage V_b and resistance R_batt."""
     mv = from_card(calc, raw)
     battery = Battery(ocv_table=((1.0, V_b),), resistance=R_batt) if R_batt else IdealSource(V_b)
-    rtol = LEVELS[raw.get("accuracy", "default")]
+    rtol = LEVELS[raw.get("accuracy", accuracy)]
     # brownout far below: the card knows none
-    res = MechanismMatch((mv,), battery, Controller(brownout=0.1, recovery=0.2), length=5.0, rtol=rtol).run()
+    res = MechanismMatch((mv,), battery, Controller(brownout=0.1, recovery=0.2), length=60.0, rtol=rtol).run()
     m = res.mechanisms[0]
     return {
         "time_to_goal": m.time_to_goal,
@@ -83,6 +83,17 @@ CASES = [
         },
         0.05,
     ),
+    ("elevator", {"effects": "gravity, battery_sag, stator_limit", "ratio": 200}, 0.02),  # stiff: LSODA
+    (
+        "elevator",
+        {
+            "effects": "gravity, battery_sag, stator_limit",
+            "stator_current_limit": 35,
+            "battery_resistance": 0.1,
+        },
+        0.1,
+    ),  # two roots at rest, merging at E = 1.14 V (test_constant_power_branch_is_continuous_with_two_roots)
+    ("elevator", {"effects": "gravity, battery_sag, stator_limit", "travel": -40}, 0.02),  # down
     ("arm", {"effects": "gravity"}, 0.0),
     ("arm", {"effects": "gravity, battery_sag, stator_limit"}, 0.02),
     ("arm", {"effects": "gravity, battery_sag, stator_limit, supply_limit"}, 0.02),
@@ -132,20 +143,31 @@ def test_two_mechanisms_share_the_bus():
 
 
 def test_constant_power_branch_is_continuous_with_two_roots():
-    """A strong sag where the stator-limited bus has two roots: the upper one is followed until
-    they merge (the card's jump, motion (E6)), then the only root left; as the card does."""
+    """Strong sag (I_st·R_bus = 35·0.2 = 7 > V_b/2, motion (E6)): the stator-limited bus
+    α·V² − W·V + R·P = 0 has two roots; the upper one is followed, continuous in time, until they
+    merge (the discriminant reaches 0: a located switch), then the only root left (full duty),
+    below the vertex: the card's jump, and its peak supply current and lowest bus."""
     raw = {
         "effects": "gravity, battery_sag, stator_limit",
-        "stator_current_limit": 90,
-        "battery_resistance": 0.05,
+        "stator_current_limit": 35,
+        "battery_resistance": 0.1,
     }
-    got, res = alone("elevator", raw, 0.05)
-    want = card("elevator", raw)
-    assert got["peak_supply_current"] == pytest.approx(want["peak_supply_current"], rel=2e-5)
-    assert got["min_bus_voltage"] == pytest.approx(want["min_bus_voltage"], rel=2e-5)
-    # on the stator branch the bus stays at or above the vertex V_oc/2 (the upper root)
-    vs = [v for _, v, _ in res.trace]
-    assert min(vs) < 12.0
+    got, res = alone("elevator", raw, 0.1, accuracy="fine")
+    want = card("elevator", dict(raw, accuracy="fine"))
+    names = [name for _, name in res.switches]
+    assert names[:2] == ["merge", "goal0"]
+    t_merge = res.switches[0][0]
+    before = [(t, v) for t, v, _ in res.trace if t < t_merge]
+    vertex = 12.0 / 2  # W/(2α) with A = B = 0 on the stator branch
+    assert all(v >= vertex - 1e-6 for _, v in before)  # the upper root all along
+    steps = [abs(v1 - v0) for (t0, v0), (t1, v1) in zip(before, before[1:])]
+    assert max(steps) < 0.5  # continuous: no jump between steps before the merge
+    at_merge = [v for t, v, _ in res.trace if t == t_merge]
+    assert at_merge[0] == pytest.approx(vertex, rel=1e-3)  # the roots meet at the vertex
+    assert at_merge[-1] == pytest.approx(want["min_bus_voltage"], rel=1e-7)  # the full-duty root: the jump
+    assert got["peak_supply_current"] == pytest.approx(want["peak_supply_current"], rel=1e-7)
+    assert got["min_bus_voltage"] == pytest.approx(want["min_bus_voltage"], rel=1e-7)
+    assert got["time_to_goal"] == pytest.approx(want["time_to_goal"], rel=1e-7)
 
 
 def test_brownout_mid_lift_by_hand():

@@ -223,6 +223,7 @@ class BusResult:
     charge: float  # C
     trace: list  # (t, V, I) at every accepted step and switch
     pieces: int
+    switches: list = field(default_factory=list)  # (t, event): every located switch, in order
 
 
 @dataclass(frozen=True)
@@ -370,6 +371,7 @@ class _Run:
         held = None
         prefer = None
         last_event = None
+        switches: list = []
         while t < self.length:
             pieces += 1
             charge(1)
@@ -419,6 +421,8 @@ class _Run:
             if run.t[-1] <= t and run.event is not None and run.event == last_event:
                 raise InputError("moves", f"the run makes no progress at {t:.6g} s (switch {run.event})")
             last_event = run.event
+            if run.event is not None:
+                switches.append((run.t[-1], run.event))
             for tk, yk in zip(run.t[1:], run.y[1:]):
                 self._record(tk, yk, config, self.bus(yk, config, root), trace)
             t, y = run.t[-1], list(run.y[-1])
@@ -462,6 +466,7 @@ class _Run:
             y[0] * self.q_scale,
             trace,
             pieces,
+            switches,
         )
 
     def _piece(self, rhs, t, t1, y, events, restart, stiff):
