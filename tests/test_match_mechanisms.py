@@ -272,6 +272,20 @@ def test_hostile_moves_name_the_field():
     with pytest.raises(InputError) as e:
         from_card("flywheel", {})
     assert e.value.field == "card"
+    with pytest.raises(InputError) as e:
+        from_card("elevator", {"ratio": "fast"})
+    assert e.value.field == "ratio"
+    with pytest.raises(InputError) as e:  # 10^5 moves: refused before any work
+        MechanismMatch((mv,) * 100_000).run()
+    assert e.value.field == "moves"
+    with pytest.raises(InputError) as e:  # a move that cannot leave: the card's own check names it
+        MechanismMatch(
+            (from_card("elevator", {"effects": "gravity, stator_limit", "stator_current_limit": 1}),)
+        ).run()
+    assert e.value.field == "stator_current_limit"
+    with pytest.raises(InputError) as e:  # starting past the match's end
+        MechanismMatch((MechanismMove("x", mv.setup, start=11.0),), length=10.0).run()
+    assert e.value.field == "moves[0].start"
 
 
 def test_the_solve_budget_bounds_it():
