@@ -124,7 +124,7 @@ class _Mech:
             raise InputError(
                 f"{where}.effects", "an effect with states of its own is not on the match bus yet"
             )
-        duty_from = set(s.asm.parts) & {n for n, p in s.asm.parts.items() if "duty" in p.terms}
+        duty_from = {n for n, p in s.asm.parts.items() if "duty" in p.terms}
         if not duty_from <= set(LIMIT_EFFECTS):
             raise InputError(f"{where}.effects", f"{', '.join(sorted(duty_from))}: not on the match bus yet")
         self.start = number(f"{where}.start", ev.start, low=0.0, high=length)
