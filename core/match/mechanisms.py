@@ -300,6 +300,8 @@ class _Run:
     def _sums(self, y, config):
         a, b, p = self.base, 0.0, 0.0
         for k, br in enumerate(config):
+            if br in (COAST, DONE):  # draws nothing
+                continue
             da, db, dp = self.mechs[k].terms(br, self._emf(k, y))
             a, b, p = a + da, b + db, p + dp
         return a, b, p
