@@ -10,6 +10,9 @@
     breaker.py   breakers: a trip-time table and a first-order thermal state calibrated to reproduce
                  it exactly from cold                                                 (M12-M15)
     timeline.py  a match integrated over synthetic loads, and its outputs             (M16-M18)
+    mechanisms.py  the elevator's and arm's moves (core.sim.motion) integrated together on one
+                 bus: the duty rule as affine, constant-power or constant-current loads, brownout
+                 coasting inside their equations; one alone is its card                 (B1-B6)
 
 SI inside: volts, amperes, ohms, seconds, coulombs, joules (amp-hours and watt-hours only in the
 outputs that name them). Not yet wired to the workbook's [match] table, the CLI or the app.

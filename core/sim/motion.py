@@ -176,6 +176,12 @@ class Setup:
     names: Mapping[str, Any] = field(default_factory=dict)  # calculator-specific words and field names
 
 
+def stator_current(R: float, E: float, u: float, v_bus: float) -> float:
+    """(M2) per motor: I = (u·V_bus − E)/R, at duty u on a bus at v_bus (the match solves v_bus
+    from every mechanism's supply current together, core.match.mechanisms)."""
+    return (u * v_bus - E) / R
+
+
 def field_force(setup: Setup):
     """q -> F_field (0 when no effect exerts one)."""
     f = setup.asm.slots["force"]
