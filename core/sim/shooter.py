@@ -723,6 +723,8 @@ class TooFast(Exception):
     """A spin-up phase too short for the integrator to resolve (a wheel of almost no inertia)."""
 
 
+# --- the current-limit grid's cells (control = limit_grid; core.sim.limit_grid runs the grid) -----
+
 GRID_SCAN = 24  # ratios log-spaced over the scan, before Brent refines the best
 GRID_DECADES = 2.0  # the scan spans G_max·10^-2 .. G_max: below, the spin-up lengthens unless
 GRID_EXTENSIONS = 4  # the rotors dominate; then it moves down 2 decades at a time, at most this often
