@@ -517,7 +517,8 @@ def speed_sq_change(sc: Scene, m0: float, dm: float, shot0: Shot, shot1: Shot) -
 
 
 class Shots:
-    """Shots of one simulate call, each computed once (the table and the burst reuse them)."""
+    """Shots of one simulate call (the page's), each computed once (the table and the burst reuse
+    them)."""
 
     def __init__(self, target: float, rtol: float):
         self.target, self.rtol = target, rtol
@@ -582,8 +583,8 @@ def limited_run(
     E = V_b − I_sup·(R + R_bus) where the supply limit lets go to full duty), so each phase is
     integrated up to its boundary (an event) and the next starts there, every piece smooth.
     τ_w never rises with ω (each phase's current falls or stays as the back-EMF grows) and is
-    positive at omega_to (checked in simulate), so a phase ending at ω_b is over before
-    I·(ω_b − ω)/τ_w(ω_b): the span integrated."""
+    positive at omega_to (check_limits, from the page's simulate), so a phase ending at ω_b is
+    over before I·(ω_b − ω)/τ_w(ω_b): the span integrated."""
     d = sc.drive
     I = sc.I
     ends = sorted(w for w in d.boundaries if omega_from < w < omega_to) + [omega_to]
