@@ -45,6 +45,7 @@ def main() -> None:
     from gearhead.core.model import parse_inputs
     from gearhead.core.registry import get
     from gearhead.core.sim.scene import LEVELS
+    from gearhead.core.sim.shooter import grid_spin_up
 
     rtol = LEVELS["default"]
     calc = get("flywheel")
@@ -62,7 +63,7 @@ def main() -> None:
         calc, {**CASES["2 Kraken X60, 3e-3 kg·m², 4000 rpm"], "effects": "stator_limit, supply_limit"}
     )
     v = dict(v)
-    t_quad = median_seconds(lambda: flywheel.grid_spin_up(v, 1.2), 200) * 1e6
+    t_quad = median_seconds(lambda: grid_spin_up(v, 1.2), 200) * 1e6
     sc, _ = flywheel.scene_from({**v, "ratio": 1.2}, rtol)
     t_ode = median_seconds(lambda: flywheel.recovery(sc, 0.0, v["target_speed"]), 200) * 1e6
     print(f"One cell's spin-up time: quadrature (scene included) {t_quad:6.1f} µs, DP54 {t_ode:6.1f} µs")

@@ -13,10 +13,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gearhead.core import presets
-from gearhead.core.calculators import flywheel as fw
 from gearhead.core.errors import InputError
 from gearhead.core.model import parse_inputs, solve
 from gearhead.core.registry import get
+from gearhead.core.sim import shooter as fw
 from gearhead.core.sim.integrate import Event, integrate
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -10,6 +10,7 @@ import pytest
 from gearhead.core.calculators import flywheel as fc
 from gearhead.core.errors import InputError
 from gearhead.core.model import parse_inputs, solve
+from gearhead.core.sim.shooter import grid_energy, grid_spin_up
 
 BASE = {
     "motor": "Kraken X60",
@@ -90,10 +91,10 @@ def test_energy_against_a_closed_form_where_no_limit_binds():
             "supply_current_limit": "1500 A",
         },
     )
-    t, sc = fc.grid_spin_up(dict(v), 1.0)
+    t, sc = grid_spin_up(dict(v), 1.0)
     d, w_t, w_f = sc.drive, v["target_speed"], sc.free_speed
     closed = 2 * 12.0 * sc.I / d.A * ((d.i_s - d.i_f) * w_t - d.i_f * w_f * math.log1p(-w_t / w_f))
-    assert fc.grid_energy(sc, dict(v)) == pytest.approx(closed, rel=1e-9)
+    assert grid_energy(sc, dict(v)) == pytest.approx(closed, rel=1e-9)
     assert t == pytest.approx(sc.T * -math.log1p(-w_t / w_f), rel=1e-9)  # (FW2)'s T·ln(ω_f/(ω_f − ω_t))
 
 

@@ -9,7 +9,7 @@ import pytest
 from gearhead.core.calculators import flywheel as fw
 from gearhead.core.model import parse_inputs
 from gearhead.core.registry import get
-from gearhead.core.sim import limit_grid, scene
+from gearhead.core.sim import limit_grid, scene, shooter
 
 GRID = {
     "motor": "Kraken X60",
@@ -80,13 +80,13 @@ def test_the_stiff_slip_phase_integrates_through_integrate_stiff(monkeypatch):
     phase is stiff, integrated by integrate_stiff's Radau (with the solve's budget), not scipy
     called directly."""
     methods = []
-    real = fw.integrate_stiff
+    real = shooter.integrate_stiff
 
     def spy(*args, **kwargs):
         methods.append(args[7])
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(fw, "integrate_stiff", spy)
+    monkeypatch.setattr(shooter, "integrate_stiff", spy)
     from tests.test_limits_flywheel import raw
 
     v = values(

@@ -7,9 +7,9 @@ import mpmath as mp
 import pytest
 
 from gearhead.core import presets
-from gearhead.core.calculators import flywheel as fw
 from gearhead.core.model import parse_inputs, solve
 from gearhead.core.registry import get
+from gearhead.core.sim import shooter as fw
 
 mp.mp.dps = 40
 SEED = presets.load(
