@@ -392,8 +392,11 @@ async def test_typing_cancels_a_running_simulation_in_the_app(monkeypatch):
     outcomes: list[str] = []
     running = threading.Event()
 
+    calls = []
+
     def slow_then_real(calc_id, raw=None, *args):
-        if not outcomes:  # the first solve after the key: an integration of minutes unless cancelled
+        calls.append(1)  # counted on entry: the next solve may start before this one has ended
+        if len(calls) == 1:  # the first solve after the key: an integration of minutes unless cancelled
             running.set()
             try:
                 with ig.budget(max_seconds=20):  # (a bound for this test, should the cancel not come)
