@@ -144,6 +144,8 @@ def _tube_torsion_bounds(W: float, H: float) -> tuple[float, float]:
     layers) toward the inner corner, where both fields have an r^{2/3} singularity, and growing
     ×2 along the sides, where the field is one-dimensional but for terms like e^{−πs/t}. More
     layers would make the smallest cells so thin that rounding (≈ 1e-16/h²) spoils the bounds.
+    Solved with numpy alone (_condensed_elements, then _frontal_energy): ~40 ms, where scipy's
+    sparse LU took ~80 ms after a ~0.3 s import.
     """
     import numpy as np
 
@@ -199,7 +201,7 @@ def _tube_torsion_bounds(W: float, H: float) -> tuple[float, float]:
     )
     # elements in a chain along the wall (the W-side arm from its mid-plane, the corner, the other
     # arm to its mid-plane), grouped by element column or row: each group touches only its neighbours
-    group = np.unique(np.where(EV < L, -EU, Eu + EV), return_inverse=True)[1]
+    group = np.where(EV < L, Eu - 1 - EU, Eu + EV - L)
 
     def energy(dof, count, loads, extra):
         """f·K⁻¹f for K·x = f assembled over the wall elements (this node → unknown map, −1: held at 0)."""
@@ -221,13 +223,15 @@ def _condensed_elements(ratio, K1, M1, p, loads):
 
     inner = np.arange(1, p)
     interior = (inner[:, None] * (p + 1) + inner[None, :]).ravel()
-    edge = np.setdiff1d(np.arange((p + 1) ** 2), interior)
+    edge = np.flatnonzero(~np.isin(np.arange((p + 1) ** 2), interior))
     a, b = np.kron(K1, M1), np.kron(M1, K1)
     r = ratio[:, None, None]
     k_ie = r * a[np.ix_(interior, edge)] + b[np.ix_(interior, edge)] / r
     k_ee = r * a[np.ix_(edge, edge)] + b[np.ix_(edge, edge)] / r
     rhs = [k_ie] + [f[:, interior, None] for f in loads]
-    x = np.linalg.solve(r * a[np.ix_(interior, interior)] + b[np.ix_(interior, interior)] / r, np.concatenate(rhs, axis=2))
+    x = np.linalg.solve(
+        r * a[np.ix_(interior, interior)] + b[np.ix_(interior, interior)] / r, np.concatenate(rhs, axis=2)
+    )
     condensed = [k_ee - k_ie.transpose(0, 2, 1) @ x[:, :, : len(edge)]]
     for n, f in enumerate(loads):
         z = x[:, :, len(edge) + n]
@@ -238,64 +242,90 @@ def _condensed_elements(ratio, K1, M1, p, loads):
 def _frontal_energy(stiffness, loads, ld, extra, count, group):
     """f·K⁻¹f, K and f assembled from element matrices and loads (on their edge nodes, interiors
     condensed) over the unknowns ld (−1: held at 0), f += extra, with numpy's dense solves (no
-    sparse library: scipy.sparse takes ~0.3 s to import). The elements are added group by group
-    (frontal elimination) and an unknown is eliminated after the last group that touches it; the
-    groups form a chain along the wall, so the front stays one or two wall-widths of nodes. f·K⁻¹f
-    needs no back-substitution: each elimination of unknowns e adds g_e·K_ee⁻¹·g_e, g the load
-    condensed so far."""
+    sparse library: scipy.sparse takes ~0.3 s to import). The groups of elements form a chain along
+    the wall. First each group's own unknowns (those no other group touches) are eliminated, all
+    groups at once; then the groups are added in turn to a front (frontal elimination) and an unknown
+    leaves it after the last group that touches it, so the front stays one or two wall-widths of
+    nodes. Every dense solve and product stays small enough for OpenBLAS to run it on one thread
+    (its threads, on a busy machine, cost more than they save). f·K⁻¹f needs no back-substitution:
+    each elimination of unknowns e adds g_e·K_ee⁻¹·g_e, g the load condensed so far."""
     import numpy as np
 
+    n_groups = int(group.max()) + 1
     held = ld < 0
-    stiffness = np.where(held[:, :, None] | held[:, None, :], 0.0, stiffness)  # held: adds nothing
-    loads = np.where(held, 0.0, loads)
-    ld = np.where(held, 0, ld)
-    in_group = np.broadcast_to(group[:, None], ld.shape)[~held]
-    first, last = np.full(count, len(group)), np.full(count, -1)
-    np.minimum.at(first, ld[~held], in_group)
-    np.maximum.at(last, ld[~held], in_group)
-    f_extra = np.broadcast_to(np.asarray(extra, dtype=float), (count,))
+    el, node = np.nonzero(~held)
+    dof = ld[el, node]
+    first, last = np.full(count, n_groups), np.full(count, -1)
+    np.minimum.at(first, dof, group[el])
+    np.maximum.at(last, dof, group[el])
+    # each group's unknowns: its own first (sorted), then those it shares, numbered from 0 in each
+    pairs = group[el] * count + dof
+    by = np.argsort(pairs, kind="stable")  # (np.unique would import numpy.ma: 10 ms)
+    step = np.concatenate([[True], pairs[by][1:] != pairs[by][:-1]])
+    key, at = pairs[by][step], np.empty(len(pairs), dtype=int)
+    at[by] = np.cumsum(step) - 1
+    g_of, d_of = key // count, key % count
+    shared = (first[d_of] != g_of) | (last[d_of] != g_of)
+    order = np.lexsort((d_of, shared, g_of))
+    start = np.searchsorted(g_of, np.arange(n_groups))
+    local = np.empty(len(key), dtype=int)
+    local[order] = np.arange(len(key)) - start[g_of[order]]
+    n_all = np.bincount(g_of, minlength=n_groups)
+    n_own = np.bincount(g_of[~shared], minlength=n_groups)
+    size = int(n_all.max())
+    where = np.full(ld.shape, size)  # held nodes go to a slot past the end, dropped
+    where[el, node] = local[at]
+    flat = (group[:, None, None] * (size + 1) + where[:, :, None]) * (size + 1) + where[:, None, :]
+    K = np.bincount(flat.ravel(), stiffness.ravel(), n_groups * (size + 1) ** 2)
+    K = K.reshape(n_groups, size + 1, size + 1)[:, :size, :size]
+    f = np.bincount((group[:, None] * (size + 1) + where).ravel(), loads.ravel(), n_groups * (size + 1))
+    f = f.reshape(n_groups, size + 1)[:, :size]
+    first_here = first[d_of] == g_of
+    f[g_of[first_here], local[first_here]] += np.broadcast_to(np.asarray(extra, dtype=float), (count,))[
+        d_of[first_here]
+    ]
+    energy = 0.0
+    condensed = [None] * n_groups
+    n_shared = n_all - n_own
+    for m, b in sorted(set(zip(n_own.tolist(), n_shared.tolist()))):  # groups of one shape at once
+        gs = np.flatnonzero((n_own == m) & (n_shared == b))
+        k_bb, f_b = K[gs, m : m + b, m : m + b], f[gs, m : m + b]
+        if m:
+            k_ob = K[gs, :m, m : m + b]
+            x = np.linalg.solve(K[gs, :m, :m], np.concatenate([k_ob, f[gs, :m, None]], axis=2))
+            energy += float(np.sum(f[gs, :m] * x[:, :, -1]))
+            k_bb = k_bb - k_ob.transpose(0, 2, 1) @ x[:, :, :-1]
+            f_b = f_b - np.einsum("gob,go->gb", k_ob, x[:, :, -1])
+        for i, gi in enumerate(gs):
+            condensed[gi] = (k_bb[i], f_b[i])
+    shared_dofs = np.full((n_groups, size), -1)
+    shared_dofs[g_of, local] = d_of
+
     slot = np.full(count, -1)  # an unknown's place in the front
     front = np.zeros(0, dtype=int)
     F, g = np.zeros((0, 0)), np.zeros(0)
-    energy = 0.0
-
-    def eliminate(e, k):
-        """Unknowns at slots e out of the front, into those at k (which alone they touch)."""
-        nonlocal energy
-        f_ek = F[np.ix_(e, k)]
-        z = np.linalg.solve(F[np.ix_(e, e)], np.column_stack([f_ek, g[e]]))
-        energy += float(g[e] @ z[:, -1])
-        F[np.ix_(k, k)] -= f_ek.T @ z[:, :-1]
-        g[k] -= f_ek.T @ z[:, -1]
-
-    # Two steps per group keep every dense solve and product small (below the sizes where the BLAS
-    # starts threads, which on a busy machine cost more than they save): first the unknowns only this
-    # group touches, against the group's own; then those the chain leaves behind, against the front.
-    for gi in range(int(group.max()) + 1):
-        els = np.flatnonzero(group == gi)
-        d, h = ld[els], held[els]
-        mine = np.unique(d[~h])
+    for gi in range(n_groups):
+        mine = shared_dofs[gi, n_own[gi] : n_all[gi]]
         new = mine[slot[mine] < 0]
         n_old, n = len(front), len(front) + len(new)
         slot[new] = np.arange(n_old, n)
         front = np.concatenate([front, new])
         grown = np.zeros((n, n))
         grown[:n_old, :n_old] = F
-        F, g = grown, np.concatenate([g, f_extra[new]])
-        at = np.where(h, 0, slot[d])  # a held node's zeros go to slot 0
-        F += np.bincount((at[:, :, None] * n + at[:, None, :]).ravel(), stiffness[els].ravel(), n * n).reshape(n, n)
-        g += np.bincount(at.ravel(), loads[els].ravel(), n)
-        touched = slot[mine]
-        only = first[mine] == last[mine]
-        if only.any():
-            eliminate(touched[only], touched[~only])
-        done = (last[front] == gi) & (first[front] < gi)
-        alive = last[front] > gi
+        F, g = grown, np.concatenate([g, np.zeros(len(new))])
+        s = slot[mine]
+        F[np.ix_(s, s)] += condensed[gi][0]
+        g[s] += condensed[gi][1]
+        done = last[front] == gi
+        keep = ~done
         if done.any():
-            eliminate(np.flatnonzero(done), np.flatnonzero(alive))
-        F, g = F[np.ix_(alive, alive)], g[alive]
-        slot[front] = -1
-        front = front[alive]
+            f_ek = F[np.ix_(done, keep)]
+            z = np.linalg.solve(F[np.ix_(done, done)], np.column_stack([f_ek, g[done]]))
+            energy += float(g[done] @ z[:, -1])
+            F = F[np.ix_(keep, keep)] - f_ek.T @ z[:, :-1]
+            g = g[keep] - f_ek.T @ z[:, -1]
+        slot[front[done]] = -1
+        front = front[keep]
         slot[front] = np.arange(len(front))
     return energy
 
