@@ -5,9 +5,10 @@ and prints one JSON object on its last line; times in ms.
 - A key goes in as the terminal driver delivers it: `app.post_message(events.Key(...))`.
   (`pilot.press` also waits until every widget has answered a callback, ~130 on a card, which a
   real terminal does not: that wait would be counted in the figure.)
-- "Drawn": once the app's own state says the change is made (the card shown and mounted, the
-  result of the new entries in the table), `await app.screen.wait_for_refresh()` returns after the
-  screen's next refresh (or at once when nothing is left to draw): the frame that shows it.
+- "Drawn": the card (or the minimal app's pane) has a region on screen (`Widget.region`, set by
+  the layout, whose frame is rendered in the same call, before any other task runs): the first
+  frame that shows it. (`Screen.wait_for_refresh` waits for the refresh after the next, which on
+  a card switch came 25-30 ms after the frame that showed the card.)
 - "Stall": the longest the event loop was blocked (a 1 ms asyncio sleep that woke late), from the
   key until STALL_WINDOW_S after the frame: a key typed then waits that long.
 
@@ -70,8 +71,8 @@ gc.callbacks.append(_on_gc)
 
 
 async def timed_keys(app, keys: list[str], done) -> tuple[float, float, float]:
-    """(key -> the frame after `done()` holds, longest stall, longest full (generation 2) garbage
-    collection), ms; the keys posted together."""
+    """(key -> `done()` holds, longest stall, longest full (generation 2) garbage collection), ms;
+    the keys posted together."""
     stalls: list[float] = []
     GC_PAUSES.clear()
     _timing[0] = True
@@ -87,7 +88,6 @@ async def timed_keys(app, keys: list[str], done) -> tuple[float, float, float]:
     except TimeoutError:
         print("timeout", keys, app.current_calculator, app.focused, app.screen, file=sys.stderr)
         raise
-    await app.screen.wait_for_refresh()
     drawn = time.perf_counter() - t0
     await asyncio.sleep(STALL_WINDOW_S)
     stop.set()
@@ -129,7 +129,11 @@ async def visits() -> dict:
                     await pilot.press(*before)
                     await _until(lambda: app.card_ready(app.current_calculator))
                     await pilot.pause(0.2)
-                shown = lambda calc=calc: app.current_calculator == calc and app.card_ready(calc)  # noqa: E731
+                shown = lambda calc=calc: (  # noqa: E731
+                    app.current_calculator == calc
+                    and app.card_ready(calc)
+                    and app.current_tab.region.height > 0
+                )
                 out[kind][calc] = list(await timed_keys(app, keys, shown))
                 tab = app.current_tab
                 await _until(lambda: not tab.busy)  # its first solve and chart: the next key waits
