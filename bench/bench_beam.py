@@ -1,8 +1,18 @@
-"""Beam figures (printed, never asserted): solve times per section, and the cost and accuracy of
-the rectangular-tube torsion constant (finite-element bounds, core/beams.py) and their gap."""
+"""Beam figures (printed, never asserted): `gearhead solve beam` as a whole process beside
+`python -c 'import numpy'` (fresh processes, alternating; min/median/max and the ratio pair by
+pair), solve times per section, and the cost and accuracy of the rectangular-tube torsion constant
+(finite-element bounds, core/beams.py) and their gap.
+
+Run:  .venv/bin/python bench/bench_beam.py [--runs N]
+The processes run with bytecode caches, as an installed package does (a shell that sets
+PYTHONDONTWRITEBYTECODE would make every start compile gearhead's modules, which the numpy
+baseline never pays)."""
 
 from __future__ import annotations
 
+import os
+import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -11,8 +21,38 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from timing import median_seconds  # noqa: E402  (bench/ is on sys.path when run)
 
+RUNS = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 9
+ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+
+
+def _wall(cmd: list[str]) -> float:
+    t0 = time.perf_counter()
+    subprocess.run(cmd, check=True, capture_output=True, env=ENV)
+    return time.perf_counter() - t0
+
+
+def cli_vs_numpy() -> None:
+    """The default beam (a 2x1x1/16 in rectangular tube: its J is the finite-element solve)."""
+    gearhead = str(Path(sys.executable).with_name("gearhead"))
+    ours, base = [gearhead, "solve", "beam"], [sys.executable, "-c", "import numpy"]
+    _wall(ours), _wall(base)  # warm-up: bytecode caches written, files in the page cache
+    a, b = [], []
+    for _ in range(RUNS):  # alternating, so load on the machine hits both alike
+        a.append(_wall(ours))
+        b.append(_wall(base))
+    ratios = [x / y for x, y in zip(a, b)]
+    print(f"  whole process, wall (min / median / max of {RUNS}, alternating):")
+    for label, xs in (("gearhead solve beam", a), ("python -c 'import numpy'", b)):
+        print(
+            f"    {label:<26} {min(xs) * 1e3:6.0f} {statistics.median(xs) * 1e3:6.0f} {max(xs) * 1e3:6.0f} ms"
+        )
+    print(
+        f"    {'ratio, pair by pair':<26} {min(ratios):6.2f} {statistics.median(ratios):6.2f} {max(ratios):6.2f}"
+    )
+
 
 def main() -> None:
+    cli_vs_numpy()
     from gearhead.core import beams
     from gearhead.core.model import solve
 

@@ -241,7 +241,10 @@ class GearheadApp(App):
                 self._mounting.pop(calc_id, None)
                 # what is built lives as long as the app: out of the collector's reach (an O(1)
                 # move), a full collection walks only what came since, not every card, numpy and
-                # Textual (50-65 ms, which fell inside the next first visit's frame)
+                # Textual. Still pays (bench/bench_startup.py --gc, 3 fresh apps visiting all 18
+                # cards, 2-core machine under load): without it a full collection of 62-329 ms
+                # (median per card) fell inside the first visit of 9 of 18 cards, and of 3 repeat
+                # visits (259-362 ms); with it, 22 ms in one first visit, 16 and 25 ms in two repeats
                 gc.freeze()
                 if calc_id == self.current_calculator:
                     self.home.set_focus(tab.sheet)  # the card shown takes the keys (show_calculator)
