@@ -192,7 +192,7 @@ def test_rectangular_tube_J_is_bracketed_by_two_bounds(W, H, accuracy):
     independent bilinear bound stays below the upper bound."""
     lower, upper = beams._tube_torsion_bounds(W, H)
     J = beams.tube_torsion_fem(W, H, 1.0)
-    # Each bound is a sparse LU solve whose rounding depends on the CPU's kernels. Measured with
+    # Each bound is a numpy elimination solve whose rounding depends on the CPU's kernels. Measured with
     # OPENBLAS_CORETYPE = SkylakeX, Haswell, Sandybridge, Nehalem, Core2, Prescott on the 32×16
     # tube: the lower bound moves by 1e-9 of J, the upper (4·I minus the warping energy) by 8.7e-9,
     # and where the bounds close below that they cross (Nehalem: lower 7.1e-9 above upper on
