@@ -238,3 +238,37 @@ async def test_a_key_drops_the_pending_error_estimate(monkeypatch):
             "error_estimate"
         ]
         assert first_estimate.text != expected  # so the check above can tell them apart
+
+
+async def test_results_of_other_entries_are_drawn_dimmed_until_the_new_ones_land(monkeypatch):
+    """No frame shows a result as current for entries no longer on screen: while the new entries'
+    solve runs, every line the list draws is dimmed (read when drawn: a frame after the result has
+    landed draws it once, bold)."""
+    import gearhead.core.model
+
+    release = threading.Event()
+    real = gearhead.core.model.solve
+
+    def held(*args, **kwargs):
+        release.wait(20)
+        return real(*args, **kwargs)
+
+    def value_styles(tab) -> list:
+        results = tab.results
+        lines = [results.render_line(y) for y in range(1, 4)]  # value rows under the header
+        return [seg.style for strip in lines for seg in strip if seg.text.strip() and seg.style]
+
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        assert any(s.bold for s in value_styles(tab))  # fresh: the values are bold
+        monkeypatch.setattr(gearhead.core.model, "solve", held)
+        tab.set_entries({"load": "120"})
+        await pilot.pause()
+        assert tab.solution_key != tab.key and not tab.results.is_current()
+        styles = value_styles(tab)
+        assert styles and not any(s.bold for s in styles)  # waiting: nothing drawn as current
+        release.set()
+        await settle(pilot)
+        assert tab.results.is_current() and any(s.bold for s in value_styles(tab))

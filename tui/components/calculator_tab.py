@@ -32,7 +32,7 @@ from gearhead.core.model import Calculator, Field, Solution
 from ..guard import guard, guarded, report
 from . import card_text
 from .card_parts import Tables, Warnings
-from .results import FRESH, PENDING, STALE, WAITING, ResultsList
+from .results import FRESH, PENDING, STALE, ResultsList
 from .sheet import Sheet
 
 BUSY_AFTER_S = 0.1  # a solve running longer than this shows '… solving'
@@ -90,6 +90,7 @@ class CalculatorTab(Widget):
         self._estimate = None  # the worker computing the shown solution's error estimate
         self._sendable: bool | None = None  # ctrl+g had something to send at the last solve
         self._shown_by = None  # (mode, choices) the visible rows were chosen for
+        self._help_text: Text | None = None
         self._mounted = False
 
     @staticmethod
@@ -125,7 +126,10 @@ class CalculatorTab(Widget):
                 )
             with Vertical(classes="results-pane"):
                 self.results = ResultsList(
-                    on_select=self._cycle_unit, on_cursor=self._explain_output, classes="results"
+                    on_select=self._cycle_unit,
+                    on_cursor=self._explain_output,
+                    is_current=lambda: self.asked == self.solution_key,
+                    classes="results",
                 )
                 self.results.value_width = card_text.value_width(calc)
                 widest = max((len(o.equation) for o in calc.outputs), default=0)
@@ -265,15 +269,15 @@ class CalculatorTab(Widget):
         cancels the card's previous solve (a solve not begun never runs; a running one stops at its
         next integration step or tolerance sample, or ends and its result is dropped)."""
         self.asked = key = self.key
-        if self._estimate is not None:  # the shown solution's estimate is no longer wanted
-            self._estimate.cancel()
-            self._estimate = None
-        if self.solution is not None and self.solution_key != key:
-            self.results.show(self._rows(self.solution), WAITING)  # dimmed: not these entries' results
         # a card's first solve takes its error estimate with it: the estimate's run goes first and
         # pays the scene's one-off imports, so the time shown is what the accuracy costs
         estimate = "later" if self.solution is not None else "now"
         self._solve_worker(key, dict(self.entries), dict(self.display_units), self.unit_system, estimate)
+        if self._estimate is not None:  # the shown solution's estimate is no longer wanted
+            self._estimate.cancel()
+            self._estimate = None
+        if self.solution is not None and self.solution_key != key:
+            self.results.refresh()  # drawn dimmed until these entries' result lands (is_current)
         self.set_timer(BUSY_AFTER_S, self._mark_busy)
 
     @work(thread=True, exclusive=True, group="solve", exit_on_error=False)
@@ -408,11 +412,16 @@ class CalculatorTab(Widget):
     @guarded
     def _explain_field(self, f: Field) -> None:
         if self._mounted:
-            self.help_line.update(card_text.field_help(f, self.sheet.errors.get(f.name)))
+            self._help(card_text.field_help(f, self.sheet.errors.get(f.name)))
 
     @guarded
     def _explain_output(self, name: str) -> None:
-        self.help_line.update(card_text.output_help(self.calculator, name, self.solution, self.spread))
+        self._help(card_text.output_help(self.calculator, name, self.solution, self.spread))
+
+    def _help(self, text: Text) -> None:
+        if text != self._help_text:  # the line's height is its text's: an update asks for a layout
+            self._help_text = text
+            self.help_line.update(text)
 
     # ---- what the app and tests read --------------------------------------------------------
     def can_send(self) -> bool:

@@ -61,10 +61,20 @@ class ResultsList(LineView, can_focus=True):
 
     VALUE_MIN = 12
 
-    def __init__(self, on_select: Callable[[str], None], on_cursor: Callable[[str], None], **kwargs) -> None:
+    def __init__(
+        self,
+        on_select: Callable[[str], None],
+        on_cursor: Callable[[str], None],
+        is_current: Callable[[], bool] = lambda: True,
+        **kwargs,
+    ) -> None:
         super().__init__(**kwargs)
         self.on_select = on_select  # Enter or a click on a result: its next unit
         self.on_cursor = on_cursor  # the help line explains the result under the cursor
+        # read when a line is drawn: fresh rows of entries no longer on screen are drawn dimmed
+        # (waiting), so a frame drawn before the new entries' result lands never shows old
+        # results as current, and one drawn after shows the new result once
+        self.is_current = is_current
         self.rows: list[ResultRow] = []
         self.state = FRESH
         self.cursor = 0
@@ -148,22 +158,23 @@ class ResultsList(LineView, can_focus=True):
         if row == self.cursor:
             line_style = base + style("results--cursor")
         value_style = line_style
-        if self.state != FRESH:
+        state = self.state if self.state != FRESH or self.is_current() else WAITING
+        if state != FRESH:
             value_style = line_style + style("results--dim")
-        label_style = value_style if self.state == STALE else line_style
+        label_style = value_style if state == STALE else line_style
         label = self._label_lines[row][k] if k < len(self._label_lines[row]) else ""
-        value = (r.value if self.state != PENDING else "…") if k == 0 else ""
+        value = (r.value if state != PENDING else "…") if k == 0 else ""
         segments = [
             Segment(" ", line_style),
             Segment(fit_cells(label, label_w), label_style),
             Segment(" ", line_style),
-            Segment(fit_cells(value, value_w), value_style + Style(bold=k == 0 and self.state == FRESH)),
+            Segment(fit_cells(value, value_w), value_style + Style(bold=k == 0 and state == FRESH)),
         ]
         if eq_w:
             eq = fit_cells(r.equation if k == 0 else "", eq_w)
             segments += [Segment(" ", line_style), Segment(eq, line_style + style("results--equation"))]
         if spread_w:
-            spread = r.spread if k == 0 and self.state == FRESH else ""
+            spread = r.spread if k == 0 and state == FRESH else ""
             segments += [Segment(" ", line_style), Segment(fit_cells(spread, spread_w), value_style)]
         return Strip(segments).adjust_cell_length(width, line_style)
 
