@@ -88,6 +88,7 @@ class MechanismMove:
     setup: Any
     start: float = 0.0
     brownout_disables: bool = True
+    after: int | None = None  # the index of a move this one waits for (queued: starts at its arrival)
 
 
 def from_card(calc_id: str, raw: dict, name: str | None = None, start: float = 0.0) -> MechanismMove:
@@ -128,6 +129,9 @@ class _Mech:
         if not duty_from <= set(LIMIT_EFFECTS):
             raise InputError(f"{where}.effects", f"{', '.join(sorted(duty_from))}: not on the match bus yet")
         self.start = number(f"{where}.start", ev.start, low=0.0, high=length)
+        if ev.after is not None and (isinstance(ev.after, bool) or not isinstance(ev.after, int)):
+            raise InputError(f"{where}.after", f"must be the index of an earlier move, got {shown(ev.after)}")
+        self.after = ev.after
         motion.check_can_move(s)  # the card's own check: names the field
         m = s.mech
         self.name, self.disables = ev.name, ev.brownout_disables
@@ -204,6 +208,7 @@ class MechanismResult:
     peak_stator_current: float = 0.0  # A per motor, largest |I|
     peak_supply_current: float = 0.0  # A per motor
     energy: float = 0.0  # J, ∫V_oc·N·I_s dt
+    charge: float = 0.0  # C, ∫N·I_s dt (its share of the battery's charge)
     trace: list = field(default_factory=list)  # (t, position q, speed toward the goal)
 
     @property
@@ -224,6 +229,8 @@ class BusResult:
     trace: list  # (t, V, I) at every accepted step and switch
     pieces: int
     switches: list = field(default_factory=list)  # (t, event): every located switch, in order
+    peukert_charge: float = 0.0  # C, ∫I·(I/I_H)^(k−1) dt (battery (M4)); the plain charge on a source
+    current_squared: float = 0.0  # A²·s, ∫I² dt (the RMS current's numerator)
 
 
 @dataclass(frozen=True)
@@ -284,12 +291,18 @@ class _Run:
             mk = _Mech(f"moves[{i}]", ev, self.length)
             if mk.name in names:
                 raise InputError(f"moves[{i}].name", f"{shown(mk.name)} names two moves")
+            if mk.after is not None and not 0 <= mk.after < i:
+                raise InputError(f"moves[{i}].after", f"must be the index of an earlier move, got {mk.after}")
             names.add(mk.name)
             self.mechs.append(mk)
         self.battery, self.ctl = match.battery, match.controller
         v0 = self.battery.ocv(self.battery.start_soc)
         self.e_scale = sum(mk.e_ref for mk in self.mechs) or 1e-3 * v0
         self.q_scale = self.e_scale / v0
+        # the tail of the state (after the 4 + 3n the moves need): Q_p, ∫I²dt, each move's charge,
+        # scaled as the charge is (∫I²dt by a typical 100 A) so the step control sees them alike
+        self.i2_scale = self.q_scale * 100.0
+        self.tail = 4 + 3 * len(self.mechs)
         self.results = [MechanismResult(mk.name, mk.start) for mk in self.mechs]
 
     # --- the bus at a state, with a held configuration -------------------------------------------
@@ -360,7 +373,7 @@ class _Run:
     # --- the pieces --------------------------------------------------------------------------------
     def result(self) -> BusResult:
         n = len(self.mechs)
-        y = [0.0, 0.0, 0.0, 0.0] + [0.0] * (3 * n)
+        y = [0.0, 0.0, 0.0, 0.0] + [0.0] * (3 * n) + [0.0, 0.0] + [0.0] * n
         t = 0.0
         enabled, ready, b_start = True, 0.0, 0.0
         brownouts: list[tuple[float, float]] = []
@@ -374,12 +387,22 @@ class _Run:
         prefer = None
         last_event = None
         switches: list = []
+        begun: set[int] = set()
         while t < self.length:
             pieces += 1
             charge(1)
             if pieces > MAX_PIECES:
                 raise InputError("moves", f"more than {MAX_PIECES} switches (brownouts, limits) in one run")
-            started = [mk.start <= t and self.results[k].arrival is None for k, mk in enumerate(self.mechs)]
+            started = [
+                mk.start <= t
+                and self.results[k].arrival is None
+                and (mk.after is None or self.results[mk.after].arrival is not None)
+                for k, mk in enumerate(self.mechs)
+            ]
+            for k, mk in enumerate(self.mechs):  # a queued move starts when the one before arrives
+                if started[k] and k not in begun:
+                    begun.add(k)
+                    self.results[k].start = max(mk.start, t)
             base_cfg = []
             for k, mk in enumerate(self.mechs):
                 if not started[k]:
@@ -457,6 +480,7 @@ class _Run:
             brownouts.append((b_start, self.length))
         for k, res in enumerate(self.results):
             res.energy = y[6 + 3 * k] * self.e_scale
+            res.charge = y[self.tail + 2 + k] * self.q_scale
         return BusResult(
             self.results,
             self.vmin,
@@ -469,6 +493,8 @@ class _Run:
             trace,
             pieces,
             switches,
+            y[self.tail] * self.q_scale,
+            y[self.tail + 1] * self.i2_scale,
         )
 
     def _piece(self, rhs, t, t1, y, events, restart, stiff):
@@ -509,12 +535,14 @@ class _Run:
     def _rhs(self, config, root, dirs):
         n = len(self.mechs)
         R = self.battery.R
+        tail = self.tail
+        rate = getattr(self.battery, "peukert_rate", lambda current: current)
 
         def rhs(t, y):
             V = self.bus(y, config, root)
             v_oc = self._voc(y)
             I = self.base
-            dy = [0.0] * (4 + 3 * n)
+            dy = [0.0] * (tail + 2 + n)
             for k, mk in enumerate(self.mechs):
                 br = config[k]
                 if br == DONE:
@@ -529,10 +557,13 @@ class _Run:
                 dy[4 + 3 * k] = y[5 + 3 * k] * mk.v_ref / mk.d
                 dy[5 + 3 * k] = acc / mk.v_ref
                 dy[6 + 3 * k] = v_oc * i_s / self.e_scale
+                dy[tail + 2 + k] = i_s / self.q_scale
             dy[0] = I / self.q_scale
             dy[1] = v_oc * I / self.e_scale
             dy[2] = V * I / self.e_scale
             dy[3] = R * I * I / self.e_scale
+            dy[tail] = rate(I) / self.q_scale
+            dy[tail + 1] = I * I / self.i2_scale
             return dy
 
         return rhs
