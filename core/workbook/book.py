@@ -66,3 +66,4 @@ class Workbook:
     data: dict = dc_field(default_factory=dict, repr=False, compare=False)  # the TOML as read
     folder: Path | None = None  # where a card's relative preset path starts
     _cache: dict = dc_field(default_factory=dict, repr=False, compare=False)
+    match: Any = None  # core.workbook.match.MatchSpec: the [match] table, if the file has one

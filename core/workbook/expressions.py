@@ -385,6 +385,10 @@ def evaluate(expr: Expr, scope: Scope, where: str, src: str) -> Any:
 
     def output(card: str, path: list[str]):
         wb = scope.workbook
+        if card == "match" and wb is not None and wb.match is not None:  # the [match] table's outputs
+            from .match import read_output
+
+            return read_output(scope, path, fail)
         if wb is None or card not in wb.cards:
             known = ", ".join(sorted(wb.cards)) if wb else "none"
             fail(f"{shown(card)} is not a card (cards: {known or 'none'})")
