@@ -468,7 +468,7 @@ def _outcome(spec, occ, bus, battery, controller, vals) -> MatchOutcome:
         "min_bus_time": bus.min_bus_time,
         "time_below_brownout": _below(trace, controller.brownout),
         "brownouts": len(bus.brownouts),
-        "brownout_time": sum(e - s for s, e in bus.brownouts),
+        "brownout_time": float(sum(e - s for s, e in bus.brownouts)),
         "charge_used": bus.charge / AH,
         "peukert_charge_used": bus.peukert_charge / AH,
         "energy": bus.energy_oc / 3600.0,

@@ -251,10 +251,13 @@ def _run_match(wb: Workbook, scope: Scope, results: dict[str, CardResult]):
     """The [match] at these values (cached by what it reads), into the scope as `match`."""
     from .match import NAME, run
 
-    key = (
+    spec = wb.match
+    read = set().union(*(v.names for v in spec.values.values() if hasattr(v, "names")))
+    moved = {ev.card for ev in spec.events}
+    key = (  # what the match reads: its references' variables and the cards it moves
         NAME,
-        tuple(sorted((n, repr(v)) for n, v in scope.variables.items() if not isinstance(v, Missing))),
-        tuple((n, repr(sorted(c.entries.items())), c.error) for n, c in results.items()),
+        tuple(sorted((n, repr(scope.variables.get(n))) for n in read if n in scope.variables)),
+        tuple((n, repr(sorted(c.entries.items())), c.error) for n, c in results.items() if n in moved),
     )
     cached = wb._cache.get(key)
     if cached is None:
