@@ -65,10 +65,10 @@ def run(args) -> int:
         return 0
     o = m.outputs
     length = m.spec.values["length"]
+    _say(f"{printable(wb.name)} ({printable(wb.source)})")
     _say(
-        f"{printable(wb.name)} ({printable(wb.source)}): match of {length:g} s, "
-        f"{len(m.moves)} moves, R = {m.battery.R * 1000:.4g} mΩ, start {m.battery.start_soc * 100:.4g} %, "
-        f"brownout {m.controller.brownout:g} V"
+        f"  match of {length:g} s, {len(m.moves)} moves; battery {m.battery.R * 1000:.4g} mΩ, "
+        f"{m.battery.start_soc * 100:.4g} % charged; brownout {m.controller.brownout:g} V"
     )
     width = max(len(label) for label, _ in OUTPUTS.values())
     for key, (label, unit) in OUTPUTS.items():
@@ -77,15 +77,12 @@ def run(args) -> int:
         if key == "min_bus_time" and m.running_at_min:
             text += f"  ({', '.join(m.running_at_min)} running)"
         _say(f"  {label:<{width}}  {text}")
-    shares = ", ".join(f"{printable(k)} {v * 100:.3g} %" for k, v in m.shares.items())
-    _say(f"  {'Share of the charge':<{width}}  {shares}")
-    _say(
-        f"  {'Peak supply per motor':<{width}}  "
-        + ", ".join(
-            f"{printable(k)} {v:.4g} A ({v / 40 * 100:.3g} % of 40 A)" for k, v in m.channel_peaks.items()
-        )
-    )
-    _say("  (no breaker trip table entered: no trip predicted; core.match.breaker takes one)")
+    _say("  Share of the charge; peak supply current per motor (of a 40 A breaker)")
+    for k, v in m.shares.items():
+        peak = m.channel_peaks.get(k)
+        more = f"   peak {peak:.4g} A ({peak / 40 * 100:.3g} %)" if peak is not None else ""
+        _say(f"    {printable(k):<12} {v * 100:6.3g} %{more}")
+    _say("  (no breaker trip table entered, so no trip is predicted)")
     if m.brownouts:
         _say(f"Brownouts ({len(m.brownouts)})")
         for b in m.brownouts[:20]:

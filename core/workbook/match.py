@@ -265,7 +265,13 @@ def _event(i: int, data: dict, wb: Workbook, length: float) -> Event:
             raise InputError(f"{where}.every", f"must be > 0 s, got {every:g} s", src)
     count = data.get("count", 1 if every is None else None)
     if count is None:  # every without count: until the end
-        count = int(min((length - at) / every + 1, MAX_MOVES + 1))
+        count = int(min((length - at) / every, 1e9)) + 1
+        if count > MAX_MOVES:
+            raise InputError(
+                f"{where}.every",
+                f"repeats {count} times in the match; at most {MAX_MOVES} moves on the bus",
+                src,
+            )
     if isinstance(count, bool) or not isinstance(count, int) or count < 1:
         raise InputError(f"{where}.count", f"must be a whole number ≥ 1, got {shown(count)}", src)
     if count > 1 and every is None:
