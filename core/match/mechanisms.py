@@ -54,6 +54,9 @@ taken to collapse: the outputs are disabled as in a brownout.
 At the goal a mechanism's move ends (as the card's does): it draws nothing after (holding there is
 not modelled here). Energy: dE_oc/dt = V_oc·I, dE_bus/dt = V·I, dE_R/dt = R·I² (battery (M5)), and
 each mechanism's ∫V_oc·N·I_s dt (the card's energy, its EMF times its current, when V_oc = V_b).
+The state's tail (after the moves' 4 + 3n) integrates what the match's outputs need besides: the
+Peukert-weighted charge (battery (M4)), ∫I²dt (the RMS current) and each move's charge ∫N·I_s dt (its
+share). A move given `after` (queued) starts at its time or when that earlier move reaches its goal.
 Bounded: every step is charged to the solve's budget (core.sim.integrate), at most MAX_PIECES
 pieces and MAX_MECHANISMS mechanisms; every input checked (InputError names the field).
 """
