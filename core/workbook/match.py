@@ -39,8 +39,8 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from .. import units
 from ..errors import InputError, shown
+from .book import MATCH_OUTPUTS as OUTPUTS
 from .book import Expr, Workbook
 from .expressions import Scope, evaluate, literal_value, parse_expression
 
@@ -338,26 +338,6 @@ class MatchOutcome:
         }
 
 
-OUTPUTS = {  # name: (label, unit shown and read by requirements)
-    "min_bus_voltage": ("Lowest bus voltage", "V"),
-    "min_bus_time": ("  at", "s"),
-    "time_below_brownout": ("Time below brownout", "s"),
-    "brownouts": ("Brownouts", ""),
-    "brownout_time": ("Outputs disabled for", "s"),
-    "charge_used": ("Charge used", "A*h"),
-    "peukert_charge_used": ("Charge used, Peukert-weighted", "A*h"),
-    "energy": ("Energy from the cells", "W*h"),
-    "end_charge": ("End state of charge", "%"),
-    "end_available": ("End charge available (Peukert)", "%"),
-    "end_voltage": ("End open-circuit voltage", "V"),
-    "peak_current": ("Peak battery current", "A"),
-    "rms_current": ("RMS battery current", "A"),
-    "main_breaker_load": ("Main breaker peak (of 120 A)", "%"),
-    "moves": ("Moves finished", ""),
-    "unfinished": ("Moves not finished", ""),
-}
-
-
 def run(spec: MatchSpec, wb: Workbook, scope: Scope, cards: dict) -> MatchOutcome:
     """The match at the solved workbook (`scope` its values, `cards` its CardResults)."""
     from ..match.battery import Battery
@@ -501,26 +481,3 @@ def _outcome(spec, occ, bus, battery, controller, vals) -> MatchOutcome:
     out.shares = shares
     out.channel_peaks = peaks
     return out
-
-
-# ---------------------------------------------------------------------------------------------
-# Read by requirements (core.workbook.expressions asks here for `match.OUTPUT`)
-
-
-def read_output(scope: Scope, path: list[str], fail) -> Any:
-    ureg = units.registry()
-    if len(path) != 1 or path[0] not in OUTPUTS:
-        fail(f"{shown('.'.join(path))} is not an output of the match (outputs: {', '.join(OUTPUTS)})")
-    name = path[0]
-    unit = OUTPUTS[name][1]
-    unit = "percent" if unit == "%" else unit
-    if scope.static:
-        return ureg.Quantity(1.0, unit) if unit else 1.0
-    if NAME in scope.failed:
-        from .expressions import NotSolved
-
-        raise NotSolved(f"the match could not be run ({scope.failed[NAME]})")
-    value = scope.cards[NAME].outputs[name]
-    if name in ("brownouts", "moves", "unfinished"):
-        return float(value)
-    return ureg.Quantity(float(value), unit) if unit else float(value)
