@@ -168,6 +168,8 @@ def test_worst_case_of_a_match_requirement():
         ),
         ("[match]\n[[match.events]]\nat = 'nan'\ncard = 'lift'\n", "match.events[1].at", ""),
         ("[match]\nbase_load = 1e999\n", "match.base_load", "finite"),
+        ("[match]\nlength = '2 h'\n", "match.length", "at most 3600 s"),
+        ("[match]\nlength = 0\n", "match.length", "above 0 s"),
         (
             "[match]\n[[match.events]]\nat = 1\ncard = 'lift'\nevery = 0.1\ncount = 100000\n",
             "match.events[1].count",
@@ -229,6 +231,16 @@ def test_a_card_that_cannot_be_solved_is_named_not_a_traceback():
     assert out.match is None
     assert "match.events[1] (lift at 0 s)" in out.match_error and "could not be solved" in out.match_error
     assert out.checks[0].holds is None and "the match could not be run" in out.checks[0].error
+
+
+def test_check_says_why_the_match_did_not_run(tmp_path, capsys):
+    p = tmp_path / "robot.toml"
+    base = LIFT.replace('load_mass = "15 lb"', 'load_mass = "= battery_resistance * 100000 lb/ohm"')
+    p.write_text(
+        textwrap.dedent(base) + textwrap.dedent(ALONE) + '[[requirements]]\ncheck = "match.brownouts == 0"\n'
+    )
+    code, out, _ = run_cli(["check", str(p)], capsys)
+    assert code == 1 and "match not run: match.events[1] (lift at 0 s)" in out
 
 
 def test_a_battery_entry_out_of_range_at_run_time_is_named():

@@ -156,6 +156,12 @@ def parse(data: Any, wb: Workbook) -> MatchSpec:
     if len(rows) > MAX_EVENT_ROWS:
         raise InputError(f"{NAME}.events", f"has {len(rows)} events; at most {MAX_EVENT_ROWS}", src)
     length = values["length"]
+    from ..match.mechanisms import MAX_LENGTH
+
+    if not 0 < length <= MAX_LENGTH:
+        raise InputError(
+            f"{NAME}.length", f"must be above 0 s and at most {MAX_LENGTH:g} s, got {length:g} s", src
+        )
     events = [_event(i, r, wb, length) for i, r in enumerate(rows, 1)]
     spec = MatchSpec(values, controller, ocv, events, src)
     moves = sum(1 for _ in spec.occurrences())
