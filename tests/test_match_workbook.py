@@ -332,3 +332,49 @@ def test_example_holds_fresh_and_fails_tired(capsys):
         capsys,
     )
     assert code == 1 and "✘ Match: battery left" in out
+
+
+def test_main_breaker_table_margin_and_trip_by_hand():
+    """A base load alone (no moves): a constant current, so θ(t) = g·(1 − e^{−t/τ}) (breaker.py M13)."""
+    from gearhead.core.match.breaker import Breaker
+
+    table = [[2.0, 10.0], [5.0, 1.0]]
+    extra = f"""
+    [match]
+    length = "10 s"
+    base_load = "300 A"
+    main_breaker = {table}
+    [[requirements]]
+    name = "breaker"
+    check = "match.main_breaker_margin > 0 %"
+    """
+    out = workbook.solve(book(extra))
+    m = out.match
+    brk = Breaker(120.0, tuple(map(tuple, table)))
+    i = m.outputs["peak_current"]  # the base load at the sagged bus: 300 A whatever the voltage
+    assert i == pytest.approx(300.0)
+    theta = brk.advance(0.0, 300.0, 10.0)
+    assert m.outputs["main_breaker_margin"] == pytest.approx(100 * (1 - theta), rel=1e-9)
+    trip = brk.trip_time(300.0)
+    # the trip is read at the end of the trace's step where θ reached 1
+    times = [t for t, _, _ in m.bus.trace]
+    after = min(t for t in times if t >= trip)
+    assert trip < 10.0 and m.outputs["main_breaker_trip"] == pytest.approx(after, rel=1e-9)
+    assert out.checks[0].holds is False
+    # without a table: no margin, and a requirement reading it says why
+    out = workbook.solve(book(extra.replace(f"main_breaker = {table}", "")))
+    assert "main_breaker_margin" not in out.match.outputs
+    assert "no trip table" in out.checks[0].error
+
+
+@pytest.mark.parametrize(
+    "table, field",
+    [
+        ("[[0.5, 10]]", "match.main_breaker.trip_table[0].multiple"),
+        ("[]", "match.main_breaker"),
+        ("'x'", "match.main_breaker.trip_table"),
+    ],
+)
+def test_main_breaker_table_refused_named(table, field):
+    err = refused(f"[match]\nmain_breaker = {table}\n")
+    assert err.field == field, str(err)

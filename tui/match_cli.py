@@ -72,6 +72,8 @@ def run(args) -> int:
     )
     width = max(len(label) for label, _ in OUTPUTS.values())
     for key, (label, unit) in OUTPUTS.items():
+        if key not in o:  # the breaker's margin without a trip table, its trip time without a trip
+            continue
         value = o[key]
         text = f"{value:d}" if isinstance(value, int) else f"{units.format_number(value)} {unit}".rstrip()
         if key == "min_bus_time" and m.running_at_min:
@@ -82,7 +84,8 @@ def run(args) -> int:
         peak = m.channel_peaks.get(k)
         more = f"   peak {peak:.4g} A ({peak / 40 * 100:.3g} %)" if peak is not None else ""
         _say(f"    {printable(k):<12} {v * 100:6.3g} %{more}")
-    _say("  (no breaker trip table entered, so no trip is predicted)")
+    if "main_breaker_margin" not in o:
+        _say("  (no breaker trip table entered, so no trip is predicted)")
     if m.brownouts:
         _say(f"Brownouts ({len(m.brownouts)})")
         for b in m.brownouts[:20]:

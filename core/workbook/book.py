@@ -85,6 +85,8 @@ MATCH_OUTPUTS = {  # name: (label, unit shown and read by requirements)
     "peak_current": ("Peak battery current", "A"),
     "rms_current": ("RMS battery current", "A"),
     "main_breaker_load": ("Main breaker peak (of 120 A)", "%"),
+    "main_breaker_margin": ("Main breaker margin (1 − θ)", "%"),
+    "main_breaker_trip": ("Main breaker would trip at", "s"),
     "moves": ("Moves finished", ""),
     "unfinished": ("Moves not finished", ""),
 }

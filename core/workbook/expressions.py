@@ -452,7 +452,11 @@ def _match_output(scope: Scope, path: list[str], fail) -> Any:
         return ureg.Quantity(1.0, unit) if unit else 1.0
     if "match" in scope.failed:
         raise NotSolved(f"the match could not be run ({scope.failed['match']})")
-    value = float(scope.cards["match"].outputs[name])
+    given = scope.cards["match"].outputs
+    if name not in given:
+        why = "no trip" if name == "main_breaker_trip" else "no trip table (match.main_breaker)"
+        raise NotSolved(f"match.{name} is not given: {why}")
+    value = float(given[name])
     return ureg.Quantity(value, unit) if unit else value
 
 

@@ -81,6 +81,7 @@ class MatchSpec:
     ocv: tuple | None
     events: list[Event]
     source: str
+    main_breaker: Any = None  # core.match.breaker.Breaker with the trip table entered, else None
 
     def occurrences(self) -> list[tuple[float, Event]]:
         """Every move asked, (time, event), by time then file order; those past the end dropped."""
@@ -104,7 +105,7 @@ def parse(data: Any, wb: Workbook) -> MatchSpec:
     src = wb.source
     if not isinstance(data, dict):
         raise InputError(NAME, "must be a table ([match] ...)", src)
-    allowed = set(KEYS) | {"controller", "ocv", "events"}
+    allowed = set(KEYS) | {"controller", "ocv", "events", "main_breaker"}
     for key in data:
         if key not in allowed:
             raise InputError(f"{NAME}.{key}", f"unknown key of the match ({', '.join(sorted(allowed))})", src)
@@ -150,6 +151,22 @@ def parse(data: Any, wb: Workbook) -> MatchSpec:
         except (TypeError, ValueError):
             raise InputError(f"{NAME}.ocv", "must be rows [state of charge, volts]", src) from None
         ocv = tuple(tuple(r) for r in ocv)
+    main_breaker = None
+    if "main_breaker" in data:  # a trip table ((multiple of 120 A, seconds), ...): no default (breaker.py)
+        from ..match.breaker import MAIN_RATING, Breaker
+
+        try:
+            main_breaker = Breaker(MAIN_RATING, data["main_breaker"], name="main_breaker")
+        except InputError as exc:
+            raise InputError(f"{NAME}.{exc.field}", exc.message, src) from None
+        except (TypeError, ValueError):
+            raise InputError(
+                f"{NAME}.main_breaker", "must be rows [multiple of 120 A, seconds]", src
+            ) from None
+        if not main_breaker.calibrated:
+            raise InputError(
+                f"{NAME}.main_breaker", "needs at least one row [multiple of 120 A, seconds]", src
+            )
     rows = data.get("events", [])
     if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
         raise InputError(f"{NAME}.events", "must be [[match.events]] tables", src)
@@ -163,7 +180,7 @@ def parse(data: Any, wb: Workbook) -> MatchSpec:
             f"{NAME}.length", f"must be above 0 s and at most {MAX_LENGTH:g} s, got {length:g} s", src
         )
     events = [_event(i, r, wb, length) for i, r in enumerate(rows, 1)]
-    spec = MatchSpec(values, controller, ocv, events, src)
+    spec = MatchSpec(values, controller, ocv, events, src, main_breaker)
     moves = sum(1 for _ in spec.occurrences())
     if moves > MAX_MOVES:
         raise InputError(
@@ -446,6 +463,28 @@ def _running(moves, t: float) -> tuple[str, ...]:
     return tuple(out)
 
 
+def _breaker(brk, trace) -> dict[str, float]:
+    """The main breaker's thermal state (breaker.py (M12)) along the battery current: each step of
+    the trace advanced exactly at the step's mean current (the trace holds every solver step and
+    switch, so the current is nearly constant over one). Margin 1 − θ_max, in %; the first time θ
+    reaches 1 (a trip; the run does not cut the load)."""
+    if brk is None:
+        return {}
+    theta, top, trip = 0.0, 0.0, None
+    for (t0, _, i0), (t1, _, i1) in zip(trace, trace[1:]):
+        if t1 <= t0:
+            continue
+        theta = brk.advance(theta, 0.5 * (i0 + i1), t1 - t0)
+        if theta > top:
+            top = theta
+        if trip is None and theta >= 1.0:
+            trip = t1
+    out = {"main_breaker_margin": 100.0 * (1.0 - top)}
+    if trip is not None:
+        out["main_breaker_trip"] = trip
+    return out
+
+
 def _outcome(spec, occ, bus, battery, controller, vals) -> MatchOutcome:
     from ..match.battery import AH
     from ..match.breaker import MAIN_RATING
@@ -470,6 +509,7 @@ def _outcome(spec, occ, bus, battery, controller, vals) -> MatchOutcome:
         "peak_current": peak,
         "rms_current": math.sqrt(max(bus.current_squared, 0.0) / length),
         "main_breaker_load": 100.0 * peak / MAIN_RATING,
+        **_breaker(spec.main_breaker, trace),
         "moves": sum(1 for *_, r in moves if r.arrival is not None),
         "unfinished": sum(1 for *_, r in moves if r.arrival is None),
     }
