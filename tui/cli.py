@@ -85,6 +85,9 @@ def _parser() -> argparse.ArgumentParser:
     from . import workbook_cli  # `check`, and solve/sweep of a workbook file
 
     workbook_cli.add_parser(sub)
+    from . import match_cli  # `match`: a workbook's [match]
+
+    match_cli.add_parser(sub)
     return p
 
 
@@ -207,6 +210,10 @@ def _command(args) -> int:
 
     if args.command == "check":
         return workbook_cli.check(args)
+    if args.command == "match":
+        from . import match_cli
+
+        return match_cli.run(args)
     if args.command in ("solve", "sweep") and workbook_cli.is_workbook(args.calculator):
         return workbook_cli.solve(args) if args.command == "solve" else workbook_cli.sweep(args)
     if args.command == "solve":

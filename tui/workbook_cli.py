@@ -134,6 +134,8 @@ def check(args) -> int:
     for name, card in outcome.cards.items():
         if card.error:
             _say(f"  card {name} ({card.calculator}) not solved: {card.error}")
+    if outcome.match_error is not None:
+        _say(f"  match not run: {outcome.match_error}")
     for card in wb.cards.values():
         for warning in card.warnings:
             _say(f"  warning: {warning}")

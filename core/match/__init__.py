@@ -15,5 +15,6 @@
                  coasting inside their equations; one alone is its card                 (B1-B6)
 
 SI inside: volts, amperes, ohms, seconds, coulombs, joules (amp-hours and watt-hours only in the
-outputs that name them). Not yet wired to the workbook's [match] table, the CLI or the app.
+outputs that name them). The workbook's [match] table (core/workbook/match.py) and `gearhead match`
+run mechanisms.py; not yet in the app.
 """

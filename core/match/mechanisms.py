@@ -54,6 +54,9 @@ taken to collapse: the outputs are disabled as in a brownout.
 At the goal a mechanism's move ends (as the card's does): it draws nothing after (holding there is
 not modelled here). Energy: dE_oc/dt = V_oc·I, dE_bus/dt = V·I, dE_R/dt = R·I² (battery (M5)), and
 each mechanism's ∫V_oc·N·I_s dt (the card's energy, its EMF times its current, when V_oc = V_b).
+The state's tail (after the moves' 4 + 3n) integrates what the match's outputs need besides: the
+Peukert-weighted charge (battery (M4)) and ∫I²dt (the RMS current); each move's charge ∫N·I_s dt (its
+share) is summed by the trapezoid rule on the trace (every accepted step and switch). A move given `after` (queued) starts at its time or when that earlier move reaches its goal.
 Bounded: every step is charged to the solve's budget (core.sim.integrate), at most MAX_PIECES
 pieces and MAX_MECHANISMS mechanisms; every input checked (InputError names the field).
 """
@@ -88,6 +91,7 @@ class MechanismMove:
     setup: Any
     start: float = 0.0
     brownout_disables: bool = True
+    after: int | None = None  # the index of a move this one waits for (queued: starts at its arrival)
 
 
 def from_card(calc_id: str, raw: dict, name: str | None = None, start: float = 0.0) -> MechanismMove:
@@ -128,6 +132,9 @@ class _Mech:
         if not duty_from <= set(LIMIT_EFFECTS):
             raise InputError(f"{where}.effects", f"{', '.join(sorted(duty_from))}: not on the match bus yet")
         self.start = number(f"{where}.start", ev.start, low=0.0, high=length)
+        if ev.after is not None and (isinstance(ev.after, bool) or not isinstance(ev.after, int)):
+            raise InputError(f"{where}.after", f"must be the index of an earlier move, got {shown(ev.after)}")
+        self.after = ev.after
         motion.check_can_move(s)  # the card's own check: names the field
         m = s.mech
         self.name, self.disables = ev.name, ev.brownout_disables
@@ -204,6 +211,7 @@ class MechanismResult:
     peak_stator_current: float = 0.0  # A per motor, largest |I|
     peak_supply_current: float = 0.0  # A per motor
     energy: float = 0.0  # J, ∫V_oc·N·I_s dt
+    charge: float = 0.0  # C, ∫N·I_s dt (its share of the battery's charge): the trapezoid rule on the trace
     trace: list = field(default_factory=list)  # (t, position q, speed toward the goal)
 
     @property
@@ -224,6 +232,8 @@ class BusResult:
     trace: list  # (t, V, I) at every accepted step and switch
     pieces: int
     switches: list = field(default_factory=list)  # (t, event): every located switch, in order
+    peukert_charge: float = 0.0  # C, ∫I·(I/I_H)^(k−1) dt (battery (M4)); the plain charge on a source
+    current_squared: float = 0.0  # A²·s, ∫I² dt (the RMS current's numerator)
 
 
 @dataclass(frozen=True)
@@ -284,13 +294,21 @@ class _Run:
             mk = _Mech(f"moves[{i}]", ev, self.length)
             if mk.name in names:
                 raise InputError(f"moves[{i}].name", f"{shown(mk.name)} names two moves")
+            if mk.after is not None and not 0 <= mk.after < i:
+                raise InputError(f"moves[{i}].after", f"must be the index of an earlier move, got {mk.after}")
             names.add(mk.name)
             self.mechs.append(mk)
         self.battery, self.ctl = match.battery, match.controller
         v0 = self.battery.ocv(self.battery.start_soc)
         self.e_scale = sum(mk.e_ref for mk in self.mechs) or 1e-3 * v0
         self.q_scale = self.e_scale / v0
+        # the tail of the state (after the 4 + 3n the moves need): Q_p and ∫I²dt, scaled as the
+        # charge is (∫I²dt by a typical 100 A) so the step control sees them alike. Each move's
+        # charge is summed on the trace instead (a state per move made the run 2.5 times slower)
+        self.i2_scale = self.q_scale * 100.0
+        self.tail = 4 + 3 * len(self.mechs)
         self.results = [MechanismResult(mk.name, mk.start) for mk in self.mechs]
+        self.last_supply: list = [None] * len(self.mechs)  # (t, N·I_s) at the last record
 
     # --- the bus at a state, with a held configuration -------------------------------------------
     def _emf(self, k, y):
@@ -360,7 +378,7 @@ class _Run:
     # --- the pieces --------------------------------------------------------------------------------
     def result(self) -> BusResult:
         n = len(self.mechs)
-        y = [0.0, 0.0, 0.0, 0.0] + [0.0] * (3 * n)
+        y = [0.0, 0.0, 0.0, 0.0] + [0.0] * (3 * n) + [0.0, 0.0]
         t = 0.0
         enabled, ready, b_start = True, 0.0, 0.0
         brownouts: list[tuple[float, float]] = []
@@ -374,12 +392,22 @@ class _Run:
         prefer = None
         last_event = None
         switches: list = []
+        begun: set[int] = set()
         while t < self.length:
             pieces += 1
             charge(1)
             if pieces > MAX_PIECES:
                 raise InputError("moves", f"more than {MAX_PIECES} switches (brownouts, limits) in one run")
-            started = [mk.start <= t and self.results[k].arrival is None for k, mk in enumerate(self.mechs)]
+            started = [
+                mk.start <= t
+                and self.results[k].arrival is None
+                and (mk.after is None or self.results[mk.after].arrival is not None)
+                for k, mk in enumerate(self.mechs)
+            ]
+            for k, mk in enumerate(self.mechs):  # a queued move starts when the one before arrives
+                if started[k] and k not in begun:
+                    begun.add(k)
+                    self.results[k].start = max(mk.start, t)
             base_cfg = []
             for k, mk in enumerate(self.mechs):
                 if not started[k]:
@@ -469,6 +497,8 @@ class _Run:
             trace,
             pieces,
             switches,
+            y[self.tail] * self.q_scale,
+            y[self.tail + 1] * self.i2_scale,
         )
 
     def _piece(self, rhs, t, t1, y, events, restart, stiff):
@@ -507,14 +537,15 @@ class _Run:
         return 1 if F > F_fric else -1 if F < -F_fric else 0
 
     def _rhs(self, config, root, dirs):
-        n = len(self.mechs)
         R = self.battery.R
+        tail = self.tail
+        rate = getattr(self.battery, "peukert_rate", lambda current: current)
 
         def rhs(t, y):
             V = self.bus(y, config, root)
             v_oc = self._voc(y)
             I = self.base
-            dy = [0.0] * (4 + 3 * n)
+            dy = [0.0] * (tail + 2)
             for k, mk in enumerate(self.mechs):
                 br = config[k]
                 if br == DONE:
@@ -533,6 +564,8 @@ class _Run:
             dy[1] = v_oc * I / self.e_scale
             dy[2] = V * I / self.e_scale
             dy[3] = R * I * I / self.e_scale
+            dy[tail] = rate(I) / self.q_scale
+            dy[tail + 1] = I * I / self.i2_scale
             return dy
 
         return rhs
@@ -599,6 +632,10 @@ class _Run:
             res = self.results[k]
             i_s = mk.supply(br, E, V)
             I += mk.N * i_s
+            last = self.last_supply[k]
+            if last is not None:
+                res.charge += 0.5 * (last[1] + mk.N * i_s) * (t - last[0])
+            self.last_supply[k] = (t, mk.N * i_s)
             res.peak_supply_current = max(res.peak_supply_current, i_s)
             res.peak_stator_current = max(res.peak_stator_current, abs(mk.stator(br, E, V)))
             res.trace.append((t, mk.q0 + mk.s * y[4 + 3 * k] * mk.d, y[5 + 3 * k] * mk.v_ref))

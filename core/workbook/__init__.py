@@ -37,7 +37,9 @@ requirements that depend on it, as not holding: that is the design failing, not 
 
 The package by concern: `expressions` (the language: parsing, evaluating, units), `file` (the TOML
 read and written), `kinds` (a linked value fits its field, a comparison one kind), `solving` (the
-order and the solve), `book` (the parsed workbook as data) and `study` (sweeps and worst cases:
+order and the solve), `book` (the parsed workbook as data), `match` (the [match] table: the robot's
+moves on one battery, run after the cards, its outputs `match.OUTPUT` read by requirements) and
+`study` (sweeps and worst cases:
 imported on its own, as it loads core.sweep and core.tolerance). What other modules use is named
 here.
 """

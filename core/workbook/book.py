@@ -66,3 +66,27 @@ class Workbook:
     data: dict = dc_field(default_factory=dict, repr=False, compare=False)  # the TOML as read
     folder: Path | None = None  # where a card's relative preset path starts
     _cache: dict = dc_field(default_factory=dict, repr=False, compare=False)
+    match: Any = None  # core.workbook.match.MatchSpec: the [match] table, if the file has one
+
+
+# the [match] table's outputs (core/workbook/match.py), read by requirements as match.NAME
+MATCH_OUTPUTS = {  # name: (label, unit shown and read by requirements)
+    "min_bus_voltage": ("Lowest bus voltage", "V"),
+    "min_bus_time": ("  at", "s"),
+    "time_below_brownout": ("Time below brownout", "s"),
+    "brownouts": ("Brownouts", ""),
+    "brownout_time": ("Outputs disabled for", "s"),
+    "charge_used": ("Charge used", "A*h"),
+    "peukert_charge_used": ("Charge used, Peukert-weighted", "A*h"),
+    "energy": ("Energy from the cells", "W*h"),
+    "end_charge": ("End state of charge", "%"),
+    "end_available": ("End charge available (Peukert)", "%"),
+    "end_voltage": ("End open-circuit voltage", "V"),
+    "peak_current": ("Peak battery current", "A"),
+    "rms_current": ("RMS battery current", "A"),
+    "main_breaker_load": ("Main breaker peak (of 120 A)", "%"),
+    "main_breaker_margin": ("Main breaker margin (1 − θ)", "%"),
+    "main_breaker_trip": ("Main breaker would trip at", "s"),
+    "moves": ("Moves finished", ""),
+    "unfinished": ("Moves not finished", ""),
+}

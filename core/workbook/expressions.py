@@ -385,6 +385,8 @@ def evaluate(expr: Expr, scope: Scope, where: str, src: str) -> Any:
 
     def output(card: str, path: list[str]):
         wb = scope.workbook
+        if card == "match" and wb is not None and wb.match is not None:  # the [match] table's outputs
+            return _match_output(scope, path, fail)
         if wb is None or card not in wb.cards:
             known = ", ".join(sorted(wb.cards)) if wb else "none"
             fail(f"{shown(card)} is not a card (cards: {known or 'none'})")
@@ -434,6 +436,28 @@ def evaluate(expr: Expr, scope: Scope, where: str, src: str) -> Any:
         return value
 
     return walk(expr.tree)
+
+
+def _match_output(scope: Scope, path: list[str], fail) -> Any:
+    """`match.NAME`: an output of the workbook's [match] (core/workbook/match.py), run after the cards."""
+    from .book import MATCH_OUTPUTS
+
+    ureg = units.registry()
+    if len(path) != 1 or path[0] not in MATCH_OUTPUTS:
+        fail(f"{shown('.'.join(path))} is not an output of the match (outputs: {', '.join(MATCH_OUTPUTS)})")
+    name = path[0]
+    unit = MATCH_OUTPUTS[name][1]
+    unit = "percent" if unit == "%" else unit
+    if scope.static:
+        return ureg.Quantity(1.0, unit) if unit else 1.0
+    if "match" in scope.failed:
+        raise NotSolved(f"the match could not be run ({scope.failed['match']})")
+    given = scope.cards["match"].outputs
+    if name not in given:
+        why = "no trip" if name == "main_breaker_trip" else "no trip table (match.main_breaker)"
+        raise NotSolved(f"match.{name} is not given: {why}")
+    value = float(given[name])
+    return ureg.Quantity(value, unit) if unit else value
 
 
 def _reads_names(node: ast.AST, scope: Scope) -> bool:

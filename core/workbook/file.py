@@ -58,7 +58,7 @@ def from_dict(
             "format", f"version {fmt} is newer than this Gearhead reads ({FORMAT}); upgrade Gearhead", src
         )
     for key in data:
-        if key not in ("format", "name", "description", "variables", "cards", "requirements"):
+        if key not in ("format", "name", "description", "variables", "cards", "requirements", "match"):
             hint = " (a preset? use `gearhead solve CALC --preset FILE`)" if key == "calculator" else ""
             raise InputError(key, f"unknown top-level key of a workbook{hint}", src)
     name = data.get("name", Path(src).stem)
@@ -103,6 +103,10 @@ def from_dict(
     )
     wb.data["variables"] = dict(raw_vars)
     wb.order = dependency_order(wb)
+    if "match" in data:  # before the kinds check: requirements may read match.OUTPUT
+        from .match import parse as parse_match
+
+        wb.match = parse_match(data["match"], wb)
     check_kinds(wb)
     return wb
 

@@ -135,6 +135,8 @@ class Outcome:
     cards: dict[str, CardResult]
     checks: list[CheckResult]
     rhs_evaluations: int = 0  # of the simulated cards solved for this outcome
+    match: Any = None  # core.workbook.match.MatchOutcome, when the workbook has a [match] that ran
+    match_error: str | None = None  # why the [match] could not be run
 
     @property
     def all_hold(self) -> bool:
@@ -149,6 +151,8 @@ class Outcome:
             "requirements": [c.as_json() for c in self.checks],
             "card_errors": {n: c.error for n, c in self.cards.items() if c.error},
         }
+        if self.match_error is not None:
+            out["match_error"] = self.match_error
         if with_cards:
             out["variables"] = {n: _json_value(v) for n, v in self.variables.items()}
             out["cards"] = {
@@ -237,9 +241,39 @@ def solve(wb: Workbook, overrides: Mapping[str, Any] | None = None) -> Outcome:
         else:
             scope.cards[node] = solution
         results[node] = CardResult(node, calc.id, solution, error, links, raw)
+    match, match_error = _run_match(wb, scope, results) if wb.match is not None else (None, None)
     checks = [_check(wb, scope, r) for r in wb.requirements]
     variables = {k: v for k, v in scope.variables.items() if not isinstance(v, Missing)}
-    return Outcome(wb, variables, results, checks, evaluations)
+    return Outcome(wb, variables, results, checks, evaluations, match, match_error)
+
+
+def _run_match(wb: Workbook, scope: Scope, results: dict[str, CardResult]):
+    """The [match] at these values (cached by what it reads), into the scope as `match`."""
+    from .match import NAME, run
+
+    spec = wb.match
+    read = set().union(*(v.names for v in spec.values.values() if hasattr(v, "names")))
+    moved = {ev.card for ev in spec.events}
+    key = (  # what the match reads: its references' variables and the cards it moves
+        NAME,
+        tuple(sorted((n, repr(scope.variables.get(n))) for n in read if n in scope.variables)),
+        tuple((n, repr(sorted(c.entries.items())), c.error) for n, c in results.items() if n in moved),
+    )
+    cached = wb._cache.get(key)
+    if cached is None:
+        try:
+            cached = (run(wb.match, wb, scope, results), None)
+        except NotSolved as exc:
+            cached = (None, str(exc))
+        except InputError as exc:
+            cached = (None, f"{exc.field}: {exc.message}")
+        wb._cache[key] = cached
+    outcome, error = cached
+    if error is not None:
+        scope.failed[NAME] = error
+    else:
+        scope.cards[NAME] = outcome
+    return outcome, error
 
 
 def _link_entry(wb: Workbook, scope: Scope, expr: Expr, f, where: str, overrides) -> Any:
@@ -316,7 +350,7 @@ def _holds(a: float, b: float, op: str) -> tuple[bool, float]:
 def _display_unit(wb: Workbook, r: Requirement) -> str:
     """The comparison's unit: that of a side written as a plain quantity ('1 s'), else of the first
     side's first variable or output."""
-    names = set(wb.variables) | set(wb.cards)
+    names = set(wb.variables) | set(wb.cards) | ({"match"} if wb.match is not None else set())
     for e in r.operands:
         if not (e.names & names):
             q = evaluate(e, Scope({}, {}, {}), "check", wb.source)

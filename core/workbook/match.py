@@ -1,0 +1,531 @@
+"""The workbook's `[match]` table (issue 43): the robot's mechanisms on one battery for a match, run
+on core.match.mechanisms' bus, its outputs readable by requirements as `match.OUTPUT`.
+
+    [match]
+    length = "150 s"                      # default 150 s
+    controller = "roborio2"               # or "roborio1" (brownout 6.75 V / 6.3 V, frc-docs)
+    brownout = "6.75 V"                   # optional: the controller's thresholds, edited
+    recovery = "7.5 V"
+    base_load = "3 A"                     # roboRIO, radio, sensors: never disabled
+    resistance = "= battery_resistance"   # the battery's own (default 0.015 ohm)
+    wiring_resistance = "0.003 ohm"       # default 0
+    capacity = "18 A*h"                   # at the 20 h rate
+    peukert = 1.25
+    charge = 1.0                          # the starting state of charge (or "70 %")
+    ocv = [[0.0, 11.94], [0.5, 12.54], [1.0, 12.72]]   # (state of charge, volts)
+
+    [[match.events]]
+    at = "2 s"                            # when the move is asked
+    card = "lift"                         # an elevator or arm card, mode = move
+    action = "move"                       # move: start → goal; return: goal → start
+    every = "20 s"                        # optional: repeated every 20 s ...
+    count = 7                             # ... 7 times in all (those past the end are dropped)
+
+Every entry is a number (in the unit shown), a quantity (`"0.02 ohm"`) or, for the battery, the base
+load and the thresholds, a reference `"= EXPR"` reading the workbook's variables. Events' `at` and
+`every` are plain (a number of seconds or a time).
+
+Events on one card are queued, never superposed: a move starts at its time or, if the card's previous
+move has not reached its goal yet, when it does. A move that never arrives (stuck, browned out to the
+end) holds the card's later moves back: they are counted in `match.unfinished`. Each move starts from
+rest at its start (the elevator's return from the top of its travel), as the card's scene does.
+The battery, controller and bus are core.match's (battery.py, brownout.py, mechanisms.py), with their
+defaults and the sources of each given there.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..errors import InputError, shown
+from .book import MATCH_OUTPUTS as OUTPUTS
+from .book import Expr, Workbook
+from .expressions import Scope, evaluate, literal_value, parse_expression
+
+NAME = "match"
+MAX_EVENT_ROWS = 1000  # [[match.events]] tables read; more is refused before any expansion
+MAX_MOVES = 200  # moves on the bus after `every`/`count` (core.match.mechanisms.MAX_MECHANISMS)
+ACTIONS = ("move", "return")
+CARDS_ON_BUS = ("elevator", "arm")
+NOT_ON_BUS = "not on the match bus yet: elevator and arm moves only"
+KEYS = {  # key: (unit, default, a reference allowed)
+    "length": ("s", 150.0, False),
+    "brownout": ("V", None, True),
+    "recovery": ("V", None, True),
+    "base_load": ("A", 0.0, True),
+    "resistance": ("ohm", 0.015, True),
+    "wiring_resistance": ("ohm", 0.0, True),
+    "capacity": ("A*h", 18.0, True),
+    "peukert": ("", 1.25, True),
+    "charge": ("", 1.0, True),
+}
+EVENT_KEYS = ("at", "card", "action", "every", "count")
+
+
+@dataclass
+class Event:
+    index: int  # 1-based, in file order
+    at: float  # s
+    card: str
+    action: str
+    every: float | None
+    count: int
+
+
+@dataclass
+class MatchSpec:
+    values: dict[str, Any]  # key -> float (in KEYS' unit) or Expr
+    controller: str
+    ocv: tuple | None
+    events: list[Event]
+    source: str
+    main_breaker: Any = None  # core.match.breaker.Breaker with the trip table entered, else None
+
+    def occurrences(self) -> list[tuple[float, Event]]:
+        """Every move asked, (time, event), by time then file order; those past the end dropped."""
+        length = self.values["length"]
+        out = []
+        for ev in self.events:
+            for j in range(ev.count):
+                t = ev.at + j * (ev.every or 0.0)
+                if t < length:
+                    out.append((t, ev))
+        out.sort(key=lambda x: (x[0], x[1].index))
+        return out
+
+
+# ---------------------------------------------------------------------------------------------
+# Reading the table
+
+
+def parse(data: Any, wb: Workbook) -> MatchSpec:
+    """The [match] table of `wb`'s file, every mistake an InputError naming the file and the field."""
+    src = wb.source
+    if not isinstance(data, dict):
+        raise InputError(NAME, "must be a table ([match] ...)", src)
+    allowed = set(KEYS) | {"controller", "ocv", "events", "main_breaker"}
+    for key in data:
+        if key not in allowed:
+            raise InputError(f"{NAME}.{key}", f"unknown key of the match ({', '.join(sorted(allowed))})", src)
+    if NAME in wb.cards or NAME in wb.variables:
+        kind = "card" if NAME in wb.cards else "variable"
+        raise InputError(
+            f"{'cards' if kind == 'card' else 'variables'}.{NAME}",
+            f"a {kind} named {NAME!r} would hide the [match] table's outputs; rename it",
+            src,
+        )
+    for node in list(wb.variables.values()) + list(wb.cards.values()):
+        exprs = (
+            [node.expr] if hasattr(node, "expr") and node.expr else list(getattr(node, "links", {}).values())
+        )
+        for e in exprs:
+            if NAME in e.names:
+                where = f"variables.{node.name}" if hasattr(node, "expr") else f"cards.{node.name}"
+                raise InputError(
+                    where, "reads the match's outputs: only requirements may (the match runs last)", src
+                )
+    static = _static_scope(wb)
+    values: dict[str, Any] = {}
+    for key, (unit, default, ref) in KEYS.items():
+        if key not in data:
+            values[key] = default
+            continue
+        values[key] = _scalar(f"{NAME}.{key}", data[key], unit, ref, wb, static)
+    controller = data.get("controller", "roborio2")
+    from ..match.brownout import BROWNOUT_VOLTS
+
+    if controller not in BROWNOUT_VOLTS:
+        raise InputError(
+            f"{NAME}.controller", f"must be one of {', '.join(BROWNOUT_VOLTS)}, got {shown(controller)}", src
+        )
+    ocv = data.get("ocv")
+    if ocv is not None:
+        from ..match.battery import Battery
+
+        try:
+            Battery(ocv_table=ocv)
+        except InputError as exc:
+            raise InputError(f"{NAME}.ocv", exc.message, src) from None
+        except (TypeError, ValueError):
+            raise InputError(f"{NAME}.ocv", "must be rows [state of charge, volts]", src) from None
+        ocv = tuple(tuple(r) for r in ocv)
+    main_breaker = None
+    if "main_breaker" in data:  # a trip table ((multiple of 120 A, seconds), ...): no default (breaker.py)
+        from ..match.breaker import MAIN_RATING, Breaker
+
+        try:
+            main_breaker = Breaker(MAIN_RATING, data["main_breaker"], name="main_breaker")
+        except InputError as exc:
+            raise InputError(f"{NAME}.{exc.field}", exc.message, src) from None
+        except (TypeError, ValueError):
+            raise InputError(
+                f"{NAME}.main_breaker", "must be rows [multiple of 120 A, seconds]", src
+            ) from None
+        if not main_breaker.calibrated:
+            raise InputError(
+                f"{NAME}.main_breaker", "needs at least one row [multiple of 120 A, seconds]", src
+            )
+    rows = data.get("events", [])
+    if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
+        raise InputError(f"{NAME}.events", "must be [[match.events]] tables", src)
+    if len(rows) > MAX_EVENT_ROWS:
+        raise InputError(f"{NAME}.events", f"has {len(rows)} events; at most {MAX_EVENT_ROWS}", src)
+    length = values["length"]
+    from ..match.mechanisms import MAX_LENGTH
+
+    if not 0 < length <= MAX_LENGTH:
+        raise InputError(
+            f"{NAME}.length", f"must be above 0 s and at most {MAX_LENGTH:g} s, got {length:g} s", src
+        )
+    events = [_event(i, r, wb, length) for i, r in enumerate(rows, 1)]
+    spec = MatchSpec(values, controller, ocv, events, src, main_breaker)
+    moves = sum(1 for _ in spec.occurrences())
+    if moves > MAX_MOVES:
+        raise InputError(
+            f"{NAME}.events", f"asks {moves} moves in {length:g} s; at most {MAX_MOVES} on the bus", src
+        )
+    return spec
+
+
+def _static_scope(wb: Workbook) -> Scope:
+    """The variables as the kinds check sees them (dimensions only), for checking references."""
+    scope = Scope({}, {}, {}, static=True, workbook=wb)
+    for node in wb.order:
+        if node in wb.variables:
+            v = wb.variables[node]
+            if v.expr is not None:
+                scope.variables[node] = evaluate(v.expr, scope, f"variables.{node}", wb.source)
+            else:
+                scope.variables[node] = literal_value(v)
+    return scope
+
+
+def _scalar(where: str, value: Any, unit: str, ref: bool, wb: Workbook, static: Scope | None) -> Any:
+    """A float in `unit`, or (a reference) its Expr, checked for its kind now."""
+    src = wb.source
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise InputError(
+            where, f"must be a number or a quantity ({unit or 'no unit'}), got {shown(value)}", src
+        )
+    if isinstance(value, (int, float)):
+        return _finite(where, value, src)
+    text = value.strip()
+    if text.startswith("="):
+        if not ref:
+            raise InputError(where, "takes a number or a quantity, not a reference", src)
+        expr = parse_expression(text[1:], where, src)
+        cards = expr.references(set(wb.cards))
+        if cards:
+            raise InputError(
+                where, f"reads the card {sorted(cards)[0]}: the match's entries read variables", src
+            )
+        _in_unit(where, evaluate(expr, static, where, src), unit, src)
+        return expr
+    expr = parse_expression(text, where, src)
+    if expr.references(set(wb.variables) | set(wb.cards)):
+        raise InputError(where, f'names a variable: write it "= {text}"', src)
+    return _in_unit(where, evaluate(expr, Scope({}, {}, {}), where, src), unit, src)
+
+
+def _finite(where: str, x: Any, src: str) -> float:
+    try:
+        f = float(x)
+    except OverflowError:
+        raise InputError(where, f"{shown(x)} is too large for a number", src) from None
+    if not math.isfinite(f):
+        raise InputError(where, f"{shown(x)} is not a finite number", src)
+    return f
+
+
+def _in_unit(where: str, q: Any, unit: str, src: str) -> float:
+    import pint
+
+    if isinstance(q, (str, bool)):
+        raise InputError(where, f"must be a number or a quantity ({unit or 'no unit'}), got {shown(q)}", src)
+    if not hasattr(q, "to"):
+        return _finite(where, q, src)
+    try:
+        return _finite(where, float(q.to(unit or "dimensionless").magnitude), src)
+    except pint.errors.DimensionalityError:
+        raise InputError(
+            where, f"must be in {unit or 'no unit (a plain number or %)'}, got {q.units:~}", src
+        ) from None
+
+
+def _event(i: int, data: dict, wb: Workbook, length: float) -> Event:
+    src = wb.source
+    where = f"{NAME}.events[{i}]"
+    for key in data:
+        if key not in EVENT_KEYS:
+            raise InputError(f"{where}.{key}", f"unknown key of an event ({', '.join(EVENT_KEYS)})", src)
+    for key in ("at", "card"):
+        if key not in data:
+            raise InputError(f"{where}.{key}", "missing", src)
+    at = _scalar(f"{where}.at", data["at"], "s", False, wb, None)
+    if at < 0:
+        raise InputError(f"{where}.at", f"must be ≥ 0 s, got {at:g} s", src)
+    if at >= length:
+        raise InputError(f"{where}.at", f"is {at:g} s, at or past the match's end ({length:g} s)", src)
+    card = data["card"]
+    if not isinstance(card, str) or card not in wb.cards:
+        known = ", ".join(wb.cards) or "none"
+        raise InputError(f"{where}.card", f"{shown(card)} is not a card (cards: {known})", src)
+    calc = wb.cards[card].calculator
+    if calc not in CARDS_ON_BUS:
+        raise InputError(f"{where}.card", f"{card} ({calc}) is {NOT_ON_BUS}", src)
+    mode = wb.cards[card].inputs.get("mode", "move")
+    if "mode" not in wb.cards[card].links and mode != "move":
+        raise InputError(f"{where}.card", f"{card} is in mode {shown(mode)}; the match runs mode = move", src)
+    action = data.get("action", "move")
+    if action not in ACTIONS:
+        raise InputError(f"{where}.action", f"must be one of {', '.join(ACTIONS)}, got {shown(action)}", src)
+    every = None
+    if "every" in data:
+        every = _scalar(f"{where}.every", data["every"], "s", False, wb, None)
+        if every <= 0:
+            raise InputError(f"{where}.every", f"must be > 0 s, got {every:g} s", src)
+    count = data.get("count", 1 if every is None else None)
+    if count is None:  # every without count: until the end
+        count = int(min((length - at) / every, 1e9)) + 1
+        if count > MAX_MOVES:
+            raise InputError(
+                f"{where}.every",
+                f"repeats {count} times in the match; at most {MAX_MOVES} moves on the bus",
+                src,
+            )
+    if isinstance(count, bool) or not isinstance(count, int) or count < 1:
+        raise InputError(f"{where}.count", f"must be a whole number ≥ 1, got {shown(count)}", src)
+    if count > 1 and every is None:
+        raise InputError(f"{where}.every", "missing: a count above 1 needs the time between repeats", src)
+    if count > MAX_MOVES:
+        raise InputError(f"{where}.count", f"is {count}; at most {MAX_MOVES} moves on the bus", src)
+    return Event(i, at, card, action, every, count)
+
+
+# ---------------------------------------------------------------------------------------------
+# Running it
+
+
+@dataclass
+class Brownout:
+    start: float
+    end: float
+    running: tuple[str, ...]
+
+    @property
+    def length(self) -> float:
+        return self.end - self.start
+
+
+@dataclass
+class MatchOutcome:
+    """The match's run and its outputs (SI inside; Ah and Wh where named)."""
+
+    spec: MatchSpec
+    moves: list  # (time asked, Event, MechanismResult)
+    bus: Any  # core.match.mechanisms.BusResult
+    battery: Any
+    controller: Any
+    base_load: float
+    outputs: dict[str, float] = field(default_factory=dict)
+    running_at_min: tuple[str, ...] = ()
+    brownouts: list[Brownout] = field(default_factory=list)
+    shares: dict[str, float] = field(default_factory=dict)  # card (and "base") -> fraction of the charge
+    channel_peaks: dict[str, float] = field(default_factory=dict)  # card -> peak supply A per motor
+
+    def as_json(self) -> dict[str, Any]:
+        return {
+            "outputs": {k: {"value": v, "unit": OUTPUTS[k][1]} for k, v in self.outputs.items()},
+            "min_bus_running": list(self.running_at_min),
+            "brownouts": [
+                {"start": b.start, "end": b.end, "length": b.length, "running": list(b.running)}
+                for b in self.brownouts
+            ],
+            "shares": self.shares,
+            "channel_peak_supply_current": self.channel_peaks,
+            "moves": [
+                {
+                    "card": ev.card,
+                    "action": ev.action,
+                    "event": ev.index,
+                    "asked": t,
+                    "start": r.start if r.trace else None,
+                    "arrival": r.arrival,
+                    "peak_stator_current": r.peak_stator_current,
+                    "peak_supply_current": r.peak_supply_current,
+                }
+                for t, ev, r in self.moves
+            ],
+        }
+
+
+def run(spec: MatchSpec, wb: Workbook, scope: Scope, cards: dict) -> MatchOutcome:
+    """The match at the solved workbook (`scope` its values, `cards` its CardResults)."""
+    from ..match.battery import Battery
+    from ..match.brownout import BROWNOUT_VOLTS, RECOVERY_VOLTS, Controller
+    from ..match.mechanisms import MechanismMatch, MechanismMove
+
+    src = spec.source
+    vals = {}
+    for key, value in spec.values.items():
+        if isinstance(value, Expr):
+            value = _in_unit(f"{NAME}.{key}", evaluate(value, scope, f"{NAME}.{key}", src), KEYS[key][0], src)
+        vals[key] = value
+    try:
+        battery = Battery(
+            **({"ocv_table": spec.ocv} if spec.ocv is not None else {}),
+            resistance=vals["resistance"],
+            wiring_resistance=vals["wiring_resistance"],
+            capacity_ah=vals["capacity"],
+            peukert=vals["peukert"],
+            start_soc=vals["charge"],
+        )
+    except InputError as exc:
+        names = {"battery.capacity_ah": "capacity", "battery.start_soc": "charge"}
+        key = names.get(exc.field, exc.field.removeprefix("battery."))
+        raise InputError(f"{NAME}.{key}", exc.message, src) from None
+    b = vals["brownout"] if vals["brownout"] is not None else BROWNOUT_VOLTS[spec.controller]
+    r = vals["recovery"] if vals["recovery"] is not None else RECOVERY_VOLTS
+    try:
+        controller = Controller(brownout=b, recovery=r)
+    except InputError as exc:
+        raise InputError(f"{NAME}.{exc.field.removeprefix('controller.')}", exc.message, src) from None
+    occ = spec.occurrences()
+    moves, last = [], {}
+    for k, (t, ev) in enumerate(occ):
+        where = f"{NAME}.events[{ev.index}] ({ev.card} at {t:g} s)"
+        card = cards[ev.card]
+        if card.error is not None:
+            raise InputError(where, f"the card {ev.card} could not be solved ({card.error})", src)
+        try:
+            setup = _setup(card.calculator, card.entries, ev.action)
+        except InputError as exc:
+            raise InputError(where, f"{exc.field}: {exc.message}", src) from None
+        moves.append(MechanismMove(f"{ev.card}#{k}", setup, t, after=last.get(ev.card)))
+        last[ev.card] = k
+    match = MechanismMatch(tuple(moves), battery, controller, vals["length"], vals["base_load"])
+    try:
+        bus = match.run()
+    except InputError as exc:
+        raise InputError(_where_move(exc.field, occ), exc.message, src) from None
+    return _outcome(spec, occ, bus, battery, controller, vals)
+
+
+def _where_move(fieldname: str, occ) -> str:
+    """moves[k].x → match.events[i] (card at t s).x"""
+    if fieldname.startswith("moves[") and "]" in fieldname:
+        k = int(fieldname[6 : fieldname.index("]")])
+        t, ev = occ[k]
+        return f"{NAME}.events[{ev.index}] ({ev.card} at {t:g} s){fieldname[fieldname.index(']') + 1 :]}"
+    return f"{NAME}.{fieldname}"
+
+
+def _setup(calc_id: str, raw: dict, action: str):
+    """The card's move scene from its solved entries; `return` swaps its start and goal."""
+    from ..calculators import arm, elevator
+    from ..model import parse_inputs
+    from ..registry import get
+
+    v = parse_inputs(get(calc_id), raw)[0]
+    if v["mode"] != "move":
+        raise InputError("mode", f"the match runs the card's move (mode = move), got {shown(v['mode'])}")
+    if action == "return":
+        if calc_id == "elevator":
+            v["travel"] = -v["travel"]
+        else:
+            v["start_angle"], v["goal_angle"] = v["goal_angle"], v["start_angle"]
+    return (elevator if calc_id == "elevator" else arm).setup(v)
+
+
+def _below(trace, level: float) -> float:
+    """Time the bus spent below `level`, linear between the trace's samples."""
+    total = 0.0
+    for (t0, v0, _), (t1, v1, _) in zip(trace, trace[1:]):
+        if t1 <= t0:
+            continue
+        if v0 < level and v1 < level:
+            total += t1 - t0
+        elif (v0 < level) != (v1 < level):
+            x = t0 + (level - v0) * (t1 - t0) / (v1 - v0)
+            total += (x - t0) if v0 < level else (t1 - x)
+    return total
+
+
+def _running(moves, t: float) -> tuple[str, ...]:
+    out = []
+    for _, ev, r in moves:
+        if r.trace and r.start <= t and (r.arrival is None or r.arrival >= t):
+            label = f"{ev.card} {ev.action}"
+            if label not in out:
+                out.append(label)
+    return tuple(out)
+
+
+def _breaker(brk, trace) -> dict[str, float]:
+    """The main breaker's thermal state (breaker.py (M12)) along the battery current: each step of
+    the trace advanced exactly at the step's mean current (the trace holds every solver step and
+    switch, so the current is nearly constant over one). Margin 1 − θ_max, in %; the first time θ
+    reaches 1 (a trip; the run does not cut the load)."""
+    if brk is None:
+        return {}
+    theta, top, trip = 0.0, 0.0, None
+    for (t0, _, i0), (t1, _, i1) in zip(trace, trace[1:]):
+        if t1 <= t0:
+            continue
+        theta = brk.advance(theta, 0.5 * (i0 + i1), t1 - t0)
+        if theta > top:
+            top = theta
+        if trip is None and theta >= 1.0:
+            trip = t1
+    out = {"main_breaker_margin": 100.0 * (1.0 - top)}
+    if trip is not None:
+        out["main_breaker_trip"] = trip
+    return out
+
+
+def _outcome(spec, occ, bus, battery, controller, vals) -> MatchOutcome:
+    from ..match.battery import AH
+    from ..match.breaker import MAIN_RATING
+
+    length = vals["length"]
+    moves = [(t, ev, r) for (t, ev), r in zip(occ, bus.mechanisms)]
+    trace = bus.trace
+    peak = max((abs(i) for _, _, i in trace), default=vals["base_load"])
+    end_soc = battery.soc(bus.charge)
+    o = {
+        "min_bus_voltage": bus.min_bus_voltage,
+        "min_bus_time": bus.min_bus_time,
+        "time_below_brownout": _below(trace, controller.brownout),
+        "brownouts": len(bus.brownouts),
+        "brownout_time": float(sum(e - s for s, e in bus.brownouts)),
+        "charge_used": bus.charge / AH,
+        "peukert_charge_used": bus.peukert_charge / AH,
+        "energy": bus.energy_oc / 3600.0,
+        "end_charge": 100.0 * end_soc,
+        "end_available": 100.0 * battery.soc(bus.peukert_charge),
+        "end_voltage": battery.ocv(end_soc),
+        "peak_current": peak,
+        "rms_current": math.sqrt(max(bus.current_squared, 0.0) / length),
+        "main_breaker_load": 100.0 * peak / MAIN_RATING,
+        **_breaker(spec.main_breaker, trace),
+        "moves": sum(1 for *_, r in moves if r.arrival is not None),
+        "unfinished": sum(1 for *_, r in moves if r.arrival is None),
+    }
+    shares: dict[str, float] = {}
+    peaks: dict[str, float] = {}
+    for _, ev, r in moves:
+        shares[ev.card] = shares.get(ev.card, 0.0) + r.charge
+        peaks[ev.card] = max(peaks.get(ev.card, 0.0), r.peak_supply_current)
+    shares["base"] = vals["base_load"] * length
+    # of the parts' sum: the moves' charges are summed on the trace (mechanisms.py), within ~0.1 % of
+    # the integrated whole, so the shares add up to 1 exactly
+    total = sum(shares.values())
+    shares = {k: (q / total if total > 0 else 0.0) for k, q in shares.items()}
+    out = MatchOutcome(spec, moves, bus, battery, controller, vals["base_load"], o)
+    out.running_at_min = _running(moves, bus.min_bus_time)
+    out.brownouts = [Brownout(s, e, _running(moves, s)) for s, e in bus.brownouts]
+    out.shares = shares
+    out.channel_peaks = peaks
+    return out
