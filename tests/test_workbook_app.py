@@ -255,3 +255,45 @@ async def test_at_80x24_the_robot_cards_requirements_sit_above_the_key_bar():
         assert box.region.height >= 3
         assert box.region.bottom <= bar.region.y, (box.region, bar.region)
         assert screen.region.contains_region(box.region)
+
+
+async def test_a_slow_workbook_solve_says_so_and_a_newer_one_cancels_it(monkeypatch):
+    """The workbook solves in a worker: while a solve takes a moment the Robot card says the checks
+    shown are those of the last entries (a match runs for seconds), and a newer request cancels
+    the running one through its worker's budget."""
+    import threading
+
+    from gearhead.core.sim.integrate import Cancelled, charge
+
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.from_text(TEXT, "pilot.toml"))
+    async with app.run_test(size=(140, 40)) as pilot:
+        screen = await opened(pilot, app)
+        await settled(pilot, screen)
+        release, outcomes = threading.Event(), []
+        real = workbook.solve
+
+        def slow(book):
+            try:
+                while not release.wait(0.005):
+                    charge(0)  # as an integration does: Cancelled once a newer request came
+            except Cancelled:
+                outcomes.append("cancelled")
+                raise
+            outcomes.append("solved")
+            return real(book)
+
+        monkeypatch.setattr(workbook, "solve", slow)
+        screen.robot.sheet.focus()
+        assert screen.robot.sheet.move_to_field("mass")
+        await pilot.press(*keys_of("20 lb"), "enter")
+        await pilot.pause(0.3)
+        status = str(screen.robot.status.render())
+        assert status.startswith("… solving") and screen.busy
+        assert screen.robot.sheet.move_to_field("mass")
+        await pilot.press(*keys_of("40 lb"), "enter")  # while the first still runs
+        await pilot.pause(0.1)
+        release.set()
+        await settled(pilot, screen)
+        assert outcomes[0] == "cancelled" and outcomes[-1] == "solved", outcomes
+        assert screen.cards["lift"].solution.inputs["load"].value == approx(40 * LBF)
+        assert "requirements hold" in str(screen.robot.status.render())

@@ -390,6 +390,16 @@ class WorkbookScreen(Screen):
         variables = {name: self._with_unit(name, entry) for name, entry in self.robot.entries.items()}
         inputs = {name: tab.own_inputs() for name, tab in self.cards.items()}
         self._solve_worker(self._wb_generation, variables, inputs)
+        self.set_timer(0.1, self._mark_busy)
+
+    @guarded
+    def _mark_busy(self) -> None:
+        """A solve taking a moment (a match runs 40 moves): say the checks shown are not yet these
+        entries'."""
+        if self.busy and self.is_attached:
+            self.robot.status.update(
+                Text("… solving (the requirements below are those of the last entries)", style="yellow")
+            )
 
     def _with_unit(self, name: str, entry: Any) -> Any:
         """A bare number typed on a Robot card row is in the unit the row shows (as on any card):
