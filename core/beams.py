@@ -334,6 +334,9 @@ TUBE_DEGREE = 8
 # Rounding in the two solves, relative: where the bounds close below it they may cross (a 25000:1
 # tube: upper 7e-10 below lower) and a 4×1e5 tube differs from 1e5×4 by 1.3e-9.
 TUBE_ROUNDING = 2e-9
+# Longest side over shortest of a rectangular tube whose J is solved: the frontal elimination met
+# exact zero pivots at 1e8:1 (16 walls wide) and 1e9:1, none up to 3e7:1 in the tubes tried.
+MAX_TUBE_ASPECT = 1e6
 TUBE_LAYERS = 6
 TUBE_GRADING = 0.15
 

@@ -119,8 +119,53 @@ _LONG_DOTTED_KEY = re.compile(
 )
 
 
+MAX_NESTING = 32  # arrays and inline tables inside each other; a preset needs two or three
+
+
+def nesting(text: str) -> tuple[int, int]:
+    """(deepest nesting of arrays and inline tables in a TOML text, the line where it is first
+    reached), strings and comments skipped. Written out because tomllib recurses once per level and
+    has no limit of its own: 5000 levels ran deep into Python's stack before its RecursionError."""
+    depth = deepest = 0
+    line = where = 1
+    i, n = 0, len(text)
+    while i < n:
+        c = text[i]
+        if c == "\n":
+            line += 1
+        elif c == "#":
+            i = text.find("\n", i)
+            if i < 0:
+                break
+            continue
+        elif c in "\"'":
+            quote = c * 3 if text.startswith(c * 3, i) else c
+            j = i + len(quote)
+            while j < n and not text.startswith(quote, j):
+                j += 2 if c == '"' and text[j] == "\\" else 1
+            line += text.count("\n", i, j)
+            i = j + len(quote)
+            continue
+        elif c in "[{":
+            depth += 1
+            if depth > deepest:
+                deepest, where = depth, line
+        elif c in "]}":
+            depth = max(0, depth - 1)
+        i += 1
+    return deepest, where
+
+
 def parse_text(text: str, src: str = "<preset>") -> dict[str, Any]:
     """The TOML table of a preset's text, or an InputError naming `src`."""
+    deepest, line = nesting(text)
+    if deepest > MAX_NESTING:
+        raise InputError(
+            "preset",
+            f"malformed TOML: arrays or tables nested too deeply ({deepest} levels on line {line}; "
+            "a preset needs a few)",
+            src,
+        )
     deep = _LONG_DOTTED_KEY.search(text)
     if deep:
         line = text.count("\n", 0, deep.start()) + 1

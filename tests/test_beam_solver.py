@@ -106,3 +106,21 @@ def test_tube_bounds_carry_no_more_rounding_than_stated(W, H, monkeypatch):
     assert abs(float(J / J_ref - 1)) < beams.TUBE_ROUNDING
     assert abs(float(lower / lower_ref - 1)) < beams.TUBE_ROUNDING
     assert abs(float(upper / upper_ref - 1)) < 2 * beams.TUBE_ROUNDING
+
+
+def test_a_tube_too_long_for_the_torsion_solve_is_refused_by_name():
+    """A 1e9 in tall, 1 in wide tube met an exact zero pivot in the elimination ('could not be
+    computed ... Singular matrix', no field named); past MAX_TUBE_ASPECT the longer side is named."""
+    import pytest
+
+    from gearhead.core import beams, model
+    from gearhead.core.errors import InputError
+
+    for name, other in (("height", "width"), ("width", "height")):
+        with pytest.raises(InputError) as err:
+            model.solve("beam", {name: "1e9"})
+        assert err.value.field == name and other in err.value.message
+    edge = model.solve(
+        "beam", {"height": "1 in", "width": f"{1 / beams.MAX_TUBE_ASPECT!r} in", "wall": "1e-7 in"}
+    )
+    assert edge.outputs  # at the limit it still solves

@@ -301,3 +301,17 @@ def test_load_preview_shows_choices_by_their_labels():
     text = preview(preset).plain
     assert "Absolute P·V, isothermal" in text and "absolute" not in text.replace("Absolute", "")
     assert "retired_level" in text and "3.5 l" in text
+
+
+def test_nesting_is_measured_without_recursing_and_skips_strings_and_comments():
+    """tomllib recurses once per level: a 5000-deep preset ran deep into Python's stack before its
+    RecursionError (a garbage collection at that depth once made pytest's report of an unrelated
+    finalizer fail). The depth is measured first, strings and comments not counted."""
+    from gearhead.core import presets
+
+    assert presets.nesting("a = [1, [2, \"[[[ ]\"], {b = [3]}] # [[[[\nc = '''[[['''\n") == (3, 1)
+    assert presets.nesting('x = "\\\\"\ny = [[[1]]]\n') == (3, 2)  # an escaped backslash ends the string
+    assert presets.nesting("x = " + "[" * 5000 + "]" * 5000) == (5000, 1)
+    with pytest.raises(InputError, match="nested too deeply"):
+        presets.parse_text("x = " + "[" * (presets.MAX_NESTING + 1) + "]" * (presets.MAX_NESTING + 1))
+    assert presets.parse_text("x = " + "[" * presets.MAX_NESTING + "]" * presets.MAX_NESTING)["x"]

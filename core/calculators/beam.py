@@ -393,6 +393,14 @@ def section_from(v) -> beams.Section:
             f"must be less than half the smaller outside size "
             f"({min(x, y) / 2 * 1e3:.4g} mm): the tube would have no hole",
         )
+    if max(x, y) > beams.MAX_TUBE_ASPECT * min(x, y):
+        # the torsion solve's elimination meets exact zero pivots past ~1e7:1 (a 16e9:16 tube)
+        longer, shorter = ("height", "width") if x > y else ("width", "height")
+        raise InputError(
+            longer,
+            f"must be at most {beams.MAX_TUBE_ASPECT:.0e} times the {shorter} for a rectangular tube "
+            "(the torsion constant is not solved past that)",
+        )
     return beams.rectangular_tube_section(x, y, h)
 
 
