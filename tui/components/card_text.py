@@ -28,7 +28,8 @@ def result_rows(
     calc: Calculator, solution: Solution, spread=None, hide_timings: bool = False
 ) -> list[ResultRow]:
     """One row per output solved: label, value text, equation label, and with tolerances its spread."""
-    from gearhead.core.tolerance import spread_text
+    if spread is not None:  # only then: the tolerance module costs ~8 ms to import on a first visit
+        from gearhead.core.tolerance import spread_text
 
     rows = []
     for name, value in solution.outputs.items():
