@@ -50,7 +50,7 @@ import math
 from dataclasses import dataclass, fields
 
 from .constants import RPM
-from .gains_code import export_number
+from .gains_numbers import export_number
 from .motors import lookup, motor_names, system
 
 KINDS = ("swerve", "tank", "mecanum")
@@ -240,7 +240,7 @@ def pathplanner_settings(cfg: RobotConfig) -> dict:
 def _expr(si: float, unit: str = "", per_unit: float = 1.0) -> dict:
     """Choreo's {"exp", "val"}: `exp` a mathjs expression in `unit` (worth `per_unit` SI each),
     `val` its SI value, the two consistent (val is what exp evaluates to, to 12 digits); the number
-    to 12 significant digits (core.gains_code.export_number: "61.23496995 kg", not the float
+    to 12 significant digits (core.gains_numbers.export_number: "61.23496995 kg", not the float
     noise of 61.23496995000001)."""
     text = format(export_number(float(si) / per_unit), ".12g")
     val = float(text) if per_unit == 1.0 else export_number(float(text) * per_unit)
