@@ -21,8 +21,12 @@ _LIST_START = re.compile(r"^(\s*)([-=]|\d+[.)])")  # a line starting so would be
 
 def esc(text: object) -> str:
     one_line = " ".join(str(text).split("\n"))
-    escaped = _SPECIAL.sub(r"\\\1", printable(one_line))
-    return _LIST_START.sub(lambda m: m.group(1) + m.group(2)[:-1] + "\\" + m.group(2)[-1], escaped)
+    return _SPECIAL.sub(r"\\\1", printable(one_line))
+
+
+def paragraph(text: object) -> str:
+    """Text that starts a line: also a leading -, = or 1. escaped (a list or a heading otherwise)."""
+    return _LIST_START.sub(lambda m: m.group(1) + m.group(2)[:-1] + "\\" + m.group(2)[-1], esc(text))
 
 
 def code(text: object, table: bool = False) -> str:
@@ -61,7 +65,7 @@ def _figure(chart: Chart, stem: str) -> list[str]:
 def _card(card: CardSection, workbook: bool, stem: str) -> list[str]:
     out = [f"## {esc(card.heading)}", ""]
     if card.summary:
-        out += [esc(card.summary), ""]
+        out += [paragraph(card.summary), ""]
     if card.share_code:
         out += [f"Share code (opens this card{' alone' if workbook else ''}): {code(card.share_code)}", ""]
     if card.error:
@@ -115,7 +119,7 @@ def write(report: Report, stem: str) -> str:
     workbook = report.kind == "workbook"
     out = [f"# {esc(report.title)}", ""]
     if report.description:
-        out += [esc(report.description), ""]
+        out += [paragraph(report.description), ""]
     out += [
         f"- Design report of a {report.kind}: {esc(report.source)}",
         f"- Gearhead version: {esc(report.version)}",
