@@ -286,3 +286,14 @@ def test_importing_the_cli_and_the_app_never_loads_matplotlib():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT)
     assert out.stdout.strip() == "[]"
+
+
+def test_the_readme_shows_page_1_of_the_examples_report():
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert "## The design report" in readme
+    picture = re.search(r"!\[[^\]]*\]\((docs/report_page1\.png)\)", readme)
+    assert picture, "the README's section shows the picture"
+    data = (ROOT / picture.group(1)).read_bytes()
+    assert data.startswith(b"\x89PNG\r\n\x1a\n")
+    width, height = int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+    assert (width, height) == (816, 1056)  # one Letter page at 96 px per inch

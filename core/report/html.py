@@ -26,6 +26,7 @@ table { border-collapse: collapse; width: 100%; margin: 1mm 0 3mm; font-size: 9.
 th, td { border: 1px solid #bbb; padding: 1mm 1.6mm; text-align: left; vertical-align: top; }
 th { background: #eee; }
 td.value { white-space: nowrap; font-variant-numeric: tabular-nums; }
+td.mark { white-space: nowrap; }
 table.meta th { width: 28%; }
 tr.unused td { color: #777; }
 .code { font-family: "DejaVu Sans Mono", monospace; font-size: 8pt; word-break: break-all; }
@@ -223,7 +224,7 @@ def _requirements(report: Report) -> list[str]:
         for r in report.requirements:
             note = f'<div class="how">{esc(r.note)}</div>' if r.note else ""
             cells = [
-                f"<td>{_mark(r.holds)}</td>",
+                f'<td class="mark">{_mark(r.holds)}</td>',
                 f"<td>{esc(r.name)}{note}</td>",
                 f'<td class="code">{esc(r.check)}</td>',
                 f"<td>{esc(r.text)}</td>",
