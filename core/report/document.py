@@ -248,9 +248,14 @@ def written_out(calc: Calculator, doc: str) -> list[tuple[str, str]]:
     lines = [" ".join(line.split()) for line in doc.splitlines()]
     for label in wanted:
         for line in lines:
-            if "=" in line and line.endswith(label):
+            if line.endswith(label) and _EQUATION.match(line):
                 out.append((label, line[: -len(label)].rstrip()))
     return out
+
+
+# a line that starts an equation: its left side (a symbol, maybe a function of something), then '=';
+# not the end of one begun on the line above ('(d = v·τ), then ...', '⇔ X = ...')
+_EQUATION = re.compile(r"^[^\s=(⇔,;.][^=]{0,40}=")
 
 
 def _active(calc: Calculator, raw: dict) -> dict[str, bool]:
