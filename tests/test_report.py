@@ -297,3 +297,55 @@ def test_the_readme_shows_page_1_of_the_examples_report():
     assert data.startswith(b"\x89PNG\r\n\x1a\n")
     width, height = int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
     assert (width, height) == (816, 1056)  # one Letter page at 96 px per inch
+
+
+def test_a_tolerance_is_shown_as_entered_with_each_results_spread(tmp_path, capsys):
+    preset = tmp_path / "tol.toml"
+    preset.write_text(
+        'calculator = "gear_ratio"\nname = "tol"\nformat = 1\n[inputs]\nload = "150 lbf ± 10 %"\n',
+        encoding="utf-8",
+    )
+    data = cli_json(capsys, "solve", "gear_ratio", "--preset", str(preset), "--json")
+    page = html.write(document.build(str(preset)))
+    assert _value_cell("150 lbf ± 10 %") in page
+    assert "<th>Spread</th>" in page
+    from gearhead.core import solving, tolerance
+
+    solved = solving.solve(get("gear_ratio"), {"load": "150 lbf ± 10 %"})
+    for name, value in data["outputs"].items():
+        s = solved.spread.outputs.get(name)
+        if s is not None and name not in VOLATILE:
+            spread = tolerance.spread_text(get("gear_ratio"), solved.solution, s)
+            assert f"{_value_cell(value['text'])}<td>{html.esc(spread)}</td>" in page, name
+
+
+def test_a_card_that_cannot_be_solved_shows_its_entries_and_why(tmp_path):
+    book = tmp_path / "fails.toml"
+    book.write_text(
+        'format = 1\nname = "fails"\n[cards.lift]\ncalculator = "elevator"\n'
+        'inputs = { load_mass = "500 lb", motor_count = 1 }\n'
+        '[[requirements]]\nname = "fast"\ncheck = "lift.time_to_goal < 1 s"\n',
+        encoding="utf-8",
+    )
+    page = html.write(document.build(str(book)))
+    lift = _card_html(page, "lift")
+    assert '<p class="fails">Not solved: ratio: is too low' in lift
+    assert _value_cell("500 lb") in lift
+    assert '<span class="unknown">not evaluated</span>' in page
+
+
+def test_the_worst_case_is_the_one_check_finds(capsys):
+    data = cli_json(capsys, "check", EXAMPLE, "--worst-case", "--json")
+    report = document.build(EXAMPLE, worst_case=True)
+    page = html.write(report)
+    assert "<th>Worst case</th>" in page
+    for line in report.requirements:
+        assert line.worst.startswith("margin "), line
+    from gearhead.core import workbook
+
+    calc = workbook.as_calculator(workbook.load(EXAMPLE))
+    for key, r in data["worst_case"]["requirements"].items():
+        o = calc.output(key)
+        shown = units.format_quantity(r["worst_margin"], o.unit, o.quantity)
+        assert html.esc(f"margin {shown} (") in page, key
+    assert "Worst case: tolerances: 125 lb ± 5 lb, 0.02 ohm ± 0.005 ohm; 13 solves" in page

@@ -18,7 +18,7 @@ from typing import Any
 
 from .. import units
 from ..declarations import Calculator, HeatMap, Plot
-from ..errors import InputError
+from ..errors import InputError, printable
 from ..sim.scene import VOLATILE
 
 NOT_RECORDED = "not recorded (it differs run to run; `--date` records it)"
@@ -306,13 +306,16 @@ def card_section(
     section = CardSection(
         key, heading, calc.id, calc.title, calc.summary, share_code, method=doc, warnings=list(warnings or [])
     )
+    from ..solving import has_tolerance
+
     links = links or {}
     used = _active(calc, raw)
     for f in calc.fields:
         if f.name in solution.inputs:
-            section.inputs.append(
-                Entry(f.name, f.label, solution.inputs[f.name].text, links.get(f.name, ""), used[f.name])
-            )
+            text = solution.inputs[f.name].text
+            if has_tolerance({f.name: raw.get(f.name)}):  # the solution holds the nominal value
+                text = printable(str(raw[f.name]).strip())
+            section.inputs.append(Entry(f.name, f.label, text, links.get(f.name, ""), used[f.name]))
     if spread is not None:
         from ..tolerance import spread_text
     for name, value in solution.outputs.items():
@@ -419,7 +422,12 @@ def from_workbook(wb, *, date: str = "", worst_case: bool = False) -> Report:
         calc = get(card.calculator)
         heading = f"{name}: {calc.title} ({calc.id})"
         book_card = wb.cards[name]
-        if card.solution is None:
+        if card.solution is None:  # its entries as written (links resolved), and why it failed
+            entries = [
+                Entry(f.name, f.label, printable(str(card.entries[f.name])), card.links.get(f.name, ""))
+                for f in calc.fields
+                if f.name in card.entries
+            ]
             report.cards.append(
                 CardSection(
                     name,
@@ -428,6 +436,7 @@ def from_workbook(wb, *, date: str = "", worst_case: bool = False) -> Report:
                     calc.title,
                     calc.summary,
                     "",
+                    inputs=entries,
                     warnings=list(book_card.warnings),
                     error=card.error,
                 )
