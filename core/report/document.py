@@ -22,6 +22,7 @@ from ..errors import InputError, printable
 from ..sim.scene import VOLATILE
 
 NOT_RECORDED = "not recorded (it differs run to run; `--date` records it)"
+NOT_RECORDED_VALUE = "not recorded"  # in a results table (the simulation's table says why)
 
 
 @dataclass(frozen=True)
@@ -320,7 +321,7 @@ def card_section(
         from ..tolerance import spread_text
     for name, value in solution.outputs.items():
         out = calc.output(name)
-        text = value.text if (timings or name not in VOLATILE) else NOT_RECORDED
+        text = value.text if (timings or name not in VOLATILE) else NOT_RECORDED_VALUE
         extra = ""
         if spread is not None and name in spread.outputs:
             extra = spread_text(calc, solution, spread.outputs[name])

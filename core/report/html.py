@@ -27,6 +27,8 @@ th, td { border: 1px solid #bbb; padding: 1mm 1.6mm; text-align: left; vertical-
 th { background: #eee; }
 td.value { white-space: nowrap; font-variant-numeric: tabular-nums; }
 td.mark { white-space: nowrap; }
+table.results td:first-child, table.inputs td:first-child { width: 30%; }
+table.results td.value { width: 1%; }
 table.meta th { width: 28%; }
 tr.unused td { color: #777; }
 .code { font-family: "DejaVu Sans Mono", monospace; font-size: 8pt; word-break: break-all; }
@@ -103,7 +105,11 @@ def _card(card: CardSection, workbook: bool) -> list[str]:
     if card.inputs:
         out.append("<h3>Inputs</h3>")
         heads = ["Input", "As entered"] + (["Linked from"] if workbook else [])
-        out.append("<table><thead><tr>" + "".join(f"<th>{h}</th>" for h in heads) + "</tr></thead><tbody>")
+        out.append(
+            '<table class="inputs"><thead><tr>'
+            + "".join(f"<th>{h}</th>" for h in heads)
+            + "</tr></thead><tbody>"
+        )
         for e in used + unused:
             cls = ' class="unused"' if not e.used else ""
             link = f"<td>{esc(e.link)}</td>" if workbook else ""
@@ -114,7 +120,11 @@ def _card(card: CardSection, workbook: bool) -> list[str]:
         spread = any(r.spread for r in card.results)
         out.append("<h3>Results</h3>")
         heads = ["Result", "Value"] + (["Spread"] if spread else []) + ["Eq.", "How"]
-        out.append("<table><thead><tr>" + "".join(f"<th>{h}</th>" for h in heads) + "</tr></thead><tbody>")
+        out.append(
+            '<table class="results"><thead><tr>'
+            + "".join(f"<th>{h}</th>" for h in heads)
+            + "</tr></thead><tbody>"
+        )
         for r in card.results:
             cells = [f"<td>{esc(r.label)}</td>", f'<td class="value">{esc(r.text)}</td>']
             if spread:
