@@ -615,15 +615,28 @@ def is_workbook(path: str) -> bool:
     return os.path.isfile(path) and is_workbook_file(path)
 
 
-def build(path: str, *, date: str = "", worst_case: bool = False) -> Report:
-    """The report of a preset or workbook file, a `builtin:NAME`, a share code or a ReCalc link.
+def load(path: str, *, worst_case: bool = False):
+    """What `path` holds, read and checked but not solved: a Workbook, or a (Preset, source) pair.
     A bad file raises InputError with the message `gearhead check` / `solve --preset` give."""
     from .. import share, workbook
 
     if not str(path).strip():
         raise InputError("file", "is empty; give a preset or workbook file")
     if is_workbook(path):
-        return from_workbook(workbook.load(path), date=date, worst_case=worst_case)
+        return workbook.load(path)
     if worst_case:
         raise InputError("--worst-case", "is for a workbook; a preset's tolerances are in its entries (±)")
-    return from_preset(share.load_any(path), path, date=date)
+    return share.load_any(path), path
+
+
+def build(path: str, *, date: str = "", worst_case: bool = False) -> Report:
+    """The report of a preset or workbook file, a `builtin:NAME`, a share code or a ReCalc link."""
+    return of(load(path, worst_case=worst_case), date=date, worst_case=worst_case)
+
+
+def of(loaded, *, date: str = "", worst_case: bool = False) -> Report:
+    """The report of what `load` read (solved now)."""
+    if isinstance(loaded, tuple):
+        preset, source = loaded
+        return from_preset(preset, source, date=date)
+    return from_workbook(loaded, date=date, worst_case=worst_case)
