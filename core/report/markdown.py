@@ -15,7 +15,7 @@ from .document import CardSection, Chart, Report, Table
 
 # CommonMark: any ASCII punctuation may be backslash-escaped; these are the ones that start
 # emphasis, code, links, images, HTML, entities, tables, headings or math in common renderers
-_SPECIAL = re.compile(r"([\\`*_{}\[\]<>()#+!|~&$])")
+_SPECIAL = re.compile(r"([\\`*_{}\[\]<>#+!|~&$])")  # ( ) need none: a link needs an unescaped ]
 _LIST_START = re.compile(r"^(\s*)([-=]|\d+[.)])")  # a line starting so would be a list or a heading
 
 
