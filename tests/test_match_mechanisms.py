@@ -270,7 +270,7 @@ def test_hostile_moves_name_the_field():
         from_card("elevator", {"mode": "optimise"})
     assert e.value.field == "mode"
     with pytest.raises(InputError) as e:
-        from_card("flywheel", {})
+        from_card("pneumatics", {})
     assert e.value.field == "card"
     with pytest.raises(InputError) as e:
         from_card("elevator", {"ratio": "fast"})

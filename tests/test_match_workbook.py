@@ -40,6 +40,9 @@ preset = "builtin:arm/single_kraken"
 
 [cards.shooter]
 preset = "builtin:flywheel/frc_two_kraken_limits"
+
+[cards.air]
+preset = "builtin:pneumatics/frc_intake_climber"
 """
 
 # one flat 12 V open-circuit voltage, the card's own battery, and no brownout: the card alone
@@ -149,7 +152,12 @@ def test_worst_case_of_a_match_requirement():
             "match.events[1].card",
             "not a card",
         ),
-        ("[match]\n[[match.events]]\nat = 1\ncard = 'shooter'\n", "match.events[1].card", "elevator and arm"),
+        ("[match]\n[[match.events]]\nat = 1\ncard = 'air'\n", "match.events[1].card", "pneumatic cycles"),
+        (
+            "[match]\n[[match.events]]\nat = 1\ncard = 'shooter'\naction = 'move'\n",
+            "match.events[1].action",
+            "spin_up",
+        ),
         (
             "[match]\n[[match.events]]\nat = 1\ncard = 'lift'\naction = 'up'\n",
             "match.events[1].action",
@@ -308,9 +316,9 @@ def test_cli_set_and_bad_file(robot, tmp_path, capsys):
     code0, out0, _ = run_cli(["match", str(robot), "--json"], capsys)
     assert code == code0 == 0 and worse < json.loads(out0)["outputs"]["min_bus_voltage"]["value"]
     bad = tmp_path / "bad.toml"
-    bad.write_text(textwrap.dedent(LIFT) + "[match]\n[[match.events]]\nat = 1\ncard = 'shooter'\n")
+    bad.write_text(textwrap.dedent(LIFT) + "[match]\n[[match.events]]\nat = 1\ncard = 'air'\n")
     code, out, err = run_cli(["match", str(bad)], capsys)
-    assert code == 2 and "bad.toml" in err and "match.events[1].card" in err and "elevator and arm" in err
+    assert code == 2 and "bad.toml" in err and "match.events[1].card" in err and "not on the match bus" in err
     plain = tmp_path / "plain.toml"
     plain.write_text(textwrap.dedent(LIFT))
     code, _, err = run_cli(["match", str(plain)], capsys)
@@ -378,3 +386,22 @@ def test_main_breaker_table_margin_and_trip_by_hand():
 def test_main_breaker_table_refused_named(table, field):
     err = refused(f"[match]\nmain_breaker = {table}\n")
     assert err.field == field, str(err)
+
+
+def test_a_spin_up_and_a_sprint_in_a_workbook_are_their_cards():
+    """The flywheel's spin_up and a sprint as [[match.events]], each alone on a flat battery of the
+    card's voltage and resistance (no brownout): the card's spin-up time and sprint time."""
+    drive = '\n[cards.drive]\npreset = "builtin:sprint/swerve_mk4i_l3"\n'
+    for card, ocv, action, out, key in (
+        ("shooter", 12.5, "spin_up", "spin_up_time", "shooter"),
+        ("drive", 12.0, "move", "time_to_distance", "drive"),
+    ):
+        extra = ALONE.replace("[[1.0, 12.0]]", f"[[1.0, {ocv}]]").replace('card = "lift"', f'card = "{card}"')
+        extra = extra.replace('resistance = "= battery_resistance"', 'resistance = "0.02 ohm"')
+        extra += f'action = "{action}"\n'
+        wb = book(extra, LIFT + drive)
+        o = workbook.solve(wb)
+        assert o.match is not None, o.match_error
+        (_, ev, r), *_ = o.match.moves
+        assert ev.card == key
+        assert r.time_to_goal == pytest.approx(o.cards[card].solution.outputs[out].value, rel=2e-5)

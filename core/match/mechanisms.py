@@ -1,5 +1,9 @@
 """Mechanisms on the match's bus: the elevator's and the arm's full-voltage moves (core.sim.motion,
-`mode = move`) integrated together with the battery, every supply current drawn from one bus.
+`mode = move`), the sprint (core.calculators.sprint, `_Sprint`: its traction and slip (B7)-(B8))
+and the flywheel's spin-up (core.sim.shooter (F1), `_Flywheel`) integrated together with the
+battery, every supply current drawn from one bus. Each is (B1) with its own terms: the sprint's
+loss and rolling resistance its friction, its air drag a force growing with the speed; the
+flywheel's q the wheel's angle, its move ending at the target speed.
 
 Each mechanism k (N_k motors alike, R, Kv, n, M, η·N·Kt·n = the card's force per amp) keeps its
 card's state: p_k the travel toward its goal, w_k the speed toward it, E_k = w_k·n/Kv its back-EMF.
@@ -81,6 +85,7 @@ MAX_STEPS = 200_000  # per piece (DP54)
 MAX_LENGTH = 3600.0
 LIMIT_EFFECTS = ("stator_limit", "supply_limit")
 FULL, STATOR, SUPPLY, COAST, DONE = "full", "stator", "supply", "coast", "done"
+SLIP = "slip"  # the sprint's wheels at the edge of slip: the motors draw I_slip (B7)
 
 
 @dataclass(frozen=True)
@@ -100,30 +105,47 @@ def from_card(calc_id: str, raw: dict, name: str | None = None, start: float = 0
     from gearhead.core.model import parse_inputs
     from gearhead.core.registry import get
 
-    scenes = {"elevator": elevator, "arm": arm}
+    scenes = {"elevator": elevator, "arm": arm, "sprint": None, "flywheel": None}
     if calc_id not in scenes:
         raise InputError("card", f"must be one of {', '.join(scenes)}, got {shown(calc_id)}")
     v = parse_inputs(get(calc_id), raw)[0]
+    return MechanismMove(name or calc_id, scene_of(calc_id, v), start)
+
+
+def scene_of(calc_id: str, v) -> Any:
+    """The scene the match runs for a card's parsed values: the elevator's or arm's move (mode =
+    move), the sprint (mode = sprint), the flywheel's spin-up (`spin_up`)."""
+    from gearhead.core.calculators import arm, elevator, sprint
+
+    if calc_id == "flywheel":
+        return spin_up(v)
+    if calc_id == "sprint":
+        if v["mode"] != "sprint":
+            raise InputError(
+                "mode", f"the match runs the card's sprint (mode = sprint), got {shown(v['mode'])}"
+            )
+        return sprint.setup(v)
     if v["mode"] != "move":
         raise InputError("mode", f"the match runs the card's move (mode = move), got {shown(v['mode'])}")
-    return MechanismMove(name or calc_id, scenes[calc_id].setup(v), start)
+    return (elevator if calc_id == "elevator" else arm).setup(v)
 
 
 class _Mech:
     """A mechanism's terms, from its card's Setup (its equations, its limits)."""
 
+    I_slip: float | None = None  # the sprint's (S5): its stator current at the edge of wheel slip
+    goal_speed: float | None = None  # the flywheel's target (rad/s): its move ends at a speed
+    kind = "move"
+
+    def drag(self, v: float) -> float:
+        """A force against the motion that grows with the speed (the sprint's air drag), ≥ 0."""
+        return 0.0
+
     def __init__(self, where: str, ev: MechanismMove, length: float):
         s = ev.setup
+        self._common(where, ev, length)
         if not isinstance(s, motion.Setup):
             raise InputError(f"{where}.setup", f"must be a mechanism scene's Setup, got {shown(s)}")
-        if not isinstance(ev.name, str) or not ev.name or ev.name == "base":
-            raise InputError(
-                f"{where}.name", f"must be a non-empty name other than 'base', got {shown(ev.name)}"
-            )
-        if not isinstance(ev.brownout_disables, bool):
-            raise InputError(
-                f"{where}.brownout_disables", f"must be true or false, got {shown(ev.brownout_disables)}"
-            )
         if s.asm.y0_extra or s.asm.events:
             raise InputError(
                 f"{where}.effects", "an effect with states of its own is not on the match bus yet"
@@ -131,13 +153,8 @@ class _Mech:
         duty_from = {n for n, p in s.asm.parts.items() if "duty" in p.terms}
         if not duty_from <= set(LIMIT_EFFECTS):
             raise InputError(f"{where}.effects", f"{', '.join(sorted(duty_from))}: not on the match bus yet")
-        self.start = number(f"{where}.start", ev.start, low=0.0, high=length)
-        if ev.after is not None and (isinstance(ev.after, bool) or not isinstance(ev.after, int)):
-            raise InputError(f"{where}.after", f"must be the index of an earlier move, got {shown(ev.after)}")
-        self.after = ev.after
         motion.check_can_move(s)  # the card's own check: names the field
         m = s.mech
-        self.name, self.disables = ev.name, ev.brownout_disables
         self.N, self.R, self.n_kv, self.fpa, self.M = m.count, m.R, m.n / m.Kv, m.force_per_amp, m.inertia
         self.s, self.d, self.q0 = m.s, m.distance, m.q0
         self.v_ref = m.free_speed
@@ -148,6 +165,21 @@ class _Mech:
         self.I_sup = s.values["supply_current_limit"] if "supply_limit" in on else None
         self.stiff = motion.estimated_time(s) / motion.time_constant(m) >= motion.STIFF
         self.e_ref = 1e-3 * m.count * m.battery_voltage**2 / m.R * self.d / self.v_ref
+
+    def _common(self, where: str, ev: MechanismMove, length: float) -> None:
+        if not isinstance(ev.name, str) or not ev.name or ev.name == "base":
+            raise InputError(
+                f"{where}.name", f"must be a non-empty name other than 'base', got {shown(ev.name)}"
+            )
+        if not isinstance(ev.brownout_disables, bool):
+            raise InputError(
+                f"{where}.brownout_disables", f"must be true or false, got {shown(ev.brownout_disables)}"
+            )
+        self.start = number(f"{where}.start", ev.start, low=0.0, high=length)
+        if ev.after is not None and (isinstance(ev.after, bool) or not isinstance(ev.after, int)):
+            raise InputError(f"{where}.after", f"must be the index of an earlier move, got {shown(ev.after)}")
+        self.after = ev.after
+        self.name, self.disables = ev.name, ev.brownout_disables
 
     def branches(self) -> tuple[str, ...]:
         return (
@@ -165,6 +197,8 @@ class _Mech:
             return (0.0, 0.0, N * (E + R * self.I_st) * self.I_st)
         if branch == SUPPLY:
             return (N * self.I_sup, 0.0, 0.0)
+        if branch == SLIP:  # (B7): a constant current
+            return (N * self.slip_supply, 0.0, 0.0)
         return (0.0, 0.0, 0.0)
 
     def supply(self, branch: str, E: float, V: float) -> float:
@@ -182,6 +216,8 @@ class _Mech:
             c = 4.0 * self.R * self.I_sup * V
             root = math.sqrt(E * E + c)
             return 2.0 * self.I_sup * V / (E + root) if E > 0 else (root - E) / (2.0 * self.R)
+        if branch == SLIP:
+            return self.I_slip
         return 0.0
 
     def breakpoints(self, E: float) -> list[float]:
@@ -193,14 +229,153 @@ class _Mech:
             out.append(E + R * self.I_sup)
             if self.I_st is not None and self.I_sup > 0:
                 out.append((E + R * self.I_st) * self.I_st / self.I_sup)
+        if self.I_slip is not None:  # where the gripping current reaches I_slip (B8)
+            out.append(E + R * self.I_slip)
+            if self.I_sup is not None and self.I_sup > 0:
+                out.append(self.I_slip * (E + R * self.I_slip) / self.I_sup)
         return [x for x in out if x > 0 and math.isfinite(x)]
 
-    def least(self, E: float, V: float) -> str:
+    def grip(self, E: float, V: float) -> str:
         """The branch (B2) gives at bus voltage V."""
         return min(self.branches(), key=lambda b: self.supply(b, E, V))
 
+    def least(self, E: float, V: float) -> str:
+        """The branch at bus voltage V: (B2), or the sprint's slip where it would pass I_slip (B7)."""
+        br = self.grip(E, V)
+        if self.I_slip is not None and self.stator(br, E, V) > self.I_slip:
+            return SLIP
+        return br
+
     def field_force(self, p: float) -> float:
         return self.s * self.force(self.q0 + self.s * p) if self.force is not None else 0.0
+
+
+@dataclass(frozen=True)
+class FlywheelSpin:
+    """A flywheel card's spin-up from rest to its target speed at full power, with its current
+    limits (core.sim.shooter's Scene and the card's parsed values): `spin_up(values)` builds it."""
+
+    scene: Any
+    values: Any
+    target: float  # rad/s of the wheel
+
+
+def spin_up(v) -> FlywheelSpin:
+    """The flywheel card's spin-up (its control full power), its own checks naming the field."""
+    from gearhead.core.sim import shooter
+
+    if v["control"] == "velocity_loop":
+        raise InputError(
+            "control",
+            "the match spins the flywheel up at full power; the velocity loop is not on the bus yet",
+        )
+    sc, _ = shooter.scene_from(v)
+    target = v["target_speed"]
+    if target >= sc.free_speed:  # the card's own check (flywheel._simulate)
+        raise InputError("target_speed", "the wheels cannot reach it: it is at or above their free speed")
+    if sc.drive is not None:
+        shooter.check_limits(sc, target)
+    return FlywheelSpin(sc, v, target)
+
+
+class _Sprint(_Mech):
+    """The sprint card's drive (core.calculators.sprint (S1)-(S5)) on the bus: N motors through n
+    (motor rad per metre) push the robot of mass m; its wheels transmit at most F_t (S3, S3'), and
+    while the gripping motors would pass it they sit at the edge of slip drawing I_slip (S5):
+
+        m·v̇ = min(η·N·Kt·n·(I − i_f), F_t) − resist(v)                                      (S4)
+    written as (B1): the motors' loss η·N·Kt·n·i_f and rolling resistance resist(0) the constant
+    friction against the motion, resist(v) − resist(0) (air drag) the part that grows with v, and
+
+        slipping: stator current I_slip, duty u = min(1, I_sup/I_slip), supply min(I_slip, I_sup):
+        a constant current                                                                    (B7)
+        the gripping branch (B2) passes I_slip where (V − E)/R = I_slip: V = E + R·I_slip, or on
+        the supply limit's (B5) where I_slip·(E + R·I_slip) = I_sup·V                          (B8)
+    (tests/test_match_sprint.py derives (B7)-(B8) with sympy). The slip starts where the gripping
+    branch's stator current rises through I_slip and ends where it falls through it (events), as the
+    card's phases do. The voltage ramp (S14, time-dependent duty) is not on the bus yet."""
+
+    kind = "sprint"
+
+    def __init__(self, where: str, ev: MechanismMove, length: float):
+        from gearhead.core.calculators import sprint
+
+        s = ev.setup
+        self._common(where, ev, length)
+        if s.ramp > 0:
+            raise InputError(f"{where}.effects", "voltage_ramp: not on the match bus yet")
+        sprint.check_can_move(s)  # the card's own check: names the field
+        dr = s.drive
+        self.N, self.R, self.n_kv, self.fpa, self.M = dr.count, dr.R, dr.n / dr.Kv, dr.force_per_amp, dr.mass
+        self.s, self.d, self.q0 = 1.0, s.distance, 0.0
+        self.v_ref = (dr.battery_voltage - dr.R * dr.free_current) * dr.Kv / dr.n
+        self.force = None
+        self._resist = s.resist()
+        self.F_rr = self._resist(0.0)
+        self.F_fric = dr.force_per_amp * dr.free_current + self.F_rr
+        on = s.asm.on
+        self.I_st = s.values["stator_current_limit"] if "stator_limit" in on else None
+        self.I_sup = s.values["supply_current_limit"] if "supply_limit" in on else None
+        self.I_slip = s.traction / dr.force_per_amp + dr.free_current  # (S5)
+        self.slip_supply = self.I_slip if self.I_sup is None else min(self.I_slip, self.I_sup)  # (B7)
+        tau = dr.mass * (dr.R + dr.bus_resistance) * dr.Kv / (dr.force_per_amp * dr.n)  # the card's rule
+        self.stiff = s.distance / self.v_ref > sprint.STIFF * tau
+        self.e_ref = 1e-3 * dr.count * dr.battery_voltage**2 / dr.R * self.d / self.v_ref
+
+    def drag(self, v: float) -> float:
+        return self._resist(abs(v)) - self.F_rr
+
+
+class _Flywheel(_Mech):
+    """The flywheel card's spin-up (core.sim.shooter (F1)) on the bus: N motors through G (motor
+    turns per wheel turn) spin the wheels of inertia I from rest to the target ω_t at full power,
+    under the card's current limits:
+
+        I·ω̇ = A·(I_m(E) − i_f)/(i_s − i_f),  E = G·ω/Kv                                     (F1)
+    i.e. (B1) with q the wheel's angle, n = G, force per amp A/(i_s − i_f) (A = G·τ̃s at the card's
+    voltage, i_s = V_b/R its stall current) and the motors' loss A·i_f/(i_s − i_f) the friction; no
+    field. (At E = 0 and V = V_b, I_m = i_s and the torque is A; it is 0 at ω = Kv·(V_b − R·i_f)/G,
+    the card's free speed: tests/test_match_flywheel.py.) The move ends when ω reaches ω_t."""
+
+    kind = "flywheel"
+
+    def __init__(self, where: str, ev: MechanismMove, length: float):
+        from gearhead.core.motors import lookup, system_from
+        from gearhead.core.sim import motor_limits
+
+        s = ev.setup
+        self._common(where, ev, length)
+        v = s.values
+        motor, _ = lookup(v["motor"], v["source"])
+        Vb = v["voltage"]
+        c = motor_limits.circuit_of(motor, Vb)
+        i_s = motor.stall_current * Vb / motor.v_spec  # (4)
+        i_f = motor.free_current * Vb / motor.v_spec  # (3)
+        G = v["ratio"]
+        A = G * system_from(v)[0].stall_torque
+        self.N, self.R, self.n_kv, self.M = v["motor_count"], c.R, G / c.Kv, s.scene.I
+        self.fpa = A / (i_s - i_f)  # per amp of each motor (F1)
+        self.v_ref = c.Kv * (Vb - c.R * i_f) / G
+        tau = self.M * c.R * c.Kv / (self.fpa * G)  # the wheel's time constant at stall
+        self.s, self.d, self.q0 = 1.0, self.v_ref * tau, 0.0
+        self.force = None
+        self.F_fric = self.fpa * i_f
+        on = v["effects"]
+        self.I_st = v["stator_current_limit"] if "stator_limit" in on else None
+        self.I_sup = v["supply_current_limit"] if "supply_limit" in on else None
+        self.goal_speed = s.target
+        self.stiff = False  # DP54, LSODA where it runs out of steps (_piece)
+        self.e_ref = 1e-3 * self.N * Vb**2 / c.R * tau
+
+
+def _mech_of(where: str, ev: MechanismMove, length: float) -> _Mech:
+    from gearhead.core.calculators import sprint
+
+    if isinstance(ev.setup, sprint.Setup):
+        return _Sprint(where, ev, length)
+    if isinstance(ev.setup, FlywheelSpin):
+        return _Flywheel(where, ev, length)
+    return _Mech(where, ev, length)
 
 
 @dataclass
@@ -291,7 +466,7 @@ class _Run:
         for i, ev in enumerate(moves):
             if not isinstance(ev, MechanismMove):
                 raise InputError(f"moves[{i}]", f"must be a MechanismMove, got {shown(ev)}")
-            mk = _Mech(f"moves[{i}]", ev, self.length)
+            mk = _mech_of(f"moves[{i}]", ev, self.length)
             if mk.name in names:
                 raise InputError(f"moves[{i}].name", f"{shown(mk.name)} names two moves")
             if mk.after is not None and not 0 <= mk.after < i:
@@ -463,7 +638,10 @@ class _Run:
             if run.event is not None and run.event.startswith("branch"):
                 index, other = run.event[len("branch") :].split(":")
                 k = int(index)
-                prefer = lambda cfg, k=k, o=other: cfg[k] == o  # noqa: E731
+                if other == "grip":
+                    prefer = lambda cfg, k=k: cfg[k] != SLIP  # noqa: E731
+                else:
+                    prefer = lambda cfg, k=k, o=other: cfg[k] == o  # noqa: E731
             elif run.event == "merge":
                 prefer = lambda cfg, h=config: cfg != h  # noqa: E731
             if run.event == "brownout":
@@ -556,7 +734,8 @@ class _Run:
                 if dirs[k] == 0:
                     acc = 0.0
                 else:
-                    acc = (self._drive(k, y, br, V) - dirs[k] * mk.F_fric) / mk.M  # (B1)
+                    drag = mk.drag(y[5 + 3 * k] * mk.v_ref)
+                    acc = (self._drive(k, y, br, V) - dirs[k] * (mk.F_fric + drag)) / mk.M  # (B1)
                 dy[4 + 3 * k] = y[5 + 3 * k] * mk.v_ref / mk.d
                 dy[5 + 3 * k] = acc / mk.v_ref
                 dy[6 + 3 * k] = v_oc * i_s / self.e_scale
@@ -591,8 +770,37 @@ class _Run:
             if br == DONE:
                 continue
             i_w = 5 + 3 * k
-            evs.append(Event(f"goal{k}", lambda t, y, i=i_w - 1: y[i] - 1.0, +1))
-            if br != COAST:
+            if mk.goal_speed is not None:  # the flywheel: its target speed
+                w_goal = mk.goal_speed / mk.v_ref
+                evs.append(Event(f"goal{k}", lambda t, y, i=i_w, g=w_goal: y[i] - g, +1))
+            else:
+                evs.append(Event(f"goal{k}", lambda t, y, i=i_w - 1: y[i] - 1.0, +1))
+            if br == SLIP:  # (B7): grip again where the gripping branch falls through I_slip
+                evs.append(
+                    Event(
+                        f"branch{k}:grip",
+                        lambda t, y, k=k, mk=mk: (
+                            mk.stator(
+                                mk.grip(self._emf(k, y), bus(y, config, root)),
+                                self._emf(k, y),
+                                bus(y, config, root),
+                            )
+                            - mk.I_slip
+                        ),
+                        -1,
+                    )
+                )
+            elif br != COAST and mk.I_slip is not None:  # (B8): the held branch rises through I_slip
+                evs.append(
+                    Event(
+                        f"branch{k}:{SLIP}",
+                        lambda t, y, k=k, mk=mk, b=br: (
+                            mk.stator(b, self._emf(k, y), bus(y, config, root)) - mk.I_slip
+                        ),
+                        +1,
+                    )
+                )
+            if br not in (COAST, SLIP):
                 for other in mk.branches():
                     if other != br:
                         evs.append(

@@ -16,8 +16,9 @@ on core.match.mechanisms' bus, its outputs readable by requirements as `match.OU
 
     [[match.events]]
     at = "2 s"                            # when the move is asked
-    card = "lift"                         # an elevator or arm card, mode = move
-    action = "move"                       # move: start → goal; return: goal → start
+    card = "lift"                         # an elevator or arm (mode = move), sprint or flywheel card
+    action = "move"                       # move: start → goal; return: goal → start (a sprint: the
+                                          # same sprint); a flywheel: spin_up (from rest to its target)
     every = "20 s"                        # optional: repeated every 20 s ...
     count = 7                             # ... 7 times in all (those past the end are dropped)
 
@@ -48,8 +49,18 @@ NAME = "match"
 MAX_EVENT_ROWS = 1000  # [[match.events]] tables read; more is refused before any expansion
 MAX_MOVES = 200  # moves on the bus after `every`/`count` (core.match.mechanisms.MAX_MECHANISMS)
 ACTIONS = ("move", "return")
-CARDS_ON_BUS = ("elevator", "arm")
-NOT_ON_BUS = "not on the match bus yet: elevator and arm moves only"
+# calculator: (its mode field and the mode the match runs, or None; the actions, the first the default)
+ON_BUS = {
+    "elevator": ("mode", "move", ACTIONS),
+    "arm": ("mode", "move", ACTIONS),
+    "sprint": ("mode", "sprint", ACTIONS),  # return: the same sprint, driven back
+    "flywheel": (None, None, ("spin_up",)),  # its `mode` is the inertia's; `control` checked at the run
+}
+CARDS_ON_BUS = tuple(ON_BUS)
+NOT_ON_BUS = (
+    "not on the match bus yet: elevator and arm moves, sprints and flywheel spin-ups only "
+    "(pneumatic cycles are not modelled)"
+)
 KEYS = {  # key: (unit, default, a reference allowed)
     "length": ("s", 150.0, False),
     "brownout": ("V", None, True),
@@ -273,14 +284,22 @@ def _event(i: int, data: dict, wb: Workbook, length: float) -> Event:
         known = ", ".join(wb.cards) or "none"
         raise InputError(f"{where}.card", f"{shown(card)} is not a card (cards: {known})", src)
     calc = wb.cards[card].calculator
-    if calc not in CARDS_ON_BUS:
+    if calc not in ON_BUS:
         raise InputError(f"{where}.card", f"{card} ({calc}) is {NOT_ON_BUS}", src)
-    mode = wb.cards[card].inputs.get("mode", "move")
-    if "mode" not in wb.cards[card].links and mode != "move":
-        raise InputError(f"{where}.card", f"{card} is in mode {shown(mode)}; the match runs mode = move", src)
-    action = data.get("action", "move")
-    if action not in ACTIONS:
-        raise InputError(f"{where}.action", f"must be one of {', '.join(ACTIONS)}, got {shown(action)}", src)
+    mode_field, runs, actions = ON_BUS[calc]
+    if mode_field is not None:
+        mode = wb.cards[card].inputs.get(mode_field, runs)
+        if mode_field not in wb.cards[card].links and mode != runs:
+            raise InputError(
+                f"{where}.card", f"{card} is in mode {shown(mode)}; the match runs mode = {runs}", src
+            )
+    action = data.get("action", actions[0])
+    if action not in actions:
+        raise InputError(
+            f"{where}.action",
+            f"must be one of {', '.join(actions)} for {card} ({calc}), got {shown(action)}",
+            src,
+        )
     every = None
     if "every" in data:
         every = _scalar(f"{where}.every", data["every"], "s", False, wb, None)
@@ -423,20 +442,19 @@ def _where_move(fieldname: str, occ) -> str:
 
 
 def _setup(calc_id: str, raw: dict, action: str):
-    """The card's move scene from its solved entries; `return` swaps its start and goal."""
-    from ..calculators import arm, elevator
+    """The card's scene from its solved entries (core.match.mechanisms.scene_of); an elevator's or
+    arm's `return` swaps its start and goal (a sprint's is the same sprint, driven back)."""
+    from ..match.mechanisms import scene_of
     from ..model import parse_inputs
     from ..registry import get
 
     v = parse_inputs(get(calc_id), raw)[0]
-    if v["mode"] != "move":
-        raise InputError("mode", f"the match runs the card's move (mode = move), got {shown(v['mode'])}")
     if action == "return":
         if calc_id == "elevator":
             v["travel"] = -v["travel"]
-        else:
+        elif calc_id == "arm":
             v["start_angle"], v["goal_angle"] = v["goal_angle"], v["start_angle"]
-    return (elevator if calc_id == "elevator" else arm).setup(v)
+    return scene_of(calc_id, v)
 
 
 def _below(trace, level: float) -> float:
