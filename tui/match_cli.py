@@ -71,7 +71,7 @@ def run(args) -> int:
         f"{m.battery.start_soc * 100:.4g} % charged; brownout {m.controller.brownout:g} V"
     )
     width = max(len(label) for label, _ in OUTPUTS.values())
-    for key, (label, unit) in OUTPUTS.items():
+    for key, (label, unit) in OUTPUTS.items():  # the channels' own outputs are shown with the shares
         if key not in o:  # the breaker's margin without a trip table, its trip time without a trip
             continue
         value = o[key]
@@ -79,13 +79,22 @@ def run(args) -> int:
         if key == "min_bus_time" and m.running_at_min:
             text += f"  ({', '.join(m.running_at_min)} running)"
         _say(f"  {label:<{width}}  {text}")
-    _say("  Share of the charge; peak supply current per motor (of a 40 A breaker)")
+    rating = m.spec.values["channel_rating"]
+    _say(f"  Charge share; peak supply current per motor, either way (of a {rating:g} A breaker)")
     for k, v in m.shares.items():
-        peak = m.channel_peaks.get(k)
-        more = f"   peak {peak:.4g} A ({peak / 40 * 100:.3g} %)" if peak is not None else ""
+        ch = m.bus.channels.get(k)  # either direction: a motor braking a falling load drives current back
+        more = f"   peak {ch.peak:.4g} A ({ch.peak / rating * 100:.3g} %)" if ch is not None else ""
+        if f"{k}_breaker_trip" in o:
+            more += f"; trips at {units.format_number(o[f'{k}_breaker_trip'])} s"
+        elif f"{k}_breaker_margin" in o:
+            more += f"; margin {units.format_number(o[f'{k}_breaker_margin'])} %"
         _say(f"    {printable(k):<12} {v * 100:6.3g} %{more}")
-    if "main_breaker_margin" not in o:
+    if "main_breaker_margin" not in o and m.spec.channel_table is None:
         _say("  (no breaker trip table entered, so no trip is predicted)")
+    elif m.spec.channel_table is None:
+        _say("  (no channel breaker trip table entered: no channel trip is predicted)")
+    elif "main_breaker_margin" not in o:
+        _say("  (no main breaker trip table entered: no main breaker trip is predicted)")
     if m.brownouts:
         _say(f"Brownouts ({len(m.brownouts)})")
         for b in m.brownouts[:20]:

@@ -55,6 +55,11 @@ If the bus has no operating point at all (G > 0 for every V > 0: a motor driven 
 so fast that at full duty it would draw more than the battery gives at any voltage) the bus is
 taken to collapse: the outputs are disabled as in a brownout.
 
+Channel breakers (B9): each move names its channel (the workbook: its card), each of the channel's
+motors on its own breaker (40 A by default) carrying the per-motor supply current Σ I_s of the
+channel's moves; the thermal state of breaker.py (M12) is advanced exactly over each step of the
+records at the step's mean current (`advance`), as the main breaker's is, from cold at 0 s.
+
 At the goal a mechanism's move ends (as the card's does): it draws nothing after (holding there is
 not modelled here). Energy: dE_oc/dt = V_oc·I, dE_bus/dt = V·I, dE_R/dt = R·I² (battery (M5)), and
 each mechanism's ∫V_oc·N·I_s dt (the card's energy, its EMF times its current, when V_oc = V_b).
@@ -73,6 +78,7 @@ from typing import Any
 
 from gearhead.core.errors import InputError, shown
 from gearhead.core.match.battery import Battery
+from gearhead.core.match.breaker import CHANNEL_RATING, Breaker
 from gearhead.core.match.brownout import Controller
 from gearhead.core.match.bus import solve_bus
 from gearhead.core.match.checks import number
@@ -97,6 +103,7 @@ class MechanismMove:
     start: float = 0.0
     brownout_disables: bool = True
     after: int | None = None  # the index of a move this one waits for (queued: starts at its arrival)
+    channel: str | None = None  # its motors' breaker channel (a card's moves share one); None: its name
 
 
 def from_card(calc_id: str, raw: dict, name: str | None = None, start: float = 0.0) -> MechanismMove:
@@ -180,6 +187,9 @@ class _Mech:
             raise InputError(f"{where}.after", f"must be the index of an earlier move, got {shown(ev.after)}")
         self.after = ev.after
         self.name, self.disables = ev.name, ev.brownout_disables
+        if ev.channel is not None and (not isinstance(ev.channel, str) or not ev.channel):
+            raise InputError(f"{where}.channel", f"must be a non-empty name, got {shown(ev.channel)}")
+        self.channel = ev.channel or ev.name
 
     def branches(self) -> tuple[str, ...]:
         return (
@@ -409,6 +419,25 @@ class BusResult:
     switches: list = field(default_factory=list)  # (t, event): every located switch, in order
     peukert_charge: float = 0.0  # C, ∫I·(I/I_H)^(k−1) dt (battery (M4)); the plain charge on a source
     current_squared: float = 0.0  # A²·s, ∫I² dt (the RMS current's numerator)
+    channels: dict = field(default_factory=dict)  # channel name -> ChannelResult (B9)
+
+
+@dataclass(frozen=True)
+class ChannelResult:
+    """One mechanism channel's breaker (each of its motors on its own breaker of `rating`, all
+    carrying the per-motor supply current): the peak, and with a trip table the thermal state's
+    highest (breaker.py (M12)) and the first time it reached 1 (B9)."""
+
+    name: str
+    rating: float  # A
+    peak: float  # A per motor, the largest supply current
+    theta_max: float | None = None  # None without a trip table
+    trip_time: float | None = None  # s, the first time θ reached 1 (the run does not cut the motors)
+
+    @property
+    def margin(self) -> float | None:
+        """1 − θ_max (None without a trip table)."""
+        return None if self.theta_max is None else 1.0 - self.theta_max
 
 
 @dataclass(frozen=True)
@@ -442,6 +471,7 @@ class MechanismMatch:
     length: float = 10.0
     base_load: float = 0.0
     rtol: float = 1e-6
+    channel_breaker: Breaker | None = None  # every channel's rating and trip table; None: 40 A, no table
 
     def run(self) -> BusResult:
         return _Run(self).result()
@@ -484,6 +514,14 @@ class _Run:
         self.tail = 4 + 3 * len(self.mechs)
         self.results = [MechanismResult(mk.name, mk.start) for mk in self.mechs]
         self.last_supply: list = [None] * len(self.mechs)  # (t, N·I_s) at the last record
+        brk = match.channel_breaker
+        if brk is None:
+            brk = Breaker(CHANNEL_RATING, name="channel_breaker")
+        elif not isinstance(brk, Breaker):
+            raise InputError("channel_breaker", f"must be a Breaker, got {shown(brk)}")
+        self.brk = brk
+        # per channel: [θ, θ_max, trip, peak, t, I] along the records (B9)
+        self.chan = {mk.channel: [0.0, 0.0, None, 0.0, None, 0.0] for mk in self.mechs}
 
     # --- the bus at a state, with a held configuration -------------------------------------------
     def _emf(self, k, y):
@@ -663,6 +701,11 @@ class _Run:
             brownouts.append((b_start, self.length))
         for k, res in enumerate(self.results):
             res.energy = y[6 + 3 * k] * self.e_scale
+        on = self.brk.calibrated
+        channels = {
+            name: ChannelResult(name, self.brk.rating, c[3], c[1] if on else None, c[2])
+            for name, c in self.chan.items()
+        }
         return BusResult(
             self.results,
             self.vmin,
@@ -677,6 +720,7 @@ class _Run:
             switches,
             y[self.tail] * self.q_scale,
             y[self.tail + 1] * self.i2_scale,
+            channels,
         )
 
     def _piece(self, rhs, t, t1, y, events, restart, stiff):
@@ -832,6 +876,7 @@ class _Run:
         if V < self.vmin:
             self.vmin, self.tmin = V, t
         I = self.base
+        per_motor = dict.fromkeys(self.chan, 0.0)
         for k, mk in enumerate(self.mechs):
             br = config[k]
             if br == DONE:
@@ -847,4 +892,23 @@ class _Run:
             res.peak_supply_current = max(res.peak_supply_current, i_s)
             res.peak_stator_current = max(res.peak_stator_current, abs(mk.stator(br, E, V)))
             res.trace.append((t, mk.q0 + mk.s * y[4 + 3 * k] * mk.d, y[5 + 3 * k] * mk.v_ref))
+            per_motor[mk.channel] += i_s
         trace.append((t, V, I))
+        self._channels(t, per_motor)
+
+    def _channels(self, t, per_motor):
+        """(B9): each channel's breaker along the records, as the main breaker's (workbook match
+        _breaker): θ advanced exactly (breaker.py `advance`) over each step at the step's mean
+        per-motor supply current (the records hold every solver step and switch); a step of zero
+        length (a switch) only changes the current the next step starts from."""
+        brk, on = self.brk, self.brk.calibrated
+        for name, i in per_motor.items():
+            c = self.chan[name]
+            c[3] = max(c[3], abs(i))
+            if on and c[4] is not None and t > c[4]:
+                c[0] = brk.advance(c[0], 0.5 * (c[5] + i), t - c[4])
+                if c[0] > c[1]:
+                    c[1] = c[0]
+                if c[2] is None and c[0] >= 1.0:
+                    c[2] = t
+            c[4], c[5] = t, i

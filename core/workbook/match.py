@@ -41,8 +41,9 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..errors import InputError, shown
-from .book import MATCH_OUTPUTS as OUTPUTS
+from .book import MATCH_OUTPUTS as OUTPUTS  # noqa: F401 (tui/match_cli reads it here)
 from .book import Expr, Workbook
+from .book import match_output as output_info
 from .expressions import Scope, evaluate, literal_value, parse_expression
 
 NAME = "match"
@@ -71,6 +72,7 @@ KEYS = {  # key: (unit, default, a reference allowed)
     "capacity": ("A*h", 18.0, True),
     "peukert": ("", 1.25, True),
     "charge": ("", 1.0, True),
+    "channel_rating": ("A", 40.0, False),
 }
 EVENT_KEYS = ("at", "card", "action", "every", "count")
 
@@ -93,6 +95,7 @@ class MatchSpec:
     events: list[Event]
     source: str
     main_breaker: Any = None  # core.match.breaker.Breaker with the trip table entered, else None
+    channel_table: tuple | None = None  # every channel breaker's trip table, else None (B9)
 
     def occurrences(self) -> list[tuple[float, Event]]:
         """Every move asked, (time, event), by time then file order; those past the end dropped."""
@@ -116,7 +119,7 @@ def parse(data: Any, wb: Workbook) -> MatchSpec:
     src = wb.source
     if not isinstance(data, dict):
         raise InputError(NAME, "must be a table ([match] ...)", src)
-    allowed = set(KEYS) | {"controller", "ocv", "events", "main_breaker"}
+    allowed = set(KEYS) | {"controller", "ocv", "events", "main_breaker", "channel_breaker"}
     for key in data:
         if key not in allowed:
             raise InputError(f"{NAME}.{key}", f"unknown key of the match ({', '.join(sorted(allowed))})", src)
@@ -178,6 +181,31 @@ def parse(data: Any, wb: Workbook) -> MatchSpec:
             raise InputError(
                 f"{NAME}.main_breaker", "needs at least one row [multiple of 120 A, seconds]", src
             )
+    channel_table = None
+    if "channel_breaker" in data:  # every channel's trip table ((multiple of its rating, s), ...)
+        from ..match.breaker import Breaker
+
+        if not 0 < values["channel_rating"] <= 1e5:
+            raise InputError(
+                f"{NAME}.channel_rating", f"must be above 0 A, got {values['channel_rating']:g} A", src
+            )
+        try:
+            brk = Breaker(values["channel_rating"], data["channel_breaker"], name="channel_breaker")
+        except InputError as exc:
+            raise InputError(f"{NAME}.{exc.field}", exc.message, src) from None
+        except (TypeError, ValueError):
+            raise InputError(
+                f"{NAME}.channel_breaker", "must be rows [multiple of the channel rating, seconds]", src
+            ) from None
+        if not brk.calibrated:
+            raise InputError(
+                f"{NAME}.channel_breaker", "needs at least one row [multiple of the rating, seconds]", src
+            )
+        channel_table = brk.table
+    elif not 0 < values["channel_rating"] <= 1e5:
+        raise InputError(
+            f"{NAME}.channel_rating", f"must be above 0 A, got {values['channel_rating']:g} A", src
+        )
     rows = data.get("events", [])
     if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
         raise InputError(f"{NAME}.events", "must be [[match.events]] tables", src)
@@ -191,7 +219,15 @@ def parse(data: Any, wb: Workbook) -> MatchSpec:
             f"{NAME}.length", f"must be above 0 s and at most {MAX_LENGTH:g} s, got {length:g} s", src
         )
     events = [_event(i, r, wb, length) for i, r in enumerate(rows, 1)]
-    spec = MatchSpec(values, controller, ocv, events, src, main_breaker)
+    for ev in events:  # its channel's outputs <card>_breaker_* beside the main breaker's main_breaker_*
+        if ev.card == "main":
+            raise InputError(
+                f"{NAME}.events[{ev.index}].card",
+                "a card named 'main' would give its channel breaker the main breaker's outputs "
+                "(main_breaker_margin, ...); rename it",
+                src,
+            )
+    spec = MatchSpec(values, controller, ocv, events, src, main_breaker, channel_table)
     moves = sum(1 for _ in spec.occurrences())
     if moves > MAX_MOVES:
         raise InputError(
@@ -355,8 +391,9 @@ class MatchOutcome:
     channel_peaks: dict[str, float] = field(default_factory=dict)  # card -> peak supply A per motor
 
     def as_json(self) -> dict[str, Any]:
+        cards = set(self.bus.channels)
         return {
-            "outputs": {k: {"value": v, "unit": OUTPUTS[k][1]} for k, v in self.outputs.items()},
+            "outputs": {k: {"value": v, "unit": output_info(k, cards)[1]} for k, v in self.outputs.items()},
             "min_bus_running": list(self.running_at_min),
             "brownouts": [
                 {"start": b.start, "end": b.end, "length": b.length, "running": list(b.running)}
@@ -422,9 +459,14 @@ def run(spec: MatchSpec, wb: Workbook, scope: Scope, cards: dict) -> MatchOutcom
             setup = _setup(card.calculator, card.entries, ev.action)
         except InputError as exc:
             raise InputError(where, f"{exc.field}: {exc.message}", src) from None
-        moves.append(MechanismMove(f"{ev.card}#{k}", setup, t, after=last.get(ev.card)))
+        moves.append(MechanismMove(f"{ev.card}#{k}", setup, t, after=last.get(ev.card), channel=ev.card))
         last[ev.card] = k
-    match = MechanismMatch(tuple(moves), battery, controller, vals["length"], vals["base_load"])
+    from ..match.breaker import Breaker
+
+    channel = Breaker(vals["channel_rating"], spec.channel_table or (), name="channel_breaker")
+    match = MechanismMatch(
+        tuple(moves), battery, controller, vals["length"], vals["base_load"], channel_breaker=channel
+    )
     try:
         bus = match.run()
     except InputError as exc:
@@ -531,6 +573,12 @@ def _outcome(spec, occ, bus, battery, controller, vals) -> MatchOutcome:
         "moves": sum(1 for *_, r in moves if r.arrival is not None),
         "unfinished": sum(1 for *_, r in moves if r.arrival is None),
     }
+    for card, ch in bus.channels.items():  # (B9): match.<card>_breaker_load, _margin, _trip
+        o[f"{card}_breaker_load"] = 100.0 * ch.peak / ch.rating
+        if ch.theta_max is not None:
+            o[f"{card}_breaker_margin"] = 100.0 * (1.0 - ch.theta_max)
+        if ch.trip_time is not None:
+            o[f"{card}_breaker_trip"] = ch.trip_time
     shares: dict[str, float] = {}
     peaks: dict[str, float] = {}
     for _, ev, r in moves:
