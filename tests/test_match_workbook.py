@@ -405,3 +405,20 @@ def test_a_spin_up_and_a_sprint_in_a_workbook_are_their_cards():
         (_, ev, r), *_ = o.match.moves
         assert ev.card == key
         assert r.time_to_goal == pytest.approx(o.cards[card].solution.outputs[out].value, rel=2e-5)
+
+
+def test_a_lift_holds_until_its_stop():
+    """Elevator, arm and flywheel moves hold their goal (mechanisms.py (B10)) until the card's next
+    move or a `stop`; a stop before any move of the card has nothing to stop."""
+    early = '[[match.events]]\nat = "0 s"\ncard = "arm"\naction = "stop"\n'
+    stop = '[[match.events]]\nat = "3 s"\ncard = "lift"\naction = "stop"\n'
+    held = workbook.solve(book(ALONE + early))
+    stopped = workbook.solve(book(ALONE + stop))
+    ((_, _, h),) = held.match.moves
+    ((_, _, s),) = stopped.match.moves
+    assert h.arrival == pytest.approx(s.arrival, rel=1e-9) and s.arrival < 3.0
+    assert max(t for t, _, _ in h.trace) == pytest.approx(5.0)  # held to the end of the match
+    assert max(t for t, _, _ in s.trace) == pytest.approx(3.0)
+    assert held.match.outputs["charge_used"] > stopped.match.outputs["charge_used"]
+    e = refused('[match]\n[[match.events]]\nat = 1\ncard = "shooter"\naction = "return"\n')
+    assert e.field == "match.events[1].action" and "spin_up, stop" in e.message

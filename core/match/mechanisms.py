@@ -60,8 +60,23 @@ motors on its own breaker (40 A by default) carrying the per-motor supply curren
 channel's moves; the thermal state of breaker.py (M12) is advanced exactly over each step of the
 records at the step's mean current (`advance`), as the main breaker's is, from cold at 0 s.
 
-At the goal a mechanism's move ends (as the card's does): it draws nothing after (holding there is
-not modelled here). Energy: dE_oc/dt = V_oc·I, dE_bus/dt = V·I, dE_R/dt = R·I² (battery (M5)), and
+At the goal a mechanism's move ends (as the card's does). A move given `hold` then holds its goal
+(B10) until the next move waiting for it starts or its `release` time (whichever is later than its
+arrival); otherwise it draws nothing after. Holding, its motors carry the stator current I_h that
+holds it, from its own equations: the elevator's or arm's I_h = −s·F_field(q_goal)/(η·N·Kt·n), the
+field (gravity, counterbalance) cancelled at the goal, friction aside (the card's hold_current; a
+kG as a current); the flywheel's I_h = i_f at its target speed, the motors' own loss. At the held
+back-EMF E (0 at rest) the duty is u = (E + R·I_h)/V, so each motor's supply is
+(E + R·I_h)·I_h/V: a constant-power load on the bus, p = N·(E + R·I_h)·I_h (R·I_h² at rest)   (B10)
+(tests/test_match_hold.py derives it with sympy). Assumptions: the controller holds exactly (no
+position error, no oscillation); a hold current above the stator limit is not held (the limited
+motors and friction then decide at rest, (B1)); a mechanism holds at every goal, its start
+included (a hard stop that carries the load is not modelled: the workbook's `stop` ends a hold).
+In a brownout a held mechanism coasts like any (the elevator sags, falling under gravity less
+friction; the flywheel slows on its loss); when the outputs return it moves back to its goal on
+its move's own equations (full duty, its limits), and holds again when it arrives. A move of the
+same card starting ends the hold where the mechanism is then: the next move starts from rest at
+its own start, as the card's scene does (a sag not recovered is not carried over). Energy: dE_oc/dt = V_oc·I, dE_bus/dt = V·I, dE_R/dt = R·I² (battery (M5)), and
 each mechanism's ∫V_oc·N·I_s dt (the card's energy, its EMF times its current, when V_oc = V_b).
 The state's tail (after the moves' 4 + 3n) integrates what the match's outputs need besides: the
 Peukert-weighted charge (battery (M4)) and ∫I²dt (the RMS current); each move's charge ∫N·I_s dt (its
@@ -92,6 +107,7 @@ MAX_LENGTH = 3600.0
 LIMIT_EFFECTS = ("stator_limit", "supply_limit")
 FULL, STATOR, SUPPLY, COAST, DONE = "full", "stator", "supply", "coast", "done"
 SLIP = "slip"  # the sprint's wheels at the edge of slip: the motors draw I_slip (B7)
+HOLD = "hold"  # at its goal, held there: the current that holds it (B10)
 
 
 @dataclass(frozen=True)
@@ -104,6 +120,8 @@ class MechanismMove:
     brownout_disables: bool = True
     after: int | None = None  # the index of a move this one waits for (queued: starts at its arrival)
     channel: str | None = None  # its motors' breaker channel (a card's moves share one); None: its name
+    hold: bool = False  # after its goal it holds there (B10) until the next move waiting for it starts
+    release: float | None = None  # s: the hold ends here (or at its arrival, if later); None: never
 
 
 def from_card(calc_id: str, raw: dict, name: str | None = None, start: float = 0.0) -> MechanismMove:
@@ -172,6 +190,9 @@ class _Mech:
         self.I_sup = s.values["supply_current_limit"] if "supply_limit" in on else None
         self.stiff = motion.estimated_time(s) / motion.time_constant(m) >= motion.STIFF
         self.e_ref = 1e-3 * m.count * m.battery_voltage**2 / m.R * self.d / self.v_ref
+        self.I_hold = -self.field_force(self.d) / self.fpa  # (B10): cancels the field at the goal
+        # a stator limit below it: not held; the limited motors and friction decide at rest (B1)
+        self.can_hold = self.I_st is None or abs(self.I_hold) <= self.I_st
 
     def _common(self, where: str, ev: MechanismMove, length: float) -> None:
         if not isinstance(ev.name, str) or not ev.name or ev.name == "base":
@@ -190,6 +211,14 @@ class _Mech:
         if ev.channel is not None and (not isinstance(ev.channel, str) or not ev.channel):
             raise InputError(f"{where}.channel", f"must be a non-empty name, got {shown(ev.channel)}")
         self.channel = ev.channel or ev.name
+        if not isinstance(ev.hold, bool):
+            raise InputError(f"{where}.hold", f"must be true or false, got {shown(ev.hold)}")
+        self.hold = ev.hold
+        self.release = None
+        if ev.release is not None:
+            self.release = number(f"{where}.release", ev.release, low=0.0, high=length)
+        self.I_hold, self.w_hold = 0.0, 0.0  # (B10): the holding current per motor, the held speed
+        self.can_hold = True
 
     def branches(self) -> tuple[str, ...]:
         return (
@@ -209,6 +238,8 @@ class _Mech:
             return (N * self.I_sup, 0.0, 0.0)
         if branch == SLIP:  # (B7): a constant current
             return (N * self.slip_supply, 0.0, 0.0)
+        if branch == HOLD:  # (B10): the stator current I_hold at the held speed: constant power
+            return (0.0, 0.0, N * (E + R * self.I_hold) * self.I_hold)
         return (0.0, 0.0, 0.0)
 
     def supply(self, branch: str, E: float, V: float) -> float:
@@ -228,6 +259,8 @@ class _Mech:
             return 2.0 * self.I_sup * V / (E + root) if E > 0 else (root - E) / (2.0 * self.R)
         if branch == SLIP:
             return self.I_slip
+        if branch == HOLD:
+            return self.I_hold
         return 0.0
 
     def breakpoints(self, E: float) -> list[float]:
@@ -314,6 +347,8 @@ class _Sprint(_Mech):
         self._common(where, ev, length)
         if s.ramp > 0:
             raise InputError(f"{where}.effects", "voltage_ramp: not on the match bus yet")
+        if self.hold:
+            raise InputError(f"{where}.hold", "a sprint ends at its distance; it does not hold there")
         sprint.check_can_move(s)  # the card's own check: names the field
         dr = s.drive
         self.N, self.R, self.n_kv, self.fpa, self.M = dr.count, dr.R, dr.n / dr.Kv, dr.force_per_amp, dr.mass
@@ -374,6 +409,7 @@ class _Flywheel(_Mech):
         self.I_st = v["stator_current_limit"] if "stator_limit" in on else None
         self.I_sup = v["supply_current_limit"] if "supply_limit" in on else None
         self.goal_speed = s.target
+        self.I_hold, self.w_hold = i_f, s.target  # (B10): at its speed the motors carry their own loss
         self.stiff = False  # DP54, LSODA where it runs out of steps (_piece)
         self.e_ref = 1e-3 * self.N * Vb**2 / c.R * tau
 
@@ -552,7 +588,7 @@ class _Run:
     def choose(self, y, config, last_v, held=None, prefer=None):
         """Each drawing motor's branch and the root (B6): every operating point, the nearest to
         last_v (the highest when None). None when there is none (the bus collapses)."""
-        drawing = [k for k, br in enumerate(config) if br not in (COAST, DONE)]
+        drawing = [k for k, br in enumerate(config) if br not in (COAST, DONE, HOLD)]  # HOLD is held
         E = {k: self._emf(k, y) for k in drawing}
         cuts = sorted({x for k in drawing for x in self.mechs[k].breakpoints(E[k])})
         edges = [0.0] + cuts + [math.inf]
@@ -606,27 +642,36 @@ class _Run:
         last_event = None
         switches: list = []
         begun: set[int] = set()
+        released = [False] * n  # (B10): its hold is over (the next move began, or its release time)
+        at_goal = self.at_goal = [False] * n  # holding, still at its goal (not sagged in a brownout)
         while t < self.length:
             pieces += 1
             charge(1)
             if pieces > MAX_PIECES:
                 raise InputError("moves", f"more than {MAX_PIECES} switches (brownouts, limits) in one run")
-            started = [
-                mk.start <= t
-                and self.results[k].arrival is None
-                and (mk.after is None or self.results[mk.after].arrival is not None)
-                for k, mk in enumerate(self.mechs)
-            ]
+            arrived = [r.arrival is not None for r in self.results]
             for k, mk in enumerate(self.mechs):  # a queued move starts when the one before arrives
-                if started[k] and k not in begun:
+                if (
+                    k not in begun
+                    and mk.start <= t
+                    and (mk.after is None or arrived[mk.after])
+                    and not arrived[k]
+                ):
                     begun.add(k)
                     self.results[k].start = max(mk.start, t)
+                    if mk.after is not None:
+                        released[mk.after] = True  # the move before stops holding (B10)
+            for k, mk in enumerate(self.mechs):
+                if arrived[k] and mk.release is not None and t >= mk.release:
+                    released[k] = True
             base_cfg = []
             for k, mk in enumerate(self.mechs):
-                if not started[k]:
+                if k not in begun or released[k] or (arrived[k] and not mk.hold):
                     base_cfg.append(DONE)
                 elif not enabled and mk.disables:
                     base_cfg.append(COAST)
+                elif arrived[k] and at_goal[k] and mk.can_hold:
+                    base_cfg.append(HOLD)
                 else:
                     base_cfg.append(FULL)
             pick = self.choose(y, base_cfg, last_v, held, prefer)
@@ -655,6 +700,7 @@ class _Run:
             t1 = min(
                 [self.length]
                 + [mk.start for mk in self.mechs if mk.start > t]
+                + [mk.release for mk in self.mechs if mk.release is not None and mk.release > t]
                 + ([ready] if not enabled and ready > t else [])
             )
             events = self._events(config, root, dirs, enabled, t >= ready)
@@ -691,8 +737,19 @@ class _Run:
                 y[5 + 3 * int(run.event[4:])] = 0.0  # the located stop: the rest rule decides (B1)
             elif run.event is not None and run.event.startswith("goal"):
                 k = int(run.event[4:])
-                self.results[k].arrival = t
-                y[5 + 3 * k] = 0.0  # the move ends at its goal (not held: draws nothing after)
+                if self.results[k].arrival is None:
+                    self.results[k].arrival = t
+                mk = self.mechs[k]
+                at_goal[k] = True  # (B10): held there from now (or, not holding, done)
+                y[5 + 3 * k] = mk.w_hold / mk.v_ref  # the move ends at its goal (and speed)
+                if mk.goal_speed is None:
+                    y[4 + 3 * k] = 1.0
+            for k, c in enumerate(config):  # a brownout moved it off its goal: it moves back (B10)
+                if c != HOLD and at_goal[k]:
+                    mk = self.mechs[k]
+                    at_goal[k] = y[5 + 3 * k] == mk.w_hold / mk.v_ref and (
+                        mk.goal_speed is not None or y[4 + 3 * k] == 1.0
+                    )
             if run.event is None and t < t1 - 1e-12 * max(1.0, t1):
                 raise InputError(
                     "moves", f"the integration stopped at {t:.6g} s ({run.message or 'step limit'})"
@@ -775,7 +832,7 @@ class _Run:
                 E = self._emf(k, y)
                 i_s = mk.N * mk.supply(br, E, V)
                 I += i_s
-                if dirs[k] == 0:
+                if dirs[k] == 0 or br == HOLD:
                     acc = 0.0
                 else:
                     drag = mk.drag(y[5 + 3 * k] * mk.v_ref)
@@ -801,7 +858,7 @@ class _Run:
             evs.append(Event("brownout", lambda t, y: bus(y, config, root) - self.ctl.brownout, -1))
         if not enabled and ready:
             evs.append(Event("recovery", lambda t, y: bus(y, config, root) - self.ctl.recovery, +1))
-        if any(c == STATOR for c in config):
+        if any(c in (STATOR, HOLD) for c in config):
 
             def disc(t, y):
                 a, b, pp = self._sums(y, config)
@@ -811,10 +868,12 @@ class _Run:
             evs.append(Event("merge", disc, -1))
         for k, mk in enumerate(self.mechs):
             br = config[k]
-            if br == DONE:
+            if br in (DONE, HOLD):  # held: nothing of its own switches (B10)
                 continue
             i_w = 5 + 3 * k
-            if mk.goal_speed is not None:  # the flywheel: its target speed
+            if self.at_goal[k]:
+                pass  # at its goal, coasting or not able to hold there: it can only leave it
+            elif mk.goal_speed is not None:  # the flywheel: its target speed
                 w_goal = mk.goal_speed / mk.v_ref
                 evs.append(Event(f"goal{k}", lambda t, y, i=i_w, g=w_goal: y[i] - g, +1))
             else:

@@ -27,7 +27,9 @@ load and the thresholds, a reference `"= EXPR"` reading the workbook's variables
 `every` are plain (a number of seconds or a time).
 
 Events on one card are queued, never superposed: a move starts at its time or, if the card's previous
-move has not reached its goal yet, when it does. A move that never arrives (stuck, browned out to the
+move has not reached its goal yet, when it does. An elevator, arm or flywheel then holds its goal
+(its speed) on the current that holds it until the card's next move starts, or until an event with
+`action = "stop"` (core.match.mechanisms (B10)); a sprint draws nothing after its distance. A move that never arrives (stuck, browned out to the
 end) holds the card's later moves back: they are counted in `match.unfinished`. Each move starts from
 rest at its start (the elevator's return from the top of its travel), as the card's scene does.
 The battery, controller and bus are core.match's (battery.py, brownout.py, mechanisms.py), with their
@@ -52,11 +54,13 @@ MAX_MOVES = 200  # moves on the bus after `every`/`count` (core.match.mechanisms
 ACTIONS = ("move", "return")
 # calculator: (its mode field and the mode the match runs, or None; the actions, the first the default)
 ON_BUS = {
-    "elevator": ("mode", "move", ACTIONS),
-    "arm": ("mode", "move", ACTIONS),
+    "elevator": ("mode", "move", (*ACTIONS, "stop")),
+    "arm": ("mode", "move", (*ACTIONS, "stop")),
     "sprint": ("mode", "sprint", ACTIONS),  # return: the same sprint, driven back
-    "flywheel": (None, None, ("spin_up",)),  # its `mode` is the inertia's; `control` checked at the run
+    "flywheel": (None, None, ("spin_up", "stop")),  # its `mode` is the inertia's; `control` at the run
 }
+# held at their goal after a move (mechanisms.py (B10)) until the card's next move or a `stop`
+HOLDING = ("elevator", "arm", "flywheel")
 CARDS_ON_BUS = tuple(ON_BUS)
 NOT_ON_BUS = (
     "not on the match bus yet: elevator and arm moves, sprints and flywheel spin-ups only "
@@ -448,7 +452,14 @@ def run(spec: MatchSpec, wb: Workbook, scope: Scope, cards: dict) -> MatchOutcom
         controller = Controller(brownout=b, recovery=r)
     except InputError as exc:
         raise InputError(f"{NAME}.{exc.field.removeprefix('controller.')}", exc.message, src) from None
-    occ = spec.occurrences()
+    occ, stops, last = [], {}, {}
+    for t, ev in spec.occurrences():
+        if ev.action == "stop":  # the card's last move asked stops holding (B10); none yet: nothing to stop
+            if ev.card in last:
+                stops.setdefault(last[ev.card], t)
+            continue
+        last[ev.card] = len(occ)
+        occ.append((t, ev))
     moves, last = [], {}
     for k, (t, ev) in enumerate(occ):
         where = f"{NAME}.events[{ev.index}] ({ev.card} at {t:g} s)"
@@ -459,7 +470,17 @@ def run(spec: MatchSpec, wb: Workbook, scope: Scope, cards: dict) -> MatchOutcom
             setup = _setup(card.calculator, card.entries, ev.action)
         except InputError as exc:
             raise InputError(where, f"{exc.field}: {exc.message}", src) from None
-        moves.append(MechanismMove(f"{ev.card}#{k}", setup, t, after=last.get(ev.card), channel=ev.card))
+        moves.append(
+            MechanismMove(
+                f"{ev.card}#{k}",
+                setup,
+                t,
+                after=last.get(ev.card),
+                channel=ev.card,
+                hold=card.calculator in HOLDING,
+                release=stops.get(k),
+            )
+        )
         last[ev.card] = k
     from ..match.breaker import Breaker
 
