@@ -422,3 +422,20 @@ def test_a_lift_holds_until_its_stop():
     assert held.match.outputs["charge_used"] > stopped.match.outputs["charge_used"]
     e = refused('[match]\n[[match.events]]\nat = 1\ncard = "shooter"\naction = "return"\n')
     assert e.field == "match.events[1].action" and "spin_up, stop" in e.message
+
+
+def test_solve_prints_the_match(robot, tmp_path, capsys):
+    """`gearhead solve ROBOT.toml` shows the match's outputs after the cards (and in --json), or why
+    it did not run."""
+    code, out, _ = run_cli(["solve", str(robot)], capsys)
+    assert code == 0 and "[match]" in out and "Lowest bus voltage" in out
+    assert out.index("[match]") < out.index("Lowest bus voltage")
+    code, out, _ = run_cli(["solve", str(robot), "--json"], capsys)
+    data = json.loads(out)
+    code2, out2, _ = run_cli(["match", str(robot), "--json"], capsys)
+    assert code == code2 == 0 and data["match"] == json.loads(out2)["outputs"]
+    p = tmp_path / "bad.toml"
+    base = LIFT.replace('load_mass = "15 lb"', 'load_mass = "= battery_resistance * 100000 lb/ohm"')
+    p.write_text(textwrap.dedent(base) + textwrap.dedent(ALONE))
+    code, out, _ = run_cli(["solve", str(p)], capsys)
+    assert code == 0 and "[match]" in out and "not run: match.events[1] (lift at 0 s)" in out
