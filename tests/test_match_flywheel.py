@@ -79,3 +79,55 @@ def test_bad_spin_ups_are_named(raw, field):
     with pytest.raises(InputError) as e:
         MechanismMatch((from_card("flywheel", raw),)).run()
     assert e.value.field == field
+
+
+BURSTS = [
+    PRESET,  # stator-limited: constant torque between shots
+    dict(PRESET, effects="battery_sag"),
+    dict(PRESET, effects=""),
+    dict(PRESET, transfer="energy"),
+    {},  # the seed's (VEX 393s, four shots)
+]
+
+
+@pytest.mark.parametrize("accuracy", ["default", "fine"])
+@pytest.mark.parametrize("raw", BURSTS)
+def test_a_burst_alone_is_its_card(raw, accuracy):
+    """(B11): the card's burst on the bus: its spin-up, the first shot on arrival, then one every
+    shot_interval, each the card's shot (an instant drop); the slowest ball and the recovery after
+    the first shot are the card's."""
+    from gearhead.core.match.mechanisms import MechanismMove, burst
+    from gearhead.core.model import parse_inputs
+    from gearhead.core.registry import get
+
+    card = model.solve("flywheel", dict(raw, accuracy="tight")).outputs
+    v = parse_inputs(get("flywheel"), dict(raw, accuracy=accuracy))[0]
+    R = v["battery_resistance"] if "battery_sag" in v["effects"] else 0.0
+    battery = Battery(ocv_table=((1.0, v["voltage"]),), resistance=R) if R else IdealSource(v["voltage"])
+    move = MechanismMove("fw", burst(v), 0.0, hold=True)
+    res = MechanismMatch(
+        (move,), battery, Controller(brownout=0.1, recovery=0.2), length=10.0, rtol=LEVELS[accuracy]
+    ).run()
+    m = res.mechanisms[0]
+    tol = 20 * LEVELS[accuracy]
+    assert len(m.shots) == v["shots"]
+    assert [t for t, *_ in m.shots] == pytest.approx(
+        [m.arrival + j * v["shot_interval"] for j in range(v["shots"])], rel=1e-12
+    )
+    assert m.shots[0][1] == pytest.approx(card["ball_speed"].value, rel=1e-12)
+    assert min(V for _, V, _, _ in m.shots) == pytest.approx(card["slowest_ball_speed"].value, rel=tol)
+    t0 = m.shots[0][0]
+    back = min(t for t, n in res.switches if n == "goal0" and t > t0)
+    assert back - t0 == pytest.approx(card["recovery_time"].value, rel=tol)
+    assert m.time_to_goal == pytest.approx(card["spin_up_time"].value, rel=tol)
+
+
+def test_a_burst_with_the_motor_during_the_shot_is_refused():
+    from gearhead.core.match.mechanisms import burst
+    from gearhead.core.model import parse_inputs
+    from gearhead.core.registry import get
+
+    v = parse_inputs(get("flywheel"), dict(PRESET, effects="motor_during_shot"))[0]
+    with pytest.raises(InputError) as e:
+        burst(v)
+    assert e.value.field == "effects"

@@ -421,7 +421,7 @@ def test_a_lift_holds_until_its_stop():
     assert max(t for t, _, _ in s.trace) == pytest.approx(3.0)
     assert held.match.outputs["charge_used"] > stopped.match.outputs["charge_used"]
     e = refused('[match]\n[[match.events]]\nat = 1\ncard = "shooter"\naction = "return"\n')
-    assert e.field == "match.events[1].action" and "spin_up, stop" in e.message
+    assert e.field == "match.events[1].action" and "spin_up, burst, stop" in e.message
 
 
 def test_solve_prints_the_match(robot, tmp_path, capsys):
@@ -439,3 +439,20 @@ def test_solve_prints_the_match(robot, tmp_path, capsys):
     p.write_text(textwrap.dedent(base) + textwrap.dedent(ALONE))
     code, out, _ = run_cli(["solve", str(p)], capsys)
     assert code == 0 and "[match]" in out and "not run: match.events[1] (lift at 0 s)" in out
+
+
+def test_a_burst_then_the_cards_next_move_waits_for_its_shots():
+    extra = ALONE.replace('card = "lift"', 'card = "shooter"\naction = "burst"').replace(
+        "[[1.0, 12.0]]", "[[1.0, 12.5]]"
+    )
+    extra += '\n[[match.events]]\nat = "0.1 s"\ncard = "shooter"\naction = "spin_up"\n'
+    o = workbook.solve(book(extra))
+    assert o.match is not None, o.match_error
+    (_, _, b), (_, _, s) = o.match.moves
+    card = o.cards["shooter"].solution.outputs
+    assert len(b.shots) == 3 and min(V for _, V, _, _ in b.shots) == pytest.approx(
+        card["slowest_ball_speed"].value, rel=1e-4
+    )
+    assert s.start >= b.shots[-1][0]  # queued behind the last shot (and its recovery)
+    moves = o.match.as_json()["moves"]
+    assert moves[0]["ball_speeds"] == [V for _, V, _, _ in b.shots] and "ball_speeds" not in moves[1]

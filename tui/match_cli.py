@@ -36,6 +36,7 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     from gearhead.core import workbook
+    from gearhead.core.workbook.match import summary
 
     from .workbook_cli import _load, _say
 
@@ -81,42 +82,6 @@ def run(args) -> int:
     for line in plot(m.bus.trace, length, m.controller.brownout):
         _say(line)
     return 0
-
-
-def summary(m) -> list[str]:
-    """The match's outputs as lines (`gearhead match` and `gearhead solve ROBOT.toml`): each output
-    with its label, then each card's share of the charge and its channel breaker."""
-    from gearhead.core import units
-    from gearhead.core.workbook.match import OUTPUTS
-
-    o = m.outputs
-    out: list[str] = []
-    width = max(len(label) for label, _ in OUTPUTS.values())
-    for key, (label, unit) in OUTPUTS.items():  # the channels' own outputs are shown with the shares
-        if key not in o:  # the breaker's margin without a trip table, its trip time without a trip
-            continue
-        value = o[key]
-        text = f"{value:d}" if isinstance(value, int) else f"{units.format_number(value)} {unit}".rstrip()
-        if key == "min_bus_time" and m.running_at_min:
-            text += f"  ({', '.join(m.running_at_min)} running)"
-        out.append(f"  {label:<{width}}  {text}")
-    rating = m.spec.values["channel_rating"]
-    out.append(f"  Charge share; peak supply current per motor, either way (of a {rating:g} A breaker)")
-    for k, v in m.shares.items():
-        ch = m.bus.channels.get(k)  # either direction: a motor braking a falling load drives current back
-        more = f"   peak {ch.peak:.4g} A ({ch.peak / rating * 100:.3g} %)" if ch is not None else ""
-        if f"{k}_breaker_trip" in o:
-            more += f"; trips at {units.format_number(o[f'{k}_breaker_trip'])} s"
-        elif f"{k}_breaker_margin" in o:
-            more += f"; margin {units.format_number(o[f'{k}_breaker_margin'])} %"
-        out.append(f"    {printable(k):<12} {v * 100:6.3g} %{more}")
-    if "main_breaker_margin" not in o and m.spec.channel_table is None:
-        out.append("  (no breaker trip table entered, so no trip is predicted)")
-    elif m.spec.channel_table is None:
-        out.append("  (no channel breaker trip table entered: no channel trip is predicted)")
-    elif "main_breaker_margin" not in o:
-        out.append("  (no main breaker trip table entered: no main breaker trip is predicted)")
-    return out
 
 
 def plot(trace, length: float, brownout: float, width: int = PLOT_WIDTH, height: int = PLOT_HEIGHT):

@@ -187,7 +187,7 @@ def solve(args) -> int:
         for w in card.solution.warnings:
             _say(f"  warning: {w}")
     if wb.match is not None:  # its outputs (`gearhead match` adds the brownouts and the plot)
-        from .match_cli import summary
+        from gearhead.core.workbook.match import summary
 
         _say("\n[match] the robot on one battery (gearhead match: brownouts, plot)")
         if outcome.match is None:

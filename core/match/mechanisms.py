@@ -55,6 +55,14 @@ If the bus has no operating point at all (G > 0 for every V > 0: a motor driven 
 so fast that at full duty it would draw more than the battery gives at any voltage) the bus is
 taken to collapse: the outputs are disabled as in a brownout.
 
+A flywheel's burst (B11, `burst`): the card's (core.sim.shooter.burst) on the bus: its spin-up,
+then its shots, the first when it reaches the target, then one every shot_interval, each an instant
+drop ω → ω_after by the card's own shot model (shooter.shot: energy or momentum transfer, losses;
+motor_during_shot, a shot of some length with the motor driving, is refused); between shots it
+moves back to the target at full power and holds it there (B10), as the card's burst does. The
+card's next move waits for its last shot and that shot's recovery. Each shot is listed
+(MechanismResult.shots: time, ball speed, ω before and after).
+
 Channel breakers (B9): each move names its channel (the workbook: its card), each of the channel's
 motors on its own breaker (40 A by default) carrying the per-motor supply current Σ I_s of the
 channel's moves; the thermal state of breaker.py (M12) is advanced exactly over each step of the
@@ -159,6 +167,7 @@ class _Mech:
     """A mechanism's terms, from its card's Setup (its equations, its limits)."""
 
     I_slip: float | None = None  # the sprint's (S5): its stator current at the edge of wheel slip
+    shots, interval = 0, 0.0  # a flywheel burst's (B11)
     goal_speed: float | None = None  # the flywheel's target (rad/s): its move ends at a speed
     kind = "move"
 
@@ -301,6 +310,19 @@ class FlywheelSpin:
     scene: Any
     values: Any
     target: float  # rad/s of the wheel
+    shots: int = 0  # a burst: shots at the target, the first on arrival, then every `interval` (B11)
+    interval: float = 0.0  # s
+
+
+def burst(v) -> FlywheelSpin:
+    """The flywheel card's burst (core.sim.shooter.burst): its spin-up, then its `shots` shots every
+    `shot_interval`, each an instant drop by the card's shot model (B11)."""
+    if "motor_during_shot" in v["effects"] and v["transfer"] == "momentum":
+        raise InputError(
+            "effects", "motor_during_shot (a shot with the motor driving): not on the match bus yet"
+        )
+    spin = spin_up(v)
+    return FlywheelSpin(spin.scene, v, spin.target, v["shots"], v["shot_interval"])
 
 
 def spin_up(v) -> FlywheelSpin:
@@ -410,6 +432,16 @@ class _Flywheel(_Mech):
         self.I_sup = v["supply_current_limit"] if "supply_limit" in on else None
         self.goal_speed = s.target
         self.I_hold, self.w_hold = i_f, s.target  # (B10): at its speed the motors carry their own loss
+        self.shots = int(number(f"{where}.setup.shots", s.shots, low=0, high=1000))
+        self.interval = number(f"{where}.setup.interval", s.interval, low=0.0, high=length)
+        scene, m0 = s.scene, v.get("ball_mass", 0.0)
+
+        def shot(w):  # (B11): the card's own shot (core.sim.shooter.shot), instant (no motor during it)
+            from gearhead.core.sim.shooter import shot as card_shot
+
+            return card_shot(scene, w, m0, s.target, 1e-9)
+
+        self.shot = shot
         self.stiff = False  # DP54, LSODA where it runs out of steps (_piece)
         self.e_ref = 1e-3 * self.N * Vb**2 / c.R * tau
 
@@ -434,6 +466,7 @@ class MechanismResult:
     energy: float = 0.0  # J, ∫V_oc·N·I_s dt
     charge: float = 0.0  # C, ∫N·I_s dt (its share of the battery's charge): the trapezoid rule on the trace
     trace: list = field(default_factory=list)  # (t, position q, speed toward the goal)
+    shots: list = field(default_factory=list)  # a burst's: (t, ball speed m/s, ω before, ω after) (B11)
 
     @property
     def time_to_goal(self) -> float | None:
@@ -644,17 +677,29 @@ class _Run:
         begun: set[int] = set()
         released = [False] * n  # (B10): its hold is over (the next move began, or its release time)
         at_goal = self.at_goal = [False] * n  # holding, still at its goal (not sagged in a brownout)
+        pending: list[list[float]] = [[] for _ in range(n)]  # a burst's shot times to come (B11)
+        finished = [False] * n  # at its goal with no shot to come: the card's next move may start
         while t < self.length:
             pieces += 1
             charge(1)
             if pieces > MAX_PIECES:
                 raise InputError("moves", f"more than {MAX_PIECES} switches (brownouts, limits) in one run")
+            for k, mk in enumerate(self.mechs):  # a burst's shots due now: instant drops (B11)
+                while pending[k] and pending[k][0] <= t * (1 + 1e-12):
+                    pending[k].pop(0)
+                    if released[k]:
+                        continue
+                    w0 = y[5 + 3 * k] * mk.v_ref
+                    one = mk.shot(w0)
+                    y[5 + 3 * k] = one.omega_after / mk.v_ref
+                    self.results[k].shots.append((t, one.V, w0, one.omega_after))
+                    at_goal[k] = False
             arrived = [r.arrival is not None for r in self.results]
             for k, mk in enumerate(self.mechs):  # a queued move starts when the one before arrives
                 if (
                     k not in begun
                     and mk.start <= t
-                    and (mk.after is None or arrived[mk.after])
+                    and (mk.after is None or finished[mk.after])
                     and not arrived[k]
                 ):
                     begun.add(k)
@@ -666,7 +711,7 @@ class _Run:
                     released[k] = True
             base_cfg = []
             for k, mk in enumerate(self.mechs):
-                if k not in begun or released[k] or (arrived[k] and not mk.hold):
+                if k not in begun or released[k] or (finished[k] and not mk.hold):
                     base_cfg.append(DONE)
                 elif not enabled and mk.disables:
                     base_cfg.append(COAST)
@@ -701,6 +746,7 @@ class _Run:
                 [self.length]
                 + [mk.start for mk in self.mechs if mk.start > t]
                 + [mk.release for mk in self.mechs if mk.release is not None and mk.release > t]
+                + [p[0] for p in pending if p and p[0] > t]
                 + ([ready] if not enabled and ready > t else [])
             )
             events = self._events(config, root, dirs, enabled, t >= ready)
@@ -737,9 +783,11 @@ class _Run:
                 y[5 + 3 * int(run.event[4:])] = 0.0  # the located stop: the rest rule decides (B1)
             elif run.event is not None and run.event.startswith("goal"):
                 k = int(run.event[4:])
+                mk = self.mechs[k]
                 if self.results[k].arrival is None:
                     self.results[k].arrival = t
-                mk = self.mechs[k]
+                    pending[k] = [t + j * mk.interval for j in range(mk.shots)]
+                finished[k] = not pending[k]
                 at_goal[k] = True  # (B10): held there from now (or, not holding, done)
                 y[5 + 3 * k] = mk.w_hold / mk.v_ref  # the move ends at its goal (and speed)
                 if mk.goal_speed is None:

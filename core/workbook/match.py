@@ -57,7 +57,7 @@ ON_BUS = {
     "elevator": ("mode", "move", (*ACTIONS, "stop")),
     "arm": ("mode", "move", (*ACTIONS, "stop")),
     "sprint": ("mode", "sprint", ACTIONS),  # return: the same sprint, driven back
-    "flywheel": (None, None, ("spin_up", "stop")),  # its `mode` is the inertia's; `control` at the run
+    "flywheel": (None, None, ("spin_up", "burst", "stop")),  # its `mode` is the inertia's
 }
 # held at their goal after a move (mechanisms.py (B10)) until the card's next move or a `stop`
 HOLDING = ("elevator", "arm", "flywheel")
@@ -415,6 +415,7 @@ class MatchOutcome:
                     "arrival": r.arrival,
                     "peak_stator_current": r.peak_stator_current,
                     "peak_supply_current": r.peak_supply_current,
+                    **({"ball_speeds": [V for _, V, _, _ in r.shots]} if r.shots else {}),
                 }
                 for t, ev, r in self.moves
             ],
@@ -507,11 +508,13 @@ def _where_move(fieldname: str, occ) -> str:
 def _setup(calc_id: str, raw: dict, action: str):
     """The card's scene from its solved entries (core.match.mechanisms.scene_of); an elevator's or
     arm's `return` swaps its start and goal (a sprint's is the same sprint, driven back)."""
-    from ..match.mechanisms import scene_of
+    from ..match.mechanisms import burst, scene_of
     from ..model import parse_inputs
     from ..registry import get
 
     v = parse_inputs(get(calc_id), raw)[0]
+    if action == "burst":  # the flywheel's: its spin-up, then its shots (mechanisms.py (B11))
+        return burst(v)
     if action == "return":
         if calc_id == "elevator":
             v["travel"] = -v["travel"]
@@ -615,4 +618,40 @@ def _outcome(spec, occ, bus, battery, controller, vals) -> MatchOutcome:
     out.brownouts = [Brownout(s, e, _running(moves, s)) for s, e in bus.brownouts]
     out.shares = shares
     out.channel_peaks = peaks
+    return out
+
+
+def summary(m) -> list[str]:
+    """The match's outputs as lines (tui: `gearhead match` and `gearhead solve ROBOT.toml`): each output
+    with its label, then each card's share of the charge and its channel breaker."""
+    from .. import units
+    from ..errors import printable
+
+    o = m.outputs
+    out: list[str] = []
+    width = max(len(label) for label, _ in OUTPUTS.values())
+    for key, (label, unit) in OUTPUTS.items():  # the channels' own outputs are shown with the shares
+        if key not in o:  # the breaker's margin without a trip table, its trip time without a trip
+            continue
+        value = o[key]
+        text = f"{value:d}" if isinstance(value, int) else f"{units.format_number(value)} {unit}".rstrip()
+        if key == "min_bus_time" and m.running_at_min:
+            text += f"  ({', '.join(m.running_at_min)} running)"
+        out.append(f"  {label:<{width}}  {text}")
+    rating = m.spec.values["channel_rating"]
+    out.append(f"  Charge share; peak supply current per motor, either way (of a {rating:g} A breaker)")
+    for k, v in m.shares.items():
+        ch = m.bus.channels.get(k)  # either direction: a motor braking a falling load drives current back
+        more = f"   peak {ch.peak:.4g} A ({ch.peak / rating * 100:.3g} %)" if ch is not None else ""
+        if f"{k}_breaker_trip" in o:
+            more += f"; trips at {units.format_number(o[f'{k}_breaker_trip'])} s"
+        elif f"{k}_breaker_margin" in o:
+            more += f"; margin {units.format_number(o[f'{k}_breaker_margin'])} %"
+        out.append(f"    {printable(k):<12} {v * 100:6.3g} %{more}")
+    if "main_breaker_margin" not in o and m.spec.channel_table is None:
+        out.append("  (no breaker trip table entered, so no trip is predicted)")
+    elif m.spec.channel_table is None:
+        out.append("  (no channel breaker trip table entered: no channel trip is predicted)")
+    elif "main_breaker_margin" not in o:
+        out.append("  (no main breaker trip table entered: no main breaker trip is predicted)")
     return out
