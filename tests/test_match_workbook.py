@@ -456,3 +456,54 @@ def test_a_burst_then_the_cards_next_move_waits_for_its_shots():
     assert s.start >= b.shots[-1][0]  # queued behind the last shot (and its recovery)
     moves = o.match.as_json()["moves"]
     assert moves[0]["ball_speeds"] == [V for _, V, _, _ in b.shots] and "ball_speeds" not in moves[1]
+
+
+DRIVE = '\n[cards.drive]\npreset = "builtin:sprint/swerve_mk4i_l3"\n'
+
+
+@pytest.mark.parametrize(
+    "inputs, event, field, words",
+    [
+        ("mode = 'optimise'", "", "match.events[1].card", "mode = sprint"),
+        ("", "action = 'stop'\n", "match.events[1].action", "move, return"),
+        ("", "action = 'burst'\n", "match.events[1].action", "move, return"),
+    ],
+)
+def test_sprint_events_refused_by_name(inputs, event, field, words):
+    base = LIFT + DRIVE + (f"inputs = {{ {inputs} }}\n" if inputs else "")
+    e = refused(f"[match]\n[[match.events]]\nat = 1\ncard = 'drive'\n{event}", base)
+    assert e.field == field and words in e.message
+
+
+@pytest.mark.parametrize(
+    "card, inputs, action, says",
+    [
+        (
+            "drive",
+            "effects = 'voltage_ramp, rolling_resistance'",
+            "move",
+            "(drive at 0 s).effects: voltage_ramp",
+        ),
+        ("shooter", "control = 'velocity_loop'", "spin_up", "(shooter at 0 s): control: "),
+        ("shooter", "effects = 'motor_during_shot'", "burst", "(shooter at 0 s): effects: motor_during_shot"),
+    ],
+)
+def test_sprint_and_flywheel_scenes_refused_at_the_run_by_name(card, inputs, action, says):
+    base = (
+        LIFT.replace(
+            '[cards.shooter]\npreset = "builtin:flywheel/frc_two_kraken_limits"\n',
+            '[cards.shooter]\npreset = "builtin:flywheel/frc_two_kraken_limits"\n'
+            + (f"inputs = {{ {inputs} }}\n" if card == "shooter" else ""),
+        )
+        + DRIVE
+        + (f"inputs = {{ {inputs} }}\n" if card == "drive" else "")
+    )
+    out = workbook.solve(
+        book(f"[match]\n[[match.events]]\nat = 0\ncard = '{card}'\naction = '{action}'\n", base)
+    )
+    assert out.match is None and says in out.match_error, out.match_error
+
+
+def test_pneumatics_refused_saying_why():
+    e = refused("[match]\n[[match.events]]\nat = 1\ncard = 'air'\n")
+    assert e.field == "match.events[1].card" and "no compressor current" in e.message

@@ -325,7 +325,10 @@ def _event(i: int, data: dict, wb: Workbook, length: float) -> Event:
         raise InputError(f"{where}.card", f"{shown(card)} is not a card (cards: {known})", src)
     calc = wb.cards[card].calculator
     if calc not in ON_BUS:
-        raise InputError(f"{where}.card", f"{card} ({calc}) is {NOT_ON_BUS}", src)
+        why = NOT_ON_BUS
+        if calc == "pneumatics":  # its card models the air (flow curves), not the compressor's current
+            why += ": the pneumatics card has no compressor current to draw"
+        raise InputError(f"{where}.card", f"{card} ({calc}) is {why}", src)
     mode_field, runs, actions = ON_BUS[calc]
     if mode_field is not None:
         mode = wb.cards[card].inputs.get(mode_field, runs)
