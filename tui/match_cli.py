@@ -89,13 +89,15 @@ def plot(trace, length: float, brownout: float, width: int = PLOT_WIDTH, height:
     lowest to highest voltage with '*'; '-' marks the brownout level."""
     lows: list = [None] * width
     highs: list = [None] * width
+    ends: list = [None] * width  # the column's last sample
     for t, v, _ in trace:
         c = min(width - 1, max(0, int(t / length * width)))
         lows[c] = v if lows[c] is None else min(lows[c], v)
         highs[c] = v if highs[c] is None else max(highs[c], v)
-    for c in range(1, width):  # a column with no sample: the voltage carried on
+        ends[c] = v
+    for c in range(1, width):  # a column with no sample (a long step): the voltage carried on
         if lows[c] is None:
-            lows[c] = highs[c] = lows[c - 1]
+            lows[c] = highs[c] = ends[c] = ends[c - 1]
     vals = [v for v in lows + highs if v is not None]
     if not vals:
         return []

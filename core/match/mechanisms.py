@@ -751,8 +751,8 @@ class _Run:
             )
             events = self._events(config, root, dirs, enabled, t >= ready)
             rhs = self._rhs(config, root, dirs)
-            stiff = any(self.mechs[k].stiff for k, c in enumerate(config) if c not in (COAST, DONE))
-            run = self._piece(rhs, t, t1, y, events, restart, stiff)
+            stiff = any(self.mechs[k].stiff for k, c in enumerate(config) if c not in (COAST, DONE, HOLD))
+            run = self._reduced(rhs, t, t1, y, events, restart, stiff, config)
             if run.t[-1] <= t and run.event is not None and run.event == last_event:
                 raise InputError("moves", f"the run makes no progress at {t:.6g} s (switch {run.event})")
             last_event = run.event
@@ -827,6 +827,36 @@ class _Run:
             y[self.tail + 1] * self.i2_scale,
             channels,
         )
+
+    def _reduced(self, rhs, t, t1, y, events, restart, stiff, config):
+        """_piece on the states that change in it: the battery's, the tail's and those of the moves
+        not done (a done move's states are constant): a piece's work (LSODA's finite-difference
+        Jacobian above all, one evaluation per state) grows with the moves running, not with every
+        move of the match; and the integrator's RMS error norm is not averaged over states that
+        do not move."""
+        idx = [0, 1, 2, 3]
+        for k, c in enumerate(config):
+            if c != DONE:
+                idx += [4 + 3 * k, 5 + 3 * k, 6 + 3 * k]
+        idx += [self.tail, self.tail + 1]
+        if len(idx) == len(y):
+            return self._piece(rhs, t, t1, y, events, restart, stiff)
+        base = list(y)
+
+        def full(yr):
+            f = base[:]
+            for i, v in zip(idx, yr):
+                f[i] = v
+            return f
+
+        def rhs_r(tt, yr):
+            d = rhs(tt, full(yr))
+            return [d[i] for i in idx]
+
+        evs = [Event(e.name, lambda tt, yr, g=e.g: g(tt, full(yr)), e.direction, e.terminal) for e in events]
+        run = self._piece(rhs_r, t, t1, [y[i] for i in idx], evs, restart, stiff)
+        run.y = [full(yk) for yk in run.y]
+        return run
 
     def _piece(self, rhs, t, t1, y, events, restart, stiff):
         """One piece: DP54 (its restart skips the switch just handled), or scipy's LSODA where a
