@@ -144,3 +144,28 @@ def test_bad_holds_are_named():
         with pytest.raises(InputError) as e:
             MechanismMatch((bad,)).run()
         assert e.value.field == field
+
+
+def test_hard_stops_carry_it_at_the_ends_of_its_travel():
+    """(B12) with hard_stops: a lift browned out at its start stays on its bottom stop instead of
+    falling through the floor; one held at the top and browned out all along falls, by hand, onto
+    its bottom stop and rests there; a move whose goal is the bottom needs no holding current."""
+    stall = from_card("elevator", {"effects": "gravity"})
+    weak = Battery(ocv_table=((1.0, 12.0),), resistance=0.06)
+    one = MechanismMove("x", stall.setup, 0.0, hard_stops=True)
+    res = MechanismMatch((one,), weak, Controller(), length=0.2).run()
+    assert res.brownouts[0][0] == 0.0 and all(q == 0.0 and w == 0.0 for _, q, w in res.mechanisms[0].trace)
+    held = from_card("elevator", {"effects": "gravity, stator_limit", "stator_current_limit": 20})
+    A = MechanismMove("A", held.setup, 0.0, hold=True, hard_stops=True)
+    B = MechanismMove("B", stall.setup, 2.0)
+    res = MechanismMatch((A, B), weak, Controller(), length=4.0, rtol=1e-10).run()
+    a = res.mechanisms[0]
+    mk = _Mech("A", A, 4.0)
+    g_net = (-mk.field_force(mk.d) - mk.F_fric) / mk.M
+    t_floor = 2.0 + (2 * mk.d / g_net) ** 0.5  # falls the whole travel from rest
+    hits = [t for t, n in res.switches if n == "wall0"]
+    assert hits and hits[0] == pytest.approx(t_floor, rel=1e-7)
+    assert all(q == held.setup.mech.q0 and w == 0.0 for t, q, w in a.trace if t > hits[0])
+    down = from_card("elevator", {"effects": "gravity", "travel": -40})
+    assert _Mech("d", MechanismMove("d", down.setup, hold=True, hard_stops=True), 1.0).I_hold == 0.0
+    assert _Mech("d", MechanismMove("d", down.setup, hold=True), 1.0).I_hold < 0.0  # held up from below

@@ -78,8 +78,14 @@ back-EMF E (0 at rest) the duty is u = (E + R·I_h)/V, so each motor's supply is
 (E + R·I_h)·I_h/V: a constant-power load on the bus, p = N·(E + R·I_h)·I_h (R·I_h² at rest)   (B10)
 (tests/test_match_hold.py derives it with sympy). Assumptions: the controller holds exactly (no
 position error, no oscillation); a hold current above the stator limit is not held (the limited
-motors and friction then decide at rest, (B1)); a mechanism holds at every goal, its start
-included (a hard stop that carries the load is not modelled: the workbook's `stop` ends a hold).
+motors and friction then decide at rest, (B1)); without hard stops a mechanism holds at every goal,
+its start included (the workbook's `stop` ends a hold).
+Hard stops (B12, `hard_stops`; the workbook's elevator and arm moves): the two ends of a move's span
+(its start, p = 0, and its goal, p = 1) are hard stops that carry the mechanism: falling back onto
+its start it stops there (an event: p falling through 0), and resting on either end while the net
+force pushes it onto the stop it stays, the free event only away from it. So a held move whose
+field pushes it onto its goal's stop (an elevator's return to the bottom) needs no holding current
+(I_h = 0), and a carriage browned out at the top falls to its bottom stop, not through it.
 In a brownout a held mechanism coasts like any (the elevator sags, falling under gravity less
 friction; the flywheel slows on its loss); when the outputs return it moves back to its goal on
 its move's own equations (full duty, its limits), and holds again when it arrives. A move of the
@@ -130,6 +136,7 @@ class MechanismMove:
     channel: str | None = None  # its motors' breaker channel (a card's moves share one); None: its name
     hold: bool = False  # after its goal it holds there (B10) until the next move waiting for it starts
     release: float | None = None  # s: the hold ends here (or at its arrival, if later); None: never
+    hard_stops: bool = False  # an elevator's or arm's: its move's span ends are hard stops (B12)
 
 
 def from_card(calc_id: str, raw: dict, name: str | None = None, start: float = 0.0) -> MechanismMove:
@@ -200,6 +207,8 @@ class _Mech:
         self.stiff = motion.estimated_time(s) / motion.time_constant(m) >= motion.STIFF
         self.e_ref = 1e-3 * m.count * m.battery_voltage**2 / m.R * self.d / self.v_ref
         self.I_hold = -self.field_force(self.d) / self.fpa  # (B10): cancels the field at the goal
+        if self.hard_stops and self.I_hold <= 0:  # the field pushes it onto its stop there (B12)
+            self.I_hold = 0.0
         # a stator limit below it: not held; the limited motors and friction decide at rest (B1)
         self.can_hold = self.I_st is None or abs(self.I_hold) <= self.I_st
 
@@ -227,6 +236,9 @@ class _Mech:
         if ev.release is not None:
             self.release = number(f"{where}.release", ev.release, low=0.0, high=length)
         self.I_hold, self.w_hold = 0.0, 0.0  # (B10): the holding current per motor, the held speed
+        if not isinstance(ev.hard_stops, bool):
+            raise InputError(f"{where}.hard_stops", f"must be true or false, got {shown(ev.hard_stops)}")
+        self.hard_stops = ev.hard_stops
         self.can_hold = True
 
     def branches(self) -> tuple[str, ...]:
@@ -371,6 +383,8 @@ class _Sprint(_Mech):
             raise InputError(f"{where}.effects", "voltage_ramp: not on the match bus yet")
         if self.hold:
             raise InputError(f"{where}.hold", "a sprint ends at its distance; it does not hold there")
+        if self.hard_stops:
+            raise InputError(f"{where}.hard_stops", "a sprint has no hard stops")
         sprint.check_can_move(s)  # the card's own check: names the field
         dr = s.drive
         self.N, self.R, self.n_kv, self.fpa, self.M = dr.count, dr.R, dr.n / dr.Kv, dr.force_per_amp, dr.mass
@@ -412,6 +426,8 @@ class _Flywheel(_Mech):
 
         s = ev.setup
         self._common(where, ev, length)
+        if self.hard_stops:
+            raise InputError(f"{where}.hard_stops", "a flywheel has no hard stops")
         v = s.values
         motor, _ = lookup(v["motor"], v["source"])
         Vb = v["voltage"]
@@ -678,6 +694,7 @@ class _Run:
         released = [False] * n  # (B10): its hold is over (the next move began, or its release time)
         at_goal = self.at_goal = [False] * n  # holding, still at its goal (not sagged in a brownout)
         pending: list[list[float]] = [[] for _ in range(n)]  # a burst's shot times to come (B11)
+        self.wall = [0] * n  # resting on its lower (−1) or upper (+1) hard stop (B12)
         finished = [False] * n  # at its goal with no shot to come: the card's next move may start
         while t < self.length:
             pieces += 1
@@ -729,7 +746,10 @@ class _Run:
                 )
             V, config, root = pick
             if enabled and V < self.ctl.brownout and any(c not in (COAST, DONE) for c in config):
-                enabled, ready, b_start = False, t + self.ctl.dwell, t  # below at once: switch now
+                # below at once: the dip is recorded (its voltage and currents, for no time), then
+                # the outputs switch off now
+                self._record(t, y, config, V, trace)
+                enabled, ready, b_start = False, t + self.ctl.dwell, t
                 continue
             if not enabled and t >= ready and V > self.ctl.recovery:
                 enabled = True
@@ -740,6 +760,13 @@ class _Run:
                     continue
                 w = y[5 + 3 * k]
                 dirs[k] = 1 if w > 0 else -1 if w < 0 else self._rest_dir(k, y, config[k], V)
+                self.wall[k] = 0
+                if self.mechs[k].hard_stops and config[k] != HOLD:  # on a stop, pushed onto it (B12)
+                    p = y[4 + 3 * k]
+                    if (p <= 0.0 and dirs[k] < 0) or (p >= 1.0 and dirs[k] > 0 and at_goal[k]):
+                        self.wall[k] = dirs[k]
+                        dirs[k] = 0
+                        y[5 + 3 * k] = 0.0
             last_v = V
             self._record(t, y, config, V, trace)
             t1 = min(
@@ -781,6 +808,9 @@ class _Run:
                 brownouts.append((b_start, t))
             elif run.event is not None and run.event.startswith("turn"):
                 y[5 + 3 * int(run.event[4:])] = 0.0  # the located stop: the rest rule decides (B1)
+            elif run.event is not None and run.event.startswith("wall"):
+                k = int(run.event[4:])  # on its lower hard stop (B12): stopped there
+                y[4 + 3 * k], y[5 + 3 * k] = 0.0, 0.0
             elif run.event is not None and run.event.startswith("goal"):
                 k = int(run.event[4:])
                 mk = self.mechs[k]
@@ -996,8 +1026,12 @@ class _Run:
                         )
             if dirs[k] != 0:
                 evs.append(Event(f"turn{k}", lambda t, y, i=i_w: y[i], -dirs[k]))
+                if dirs[k] < 0 and mk.hard_stops:  # falling back onto its start's hard stop (B12)
+                    evs.append(Event(f"wall{k}", lambda t, y, i=i_w - 1: y[i], -1))
             else:
                 for sign in (1, -1):
+                    if sign == self.wall[k]:  # held by the stop that way
+                        continue
                     evs.append(
                         Event(
                             f"free{k}{sign}",

@@ -483,6 +483,7 @@ def run(spec: MatchSpec, wb: Workbook, scope: Scope, cards: dict) -> MatchOutcom
                 channel=ev.card,
                 hold=card.calculator in HOLDING,
                 release=stops.get(k),
+                hard_stops=card.calculator in ("elevator", "arm"),
             )
         )
         last[ev.card] = k
