@@ -13,12 +13,16 @@ on core.match.mechanisms' bus, its outputs readable by requirements as `match.OU
     peukert = 1.25
     charge = 1.0                          # the starting state of charge (or "70 %")
     ocv = [[0.0, 11.94], [0.5, 12.54], [1.0, 12.72]]   # (state of charge, volts)
+    main_breaker = [[2.0, 10.0], [5.0, 1.0]]           # trip table: multiple of 120 A, seconds
+    channel_rating = "40 A"                            # each motor's channel breaker
+    channel_breaker = [[1.5, 10.0], [3.0, 1.0]]        # its trip table: multiple of the rating, s
 
     [[match.events]]
     at = "2 s"                            # when the move is asked
     card = "lift"                         # an elevator or arm (mode = move), sprint or flywheel card
     action = "move"                       # move: start → goal; return: goal → start (a sprint: the
-                                          # same sprint); a flywheel: spin_up (from rest to its target)
+                                          # same sprint); a flywheel: spin_up (from rest to its
+                                          # target) or burst (and its shots); stop: motors off
     every = "20 s"                        # optional: repeated every 20 s ...
     count = 7                             # ... 7 times in all (those past the end are dropped)
 
@@ -27,11 +31,14 @@ load and the thresholds, a reference `"= EXPR"` reading the workbook's variables
 `every` are plain (a number of seconds or a time).
 
 Events on one card are queued, never superposed: a move starts at its time or, if the card's previous
-move has not reached its goal yet, when it does. An elevator, arm or flywheel then holds its goal
-(its speed) on the current that holds it until the card's next move starts, or until an event with
-`action = "stop"` (core.match.mechanisms (B10)); a sprint draws nothing after its distance. A move that never arrives (stuck, browned out to the
-end) holds the card's later moves back: they are counted in `match.unfinished`. Each move starts from
-rest at its start (the elevator's return from the top of its travel), as the card's scene does.
+move has not reached its goal yet (a burst: its last shot and that shot's recovery), when it does.
+An elevator, arm or flywheel then holds its goal (its speed) on the current that holds it until the
+card's next move starts, or until an event with `action = "stop"` (core.match.mechanisms (B10)); an
+elevator's and arm's move ends are hard stops (B12); a sprint draws nothing after its distance. A
+move that never arrives (stuck, browned out to the end) holds the card's later moves back: they are
+counted in `match.unfinished`. Each move starts from rest at its start (the elevator's return from
+the top of its travel), as the card's scene does. Each moved card's channel breaker gives the
+outputs `match.CARD_breaker_load`, `_margin` and `_trip` (B9).
 The battery, controller and bus are core.match's (battery.py, brownout.py, mechanisms.py), with their
 defaults and the sources of each given there.
 """
