@@ -69,6 +69,19 @@ def test_a_sprint_alone_is_its_card(raw, accuracy):
         assert got[k] == pytest.approx(want[k], rel=tol, abs=tol), k
     assert res.energy_oc == pytest.approx(res.energy_bus + res.energy_r, rel=tol)  # (M5)
     assert res.energy_oc == pytest.approx(got["energy"], rel=tol)
+    # the distance crossed, the speed there, and the traction-limited phase (slip until the grip)
+    s = model.solve("sprint", dict(raw, accuracy="tight")).outputs
+    m = res.mechanisms[0]
+    _, x_end, v_end = [r for r in m.trace if r[0] == m.arrival][0]
+    assert x_end == pytest.approx(mv_distance(raw), rel=tol)
+    assert v_end == pytest.approx(s["speed_at_distance"].value, rel=tol)
+    grips = [t for t, n in res.switches if n == "branch0:grip"]
+    slip = grips[0] if grips else 0.0
+    assert slip == pytest.approx(s["traction_time"].value, rel=tol, abs=tol)
+
+
+def mv_distance(raw):
+    return from_card("sprint", raw).setup.distance
 
 
 def test_slip_then_grip_is_located():
