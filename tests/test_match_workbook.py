@@ -507,3 +507,25 @@ def test_sprint_and_flywheel_scenes_refused_at_the_run_by_name(card, inputs, act
 def test_pneumatics_refused_saying_why():
     e = refused("[match]\n[[match.events]]\nat = 1\ncard = 'air'\n")
     assert e.field == "match.events[1].card" and "no compressor current" in e.message
+
+
+def test_a_flywheel_move_starts_at_the_speed_its_last_move_held():
+    """(B13): a spin-up held at its target, then a burst: the burst fires at once, at the target; after
+    a stop the wheel is not followed, so the next spin-up starts from rest (the card's)."""
+    ev = ALONE.replace('card = "lift"', 'card = "shooter"\naction = "spin_up"').replace(
+        "[[1.0, 12.0]]", "[[1.0, 12.5]]"
+    )
+    burst = ev + '\n[[match.events]]\nat = "2 s"\ncard = "shooter"\naction = "burst"\n'
+    o = workbook.solve(book(burst))
+    (_, _, up), (_, _, b) = o.match.moves
+    card = o.cards["shooter"].solution.outputs
+    assert up.time_to_goal == pytest.approx(card["spin_up_time"].value, rel=1e-4)
+    assert b.start == b.arrival == 2.0 and b.shots[0][0] == 2.0
+    assert b.shots[0][1] == pytest.approx(card["ball_speed"].value, rel=1e-12)
+    again = ev + (
+        '\n[[match.events]]\nat = "1.5 s"\ncard = "shooter"\naction = "stop"\n'
+        '\n[[match.events]]\nat = "2 s"\ncard = "shooter"\naction = "spin_up"\n'
+    )
+    (_, _, first), (_, _, second) = workbook.solve(book(again)).match.moves
+    assert second.start == 2.0
+    assert second.time_to_goal == pytest.approx(first.time_to_goal, rel=1e-5)

@@ -63,6 +63,11 @@ moves back to the target at full power and holds it there (B10), as the card's b
 card's next move waits for its last shot and that shot's recovery. Each shot is listed
 (MechanismResult.shots: time, ball speed, ω before and after).
 
+A flywheel move given `carry` (B13) that starts when the card's move before it ends its hold
+starts at the speed that move's wheel has then, not from rest; at or above its target it is there
+at once (its burst's first shot then). After a `release` (the workbook's stop) the wheel is no
+longer followed, so the next move starts from rest, as the card's scene does.
+
 Channel breakers (B9): each move names its channel (the workbook: its card), each of the channel's
 motors on its own breaker (40 A by default) carrying the per-motor supply current Σ I_s of the
 channel's moves; the thermal state of breaker.py (M12) is advanced exactly over each step of the
@@ -137,6 +142,7 @@ class MechanismMove:
     hold: bool = False  # after its goal it holds there (B10) until the next move waiting for it starts
     release: float | None = None  # s: the hold ends here (or at its arrival, if later); None: never
     hard_stops: bool = False  # an elevator's or arm's: its move's span ends are hard stops (B12)
+    carry: bool = False  # a flywheel's: it starts at the speed the move it waited for held (B13)
 
 
 def from_card(calc_id: str, raw: dict, name: str | None = None, start: float = 0.0) -> MechanismMove:
@@ -175,6 +181,7 @@ class _Mech:
 
     I_slip: float | None = None  # the sprint's (S5): its stator current at the edge of wheel slip
     shots, interval = 0, 0.0  # a flywheel burst's (B11)
+    carry = False  # a flywheel's (B13)
     goal_speed: float | None = None  # the flywheel's target (rad/s): its move ends at a speed
     kind = "move"
 
@@ -428,6 +435,9 @@ class _Flywheel(_Mech):
         self._common(where, ev, length)
         if self.hard_stops:
             raise InputError(f"{where}.hard_stops", "a flywheel has no hard stops")
+        if not isinstance(ev.carry, bool):
+            raise InputError(f"{where}.carry", f"must be true or false, got {shown(ev.carry)}")
+        self.carry = ev.carry
         v = s.values
         motor, _ = lookup(v["motor"], v["source"])
         Vb = v["voltage"]
@@ -701,16 +711,6 @@ class _Run:
             charge(1)
             if pieces > MAX_PIECES:
                 raise InputError("moves", f"more than {MAX_PIECES} switches (brownouts, limits) in one run")
-            for k, mk in enumerate(self.mechs):  # a burst's shots due now: instant drops (B11)
-                while pending[k] and pending[k][0] <= t * (1 + 1e-12):
-                    pending[k].pop(0)
-                    if released[k]:
-                        continue
-                    w0 = y[5 + 3 * k] * mk.v_ref
-                    one = mk.shot(w0)
-                    y[5 + 3 * k] = one.omega_after / mk.v_ref
-                    self.results[k].shots.append((t, one.V, w0, one.omega_after))
-                    at_goal[k] = False
             arrived = [r.arrival is not None for r in self.results]
             for k, mk in enumerate(self.mechs):  # a queued move starts when the one before arrives
                 if (
@@ -722,7 +722,21 @@ class _Run:
                     begun.add(k)
                     self.results[k].start = max(mk.start, t)
                     if mk.after is not None:
-                        released[mk.after] = True  # the move before stops holding (B10)
+                        j = mk.after
+                        if mk.carry and not released[j]:  # (B13): the wheel still spinning at its speed
+                            self._carry(k, j, t, y, at_goal, pending, finished)
+                        released[j] = True  # the move before stops holding (B10)
+            for k, mk in enumerate(self.mechs):  # a burst's shots due now: instant drops (B11)
+                while pending[k] and pending[k][0] <= t * (1 + 1e-12):
+                    pending[k].pop(0)
+                    if released[k]:
+                        continue
+                    w0 = y[5 + 3 * k] * mk.v_ref
+                    one = mk.shot(w0)
+                    y[5 + 3 * k] = one.omega_after / mk.v_ref
+                    self.results[k].shots.append((t, one.V, w0, one.omega_after))
+                    at_goal[k] = False
+            arrived = [r.arrival is not None for r in self.results]
             for k, mk in enumerate(self.mechs):
                 if arrived[k] and mk.release is not None and t >= mk.release:
                     released[k] = True
@@ -857,6 +871,22 @@ class _Run:
             y[self.tail + 1] * self.i2_scale,
             channels,
         )
+
+    def _carry(self, k, j, t, y, at_goal, pending, finished):
+        """(B13): move k starts at the speed move j (the card's last, holding until now) has; at or
+        above k's target it is there at once (held at it: its controller brakes a faster wheel to
+        its target, not modelled), and a burst's first shot is now."""
+        mk, mj = self.mechs[k], self.mechs[j]
+        w = y[5 + 3 * j] * mj.v_ref
+        if w <= 0:
+            return
+        y[5 + 3 * k] = w / mk.v_ref
+        if mk.goal_speed is not None and w >= mk.goal_speed:
+            self.results[k].arrival = t
+            at_goal[k] = True
+            y[5 + 3 * k] = mk.w_hold / mk.v_ref
+            pending[k] = [t + i * mk.interval for i in range(mk.shots)]
+            finished[k] = not pending[k]
 
     def _reduced(self, rhs, t, t1, y, events, restart, stiff, config):
         """_piece on the states that change in it: the battery's, the tail's and those of the moves

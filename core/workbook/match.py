@@ -33,12 +33,13 @@ load and the thresholds, a reference `"= EXPR"` reading the workbook's variables
 Events on one card are queued, never superposed: a move starts at its time or, if the card's previous
 move has not reached its goal yet (a burst: its last shot and that shot's recovery), when it does.
 An elevator, arm or flywheel then holds its goal (its speed) on the current that holds it until the
-card's next move starts, or until an event with `action = "stop"` (core.match.mechanisms (B10)); an
-elevator's and arm's move ends are hard stops (B12); a sprint draws nothing after its distance. A
-move that never arrives (stuck, browned out to the end) holds the card's later moves back: they are
-counted in `match.unfinished`. Each move starts from rest at its start (the elevator's return from
-the top of its travel), as the card's scene does. Each moved card's channel breaker gives the
-outputs `match.CARD_breaker_load`, `_margin` and `_trip` (B9).
+card's next move starts (a flywheel's then starts at the speed it held, B13), or until an event
+with `action = "stop"` (core.match.mechanisms (B10)); an elevator's and arm's move ends are hard
+stops (B12); a sprint draws nothing after its distance. A move that never arrives (stuck, browned
+out to the end) holds the card's later moves back: they are counted in `match.unfinished`. Each move
+starts from rest at its start (the elevator's return from the top of its travel), as the card's
+scene does. Each moved card's channel breaker gives the outputs `match.CARD_breaker_load`,
+`_margin` and `_trip` (B9).
 The battery, controller and bus are core.match's (battery.py, brownout.py, mechanisms.py), with their
 defaults and the sources of each given there.
 """
@@ -491,6 +492,7 @@ def run(spec: MatchSpec, wb: Workbook, scope: Scope, cards: dict) -> MatchOutcom
                 hold=card.calculator in HOLDING,
                 release=stops.get(k),
                 hard_stops=card.calculator in ("elevator", "arm"),
+                carry=card.calculator == "flywheel",  # still spinning from its last move (B13)
             )
         )
         last[ev.card] = k
