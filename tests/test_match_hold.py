@@ -3,6 +3,9 @@ mechanism that holds draws the current that holds it (the card's hold_current, c
 the bus), stays there exactly, stops when the card's next move starts or at its release, and sags
 in a brownout (falling under gravity less friction, by hand), then moves back."""
 
+import math
+from dataclasses import replace
+
 import pytest
 import sympy as sp
 
@@ -140,6 +143,18 @@ def test_bad_holds_are_named():
         (MechanismMove("x", mv.setup, hold="yes"), "moves[0].hold"),
         (MechanismMove("x", mv.setup, hold=True, release=-1.0), "moves[0].release"),
         (MechanismMove("x", from_card("sprint", {}).setup, hold=True), "moves[0].hold"),
+        (MechanismMove("x", mv.setup, hard_stops=1), "moves[0].hard_stops"),
+        (MechanismMove("x", from_card("sprint", {}).setup, hard_stops=True), "moves[0].hard_stops"),
+        (MechanismMove("x", from_card("flywheel", {}).setup, hard_stops=True), "moves[0].hard_stops"),
+        (MechanismMove("x", from_card("flywheel", {}).setup, carry="yes"), "moves[0].carry"),
+        (
+            MechanismMove("x", replace(from_card("flywheel", {}).setup, shots=math.nan)),
+            "moves[0].setup.shots",
+        ),
+        (
+            MechanismMove("x", replace(from_card("flywheel", {}).setup, interval=-1.0)),
+            "moves[0].setup.interval",
+        ),
     ):
         with pytest.raises(InputError) as e:
             MechanismMatch((bad,)).run()
