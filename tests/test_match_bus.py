@@ -135,10 +135,12 @@ def test_core_match_imports_only_errors_units_numpy_scipy():
     """The package's layer: core.errors, core.units, its own modules, numpy, scipy, the standard
     library's math and typing helpers; never the UI."""
     allowed = ("gearhead.core.errors", "gearhead.core.units", "gearhead.core.match", "numpy", "scipy")
-    # mechanisms.py puts the cards' scenes on the bus: their equations (core.sim) and their inputs
+    # mechanisms.py puts the cards' scenes on the bus: their equations (core.sim), their inputs and
+    # their motors' data (core.motors)
     scenes = (
         "gearhead.core.sim",
         "gearhead.core.calculators",
+        "gearhead.core.motors",
         "gearhead.core.model",
         "gearhead.core.registry",
     )

@@ -40,6 +40,9 @@ preset = "builtin:arm/single_kraken"
 
 [cards.shooter]
 preset = "builtin:flywheel/frc_two_kraken_limits"
+
+[cards.air]
+preset = "builtin:pneumatics/frc_intake_climber"
 """
 
 # one flat 12 V open-circuit voltage, the card's own battery, and no brownout: the card alone
@@ -149,7 +152,12 @@ def test_worst_case_of_a_match_requirement():
             "match.events[1].card",
             "not a card",
         ),
-        ("[match]\n[[match.events]]\nat = 1\ncard = 'shooter'\n", "match.events[1].card", "elevator and arm"),
+        ("[match]\n[[match.events]]\nat = 1\ncard = 'air'\n", "match.events[1].card", "pneumatic cycles"),
+        (
+            "[match]\n[[match.events]]\nat = 1\ncard = 'shooter'\naction = 'move'\n",
+            "match.events[1].action",
+            "spin_up",
+        ),
         (
             "[match]\n[[match.events]]\nat = 1\ncard = 'lift'\naction = 'up'\n",
             "match.events[1].action",
@@ -308,9 +316,9 @@ def test_cli_set_and_bad_file(robot, tmp_path, capsys):
     code0, out0, _ = run_cli(["match", str(robot), "--json"], capsys)
     assert code == code0 == 0 and worse < json.loads(out0)["outputs"]["min_bus_voltage"]["value"]
     bad = tmp_path / "bad.toml"
-    bad.write_text(textwrap.dedent(LIFT) + "[match]\n[[match.events]]\nat = 1\ncard = 'shooter'\n")
+    bad.write_text(textwrap.dedent(LIFT) + "[match]\n[[match.events]]\nat = 1\ncard = 'air'\n")
     code, out, err = run_cli(["match", str(bad)], capsys)
-    assert code == 2 and "bad.toml" in err and "match.events[1].card" in err and "elevator and arm" in err
+    assert code == 2 and "bad.toml" in err and "match.events[1].card" in err and "not on the match bus" in err
     plain = tmp_path / "plain.toml"
     plain.write_text(textwrap.dedent(LIFT))
     code, _, err = run_cli(["match", str(plain)], capsys)
@@ -378,3 +386,146 @@ def test_main_breaker_table_margin_and_trip_by_hand():
 def test_main_breaker_table_refused_named(table, field):
     err = refused(f"[match]\nmain_breaker = {table}\n")
     assert err.field == field, str(err)
+
+
+def test_a_spin_up_and_a_sprint_in_a_workbook_are_their_cards():
+    """The flywheel's spin_up and a sprint as [[match.events]], each alone on a flat battery of the
+    card's voltage and resistance (no brownout): the card's spin-up time and sprint time."""
+    drive = '\n[cards.drive]\npreset = "builtin:sprint/swerve_mk4i_l3"\n'
+    for card, ocv, action, out, key in (
+        ("shooter", 12.5, "spin_up", "spin_up_time", "shooter"),
+        ("drive", 12.0, "move", "time_to_distance", "drive"),
+    ):
+        extra = ALONE.replace("[[1.0, 12.0]]", f"[[1.0, {ocv}]]").replace('card = "lift"', f'card = "{card}"')
+        extra = extra.replace('resistance = "= battery_resistance"', 'resistance = "0.02 ohm"')
+        extra += f'action = "{action}"\n'
+        wb = book(extra, LIFT + drive)
+        o = workbook.solve(wb)
+        assert o.match is not None, o.match_error
+        (_, ev, r), *_ = o.match.moves
+        assert ev.card == key
+        assert r.time_to_goal == pytest.approx(o.cards[card].solution.outputs[out].value, rel=2e-5)
+
+
+def test_a_lift_holds_until_its_stop():
+    """Elevator, arm and flywheel moves hold their goal (mechanisms.py (B10)) until the card's next
+    move or a `stop`; a stop before any move of the card has nothing to stop."""
+    early = '[[match.events]]\nat = "0 s"\ncard = "arm"\naction = "stop"\n'
+    stop = '[[match.events]]\nat = "3 s"\ncard = "lift"\naction = "stop"\n'
+    held = workbook.solve(book(ALONE + early))
+    stopped = workbook.solve(book(ALONE + stop))
+    ((_, _, h),) = held.match.moves
+    ((_, _, s),) = stopped.match.moves
+    assert h.arrival == pytest.approx(s.arrival, rel=1e-9) and s.arrival < 3.0
+    assert max(t for t, _, _ in h.trace) == pytest.approx(5.0)  # held to the end of the match
+    assert max(t for t, _, _ in s.trace) == pytest.approx(3.0)
+    assert held.match.outputs["charge_used"] > stopped.match.outputs["charge_used"]
+    e = refused('[match]\n[[match.events]]\nat = 1\ncard = "shooter"\naction = "return"\n')
+    assert e.field == "match.events[1].action" and "spin_up, burst, stop" in e.message
+
+
+def test_solve_prints_the_match(robot, tmp_path, capsys):
+    """`gearhead solve ROBOT.toml` shows the match's outputs after the cards (and in --json), or why
+    it did not run."""
+    code, out, _ = run_cli(["solve", str(robot)], capsys)
+    assert code == 0 and "[match]" in out and "Lowest bus voltage" in out
+    assert out.index("[match]") < out.index("Lowest bus voltage")
+    code, out, _ = run_cli(["solve", str(robot), "--json"], capsys)
+    data = json.loads(out)
+    code2, out2, _ = run_cli(["match", str(robot), "--json"], capsys)
+    assert code == code2 == 0 and data["match"] == json.loads(out2)["outputs"]
+    p = tmp_path / "bad.toml"
+    base = LIFT.replace('load_mass = "15 lb"', 'load_mass = "= battery_resistance * 100000 lb/ohm"')
+    p.write_text(textwrap.dedent(base) + textwrap.dedent(ALONE))
+    code, out, _ = run_cli(["solve", str(p)], capsys)
+    assert code == 0 and "[match]" in out and "not run: match.events[1] (lift at 0 s)" in out
+
+
+def test_a_burst_then_the_cards_next_move_waits_for_its_shots():
+    extra = ALONE.replace('card = "lift"', 'card = "shooter"\naction = "burst"').replace(
+        "[[1.0, 12.0]]", "[[1.0, 12.5]]"
+    )
+    extra += '\n[[match.events]]\nat = "0.1 s"\ncard = "shooter"\naction = "spin_up"\n'
+    o = workbook.solve(book(extra))
+    assert o.match is not None, o.match_error
+    (_, _, b), (_, _, s) = o.match.moves
+    card = o.cards["shooter"].solution.outputs
+    assert len(b.shots) == 3 and min(V for _, V, _, _ in b.shots) == pytest.approx(
+        card["slowest_ball_speed"].value, rel=1e-4
+    )
+    assert s.start >= b.shots[-1][0]  # queued behind the last shot (and its recovery)
+    moves = o.match.as_json()["moves"]
+    assert moves[0]["ball_speeds"] == [V for _, V, _, _ in b.shots] and "ball_speeds" not in moves[1]
+
+
+DRIVE = '\n[cards.drive]\npreset = "builtin:sprint/swerve_mk4i_l3"\n'
+
+
+@pytest.mark.parametrize(
+    "inputs, event, field, words",
+    [
+        ("mode = 'optimise'", "", "match.events[1].card", "mode = sprint"),
+        ("", "action = 'stop'\n", "match.events[1].action", "move, return"),
+        ("", "action = 'burst'\n", "match.events[1].action", "move, return"),
+    ],
+)
+def test_sprint_events_refused_by_name(inputs, event, field, words):
+    base = LIFT + DRIVE + (f"inputs = {{ {inputs} }}\n" if inputs else "")
+    e = refused(f"[match]\n[[match.events]]\nat = 1\ncard = 'drive'\n{event}", base)
+    assert e.field == field and words in e.message
+
+
+@pytest.mark.parametrize(
+    "card, inputs, action, says",
+    [
+        (
+            "drive",
+            "effects = 'voltage_ramp, rolling_resistance'",
+            "move",
+            "(drive at 0 s).effects: voltage_ramp",
+        ),
+        ("shooter", "control = 'velocity_loop'", "spin_up", "(shooter at 0 s): control: "),
+        ("shooter", "effects = 'motor_during_shot'", "burst", "(shooter at 0 s): effects: motor_during_shot"),
+    ],
+)
+def test_sprint_and_flywheel_scenes_refused_at_the_run_by_name(card, inputs, action, says):
+    base = (
+        LIFT.replace(
+            '[cards.shooter]\npreset = "builtin:flywheel/frc_two_kraken_limits"\n',
+            '[cards.shooter]\npreset = "builtin:flywheel/frc_two_kraken_limits"\n'
+            + (f"inputs = {{ {inputs} }}\n" if card == "shooter" else ""),
+        )
+        + DRIVE
+        + (f"inputs = {{ {inputs} }}\n" if card == "drive" else "")
+    )
+    out = workbook.solve(
+        book(f"[match]\n[[match.events]]\nat = 0\ncard = '{card}'\naction = '{action}'\n", base)
+    )
+    assert out.match is None and says in out.match_error, out.match_error
+
+
+def test_pneumatics_refused_saying_why():
+    e = refused("[match]\n[[match.events]]\nat = 1\ncard = 'air'\n")
+    assert e.field == "match.events[1].card" and "no compressor current" in e.message
+
+
+def test_a_flywheel_move_starts_at_the_speed_its_last_move_held():
+    """(B13): a spin-up held at its target, then a burst: the burst fires at once, at the target; after
+    a stop the wheel is not followed, so the next spin-up starts from rest (the card's)."""
+    ev = ALONE.replace('card = "lift"', 'card = "shooter"\naction = "spin_up"').replace(
+        "[[1.0, 12.0]]", "[[1.0, 12.5]]"
+    )
+    burst = ev + '\n[[match.events]]\nat = "2 s"\ncard = "shooter"\naction = "burst"\n'
+    o = workbook.solve(book(burst))
+    (_, _, up), (_, _, b) = o.match.moves
+    card = o.cards["shooter"].solution.outputs
+    assert up.time_to_goal == pytest.approx(card["spin_up_time"].value, rel=1e-4)
+    assert b.start == b.arrival == 2.0 and b.shots[0][0] == 2.0
+    assert b.shots[0][1] == pytest.approx(card["ball_speed"].value, rel=1e-12)
+    again = ev + (
+        '\n[[match.events]]\nat = "1.5 s"\ncard = "shooter"\naction = "stop"\n'
+        '\n[[match.events]]\nat = "2 s"\ncard = "shooter"\naction = "spin_up"\n'
+    )
+    (_, _, first), (_, _, second) = workbook.solve(book(again)).match.moves
+    assert second.start == 2.0
+    assert second.time_to_goal == pytest.approx(first.time_to_goal, rel=1e-5)

@@ -35,8 +35,8 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from gearhead.core import units, workbook
-    from gearhead.core.workbook.match import OUTPUTS
+    from gearhead.core import workbook
+    from gearhead.core.workbook.match import summary
 
     from .workbook_cli import _load, _say
 
@@ -63,29 +63,14 @@ def run(args) -> int:
             w.writerow([f"{t:.6g}", f"{v:.6g}", f"{i:.6g}"])
         sys.stdout.write(buf.getvalue())
         return 0
-    o = m.outputs
     length = m.spec.values["length"]
     _say(f"{printable(wb.name)} ({printable(wb.source)})")
     _say(
         f"  match of {length:g} s, {len(m.moves)} moves; battery {m.battery.R * 1000:.4g} mΩ, "
         f"{m.battery.start_soc * 100:.4g} % charged; brownout {m.controller.brownout:g} V"
     )
-    width = max(len(label) for label, _ in OUTPUTS.values())
-    for key, (label, unit) in OUTPUTS.items():
-        if key not in o:  # the breaker's margin without a trip table, its trip time without a trip
-            continue
-        value = o[key]
-        text = f"{value:d}" if isinstance(value, int) else f"{units.format_number(value)} {unit}".rstrip()
-        if key == "min_bus_time" and m.running_at_min:
-            text += f"  ({', '.join(m.running_at_min)} running)"
-        _say(f"  {label:<{width}}  {text}")
-    _say("  Share of the charge; peak supply current per motor (of a 40 A breaker)")
-    for k, v in m.shares.items():
-        peak = m.channel_peaks.get(k)
-        more = f"   peak {peak:.4g} A ({peak / 40 * 100:.3g} %)" if peak is not None else ""
-        _say(f"    {printable(k):<12} {v * 100:6.3g} %{more}")
-    if "main_breaker_margin" not in o:
-        _say("  (no breaker trip table entered, so no trip is predicted)")
+    for line in summary(m):
+        _say(line)
     if m.brownouts:
         _say(f"Brownouts ({len(m.brownouts)})")
         for b in m.brownouts[:20]:
@@ -104,13 +89,15 @@ def plot(trace, length: float, brownout: float, width: int = PLOT_WIDTH, height:
     lowest to highest voltage with '*'; '-' marks the brownout level."""
     lows: list = [None] * width
     highs: list = [None] * width
+    ends: list = [None] * width  # the column's last sample
     for t, v, _ in trace:
         c = min(width - 1, max(0, int(t / length * width)))
         lows[c] = v if lows[c] is None else min(lows[c], v)
         highs[c] = v if highs[c] is None else max(highs[c], v)
-    for c in range(1, width):  # a column with no sample: the voltage carried on
+        ends[c] = v
+    for c in range(1, width):  # a column with no sample (a long step): the voltage carried on
         if lows[c] is None:
-            lows[c] = highs[c] = lows[c - 1]
+            lows[c] = highs[c] = ends[c] = ends[c - 1]
     vals = [v for v in lows + highs if v is not None]
     if not vals:
         return []

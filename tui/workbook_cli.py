@@ -164,7 +164,10 @@ def solve(args) -> int:
     wb = _load(args.calculator, args)
     outcome = workbook.solve(wb)
     if args.json:
-        print(json.dumps(outcome.as_json(with_cards=True), allow_nan=False))
+        data = outcome.as_json(with_cards=True)
+        if outcome.match is not None:  # the [match]'s outputs (`gearhead match --json` for the rest)
+            data["match"] = outcome.match.as_json()["outputs"]
+        print(json.dumps(data, allow_nan=False))
         return 0
     _say(f"{printable(wb.name)} ({printable(wb.source)})")
     for name, card in outcome.cards.items():
@@ -183,6 +186,14 @@ def solve(args) -> int:
             _say(f"  {calc.output(key).label:<{width}}  {value.text}")
         for w in card.solution.warnings:
             _say(f"  warning: {w}")
+    if wb.match is not None:  # its outputs (`gearhead match` adds the brownouts and the plot)
+        from gearhead.core.workbook.match import summary
+
+        _say("\n[match] the robot on one battery (gearhead match: brownouts, plot)")
+        if outcome.match is None:
+            _say(f"  not run: {printable(outcome.match_error or '')}")
+        for line in summary(outcome.match) if outcome.match is not None else ():
+            _say(line)
     yes, no = _marks()
     if outcome.checks:
         _say("\nRequirements")

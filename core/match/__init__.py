@@ -10,9 +10,11 @@
     breaker.py   breakers: a trip-time table and a first-order thermal state calibrated to reproduce
                  it exactly from cold                                                 (M12-M15)
     timeline.py  a match integrated over synthetic loads, and its outputs             (M16-M18)
-    mechanisms.py  the elevator's and arm's moves (core.sim.motion) integrated together on one
-                 bus: the duty rule as affine, constant-power or constant-current loads, brownout
-                 coasting inside their equations; one alone is its card                 (B1-B6)
+    mechanisms.py  the elevator's and arm's moves (core.sim.motion), the sprint, the flywheel's
+                 spin-up and burst integrated together on one bus: the duty rule as affine,
+                 constant-power or constant-current loads, the sprint's slip, brownout coasting
+                 inside their equations, channel breakers, holding at the goal, hard stops; one
+                 alone is its card                                                     (B1-B12)
 
 SI inside: volts, amperes, ohms, seconds, coulombs, joules (amp-hours and watt-hours only in the
 outputs that name them). The workbook's [match] table (core/workbook/match.py) and `gearhead match`

@@ -1,5 +1,9 @@
 """Mechanisms on the match's bus: the elevator's and the arm's full-voltage moves (core.sim.motion,
-`mode = move`) integrated together with the battery, every supply current drawn from one bus.
+`mode = move`), the sprint (core.calculators.sprint, `_Sprint`: its traction and slip (B7)-(B8))
+and the flywheel's spin-up (core.sim.shooter (F1), `_Flywheel`) integrated together with the
+battery, every supply current drawn from one bus. Each is (B1) with its own terms: the sprint's
+loss and rolling resistance its friction, its air drag a force growing with the speed; the
+flywheel's q the wheel's angle, its move ending at the target speed.
 
 Each mechanism k (N_k motors alike, R, Kv, n, M, η·N·Kt·n = the card's force per amp) keeps its
 card's state: p_k the travel toward its goal, w_k the speed toward it, E_k = w_k·n/Kv its back-EMF.
@@ -51,8 +55,47 @@ If the bus has no operating point at all (G > 0 for every V > 0: a motor driven 
 so fast that at full duty it would draw more than the battery gives at any voltage) the bus is
 taken to collapse: the outputs are disabled as in a brownout.
 
-At the goal a mechanism's move ends (as the card's does): it draws nothing after (holding there is
-not modelled here). Energy: dE_oc/dt = V_oc·I, dE_bus/dt = V·I, dE_R/dt = R·I² (battery (M5)), and
+A flywheel's burst (B11, `burst`): the card's (core.sim.shooter.burst) on the bus: its spin-up,
+then its shots, the first when it reaches the target, then one every shot_interval, each an instant
+drop ω → ω_after by the card's own shot model (shooter.shot: energy or momentum transfer, losses;
+motor_during_shot, a shot of some length with the motor driving, is refused); between shots it
+moves back to the target at full power and holds it there (B10), as the card's burst does. The
+card's next move waits for its last shot and that shot's recovery. Each shot is listed
+(MechanismResult.shots: time, ball speed, ω before and after).
+
+A flywheel move given `carry` (B13) that starts when the card's move before it ends its hold
+starts at the speed that move's wheel has then, not from rest; at or above its target it is there
+at once (its burst's first shot then). After a `release` (the workbook's stop) the wheel is no
+longer followed, so the next move starts from rest, as the card's scene does.
+
+Channel breakers (B9): each move names its channel (the workbook: its card), each of the channel's
+motors on its own breaker (40 A by default) carrying the per-motor supply current Σ I_s of the
+channel's moves; the thermal state of breaker.py (M12) is advanced exactly over each step of the
+records at the step's mean current (`advance`), as the main breaker's is, from cold at 0 s.
+
+At the goal a mechanism's move ends (as the card's does). A move given `hold` then holds its goal
+(B10) until the next move waiting for it starts or its `release` time (whichever is later than its
+arrival); otherwise it draws nothing after. Holding, its motors carry the stator current I_h that
+holds it, from its own equations: the elevator's or arm's I_h = −s·F_field(q_goal)/(η·N·Kt·n), the
+field (gravity, counterbalance) cancelled at the goal, friction aside (the card's hold_current; a
+kG as a current); the flywheel's I_h = i_f at its target speed, the motors' own loss. At the held
+back-EMF E (0 at rest) the duty is u = (E + R·I_h)/V, so each motor's supply is
+(E + R·I_h)·I_h/V: a constant-power load on the bus, p = N·(E + R·I_h)·I_h (R·I_h² at rest)   (B10)
+(tests/test_match_hold.py derives it with sympy). Assumptions: the controller holds exactly (no
+position error, no oscillation); a hold current above the stator limit is not held (the limited
+motors and friction then decide at rest, (B1)); without hard stops a mechanism holds at every goal,
+its start included (the workbook's `stop` ends a hold).
+Hard stops (B12, `hard_stops`; the workbook's elevator and arm moves): the two ends of a move's span
+(its start, p = 0, and its goal, p = 1) are hard stops that carry the mechanism: falling back onto
+its start it stops there (an event: p falling through 0), and resting on either end while the net
+force pushes it onto the stop it stays, the free event only away from it. So a held move whose
+field pushes it onto its goal's stop (an elevator's return to the bottom) needs no holding current
+(I_h = 0), and a carriage browned out at the top falls to its bottom stop, not through it.
+In a brownout a held mechanism coasts like any (the elevator sags, falling under gravity less
+friction; the flywheel slows on its loss); when the outputs return it moves back to its goal on
+its move's own equations (full duty, its limits), and holds again when it arrives. A move of the
+same card starting ends the hold where the mechanism is then: the next move starts from rest at
+its own start, as the card's scene does (a sag not recovered is not carried over). Energy: dE_oc/dt = V_oc·I, dE_bus/dt = V·I, dE_R/dt = R·I² (battery (M5)), and
 each mechanism's ∫V_oc·N·I_s dt (the card's energy, its EMF times its current, when V_oc = V_b).
 The state's tail (after the moves' 4 + 3n) integrates what the match's outputs need besides: the
 Peukert-weighted charge (battery (M4)) and ∫I²dt (the RMS current); each move's charge ∫N·I_s dt (its
@@ -69,6 +112,7 @@ from typing import Any
 
 from gearhead.core.errors import InputError, shown
 from gearhead.core.match.battery import Battery
+from gearhead.core.match.breaker import CHANNEL_RATING, Breaker
 from gearhead.core.match.brownout import Controller
 from gearhead.core.match.bus import solve_bus
 from gearhead.core.match.checks import number
@@ -81,6 +125,8 @@ MAX_STEPS = 200_000  # per piece (DP54)
 MAX_LENGTH = 3600.0
 LIMIT_EFFECTS = ("stator_limit", "supply_limit")
 FULL, STATOR, SUPPLY, COAST, DONE = "full", "stator", "supply", "coast", "done"
+SLIP = "slip"  # the sprint's wheels at the edge of slip: the motors draw I_slip (B7)
+HOLD = "hold"  # at its goal, held there: the current that holds it (B10)
 
 
 @dataclass(frozen=True)
@@ -92,6 +138,11 @@ class MechanismMove:
     start: float = 0.0
     brownout_disables: bool = True
     after: int | None = None  # the index of a move this one waits for (queued: starts at its arrival)
+    channel: str | None = None  # its motors' breaker channel (a card's moves share one); None: its name
+    hold: bool = False  # after its goal it holds there (B10) until the next move waiting for it starts
+    release: float | None = None  # s: the hold ends here (or at its arrival, if later); None: never
+    hard_stops: bool = False  # an elevator's or arm's: its move's span ends are hard stops (B12)
+    carry: bool = False  # a flywheel's: it starts at the speed the move it waited for held (B13)
 
 
 def from_card(calc_id: str, raw: dict, name: str | None = None, start: float = 0.0) -> MechanismMove:
@@ -100,30 +151,49 @@ def from_card(calc_id: str, raw: dict, name: str | None = None, start: float = 0
     from gearhead.core.model import parse_inputs
     from gearhead.core.registry import get
 
-    scenes = {"elevator": elevator, "arm": arm}
+    scenes = {"elevator": elevator, "arm": arm, "sprint": None, "flywheel": None}
     if calc_id not in scenes:
         raise InputError("card", f"must be one of {', '.join(scenes)}, got {shown(calc_id)}")
     v = parse_inputs(get(calc_id), raw)[0]
+    return MechanismMove(name or calc_id, scene_of(calc_id, v), start)
+
+
+def scene_of(calc_id: str, v) -> Any:
+    """The scene the match runs for a card's parsed values: the elevator's or arm's move (mode =
+    move), the sprint (mode = sprint), the flywheel's spin-up (`spin_up`)."""
+    from gearhead.core.calculators import arm, elevator, sprint
+
+    if calc_id == "flywheel":
+        return spin_up(v)
+    if calc_id == "sprint":
+        if v["mode"] != "sprint":
+            raise InputError(
+                "mode", f"the match runs the card's sprint (mode = sprint), got {shown(v['mode'])}"
+            )
+        return sprint.setup(v)
     if v["mode"] != "move":
         raise InputError("mode", f"the match runs the card's move (mode = move), got {shown(v['mode'])}")
-    return MechanismMove(name or calc_id, scenes[calc_id].setup(v), start)
+    return (elevator if calc_id == "elevator" else arm).setup(v)
 
 
 class _Mech:
     """A mechanism's terms, from its card's Setup (its equations, its limits)."""
 
+    I_slip: float | None = None  # the sprint's (S5): its stator current at the edge of wheel slip
+    shots, interval = 0, 0.0  # a flywheel burst's (B11)
+    carry = False  # a flywheel's (B13)
+    goal_speed: float | None = None  # the flywheel's target (rad/s): its move ends at a speed
+    kind = "move"
+
+    def drag(self, v: float) -> float:
+        """A force against the motion that grows with the speed (the sprint's air drag), ≥ 0."""
+        return 0.0
+
     def __init__(self, where: str, ev: MechanismMove, length: float):
         s = ev.setup
+        self._common(where, ev, length)
         if not isinstance(s, motion.Setup):
             raise InputError(f"{where}.setup", f"must be a mechanism scene's Setup, got {shown(s)}")
-        if not isinstance(ev.name, str) or not ev.name or ev.name == "base":
-            raise InputError(
-                f"{where}.name", f"must be a non-empty name other than 'base', got {shown(ev.name)}"
-            )
-        if not isinstance(ev.brownout_disables, bool):
-            raise InputError(
-                f"{where}.brownout_disables", f"must be true or false, got {shown(ev.brownout_disables)}"
-            )
         if s.asm.y0_extra or s.asm.events:
             raise InputError(
                 f"{where}.effects", "an effect with states of its own is not on the match bus yet"
@@ -131,13 +201,8 @@ class _Mech:
         duty_from = {n for n, p in s.asm.parts.items() if "duty" in p.terms}
         if not duty_from <= set(LIMIT_EFFECTS):
             raise InputError(f"{where}.effects", f"{', '.join(sorted(duty_from))}: not on the match bus yet")
-        self.start = number(f"{where}.start", ev.start, low=0.0, high=length)
-        if ev.after is not None and (isinstance(ev.after, bool) or not isinstance(ev.after, int)):
-            raise InputError(f"{where}.after", f"must be the index of an earlier move, got {shown(ev.after)}")
-        self.after = ev.after
         motion.check_can_move(s)  # the card's own check: names the field
         m = s.mech
-        self.name, self.disables = ev.name, ev.brownout_disables
         self.N, self.R, self.n_kv, self.fpa, self.M = m.count, m.R, m.n / m.Kv, m.force_per_amp, m.inertia
         self.s, self.d, self.q0 = m.s, m.distance, m.q0
         self.v_ref = m.free_speed
@@ -148,6 +213,40 @@ class _Mech:
         self.I_sup = s.values["supply_current_limit"] if "supply_limit" in on else None
         self.stiff = motion.estimated_time(s) / motion.time_constant(m) >= motion.STIFF
         self.e_ref = 1e-3 * m.count * m.battery_voltage**2 / m.R * self.d / self.v_ref
+        self.I_hold = -self.field_force(self.d) / self.fpa  # (B10): cancels the field at the goal
+        if self.hard_stops and self.I_hold <= 0:  # the field pushes it onto its stop there (B12)
+            self.I_hold = 0.0
+        # a stator limit below it: not held; the limited motors and friction decide at rest (B1)
+        self.can_hold = self.I_st is None or abs(self.I_hold) <= self.I_st
+
+    def _common(self, where: str, ev: MechanismMove, length: float) -> None:
+        if not isinstance(ev.name, str) or not ev.name or ev.name == "base":
+            raise InputError(
+                f"{where}.name", f"must be a non-empty name other than 'base', got {shown(ev.name)}"
+            )
+        if not isinstance(ev.brownout_disables, bool):
+            raise InputError(
+                f"{where}.brownout_disables", f"must be true or false, got {shown(ev.brownout_disables)}"
+            )
+        self.start = number(f"{where}.start", ev.start, low=0.0, high=length)
+        if ev.after is not None and (isinstance(ev.after, bool) or not isinstance(ev.after, int)):
+            raise InputError(f"{where}.after", f"must be the index of an earlier move, got {shown(ev.after)}")
+        self.after = ev.after
+        self.name, self.disables = ev.name, ev.brownout_disables
+        if ev.channel is not None and (not isinstance(ev.channel, str) or not ev.channel):
+            raise InputError(f"{where}.channel", f"must be a non-empty name, got {shown(ev.channel)}")
+        self.channel = ev.channel or ev.name
+        if not isinstance(ev.hold, bool):
+            raise InputError(f"{where}.hold", f"must be true or false, got {shown(ev.hold)}")
+        self.hold = ev.hold
+        self.release = None
+        if ev.release is not None:
+            self.release = number(f"{where}.release", ev.release, low=0.0, high=length)
+        self.I_hold, self.w_hold = 0.0, 0.0  # (B10): the holding current per motor, the held speed
+        if not isinstance(ev.hard_stops, bool):
+            raise InputError(f"{where}.hard_stops", f"must be true or false, got {shown(ev.hard_stops)}")
+        self.hard_stops = ev.hard_stops
+        self.can_hold = True
 
     def branches(self) -> tuple[str, ...]:
         return (
@@ -165,6 +264,10 @@ class _Mech:
             return (0.0, 0.0, N * (E + R * self.I_st) * self.I_st)
         if branch == SUPPLY:
             return (N * self.I_sup, 0.0, 0.0)
+        if branch == SLIP:  # (B7): a constant current
+            return (N * self.slip_supply, 0.0, 0.0)
+        if branch == HOLD:  # (B10): the stator current I_hold at the held speed: constant power
+            return (0.0, 0.0, N * (E + R * self.I_hold) * self.I_hold)
         return (0.0, 0.0, 0.0)
 
     def supply(self, branch: str, E: float, V: float) -> float:
@@ -182,6 +285,10 @@ class _Mech:
             c = 4.0 * self.R * self.I_sup * V
             root = math.sqrt(E * E + c)
             return 2.0 * self.I_sup * V / (E + root) if E > 0 else (root - E) / (2.0 * self.R)
+        if branch == SLIP:
+            return self.I_slip
+        if branch == HOLD:
+            return self.I_hold
         return 0.0
 
     def breakpoints(self, E: float) -> list[float]:
@@ -193,14 +300,186 @@ class _Mech:
             out.append(E + R * self.I_sup)
             if self.I_st is not None and self.I_sup > 0:
                 out.append((E + R * self.I_st) * self.I_st / self.I_sup)
+        if self.I_slip is not None:  # where the gripping current reaches I_slip (B8)
+            out.append(E + R * self.I_slip)
+            if self.I_sup is not None and self.I_sup > 0:
+                out.append(self.I_slip * (E + R * self.I_slip) / self.I_sup)
         return [x for x in out if x > 0 and math.isfinite(x)]
 
-    def least(self, E: float, V: float) -> str:
+    def grip(self, E: float, V: float) -> str:
         """The branch (B2) gives at bus voltage V."""
         return min(self.branches(), key=lambda b: self.supply(b, E, V))
 
+    def least(self, E: float, V: float) -> str:
+        """The branch at bus voltage V: (B2), or the sprint's slip where it would pass I_slip (B7)."""
+        br = self.grip(E, V)
+        if self.I_slip is not None and self.stator(br, E, V) > self.I_slip:
+            return SLIP
+        return br
+
     def field_force(self, p: float) -> float:
         return self.s * self.force(self.q0 + self.s * p) if self.force is not None else 0.0
+
+
+@dataclass(frozen=True)
+class FlywheelSpin:
+    """A flywheel card's spin-up from rest to its target speed at full power, with its current
+    limits (core.sim.shooter's Scene and the card's parsed values): `spin_up(values)` builds it."""
+
+    scene: Any
+    values: Any
+    target: float  # rad/s of the wheel
+    shots: int = 0  # a burst: shots at the target, the first on arrival, then every `interval` (B11)
+    interval: float = 0.0  # s
+
+
+def burst(v) -> FlywheelSpin:
+    """The flywheel card's burst (core.sim.shooter.burst): its spin-up, then its `shots` shots every
+    `shot_interval`, each an instant drop by the card's shot model (B11)."""
+    if "motor_during_shot" in v["effects"] and v["transfer"] == "momentum":
+        raise InputError(
+            "effects", "motor_during_shot (a shot with the motor driving): not on the match bus yet"
+        )
+    spin = spin_up(v)
+    return FlywheelSpin(spin.scene, v, spin.target, v["shots"], v["shot_interval"])
+
+
+def spin_up(v) -> FlywheelSpin:
+    """The flywheel card's spin-up (its control full power), its own checks naming the field."""
+    from gearhead.core.sim import shooter
+
+    if v["control"] == "velocity_loop":
+        raise InputError(
+            "control",
+            "the match spins the flywheel up at full power; the velocity loop is not on the bus yet",
+        )
+    sc, _ = shooter.scene_from(v)
+    target = v["target_speed"]
+    if target >= sc.free_speed:  # the card's own check (flywheel._simulate)
+        raise InputError("target_speed", "the wheels cannot reach it: it is at or above their free speed")
+    if sc.drive is not None:
+        shooter.check_limits(sc, target)
+    return FlywheelSpin(sc, v, target)
+
+
+class _Sprint(_Mech):
+    """The sprint card's drive (core.calculators.sprint (S1)-(S5)) on the bus: N motors through n
+    (motor rad per metre) push the robot of mass m; its wheels transmit at most F_t (S3, S3'), and
+    while the gripping motors would pass it they sit at the edge of slip drawing I_slip (S5):
+
+        m·v̇ = min(η·N·Kt·n·(I − i_f), F_t) − resist(v)                                      (S4)
+    written as (B1): the motors' loss η·N·Kt·n·i_f and rolling resistance resist(0) the constant
+    friction against the motion, resist(v) − resist(0) (air drag) the part that grows with v, and
+
+        slipping: stator current I_slip, duty u = min(1, I_sup/I_slip), supply min(I_slip, I_sup):
+        a constant current                                                                    (B7)
+        the gripping branch (B2) passes I_slip where (V − E)/R = I_slip: V = E + R·I_slip, or on
+        the supply limit's (B5) where I_slip·(E + R·I_slip) = I_sup·V                          (B8)
+    (tests/test_match_sprint.py derives (B7)-(B8) with sympy). The slip starts where the gripping
+    branch's stator current rises through I_slip and ends where it falls through it (events), as the
+    card's phases do. The voltage ramp (S14, time-dependent duty) is not on the bus yet."""
+
+    kind = "sprint"
+
+    def __init__(self, where: str, ev: MechanismMove, length: float):
+        from gearhead.core.calculators import sprint
+
+        s = ev.setup
+        self._common(where, ev, length)
+        if s.ramp > 0:
+            raise InputError(f"{where}.effects", "voltage_ramp: not on the match bus yet")
+        if self.hold:
+            raise InputError(f"{where}.hold", "a sprint ends at its distance; it does not hold there")
+        if self.hard_stops:
+            raise InputError(f"{where}.hard_stops", "a sprint has no hard stops")
+        sprint.check_can_move(s)  # the card's own check: names the field
+        dr = s.drive
+        self.N, self.R, self.n_kv, self.fpa, self.M = dr.count, dr.R, dr.n / dr.Kv, dr.force_per_amp, dr.mass
+        self.s, self.d, self.q0 = 1.0, s.distance, 0.0
+        self.v_ref = (dr.battery_voltage - dr.R * dr.free_current) * dr.Kv / dr.n
+        self.force = None
+        self._resist = s.resist()
+        self.F_rr = self._resist(0.0)
+        self.F_fric = dr.force_per_amp * dr.free_current + self.F_rr
+        on = s.asm.on
+        self.I_st = s.values["stator_current_limit"] if "stator_limit" in on else None
+        self.I_sup = s.values["supply_current_limit"] if "supply_limit" in on else None
+        self.I_slip = s.traction / dr.force_per_amp + dr.free_current  # (S5)
+        self.slip_supply = self.I_slip if self.I_sup is None else min(self.I_slip, self.I_sup)  # (B7)
+        tau = dr.mass * (dr.R + dr.bus_resistance) * dr.Kv / (dr.force_per_amp * dr.n)  # the card's rule
+        self.stiff = s.distance / self.v_ref > sprint.STIFF * tau
+        self.e_ref = 1e-3 * dr.count * dr.battery_voltage**2 / dr.R * self.d / self.v_ref
+
+    def drag(self, v: float) -> float:
+        return self._resist(abs(v)) - self.F_rr
+
+
+class _Flywheel(_Mech):
+    """The flywheel card's spin-up (core.sim.shooter (F1)) on the bus: N motors through G (motor
+    turns per wheel turn) spin the wheels of inertia I from rest to the target ω_t at full power,
+    under the card's current limits:
+
+        I·ω̇ = A·(I_m(E) − i_f)/(i_s − i_f),  E = G·ω/Kv                                     (F1)
+    i.e. (B1) with q the wheel's angle, n = G, force per amp A/(i_s − i_f) (A = G·τ̃s at the card's
+    voltage, i_s = V_b/R its stall current) and the motors' loss A·i_f/(i_s − i_f) the friction; no
+    field. (At E = 0 and V = V_b, I_m = i_s and the torque is A; it is 0 at ω = Kv·(V_b − R·i_f)/G,
+    the card's free speed: tests/test_match_flywheel.py.) The move ends when ω reaches ω_t."""
+
+    kind = "flywheel"
+
+    def __init__(self, where: str, ev: MechanismMove, length: float):
+        from gearhead.core.motors import lookup, system_from
+        from gearhead.core.sim import motor_limits
+
+        s = ev.setup
+        self._common(where, ev, length)
+        if self.hard_stops:
+            raise InputError(f"{where}.hard_stops", "a flywheel has no hard stops")
+        if not isinstance(ev.carry, bool):
+            raise InputError(f"{where}.carry", f"must be true or false, got {shown(ev.carry)}")
+        self.carry = ev.carry
+        v = s.values
+        motor, _ = lookup(v["motor"], v["source"])
+        Vb = v["voltage"]
+        c = motor_limits.circuit_of(motor, Vb)
+        i_s = motor.stall_current * Vb / motor.v_spec  # (4)
+        i_f = motor.free_current * Vb / motor.v_spec  # (3)
+        G = v["ratio"]
+        A = G * system_from(v)[0].stall_torque
+        self.N, self.R, self.n_kv, self.M = v["motor_count"], c.R, G / c.Kv, s.scene.I
+        self.fpa = A / (i_s - i_f)  # per amp of each motor (F1)
+        self.v_ref = c.Kv * (Vb - c.R * i_f) / G
+        tau = self.M * c.R * c.Kv / (self.fpa * G)  # the wheel's time constant at stall
+        self.s, self.d, self.q0 = 1.0, self.v_ref * tau, 0.0
+        self.force = None
+        self.F_fric = self.fpa * i_f
+        on = v["effects"]
+        self.I_st = v["stator_current_limit"] if "stator_limit" in on else None
+        self.I_sup = v["supply_current_limit"] if "supply_limit" in on else None
+        self.goal_speed = s.target
+        self.I_hold, self.w_hold = i_f, s.target  # (B10): at its speed the motors carry their own loss
+        self.shots = int(number(f"{where}.setup.shots", s.shots, low=0, high=1000))
+        self.interval = number(f"{where}.setup.interval", s.interval, low=0.0, high=length)
+        scene, m0 = s.scene, v.get("ball_mass", 0.0)
+
+        def shot(w):  # (B11): the card's own shot (core.sim.shooter.shot), instant (no motor during it)
+            from gearhead.core.sim.shooter import shot as card_shot
+
+            return card_shot(scene, w, m0, s.target, 1e-9)
+
+        self.shot = shot
+        self.stiff = False  # DP54, LSODA where it runs out of steps (_piece)
+        self.e_ref = 1e-3 * self.N * Vb**2 / c.R * tau
+
+
+def _mech_of(where: str, ev: MechanismMove, length: float) -> _Mech:
+    from gearhead.core.calculators import sprint
+
+    if isinstance(ev.setup, sprint.Setup):
+        return _Sprint(where, ev, length)
+    if isinstance(ev.setup, FlywheelSpin):
+        return _Flywheel(where, ev, length)
+    return _Mech(where, ev, length)
 
 
 @dataclass
@@ -213,6 +492,7 @@ class MechanismResult:
     energy: float = 0.0  # J, ∫V_oc·N·I_s dt
     charge: float = 0.0  # C, ∫N·I_s dt (its share of the battery's charge): the trapezoid rule on the trace
     trace: list = field(default_factory=list)  # (t, position q, speed toward the goal)
+    shots: list = field(default_factory=list)  # a burst's: (t, ball speed m/s, ω before, ω after) (B11)
 
     @property
     def time_to_goal(self) -> float | None:
@@ -234,6 +514,25 @@ class BusResult:
     switches: list = field(default_factory=list)  # (t, event): every located switch, in order
     peukert_charge: float = 0.0  # C, ∫I·(I/I_H)^(k−1) dt (battery (M4)); the plain charge on a source
     current_squared: float = 0.0  # A²·s, ∫I² dt (the RMS current's numerator)
+    channels: dict = field(default_factory=dict)  # channel name -> ChannelResult (B9)
+
+
+@dataclass(frozen=True)
+class ChannelResult:
+    """One mechanism channel's breaker (each of its motors on its own breaker of `rating`, all
+    carrying the per-motor supply current): the peak, and with a trip table the thermal state's
+    highest (breaker.py (M12)) and the first time it reached 1 (B9)."""
+
+    name: str
+    rating: float  # A
+    peak: float  # A per motor, the largest supply current
+    theta_max: float | None = None  # None without a trip table
+    trip_time: float | None = None  # s, the first time θ reached 1 (the run does not cut the motors)
+
+    @property
+    def margin(self) -> float | None:
+        """1 − θ_max (None without a trip table)."""
+        return None if self.theta_max is None else 1.0 - self.theta_max
 
 
 @dataclass(frozen=True)
@@ -267,6 +566,7 @@ class MechanismMatch:
     length: float = 10.0
     base_load: float = 0.0
     rtol: float = 1e-6
+    channel_breaker: Breaker | None = None  # every channel's rating and trip table; None: 40 A, no table
 
     def run(self) -> BusResult:
         return _Run(self).result()
@@ -291,7 +591,7 @@ class _Run:
         for i, ev in enumerate(moves):
             if not isinstance(ev, MechanismMove):
                 raise InputError(f"moves[{i}]", f"must be a MechanismMove, got {shown(ev)}")
-            mk = _Mech(f"moves[{i}]", ev, self.length)
+            mk = _mech_of(f"moves[{i}]", ev, self.length)
             if mk.name in names:
                 raise InputError(f"moves[{i}].name", f"{shown(mk.name)} names two moves")
             if mk.after is not None and not 0 <= mk.after < i:
@@ -309,6 +609,14 @@ class _Run:
         self.tail = 4 + 3 * len(self.mechs)
         self.results = [MechanismResult(mk.name, mk.start) for mk in self.mechs]
         self.last_supply: list = [None] * len(self.mechs)  # (t, N·I_s) at the last record
+        brk = match.channel_breaker
+        if brk is None:
+            brk = Breaker(CHANNEL_RATING, name="channel_breaker")
+        elif not isinstance(brk, Breaker):
+            raise InputError("channel_breaker", f"must be a Breaker, got {shown(brk)}")
+        self.brk = brk
+        # per channel: [θ, θ_max, trip, peak, t, I] along the records (B9)
+        self.chan = {mk.channel: [0.0, 0.0, None, 0.0, None, 0.0] for mk in self.mechs}
 
     # --- the bus at a state, with a held configuration -------------------------------------------
     def _emf(self, k, y):
@@ -339,7 +647,7 @@ class _Run:
     def choose(self, y, config, last_v, held=None, prefer=None):
         """Each drawing motor's branch and the root (B6): every operating point, the nearest to
         last_v (the highest when None). None when there is none (the bus collapses)."""
-        drawing = [k for k, br in enumerate(config) if br not in (COAST, DONE)]
+        drawing = [k for k, br in enumerate(config) if br not in (COAST, DONE, HOLD)]  # HOLD is held
         E = {k: self._emf(k, y) for k in drawing}
         cuts = sorted({x for k in drawing for x in self.mechs[k].breakpoints(E[k])})
         edges = [0.0] + cuts + [math.inf]
@@ -393,27 +701,53 @@ class _Run:
         last_event = None
         switches: list = []
         begun: set[int] = set()
+        released = [False] * n  # (B10): its hold is over (the next move began, or its release time)
+        at_goal = self.at_goal = [False] * n  # holding, still at its goal (not sagged in a brownout)
+        pending: list[list[float]] = [[] for _ in range(n)]  # a burst's shot times to come (B11)
+        self.wall = [0] * n  # resting on its lower (−1) or upper (+1) hard stop (B12)
+        finished = [False] * n  # at its goal with no shot to come: the card's next move may start
         while t < self.length:
             pieces += 1
             charge(1)
             if pieces > MAX_PIECES:
                 raise InputError("moves", f"more than {MAX_PIECES} switches (brownouts, limits) in one run")
-            started = [
-                mk.start <= t
-                and self.results[k].arrival is None
-                and (mk.after is None or self.results[mk.after].arrival is not None)
-                for k, mk in enumerate(self.mechs)
-            ]
+            arrived = [r.arrival is not None for r in self.results]
             for k, mk in enumerate(self.mechs):  # a queued move starts when the one before arrives
-                if started[k] and k not in begun:
+                if (
+                    k not in begun
+                    and mk.start <= t
+                    and (mk.after is None or finished[mk.after])
+                    and not arrived[k]
+                ):
                     begun.add(k)
                     self.results[k].start = max(mk.start, t)
+                    if mk.after is not None:
+                        j = mk.after
+                        if mk.carry and not released[j]:  # (B13): the wheel still spinning at its speed
+                            self._carry(k, j, t, y, at_goal, pending, finished)
+                        released[j] = True  # the move before stops holding (B10)
+            for k, mk in enumerate(self.mechs):  # a burst's shots due now: instant drops (B11)
+                while pending[k] and pending[k][0] <= t * (1 + 1e-12):
+                    pending[k].pop(0)
+                    if released[k]:
+                        continue
+                    w0 = y[5 + 3 * k] * mk.v_ref
+                    one = mk.shot(w0)
+                    y[5 + 3 * k] = one.omega_after / mk.v_ref
+                    self.results[k].shots.append((t, one.V, w0, one.omega_after))
+                    at_goal[k] = False
+            arrived = [r.arrival is not None for r in self.results]
+            for k, mk in enumerate(self.mechs):
+                if arrived[k] and mk.release is not None and t >= mk.release:
+                    released[k] = True
             base_cfg = []
             for k, mk in enumerate(self.mechs):
-                if not started[k]:
+                if k not in begun or released[k] or (finished[k] and not mk.hold):
                     base_cfg.append(DONE)
                 elif not enabled and mk.disables:
                     base_cfg.append(COAST)
+                elif arrived[k] and at_goal[k] and mk.can_hold:
+                    base_cfg.append(HOLD)
                 else:
                     base_cfg.append(FULL)
             pick = self.choose(y, base_cfg, last_v, held, prefer)
@@ -426,7 +760,10 @@ class _Run:
                 )
             V, config, root = pick
             if enabled and V < self.ctl.brownout and any(c not in (COAST, DONE) for c in config):
-                enabled, ready, b_start = False, t + self.ctl.dwell, t  # below at once: switch now
+                # below at once: the dip is recorded (its voltage and currents, for no time), then
+                # the outputs switch off now
+                self._record(t, y, config, V, trace)
+                enabled, ready, b_start = False, t + self.ctl.dwell, t
                 continue
             if not enabled and t >= ready and V > self.ctl.recovery:
                 enabled = True
@@ -437,17 +774,26 @@ class _Run:
                     continue
                 w = y[5 + 3 * k]
                 dirs[k] = 1 if w > 0 else -1 if w < 0 else self._rest_dir(k, y, config[k], V)
+                self.wall[k] = 0
+                if self.mechs[k].hard_stops and config[k] != HOLD:  # on a stop, pushed onto it (B12)
+                    p = y[4 + 3 * k]
+                    if (p <= 0.0 and dirs[k] < 0) or (p >= 1.0 and dirs[k] > 0 and at_goal[k]):
+                        self.wall[k] = dirs[k]
+                        dirs[k] = 0
+                        y[5 + 3 * k] = 0.0
             last_v = V
             self._record(t, y, config, V, trace)
             t1 = min(
                 [self.length]
                 + [mk.start for mk in self.mechs if mk.start > t]
+                + [mk.release for mk in self.mechs if mk.release is not None and mk.release > t]
+                + [p[0] for p in pending if p and p[0] > t]
                 + ([ready] if not enabled and ready > t else [])
             )
             events = self._events(config, root, dirs, enabled, t >= ready)
             rhs = self._rhs(config, root, dirs)
-            stiff = any(self.mechs[k].stiff for k, c in enumerate(config) if c not in (COAST, DONE))
-            run = self._piece(rhs, t, t1, y, events, restart, stiff)
+            stiff = any(self.mechs[k].stiff for k, c in enumerate(config) if c not in (COAST, DONE, HOLD))
+            run = self._reduced(rhs, t, t1, y, events, restart, stiff, config)
             if run.t[-1] <= t and run.event is not None and run.event == last_event:
                 raise InputError("moves", f"the run makes no progress at {t:.6g} s (switch {run.event})")
             last_event = run.event
@@ -463,7 +809,10 @@ class _Run:
             if run.event is not None and run.event.startswith("branch"):
                 index, other = run.event[len("branch") :].split(":")
                 k = int(index)
-                prefer = lambda cfg, k=k, o=other: cfg[k] == o  # noqa: E731
+                if other == "grip":
+                    prefer = lambda cfg, k=k: cfg[k] != SLIP  # noqa: E731
+                else:
+                    prefer = lambda cfg, k=k, o=other: cfg[k] == o  # noqa: E731
             elif run.event == "merge":
                 prefer = lambda cfg, h=config: cfg != h  # noqa: E731
             if run.event == "brownout":
@@ -473,10 +822,26 @@ class _Run:
                 brownouts.append((b_start, t))
             elif run.event is not None and run.event.startswith("turn"):
                 y[5 + 3 * int(run.event[4:])] = 0.0  # the located stop: the rest rule decides (B1)
+            elif run.event is not None and run.event.startswith("wall"):
+                k = int(run.event[4:])  # on its lower hard stop (B12): stopped there
+                y[4 + 3 * k], y[5 + 3 * k] = 0.0, 0.0
             elif run.event is not None and run.event.startswith("goal"):
                 k = int(run.event[4:])
-                self.results[k].arrival = t
-                y[5 + 3 * k] = 0.0  # the move ends at its goal (not held: draws nothing after)
+                mk = self.mechs[k]
+                if self.results[k].arrival is None:
+                    self.results[k].arrival = t
+                    pending[k] = [t + j * mk.interval for j in range(mk.shots)]
+                finished[k] = not pending[k]
+                at_goal[k] = True  # (B10): held there from now (or, not holding, done)
+                y[5 + 3 * k] = mk.w_hold / mk.v_ref  # the move ends at its goal (and speed)
+                if mk.goal_speed is None:
+                    y[4 + 3 * k] = 1.0
+            for k, c in enumerate(config):  # a brownout moved it off its goal: it moves back (B10)
+                if c != HOLD and at_goal[k]:
+                    mk = self.mechs[k]
+                    at_goal[k] = y[5 + 3 * k] == mk.w_hold / mk.v_ref and (
+                        mk.goal_speed is not None or y[4 + 3 * k] == 1.0
+                    )
             if run.event is None and t < t1 - 1e-12 * max(1.0, t1):
                 raise InputError(
                     "moves", f"the integration stopped at {t:.6g} s ({run.message or 'step limit'})"
@@ -485,6 +850,11 @@ class _Run:
             brownouts.append((b_start, self.length))
         for k, res in enumerate(self.results):
             res.energy = y[6 + 3 * k] * self.e_scale
+        on = self.brk.calibrated
+        channels = {
+            name: ChannelResult(name, self.brk.rating, c[3], c[1] if on else None, c[2])
+            for name, c in self.chan.items()
+        }
         return BusResult(
             self.results,
             self.vmin,
@@ -499,7 +869,54 @@ class _Run:
             switches,
             y[self.tail] * self.q_scale,
             y[self.tail + 1] * self.i2_scale,
+            channels,
         )
+
+    def _carry(self, k, j, t, y, at_goal, pending, finished):
+        """(B13): move k starts at the speed move j (the card's last, holding until now) has; at or
+        above k's target it is there at once (held at it: its controller brakes a faster wheel to
+        its target, not modelled), and a burst's first shot is now."""
+        mk, mj = self.mechs[k], self.mechs[j]
+        w = y[5 + 3 * j] * mj.v_ref
+        if w <= 0:
+            return
+        y[5 + 3 * k] = w / mk.v_ref
+        if mk.goal_speed is not None and w >= mk.goal_speed:
+            self.results[k].arrival = t
+            at_goal[k] = True
+            y[5 + 3 * k] = mk.w_hold / mk.v_ref
+            pending[k] = [t + i * mk.interval for i in range(mk.shots)]
+            finished[k] = not pending[k]
+
+    def _reduced(self, rhs, t, t1, y, events, restart, stiff, config):
+        """_piece on the states that change in it: the battery's, the tail's and those of the moves
+        not done (a done move's states are constant): a piece's work (LSODA's finite-difference
+        Jacobian above all, one evaluation per state) grows with the moves running, not with every
+        move of the match; and the integrator's RMS error norm is not averaged over states that
+        do not move."""
+        idx = [0, 1, 2, 3]
+        for k, c in enumerate(config):
+            if c != DONE:
+                idx += [4 + 3 * k, 5 + 3 * k, 6 + 3 * k]
+        idx += [self.tail, self.tail + 1]
+        if len(idx) == len(y):
+            return self._piece(rhs, t, t1, y, events, restart, stiff)
+        base = list(y)
+
+        def full(yr):
+            f = base[:]
+            for i, v in zip(idx, yr):
+                f[i] = v
+            return f
+
+        def rhs_r(tt, yr):
+            d = rhs(tt, full(yr))
+            return [d[i] for i in idx]
+
+        evs = [Event(e.name, lambda tt, yr, g=e.g: g(tt, full(yr)), e.direction, e.terminal) for e in events]
+        run = self._piece(rhs_r, t, t1, [y[i] for i in idx], evs, restart, stiff)
+        run.y = [full(yk) for yk in run.y]
+        return run
 
     def _piece(self, rhs, t, t1, y, events, restart, stiff):
         """One piece: DP54 (its restart skips the switch just handled), or scipy's LSODA where a
@@ -553,10 +970,11 @@ class _Run:
                 E = self._emf(k, y)
                 i_s = mk.N * mk.supply(br, E, V)
                 I += i_s
-                if dirs[k] == 0:
+                if dirs[k] == 0 or br == HOLD:
                     acc = 0.0
                 else:
-                    acc = (self._drive(k, y, br, V) - dirs[k] * mk.F_fric) / mk.M  # (B1)
+                    drag = mk.drag(y[5 + 3 * k] * mk.v_ref)
+                    acc = (self._drive(k, y, br, V) - dirs[k] * (mk.F_fric + drag)) / mk.M  # (B1)
                 dy[4 + 3 * k] = y[5 + 3 * k] * mk.v_ref / mk.d
                 dy[5 + 3 * k] = acc / mk.v_ref
                 dy[6 + 3 * k] = v_oc * i_s / self.e_scale
@@ -578,7 +996,7 @@ class _Run:
             evs.append(Event("brownout", lambda t, y: bus(y, config, root) - self.ctl.brownout, -1))
         if not enabled and ready:
             evs.append(Event("recovery", lambda t, y: bus(y, config, root) - self.ctl.recovery, +1))
-        if any(c == STATOR for c in config):
+        if any(c in (STATOR, HOLD) for c in config):
 
             def disc(t, y):
                 a, b, pp = self._sums(y, config)
@@ -588,11 +1006,42 @@ class _Run:
             evs.append(Event("merge", disc, -1))
         for k, mk in enumerate(self.mechs):
             br = config[k]
-            if br == DONE:
+            if br in (DONE, HOLD):  # held: nothing of its own switches (B10)
                 continue
             i_w = 5 + 3 * k
-            evs.append(Event(f"goal{k}", lambda t, y, i=i_w - 1: y[i] - 1.0, +1))
-            if br != COAST:
+            if self.at_goal[k]:
+                pass  # at its goal, coasting or not able to hold there: it can only leave it
+            elif mk.goal_speed is not None:  # the flywheel: its target speed
+                w_goal = mk.goal_speed / mk.v_ref
+                evs.append(Event(f"goal{k}", lambda t, y, i=i_w, g=w_goal: y[i] - g, +1))
+            else:
+                evs.append(Event(f"goal{k}", lambda t, y, i=i_w - 1: y[i] - 1.0, +1))
+            if br == SLIP:  # (B7): grip again where the gripping branch falls through I_slip
+                evs.append(
+                    Event(
+                        f"branch{k}:grip",
+                        lambda t, y, k=k, mk=mk: (
+                            mk.stator(
+                                mk.grip(self._emf(k, y), bus(y, config, root)),
+                                self._emf(k, y),
+                                bus(y, config, root),
+                            )
+                            - mk.I_slip
+                        ),
+                        -1,
+                    )
+                )
+            elif br != COAST and mk.I_slip is not None:  # (B8): the held branch rises through I_slip
+                evs.append(
+                    Event(
+                        f"branch{k}:{SLIP}",
+                        lambda t, y, k=k, mk=mk, b=br: (
+                            mk.stator(b, self._emf(k, y), bus(y, config, root)) - mk.I_slip
+                        ),
+                        +1,
+                    )
+                )
+            if br not in (COAST, SLIP):
                 for other in mk.branches():
                     if other != br:
                         evs.append(
@@ -607,8 +1056,12 @@ class _Run:
                         )
             if dirs[k] != 0:
                 evs.append(Event(f"turn{k}", lambda t, y, i=i_w: y[i], -dirs[k]))
+                if dirs[k] < 0 and mk.hard_stops:  # falling back onto its start's hard stop (B12)
+                    evs.append(Event(f"wall{k}", lambda t, y, i=i_w - 1: y[i], -1))
             else:
                 for sign in (1, -1):
+                    if sign == self.wall[k]:  # held by the stop that way
+                        continue
                     evs.append(
                         Event(
                             f"free{k}{sign}",
@@ -624,6 +1077,7 @@ class _Run:
         if V < self.vmin:
             self.vmin, self.tmin = V, t
         I = self.base
+        per_motor = dict.fromkeys(self.chan, 0.0)
         for k, mk in enumerate(self.mechs):
             br = config[k]
             if br == DONE:
@@ -639,4 +1093,23 @@ class _Run:
             res.peak_supply_current = max(res.peak_supply_current, i_s)
             res.peak_stator_current = max(res.peak_stator_current, abs(mk.stator(br, E, V)))
             res.trace.append((t, mk.q0 + mk.s * y[4 + 3 * k] * mk.d, y[5 + 3 * k] * mk.v_ref))
+            per_motor[mk.channel] += i_s
         trace.append((t, V, I))
+        self._channels(t, per_motor)
+
+    def _channels(self, t, per_motor):
+        """(B9): each channel's breaker along the records, as the main breaker's (workbook match
+        _breaker): θ advanced exactly (breaker.py `advance`) over each step at the step's mean
+        per-motor supply current (the records hold every solver step and switch); a step of zero
+        length (a switch) only changes the current the next step starts from."""
+        brk, on = self.brk, self.brk.calibrated
+        for name, i in per_motor.items():
+            c = self.chan[name]
+            c[3] = max(c[3], abs(i))
+            if on and c[4] is not None and t > c[4]:
+                c[0] = brk.advance(c[0], 0.5 * (c[5] + i), t - c[4])
+                if c[0] > c[1]:
+                    c[1] = c[0]
+                if c[2] is None and c[0] >= 1.0:
+                    c[2] = t
+            c[4], c[5] = t, i

@@ -90,3 +90,21 @@ MATCH_OUTPUTS = {  # name: (label, unit shown and read by requirements)
     "moves": ("Moves finished", ""),
     "unfinished": ("Moves not finished", ""),
 }
+# each moved card's channel breaker, match.<card>_breaker_load etc. (core/workbook/match.py)
+MATCH_CHANNEL_OUTPUTS = {
+    "breaker_load": ("breaker peak (of its rating)", "%"),
+    "breaker_margin": ("breaker margin (1 − θ)", "%"),
+    "breaker_trip": ("breaker would trip at", "s"),
+}
+
+
+def match_output(name: str, cards) -> tuple[str, str] | None:
+    """(label, unit) of the match's output `name`: one of MATCH_OUTPUTS, or `<card>_breaker_...`
+    for a card of `cards` (the cards the match moves); None if it is neither."""
+    if name in MATCH_OUTPUTS:
+        return MATCH_OUTPUTS[name]
+    for suffix, (label, unit) in MATCH_CHANNEL_OUTPUTS.items():
+        card = name.removesuffix(f"_{suffix}")
+        if card != name and card in cards:
+            return (f"{card} {label}", unit)
+    return None

@@ -440,13 +440,18 @@ def evaluate(expr: Expr, scope: Scope, where: str, src: str) -> Any:
 
 def _match_output(scope: Scope, path: list[str], fail) -> Any:
     """`match.NAME`: an output of the workbook's [match] (core/workbook/match.py), run after the cards."""
-    from .book import MATCH_OUTPUTS
+    from .book import MATCH_OUTPUTS, match_output
 
     ureg = units.registry()
-    if len(path) != 1 or path[0] not in MATCH_OUTPUTS:
-        fail(f"{shown('.'.join(path))} is not an output of the match (outputs: {', '.join(MATCH_OUTPUTS)})")
+    moved = {ev.card for ev in scope.workbook.match.events}
+    info = match_output(path[0], moved) if len(path) == 1 else None
+    if info is None:
+        more = ", CARD_breaker_load, _margin, _trip" if moved else ""
+        fail(
+            f"{shown('.'.join(path))} is not an output of the match (outputs: {', '.join(MATCH_OUTPUTS)}{more})"
+        )
     name = path[0]
-    unit = MATCH_OUTPUTS[name][1]
+    unit = info[1]
     unit = "percent" if unit == "%" else unit
     if scope.static:
         return ureg.Quantity(1.0, unit) if unit else 1.0
@@ -454,7 +459,12 @@ def _match_output(scope: Scope, path: list[str], fail) -> Any:
         raise NotSolved(f"the match could not be run ({scope.failed['match']})")
     given = scope.cards["match"].outputs
     if name not in given:
-        why = "no trip" if name == "main_breaker_trip" else "no trip table (match.main_breaker)"
+        if name.endswith("_trip"):
+            why = "no trip"
+        elif name == "main_breaker_margin":
+            why = "no trip table (match.main_breaker)"
+        else:
+            why = "no trip table (match.channel_breaker)"
         raise NotSolved(f"match.{name} is not given: {why}")
     value = float(given[name])
     return ureg.Quantity(value, unit) if unit else value

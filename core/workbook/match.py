@@ -13,11 +13,16 @@ on core.match.mechanisms' bus, its outputs readable by requirements as `match.OU
     peukert = 1.25
     charge = 1.0                          # the starting state of charge (or "70 %")
     ocv = [[0.0, 11.94], [0.5, 12.54], [1.0, 12.72]]   # (state of charge, volts)
+    main_breaker = [[2.0, 10.0], [5.0, 1.0]]           # trip table: multiple of 120 A, seconds
+    channel_rating = "40 A"                            # each motor's channel breaker
+    channel_breaker = [[1.5, 10.0], [3.0, 1.0]]        # its trip table: multiple of the rating, s
 
     [[match.events]]
     at = "2 s"                            # when the move is asked
-    card = "lift"                         # an elevator or arm card, mode = move
-    action = "move"                       # move: start → goal; return: goal → start
+    card = "lift"                         # an elevator or arm (mode = move), sprint or flywheel card
+    action = "move"                       # move: start → goal; return: goal → start (a sprint: the
+                                          # same sprint); a flywheel: spin_up (from rest to its
+                                          # target) or burst (and its shots); stop: motors off
     every = "20 s"                        # optional: repeated every 20 s ...
     count = 7                             # ... 7 times in all (those past the end are dropped)
 
@@ -26,9 +31,15 @@ load and the thresholds, a reference `"= EXPR"` reading the workbook's variables
 `every` are plain (a number of seconds or a time).
 
 Events on one card are queued, never superposed: a move starts at its time or, if the card's previous
-move has not reached its goal yet, when it does. A move that never arrives (stuck, browned out to the
-end) holds the card's later moves back: they are counted in `match.unfinished`. Each move starts from
-rest at its start (the elevator's return from the top of its travel), as the card's scene does.
+move has not reached its goal yet (a burst: its last shot and that shot's recovery), when it does.
+An elevator, arm or flywheel then holds its goal (its speed) on the current that holds it until the
+card's next move starts (a flywheel's then starts at the speed it held, B13), or until an event
+with `action = "stop"` (core.match.mechanisms (B10)); an elevator's and arm's move ends are hard
+stops (B12); a sprint draws nothing after its distance. A move that never arrives (stuck, browned
+out to the end) holds the card's later moves back: they are counted in `match.unfinished`. Each move
+starts from rest at its start (the elevator's return from the top of its travel), as the card's
+scene does. Each moved card's channel breaker gives the outputs `match.CARD_breaker_load`,
+`_margin` and `_trip` (B9).
 The battery, controller and bus are core.match's (battery.py, brownout.py, mechanisms.py), with their
 defaults and the sources of each given there.
 """
@@ -40,16 +51,29 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..errors import InputError, shown
-from .book import MATCH_OUTPUTS as OUTPUTS
+from .book import MATCH_OUTPUTS as OUTPUTS  # noqa: F401 (tui/match_cli reads it here)
 from .book import Expr, Workbook
+from .book import match_output as output_info
 from .expressions import Scope, evaluate, literal_value, parse_expression
 
 NAME = "match"
 MAX_EVENT_ROWS = 1000  # [[match.events]] tables read; more is refused before any expansion
 MAX_MOVES = 200  # moves on the bus after `every`/`count` (core.match.mechanisms.MAX_MECHANISMS)
 ACTIONS = ("move", "return")
-CARDS_ON_BUS = ("elevator", "arm")
-NOT_ON_BUS = "not on the match bus yet: elevator and arm moves only"
+# calculator: (its mode field and the mode the match runs, or None; the actions, the first the default)
+ON_BUS = {
+    "elevator": ("mode", "move", (*ACTIONS, "stop")),
+    "arm": ("mode", "move", (*ACTIONS, "stop")),
+    "sprint": ("mode", "sprint", ACTIONS),  # return: the same sprint, driven back
+    "flywheel": (None, None, ("spin_up", "burst", "stop")),  # its `mode` is the inertia's
+}
+# held at their goal after a move (mechanisms.py (B10)) until the card's next move or a `stop`
+HOLDING = ("elevator", "arm", "flywheel")
+CARDS_ON_BUS = tuple(ON_BUS)
+NOT_ON_BUS = (
+    "not on the match bus yet: elevator and arm moves, sprints and flywheel spin-ups only "
+    "(pneumatic cycles are not modelled)"
+)
 KEYS = {  # key: (unit, default, a reference allowed)
     "length": ("s", 150.0, False),
     "brownout": ("V", None, True),
@@ -60,6 +84,7 @@ KEYS = {  # key: (unit, default, a reference allowed)
     "capacity": ("A*h", 18.0, True),
     "peukert": ("", 1.25, True),
     "charge": ("", 1.0, True),
+    "channel_rating": ("A", 40.0, False),
 }
 EVENT_KEYS = ("at", "card", "action", "every", "count")
 
@@ -82,6 +107,7 @@ class MatchSpec:
     events: list[Event]
     source: str
     main_breaker: Any = None  # core.match.breaker.Breaker with the trip table entered, else None
+    channel_table: tuple | None = None  # every channel breaker's trip table, else None (B9)
 
     def occurrences(self) -> list[tuple[float, Event]]:
         """Every move asked, (time, event), by time then file order; those past the end dropped."""
@@ -105,7 +131,7 @@ def parse(data: Any, wb: Workbook) -> MatchSpec:
     src = wb.source
     if not isinstance(data, dict):
         raise InputError(NAME, "must be a table ([match] ...)", src)
-    allowed = set(KEYS) | {"controller", "ocv", "events", "main_breaker"}
+    allowed = set(KEYS) | {"controller", "ocv", "events", "main_breaker", "channel_breaker"}
     for key in data:
         if key not in allowed:
             raise InputError(f"{NAME}.{key}", f"unknown key of the match ({', '.join(sorted(allowed))})", src)
@@ -167,6 +193,31 @@ def parse(data: Any, wb: Workbook) -> MatchSpec:
             raise InputError(
                 f"{NAME}.main_breaker", "needs at least one row [multiple of 120 A, seconds]", src
             )
+    channel_table = None
+    if "channel_breaker" in data:  # every channel's trip table ((multiple of its rating, s), ...)
+        from ..match.breaker import Breaker
+
+        if not 0 < values["channel_rating"] <= 1e5:
+            raise InputError(
+                f"{NAME}.channel_rating", f"must be above 0 A, got {values['channel_rating']:g} A", src
+            )
+        try:
+            brk = Breaker(values["channel_rating"], data["channel_breaker"], name="channel_breaker")
+        except InputError as exc:
+            raise InputError(f"{NAME}.{exc.field}", exc.message, src) from None
+        except (TypeError, ValueError):
+            raise InputError(
+                f"{NAME}.channel_breaker", "must be rows [multiple of the channel rating, seconds]", src
+            ) from None
+        if not brk.calibrated:
+            raise InputError(
+                f"{NAME}.channel_breaker", "needs at least one row [multiple of the rating, seconds]", src
+            )
+        channel_table = brk.table
+    elif not 0 < values["channel_rating"] <= 1e5:
+        raise InputError(
+            f"{NAME}.channel_rating", f"must be above 0 A, got {values['channel_rating']:g} A", src
+        )
     rows = data.get("events", [])
     if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
         raise InputError(f"{NAME}.events", "must be [[match.events]] tables", src)
@@ -180,7 +231,15 @@ def parse(data: Any, wb: Workbook) -> MatchSpec:
             f"{NAME}.length", f"must be above 0 s and at most {MAX_LENGTH:g} s, got {length:g} s", src
         )
     events = [_event(i, r, wb, length) for i, r in enumerate(rows, 1)]
-    spec = MatchSpec(values, controller, ocv, events, src, main_breaker)
+    for ev in events:  # its channel's outputs <card>_breaker_* beside the main breaker's main_breaker_*
+        if ev.card == "main":
+            raise InputError(
+                f"{NAME}.events[{ev.index}].card",
+                "a card named 'main' would give its channel breaker the main breaker's outputs "
+                "(main_breaker_margin, ...); rename it",
+                src,
+            )
+    spec = MatchSpec(values, controller, ocv, events, src, main_breaker, channel_table)
     moves = sum(1 for _ in spec.occurrences())
     if moves > MAX_MOVES:
         raise InputError(
@@ -273,14 +332,25 @@ def _event(i: int, data: dict, wb: Workbook, length: float) -> Event:
         known = ", ".join(wb.cards) or "none"
         raise InputError(f"{where}.card", f"{shown(card)} is not a card (cards: {known})", src)
     calc = wb.cards[card].calculator
-    if calc not in CARDS_ON_BUS:
-        raise InputError(f"{where}.card", f"{card} ({calc}) is {NOT_ON_BUS}", src)
-    mode = wb.cards[card].inputs.get("mode", "move")
-    if "mode" not in wb.cards[card].links and mode != "move":
-        raise InputError(f"{where}.card", f"{card} is in mode {shown(mode)}; the match runs mode = move", src)
-    action = data.get("action", "move")
-    if action not in ACTIONS:
-        raise InputError(f"{where}.action", f"must be one of {', '.join(ACTIONS)}, got {shown(action)}", src)
+    if calc not in ON_BUS:
+        why = NOT_ON_BUS
+        if calc == "pneumatics":  # its card models the air (flow curves), not the compressor's current
+            why += ": the pneumatics card has no compressor current to draw"
+        raise InputError(f"{where}.card", f"{card} ({calc}) is {why}", src)
+    mode_field, runs, actions = ON_BUS[calc]
+    if mode_field is not None:
+        mode = wb.cards[card].inputs.get(mode_field, runs)
+        if mode_field not in wb.cards[card].links and mode != runs:
+            raise InputError(
+                f"{where}.card", f"{card} is in mode {shown(mode)}; the match runs mode = {runs}", src
+            )
+    action = data.get("action", actions[0])
+    if action not in actions:
+        raise InputError(
+            f"{where}.action",
+            f"must be one of {', '.join(actions)} for {card} ({calc}), got {shown(action)}",
+            src,
+        )
     every = None
     if "every" in data:
         every = _scalar(f"{where}.every", data["every"], "s", False, wb, None)
@@ -336,8 +406,9 @@ class MatchOutcome:
     channel_peaks: dict[str, float] = field(default_factory=dict)  # card -> peak supply A per motor
 
     def as_json(self) -> dict[str, Any]:
+        cards = set(self.bus.channels)
         return {
-            "outputs": {k: {"value": v, "unit": OUTPUTS[k][1]} for k, v in self.outputs.items()},
+            "outputs": {k: {"value": v, "unit": output_info(k, cards)[1]} for k, v in self.outputs.items()},
             "min_bus_running": list(self.running_at_min),
             "brownouts": [
                 {"start": b.start, "end": b.end, "length": b.length, "running": list(b.running)}
@@ -355,6 +426,7 @@ class MatchOutcome:
                     "arrival": r.arrival,
                     "peak_stator_current": r.peak_stator_current,
                     "peak_supply_current": r.peak_supply_current,
+                    **({"ball_speeds": [V for _, V, _, _ in r.shots]} if r.shots else {}),
                 }
                 for t, ev, r in self.moves
             ],
@@ -392,7 +464,14 @@ def run(spec: MatchSpec, wb: Workbook, scope: Scope, cards: dict) -> MatchOutcom
         controller = Controller(brownout=b, recovery=r)
     except InputError as exc:
         raise InputError(f"{NAME}.{exc.field.removeprefix('controller.')}", exc.message, src) from None
-    occ = spec.occurrences()
+    occ, stops, last = [], {}, {}
+    for t, ev in spec.occurrences():
+        if ev.action == "stop":  # the card's last move asked stops holding (B10); none yet: nothing to stop
+            if ev.card in last:
+                stops.setdefault(last[ev.card], t)
+            continue
+        last[ev.card] = len(occ)
+        occ.append((t, ev))
     moves, last = [], {}
     for k, (t, ev) in enumerate(occ):
         where = f"{NAME}.events[{ev.index}] ({ev.card} at {t:g} s)"
@@ -403,9 +482,26 @@ def run(spec: MatchSpec, wb: Workbook, scope: Scope, cards: dict) -> MatchOutcom
             setup = _setup(card.calculator, card.entries, ev.action)
         except InputError as exc:
             raise InputError(where, f"{exc.field}: {exc.message}", src) from None
-        moves.append(MechanismMove(f"{ev.card}#{k}", setup, t, after=last.get(ev.card)))
+        moves.append(
+            MechanismMove(
+                f"{ev.card}#{k}",
+                setup,
+                t,
+                after=last.get(ev.card),
+                channel=ev.card,
+                hold=card.calculator in HOLDING,
+                release=stops.get(k),
+                hard_stops=card.calculator in ("elevator", "arm"),
+                carry=card.calculator == "flywheel",  # still spinning from its last move (B13)
+            )
+        )
         last[ev.card] = k
-    match = MechanismMatch(tuple(moves), battery, controller, vals["length"], vals["base_load"])
+    from ..match.breaker import Breaker
+
+    channel = Breaker(vals["channel_rating"], spec.channel_table or (), name="channel_breaker")
+    match = MechanismMatch(
+        tuple(moves), battery, controller, vals["length"], vals["base_load"], channel_breaker=channel
+    )
     try:
         bus = match.run()
     except InputError as exc:
@@ -423,20 +519,21 @@ def _where_move(fieldname: str, occ) -> str:
 
 
 def _setup(calc_id: str, raw: dict, action: str):
-    """The card's move scene from its solved entries; `return` swaps its start and goal."""
-    from ..calculators import arm, elevator
+    """The card's scene from its solved entries (core.match.mechanisms.scene_of); an elevator's or
+    arm's `return` swaps its start and goal (a sprint's is the same sprint, driven back)."""
+    from ..match.mechanisms import burst, scene_of
     from ..model import parse_inputs
     from ..registry import get
 
     v = parse_inputs(get(calc_id), raw)[0]
-    if v["mode"] != "move":
-        raise InputError("mode", f"the match runs the card's move (mode = move), got {shown(v['mode'])}")
+    if action == "burst":  # the flywheel's: its spin-up, then its shots (mechanisms.py (B11))
+        return burst(v)
     if action == "return":
         if calc_id == "elevator":
             v["travel"] = -v["travel"]
-        else:
+        elif calc_id == "arm":
             v["start_angle"], v["goal_angle"] = v["goal_angle"], v["start_angle"]
-    return (elevator if calc_id == "elevator" else arm).setup(v)
+    return scene_of(calc_id, v)
 
 
 def _below(trace, level: float) -> float:
@@ -513,6 +610,12 @@ def _outcome(spec, occ, bus, battery, controller, vals) -> MatchOutcome:
         "moves": sum(1 for *_, r in moves if r.arrival is not None),
         "unfinished": sum(1 for *_, r in moves if r.arrival is None),
     }
+    for card, ch in bus.channels.items():  # (B9): match.<card>_breaker_load, _margin, _trip
+        o[f"{card}_breaker_load"] = 100.0 * ch.peak / ch.rating
+        if ch.theta_max is not None:
+            o[f"{card}_breaker_margin"] = 100.0 * (1.0 - ch.theta_max)
+        if ch.trip_time is not None:
+            o[f"{card}_breaker_trip"] = ch.trip_time
     shares: dict[str, float] = {}
     peaks: dict[str, float] = {}
     for _, ev, r in moves:
@@ -528,4 +631,40 @@ def _outcome(spec, occ, bus, battery, controller, vals) -> MatchOutcome:
     out.brownouts = [Brownout(s, e, _running(moves, s)) for s, e in bus.brownouts]
     out.shares = shares
     out.channel_peaks = peaks
+    return out
+
+
+def summary(m) -> list[str]:
+    """The match's outputs as lines (tui: `gearhead match` and `gearhead solve ROBOT.toml`): each output
+    with its label, then each card's share of the charge and its channel breaker."""
+    from .. import units
+    from ..errors import printable
+
+    o = m.outputs
+    out: list[str] = []
+    width = max(len(label) for label, _ in OUTPUTS.values())
+    for key, (label, unit) in OUTPUTS.items():  # the channels' own outputs are shown with the shares
+        if key not in o:  # the breaker's margin without a trip table, its trip time without a trip
+            continue
+        value = o[key]
+        text = f"{value:d}" if isinstance(value, int) else f"{units.format_number(value)} {unit}".rstrip()
+        if key == "min_bus_time" and m.running_at_min:
+            text += f"  ({', '.join(m.running_at_min)} running)"
+        out.append(f"  {label:<{width}}  {text}")
+    rating = m.spec.values["channel_rating"]
+    out.append(f"  Charge share; peak supply current per motor, either way (of a {rating:g} A breaker)")
+    for k, v in m.shares.items():
+        ch = m.bus.channels.get(k)  # either direction: a motor braking a falling load drives current back
+        more = f"   peak {ch.peak:.4g} A ({ch.peak / rating * 100:.3g} %)" if ch is not None else ""
+        if f"{k}_breaker_trip" in o:
+            more += f"; trips at {units.format_number(o[f'{k}_breaker_trip'])} s"
+        elif f"{k}_breaker_margin" in o:
+            more += f"; margin {units.format_number(o[f'{k}_breaker_margin'])} %"
+        out.append(f"    {printable(k):<12} {v * 100:6.3g} %{more}")
+    if "main_breaker_margin" not in o and m.spec.channel_table is None:
+        out.append("  (no breaker trip table entered, so no trip is predicted)")
+    elif m.spec.channel_table is None:
+        out.append("  (no channel breaker trip table entered: no channel trip is predicted)")
+    elif "main_breaker_margin" not in o:
+        out.append("  (no main breaker trip table entered: no main breaker trip is predicted)")
     return out
