@@ -515,7 +515,7 @@ def _with_worst(line: RequirementLine, worst, key: str) -> RequirementLine:
 def match_section(m) -> MatchSection:
     """The match as `gearhead match` shows it: its outputs, the charge's shares, the moves and the
     brownouts, and the bus voltage and battery current over the match as charts."""
-    from ..workbook.match import OUTPUTS
+    from ..workbook.match import OUTPUTS, output_info
 
     summary = []
     length = m.spec.values["length"]
@@ -535,6 +535,11 @@ def match_section(m) -> MatchSection:
         if key == "min_bus_time" and m.running_at_min:
             text += f" ({', '.join(m.running_at_min)} running)"
         summary.append((label.strip() if label.strip() != "at" else "Lowest bus voltage at", text))
+    cards = set(m.bus.channels)
+    for key, value in m.outputs.items():  # each card's channel breaker: `<card>_breaker_load` ...
+        if key not in OUTPUTS and (info := output_info(key, cards)) is not None:
+            label, unit = info
+            summary.append((label.strip(), f"{units.format_number(value)} {unit}".rstrip()))
     shares = Table(
         "Share of the charge; peak supply current per motor (of a 40 A breaker)",
         ["Card", "Share of the charge", "Peak supply current per motor"],
