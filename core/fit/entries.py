@@ -62,7 +62,9 @@ def load_card(
                 "--name", f"{name!r} is a {wb.cards[name].calculator} card, not {kind}", workbook
             )
         result = wbmod.solve(wb).cards[name]
-        raw, label = result.raw, f"{workbook}: {name}"
+        if result.error is not None and not result.entries:
+            raise InputError("--name", f"card {name!r} could not be read: {result.error}", workbook)
+        raw, label = result.entries, f"{workbook}: {name}"
     elif preset is not None:
         p = presets.load(preset)
         if p.calculator != kind:

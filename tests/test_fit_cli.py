@@ -1,0 +1,109 @@
+"""`gearhead fit` (issue 44 item 6): text and --json on a synthetic SysId log, the card from its
+defaults, a preset or a workbook; bad logs and entries exit 2 with one line naming what is wrong."""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+
+import pytest
+
+from gearhead.tui.cli import main
+
+pytest.importorskip("wpiutil")
+sys.path.insert(0, str(Path(__file__).parent))
+from fit_plants import simulate  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+ARM = {"kS": 0.15, "kV": 2.0, "kA": 0.2, "kG": 0.8, "offset": 0.3}
+
+
+def run(capsys, *args):
+    code = main([str(a) for a in args])
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+@pytest.fixture(scope="module")
+def arm_log(tmp_path_factory):
+    return simulate(tmp_path_factory.mktemp("fit") / "arm.wpilog", "arm", ARM, noise=0.002, jitter=0.001)
+
+
+def test_json(capsys, arm_log):
+    code, out, err = run(capsys, "fit", arm_log, "--card", "arm", "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["card"] == "arm" and data["favoured"] in ("continuous", "discrete")
+    assert data["signals"]["voltage"] == "voltage-motor-mech"
+    for form in ("continuous", "discrete"):
+        g = data["fits"][form]["gains"]
+        assert g["kV"] == pytest.approx(2.0, rel=0.01) and g["kG"] == pytest.approx(0.8, rel=0.01)
+        assert g["offset"] == pytest.approx(0.3, abs=0.01)
+    entries = {e["entry"]: e for e in data["entries"]}
+    assert entries["angle offset"]["fitted"] == pytest.approx(math.degrees(0.3), abs=0.6)
+    assert set(data["replay"]) == {"design", "continuous", "discrete"}
+
+
+def test_text_and_preset(capsys, arm_log):
+    code, out, err = run(
+        capsys, "fit", arm_log, "--card", "arm", "--preset", ROOT / "presets/arm/single_kraken.toml"
+    )
+    assert code == 0, err
+    assert "single_kraken.toml" in out and "favoured:" in out and "angle offset" in out
+    assert "replay of the logged voltage" in out and "dynamic-forward: velocity measured" in out
+
+
+def test_workbook_card(capsys, arm_log):
+    code, out, err = run(
+        capsys,
+        "fit",
+        arm_log,
+        "--card",
+        "arm",
+        "--workbook",
+        ROOT / "examples/robot_2027.toml",
+        "--name",
+        "arm",
+    )
+    assert code == 0, err
+    assert "robot_2027.toml: arm" in out
+
+
+@pytest.mark.parametrize(
+    "extra, words",
+    [
+        (["--scale", "nan"], "--scale: is nan"),
+        (["--scale", "-1"], "--scale: is -1.0"),
+        (["--name", "arm"], "--name: names a workbook's card"),
+        (["--preset", ROOT / "presets/elevator/two_neo.toml"], "is a elevator preset, not arm"),
+        (["--routine", "nope"], "'sysid-test-state-nope' is not in the log"),
+        (["--velocity", "nope"], "--velocity: no entry 'nope'"),
+        (["--units", "furlongs"], "'furlongs', which cannot be converted"),
+    ],
+)
+def test_bad_entries_exit_2(capsys, arm_log, extra, words):
+    code, out, err = run(capsys, "fit", arm_log, "--card", "arm", *extra)
+    assert code == 2 and out == ""
+    assert words in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    "data, words",
+    [
+        (b"", "is not a WPILog"),
+        (b"WPILOG\x00\x02\x00\x00\x00\x00", "version 2.0"),
+        (b"WPILOG\x00\x01\x00\x00\x00\x00", "no SysId test state"),
+    ],
+)
+def test_bad_logs_exit_2(capsys, tmp_path, data, words):
+    path = tmp_path / "bad.wpilog"
+    path.write_bytes(data)
+    code, out, err = run(capsys, "fit", path, "--card", "flywheel", "--json")
+    assert code == 2 and out == "" and str(path) in err and words in err
+
+
+def test_missing_log_exits_2(capsys, tmp_path):
+    code, _, err = run(capsys, "fit", tmp_path / "none.wpilog", "--card", "elevator")
+    assert code == 2 and "none.wpilog: log: cannot be read" in err
