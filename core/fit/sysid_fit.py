@@ -270,8 +270,8 @@ def _finish(form, fn, X, y, kind, T, src) -> Fit:
     warnings = []
     if bad:
         warnings.append(
-            f"{form} fit: insufficient samples to compute {', '.join(bad)} (SysId's check: at least 2 "
-            "steady-state speeds, 1 acceleration, enough motion for gravity)"
+            f"{form} fit: SysId's insufficient-data check flags {', '.join(bad)} (it wants 2 steady speeds, "
+            "1 acceleration, motion enough for gravity; SysId's analyzer computes it without refusing)"
         )
     for k, v in gains.items():
         if not math.isfinite(v):
