@@ -44,6 +44,7 @@ def test_json(capsys, arm_log):
     entries = {e["entry"]: e for e in data["entries"]}
     assert entries["angle offset"]["fitted"] == pytest.approx(math.degrees(0.3), abs=0.6)
     assert set(data["replay"]) == {"design", "continuous", "discrete"}
+    assert set(data["moves"]) == {"design", "fitted"} and data["moves"]["fitted"]["time_to_goal"] > 0
 
 
 def test_text_and_preset(capsys, arm_log):

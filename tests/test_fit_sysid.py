@@ -95,6 +95,9 @@ def test_entries_back_to_the_cards_plant(tmp_path, kind):
         assert abs(rows["angle offset"][2] - math.degrees(0.2)) < 0.5
     loss = card.loss
     assert abs(rows["friction"][2]) < 0.05 * loss + 4 * rows["friction"][3]
+    if kind != "flywheel":  # the card's move re-solved with the fitted entries: as the design's
+        for k, x in r.moves["design"].items():
+            assert r.moves["fitted"][k] == pytest.approx(x, rel=0.025), k
     top = max(abs(x) for tr in r.replays["design"].traces.values() for x in tr[2])
     if kind != "arm":  # the design's arm has no offset
         assert r.replays["design"].velocity_rmse < 1e-3 * top
@@ -210,3 +213,34 @@ def test_a_mechanism_that_does_not_move(tmp_path):
     path = simulate(tmp_path / "stuck.wpilog", "elevator", g, noise=0.001)
     with pytest.raises(InputError, match="did not move|no sample"):
         fit.fit_log(path, "elevator")
+
+
+def test_noise_floor_is_sysids_with_wpilibs_moving_average():
+    """(D2) against GetNoiseFloor written with wpimath's own LinearFilter.movingAverage(9)."""
+    import numpy as np
+    from wpimath.filter import LinearFilter
+
+    v = np.random.default_rng(2).normal(1.0, 0.1, 300)
+    f = LinearFilter.movingAverage(9)
+    total = 0.0
+    for i in range(len(v)):
+        mean = f.calculate(v[i])
+        if i >= 4:
+            total += (v[i - 4] - mean) ** 2
+    assert sysid_fit.noise_floor(v) == pytest.approx(math.sqrt(total / (len(v) - 4)), rel=1e-12)
+
+
+def test_insufficient_data_check_flags_as_sysid():
+    """(F4): a regressor with no spread has a zero eigenvalue along it: velocity -> kV; voltage ->
+    every gain; gravity (elevator's constant column a copy of sgn v) -> kS or kG."""
+    import numpy as np
+
+    rng = np.random.default_rng(0)
+    n = 200
+    v, u = rng.normal(0, 3, n), rng.normal(0, 5, n)
+    s = np.sign(v)
+    cos, sin = np.cos(rng.uniform(0, 3, n)), np.sin(rng.uniform(0, 3, n))
+    assert sysid_fit.quality(np.column_stack([v, u, s, cos, sin]) * 3, "arm") == []
+    assert sysid_fit.quality(np.column_stack([0 * v, u, s]), "flywheel") == ["kV"]
+    assert sysid_fit.quality(np.column_stack([v, 0 * u, s]), "flywheel") == ["kS", "kV", "kA"]
+    assert set(sysid_fit.quality(np.column_stack([v, u, s * 0 + 1, np.ones(n)]), "elevator")) & {"kS", "kG"}

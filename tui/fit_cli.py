@@ -108,6 +108,17 @@ def text(r) -> list[str]:
     for k, rp in r.replays.items():
         label = "design's entries" if k == "design" else f"fitted ({k})"
         out.append(f"    {label:<22} {_g(rp.position_rmse):>10}   {_g(rp.velocity_rmse):>10}")
+    if r.moves:
+        names = {
+            "time_to_goal": ("time to goal", "s"),
+            "peak_stator_current": ("peak stator current", "A"),
+            "max_speed": ("top speed", vel),
+        }
+        out.append("")
+        out.append(f"  the card's move, with its entries and the fitted ones ({r.favoured})")
+        for k, (label, u) in names.items():
+            cells = [_g(r.moves[m][k]) if k in r.moves.get(m, {}) else "-" for m in ("design", "fitted")]
+            out.append(f"    {label:<22} {cells[0]:>10}   {cells[1]:>10}  {u}")
     out += plot(r)
     for n in r.notes:
         out.append(f"  note: {n}")

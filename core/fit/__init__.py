@@ -26,6 +26,7 @@ class Report:
     entries: list
     replays: dict  # "design" and each form -> replay.Replay
     notes: list = field(default_factory=list)
+    moves: dict = field(default_factory=dict)  # "design"/"fitted" -> the card's move outputs (SI)
 
     def as_json(self) -> dict:
         def clean(x):
@@ -64,6 +65,7 @@ class Report:
                 k: {"position_rmse": clean(r.position_rmse), "velocity_rmse": clean(r.velocity_rmse)}
                 for k, r in self.replays.items()
             },
+            "moves": {k: {o: clean(x) for o, x in m.items()} for k, m in self.moves.items()},
             "notes": self.notes,
         }
 
@@ -96,6 +98,7 @@ def fit_log(path, kind: str, card=None, **pick) -> Report:
     favoured = min(good or list(fits), key=lambda f: replays[f].velocity_rmse)
     best = fits[favoured]
     notes = list(picked.notes) + [w for f in fits.values() for w in f.warnings]
+    moved, more = ent.moves(card, best.gains)
     return Report(
         source,
         kind,
@@ -106,5 +109,6 @@ def fit_log(path, kind: str, card=None, **pick) -> Report:
         favoured,
         ent.entries(card, best.gains, best.sigma),
         replays,
-        notes,
+        notes + more,
+        moved,
     )

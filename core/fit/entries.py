@@ -33,6 +33,7 @@ class Card:
     f: float  # force (torque) per volt at stall
     loss: float  # the motors' own loss force R·i_f·f (N or N·m)
     n_over_kv: float
+    raw: dict = field(default_factory=dict)  # the card's entries as written (a preset's, a workbook card's)
     notes: list[str] = field(default_factory=list)
 
 
@@ -73,7 +74,9 @@ def load_card(
     else:
         raw, label = {}, f"the {kind} card's defaults"
     values, _ = parse_inputs(calc, raw)
-    return _model(kind, values, label)
+    card = _model(kind, values, label)
+    card.raw = dict(raw)
+    return card
 
 
 def _model(kind: str, v: dict, label: str) -> Card:
@@ -169,3 +172,56 @@ def entries(
     )
     rows.append(("kV / (n/Kv)", 1.0, gains["kV"] / card.n_over_kv, sigma["kV"] / card.n_over_kv, ""))
     return rows
+
+
+MOVE_OUTPUTS = ("time_to_goal", "peak_stator_current", "max_speed")
+
+
+def fitted_raw(card: Card, gains: dict[str, float]) -> tuple[dict, list[str]] | None:
+    """The card's entries with the fitted ones in (elevator, arm; None for a flywheel, whose inertia
+    is entered several ways): the moving mass from kA (an elevator's one mass serves gravity too, so
+    its kG follows from it), an arm's entered inertia from kA and mass from kG, friction from kS (E2)."""
+    if card.kind not in ("elevator", "arm"):
+        return None
+    raw, notes = dict(card.raw), []
+    f = card.f
+    friction = gains["kS"] * f - card.loss
+    effects = {e for e in card.values["effects"] if e != "friction"}
+    name = "friction_force" if card.kind == "elevator" else "friction_torque"
+    if friction > 0:
+        effects.add("friction")
+        raw[name] = f"{friction!r} {'N' if card.kind == 'elevator' else 'N*m'}"
+    else:
+        notes.append(f"fitted kS is below the motors' own loss: no friction added ({friction:.3g})")
+    raw["effects"] = ", ".join(sorted(effects))
+    if card.kind == "elevator":
+        raw["load_mass"] = f"{gains['kA'] * f!r} kg"
+    else:
+        tcb = card.values["counterbalance_torque"] if "counterbalance" in card.values["effects"] else 0.0
+        m = (gains["kG"] * f + tcb) / (G0 * card.values["com_distance"])
+        raw["arm_mass"] = f"{m!r} kg"
+        raw["inertia_model"] = "entered"
+        raw["moment_of_inertia"] = f"{gains['kA'] * f!r} kg*m**2"
+    return raw, notes
+
+
+def moves(card: Card, gains: dict[str, float]) -> tuple[dict, list[str]]:
+    """The move the card solves, with its entries and with the fitted ones: {"design": {output:
+    value}, "fitted": {...}} (SI), and notes (a solve that fails says why)."""
+    from ..model import solve
+
+    got = fitted_raw(card, gains)
+    if got is None:
+        return {}, []
+    raw, notes = got
+    out = {}
+    for label, entries_ in (("design", card.raw), ("fitted", raw)):
+        try:
+            sol = solve(card.kind, entries_)
+        except InputError as exc:
+            notes.append(
+                f"the card's move with the {label} entries cannot be solved: {exc.field}: {exc.message}"
+            )
+            continue
+        out[label] = {k: sol.outputs[k].value for k in MOVE_OUTPUTS if k in sol.outputs}
+    return out, notes

@@ -266,7 +266,7 @@ def _finish(form, fn, X, y, kind, T, src) -> Fit:
     bad = quality(X, kind)
     c, cov, adj, rmse = ols(X, y)
     with np.errstate(all="ignore"):
-        gains = fn(c, kind, T)
+        gains = {k: float(v) for k, v in fn(c, kind, T).items()}
     warnings = []
     if bad:
         warnings.append(
