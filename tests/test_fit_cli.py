@@ -108,3 +108,39 @@ def test_bad_logs_exit_2(capsys, tmp_path, data, words):
 def test_missing_log_exits_2(capsys, tmp_path):
     code, _, err = run(capsys, "fit", tmp_path / "none.wpilog", "--card", "elevator")
     assert code == 2 and "none.wpilog: log: cannot be read" in err
+
+
+@pytest.mark.parametrize("seed", range(6))
+@pytest.mark.parametrize("card", ["elevator", "arm", "flywheel"])
+def test_unrelated_signals_give_a_fit_or_a_message(capsys, tmp_path, seed, card):
+    """Voltage, position and velocity that have nothing to do with each other (random, some huge):
+    a result or one line and exit 2, never a traceback or a NaN in the JSON."""
+    import numpy as np
+    import wpiutil
+    from wpiutil import log as wlog
+
+    rng = np.random.default_rng(seed)
+    scale = [1.0, 1e-6, 1e150, 1e300, 1.0, 1e-300][seed]
+    path = tmp_path / "junk.wpilog"
+    w = wpiutil.DataLogWriter(str(path))
+    st = wlog.StringLogEntry(w, "sysid-test-state-j", "", 1)
+    es = [
+        wlog.DoubleLogEntry(w, f"{r}-m-j", u, 1)
+        for r, u in (("voltage", "Volt"), ("position", "Rotation"), ("velocity", "Rotation per Second"))
+    ]
+    t = 1000
+    for state in ("quasistatic-forward", "quasistatic-reverse", "dynamic-forward", "dynamic-reverse", "none"):
+        for _ in range(40 if seed != 4 else 3):
+            st.append(state, t)
+            for e in es:
+                e.append(float(rng.normal(0, 1) * scale), t)
+            t += 20_000
+    w.flush()
+    w.stop()
+    del w
+    code, out, err = run(capsys, "fit", path, "--card", card, "--json")
+    assert code in (0, 2), err
+    if code == 0:
+        json.loads(out)  # allow_nan=False when written: no NaN or inf
+    else:
+        assert out == "" and err.count("\n") == 1 and str(path) in err

@@ -127,6 +127,8 @@ def text(r) -> list[str]:
 
 def plot(r, state: str = "dynamic-forward", width: int = PLOT_WIDTH, height: int = PLOT_HEIGHT) -> list[str]:
     """The measured velocity ('*') and the favoured fit's replay ('o') of one test, as text."""
+    if state not in r.replays[r.favoured].traces or state not in r.replays["design"].traces:
+        return []
     t, _, v, _, vh = r.replays[r.favoured].traces[state]
     _, _, _, _, vd = r.replays["design"].traces[state]
     if len(t) < 2:

@@ -8,6 +8,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from ..errors import InputError
+
 KINDS = ("elevator", "arm", "flywheel")
 
 
@@ -94,8 +96,15 @@ def fit_log(path, kind: str, card=None, **pick) -> Report:
     replays = {"design": rp.replay(kind, card.design, picked.runs)}
     for form, f in fits.items():
         replays[form] = rp.replay(kind, f.gains, picked.runs)
-    good = [f for f in fits if math.isfinite(replays[f].velocity_rmse)]
-    favoured = min(good or list(fits), key=lambda f: replays[f].velocity_rmse)
+    good = [f for f in fits if fits[f].usable and math.isfinite(replays[f].velocity_rmse)]
+    if not good:
+        raise InputError(
+            "log",
+            "neither form of the fit gives a model that runs (finite gains, kA > 0): "
+            + "; ".join(w for f in fits.values() for w in f.warnings),
+            source,
+        )
+    favoured = min(good, key=lambda f: replays[f].velocity_rmse)
     best = fits[favoured]
     notes = list(picked.notes) + [w for f in fits.values() for w in f.warnings]
     moved, more = ent.moves(card, best.gains)

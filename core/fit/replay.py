@@ -61,7 +61,17 @@ class Replay:
 
 
 def replay(kind: str, gains: dict[str, float], runs: dict[str, Run]) -> Replay:
-    """(R2) over the four tests."""
+    """(R2) over the four tests; not a number when the gains make no model that runs (kA ≤ 0, not
+    finite) or the model runs away past the float range."""
+    if not (all(math.isfinite(x) for x in gains.values()) and gains["kA"] > 0):
+        return Replay(math.nan, math.nan, {}, {})
+    try:
+        return _replay(kind, gains, runs)
+    except OverflowError:
+        return Replay(math.nan, math.nan, {}, {})
+
+
+def _replay(kind: str, gains: dict[str, float], runs: dict[str, Run]) -> Replay:
     per, traces = {}, {}
     sq = sv = 0.0
     n = 0

@@ -79,6 +79,11 @@ class Fit:
     coefficients: list[float]
     warnings: list[str] = field(default_factory=list)
 
+    @property
+    def usable(self) -> bool:
+        """Finite gains and a positive kA: the model they make can be run."""
+        return all(math.isfinite(v) for v in self.gains.values()) and self.gains["kA"] > 0
+
 
 def _lerp(t_at, t, y):
     """(D1): SysId's Lerp: the segment of the first sample after `t_at` (first or last at the ends)."""
@@ -133,11 +138,24 @@ def _accelerate(d: Prepared, arm: bool, source: str, state: str) -> Prepared:
 
 
 def prepare(picked: Picked) -> tuple[dict[str, Prepared], dict[str, float]]:
-    """(D1)-(D6): the four tests ready to regress, and the threshold, step duration and mean dt."""
+    """(D1)-(D6): the four tests ready to regress, and the threshold, step duration and mean dt.
+    Values near the float limit overflow to inf here, harmlessly: the checks below refuse them."""
+    with np.errstate(all="ignore"):
+        return _prepare(picked)
+
+
+def _prepare(picked: Picked) -> tuple[dict[str, Prepared], dict[str, float]]:
     src = picked.source
     arm = picked.kind == "arm"
     data = {s: _convert(r) for s, r in picked.runs.items()}
     threshold = min(noise_floor(data[s].v) for s in ("quasistatic-forward", "quasistatic-reverse"))  # (D2)
+    if not math.isfinite(threshold):
+        raise InputError(
+            "log",
+            "cannot measure the velocity's noise floor: the quasistatic tests have too few samples "
+            f"(more than {NOISE_WINDOW // 2} each) or values too large",
+            src,
+        )
     max_step = max(r.t_voltage[-1] - r.t_voltage[0] for s, r in picked.runs.items() if "dynamic" in s)
     step_time = 0.0
     out = {}
@@ -263,29 +281,34 @@ def _finish(form, fn, X, y, kind, T, src) -> Fit:
         raise InputError(
             "log", f"leaves {len(y)} samples for the {form} fit of {X.shape[1]} coefficients", src
         )
-    bad = quality(X, kind)
-    c, cov, adj, rmse = ols(X, y)
+    if not np.all(np.isfinite(X.T @ X)):  # values near the float limit (a hostile log) overflow
+        raise InputError("log", f"holds values too large for the {form} fit (its sums overflow)", src)
+    try:
+        with np.errstate(all="ignore"):
+            bad = quality(X, kind)
+            c, cov, adj, rmse = ols(X, y)
+    except np.linalg.LinAlgError as exc:
+        raise InputError("log", f"the {form} fit cannot be computed ({exc})", src) from None
     with np.errstate(all="ignore"):
         gains = {k: float(v) for k, v in fn(c, kind, T).items()}
+        sigma = _sigmas(fn, c, cov, kind, T)
     warnings = []
     if bad:
         warnings.append(
             f"{form} fit: SysId's insufficient-data check flags {', '.join(bad)} (it wants 2 steady speeds, "
             "1 acceleration, motion enough for gravity; SysId's analyzer computes it without refusing)"
         )
-    for k, v in gains.items():
-        if not math.isfinite(v):
-            raise InputError(
-                "log", f"the {form} fit gives no finite {k} (the data do not fit the model)", src
-            )
+    broken = [k for k, v in gains.items() if not math.isfinite(v)]
+    if broken:
+        warnings.append(
+            f"{form} fit: no finite {', '.join(broken)} (the data do not fit this form); not used"
+        )
     for k in ("kS", "kV", "kG"):
         if gains.get(k, 0.0) < 0:
             warnings.append(f"{form} fit: {k} = {gains[k]:.4g} is negative (it should be ≥ 0)")
     if gains["kA"] <= 0:
         warnings.append(f"{form} fit: kA = {gains['kA']:.4g} is not positive")
-    return Fit(
-        form, gains, _sigmas(fn, c, cov, kind, T), adj, rmse, len(y), bad, [float(x) for x in c], warnings
-    )
+    return Fit(form, gains, sigma, adj, rmse, len(y), bad, [float(x) for x in c], warnings)
 
 
 def fit_continuous(prepared: dict[str, Prepared], kind: str, T: float, source: str) -> Fit:
