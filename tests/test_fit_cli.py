@@ -144,3 +144,88 @@ def test_unrelated_signals_give_a_fit_or_a_message(capsys, tmp_path, seed, card)
         json.loads(out)  # allow_nan=False when written: no NaN or inf
     else:
         assert out == "" and err.count("\n") == 1 and str(path) in err
+
+
+# --- --apply ---------------------------------------------------------------------------------------
+
+
+def test_apply_writes_a_workbook_card_keeping_comments_and_links(capsys, tmp_path, arm_log):
+    wb = tmp_path / "robot.toml"
+    wb.write_text((ROOT / "examples/robot_2027.toml").read_text(encoding="utf-8"), encoding="utf-8")
+    before = wb.read_text(encoding="utf-8")
+    code, out, err = run(
+        capsys, "fit", arm_log, "--card", "arm", "--workbook", wb, "--name", "arm", "--apply", "--json"
+    )
+    assert code == 0, err
+    applied = json.loads(out)["applied"]
+    after = wb.read_text(encoding="utf-8")
+    assert after != before and applied["diff"].startswith("---")
+    assert set(applied["changes"]) >= {"arm_mass", "moment_of_inertia", "inertia_model"}
+    # every comment line is kept, and the card's link stays a link
+    assert [line for line in before.splitlines() if "#" in line] == [
+        line for line in after.splitlines() if "#" in line
+    ]
+    assert 'motor = "= mechanism_motor"' in after
+    code, out, err = run(capsys, "check", wb, "--json")  # the workbook still loads and checks
+    assert code in (0, 1), err
+    assert json.loads(out)["card_errors"] == {}
+    from gearhead.core import workbook
+
+    card = workbook.load(wb).cards["arm"]
+    assert card.inputs["inertia_model"] == "entered"
+
+
+def test_apply_notes_a_linked_field_and_writes_the_rest(capsys, tmp_path):
+    from gearhead.core.fit import entries
+
+    card = entries.load_card("elevator")
+    log = simulate(tmp_path / "lift.wpilog", "elevator", dict(card.design, kS=card.design["kS"] + 0.3))
+    wb = tmp_path / "robot.toml"
+    wb.write_text((ROOT / "examples/robot_2027.toml").read_text(encoding="utf-8"), encoding="utf-8")
+    code, out, err = run(
+        capsys, "fit", log, "--card", "elevator", "--workbook", wb, "--name", "lift", "--apply"
+    )
+    assert code == 0, err
+    assert "note: load_mass is linked (= lift_load): not written" in out
+    assert 'load_mass = "= lift_load"' in wb.read_text(encoding="utf-8")
+    assert "friction_force" in wb.read_text(encoding="utf-8")
+
+
+def test_apply_to_a_preset_copy(capsys, tmp_path, arm_log):
+    preset = tmp_path / "arm.toml"
+    preset.write_text("# my arm\n" + (ROOT / "presets/arm/single_kraken.toml").read_text(encoding="utf-8"))
+    code, out, err = run(capsys, "fit", arm_log, "--card", "arm", "--preset", preset, "--apply")
+    assert code == 0, err
+    text = preset.read_text(encoding="utf-8")
+    assert text.startswith("# my arm\n") and 'inertia_model = "entered"' in text and "written to" in out
+    from gearhead.core import presets
+
+    assert presets.load(preset).inputs["inertia_model"] == "entered"
+
+
+@pytest.mark.parametrize(
+    "extra, words",
+    [
+        ([], "--apply: needs the card's file"),
+        (["--preset", ROOT / "presets/arm/single_kraken.toml"], "does not change a built-in preset"),
+    ],
+)
+def test_apply_refused(capsys, arm_log, extra, words):
+    code, out, err = run(capsys, "fit", arm_log, "--card", "arm", "--apply", *extra)
+    assert code == 2 and out == "" and words in err
+
+
+def test_apply_writes_nothing_on_a_bad_log_or_a_flywheel(capsys, tmp_path):
+    wb = tmp_path / "robot.toml"
+    wb.write_text((ROOT / "examples/robot_2027.toml").read_text(encoding="utf-8"), encoding="utf-8")
+    before = wb.read_bytes()
+    bad = tmp_path / "bad.wpilog"
+    bad.write_bytes(b"WPILOG\x00\x01\x00\x00")  # cut off in its header
+    code, _, err = run(capsys, "fit", bad, "--card", "arm", "--workbook", wb, "--name", "arm", "--apply")
+    assert code == 2 and "bad.wpilog" in err
+    fly = simulate(tmp_path / "fly.wpilog", "flywheel", {"kS": 0.1, "kV": 0.02, "kA": 0.004})
+    code, _, err = run(
+        capsys, "fit", fly, "--card", "flywheel", "--workbook", wb, "--name", "shooter", "--apply"
+    )
+    assert code == 2 and "not written back yet" in err
+    assert wb.read_bytes() == before

@@ -1,7 +1,8 @@
 """`gearhead fit LOG --card elevator|arm|flywheel`: a card's model fitted from the robot's SysId log
 (core/fit): the signals found, kS/kV/kA/kG in SysId's continuous and discrete forms beside the
 card's own, the entries they give (moving mass or inertia, friction, efficiency), and the logged
-voltage replayed through the card's model. `--json` prints one object. A bad log or entry exits 2
+voltage replayed through the card's model. `--json` prints one object; `--apply` writes the fitted
+entries into the card's file (core/fit/apply.py). A bad log or entry exits 2, nothing written
 (tui/cli.py's handler of InputError)."""
 
 from __future__ import annotations
@@ -38,6 +39,12 @@ def add_parser(sub) -> None:
         "--scale", type=float, default=1.0, help="multiply position and velocity by this (SysId's scaling)"
     )
     f.add_argument("--json", action="store_true", help="one JSON object (SI units)")
+    f.add_argument(
+        "--apply",
+        action="store_true",
+        help="write the fitted entries into the --preset or --workbook card's file (comments kept; "
+        "the diff is printed; linked fields and built-in presets are not changed)",
+    )
 
 
 def run(args) -> int:
@@ -63,11 +70,35 @@ def run(args) -> int:
         units=args.units,
         scale=args.scale,
     )
+    applied = None
+    if args.apply:
+        from gearhead.core.fit import apply
+
+        best = report.fits[report.favoured].gains
+        applied = apply.apply(card, best, preset=args.preset, workbook=args.workbook, name=args.name)
     if args.json:
-        print(json.dumps(report.as_json(), allow_nan=False))
+        data = report.as_json()
+        if applied is not None:
+            data["applied"] = {
+                "file": applied.path,
+                "changes": applied.changes,
+                "diff": applied.diff,
+                "notes": applied.notes,
+            }
+        print(json.dumps(data, allow_nan=False))
         return 0
     for line in text(report):
         print(printable(line))
+    if applied is not None:
+        print()
+        if applied.diff:
+            print(printable(f"  written to {applied.path}:"))
+            for line in applied.diff.splitlines():
+                print(printable(f"    {line}"))
+        else:
+            print(printable(f"  {applied.path}: nothing to change"))
+        for n in applied.notes:
+            print(printable(f"  note: {n}"))
     return 0
 
 
