@@ -244,3 +244,40 @@ def test_insufficient_data_check_flags_as_sysid():
     assert sysid_fit.quality(np.column_stack([0 * v, u, s]), "flywheel") == ["kV"]
     assert sysid_fit.quality(np.column_stack([v, 0 * u, s]), "flywheel") == ["kS", "kV", "kA"]
     assert set(sysid_fit.quality(np.column_stack([v, u, s * 0 + 1, np.ones(n)]), "elevator")) & {"kS", "kG"}
+
+
+@pytest.mark.parametrize(
+    "unit, rate, quantity, factor",
+    [
+        # Java's Unit.name() (wpilibj SysIdRoutineLog.java) and C++'s singular names (units name())
+        ("Meter", False, "length", 1.0),
+        ("Rotation", False, "angle", 2 * math.pi),
+        ("Meter per Second", True, "length", 1.0),
+        ("Rotation per Second", True, "angle", 2 * math.pi),
+        ("meter", False, "length", 1.0),
+        ("turn", False, "angle", 2 * math.pi),
+        ("radian", False, "angle", 1.0),
+        ("degree", False, "angle", math.pi / 180),
+        ("meters_per_second", True, "length", 1.0),
+        ("turns_per_second", True, "angle", 2 * math.pi),
+        ("radians_per_second", True, "angle", 1.0),
+        ("degrees_per_second", True, "angle", math.pi / 180),
+    ],
+)
+def test_unit_names_java_and_cpp(unit, rate, quantity, factor):
+    assert signals.unit_factor(unit, rate, "x", "log") == (quantity, pytest.approx(factor))
+
+
+def test_a_velocity_filter_biases_ks_not_kv_or_kg(tmp_path):
+    """The motor controller's velocity is a moving average of the last N samples (a delay of
+    (N − 1)/2 samples): kV and kG stay within 1 % up to N = 8, kS grows with N (measured
+    +4 %, +6 %, +12 %, +24 % for N = 1, 2, 4, 8, continuous form)."""
+    g = PLANTS["arm"]
+    ks = []
+    for n in (1, 4, 8):
+        path = simulate(tmp_path / f"f{n}.wpilog", "arm", g, velocity_filter=n, noise=0.001)
+        p, info = sysid_fit.prepare(signals.pick(path, "arm"))
+        f = sysid_fit.fit_continuous(p, "arm", info["dt"], str(path))
+        assert abs(f.gains["kV"] / g["kV"] - 1) < 0.01 and abs(f.gains["kG"] / g["kG"] - 1) < 0.012
+        ks.append(f.gains["kS"] / g["kS"] - 1)
+    assert ks[0] < ks[1] < ks[2]
