@@ -33,7 +33,10 @@ def simulate(
     dynamic_time: float = 2.0,
     rest: float = 1.0,
     csv_path=None,
+    battery: tuple[float, float, int, float, float] | None = None,
 ):
+    """`battery` = (E, R, N, R_m, k_m): log the motor current I = (u − k_m·q̇)/R_m (Amp) and the bus
+    voltage V_b of E − R·N·I·u/V_b (AdvantageKit's /SystemStats/BatteryVoltage, Volt)."""
     import wpiutil
     from wpiutil import log as wlog
 
@@ -53,6 +56,9 @@ def simulate(
     ew = wlog.DoubleLogEntry(
         w, f"velocity-{motor}-{mech}", "Meter per Second" if linear else "Rotation per Second", 1
     )
+    if battery is not None:
+        ec = wlog.DoubleLogEntry(w, f"current-{motor}-{mech}", "Amp", 1)
+        eb = wlog.DoubleLogEntry(w, "/SystemStats/BatteryVoltage", "Volt", 1)
     rows = []
     q = -math.pi / 2 - off if kind == "arm" else 0.0  # an arm starts hanging down
     v = 0.0
@@ -83,6 +89,11 @@ def simulate(
                     ev.append(u, stamp)
                     ep.append(mq * to_log, stamp)
                     ew.append(mv * to_log, stamp)
+                    if battery is not None:
+                        E, Rb, N, Rm, km = battery
+                        current = (u - km * v) / Rm
+                        ec.append(current, stamp)
+                        eb.append((E + math.sqrt(E * E - 4 * Rb * N * current * u)) / 2, stamp)
                     rows.append((t, label, u, mq * to_log, mv * to_log))
                 count += 1
                 if count % 500 == 0:

@@ -281,3 +281,17 @@ def test_a_velocity_filter_biases_ks_not_kv_or_kg(tmp_path):
         assert abs(f.gains["kV"] / g["kV"] - 1) < 0.01 and abs(f.gains["kG"] / g["kG"] - 1) < 0.012
         ks.append(f.gains["kS"] / g["kS"] - 1)
     assert ks[0] < ks[1] < ks[2]
+
+
+def test_battery_resistance_from_bus_voltage_and_current(tmp_path):
+    """(B1): the logged motor current and AdvantageKit's bus voltage give the battery plus wiring
+    resistance of the plant (exact data: to rounding); without them there is no such row."""
+    card = entries.load_card("arm")
+    g = dict(card.design, offset=0.1)
+    path = simulate(tmp_path / "bat.wpilog", "arm", g, battery=(12.6, 0.031, 1, 0.1, 1.4), noise=0.001)
+    r = fit.fit_log(path, "arm", card)
+    rows = {e[0]: e for e in r.entries}
+    assert rows["battery + wiring resistance"][2] == pytest.approx(0.031, rel=1e-6)
+    assert r.picked.names["bus_voltage"] == "/SystemStats/BatteryVoltage"
+    plain = fit.fit_log(simulate(tmp_path / "plain.wpilog", "arm", g), "arm", card)
+    assert not any("battery" in e[0] for e in plain.entries)

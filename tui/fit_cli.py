@@ -29,7 +29,7 @@ def add_parser(sub) -> None:
         "--routine", help="the SysId routine (sysid-test-state-ROUTINE) when the log holds several"
     )
     f.add_argument("--motor", help="the motor's name in voltage-MOTOR-ROUTINE (default: the first)")
-    for role in ("state", "voltage", "position", "velocity", "current"):
+    for role in ("state", "voltage", "position", "velocity", "current", "bus-voltage"):
         f.add_argument(f"--{role}", metavar="ENTRY", help=f"the {role} signal's entry or column name")
     f.add_argument(
         "--units",
@@ -67,6 +67,7 @@ def run(args) -> int:
         velocity=args.velocity,
         state=args.state,
         current=args.current,
+        bus_voltage=args.bus_voltage,
         units=args.units,
         scale=args.scale,
     )

@@ -108,6 +108,18 @@ def fit_log(path, kind: str, card=None, **pick) -> Report:
     best = fits[favoured]
     notes = list(picked.notes) + [w for f in fits.values() for w in f.warnings]
     moved, more = ent.moves(card, best.gains)
+    rows = ent.entries(card, best.gains, best.sigma)
+    from .battery import fit_battery
+
+    battery = fit_battery(picked, int(card.values["motor_count"]))
+    if isinstance(battery, tuple):
+        R, sR, E, n = battery
+        rows.append(
+            ("battery + wiring resistance", card.values.get("battery_resistance", math.nan), R, sR, "Ω")
+        )
+        more.append(f"battery: {n} current samples, open-circuit {E:.4g} V")
+    elif picked.current is not None or picked.bus is not None:
+        more.append(f"battery resistance not fitted: {battery}")
     return Report(
         source,
         kind,
@@ -116,7 +128,7 @@ def fit_log(path, kind: str, card=None, **pick) -> Report:
         info,
         fits,
         favoured,
-        ent.entries(card, best.gains, best.sigma),
+        rows,
         replays,
         notes + more,
         moved,

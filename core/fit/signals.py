@@ -31,6 +31,7 @@ from . import logs
 STATES = ("quasistatic-forward", "quasistatic-reverse", "dynamic-forward", "dynamic-reverse")
 KINDS = ("elevator", "arm", "flywheel")
 _PATTERN = re.compile(r"^(voltage|position|velocity|current)-(.+)-(.+)$")
+BUS_SUFFIX = "SystemStats/BatteryVoltage"  # AdvantageKit's; WPILib's SysId routine logs no bus voltage
 
 # (S1): the normalised unit name -> (quantity, factor to SI)
 _UNITS = {
@@ -94,7 +95,8 @@ class Picked:
     units: dict[str, str]  # role -> the unit read
     runs: dict[str, Run]
     notes: list[str] = field(default_factory=list)
-    current: tuple[np.ndarray, np.ndarray] | None = None
+    current: tuple[np.ndarray, np.ndarray] | None = None  # the motor's (stator) current, A
+    bus: tuple[np.ndarray, np.ndarray] | None = None  # the bus (battery) voltage, V
 
 
 def _wanted(named: dict[str, str | None]):
@@ -106,6 +108,7 @@ def _wanted(named: dict[str, str | None]):
             or name.startswith("sysid-test-state-")
             or name.endswith("SysIdTestState")
             or _PATTERN.match(name) is not None
+            or name.endswith(BUS_SUFFIX)
         )
 
     return wanted
@@ -122,6 +125,7 @@ def pick(
     velocity: str | None = None,
     state: str | None = None,
     current: str | None = None,
+    bus_voltage: str | None = None,
     units: str | None = None,
     scale: float = 1.0,
     spool: float | None = None,
@@ -136,6 +140,7 @@ def pick(
         "velocity": velocity,
         "state": state,
         "current": current,
+        "bus_voltage": bus_voltage,
     }
     sigs, entries, warnings = logs.read(path, _wanted(named))
     notes = list(warnings)
@@ -226,7 +231,18 @@ def pick(
     if "current" in names:
         c = sigs[names["current"]]
         cur = (np.asarray(c.times, dtype=float), np.asarray(c.values, dtype=float))
-    return Picked(source, kind, names, unit_names, runs, notes, cur)
+    bus = None
+    found_bus = [n for n in sigs if n.endswith(BUS_SUFFIX)]
+    bus_name = bus_voltage or (found_bus[0] if len(found_bus) == 1 else None)
+    if bus_name is not None:
+        if bus_name not in sigs:
+            raise InputError("--bus-voltage", f"no entry {bus_name!r} in the log", source)
+        b = sigs[bus_name]
+        if not b.numeric():
+            raise InputError(bus_name, "holds text, not the bus voltage's numbers", source)
+        names["bus_voltage"] = bus_name
+        bus = (np.asarray(b.times, dtype=float), np.asarray(b.values, dtype=float))
+    return Picked(source, kind, names, unit_names, runs, notes, cur, bus)
 
 
 def _runs(sigs, names, factors, source) -> dict[str, Run]:
