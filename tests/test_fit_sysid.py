@@ -115,6 +115,20 @@ def test_elevator_faster_than_the_log_favours_discrete(tmp_path):
     assert abs(r.fits["continuous"].gains["kA"] / card.design["kA"] - 1) > 0.3
 
 
+def test_csv_with_entries_under_a_folder(tmp_path):
+    """An export whose columns carry a folder (`/Robot/sysid-test-state-mech`, ...) is found as well."""
+    g = PLANTS["flywheel"]
+    csv = tmp_path / "plain.csv"
+    simulate(tmp_path / "x.wpilog", "flywheel", g, csv_path=csv)
+    lines = csv.read_text().splitlines()
+    head = ",".join(["Timestamp"] + [f"/Robot/{c}" for c in lines[0].split(",")[1:]])
+    moved = tmp_path / "folder.csv"
+    moved.write_text("\n".join([head, *lines[1:]]) + "\n")
+    a, b = fit.fit_log(csv, "flywheel", units="rotation"), fit.fit_log(moved, "flywheel", units="rotation")
+    assert b.picked.names["velocity"] == "/Robot/velocity-motor-mech"
+    assert b.fits["continuous"].gains == a.fits["continuous"].gains
+
+
 def test_csv_and_wpilog_fit_the_same(tmp_path):
     g = PLANTS["arm"]
     csv = tmp_path / "same.csv"

@@ -99,15 +99,19 @@ class Picked:
     bus: tuple[np.ndarray, np.ndarray] | None = None  # the bus (battery) voltage, V
 
 
+def _base(name: str) -> str:
+    return name.rsplit("/", 1)[-1]
+
+
 def _wanted(named: dict[str, str | None]):
     explicit = {v for v in named.values() if v}
 
     def wanted(name: str) -> bool:
         return (
             name in explicit
-            or name.startswith("sysid-test-state-")
+            or _base(name).startswith("sysid-test-state-")
             or name.endswith("SysIdTestState")
-            or _PATTERN.match(name) is not None
+            or _PATTERN.match(_base(name)) is not None
             or name.endswith(BUS_SUFFIX)
         )
 
@@ -144,10 +148,11 @@ def pick(
     }
     sigs, entries, warnings = logs.read(path, _wanted(named))
     notes = list(warnings)
-    states = [n for n in sigs if n.startswith("sysid-test-state-") or n.endswith("SysIdTestState")]
+    states = [n for n in sigs if _base(n).startswith("sysid-test-state-") or n.endswith("SysIdTestState")]
     if state is None:
         if routine is not None:
-            state = f"sysid-test-state-{routine}"
+            mine = [n for n in states if _base(n) == f"sysid-test-state-{routine}"]
+            state = mine[0] if mine else f"sysid-test-state-{routine}"
         elif len(states) == 1:
             state = states[0]
         elif not states:
@@ -162,11 +167,13 @@ def pick(
             )
     if state not in sigs:
         raise InputError("--state", f"{state!r} is not in the log", source)
-    mech = state.removeprefix("sysid-test-state-") if state.startswith("sysid-test-state-") else None
+    base = _base(state)
+    prefix = state[: len(state) - len(base)]  # a CSV export may put the log's entries under a folder
+    mech = base.removeprefix("sysid-test-state-") if base.startswith("sysid-test-state-") else None
     found: dict[str, list[tuple[str, str]]] = {}
     for name in sigs:
-        m = _PATTERN.match(name)
-        if m and mech is not None and m[3] == mech:
+        m = _PATTERN.match(_base(name))
+        if m and mech is not None and m[3] == mech and name.startswith(prefix):
             found.setdefault(m[2], []).append((m[1], name))
     if motor is None and found and not all(named[r] for r in ("voltage", "position", "velocity")):
         with_voltage = sorted(k for k, v in found.items() if any(r == "voltage" for r, _ in v))
@@ -179,7 +186,7 @@ def pick(
             )
     names = {"state": state}
     for role in ("voltage", "position", "velocity", "current"):
-        name = named[role] or (f"{role}-{motor}-{mech}" if motor and mech else None)
+        name = named[role] or (f"{prefix}{role}-{motor}-{mech}" if motor and mech else None)
         if name is None or name not in sigs:
             if role == "current":
                 continue
