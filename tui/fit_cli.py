@@ -89,7 +89,7 @@ def run(args) -> int:
         print(json.dumps(data, allow_nan=False))
         return 0
     for line in text(report):
-        print(printable(line))
+        print(printable(line.rstrip()))
     if applied is not None:
         print()
         if applied.diff:
