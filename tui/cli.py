@@ -91,6 +91,9 @@ def _parser() -> argparse.ArgumentParser:
     from . import report_cli  # `report`: a preset or workbook as HTML, Markdown or PDF
 
     report_cli.add_parser(sub)
+    from . import fit_cli  # `fit`: a card fitted from the robot's SysId log
+
+    fit_cli.add_parser(sub)
     return p
 
 
@@ -221,6 +224,10 @@ def _command(args) -> int:
         from . import report_cli
 
         return report_cli.run(args)
+    if args.command == "fit":
+        from . import fit_cli
+
+        return fit_cli.run(args)
     if args.command in ("solve", "sweep") and workbook_cli.is_workbook(args.calculator):
         return workbook_cli.solve(args) if args.command == "solve" else workbook_cli.sweep(args)
     if args.command == "solve":

@@ -1,0 +1,135 @@
+"""Fitting a card's model from the robot's own logs (issue 44): read a WPILog or an AdvantageScope
+CSV (logs), find a SysId routine's signals (signals), fit kS, kV, kA, kG as SysId does (sysid_fit),
+turn the gains into the card's entries (entries) and replay the logged voltage through the card's
+model (replay)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ..errors import InputError
+
+KINDS = ("elevator", "arm", "flywheel")
+
+
+@dataclass
+class Report:
+    """Everything `gearhead fit` shows: the signals, the two fits, the favoured one (the smaller
+    velocity RMSE when replayed), the entries from it and the replays."""
+
+    source: str
+    kind: str
+    card: object  # entries.Card
+    picked: object  # signals.Picked
+    info: dict
+    fits: dict  # form -> sysid_fit.Fit
+    favoured: str
+    entries: list
+    replays: dict  # "design" and each form -> replay.Replay
+    notes: list = field(default_factory=list)
+    moves: dict = field(default_factory=dict)  # "design"/"fitted" -> the card's move outputs (SI)
+
+    def as_json(self) -> dict:
+        def clean(x):
+            return (
+                x
+                if isinstance(x, str) or (isinstance(x, float) and math.isfinite(x)) or isinstance(x, int)
+                else None
+            )
+
+        return {
+            "log": self.source,
+            "card": self.kind,
+            "card_source": self.card.label,
+            "signals": self.picked.names,
+            "units": self.picked.units,
+            "samples": {s: len(r.t_voltage) for s, r in self.picked.runs.items()},
+            "preparation": {k: clean(v) for k, v in self.info.items()},
+            "fits": {
+                form: {
+                    "gains": {k: clean(v) for k, v in f.gains.items()},
+                    "sigma": {k: clean(v) for k, v in f.sigma.items()},
+                    "adjusted_r2": clean(f.adj_r2),
+                    "rmse": clean(f.rmse),
+                    "samples": f.samples,
+                    "insufficient": f.bad,
+                }
+                for form, f in self.fits.items()
+            },
+            "favoured": self.favoured,
+            "design_gains": {k: clean(v) for k, v in self.card.design.items()},
+            "entries": [
+                {"entry": e, "card": clean(c), "fitted": clean(x), "sigma": clean(s), "unit": u}
+                for e, c, x, s, u in self.entries
+            ],
+            "replay": {
+                k: {"position_rmse": clean(r.position_rmse), "velocity_rmse": clean(r.velocity_rmse)}
+                for k, r in self.replays.items()
+            },
+            "moves": {k: {o: clean(x) for o, x in m.items()} for k, m in self.moves.items()},
+            "notes": self.notes,
+        }
+
+
+def fit_log(path, kind: str, card=None, **pick) -> Report:
+    """Read the log, pick the routine's signals, fit both forms, derive the card's entries from
+    the favoured fit and replay the design's and the fitted gains."""
+    from . import entries as ent
+    from . import replay as rp
+    from . import signals, sysid_fit
+
+    if card is None:
+        card = ent.load_card(kind)
+    spool = None
+    if kind == "elevator":
+        from ..calculators.elevator import spool_factor
+
+        spool = spool_factor(card.values)
+    picked = signals.pick(path, kind, spool=spool, **pick)
+    prepared, info = sysid_fit.prepare(picked)
+    source = str(path)
+    fits = {
+        "continuous": sysid_fit.fit_continuous(prepared, kind, info["dt"], source),
+        "discrete": sysid_fit.fit_discrete(prepared, kind, info["dt"], source),
+    }
+    replays = {"design": rp.replay(kind, card.design, picked.runs)}
+    for form, f in fits.items():
+        replays[form] = rp.replay(kind, f.gains, picked.runs)
+    good = [f for f in fits if fits[f].usable and math.isfinite(replays[f].velocity_rmse)]
+    if not good:
+        raise InputError(
+            "log",
+            "neither form of the fit gives a model that runs (finite gains, kA > 0): "
+            + "; ".join(w for f in fits.values() for w in f.warnings),
+            source,
+        )
+    favoured = min(good, key=lambda f: replays[f].velocity_rmse)
+    best = fits[favoured]
+    notes = list(picked.notes) + [w for f in fits.values() for w in f.warnings]
+    moved, more = ent.moves(card, best.gains)
+    rows = ent.entries(card, best.gains, best.sigma)
+    from .battery import fit_battery
+
+    battery = fit_battery(picked, int(card.values["motor_count"]))
+    if isinstance(battery, tuple):
+        R, sR, E, n = battery
+        rows.append(
+            ("battery + wiring resistance", card.values.get("battery_resistance", math.nan), R, sR, "Ω")
+        )
+        more.append(f"battery: {n} current samples, open-circuit {E:.4g} V")
+    elif picked.current is not None or picked.bus is not None:
+        more.append(f"battery resistance not fitted: {battery}")
+    return Report(
+        source,
+        kind,
+        card,
+        picked,
+        info,
+        fits,
+        favoured,
+        rows,
+        replays,
+        notes + more,
+        moved,
+    )

@@ -1,0 +1,126 @@
+"""Writing the fitted entries into the card's file (issue 44 item 6): a workbook's card or a preset,
+through tomlkit so that the file's comments and layout stay, checked by loading the new text before
+it replaces the old one (core.atomic_file: whole or not at all). A field the workbook links
+("= EXPR") is not overwritten: the note names the link and the value it would take. A built-in
+preset is not changed (copy it first). The unified diff of the file is returned."""
+
+from __future__ import annotations
+
+import difflib
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import InputError
+from .entries import Card, fitted_raw
+
+# the entries the fit writes (fitted_raw's), as quantities with 6 significant digits
+WRITTEN = {
+    "elevator": ("load_mass", "friction_force", "effects"),
+    "arm": ("arm_mass", "inertia_model", "moment_of_inertia", "friction_torque", "effects"),
+}
+
+
+@dataclass
+class Applied:
+    path: str
+    changes: dict[str, str]
+    diff: str
+    notes: list[str]
+
+
+def _entries(card: Card, gains: dict[str, float]) -> tuple[dict[str, str], list[str]]:
+    got = fitted_raw(card, gains)
+    if got is None:
+        raise InputError("--apply", f"the {card.kind} card's fitted entries are not written back yet")
+    raw, notes = got
+    out = {}
+    for k in WRITTEN[card.kind]:
+        if k in raw and raw[k] != card.raw.get(k):
+            v = raw[k]
+            if k in ("load_mass", "arm_mass", "friction_force", "friction_torque", "moment_of_inertia"):
+                number, unit = v.split(" ", 1)
+                v = f"{float(number):.6g} {unit}"
+            out[k] = v
+    return out, notes
+
+
+def apply(
+    card: Card,
+    gains: dict[str, float],
+    *,
+    preset: str | None = None,
+    workbook: str | None = None,
+    name: str | None = None,
+) -> Applied:
+    import tomlkit
+
+    from .. import atomic_file
+
+    changes, notes = _entries(card, gains)
+    if workbook is not None:
+        path = Path(workbook)
+        field = "workbook"
+    elif preset is not None:
+        from .. import presets
+
+        path = Path(preset)
+        field = "preset"
+        try:
+            if path.resolve().is_relative_to(presets.builtin_dir()):
+                raise InputError(
+                    "--apply", "does not change a built-in preset: copy it and fit the copy", preset
+                )
+        except OSError:
+            pass
+    else:
+        raise InputError("--apply", "needs the card's file: --preset FILE or --workbook FILE --name CARD")
+    try:
+        before = path.read_text(encoding="utf-8")
+        doc = tomlkit.parse(before)
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(
+            field, f"cannot be read ({getattr(exc, 'strerror', None) or exc})", str(path)
+        ) from None
+    except Exception as exc:  # tomlkit's parse errors share no base class but Exception
+        raise InputError(field, f"is not TOML ({exc})", str(path)) from None
+    if workbook is not None:
+        table = doc["cards"][card_name(card, name)]
+        if "inputs" not in table:
+            table["inputs"] = tomlkit.table()
+        target = table["inputs"]
+    else:
+        if "inputs" not in doc:
+            doc["inputs"] = tomlkit.table()
+        target = doc["inputs"]
+    for k, v in list(changes.items()):
+        old = target.get(k)
+        if isinstance(old, str) and old.lstrip().startswith("="):
+            notes.append(f"{k} is linked ({old.strip()}): not written; the fit gives {v}")
+            del changes[k]
+            continue
+        target[k] = v
+    after = tomlkit.dumps(doc)
+    if workbook is not None:
+        from ..workbook.file import from_text
+
+        from_text(after, str(path), path.parent)  # never write a workbook that would not load
+    else:
+        from .. import presets
+
+        presets.from_dict(presets.parse_text(after, str(path)), str(path))
+    diff = "".join(
+        difflib.unified_diff(
+            before.splitlines(keepends=True),
+            after.splitlines(keepends=True),
+            str(path),
+            str(path) + " (fitted)",
+        )
+    )
+    if after != before:
+        atomic_file.write_text(path, after, overwrite=True, field=field)
+    return Applied(str(path), changes, diff, notes)
+
+
+def card_name(card: Card, name: str | None) -> str:
+    """The workbook card's name as entries.load_card resolved it (its label ends ': NAME')."""
+    return name if name else card.label.rsplit(": ", 1)[-1]

@@ -1,0 +1,333 @@
+"""kS, kV, kA, kG from a SysId routine as WPILib's SysId computes them (issue 44 item 3), after
+allwpilib tools/sysid/src/main/native/cpp/analysis: AnalysisManager.cpp, FilteringUtils.cpp,
+FeedforwardAnalysis.cpp, OLS.cpp. Units: the card's SI (metres or radians, seconds, volts).
+
+Data preparation (AnalysisManager::PrepareGeneralData, FilteringUtils InitialTrimAndFilter):
+    each test's first run; each voltage sample but the last with the position and velocity
+    linearly interpolated (extrapolated at the ends) at its time, dt to the next voltage sample (D1)
+    velocity threshold: the least noise floor of the quasistatic tests' velocity, the RMS of
+    v[i−4] less the 9-sample moving average ending at i (GetNoiseFloor)                        (D2)
+    quasistatic tests: samples with |u| = 0 or |v| below the threshold dropped                 (D3)
+    acceleration a[i] = (v[i+1] − v[i−1])/(2·T̄), a[0] = (v[1] − v[0])/(2·T̄), a[last] = 0, T̄ the
+    mean dt in (0, 0.5 s) (PrepareMechData's CentralFiniteDifference<1, 3>); cos θ, sin θ      (D4)
+    dynamic tests: samples before the largest sgn(v)·a dropped; then cut after the step
+    duration, the time to first exceed 0.9 of the test's top speed (set by the first dynamic test,
+    no longer than the longest dynamic test) (TrimStepVoltageData)                              (D5)
+    samples whose acceleration is exactly 0 dropped (AccelFilter)                               (D6)
+Continuous form (FeedforwardAnalysis.cpp, OLS.cpp; numpy's lstsq):
+    a = α·v + β·u + γ·sgn v  (+ δ elevator)  (+ δ·cos θ + ε·sin θ arm)                          (F1)
+    kS = −γ/β,  kV = −α/β,  kA = 1/β,  kG = −δ/β (elevator),  kG = hypot(δ, ε)/β and
+    offset = atan2(ε, −δ) (arm: gravity −kG/kA·cos(θ + offset))                                (F2)
+    R̄² = 1 − (1 − R²)·(n − 1)/(n − p − 1),  RMSE = √(SSE/n)  (OLS.cpp)                         (F3)
+    insufficient data: for each eigenpair (λ, w) of XᵀX, |λ·max|w|| ≤ 10 marks the gains of the
+    variable where |w| is largest (β: all) (CheckOLSDataQuality)                                (F4)
+Discrete form (SysId before 2023), over consecutive samples of the same prepared tests:
+    v[k+1] = α·v[k] + β·u[k] + γ·sgn v[k] (+ δ) (+ δ·cos θ + ε·sin θ)                           (F5)
+    with zero-order hold over T̄: α = e^(−T̄·kV/kA), β = (1 − α)/kV, so (derived with sympy)
+        kV = (1 − α)/β,  kA = (α − 1)·T̄/(β·ln α) (0 < α < 1),  kS = −γ/β,  kG = −δ/β,
+        arm: kG = hypot(δ, ε)/β, offset = atan2(ε, −δ)                                          (F6)
+Uncertainty: cov(coefficients) = s²·(XᵀX)⁻¹, s² = SSE/(n − p); each gain's standard deviation by
+the delta method, its gradient in the coefficients by central differences                      (F7)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import InputError
+from .signals import Picked, Run
+
+NOISE_WINDOW = 9  # kNoiseMeanWindow
+QUALITY_THRESHOLD = 10.0
+MOVED = 5.0  # a test's top speed must exceed this many times the noise floor (ours, not SysId's)
+GAIN_NAMES = ("kS", "kV", "kA", "kG", "offset")
+
+
+@dataclass
+class Prepared:
+    t: np.ndarray
+    u: np.ndarray
+    x: np.ndarray
+    v: np.ndarray
+    dt: np.ndarray
+    a: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    cos: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    sin: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+    def take(self, keep) -> Prepared:
+        def cut(y):
+            return y[keep] if len(y) == len(self.t) else y
+
+        return Prepared(*(cut(getattr(self, k)) for k in ("t", "u", "x", "v", "dt", "a", "cos", "sin")))
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+
+@dataclass
+class Fit:
+    form: str  # "continuous" or "discrete"
+    gains: dict[str, float]
+    sigma: dict[str, float]
+    adj_r2: float
+    rmse: float  # of the regressed variable: acceleration (continuous) or velocity (discrete)
+    samples: int
+    bad: list[str]  # (F4): gains the data cannot separate
+    coefficients: list[float]
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def usable(self) -> bool:
+        """Finite gains and a positive kA: the model they make can be run."""
+        return all(math.isfinite(v) for v in self.gains.values()) and self.gains["kA"] > 0
+
+
+def _lerp(t_at, t, y):
+    """(D1): SysId's Lerp: the segment of the first sample after `t_at` (first or last at the ends)."""
+    nxt = np.clip(np.searchsorted(t, t_at, "right"), 1, len(t) - 1)
+    prv = nxt - 1
+    span = t[nxt] - t[prv]
+    w = np.divide(t_at - t[prv], span, out=np.zeros_like(t_at), where=span != 0)
+    return y[prv] + (y[nxt] - y[prv]) * w
+
+
+def _convert(run: Run) -> Prepared:
+    t = run.t_voltage[:-1]
+    return Prepared(
+        t,
+        run.voltage[:-1],
+        _lerp(t, run.t_position, run.position),
+        _lerp(t, run.t_velocity, run.velocity),
+        np.diff(run.t_voltage),
+    )
+
+
+def noise_floor(v: np.ndarray, window: int = NOISE_WINDOW) -> float:
+    """(D2): LinearFilter.MovingAverage starts from zeros, so the first means average fewer samples."""
+    step = window // 2
+    c = np.concatenate(([0.0], np.cumsum(v)))
+    i = np.arange(len(v))
+    mean = (c[i + 1] - c[np.maximum(i + 1 - window, 0)]) / window
+    dev = v[i[step:] - step] - mean[step:]
+    return math.sqrt(float(np.sum(dev**2)) / (len(v) - step)) if len(v) > step else math.inf
+
+
+def mean_dt(dts: np.ndarray) -> float:
+    ok = dts[(dts > 0) & (dts < 0.5)]
+    if len(ok) == 0:
+        raise ValueError("no time step between 0 and 0.5 s")
+    return float(np.mean(ok))
+
+
+def _accelerate(d: Prepared, arm: bool, source: str, state: str) -> Prepared:
+    """(D4)."""
+    if len(d) < 3:
+        raise InputError(state, f"has {len(d)} usable samples; the acceleration needs at least 3", source)
+    h = mean_dt(d.dt)
+    v = d.v
+    a = np.empty_like(v)
+    a[0] = (v[1] - v[0]) / (2 * h)
+    a[1:-1] = (v[2:] - v[:-2]) / (2 * h)
+    a[-1] = 0.0
+    d.a = a
+    d.cos, d.sin = (np.cos(d.x), np.sin(d.x)) if arm else (np.zeros(len(d)), np.zeros(len(d)))
+    return d
+
+
+def prepare(picked: Picked) -> tuple[dict[str, Prepared], dict[str, float]]:
+    """(D1)-(D6): the four tests ready to regress, and the threshold, step duration and mean dt.
+    Values near the float limit overflow to inf here, harmlessly: the checks below refuse them."""
+    with np.errstate(all="ignore"):
+        return _prepare(picked)
+
+
+def _prepare(picked: Picked) -> tuple[dict[str, Prepared], dict[str, float]]:
+    src = picked.source
+    arm = picked.kind == "arm"
+    data = {s: _convert(r) for s, r in picked.runs.items()}
+    threshold = min(noise_floor(data[s].v) for s in ("quasistatic-forward", "quasistatic-reverse"))  # (D2)
+    if not math.isfinite(threshold):
+        raise InputError(
+            "log",
+            "cannot measure the velocity's noise floor: the quasistatic tests have too few samples "
+            f"(more than {NOISE_WINDOW // 2} each) or values too large",
+            src,
+        )
+    max_step = max(r.t_voltage[-1] - r.t_voltage[0] for s, r in picked.runs.items() if "dynamic" in s)
+    step_time = 0.0
+    out = {}
+    for s in ("quasistatic-forward", "quasistatic-reverse", "dynamic-forward", "dynamic-reverse"):
+        d = data[s]
+        top = float(np.max(np.abs(d.v)))
+        if not top > MOVED * threshold:  # noise alone passes (D3): a test must rise clear of it
+            raise InputError(
+                s,
+                f"did not move: its top speed {top:.3g} is within {MOVED:g} times the velocity noise floor "
+                f"{threshold:.3g}",
+                src,
+            )
+        if "quasistatic" in s:
+            d = d.take((np.abs(d.u) > 0) & (np.abs(d.v) >= threshold))  # (D3)
+            if len(d) == 0:
+                raise InputError(
+                    s,
+                    f"has no sample moving faster than the noise floor {threshold:.3g} with a voltage applied "
+                    "(the mechanism did not move)",
+                    src,
+                )
+        d = _accelerate(d, arm, src, s)
+        if "dynamic" in s:  # (D5)
+            score = np.sign(d.v) * d.a
+            first = int(np.argmax(score))
+            keep = np.arange(len(d)) >= first
+            d = d.take(keep)
+            if step_time == 0.0:
+                top = float(np.max(np.abs(d.v)))
+                over = np.nonzero(np.abs(d.v) > 0.9 * top)[0]
+                if len(over):
+                    step_time = min(float(d.t[over[0]] - d.t[0]), max_step)
+            if step_time > 0:
+                d = d.take(d.t - d.t[0] <= step_time)
+        d = d.take(d.a != 0.0)  # (D6)
+        if len(d) == 0:
+            raise InputError(s, "has no sample left after SysId's filtering", src)
+        out[s] = d
+    T = mean_dt(np.concatenate([r.dt for r in out.values()]))
+    return out, {"velocity_threshold": threshold, "step_time": step_time, "dt": T}
+
+
+def _columns(d: Prepared, kind: str, v: np.ndarray) -> list[np.ndarray]:
+    cols = [v, d.u, np.copysign(1.0, v)]
+    if kind == "elevator":
+        cols.append(np.ones(len(v)))
+    elif kind == "arm":
+        cols += [d.cos, d.sin]
+    return cols
+
+
+def ols(X: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """(F3), (F7): coefficients, their covariance, adjusted R², RMSE."""
+    n, p = X.shape
+    beta, *_ = np.linalg.lstsq(X, y, rcond=None)
+    r = y - X @ beta
+    sse = float(r @ r)
+    ssto = float(np.sum((y - y.mean()) ** 2))
+    r2 = 1.0 - sse / ssto if ssto > 0 else 0.0
+    adj = 1.0 - (1.0 - r2) * ((n - 1.0) / (n - p - 1.0)) if n > p + 1 else math.nan
+    s2 = sse / (n - p) if n > p else math.inf
+    try:
+        cov = s2 * np.linalg.inv(X.T @ X)
+    except np.linalg.LinAlgError:
+        cov = np.full((p, p), math.inf)
+    return beta, cov, adj, math.sqrt(sse / n)
+
+
+def quality(X: np.ndarray, kind: str) -> list[str]:
+    """(F4), as CheckOLSDataQuality."""
+    lam, vec = np.linalg.eigh(X.T @ X)
+    bad: set[int] = set()
+    for k in range(len(lam)):
+        idx = int(np.argmax(np.abs(vec[:, k])))
+        if abs(lam[k] * np.abs(vec[idx, k])) <= QUALITY_THRESHOLD:
+            if idx == 1:
+                return list(GAIN_NAMES[: 4 if kind == "elevator" else 5 if kind == "arm" else 3])
+            bad |= {0: {1}, 2: {0}, 3: {3} if kind == "elevator" else {3, 4}, 4: {3, 4}}[idx]
+    return [GAIN_NAMES[i] for i in sorted(bad)]
+
+
+def _gains_continuous(c, kind: str, T: float) -> dict[str, float]:
+    al, be, ga = c[0], c[1], c[2]
+    g = {"kS": -ga / be, "kV": -al / be, "kA": 1.0 / be}  # (F2)
+    if kind == "elevator":
+        g["kG"] = -c[3] / be
+    elif kind == "arm":
+        g["kG"] = math.hypot(c[3], c[4]) / be
+        g["offset"] = math.atan2(c[4], -c[3])
+    return g
+
+
+def _gains_discrete(c, kind: str, T: float) -> dict[str, float]:
+    al, be, ga = c[0], c[1], c[2]
+    ka = (al - 1.0) * T / (be * math.log(al)) if 0 < al < 1 else math.nan  # (F6)
+    g = {"kS": -ga / be, "kV": (1.0 - al) / be, "kA": ka}
+    if kind == "elevator":
+        g["kG"] = -c[3] / be
+    elif kind == "arm":
+        g["kG"] = math.hypot(c[3], c[4]) / be
+        g["offset"] = math.atan2(c[4], -c[3])
+    return g
+
+
+def _sigmas(fn, c: np.ndarray, cov: np.ndarray, kind: str, T: float) -> dict[str, float]:
+    """(F7)."""
+    base = fn(c, kind, T)
+    J = np.zeros((len(base), len(c)))
+    for j in range(len(c)):
+        h = 1e-6 * max(abs(c[j]), 1e-9)
+        up, dn = c.copy(), c.copy()
+        up[j] += h
+        dn[j] -= h
+        gu, gd = fn(up, kind, T), fn(dn, kind, T)
+        J[:, j] = [(gu[k] - gd[k]) / (2 * h) for k in base]
+    var = np.einsum("ij,jk,ik->i", J, cov, J)
+    return {k: float(math.sqrt(v)) if v >= 0 else math.nan for k, v in zip(base, var)}
+
+
+def _finish(form, fn, X, y, kind, T, src) -> Fit:
+    if len(y) <= X.shape[1]:
+        raise InputError(
+            "log", f"leaves {len(y)} samples for the {form} fit of {X.shape[1]} coefficients", src
+        )
+    if not np.all(np.isfinite(X.T @ X)):  # values near the float limit (a hostile log) overflow
+        raise InputError("log", f"holds values too large for the {form} fit (its sums overflow)", src)
+    try:
+        with np.errstate(all="ignore"):
+            bad = quality(X, kind)
+            c, cov, adj, rmse = ols(X, y)
+    except np.linalg.LinAlgError as exc:
+        raise InputError("log", f"the {form} fit cannot be computed ({exc})", src) from None
+    with np.errstate(all="ignore"):
+        gains = {k: float(v) for k, v in fn(c, kind, T).items()}
+        sigma = _sigmas(fn, c, cov, kind, T)
+    warnings = []
+    if bad:
+        warnings.append(
+            f"{form} fit: SysId's insufficient-data check flags {', '.join(bad)} (it wants 2 steady speeds, "
+            "1 acceleration, motion enough for gravity; SysId's analyzer computes it without refusing)"
+        )
+    broken = [k for k, v in gains.items() if not math.isfinite(v)]
+    if broken:
+        warnings.append(
+            f"{form} fit: no finite {', '.join(broken)} (the data do not fit this form); not used"
+        )
+    for k in ("kS", "kV", "kG"):
+        if gains.get(k, 0.0) < 0:
+            warnings.append(f"{form} fit: {k} = {gains[k]:.4g} is negative (it should be ≥ 0)")
+    if gains["kA"] <= 0:
+        warnings.append(f"{form} fit: kA = {gains['kA']:.4g} is not positive")
+    return Fit(form, gains, sigma, adj, rmse, len(y), bad, [float(x) for x in c], warnings)
+
+
+def fit_continuous(prepared: dict[str, Prepared], kind: str, T: float, source: str) -> Fit:
+    """(F1)-(F4), (F7)."""
+    X = np.column_stack(
+        [np.concatenate(col) for col in zip(*(_columns(d, kind, d.v) for d in prepared.values()))]
+    )
+    y = np.concatenate([d.a for d in prepared.values()])
+    return _finish("continuous", _gains_continuous, X, y, kind, T, source)
+
+
+def fit_discrete(prepared: dict[str, Prepared], kind: str, T: float, source: str) -> Fit:
+    """(F5), (F6): pairs of samples next to each other in the log (a dropped sample breaks a pair)."""
+    rows, ys = [], []
+    for d in prepared.values():
+        nxt = np.nonzero(np.isclose(d.t[1:] - d.t[:-1], d.dt[:-1], rtol=1e-9, atol=1e-9))[0]
+        e = d.take(nxt)
+        rows.append(np.column_stack(_columns(e, kind, e.v)))
+        ys.append(d.v[nxt + 1])
+    X = np.concatenate(rows)
+    y = np.concatenate(ys)
+    return _finish("discrete", _gains_discrete, X, y, kind, T, source)

@@ -1,0 +1,218 @@
+"""core.fit.logs (issue 44 item 1): our streaming WPILog reader against robotpy's DataLogReader on the
+same files, record by record; bounded memory on a large log; CSV; hostile files refused naming the
+file and what is wrong."""
+
+from __future__ import annotations
+
+import math
+import struct
+import tracemalloc
+
+import pytest
+
+from gearhead.core.errors import InputError
+from gearhead.core.fit import logs
+
+wpiutil = pytest.importorskip("wpiutil")
+from wpiutil import log as wlog  # noqa: E402
+
+
+def _write_mixed(path):
+    """A log exercising every width of the record header: 300 entries (2-byte ids), timestamps up to
+    2^40 µs (6-byte), a 70 000-byte raw payload (3-byte size), every standard type, metadata set
+    again, an entry finished and its id reused, records out of time order."""
+    w = wpiutil.DataLogWriter(str(path), "extra header ✓")
+    d = wlog.DoubleLogEntry(w, "voltage-m-elev", "Volt", 1)
+    s = wlog.StringLogEntry(w, "sysid-test-state-elev", "", 2)
+    i = wlog.IntegerLogEntry(w, "int", '{"source":"NT"}', 3)
+    fl = wlog.FloatLogEntry(w, "float", "", 3)
+    b = wlog.BooleanLogEntry(w, "bool", "", 3)
+    da = wlog.DoubleArrayLogEntry(w, "darr", "", 3)
+    sa = wlog.StringArrayLogEntry(w, "sarr", "", 3)
+    raw = wlog.RawLogEntry(w, "raw", "", 3)
+    many = [wlog.DoubleLogEntry(w, f"e{k}", "", 4) for k in range(300)]
+    for k in range(50):
+        d.append(0.25 * k, 1000 + 20_000 * k)
+        s.append("quasistatic-forward" if k < 25 else "dynamic-reverse", 1000 + 20_000 * k)
+        i.append(-(k**5), 2**40 - k)
+        fl.append(k / 3, 7)
+        b.append(k % 2 == 0, 8)
+    d.append(-1.5, 5)  # earlier than the rest: the format allows it
+    da.append([1.0, 2.5, -3.0], 9)
+    sa.append(["a", "bc", ""], 10)
+    raw.append(bytes(range(256)) * 275, 11)
+    for k, e in enumerate(many):
+        e.append(float(k), 12)
+    d.setMetadata("Volts", 13)
+    many[0].finish(14)
+    wlog.DoubleLogEntry(w, "reused", "", 15).append(9.0, 16)
+    w.flush()
+    w.stop()
+    del w
+
+
+def test_every_record_equals_robotpys(tmp_path):
+    path = tmp_path / "mixed.wpilog"
+    _write_mixed(path)
+    ours = list(logs.WPILog(path).records())
+    log = logs.WPILog(path)
+    assert log.extra_header == "extra header ✓" and log.version == 0x0100
+    count = 0
+    for a, b in zip(ours, wlog.DataLogReader(str(path)), strict=True):  # its records live while iterated
+        count += 1
+        assert (a.entry, a.timestamp, len(a.payload)) == (b.getEntry(), b.getTimestamp(), b.getSize())
+        if b.isStart():
+            kind, e = log.control(a)
+            sd = b.getStartData()
+            assert kind == logs.CONTROL_START and (e.id, e.name, e.type, e.metadata) == (
+                sd.entry,
+                sd.name,
+                sd.type,
+                sd.metadata,
+            )
+        elif b.isFinish():
+            assert log.control(a) == (logs.CONTROL_FINISH, b.getFinishEntry())
+        elif b.isSetMetadata():
+            md = b.getSetMetadataData()
+            assert log.control(a) == (logs.CONTROL_SET_METADATA, (md.entry, md.metadata))
+        else:
+            assert a.payload == bytes(b.getRaw())
+    assert count == len(ours) > 400
+
+
+def test_signals_sorted_typed_and_metadata_updated(tmp_path):
+    path = tmp_path / "mixed.wpilog"
+    _write_mixed(path)
+    sigs, entries, warnings = logs.read_wpilog(
+        path, lambda n: n in ("voltage-m-elev", "sysid-test-state-elev", "int")
+    )
+    assert warnings == []
+    v = sigs["voltage-m-elev"]
+    assert v.reordered and list(v.times[:2]) == [5e-6, 1000e-6] and v.values[0] == -1.5
+    assert v.metadata == "Volts" and entries["voltage-m-elev"].metadata == "Volts"
+    assert sigs["sysid-test-state-elev"].values[:1] == ["quasistatic-forward"]
+    assert sigs["int"].values[-4] == -243.0  # written in falling time: k = 3 is fourth from the end
+    assert "e299" in entries and "darr" in entries
+
+
+def test_large_log_is_read_in_bounded_memory(tmp_path):
+    """400 000 records of a signal nobody wants and 800 of one kept: the reader's peak Python
+    memory stays a few MiB (the chunk), far below the file's size."""
+    path = tmp_path / "big.wpilog"
+    w = wpiutil.DataLogWriter(str(path))
+    noise = wlog.DoubleLogEntry(w, "noise", "", 1)
+    keep = wlog.DoubleLogEntry(w, "keep", "", 1)
+    for k in range(400_000):
+        noise.append(float(k), 10 + k)
+        if k % 500 == 0:
+            keep.append(float(k), 10 + k)
+        if k % 10_000 == 0:  # DataLogWriter blocks once its buffers are full until flushed
+            w.flush()
+    w.flush()
+    w.stop()
+    del w
+    size = path.stat().st_size
+    tracemalloc.start()
+    sigs, _, _ = logs.read_wpilog(path, lambda n: n == "keep")
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    assert len(sigs["keep"].times) == 800
+    print(f"\nlog {size / 1e6:.1f} MB, reader peak {peak / 1e6:.2f} MB")
+    assert size > 5e6 and peak < 1.5e6
+
+
+# --- hostile files ------------------------------------------------------------------------------------
+
+
+def _head(extra=b""):
+    return b"WPILOG" + struct.pack("<HI", 0x0100, len(extra)) + extra
+
+
+def _rec(entry, ts, payload):
+    return bytes([0x20, entry, len(payload)]) + ts.to_bytes(3, "little") + payload
+
+
+def _start(eid, name, typ="double", meta=""):
+    p = bytes([0]) + struct.pack("<I", eid)
+    for s in (name, typ, meta):
+        p += struct.pack("<I", len(s.encode())) + s.encode()
+    return _rec(0, 1, p)
+
+
+@pytest.mark.parametrize(
+    "data, words",
+    [
+        (b"", "not a WPILog"),
+        (b"GARBAGE-NOT-A-LOG", "not a WPILog"),
+        (b"WPILOG" + struct.pack("<HI", 0x0200, 0), "version 2.0"),
+        (b"WPILOG" + struct.pack("<HI", 0x0100, 1 << 30), "cut off in its header"),
+        (_head() + _rec(0, 1, bytes([0]) + struct.pack("<II", 1, 1 << 31)), "past the record's end"),
+        (_head() + _rec(0, 1, bytes([7, 1, 0, 0, 0])), "unknown kind 7"),
+        (_head() + _start(1, "v") + _rec(1, 2, b"\x00" * 5), "5-byte record"),
+        (_head() + _start(1, "v") + _rec(1, 2, struct.pack("<d", math.nan)), "non-finite value (nan)"),
+        (_head() + _start(1, "v") + _rec(1, 2, struct.pack("<d", -math.inf)), "non-finite value (-inf)"),
+    ],
+)
+def test_hostile_wpilog_named(tmp_path, data, words):
+    path = tmp_path / "bad.wpilog"
+    path.write_bytes(data)
+    with pytest.raises(InputError) as exc:
+        logs.read_wpilog(path, lambda n: True)
+    assert str(path) in str(exc.value) and words in str(exc.value)
+
+
+def test_truncated_log_reads_up_to_the_cut(tmp_path):
+    good = _head() + _start(1, "v") + _rec(1, 2, struct.pack("<d", 1.5)) + _rec(1, 3, struct.pack("<d", 2.5))
+    for cut, where in ((len(good) - 3, "payload runs past"), (len(good) - 12, "partial record")):
+        path = tmp_path / f"cut{cut}.wpilog"
+        path.write_bytes(good[:cut])
+        sigs, _, warnings = logs.read_wpilog(path, lambda n: True)
+        assert list(sigs["v"].values) == [1.5]
+        assert len(warnings) == 1 and str(path) in warnings[0] and where in warnings[0]
+    # an absurd payload size in the middle of the file reads as a cut-off file
+    path = tmp_path / "absurd.wpilog"
+    path.write_bytes(
+        _head() + _start(1, "v") + bytes([0x2C, 1]) + (1 << 31).to_bytes(4, "little") + b"\x02\x00\x00"
+    )
+    _, _, warnings = logs.read_wpilog(path, lambda n: True)
+    assert "2147483648-byte payload runs past the end" in warnings[0]
+
+
+def test_missing_file_named(tmp_path):
+    with pytest.raises(InputError, match="nothere.wpilog: log: cannot be read"):
+        logs.read(tmp_path / "nothere.wpilog", lambda n: True)
+
+
+# --- CSV -----------------------------------------------------------------------------------------------
+
+
+def test_csv_columns_and_blanks(tmp_path):
+    path = tmp_path / "log.csv"
+    path.write_text(
+        "Timestamp,/SysId/state,voltage-m-elev,other\n"
+        "0.02,quasistatic-forward,1.0,5\n"
+        "0.04,,1.5,\n"
+        "0.01,none,0.5,7\n"
+    )
+    sigs, entries, _ = logs.read(path, lambda n: n != "other")
+    assert sorted(sigs) == ["/SysId/state", "voltage-m-elev"] and "other" in entries
+    v = sigs["voltage-m-elev"]
+    assert v.numeric() and list(v.times) == [0.01, 0.02, 0.04] and list(v.values) == [0.5, 1.0, 1.5]
+    assert sigs["/SysId/state"].values == ["none", "quasistatic-forward"]
+
+
+@pytest.mark.parametrize(
+    "text, words",
+    [
+        ("a,b\n1,2\n", "first column must be the time"),
+        ("Timestamp,v\nx,2\n", "line 2: the time 'x' is not a number"),
+        ("Timestamp,v\ninf,2\n", "not a finite number"),
+        ("Timestamp,v\n1,nan\n", "column 'v' holds a non-finite value (nan)"),
+    ],
+)
+def test_hostile_csv_named(tmp_path, text, words):
+    path = tmp_path / "bad.csv"
+    path.write_text(text)
+    with pytest.raises(InputError) as exc:
+        logs.read(path, lambda n: True)
+    assert str(path) in str(exc.value) and words in str(exc.value)
