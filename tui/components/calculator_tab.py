@@ -130,7 +130,7 @@ class CalculatorTab(Widget):
                     self.plot = PlotPanel(calc.plots)
                     self.plot.unit_system = self.unit_system
                     yield self.plot
-                self.tables = Tables(calc)
+                self.tables = Tables(calc, self.entries)
                 yield from self.tables.compose()
                 # long or many warnings scroll in a box of their own instead of pushing the
                 # status line out of the pane

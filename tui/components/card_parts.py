@@ -5,6 +5,7 @@ them what it solved."""
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import Any
 
 from rich.text import Text
 from textual.containers import VerticalScroll
@@ -21,8 +22,9 @@ class Tables:
     """A title and a scrollable ResultTable per declared Table (core.model.Table), each column's
     unit in its header; a table of another mode (the sprint's optimise table) is hidden."""
 
-    def __init__(self, calculator: Calculator) -> None:
+    def __init__(self, calculator: Calculator, entries: dict[str, Any]) -> None:
         self.calculator = calculator
+        self.entries = entries  # the card's at compose: a table of another mode starts hidden
         self.grids: dict[str, tuple[Static, ResultTable]] = {}
 
     def compose(self) -> Iterator[Widget]:
@@ -36,9 +38,26 @@ class Tables:
             grid.tooltip = (
                 "ctrl+g sends the row under the cursor to the calculator it feeds" if t.exports else None
             )
+            # hidden from the start when the entries are of another mode: no layout to hide it
+            # at the first solve (the first visit's second layout)
+            grid.display = title.display = t.shown_in(self._parsed(t))
             self.grids[t.name] = (title, grid)
             yield title
             yield grid
+
+    def _parsed(self, table) -> dict[str, Any]:
+        """The entries `table.shown_in` reads (its mode and `when` fields), parsed; a field that
+        does not parse is left out (its table shows; the first solve decides)."""
+        from gearhead.core.errors import InputError
+
+        parsed = {}
+        for name in ["mode"] * bool(table.modes) + [name for name, _ in table.when]:
+            f = self.calculator.field(name)
+            try:
+                parsed[name] = f.parse(self.entries.get(name, f.default))
+            except InputError:
+                pass
+        return parsed
 
     def show(self, solution: Solution, cells: dict[str, list[tuple[str, ...]]]) -> None:
         """Show `solution`'s tables: `cells`, table name -> its rows' cells (card_text.drawn)."""
@@ -68,8 +87,9 @@ class Warnings:
     def __init__(self) -> None:
         self.box = VerticalScroll(classes="warnings-box")
         self.text_widget = Static("", classes="warnings")
-        self.text: str | None = None
-        self.lines = -1  # lines the text took when last shown (-1: unknown, lay out)
+        # empty and hidden as composed (tcss): a first solve without warnings changes nothing
+        self.text = ""
+        self.lines = 0  # lines the text took when last shown (-1: unknown, lay out)
 
     def compose(self) -> Iterator[Widget]:
         with self.box:
