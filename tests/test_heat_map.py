@@ -149,9 +149,8 @@ async def test_the_card_shows_the_heat_map_in_the_grid_mode_and_the_lines_out_of
 async def test_the_flywheel_card_shows_its_grid_by_control_not_by_mode():
     """The flywheel's `mode` is the inertia's: its grid table and heat map follow `control`
     (Table.when), shown in limit_grid and gone in full_power."""
-    from textual.widgets import DataTable
-
     from gearhead.tui.app import GearheadApp
+    from gearhead.tui.components.result_table import ResultTable
     from tests.tui_helpers import settle
 
     app = GearheadApp(blink=False, initial="flywheel", hide_timings=True)
@@ -163,7 +162,7 @@ async def test_the_flywheel_card_shows_its_grid_by_control_not_by_mode():
             await settle(pilot)
             await pilot.pause()
             await settle(pilot)
-            grid = tab.query_one("#table-limit_grid", DataTable)
+            grid = tab.query_one("#table-limit_grid", ResultTable)
             assert grid.display == (control == "limit_grid")
             assert grid.row_count == (77 if control == "limit_grid" else 0) or not grid.display
             view = app.query(HeatMapView)

@@ -469,9 +469,8 @@ def test_other_calculators_json_has_no_tables_key():
 
 
 async def test_ctrl_g_sends_the_belt_row_under_the_cursor_to_chain_belt():
-    from textual.widgets import DataTable
-
     from gearhead.tui.app import GearheadApp
+    from gearhead.tui.components.result_table import ResultTable
     from tests.tui_helpers import settle
 
     app = GearheadApp(blink=False, initial="ratio_finder", hide_timings=True)
@@ -484,7 +483,7 @@ async def test_ctrl_g_sends_the_belt_row_under_the_cursor_to_chain_belt():
         await settle(pilot)
         rows = tab.solution.tables["combinations"]
         n = next(i for i, r in enumerate(rows) if "links" in r)
-        grid = tab.query_one("#table-combinations", DataTable)
+        grid = tab.query_one("#table-combinations", ResultTable)
         assert grid.row_count == len(rows)
         grid.focus()
         grid.move_cursor(row=n)

@@ -272,3 +272,39 @@ async def test_results_of_other_entries_are_drawn_dimmed_until_the_new_ones_land
         release.set()
         await settle(pilot)
         assert tab.results.is_current() and any(s.bold for s in value_styles(tab))
+
+
+async def test_rows_drawn_dimmed_are_drawn_again_when_the_result_lands(monkeypatch):
+    """A frame drawn while the solve ran showed every row dimmed; the result then repainted only
+    the rows whose text changed, and the others stayed dimmed on screen (a real terminal showed
+    'Stall load 300 lbf' not bold after typing 2 motors). Every row is drawn again."""
+    import gearhead.core.model
+
+    release = threading.Event()
+    real = gearhead.core.model.solve
+
+    def held(*args, **kwargs):
+        release.wait(20)
+        return real(*args, **kwargs)
+
+    app = GearheadApp(blink=False, initial="gear_ratio")
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        before = {r.name: r.value for r in tab.results.rows}
+        monkeypatch.setattr(gearhead.core.model, "solve", held)
+        tab.set_entries({"motor_count": "2"})
+        await app.screen.wait_for_refresh()  # a frame draws the rows dimmed
+        repainted = []
+        refresh = tab.results.refresh
+
+        def spying(*regions, **kwargs):
+            repainted.append(regions)
+            return refresh(*regions, **kwargs)
+
+        tab.results.refresh = spying
+        release.set()
+        await settle(pilot)
+        after = {r.name: r.value for r in tab.results.rows}
+        assert any(before[n] == after[n] for n in after) and before != after  # some rows kept their text
+        assert () in repainted  # the whole list, not only the rows that changed

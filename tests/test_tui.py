@@ -308,7 +308,7 @@ async def test_fast_typing_coalesces_solves_and_shows_only_the_latest(monkeypatc
         tab = app.query_one("#calc-motor", CalculatorTab)
         shown = []
         show = tab._show_solved
-        tab._show_solved = lambda solved, key, seconds: (shown.append(solved), show(solved, key, seconds))
+        tab._show_solved = lambda solved, key, drawn: (shown.append(solved), show(solved, key, drawn))
         tab.sheet.focus()
         await pilot.pause()
         tab.sheet.move_to_field("voltage")

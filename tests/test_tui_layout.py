@@ -177,10 +177,10 @@ async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_ser
     """A title like 'Force [N]' lost '[N]' to markup in the plot selector; a plot without data
     showed an empty frame and legend; one point or all-equal values must not crash."""
     from textual.app import App
-    from textual.widgets import Select, Static
+    from textual.widgets import Static
 
     from gearhead.core.model import Plot, Solution
-    from gearhead.tui.components.plot_panel import PlotPanel
+    from gearhead.tui.components.plot_panel import ChartChooser, PlotPanel
 
     plots = (
         Plot("Force [N]", ("a", "b"), "x", "length", "mm", "F", "force", "lbf"),
@@ -194,7 +194,7 @@ async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_ser
     app = Harness()
     async with app.run_test(size=(80, 24)) as pilot:
         panel = app.query_one(PlotPanel)
-        assert str(panel.query_one(Select).query_one("SelectCurrent #label").render()) == "Force [N]"
+        assert panel.query_one(ChartChooser).render_line(0).text.startswith("Force [N] ")
         empty = panel.query_one("#plot-empty", Static)
         await panel.show(Solution("x", {}, {}, [], {}))
         await pilot.pause()
@@ -289,3 +289,72 @@ async def test_result_labels_keep_their_room_when_equation_numbers_are_long():
         assert max(len(lines) for lines in table._label_lines) <= 2
         rendered = "\n".join(table.render_line(y).text for y in range(table.size.height))
         assert "Area moment of" in rendered and "(43), (45)" in rendered and "…" in rendered
+
+
+async def test_the_chart_chooser_opens_its_list_and_shows_the_chart_picked():
+    """The chart chooser (one line, 'Title ▼'): Enter opens the list of charts, ↓ Enter shows the
+    next, Esc leaves the chart as it was; Space opens it too."""
+    from gearhead.tui.app import GearheadApp
+    from gearhead.tui.components.choice_screen import ChoiceScreen
+    from gearhead.tui.components.plot_panel import ChartChooser
+    from tests.tui_helpers import settle
+
+    app = GearheadApp(blink=False, initial="elevator", hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.current_tab
+        titles = [p.title for p in tab.calculator.plots]
+        chooser = tab.query_one("#plot-choice", ChartChooser)
+        assert chooser.render_line(0).text.startswith(titles[0])
+        chooser.focus()
+        await pilot.pause()
+        await pilot.press("enter")
+        await pilot.pause()
+        assert isinstance(app.screen, ChoiceScreen)
+        await pilot.press("down", "enter")
+        await settle(pilot)
+        assert tab.plot.current.title == titles[1]
+        assert chooser.render_line(0).text.startswith(titles[1])
+        await pilot.press("space")
+        await pilot.pause()
+        assert isinstance(app.screen, ChoiceScreen)
+        await pilot.press("down", "escape")
+        await settle(pilot)
+        assert tab.plot.current.title == titles[1] and app.focused is chooser
+
+
+async def test_a_result_table_keeps_its_cursor_and_repaints_only_the_rows_that_changed():
+    """The ratio finder's table (one Line-API widget): ↓/End/Home move the row cursor, a new solve
+    of as many rows keeps it and repaints only the lines whose text changed; the header stays."""
+    from textual.geometry import Region
+
+    from gearhead.tui.components.result_table import ResultTable
+
+    app = GearheadApp(blink=False, initial="ratio_finder", hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.current_tab
+        grid = tab.query_one("#table-combinations", ResultTable)
+        rows = tab.solution.tables["combinations"]
+        assert grid.row_count == len(rows) > 3
+        assert grid.render_line(0).text.split()[:2] == ["#", "Ratio"]
+        grid.focus()
+        await pilot.press("down", "down")
+        assert grid.cursor_row == 2
+        await pilot.press("end")
+        assert grid.cursor_row == len(rows) - 1
+        await pilot.press("home", "down")
+        assert grid.cursor_row == 1
+        repainted: list[Region | None] = []
+        refresh = grid.refresh
+
+        def spying(*regions, **kwargs):
+            repainted.extend(regions or [None])
+            return refresh(*regions, **kwargs)
+
+        grid.refresh = spying
+        same = list(grid.rows)
+        changed = [same[0], ("x",) * len(same[1]), *same[2:]]
+        grid.show(changed)
+        assert repainted == [Region(0, 2, grid.size.width, 1)]  # row 1, below the header
+        assert grid.cursor_row == 1 and grid.render_line(2).text.split()[0] == "x"

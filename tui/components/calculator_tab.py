@@ -5,11 +5,12 @@ The form is one Sheet (sheet.py: a row per field, spreadsheet keys), the results
 
 The path of a key: the sheet hands the card a changed entry; `solve` starts a Textual thread
 worker on the entries on screen (one per card: a newer solve cancels the older, which never starts
-or stops at its next integration step); the worker solves through core.solving.solve, the CLI's own solve, and
-posts `Solved` carrying the key of what it solved; the card draws it only while that key is still
-the card's (card_text.py builds every text). A scene's error estimate is a second step: once its
-results are shown, another worker runs core.model.finish_estimate and posts `Estimated`. No other
-thread touches the card; nothing waits.
+or stops at its next integration step); the worker solves through core.solving.solve, the CLI's
+own solve, builds every text the card will draw (card_text.drawn: rows, table cells, status) and
+posts `Solved` carrying the key of what it solved; the card puts those texts on screen only while
+that key is still the card's. A scene's error estimate is a second step: once its results are
+shown, another worker runs core.model.finish_estimate and posts `Estimated`. No other thread
+touches the card; nothing waits.
 """
 
 from __future__ import annotations
@@ -38,15 +39,6 @@ from .sheet import Sheet
 BUSY_AFTER_S = 0.1  # a solve running longer than this shows '… solving'
 
 
-def entries_key(entries: dict[str, Any], chosen_units: dict[str, str], system: str) -> tuple:
-    """What a solution was solved from: the entries, the units chosen and the units preference."""
-    return (
-        tuple(sorted((k, repr(v)) for k, v in entries.items())),
-        tuple(sorted(chosen_units.items())),
-        system,
-    )
-
-
 class CalculatorTab(Widget):
     """The whole card for one calculator. Its handlers and the callbacks the sheet, the results
     list and timers call are @guarded: a bug in one is a notification and a logged traceback
@@ -55,18 +47,21 @@ class CalculatorTab(Widget):
     sheet_class = Sheet  # the form's class (a workbook card's refuses edits on its linked rows)
 
     class Solved(Message):
-        """A solve's outcome (core.solving.Solved, or the InputError) for the entries of `key`."""
+        """A solve's outcome for the entries of `key`: core.solving.Solved and what to draw of it
+        (card_text.Drawn), or the InputError."""
 
-        def __init__(self, key: tuple, solved, error: InputError | None, seconds: float) -> None:
+        def __init__(
+            self, key: tuple, solved, drawn: card_text.Drawn | None, error: InputError | None
+        ) -> None:
             super().__init__()
-            self.key, self.solved, self.error, self.seconds = key, solved, error, seconds
+            self.key, self.solved, self.drawn, self.error = key, solved, drawn, error
 
     class Estimated(Message):
         """The error estimate of `before` (a shown solution): `after` has it in place of "…"."""
 
-        def __init__(self, key: tuple, before: Solution, after: Solution) -> None:
+        def __init__(self, before: Solution, after: Solution, rows: list) -> None:
             super().__init__()
-            self.key, self.before, self.after = key, before, after
+            self.before, self.after, self.rows = before, after, rows
 
     def __init__(
         self, calculator: Calculator, blink: bool = True, hide_timings: bool = False, **kwargs
@@ -89,7 +84,7 @@ class CalculatorTab(Widget):
         self.asked: tuple | None = None  # the key of the latest solve asked for
         self._estimate = None  # the worker computing the shown solution's error estimate
         self._sendable: bool | None = None  # ctrl+g had something to send at the last solve
-        self._shown_by = None  # (mode, choices) the visible rows were chosen for
+        self._shown_by = None  # (mode, choices) the visible rows were chosen for (card_text.shown_by)
         self._help_text: Text | None = None
         self._mounted = False
 
@@ -116,14 +111,7 @@ class CalculatorTab(Widget):
                     classes="form",
                 )
                 yield self.sheet
-                yield Static(
-                    Text(
-                        "Type to replace a value, Enter to edit it, Space to toggle; Tab and ↑↓ move. "
-                        "F1–F5 then a digit opens any calculator; ctrl+s saves, ctrl+o loads a preset.",
-                        style="dim",
-                    ),
-                    classes="help-line",
-                )
+                yield Static(Text(card_text.HELP, style="dim"), classes="help-line")
             with Vertical(classes="results-pane"):
                 self.results = ResultsList(
                     on_select=self._cycle_unit,
@@ -142,7 +130,7 @@ class CalculatorTab(Widget):
                     self.plot = PlotPanel(calc.plots)
                     self.plot.unit_system = self.unit_system
                     yield self.plot
-                self.tables = Tables(calc)
+                self.tables = Tables(calc, self.entries)
                 yield from self.tables.compose()
                 # long or many warnings scroll in a box of their own instead of pushing the
                 # status line out of the pane
@@ -171,14 +159,7 @@ class CalculatorTab(Widget):
 
     def _entries_changed(self, name: str | None = None) -> None:
         """`name`: the one entry changed (its row alone is repainted); None: any of them."""
-        from gearhead.core.model import choice_values
-
-        # a typed number cannot show or hide a field: only a mode or choice change re-applies
-        shown_by = (
-            self.entries.get("mode"),
-            tuple(sorted(choice_values(self.calculator, self.entries).items())),
-        )
-        if shown_by != self._shown_by:
+        if card_text.shown_by(self.calculator, self.entries) != self._shown_by:
             self._apply_mode()
             self.sheet.refresh()
         elif name is not None:
@@ -188,12 +169,8 @@ class CalculatorTab(Widget):
         self.solve()
 
     def _apply_mode(self) -> None:
-        from gearhead.core.model import choice_values
-
-        mode = self.entries.get("mode")
-        choices = choice_values(self.calculator, self.entries)
-        self._shown_by = (mode, tuple(sorted(choices.items())))
-        self.sheet.set_visible(tuple(f for f in self.calculator.fields if f.active(mode, choices)))
+        self._shown_by = card_text.shown_by(self.calculator, self.entries)
+        self.sheet.set_visible(card_text.visible_fields(self.calculator, self.entries))
 
     def set_entries(self, values: dict[str, Any]) -> None:
         """Put values into the card (preset load, send-to), then solve once. A quantity given in
@@ -228,17 +205,9 @@ class CalculatorTab(Widget):
     @guarded
     def _cycle_unit(self, name: str) -> None:
         """Show the chosen result in the next common unit of its kind (mm → cm → m → in → ft …)."""
-        from gearhead.core import units
-
-        out = self.calculator.output(name)
-        if out.quantity not in units.SI_UNITS or self.solution is None:
-            return
-        value = self.solution.outputs.get(name)
-        if value is None or isinstance(value.value, (bool, str, int)):
-            return
-        shown = self.display_units.get(name) or self.shown_units.get(name, out.unit)
-        unit = units.next_unit(shown, out.quantity, out.unit)
-        if unit != shown:
+        shown = self.display_units.get(name) or self.shown_units.get(name)
+        unit = card_text.next_unit(self.calculator, self.solution, name, shown)
+        if unit is not None:
             self.display_units = {**self.display_units, name: unit}
             self.solve()
 
@@ -254,7 +223,7 @@ class CalculatorTab(Widget):
     @property
     def key(self) -> tuple:
         """What the card on screen asks to be solved."""
-        return entries_key(self.entries, self.display_units, self.unit_system)
+        return card_text.entries_key(self.entries, self.display_units, self.unit_system)
 
     @property
     def busy(self) -> bool:
@@ -297,11 +266,12 @@ class CalculatorTab(Widget):
                 spread_seconds=solving.CARD_SPREAD_SECONDS,
                 cancelled=lambda: worker.is_cancelled,
             )
+            drawn = card_text.drawn(self.calculator, solved, perf_counter() - started, self.hide_timings)
             error = None
         except Cancelled:  # a newer solve of the card runs: it posts
             return
         except InputError as exc:
-            solved, error = None, exc
+            solved, drawn, error = None, None, exc
             if exc.__cause__ is not None:  # the last-resort guard fired: keep the traceback
                 from ..bug_log import record
 
@@ -310,15 +280,15 @@ class CalculatorTab(Widget):
             from ..bug_log import record
 
             path = record(exc, f"{self.calculator.id} {entries!r}")
-            solved = None
+            solved = drawn = None
             error = InputError(
                 "(result)",
                 f"internal error: {type(exc).__name__}: {exc}" + (f" (traceback in {path})" if path else ""),
             )
-        self.post_message(self.Solved(key, solved, error, perf_counter() - started))
+        self.post_message(self.Solved(key, solved, drawn, error))
 
     @work(thread=True, exclusive=True, group="estimate", exit_on_error=False)
-    def _estimate_worker(self, key: tuple, solution: Solution) -> None:
+    def _estimate_worker(self, solution: Solution, spread) -> None:
         from gearhead.core.model import finish_estimate
         from gearhead.core.sim.integrate import Cancelled, budget
 
@@ -329,7 +299,8 @@ class CalculatorTab(Widget):
         except Cancelled:
             return
         # a bug raises out of here: the worker's ERROR state comes back as a message (below)
-        self.post_message(self.Estimated(key, solution, after))
+        rows = card_text.result_rows(self.calculator, after, spread, self.hide_timings)
+        self.post_message(self.Estimated(solution, after, rows))
 
     @guarded
     def on_worker_state_changed(self, event: Worker.StateChanged) -> None:
@@ -344,7 +315,7 @@ class CalculatorTab(Widget):
         if self._mounted and self.asked not in (self.solution_key, self.error_key):
             self.status.update(Text("… solving", style="yellow"), layout=False)
             if self.solution is not None:
-                self.results.show(self._rows(self.solution), PENDING)
+                self.results.show(self.results.rows, PENDING)
 
     # ---- draw -----------------------------------------------------------------------------
     @guarded
@@ -355,41 +326,40 @@ class CalculatorTab(Widget):
         if message.error is not None:
             self._show_error(message.error, message.key)
         else:
-            self._show_solved(message.solved, message.key, message.seconds)
+            self._show_solved(message.solved, message.key, message.drawn)
 
     def _show_error(self, error: InputError, key: tuple) -> None:
         calc = self.calculator
         self.error, self.error_key = error, key
         self.sheet.set_errors(card_text.error_marks(calc, error))
         if self.solution is not None:
-            self.results.show(self._rows(self.solution), STALE)
+            self.results.show(self.results.rows, STALE)
         self.status.update(card_text.error_status(calc, error), layout=False)
         self.glance.update(card_text.error_glance(calc, error), layout=False)
         if self.plot is not None and not self.plot.has_class("stale"):
             self.plot.add_class("stale")
 
-    def _show_solved(self, solved, key: tuple, seconds: float) -> None:
-        calc = self.calculator
+    def _show_solved(self, solved, key: tuple, drawn: card_text.Drawn) -> None:
         self.error = self.error_key = None
         self.sheet.set_errors({})
         solution = solved.solution
         self.solution, self.solution_key, self.spread = solution, key, solved.spread
         self.shown_units = solved.units
-        self.results.show(self._rows(solution), FRESH)
+        self.results.show(drawn.rows, FRESH)
         if self.plot is not None:
             if self.plot.has_class("stale"):
                 self.plot.remove_class("stale")
             self.plot.show_soon(solution)
-        self.tables.show(solution)
-        self._show_warnings(solution.warnings)
-        self.status.update(card_text.solved_status(seconds, self.spread, self.hide_timings), layout=False)
-        self.glance.update(card_text.glance(calc, solution), layout=False)
+        self.tables.show(solution, drawn.tables)
+        self.warnings_part.show(drawn.warnings)
+        self.status.update(drawn.status, layout=False)
+        self.glance.update(drawn.glance, layout=False)
         sendable = self.can_send()
         if sendable != self._sendable:  # the key bar shows ^g only where it sends something
             self._sendable = sendable
             self.app.refresh_bindings()
         if solution.pending_estimate is not None:  # the second step, "…" in its row till then
-            self._estimate = self._estimate_worker(key, solution)
+            self._estimate = self._estimate_worker(solution, self.spread)
 
     @guarded
     def on_calculator_tab_estimated(self, message: Estimated) -> None:
@@ -399,11 +369,7 @@ class CalculatorTab(Widget):
         self._estimate = None
         self.solution = message.after
         if self.solution_key == self.key and self.error is None:
-            self.results.show(self._rows(self.solution), FRESH)
-
-    def _rows(self, solution: Solution):
-        spread = self.spread if solution is self.solution else None
-        return card_text.result_rows(self.calculator, solution, spread, self.hide_timings)
+            self.results.show(message.rows, FRESH)
 
     def _show_warnings(self, warnings: list[str]) -> None:
         self.warnings_part.show(card_text.warnings_text(warnings, self.spread))
@@ -425,14 +391,8 @@ class CalculatorTab(Widget):
 
     # ---- what the app and tests read --------------------------------------------------------
     def can_send(self) -> bool:
-        """Whether ctrl+g has something to send now: a result another calculator takes (in this
-        mode: drivetrain's forward mode has no ratio), or a table row that fills one."""
-        calc, solution = self.calculator, self.solution
-        if solution is None:
-            return bool(calc.exports) or any(t.exports for t in calc.tables)
-        if any(out in solution.outputs for mapping in calc.exports.values() for out in mapping.values()):
-            return True
-        return any(t.exports and solution.tables.get(t.name) for t in calc.tables)
+        """Whether ctrl+g has something to send now (card_text.can_send)."""
+        return card_text.can_send(self.calculator, self.solution)
 
     def selected_row(self):
         """(Table, row of Values) under the cursor of the table last focused, or None."""

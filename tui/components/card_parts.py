@@ -1,61 +1,73 @@
 """Two parts of a card below its results: the tables of alternatives and the warnings box. Each
-composes into the card's results pane as before (same widgets, same classes) and draws itself
-from a solution; the card only hands them what it solved."""
+composes into the card's results pane and draws itself from a solution; the card only hands
+them what it solved."""
 
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import Any
 
 from rich.text import Text
 from textual.containers import VerticalScroll
 from textual.widget import Widget
-from textual.widgets import DataTable, Static
+from textual.widgets import Static
 
 from gearhead.core.model import Calculator, Solution
 
 from . import card_text
+from .result_table import ResultTable
 
 
 class Tables:
-    """A title and a scrollable DataTable per declared Table (core.model.Table), each column's
+    """A title and a scrollable ResultTable per declared Table (core.model.Table), each column's
     unit in its header; a table of another mode (the sprint's optimise table) is hidden."""
 
-    def __init__(self, calculator: Calculator) -> None:
+    def __init__(self, calculator: Calculator, entries: dict[str, Any]) -> None:
         self.calculator = calculator
-        self.grids: dict[str, tuple[Static, DataTable]] = {}
+        self.entries = entries  # the card's at compose: a table of another mode starts hidden
+        self.grids: dict[str, tuple[Static, ResultTable]] = {}
 
     def compose(self) -> Iterator[Widget]:
         for t in self.calculator.tables:
             title = Static(
                 Text(t.title, style="bold"), classes="result-table-title", id=f"table-title-{t.name}"
             )
-            grid = DataTable(
-                classes="result-table", id=f"table-{t.name}", cursor_type="row", zebra_stripes=True
-            )
+            heads = [card_text.table_header(c) for c in t.columns if not c.hidden]
+            widths = [max(c.width, len(h)) for c, h in zip((c for c in t.columns if not c.hidden), heads)]
+            grid = ResultTable(list(zip(heads, widths)), classes="result-table", id=f"table-{t.name}")
             grid.tooltip = (
                 "ctrl+g sends the row under the cursor to the calculator it feeds" if t.exports else None
             )
-            for c in t.columns:
-                if not c.hidden:
-                    head = card_text.table_header(c)
-                    grid.add_column(Text(head), key=c.name, width=max(c.width, len(head)))
+            # hidden from the start when the entries are of another mode: no layout to hide it
+            # at the first solve (the first visit's second layout)
+            grid.display = title.display = t.shown_in(self._parsed(t))
             self.grids[t.name] = (title, grid)
             yield title
             yield grid
 
-    def show(self, solution: Solution) -> None:
+    def _parsed(self, table) -> dict[str, Any]:
+        """The entries `table.shown_in` reads (its mode and `when` fields), parsed; a field that
+        does not parse is left out (its table shows; the first solve decides)."""
+        from gearhead.core.errors import InputError
+
+        parsed = {}
+        for name in ["mode"] * bool(table.modes) + [name for name, _ in table.when]:
+            f = self.calculator.field(name)
+            try:
+                parsed[name] = f.parse(self.entries.get(name, f.default))
+            except InputError:
+                pass
+        return parsed
+
+    def show(self, solution: Solution, cells: dict[str, list[tuple[str, ...]]]) -> None:
+        """Show `solution`'s tables: `cells`, table name -> its rows' cells (card_text.drawn)."""
         entries = solution.entries()
         for t in self.calculator.tables:
             title, grid = self.grids[t.name]
             shown = t.shown_in(entries)
             if grid.display != shown:
                 grid.display = title.display = shown
-            cursor = grid.cursor_row
-            grid.clear()
-            for n, row in enumerate(solution.tables.get(t.name, [])):
-                grid.add_row(*card_text.table_cells(t, row), key=str(n))
-            if 0 < cursor < grid.row_count:
-                grid.move_cursor(row=cursor, animate=False)
+            grid.show(cells[t.name])
 
     def selected_row(self, solution: Solution | None):
         """(Table, row of Values) under the cursor of the first table that sends rows, or None."""
@@ -75,8 +87,9 @@ class Warnings:
     def __init__(self) -> None:
         self.box = VerticalScroll(classes="warnings-box")
         self.text_widget = Static("", classes="warnings")
-        self.text: str | None = None
-        self.lines = -1  # lines the text took when last shown (-1: unknown, lay out)
+        # empty and hidden as composed (tcss): a first solve without warnings changes nothing
+        self.text = ""
+        self.lines = 0  # lines the text took when last shown (-1: unknown, lay out)
 
     def compose(self) -> Iterator[Widget]:
         with self.box:

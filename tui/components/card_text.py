@@ -6,6 +6,7 @@ The card (calculator_tab.py) only puts these texts where they go.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 from rich.text import Text
@@ -18,6 +19,81 @@ from .results import ResultRow
 from .unit_text import pretty_quantity, pretty_unit
 
 GLANCE_RESULTS = 3  # the first results of a calculator are its headline ones
+
+HELP = (
+    "Type to replace a value, Enter to edit it, Space to toggle; Tab and ↑↓ move. "
+    "F1–F5 then a digit opens any calculator; ctrl+s saves, ctrl+o loads a preset."
+)
+
+
+def entries_key(entries: dict[str, Any], chosen_units: dict[str, str], system: str) -> tuple:
+    """What a solution was solved from: the entries, the units chosen and the units preference."""
+    return (
+        tuple(sorted((k, repr(v)) for k, v in entries.items())),
+        tuple(sorted(chosen_units.items())),
+        system,
+    )
+
+
+def shown_by(calc: Calculator, entries: dict[str, Any]) -> tuple:
+    """What decides which rows of the form show: the mode and the choices (a typed number cannot)."""
+    from gearhead.core.model import choice_values
+
+    return entries.get("mode"), tuple(sorted(choice_values(calc, entries).items()))
+
+
+def visible_fields(calc: Calculator, entries: dict[str, Any]) -> tuple[Field, ...]:
+    from gearhead.core.model import choice_values
+
+    mode, choices = entries.get("mode"), choice_values(calc, entries)
+    return tuple(f for f in calc.fields if f.active(mode, choices))
+
+
+@dataclass(frozen=True)
+class Drawn:
+    """Everything a card draws for one solve, built in the solve's worker (off the UI thread)."""
+
+    rows: list[ResultRow]
+    tables: dict[str, list[tuple[str, ...]]]  # table name -> its rows' cells
+    warnings: str
+    status: Text
+    glance: Text
+
+
+def drawn(calc: Calculator, solved, seconds: float, hide_timings: bool = False) -> Drawn:
+    """What a card shows for a core.solving.Solved that took `seconds`."""
+    solution, spread = solved.solution, solved.spread
+    return Drawn(
+        result_rows(calc, solution, spread, hide_timings),
+        {t.name: [table_cells(t, row) for row in solution.tables.get(t.name, [])] for t in calc.tables},
+        warnings_text(solution.warnings, spread),
+        solved_status(seconds, spread, hide_timings),
+        glance(calc, solution),
+    )
+
+
+def next_unit(calc: Calculator, solution: Solution | None, name: str, shown: str | None) -> str | None:
+    """The unit result `name` is shown in after `shown` (mm → cm → m → in → ft …); None when it
+    has no other (not a quantity, no value, or a yes/no, text or count)."""
+    from gearhead.core import units
+
+    out = calc.output(name)
+    value = solution.outputs.get(name) if solution is not None else None
+    if out.quantity not in units.SI_UNITS or value is None or isinstance(value.value, (bool, str, int)):
+        return None
+    shown = shown or out.unit
+    unit = units.next_unit(shown, out.quantity, out.unit)
+    return unit if unit != shown else None
+
+
+def can_send(calc: Calculator, solution: Solution | None) -> bool:
+    """Whether ctrl+g has something to send: a result another calculator takes (in this mode:
+    drivetrain's forward mode has no ratio), or a table row that fills one."""
+    if solution is None:
+        return bool(calc.exports) or any(t.exports for t in calc.tables)
+    if any(out in solution.outputs for mapping in calc.exports.values() for out in mapping.values()):
+        return True
+    return any(t.exports and solution.tables.get(t.name) for t in calc.tables)
 
 
 def duration(seconds: float) -> str:
@@ -151,13 +227,11 @@ def output_help(calc: Calculator, name: str, solution: Solution | None = None, s
     return line
 
 
-def table_cells(table, row: dict[str, Any]) -> list[Text]:
+def table_cells(table, row: dict[str, Any]) -> tuple[str, ...]:
     """A table row's cells as the grid shows them (hidden columns left out)."""
-    return [
-        Text(pretty_quantity(row[c.name].text)) if c.name in row else Text("")
-        for c in table.columns
-        if not c.hidden
-    ]
+    return tuple(
+        pretty_quantity(row[c.name].text) if c.name in row else "" for c in table.columns if not c.hidden
+    )
 
 
 def table_header(column) -> str:

@@ -5,22 +5,97 @@ from __future__ import annotations
 from functools import cache
 
 from rich.markup import escape
+from rich.segment import Segment
 from rich.text import Text
-from textual import on
+from textual import events, on
 from textual.app import ComposeResult
 from textual.containers import Vertical
-from textual.widgets import Select, Static
+from textual.message import Message
+from textual.strip import Strip
+from textual.widget import Widget
+from textual.widgets import Static
 
 from gearhead.core import units
 from gearhead.core.model import HeatMap, Plot, Solution
 
-from .unit_text import pretty_unit
+from .unit_text import fit_cells, pretty_unit
 
 COLOURS = ("cyan", "magenta", "yellow", "green", "red")
 
 
 def axis_label(label: str, unit: str) -> str:
     return f"{label} [{pretty_unit(unit)}]" if unit else label
+
+
+class ChartChooser(Widget, can_focus=True):
+    """Which chart the panel shows, on one line drawn as a compact Select ("Title ▼"). Enter,
+    Space, ↑ or ↓ (or a click) opens the list of charts, the list a choice row of the sheet opens
+    (Enter picks, Esc leaves it). One widget instead of Select's seven (its list is built when
+    opened): a card with charts was the slowest to show for the first time."""
+
+    COMPONENT_CLASSES = {"chart-chooser--arrow"}
+    DEFAULT_CSS = """
+    ChartChooser {
+        height: 1;
+        background: $surface;
+        color: $foreground;
+        pointer: pointer;
+        &:focus { background-tint: $foreground 5%; }
+        & > .chart-chooser--arrow { color: $foreground 50%; }
+    }
+    """
+
+    class Changed(Message):
+        def __init__(self, chooser: ChartChooser, value: int) -> None:
+            super().__init__()
+            self.chooser, self.value = chooser, value
+
+        @property
+        def control(self) -> ChartChooser:
+            return self.chooser
+
+    def __init__(self, titles: list[str], value: int = 0, **kwargs) -> None:
+        super().__init__(**kwargs)
+        self.titles = titles
+        self._value = value
+
+    @property
+    def value(self) -> int:
+        return self._value
+
+    @value.setter
+    def value(self, value: int) -> None:
+        if value != self._value:
+            self._value = value
+            self.refresh()
+            self.post_message(self.Changed(self, value))
+
+    def render_line(self, y: int) -> Strip:
+        width, base = self.size.width, self.rich_style
+        if y != 0 or width < 3:
+            return Strip.blank(width, base)
+        arrow = base + self.get_component_rich_style("chart-chooser--arrow")
+        segments = [Segment(fit_cells(self.titles[self._value], width - 3), base), Segment(" ", base)]
+        return Strip([*segments, Segment("▼", arrow), Segment(" ", base)])
+
+    def on_key(self, event: events.Key) -> None:
+        if event.key in ("enter", "space", "up", "down"):
+            event.stop()
+            event.prevent_default()
+            self.open()
+
+    def on_click(self, event: events.Click) -> None:
+        self.open()
+
+    def open(self) -> None:
+        from .choice_screen import ChoiceScreen
+
+        def chosen(value: str | None) -> None:
+            if value is not None:
+                self.value = int(value)
+
+        options = tuple((str(i), title) for i, title in enumerate(self.titles))
+        self.app.push_screen(ChoiceScreen("Chart", options, str(self._value)), chosen)
 
 
 class PlotPanel(Vertical):
@@ -32,19 +107,12 @@ class PlotPanel(Vertical):
 
     def compose(self) -> ComposeResult:
         if len(self.plots) > 1:
-            # Text, not str: a Select prompt is markup, and a title like "Force [N]" would lose "[N]"
-            yield Select(
-                [(Text(p.title), i) for i, p in enumerate(self.plots)],
-                value=0,
-                allow_blank=False,
-                compact=True,
-                id="plot-choice",
-            )
+            yield ChartChooser([p.title for p in self.plots], id="plot-choice")
         yield Static(Text("No data to plot for these inputs.", style="dim"), id="plot-empty")
         # the PlotWidget itself is mounted on first use: textual-plot and numpy load after the first frame
 
-    @on(Select.Changed, "#plot-choice")
-    def _choose(self, event: Select.Changed) -> None:
+    @on(ChartChooser.Changed, "#plot-choice")
+    def _choose(self, event: ChartChooser.Changed) -> None:
         event.stop()
         if self.solution is not None:
             self.call_later(self.show, self.solution)
@@ -80,7 +148,7 @@ class PlotPanel(Vertical):
     def current(self) -> Plot | HeatMap:
         """The plot on screen (the one the selector shows)."""
         if len(self.plots) > 1:
-            return self.plots[self.query_one("#plot-choice", Select).value]
+            return self.plots[self.query_one("#plot-choice", ChartChooser).value]
         return self.plots[0]
 
     async def show(self, solution: Solution) -> None:
@@ -91,7 +159,7 @@ class PlotPanel(Vertical):
         self.solution = solution
         other = self._with_data(solution)
         if other is not None:  # the selector's change shows it
-            self.query_one("#plot-choice", Select).value = other
+            self.query_one("#plot-choice", ChartChooser).value = other
             return
         spec = self.current
         spec = replace(

@@ -83,6 +83,7 @@ class ResultsList(LineView, can_focus=True):
         self._lines: list[tuple[int, int]] = []  # (row, line within it); row -1: the header
         self._label_lines: list[list[str]] = []
         self._widths = (0, 0, 0, 0)
+        self._drawn_waiting = False  # a line was drawn dimmed for entries no longer on screen
 
     # ---- content ------------------------------------------------------------------------
     def show(self, rows: list[ResultRow], state: str) -> None:
@@ -94,8 +95,10 @@ class ResultsList(LineView, can_focus=True):
         if not same_shape or any(cell_len(r.value) > self._widths[1] for r in rows):
             self._layout()
             self.cursor = min(self.cursor, max(0, len(rows) - 1))
+            self._drawn_waiting = False
             self.refresh()
-        elif state != was:
+        elif state != was or self._drawn_waiting:  # every line: those drawn dimmed too
+            self._drawn_waiting = False
             self.refresh()
         else:  # the same rows: repaint the lines of those whose text changed
             changed = {i for i, (a, b) in enumerate(zip(before, rows)) if a != b}
@@ -159,6 +162,7 @@ class ResultsList(LineView, can_focus=True):
             line_style = base + style("results--cursor")
         value_style = line_style
         state = self.state if self.state != FRESH or self.is_current() else WAITING
+        self._drawn_waiting |= state == WAITING
         if state != FRESH:
             value_style = line_style + style("results--dim")
         label_style = value_style if state == STALE else line_style
