@@ -296,6 +296,7 @@ async def test_the_chart_chooser_opens_its_list_and_shows_the_chart_picked():
     next, Esc leaves the chart as it was; Space opens it too."""
     from gearhead.tui.app import GearheadApp
     from gearhead.tui.components.choice_screen import ChoiceScreen
+    from gearhead.tui.components.key_bar import KeyBar
     from gearhead.tui.components.plot_panel import ChartChooser
     from tests.tui_helpers import settle
 
@@ -308,6 +309,9 @@ async def test_the_chart_chooser_opens_its_list_and_shows_the_chart_picked():
         assert chooser.render_line(0).text.startswith(titles[0])
         chooser.focus()
         await pilot.pause()
+        assert ("⏎", "Charts", "enter") in app.screen.query_one(KeyBar).keys, (
+            "the key bar says what Enter does"
+        )
         await pilot.press("enter")
         await pilot.pause()
         assert isinstance(app.screen, ChoiceScreen)

@@ -9,6 +9,7 @@ from rich.segment import Segment
 from rich.text import Text
 from textual import events, on
 from textual.app import ComposeResult
+from textual.binding import Binding
 from textual.containers import Vertical
 from textual.message import Message
 from textual.strip import Strip
@@ -78,11 +79,16 @@ class ChartChooser(Widget, can_focus=True):
         segments = [Segment(fit_cells(self.titles[self._value], width - 3), base), Segment(" ", base)]
         return Strip([*segments, Segment("▼", arrow), Segment(" ", base)])
 
-    def on_key(self, event: events.Key) -> None:
-        if event.key in ("enter", "space", "up", "down"):
-            event.stop()
-            event.prevent_default()
-            self.open()
+    # bindings, not a key handler: the key bar then says what Enter does here
+    BINDINGS = [
+        Binding("enter", "open", "Charts"),
+        Binding("space", "open", show=False),
+        Binding("up", "open", show=False),
+        Binding("down", "open", show=False),
+    ]
+
+    def action_open(self) -> None:
+        self.open()
 
     def on_click(self, event: events.Click) -> None:
         self.open()
