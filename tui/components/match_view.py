@@ -1,0 +1,283 @@
+"""The workbook's Match card: its [match] run (core/workbook/match.py) as `gearhead match` shows it,
+the outputs (the same names, values and units), the brownouts (time, length, the moves running),
+and plots over the match (core/match/series.py): the bus voltage with the brownout and recovery
+levels, the battery current stacked by card (plus the base load), the state of charge.
+
+The match is run by the workbook screen's solve (workbook_screen.py: a thread worker, exclusive, a
+newer request cancelling the running one through its budget, the result posted as `Solved` with the
+request it answers): the match is part of the workbook's outcome and is cached there by what it
+reads, so running it a second time here would only double the work. This card shows what the
+latest outcome holds, says when a newer one is on its way, and names what went wrong when the match
+could not be run. The charts are drawn when the card is on screen (textual-plot loads then).
+
+The current is stacked with textual-plot's bars (filled from 0): the layers' running sums are drawn
+from the top one down, each over the last, so each card's band is its share of the current. A bar
+is one time bin of the match, showing the sample with the highest battery current in it
+(series.peak_bins: a move's peak is never averaged away).
+"""
+
+from __future__ import annotations
+
+import sys
+from typing import Any
+
+from rich.markup import escape
+from rich.text import Text
+from textual.containers import Container, VerticalScroll
+from textual.widgets import Static
+
+from gearhead.core.errors import InputError
+
+from ..guard import guarded
+
+PLOT_HEIGHT = 15
+MAX_BROWNOUTS_LISTED = 200  # a hostile match may have thousands: the count says how many more
+LAYER_COLOURS = ("cyan", "magenta", "yellow", "green", "red", "blue")
+BASE_COLOUR = "grey50"
+
+
+def output_rows(m) -> list[tuple[str, str, str]]:
+    """(label, value with its unit, requirement name) per output, as `gearhead match` prints them."""
+    from gearhead.core import units
+    from gearhead.core.workbook.match import OUTPUTS
+
+    rows = []
+    for key, (label, unit) in OUTPUTS.items():
+        if key not in m.outputs:  # the breaker's margin without a trip table, its trip without a trip
+            continue
+        value = m.outputs[key]
+        text = f"{value:d}" if isinstance(value, int) else f"{units.format_number(value)} {unit}".rstrip()
+        if key == "min_bus_time" and m.running_at_min:
+            text += f"  ({', '.join(m.running_at_min)} running)"
+        rows.append((label, text, f"match.{key}"))
+    return rows
+
+
+def summary_text(m, source: str) -> Text:
+    """The match's head line, outputs, shares and brownouts (Text: no markup is read)."""
+    length = m.spec.values["length"]
+    out = Text()
+    out.append(
+        f"Match of {length:g} s, {len(m.moves)} moves; battery {m.battery.R * 1000:.4g} mΩ, "
+        f"{m.battery.start_soc * 100:.4g} % charged; brownout {m.controller.brownout:g} V, "
+        f"recovery {m.controller.recovery:g} V\n",
+        style="bold",
+    )
+    rows = output_rows(m)
+    width = max(len(label) for label, _, _ in rows)
+    value_width = max(len(value.partition("  (")[0]) for _, value, _ in rows)
+    for label, value, name in rows:
+        value, _, running = value.partition("  (")
+        out.append(f"  {label:<{width}}  ")
+        out.append(f"{value:<{value_width}}", style="bold")
+        out.append(f"  {name}", style="dim")
+        out.append(f"  ({running}\n" if running else "\n")
+    out.append("Share of the charge; peak supply current per motor (of a 40 A breaker)\n", style="bold")
+    for k, v in m.shares.items():
+        peak = m.channel_peaks.get(k)
+        more = f"   peak {peak:.4g} A ({peak / 40 * 100:.3g} %)" if peak is not None else ""
+        out.append(f"  {k:<12} {v * 100:6.3g} %{more}\n")
+    if "main_breaker_margin" not in m.outputs:
+        out.append("  (no breaker trip table entered, so no trip is predicted)\n", style="dim")
+    if m.brownouts:
+        out.append(f"Brownouts ({len(m.brownouts)}): start, length, moves running\n", style="bold red")
+        for b in m.brownouts[:MAX_BROWNOUTS_LISTED]:
+            out.append(f"  {b.start:8.3f} s  {b.length * 1000:7.1f} ms  {', '.join(b.running) or '-'}\n")
+        if len(m.brownouts) > MAX_BROWNOUTS_LISTED:
+            out.append(
+                f"  ... {len(m.brownouts) - MAX_BROWNOUTS_LISTED} more (gearhead match --json lists all)\n"
+            )
+    else:
+        out.append("Brownouts: none\n", style="bold green")
+    return out
+
+
+class MatchView(VerticalScroll, can_focus=True):
+    """The Match card: ↑↓, PageUp/PageDown, Home/End scroll it (a small terminal shows it in parts)."""
+
+    DEFAULT_CSS = f"""
+    MatchView {{ height: 1fr; }}
+    MatchView > .match-plot {{ height: {PLOT_HEIGHT}; }}
+    MatchView > .match-heading {{ margin-top: 1; }}
+    """
+
+    def __init__(self, source: str, **kwargs) -> None:
+        super().__init__(**kwargs)
+        self.source = source  # the workbook's file, named in a failure
+        self.result: Any = None  # the last outcome given (core.workbook.Outcome or InputError)
+        self.request: int | None = None  # the solve request it answers
+        self.running = True  # a newer solve is on its way
+        self.drawn: int | None = None  # the request whose charts are drawn
+        self._series = None
+
+    def compose(self):
+        self.status = Static(Text("… running the match", style="yellow"), id="match-status")
+        yield self.status
+        self.summary = Static("", id="match-summary")
+        yield self.summary
+        yield Static(Text("Bus voltage over the match", style="bold"), classes="match-heading")
+        yield Container(classes="match-plot", id="match-voltage")
+        yield Static(
+            Text("Battery current over the match", style="bold"),
+            classes="match-heading",
+            id="match-current-title",
+        )
+        yield Container(classes="match-plot", id="match-current")
+        yield Static(Text("State of charge over the match", style="bold"), classes="match-heading")
+        yield Container(classes="match-plot", id="match-charge")
+
+    # ---- what the workbook screen tells it ------------------------------------------------
+    @guarded
+    def mark_running(self) -> None:
+        """A solve of newer entries is running (the screen says so after 0.1 s)."""
+        self.running = True
+        if self.is_mounted:
+            self._status()
+
+    @guarded
+    def show_result(self, request: int, result: Any) -> None:
+        """The outcome of solve request `request` (the latest: the screen drops older ones)."""
+        self.request, self.result, self.running = request, result, False
+        self._series = None
+        if not self.is_mounted:
+            return
+        self._status()
+        m = self.match
+        self.summary.update(summary_text(m, self.source) if m is not None else "")
+        if self.display:  # the card on screen (the switcher shows one pane): else when it is opened
+            self.call_later(self.draw)
+
+    @property
+    def match(self):
+        r = self.result
+        return None if r is None or isinstance(r, InputError) else r.match
+
+    def _status(self) -> None:
+        r = self.result
+        if r is None:
+            self.status.update(Text("… running the match", style="yellow"))
+            return
+        if isinstance(r, InputError):
+            text = Text(f"✗ the workbook could not be solved: {r}", style="red")
+        elif r.match is None:
+            why = r.match_error or "the workbook has no [match] table"
+            text = Text(f"✗ {self.source}: match: {why}", style="red")
+        else:
+            text = Text("✓ the match of the entries on screen", style="green")  # no path: snapshots
+        if self.running:  # the charts and outputs below stay those of the last entries until then
+            text = Text(
+                "… running the match for the entries on screen (below: the last entries')", style="yellow"
+            )
+        self.status.update(text)
+
+    @guarded
+    def opened(self) -> None:
+        """The card was brought on screen (the workbook screen's tab strip: Textual's Show event
+        did not always come when the pane switched, in a real terminal): its charts drawn now."""
+        if self.match is not None and self.drawn != self.request:
+            self.call_later(self.draw)
+        else:
+            self.call_after_refresh(self._fit_plots)
+
+    @guarded
+    def on_resize(self) -> None:
+        self.call_after_refresh(self._fit_plots)
+
+    @guarded
+    def _fit_plots(self) -> None:
+        """Each chart drawn again at its canvas's size: a PlotWidget rendered once before its canvas
+        had a size (mounted and given data in one go) stayed blank until a layout refresh."""
+        if "textual_plot" not in sys.modules:
+            return
+        from textual_plot import PlotWidget
+
+        for plot in self.query(PlotWidget):
+            plot.refresh(layout=True)
+
+    # ---- the charts ------------------------------------------------------------------------
+    async def draw(self) -> None:
+        """The three charts of the match shown (textual-plot's public API only)."""
+        m = self.match
+        if m is None or self.drawn == self.request or not self.app.is_running:
+            return
+        from textual_plot import HiResMode, LegendLocation
+
+        from gearhead.core.match.series import peak_bins, series
+
+        from .plot_panel import quiet_plot_widget
+
+        if self._series is None:
+            self._series = series(m)
+        s = self._series
+        widget = quiet_plot_widget()
+        plots = {}
+        for name in ("voltage", "current", "charge"):
+            holder = self.query_one(f"#match-{name}", Container)
+            found = holder.query(widget)
+            if found:
+                plots[name] = found.first()
+            else:
+                plot = widget(allow_pan_and_zoom=False)
+                await holder.mount(plot)
+                if not plot.children:  # the app closed while it mounted
+                    return
+                plots[name] = plot
+        # bus voltage, and the controller's levels as flat lines across the match
+        p = plots["voltage"]
+        p.clear()
+        p.plot(s.t, s.bus_voltage, line_style="cyan", hires_mode=HiResMode.BRAILLE, label="bus")
+        ends = [0.0, s.length]
+        for level, colour, name in ((s.brownout, "red", "brownout"), (s.recovery, "yellow", "recovery")):
+            label = escape(f"{name} {level:g} V")
+            p.plot(ends, [level] * 2, line_style=colour, hires_mode=HiResMode.BRAILLE, label=label)
+        p.set_ylimits(min(min(s.bus_voltage, default=s.brownout), s.brownout) - 0.5, None)
+        p.show_legend(LegendLocation.BOTTOMRIGHT)
+        p.set_xlabel(escape("Time [s]"))
+        p.set_ylabel(escape("Bus [V]"))  # the left margin's width: a longer label is cut
+        # the current, stacked: base, then each card, painted from the top sum down
+        p = plots["current"]
+        p.clear()
+        width = p.size.width - 12 if p.size.width > 30 else 120
+        bins = peak_bins(s, max(20, min(300, width)))
+        xs = [x for x, _ in bins]
+        bar = s.length / max(len(bins), 1)
+        layers = [("base", s.base, BASE_COLOUR)] + [
+            (card, amps, LAYER_COLOURS[k % len(LAYER_COLOURS)])
+            for k, (card, amps) in enumerate(s.by_card.items())
+        ]
+        sums, running = [], [0.0] * len(bins)
+        for name, amps, colour in layers:
+            running = [r + amps[i] for r, (_, i) in zip(running, bins)]
+            sums.append((name, list(running), colour))
+        for name, ys, colour in reversed(sums):
+            p.bar(xs, ys, width=bar, bar_style=colour, label=escape(name))
+        p.set_xlimits(0.0, s.length)
+        # the layers' order in words too: without colour (NO_COLOR) the bands look alike
+        self.query_one("#match-current-title", Static).update(
+            Text.assemble(
+                ("Battery current over the match", "bold"),
+                f", stacked from the bottom: {', '.join(name for name, _, _ in layers)} "
+                f"(a bar per {bar:.3g} s: the instant of its highest current)",
+            )
+        )
+        p.show_legend(LegendLocation.TOPRIGHT)
+        p.set_xlabel(escape("Time [s]"))
+        p.set_ylabel(escape("Current [A]"))
+        # the state of charge, plain and Peukert-weighted (the charge still available at these rates)
+        p = plots["charge"]
+        p.clear()
+        p.plot(
+            s.t, [100 * x for x in s.soc], line_style="green", hires_mode=HiResMode.BRAILLE, label="charge"
+        )
+        p.plot(
+            s.t,
+            [100 * x for x in s.available],
+            line_style="magenta",
+            hires_mode=HiResMode.BRAILLE,
+            label="available (Peukert)",
+        )
+        p.show_legend(LegendLocation.BOTTOMLEFT)
+        p.set_xlabel(escape("Time [s]"))
+        p.set_ylabel(escape("Charge [%]"))
+        self.drawn = self.request
+        self.call_after_refresh(self._fit_plots)
