@@ -29,6 +29,17 @@ ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "robot_2027.toml"
 
 
+@pytest.fixture(autouse=True)
+def no_guarded_errors(monkeypatch):
+    """A bug caught by a @guarded handler is only a notification on screen: here it fails the test."""
+    from gearhead.tui import guard
+
+    caught = []
+    monkeypatch.setattr(guard, "report", lambda node, exc, where: caught.append((where, exc)))
+    yield
+    assert not caught, caught
+
+
 async def match_drawn(pilot, view: MatchView) -> float:
     """Until the view's charts show its latest result; the seconds it took."""
     start = time.perf_counter()
@@ -311,3 +322,52 @@ def test_match_card_in_a_real_terminal(tmp_path, size, no_color):
         assert "Traceback" not in term.screen() and "Error" not in term.screen(), term.screen()
     finally:
         term.close()
+
+
+async def test_brownouts_are_listed_as_gearhead_match_gives_them(capsys):
+    """A battery of 0.035 ohm browns the example out hundreds of times (the outputs switch off and
+    on): the card lists the first ones (time, length, moves running) and says how many more."""
+    code = cli.main(["match", str(EXAMPLE), "--json", "--set", "battery_resistance=0.035 ohm"])
+    assert code == 0
+    data = json.loads(capsys.readouterr().out)
+    assert len(data["brownouts"]) > 200
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.load(EXAMPLE))
+    async with app.run_test(size=(140, 45)) as pilot:
+        screen = await opened(pilot, app)
+        await settled(pilot, screen)
+        screen.robot._take_entry("battery_resistance", "0.035 ohm")  # as typed on the Robot card
+        await settled(pilot, screen)
+        started = time.perf_counter()
+        await pilot.press("ctrl+t")
+        view = screen.match_view
+        await match_drawn(pilot, view)
+        print(f"{len(view.match.bus.trace)} samples: ctrl+t to drawn {time.perf_counter() - started:.3f} s")
+        lines = summary(view).splitlines()
+        at = lines.index(f"Brownouts ({len(data['brownouts'])}): start, length, moves running")
+        for b, line in zip(data["brownouts"][:200], lines[at + 1 :]):
+            assert line.split() == [
+                f"{b['start']:.3f}",
+                "s",
+                f"{b['length'] * 1000:.1f}",
+                "ms",
+                *", ".join(b["running"]).split(),
+            ]
+        assert lines[at + 201].strip().startswith(f"... {len(data['brownouts']) - 200} more")
+        assert "Outputs disabled for" in summary(view)
+
+
+async def test_a_match_with_no_moves_and_no_load_draws_flat_charts():
+    """Nothing drawn from the battery: every series is flat (a chart of one value), no error."""
+    text = BAD.split("[[match.events]]")[0]
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.from_text(text, "idle.toml"))
+    async with app.run_test(size=(80, 24)) as pilot:
+        screen = await opened(pilot, app)
+        await settled(pilot, screen)
+        await pilot.press("ctrl+t")
+        view = screen.match_view
+        await match_drawn(pilot, view)
+        assert str(view.status.render()).startswith("✓ the match")
+        assert "Peak battery current            0 A" in summary(view)
+        await pilot.press("end")
+        await pilot.pause(0.2)
+        assert app.is_running

@@ -280,4 +280,3 @@ class MatchView(VerticalScroll, can_focus=True):
         p.set_xlabel(escape("Time [s]"))
         p.set_ylabel(escape("Charge [%]"))
         self.drawn = self.request
-        self.call_after_refresh(self._fit_plots)
