@@ -31,6 +31,11 @@ from gearhead.core.errors import InputError
 from ..guard import guarded
 
 PLOT_HEIGHT = 15
+CHARTS = {
+    "voltage": "Bus voltage over the match",
+    "current": "Battery current over the match",
+    "charge": "State of charge over the match",
+}
 MAX_BROWNOUTS_LISTED = 200  # a hostile match may have thousands: the count says how many more
 LAYER_COLOURS = ("cyan", "magenta", "yellow", "green", "red", "blue")
 BASE_COLOUR = "grey50"
@@ -70,8 +75,9 @@ def summary_text(m, source: str) -> Text:
         value, _, running = value.partition("  (")
         out.append(f"  {label:<{width}}  ")
         out.append(f"{value:<{value_width}}", style="bold")
-        out.append(f"  {name}", style="dim")
-        out.append(f"  ({running}\n" if running else "\n")
+        out.append(f"  {name}\n", style="dim")
+        if running:  # a line of its own: beside the name it wrapped mid-words at 80 columns
+            out.append(f"  {'':<{width}}  ({running}\n", style="italic")
     out.append("Share of the charge; peak supply current per motor (of a 40 A breaker)\n", style="bold")
     for k, v in m.shares.items():
         peak = m.channel_peaks.get(k)
@@ -115,16 +121,9 @@ class MatchView(VerticalScroll, can_focus=True):
         yield self.status
         self.summary = Static("", id="match-summary")
         yield self.summary
-        yield Static(Text("Bus voltage over the match", style="bold"), classes="match-heading")
-        yield Container(classes="match-plot", id="match-voltage")
-        yield Static(
-            Text("Battery current over the match", style="bold"),
-            classes="match-heading",
-            id="match-current-title",
-        )
-        yield Container(classes="match-plot", id="match-current")
-        yield Static(Text("State of charge over the match", style="bold"), classes="match-heading")
-        yield Container(classes="match-plot", id="match-charge")
+        for name, title in CHARTS.items():
+            yield Static(Text(title, style="bold"), classes="match-heading", id=f"match-{name}-title")
+            yield Container(classes="match-plot", id=f"match-{name}")
 
     # ---- what the workbook screen tells it ------------------------------------------------
     @guarded
@@ -200,7 +199,7 @@ class MatchView(VerticalScroll, can_focus=True):
         m = self.match
         if m is None or self.drawn == self.request or not self.app.is_running:
             return
-        from textual_plot import HiResMode, LegendLocation
+        from textual_plot import HiResMode
 
         from gearhead.core.match.series import peak_bins, series
 
@@ -211,7 +210,7 @@ class MatchView(VerticalScroll, can_focus=True):
         s = self._series
         widget = quiet_plot_widget()
         plots = {}
-        for name in ("voltage", "current", "charge"):
+        for name in CHARTS:
             holder = self.query_one(f"#match-{name}", Container)
             found = holder.query(widget)
             if found:
@@ -225,19 +224,25 @@ class MatchView(VerticalScroll, can_focus=True):
         # bus voltage, and the controller's levels as flat lines across the match
         p = plots["voltage"]
         p.clear()
-        p.plot(s.t, s.bus_voltage, line_style="cyan", hires_mode=HiResMode.BRAILLE, label="bus")
+        p.plot(s.t, s.bus_voltage, line_style="cyan", hires_mode=HiResMode.BRAILLE)
         ends = [0.0, s.length]
-        for level, colour, name in ((s.brownout, "red", "brownout"), (s.recovery, "yellow", "recovery")):
-            label = escape(f"{name} {level:g} V")
-            p.plot(ends, [level] * 2, line_style=colour, hires_mode=HiResMode.BRAILLE, label=label)
+        for level, colour in ((s.brownout, "red"), (s.recovery, "yellow")):
+            p.plot(ends, [level] * 2, line_style=colour, hires_mode=HiResMode.BRAILLE)
+        p.set_xlimits(0.0, s.length)
         p.set_ylimits(min(min(s.bus_voltage, default=s.brownout), s.brownout) - 0.5, None)
-        p.show_legend(LegendLocation.BOTTOMRIGHT)
+        self._title(
+            "voltage",
+            ("bus", "cyan"),
+            (f"brownout {s.brownout:g} V", "red"),
+            (f"recovery {s.recovery:g} V (the outputs back on above it)", "yellow"),
+        )
         p.set_xlabel(escape("Time [s]"))
         p.set_ylabel(escape("Bus [V]"))  # the left margin's width: a longer label is cut
         # the current, stacked: base, then each card, painted from the top sum down
         p = plots["current"]
         p.clear()
-        width = p.size.width - 12 if p.size.width > 30 else 120
+        # about a bar per column of the chart (the card's width less the axis margin and the scrollbar)
+        width = self.size.width - 14 if self.size.width > 34 else 120
         bins = peak_bins(s, max(20, min(300, width)))
         xs = [x for x, _ in bins]
         bar = s.length / max(len(bins), 1)
@@ -249,34 +254,40 @@ class MatchView(VerticalScroll, can_focus=True):
         for name, amps, colour in layers:
             running = [r + amps[i] for r, (_, i) in zip(running, bins)]
             sums.append((name, list(running), colour))
-        for name, ys, colour in reversed(sums):
-            p.bar(xs, ys, width=bar, bar_style=colour, label=escape(name))
+        for _, ys, colour in reversed(sums):
+            p.bar(xs, ys, width=bar, bar_style=colour)
         p.set_xlimits(0.0, s.length)
-        # the layers' order in words too: without colour (NO_COLOR) the bands look alike
-        self.query_one("#match-current-title", Static).update(
-            Text.assemble(
-                ("Battery current over the match", "bold"),
-                f", stacked from the bottom: {', '.join(name for name, _, _ in layers)} "
-                f"(a bar per {bar:.3g} s: the instant of its highest current)",
-            )
+        self._title(
+            "current",
+            *((name, colour) for name, _, colour in layers),
+            note=f"stacked from the bottom; a bar per {bar:.3g} s, at the instant of its highest current",
         )
-        p.show_legend(LegendLocation.TOPRIGHT)
         p.set_xlabel(escape("Time [s]"))
         p.set_ylabel(escape("Current [A]"))
         # the state of charge, plain and Peukert-weighted (the charge still available at these rates)
         p = plots["charge"]
         p.clear()
-        p.plot(
-            s.t, [100 * x for x in s.soc], line_style="green", hires_mode=HiResMode.BRAILLE, label="charge"
+        p.plot(s.t, [100 * x for x in s.soc], line_style="green", hires_mode=HiResMode.BRAILLE)
+        p.plot(s.t, [100 * x for x in s.available], line_style="magenta", hires_mode=HiResMode.BRAILLE)
+        p.set_xlimits(0.0, s.length)
+        self._title(
+            "charge",
+            ("state of charge", "green"),
+            ("available at the rates drawn (Peukert; the lower line)", "magenta"),
         )
-        p.plot(
-            s.t,
-            [100 * x for x in s.available],
-            line_style="magenta",
-            hires_mode=HiResMode.BRAILLE,
-            label="available (Peukert)",
-        )
-        p.show_legend(LegendLocation.BOTTOMLEFT)
         p.set_xlabel(escape("Time [s]"))
         p.set_ylabel(escape("Charge [%]"))
         self.drawn = self.request
+
+    def _title(self, chart: str, *keys: tuple[str, str], note: str = "") -> None:
+        """A chart's heading with its key, in place of a legend box (which hid the data under it:
+        the example's lowest voltage, at 138.5 s): each series' colour swatch and name, in words
+        too, so the key reads without colour (NO_COLOR)."""
+        text = Text(CHARTS[chart], style="bold")
+        text.append(": ")
+        for i, (name, colour) in enumerate(keys):
+            text.append("██", style=colour)
+            text.append(f" {name}" + (", " if i < len(keys) - 1 else ""))
+        if note:
+            text.append(f" ({note})", style="dim")
+        self.query_one(f"#match-{chart}-title", Static).update(text)
