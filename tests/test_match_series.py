@@ -125,3 +125,26 @@ def test_peak_bins_show_each_bins_highest_current_and_carry_on_through_empty_one
     assert [round(x, 9) for x, _ in bins] == [1.0, 3.0, 5.0, 7.0, 9.0]
     assert [i for _, i in bins] == [1, 2, 2, 3, 4]
     assert peak_bins(s, 0) == [] and peak_bins(MatchSeries([], [], [], []), 4) == []
+
+
+def test_the_envelope_keeps_every_bins_first_last_and_extremes_in_time_order(example):
+    from gearhead.core.match.series import envelope
+
+    m, s = example
+    xs, ys = envelope(s.t, s.bus_voltage, s.length, 600)
+    assert len(xs) <= 4 * 600 and len(xs) < len(s.t)
+    assert xs == sorted(xs) and xs[0] == s.t[0] and xs[-1] == s.t[-1]
+    assert min(ys) == m.outputs["min_bus_voltage"] == m.bus.min_bus_voltage
+    assert xs[ys.index(min(ys))] == m.outputs["min_bus_time"]
+    assert max(ys) == max(s.bus_voltage)
+    # every sample kept is a sample of the trace, and each bin's own lowest and highest are there
+    pairs = set(zip(s.t, s.bus_voltage))
+    assert all((x, y) in pairs for x, y in zip(xs, ys))
+    width = s.length / 600
+    for b in (0, 150, 599):
+        inside = [v for t, v in zip(s.t, s.bus_voltage) if min(599, int(t / width)) == b]
+        kept = [v for t, v in zip(xs, ys) if min(599, int(t / width)) == b]
+        if inside:
+            assert min(kept) == min(inside) and max(kept) == max(inside)
+            assert kept[0] == inside[0] and kept[-1] == inside[-1]  # exact at the bin's edges
+    assert envelope([], [], 1.0, 10) == ([], []) and envelope([0.0], [1.0], 1.0, 0) == ([], [])

@@ -139,6 +139,7 @@ async def test_a_match_that_cannot_run_shows_its_message_and_a_fix_brings_the_ch
         assert status.startswith("✗ bad.toml: match: match.events[1] (lift at 1 s): the card lift"), status
         assert "Traceback" not in status and summary(view) == ""
         assert view.drawn is None
+        assert not any(node.display for node in view.query(".match-heading, .match-plot"))
         await pilot.press("ctrl+t")
         assert screen.robot.sheet.move_to_field("ratio")
         await pilot.press(*keys_of("9"), "enter")
@@ -147,6 +148,7 @@ async def test_a_match_that_cannot_run_shows_its_message_and_a_fix_brings_the_ch
         await match_drawn(pilot, view)
         assert str(view.status.render()).startswith("✓ the match")
         assert "Lowest bus voltage" in summary(view)
+        assert all(node.display for node in view.query(".match-heading, .match-plot"))
 
 
 async def test_while_a_newer_solve_runs_the_match_card_says_so(monkeypatch):

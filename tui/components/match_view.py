@@ -8,7 +8,9 @@ newer request cancelling the running one through its budget, the result posted a
 request it answers): the match is part of the workbook's outcome and is cached there by what it
 reads, so running it a second time here would only double the work. This card shows what the
 latest outcome holds, says when a newer one is on its way, and names what went wrong when the match
-could not be run. The charts are drawn when the card is on screen (textual-plot loads then).
+could not be run. The charts' data (the series, thinned to what a chart can show: series.envelope)
+is made in a thread worker of this card's own (exclusive: a newer outcome cancels it between its
+steps), posted as `Prepared` with the request it answers, and drawn while the card is on screen.
 
 The current is stacked with textual-plot's bars (filled from 0): the layers' running sums are drawn
 from the top one down, each over the last, so each card's band is its share of the current. A bar
@@ -23,8 +25,11 @@ from typing import Any
 
 from rich.markup import escape
 from rich.text import Text
+from textual import work
 from textual.containers import Container, VerticalScroll
+from textual.message import Message
 from textual.widgets import Static
+from textual.worker import get_current_worker
 
 from gearhead.core.errors import InputError
 
@@ -114,7 +119,7 @@ class MatchView(VerticalScroll, can_focus=True):
         self.request: int | None = None  # the solve request it answers
         self.running = True  # a newer solve is on its way
         self.drawn: int | None = None  # the request whose charts are drawn
-        self._series = None
+        self._preparing: int | None = None  # the request whose charts' data a worker is making
 
     def compose(self):
         self.status = Static(Text("… running the match", style="yellow"), id="match-status")
@@ -137,14 +142,15 @@ class MatchView(VerticalScroll, can_focus=True):
     def show_result(self, request: int, result: Any) -> None:
         """The outcome of solve request `request` (the latest: the screen drops older ones)."""
         self.request, self.result, self.running = request, result, False
-        self._series = None
         if not self.is_mounted:
             return
         self._status()
         m = self.match
         self.summary.update(summary_text(m, self.source) if m is not None else "")
+        for node in self.query(".match-heading, .match-plot"):  # no charts of a match not run
+            node.display = m is not None
         if self.display:  # the card on screen (the switcher shows one pane): else when it is opened
-            self.call_later(self.draw)
+            self.draw()
 
     @property
     def match(self):
@@ -174,7 +180,7 @@ class MatchView(VerticalScroll, can_focus=True):
         """The card was brought on screen (the workbook screen's tab strip: Textual's Show event
         did not always come when the pane switched, in a real terminal): its charts drawn now."""
         if self.match is not None and self.drawn != self.request:
-            self.call_later(self.draw)
+            self.draw()
         else:
             self.call_after_refresh(self._fit_plots)
 
@@ -184,8 +190,8 @@ class MatchView(VerticalScroll, can_focus=True):
 
     @guarded
     def _fit_plots(self) -> None:
-        """Each chart drawn again at its canvas's size: a PlotWidget rendered once before its canvas
-        had a size (mounted and given data in one go) stayed blank until a layout refresh."""
+        """Each chart fitted again to its size after the card was hidden or resized: textual-plot
+        resizes its canvases on a layout refresh (its public refresh(layout=True))."""
         if "textual_plot" not in sys.modules:
             return
         from textual_plot import PlotWidget
@@ -194,20 +200,65 @@ class MatchView(VerticalScroll, can_focus=True):
             plot.refresh(layout=True)
 
     # ---- the charts ------------------------------------------------------------------------
-    async def draw(self) -> None:
-        """The three charts of the match shown (textual-plot's public API only)."""
-        m = self.match
-        if m is None or self.drawn == self.request or not self.app.is_running:
-            return
-        from textual_plot import HiResMode
+    class Prepared(Message):
+        """The charts' data (chart_data) of solve request `request`, or why it could not be made."""
 
-        from gearhead.core.match.series import peak_bins, series
+        def __init__(self, request: int | None, charts: dict | None, error: str | None = None) -> None:
+            super().__init__()
+            self.request, self.charts, self.error = request, charts, error
+
+    def draw(self) -> None:
+        """The charts of the match shown: their data made in a worker (a brownout-ridden match has
+        ~10⁵ samples: 0.17 s for the series alone), then drawn here. Nothing if they are drawn or
+        being made for this request already."""
+        if self.match is None or self.drawn == self.request or self._preparing == self.request:
+            return
+        self._preparing = self.request
+        # about a bar per column of the chart (the card's width less the axis margin and the scrollbar)
+        columns = self.size.width - 14 if self.size.width > 34 else 120
+        self._prepare(self.request, self.match, columns)
+
+    # a description of our own: Textual's default is the arguments' repr, and the outcome's (10⁵ trace
+    # samples in a brownout-ridden match) took 1.6 s on the UI thread at each start
+    @work(
+        thread=True,
+        exclusive=True,
+        group="match-charts",
+        exit_on_error=False,
+        description="Match card charts",
+    )
+    def _prepare(self, request: int | None, match, columns: int) -> None:
+        worker = get_current_worker()
+        try:
+            charts = chart_data(match, columns, cancelled=lambda: worker.is_cancelled)
+        except Exception as exc:  # a bug: said on the card and logged, the screen keeps working
+            from ..bug_log import record
+            from ..guard import internal_error
+
+            self.post_message(self.Prepared(request, None, internal_error(exc, record(exc, "match charts"))))
+            return
+        if charts is not None:  # None: cancelled by a newer request, which posts its own
+            self.post_message(self.Prepared(request, charts))
+
+    @guarded
+    async def on_match_view_prepared(self, message: Prepared) -> None:
+        message.stop()
+        if message.request != self.request:
+            return  # a newer outcome came meanwhile: its charts are on their way
+        self._preparing = None
+        if message.charts is None:
+            self.status.update(Text(f"✗ the charts could not be drawn: {message.error}", style="red"))
+            return
+        if self.display and self.app.is_running:
+            await self._draw(message.charts)
+            self.drawn = message.request
+
+    async def _draw(self, c: dict) -> None:
+        """The charts from chart_data's lists (textual-plot's public API only)."""
+        from textual_plot import HiResMode
 
         from .plot_panel import quiet_plot_widget
 
-        if self._series is None:
-            self._series = series(m)
-        s = self._series
         widget = quiet_plot_widget()
         plots = {}
         for name in CHARTS:
@@ -221,45 +272,33 @@ class MatchView(VerticalScroll, can_focus=True):
                 if not plot.children:  # the app closed while it mounted
                     return
                 plots[name] = plot
+        length = c["length"]
         # bus voltage, and the controller's levels as flat lines across the match
         p = plots["voltage"]
         p.clear()
-        p.plot(s.t, s.bus_voltage, line_style="cyan", hires_mode=HiResMode.BRAILLE)
-        ends = [0.0, s.length]
-        for level, colour in ((s.brownout, "red"), (s.recovery, "yellow")):
-            p.plot(ends, [level] * 2, line_style=colour, hires_mode=HiResMode.BRAILLE)
-        p.set_xlimits(0.0, s.length)
-        p.set_ylimits(min(min(s.bus_voltage, default=s.brownout), s.brownout) - 0.5, None)
+        p.plot(*c["voltage"], line_style="cyan", hires_mode=HiResMode.BRAILLE)
+        for level, colour in ((c["brownout"], "red"), (c["recovery"], "yellow")):
+            p.plot([0.0, length], [level] * 2, line_style=colour, hires_mode=HiResMode.BRAILLE)
+        p.set_xlimits(0.0, length)
+        p.set_ylimits(c["voltage_floor"], None)
         self._title(
             "voltage",
             ("bus", "cyan"),
-            (f"brownout {s.brownout:g} V", "red"),
-            (f"recovery {s.recovery:g} V (the outputs back on above it)", "yellow"),
+            (f"brownout {c['brownout']:g} V", "red"),
+            (f"recovery {c['recovery']:g} V (the outputs back on above it)", "yellow"),
         )
         p.set_xlabel(escape("Time [s]"))
         p.set_ylabel(escape("Bus [V]"))  # the left margin's width: a longer label is cut
-        # the current, stacked: base, then each card, painted from the top sum down
+        # the current, stacked: each layer's running sum, painted from the top one down
         p = plots["current"]
         p.clear()
-        # about a bar per column of the chart (the card's width less the axis margin and the scrollbar)
-        width = self.size.width - 14 if self.size.width > 34 else 120
-        bins = peak_bins(s, max(20, min(300, width)))
-        xs = [x for x, _ in bins]
-        bar = s.length / max(len(bins), 1)
-        layers = [("base", s.base, BASE_COLOUR)] + [
-            (card, amps, LAYER_COLOURS[k % len(LAYER_COLOURS)])
-            for k, (card, amps) in enumerate(s.by_card.items())
-        ]
-        sums, running = [], [0.0] * len(bins)
-        for name, amps, colour in layers:
-            running = [r + amps[i] for r, (_, i) in zip(running, bins)]
-            sums.append((name, list(running), colour))
-        for _, ys, colour in reversed(sums):
+        xs, bar = c["bars"], c["bar_width"]
+        for _, ys, colour in reversed(c["layers"]):
             p.bar(xs, ys, width=bar, bar_style=colour)
-        p.set_xlimits(0.0, s.length)
+        p.set_xlimits(0.0, length)
         self._title(
             "current",
-            *((name, colour) for name, _, colour in layers),
+            *((name, colour) for name, _, colour in c["layers"]),
             note=f"stacked from the bottom; a bar per {bar:.3g} s, at the instant of its highest current",
         )
         p.set_xlabel(escape("Time [s]"))
@@ -267,9 +306,9 @@ class MatchView(VerticalScroll, can_focus=True):
         # the state of charge, plain and Peukert-weighted (the charge still available at these rates)
         p = plots["charge"]
         p.clear()
-        p.plot(s.t, [100 * x for x in s.soc], line_style="green", hires_mode=HiResMode.BRAILLE)
-        p.plot(s.t, [100 * x for x in s.available], line_style="magenta", hires_mode=HiResMode.BRAILLE)
-        p.set_xlimits(0.0, s.length)
+        p.plot(*c["charge"], line_style="green", hires_mode=HiResMode.BRAILLE)
+        p.plot(*c["available"], line_style="magenta", hires_mode=HiResMode.BRAILLE)
+        p.set_xlimits(0.0, length)
         self._title(
             "charge",
             ("state of charge", "green"),
@@ -277,7 +316,6 @@ class MatchView(VerticalScroll, can_focus=True):
         )
         p.set_xlabel(escape("Time [s]"))
         p.set_ylabel(escape("Charge [%]"))
-        self.drawn = self.request
 
     def _title(self, chart: str, *keys: tuple[str, str], note: str = "") -> None:
         """A chart's heading with its key, in place of a legend box (which hid the data under it:
@@ -291,3 +329,43 @@ class MatchView(VerticalScroll, can_focus=True):
         if note:
             text.append(f" ({note})", style="dim")
         self.query_one(f"#match-{chart}-title", Static).update(text)
+
+
+# a line chart's points: each bin's lowest and highest (series.envelope), 2 or more per braille
+# pixel of a 300-column chart, and fine enough that a dip keeps its shape to the pixel
+LINE_BINS = 2000
+
+
+def chart_data(match, columns: int, cancelled=lambda: False) -> dict | None:
+    """What the three charts draw, from a MatchOutcome (core/match/series.py), in plain lists: the
+    lines thinned to their envelope, the current as each layer's running sum at the bins' peak
+    instants. None when `cancelled()` says a newer request came (checked between the steps)."""
+    from gearhead.core.match.series import envelope, peak_bins, series
+
+    s = series(match)
+    if cancelled():
+        return None
+    length = s.length
+    bins = peak_bins(s, max(20, min(300, columns)))
+    layers = [("base", s.base, BASE_COLOUR)] + [
+        (card, amps, LAYER_COLOURS[k % len(LAYER_COLOURS)])
+        for k, (card, amps) in enumerate(s.by_card.items())
+    ]
+    sums, running = [], [0.0] * len(bins)
+    for name, amps, colour in layers:
+        running = [r + amps[i] for r, (_, i) in zip(running, bins)]
+        sums.append((name, list(running), colour))
+    if cancelled():
+        return None
+    return {
+        "length": length,
+        "voltage": envelope(s.t, s.bus_voltage, length, LINE_BINS),
+        "voltage_floor": min(min(s.bus_voltage, default=s.brownout), s.brownout) - 0.5,
+        "brownout": s.brownout,
+        "recovery": s.recovery,
+        "bars": [x for x, _ in bins],
+        "bar_width": length / max(len(bins), 1),
+        "layers": sums,
+        "charge": envelope(s.t, [100 * x for x in s.soc], length, LINE_BINS),
+        "available": envelope(s.t, [100 * x for x in s.available], length, LINE_BINS),
+    }
