@@ -314,7 +314,7 @@ class WorkbookScreen(Screen):
     def check_action(self, action: str, parameters: tuple) -> bool | None:
         if action == "match":  # in the key bar only when the workbook has a [match]
             return self.match_view is not None
-        return True
+        return super().check_action(action, parameters)
 
     def _own_entries(self) -> dict[str, dict[str, Any]]:
         """What was typed on the screen, per card ("" the Robot card): what a save writes."""
