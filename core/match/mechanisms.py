@@ -493,6 +493,9 @@ class MechanismResult:
     charge: float = 0.0  # C, ∫N·I_s dt (its share of the battery's charge): the trapezoid rule on the trace
     trace: list = field(default_factory=list)  # (t, position q, speed toward the goal)
     shots: list = field(default_factory=list)  # a burst's: (t, ball speed m/s, ω before, ω after) (B11)
+    # (i, t, N·I_s): its supply current (A, all its motors) at the bus trace's sample i while it draws
+    # (its move, and its hold after the goal): the match's current stacked by mechanism
+    supply_trace: list = field(default_factory=list)
 
     @property
     def time_to_goal(self) -> float | None:
@@ -1090,6 +1093,7 @@ class _Run:
             if last is not None:
                 res.charge += 0.5 * (last[1] + mk.N * i_s) * (t - last[0])
             self.last_supply[k] = (t, mk.N * i_s)
+            res.supply_trace.append((len(trace), t, mk.N * i_s))
             res.peak_supply_current = max(res.peak_supply_current, i_s)
             res.peak_stator_current = max(res.peak_stator_current, abs(mk.stator(br, E, V)))
             res.trace.append((t, mk.q0 + mk.s * y[4 + 3 * k] * mk.d, y[5 + 3 * k] * mk.v_ref))

@@ -205,6 +205,7 @@ class WorkbookScreen(Screen):
         Binding("ctrl+s", "save", "Save workbook"),
         Binding("ctrl+right", "step(1)", "Next card"),
         Binding("ctrl+left", "step(-1)", "Previous card"),
+        Binding("ctrl+t", "match", "Match"),  # the Match card (match_view.py); shown with a [match]
         # the app's card commands act on the calculator cards behind this screen: not here
         *(Binding(key, "not_here", show=False) for key in ("ctrl+o", "ctrl+g", "ctrl+r", "ctrl+y", "ctrl+e")),
     ]
@@ -221,6 +222,8 @@ class WorkbookScreen(Screen):
         self._wb_shown = 0  # the request whose result is shown
         self._wb_pushed: dict[tuple[str, str], Any] = {}  # (card, field) -> the linked value last set
         self._saved: dict[str, dict[str, Any]] = {}  # per card ("" the Robot card): entries last saved
+        self.match_view = None  # the Match card (match_view.py), when the workbook has a [match]
+        self._before_match = "wbtab-robot"  # the tab ctrl+t on the Match card returns to
 
     def compose(self) -> ComposeResult:
         from gearhead.core.registry import get
@@ -229,6 +232,7 @@ class WorkbookScreen(Screen):
         yield Tabs(
             Tab("Robot", id="wbtab-robot"),
             *(Tab(name, id=f"wbtab-{name}") for name in book.cards),
+            *((Tab("Match", id="wbtab-match"),) if book.match is not None else ()),
             id="workbook-tabs",
         )
         entries = {
@@ -260,6 +264,11 @@ class WorkbookScreen(Screen):
                 }
                 self.cards[name] = tab
                 yield tab
+            if book.match is not None:  # no card may be named "match" (core/workbook/match.py)
+                from .match_view import MatchView
+
+                self.match_view = MatchView(book.source, id="wbpane-match")
+                yield self.match_view
         from .key_bar import KeyBar
 
         yield KeyBar()
@@ -278,6 +287,10 @@ class WorkbookScreen(Screen):
         event.stop()
         pane = "wbpane-" + (event.tab.id or "").removeprefix("wbtab-")
         self.query_one("#workbook-panes", ContentSwitcher).current = pane
+        if pane == "wbpane-match":
+            self.match_view.focus()  # its arrows and PageUp/PageDown scroll it
+            self.match_view.opened()  # its charts are drawn while it is on screen
+            return
         shown = self.robot if pane == "wbpane-robot" else self.cards[pane.removeprefix("wbpane-")]
         if shown.is_mounted:
             shown.sheet.focus()  # typing goes to the card on screen
@@ -285,8 +298,23 @@ class WorkbookScreen(Screen):
     def action_step(self, step: int) -> None:
         tabs = self.query_one("#workbook-tabs", Tabs)
         ids = ["wbtab-robot", *(f"wbtab-{n}" for n in self.book.cards)]
+        ids += ["wbtab-match"] if self.match_view is not None else []
         current = ids.index(tabs.active) if tabs.active in ids else 0
         tabs.active = ids[(current + step) % len(ids)]
+
+    def action_match(self) -> None:
+        """ctrl+t: the Match card; from it, back to the card it was opened from."""
+        tabs = self.query_one("#workbook-tabs", Tabs)
+        if tabs.active == "wbtab-match":
+            tabs.active = self._before_match
+        else:
+            self._before_match = tabs.active or "wbtab-robot"
+            tabs.active = "wbtab-match"
+
+    def check_action(self, action: str, parameters: tuple) -> bool | None:
+        if action == "match":  # in the key bar only when the workbook has a [match]
+            return self.match_view is not None
+        return super().check_action(action, parameters)
 
     def _own_entries(self) -> dict[str, dict[str, Any]]:
         """What was typed on the screen, per card ("" the Robot card): what a save writes."""
@@ -400,6 +428,8 @@ class WorkbookScreen(Screen):
             self.robot.status.update(
                 Text("… solving (the requirements below are those of the last entries)", style="yellow")
             )
+            if self.match_view is not None:
+                self.match_view.mark_running()
 
     def _with_unit(self, name: str, entry: Any) -> Any:
         """A bare number typed on a Robot card row is in the unit the row shows (as on any card):
@@ -450,6 +480,8 @@ class WorkbookScreen(Screen):
     def _show(self, generation: int, result) -> None:
         if generation != self._wb_generation or not self.is_attached:
             return  # a newer request is on its way
+        if self.match_view is not None:
+            self.match_view.show_result(generation, result)
         if isinstance(result, InputError):
             self.robot.status.update(Text(f"✗ {result}", style="red"))
             return
