@@ -197,3 +197,35 @@ async def test_arm_applies_its_mass_inertia_and_friction(tmp_path):
         got = tab.solution.inputs
         assert got["moment_of_inertia"].value == pytest.approx(best["kA"] * r.card.f, rel=1e-9)
         assert got["inertia_model"].value == "entered"
+
+
+async def test_a_bad_entry_on_the_card_or_a_bad_csv_is_named(tmp_path):
+    bad_csv = tmp_path / "bad.csv"
+    bad_csv.write_text("Timestamp,voltage-m-mech\n0.0,nan\n", encoding="utf-8")
+    app = GearheadApp(blink=False, initial="elevator", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await settle(pilot)
+        await fit_with(pilot, app, str(bad_csv), str(bad_csv))
+        card(app).set_entries({"load_mass": "-3 kg"})
+        await settle(pilot)
+        await fit_with(pilot, app, str(LOG), "load_mass")
+
+
+async def fit_with(pilot, app, path: str, named: str) -> None:
+    screen = await open_fit(pilot)
+    await fit(pilot, screen, path)
+    status = str(screen.query_one("#fit-status").render())
+    assert named in status and screen.report is None and "Traceback" not in status, status
+    await pilot.press("escape")
+    await pilot.pause()
+    assert not isinstance(app.screen, FitScreen)
+
+
+def test_the_dialog_as_it_opens_snapshot(snap_compare):
+    """Before a log is chosen (a fitted table's standard deviations of 1e-16 are rounding, which
+    differs between machines: no snapshot of it)."""
+    assert snap_compare(
+        GearheadApp(blink=False, initial="elevator", hide_timings=True),
+        terminal_size=SIZE,
+        run_before=open_fit,
+    )
