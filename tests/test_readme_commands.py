@@ -107,6 +107,10 @@ def test_each_readme_command_runs_as_written_from_another_folder(line, expected,
             expected = 2
         else:
             pytest.skip(f"{bare!r} serves until stopped (tests/test_serve.py runs it)")
+    if "examples/" in line:  # the example logs, at the path a clone has them (README's fit section)
+        (tmp_path / "examples").mkdir()
+        for log in (ROOT / "examples").glob("*.wpilog"):
+            shutil.copy(log, tmp_path / "examples" / log.name)
     env = {**os.environ, "PATH": f"{BIN}{os.pathsep}{os.environ.get('PATH', '')}", "NO_COLOR": "1"}
     env.pop("PYTHONPATH", None)
     run = subprocess.run(

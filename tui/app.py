@@ -660,6 +660,26 @@ class GearheadApp(App):
             SweepScreen(tab.calculator, dict(tab.entries), name, self.blink, self.hide_timings, shown)
         )
 
+    @guarded
+    async def action_fit_from_log(self) -> None:
+        """The card's model fitted from a SysId log (fit_screen.py); Apply sets the fitted entries."""
+        from gearhead.core.fit import KINDS
+
+        tab = await self.card(self.current_calculator)
+        if tab.calculator.id not in KINDS:
+            self.notify("Only the elevator, arm and flywheel cards fit from a log.", severity="warning")
+            return
+        from .components.fit_screen import FitScreen
+
+        def applied(values) -> None:
+            if values:
+                tab.set_entries(values)
+                self.notify(sent_text(values, tab.calculator), title="Fitted entries applied", markup=False)
+
+        self.push_screen(
+            FitScreen(tab.calculator, dict(tab.entries), self.blink, self.hide_timings), guard(self, applied)
+        )
+
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         # each command's callback is guarded (the actions by their decorator, the lambdas here)
         yield from super().get_system_commands(screen)
@@ -692,6 +712,12 @@ class GearheadApp(App):
         yield SystemCommand(
             "Sweep…", "Vary the focused input over a range: plot, table, CSV", self.action_sweep
         )
+        if self.current_calculator in ("elevator", "arm", "flywheel"):  # core.fit.KINDS
+            yield SystemCommand(
+                "Fit from log…",
+                "Fit this card's model from a SysId log (.wpilog, .csv); Apply sets the fitted entries",
+                self.action_fit_from_log,
+            )
         for calc in calculators().values():
             yield SystemCommand(
                 f"Open {calc.title}", calc.summary, guard(self, lambda cid=calc.id: self.show_calculator(cid))

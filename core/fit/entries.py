@@ -79,6 +79,17 @@ def load_card(
     return card
 
 
+def card_from_entries(kind: str, raw: dict, label: str) -> Card:
+    """The card of these entries as written (the app's card on screen), as load_card gives a file's."""
+    from .. import registry
+    from ..model import parse_inputs
+
+    values, _ = parse_inputs(registry.get(kind), raw)
+    card = _model(kind, values, label)
+    card.raw = dict(raw)
+    return card
+
+
 def _model(kind: str, v: dict, label: str) -> Card:
     from ..sim import motion
 
