@@ -49,7 +49,7 @@ BASE_COLOUR = "grey50"
 def output_rows(m) -> list[tuple[str, str, str]]:
     """(label, value with its unit, requirement name) per output, as `gearhead match` prints them."""
     from gearhead.core import units
-    from gearhead.core.workbook.match import OUTPUTS
+    from gearhead.core.workbook.match import OUTPUTS, output_info
 
     rows = []
     for key, (label, unit) in OUTPUTS.items():
@@ -60,11 +60,18 @@ def output_rows(m) -> list[tuple[str, str, str]]:
         if key == "min_bus_time" and m.running_at_min:
             text += f"  ({', '.join(m.running_at_min)} running)"
         rows.append((label, text, f"match.{key}"))
+    cards = set(m.bus.channels)
+    for key, value in m.outputs.items():  # each card's channel breaker (`lift_breaker_load`, ...)
+        if key not in OUTPUTS and (info := output_info(key, cards)) is not None:
+            label, unit = info
+            rows.append((label, f"{units.format_number(value)} {unit}".rstrip(), f"match.{key}"))
     return rows
 
 
 def summary_text(m, source: str) -> Text:
     """The match's head line, outputs, shares and brownouts (Text: no markup is read)."""
+    from gearhead.core.workbook import match
+
     length = m.spec.values["length"]
     out = Text()
     out.append(
@@ -83,13 +90,12 @@ def summary_text(m, source: str) -> Text:
         out.append(f"  {name}\n", style="dim")
         if running:  # a line of its own: beside the name it wrapped mid-words at 80 columns
             out.append(f"  {'':<{width}}  ({running}\n", style="italic")
-    out.append("Share of the charge; peak supply current per motor (of a 40 A breaker)\n", style="bold")
-    for k, v in m.shares.items():
-        peak = m.channel_peaks.get(k)
-        more = f"   peak {peak:.4g} A ({peak / 40 * 100:.3g} %)" if peak is not None else ""
-        out.append(f"  {k:<12} {v * 100:6.3g} %{more}\n")
-    if "main_breaker_margin" not in m.outputs:
-        out.append("  (no breaker trip table entered, so no trip is predicted)\n", style="dim")
+    # the shares and the channel breakers as `gearhead match` prints them (one text for both)
+    lines = match.summary(m)
+    start = next(i for i, line in enumerate(lines) if line.startswith("  Charge share"))
+    out.append(lines[start].strip() + "\n", style="bold")
+    for line in lines[start + 1 :]:
+        out.append(line + "\n", style="dim" if line.lstrip().startswith("(") else "")
     if m.brownouts:
         out.append(f"Brownouts ({len(m.brownouts)}): start, length, moves running\n", style="bold red")
         for b in m.brownouts[:MAX_BROWNOUTS_LISTED]:
