@@ -78,6 +78,12 @@ async def test_the_export_dialog_saves_the_pathplanner_file(tmp_path, monkeypatc
         options.highlighted = index
         await settle(pilot)
         assert app.screen.query_one("#export-path", Input).value == "settings.json"
-        app.screen.query_one("#save", Button).press()
-        await settle(pilot)
-        assert json.loads((tmp_path / "settings.json").read_text())["driveMotorType"] == "krakenX60"
+        dialog = app.screen
+        dialog.query_one("#save", Button).press()
+        for _ in range(100):  # the press is a message: on a loaded machine settle may return first
+            await settle(pilot)
+            if (tmp_path / "settings.json").exists():
+                break
+        saved = tmp_path / "settings.json"
+        assert saved.exists(), f"not saved; the dialog says: {dialog.query_one('#export-error').render()}"
+        assert json.loads(saved.read_text())["driveMotorType"] == "krakenX60"
