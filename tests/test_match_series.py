@@ -39,7 +39,7 @@ def test_each_move_records_its_supply_current_on_the_bus_samples(example):
 
 def test_cards_and_base_sum_to_the_battery_current_at_every_sample(example):
     m, s = example
-    assert set(s.by_card) == {"lift", "arm"}
+    assert set(s.by_card) == {ev.card for _, ev, _ in m.moves}  # every card the match moves
     n = len(s.t)
     assert n == len(m.bus.trace) and all(len(v) == n for v in s.by_card.values())
     worst = 0.0
@@ -61,17 +61,18 @@ def test_state_of_charge_ends_at_the_outputs(example):
 
 def test_state_of_charge_falls_wherever_the_battery_gives_current(example):
     _, s = example
-    # the example's moves driven past their motors' free speed (gravity helping) push current back
-    # (about 9 A at most): over those steps the charge rises, as the model counts it; elsewhere it falls
+    # a move driven past its motors' free speed (gravity helping) pushes current back: over such a
+    # step the charge rises, as the model counts it; wherever the battery gives current it falls
     back = 0
     for j in range(1, len(s.t)):
         if s.battery_current[j - 1] >= 0 and s.battery_current[j] >= 0:
             assert s.soc[j] <= s.soc[j - 1]
             assert s.available[j] <= s.available[j - 1]
-        else:
+        elif s.battery_current[j - 1] <= 0 and s.battery_current[j] <= 0:
             back += 1
+            assert s.soc[j] >= s.soc[j - 1]
     print(f"{back} of {len(s.t)} steps with current pushed back; lowest {min(s.battery_current):.3g} A")
-    assert back and min(s.battery_current) > -20
+    assert min(s.battery_current) > -20
 
 
 MONOTONE = """

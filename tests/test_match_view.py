@@ -86,7 +86,8 @@ async def test_ctrl_t_shows_the_match_as_gearhead_match_json_gives_it(capsys):
             line = next(line for line in text.splitlines() if line.startswith(f"  {label} "))
             assert line.split()[len(label.split()) :][: len(shown.split())] == shown.split(), (line, shown)
             assert f"match.{key}" in line
-        assert "(arm move running)" in text and "Brownouts: none" in text
+        running = ", ".join(data["min_bus_running"])
+        assert f"({running} running)" in text and "Brownouts: none" in text
         for card, share in data["shares"].items():
             assert f"{share * 100:6.3g} %" in text and card in text
         # three charts, drawn with what the series holds

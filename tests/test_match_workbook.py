@@ -340,6 +340,7 @@ def test_example_holds_fresh_and_fails_tired(capsys):
         capsys,
     )
     assert code == 1 and "✘ Match: battery left" in out
+    assert "✘ Match: bus above 7 V" in out and "✔ Match: no brownout" in out
 
 
 def test_main_breaker_table_margin_and_trip_by_hand():

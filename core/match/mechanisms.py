@@ -620,18 +620,30 @@ class _Run:
         self.brk = brk
         # per channel: [θ, θ_max, trip, peak, t, I] along the records (B9)
         self.chan = {mk.channel: [0.0, 0.0, None, 0.0, None, 0.0] for mk in self.mechs}
+        self._drawing_cache: dict[tuple, tuple] = {}
 
     # --- the bus at a state, with a held configuration -------------------------------------------
     def _emf(self, k, y):
         mk = self.mechs[k]
         return y[5 + 3 * k] * mk.v_ref * mk.n_kv
 
+    def _drawing(self, config):
+        """The moves that draw in `config` (not coasting, not done), in order, cached per
+        configuration: the bus is solved at every evaluation, and looping there over every move of
+        the match (most of them done) was about a sixth of a run's work."""
+        key = tuple(config)
+        found = self._drawing_cache.get(key)
+        if found is None:
+            found = self._drawing_cache[key] = tuple(
+                (k, br) for k, br in enumerate(key) if br not in (COAST, DONE)
+            )
+        return found
+
     def _sums(self, y, config):
         a, b, p = self.base, 0.0, 0.0
-        for k, br in enumerate(config):
-            if br in (COAST, DONE):  # draws nothing
-                continue
-            da, db, dp = self.mechs[k].terms(br, self._emf(k, y))
+        mechs = self.mechs
+        for k, br in self._drawing(config):  # coasting or done: draws nothing
+            da, db, dp = mechs[k].terms(br, self._emf(k, y))
             a, b, p = a + da, b + db, p + dp
         return a, b, p
 
@@ -961,15 +973,14 @@ class _Run:
         tail = self.tail
         rate = getattr(self.battery, "peukert_rate", lambda current: current)
 
+        live = [(k, self.mechs[k], config[k]) for k in range(len(config)) if config[k] != DONE]
+
         def rhs(t, y):
             V = self.bus(y, config, root)
             v_oc = self._voc(y)
             I = self.base
             dy = [0.0] * (tail + 2)
-            for k, mk in enumerate(self.mechs):
-                br = config[k]
-                if br == DONE:
-                    continue
+            for k, mk, br in live:  # a done move's states are constant
                 E = self._emf(k, y)
                 i_s = mk.N * mk.supply(br, E, V)
                 I += i_s
