@@ -111,8 +111,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     given = list(sys.argv[1:] if argv is None else argv)
     workbook_named = given[:1] and (given[0].endswith(".toml") or given[0].startswith("builtin:"))
+    if not given or (len(given) == 1 and workbook_named and not given[0].startswith("-")):
+        _keep_quit_key()  # the app: first, before the parser's ~20 ms (a key typed at launch)
     if len(given) == 1 and workbook_named and not given[0].startswith("-"):
-        _keep_quit_key()
         return _workbook_app(given[0], argv)  # `gearhead robot.toml`: the app with that workbook
     args = _parser().parse_args(argv)
     if args.command is None:
