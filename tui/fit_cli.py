@@ -117,7 +117,8 @@ def text(r) -> list[str]:
     out.append(
         "  samples: "
         + ", ".join(f"{s} {len(run.t_voltage)}" for s, run in p.runs.items())
-        + f"; mean step {r.info['dt'] * 1000:.3g} ms, velocity threshold {_g(r.info['velocity_threshold'])} {vel}"
+        + f"; mean step {r.info['dt'] * 1000:.3g} ms, velocity noise floor {_g(r.info['velocity_threshold'])} {vel} (at rest below "
+        + f"{_g(r.info['moving_threshold'])})"
     )
     gains = list(r.fits["continuous"].gains)
     unit = {"kS": "V", "kG": "V", "kV": f"V/({vel})", "kA": f"V/({vel}/s)", "offset": "rad"}

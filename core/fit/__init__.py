@@ -107,6 +107,9 @@ def fit_log(path, kind: str, card=None, **pick) -> Report:
     favoured = min(good, key=lambda f: replays[f].velocity_rmse)
     best = fits[favoured]
     notes = list(picked.notes) + [w for f in fits.values() for w in f.warnings]
+    slow = sysid_fit.ka_note(best.gains, info["dt"])
+    if slow:
+        notes.append(slow)
     moved, more = ent.moves(card, best.gains)
     rows = ent.entries(card, best.gains, best.sigma)
     from .battery import fit_battery

@@ -8,6 +8,13 @@ Data preparation (AnalysisManager::PrepareGeneralData, FilteringUtils InitialTri
     velocity threshold: the least noise floor of the quasistatic tests' velocity, the RMS of
     v[i−4] less the 9-sample moving average ending at i (GetNoiseFloor)                        (D2)
     quasistatic tests: samples with |u| = 0 or |v| below the threshold dropped                 (D3)
+    ours, beyond SysId: the quasistatic threshold is MOVING noise floors, not one. The model holds
+    only in motion; while friction holds the mechanism (the ramp below kS + kG) v is pure noise, and
+    one floor (√(8/9)·σ_v for white noise: v[i−4] less a mean of 9 that holds it) lets 35 % of those
+    samples in, with a = 0 and sgn v random, each a residual up to (kS + kG)/kA. On a mechanism
+    faster than its log (kA/kV under the step) they outweigh the few samples that carry kA: at
+    σ_v = 0.0002 m/s, 5 ms, kA/kV = 3.6 ms, SysId's one floor gives kA 4.7x (continuous) and 9.2x
+    (discrete), kS 13 % low. Four floors (3.8 σ_v) let 1.6e-4 of them in                      (D3')
     acceleration a[i] = (v[i+1] − v[i−1])/(2·T̄), a[0] = (v[1] − v[0])/(2·T̄), a[last] = 0, T̄ the
     mean dt in (0, 0.5 s) (PrepareMechData's CentralFiniteDifference<1, 3>); cos θ, sin θ      (D4)
     dynamic tests: samples before the largest sgn(v)·a dropped; then cut after the step
@@ -43,6 +50,7 @@ from .signals import Picked, Run
 NOISE_WINDOW = 9  # kNoiseMeanWindow
 QUALITY_THRESHOLD = 10.0
 MOVED = 5.0  # a test's top speed must exceed this many times the noise floor (ours, not SysId's)
+MOVING = 4.0  # (D3'): quasistatic samples slower than this many noise floors are taken as at rest
 GAIN_NAMES = ("kS", "kV", "kA", "kG", "offset")
 
 
@@ -122,6 +130,26 @@ def mean_dt(dts: np.ndarray) -> float:
     return float(np.mean(ok))
 
 
+def ka_note(gains: dict[str, float], T: float) -> str | None:
+    """A note naming kA when the fitted time constant τ = kA/kV is under the log's mean step T: the
+    continuous form's central difference of the approach e^(−t/τ) over ±T is sinh(x)/x times its
+    slope (x = T/τ), so its kA falls towards x/sinh x of the plant's; the discrete form's
+    kA = kV·T/(−ln α) rests on α = e^(−x) alone, and jitter ±j in a step moves ln α, so kA, by j/T."""
+    kA, kV = gains.get("kA", math.nan), gains.get("kV", math.nan)
+    if not (math.isfinite(kA) and math.isfinite(kV) and kA > 0 and kV > 0 and T > 0):
+        return None
+    tau = kA / kV
+    if tau >= T:
+        return None
+    x = T / tau
+    return (
+        f"kA: the fitted time constant kA/kV = {tau * 1000:.3g} ms is under the log's step {T * 1000:.3g} ms, "
+        "so the log barely resolves kA: the continuous form's central difference gives about "
+        f"{x / math.sinh(x):.2g} of it, the discrete form's rests on one step's decay e^(-T/τ) = "
+        f"{math.exp(-x):.2g} (timestamp jitter ±j moves its kA by j/T); log faster than kA/kV to measure kA"
+    )
+
+
 def _accelerate(d: Prepared, arm: bool, source: str, state: str) -> Prepared:
     """(D4)."""
     if len(d) < 3:
@@ -170,11 +198,12 @@ def _prepare(picked: Picked) -> tuple[dict[str, Prepared], dict[str, float]]:
                 src,
             )
         if "quasistatic" in s:
-            d = d.take((np.abs(d.u) > 0) & (np.abs(d.v) >= threshold))  # (D3)
+            d = d.take((np.abs(d.u) > 0) & (np.abs(d.v) >= MOVING * threshold))  # (D3), (D3')
             if len(d) == 0:
                 raise InputError(
                     s,
-                    f"has no sample moving faster than the noise floor {threshold:.3g} with a voltage applied "
+                    f"has no sample moving faster than {MOVING:g} noise floors {MOVING * threshold:.3g} with a "
+                    "voltage applied "
                     "(the mechanism did not move)",
                     src,
                 )
@@ -196,7 +225,12 @@ def _prepare(picked: Picked) -> tuple[dict[str, Prepared], dict[str, float]]:
             raise InputError(s, "has no sample left after SysId's filtering", src)
         out[s] = d
     T = mean_dt(np.concatenate([r.dt for r in out.values()]))
-    return out, {"velocity_threshold": threshold, "step_time": step_time, "dt": T}
+    return out, {
+        "velocity_threshold": threshold,
+        "moving_threshold": MOVING * threshold,
+        "step_time": step_time,
+        "dt": T,
+    }
 
 
 def _columns(d: Prepared, kind: str, v: np.ndarray) -> list[np.ndarray]:
