@@ -38,7 +38,8 @@ FLOOR = {"kS": 0.08, "kA": 0.03}
 def test_recovers_the_plant(tmp_path, kind, noise):
     """The continuous form: kV, kG within 1 % up to 0.5 % velocity noise, kS and kA within the floor
     plus 4 σ at every level. The discrete form regresses on the noisy velocity itself (errors in
-    the variables bias α, so kA, low: 10 % at 0.5 % noise): its bounds hold up to 0.1 % noise."""
+    the variables bias α, so kA, low: 10 % at 0.5 % noise, 12-14 % by _kA_bound's derivation): kA
+    within the floor plus that bound at every level, its other bounds up to 0.1 % noise."""
     g = PLANTS[kind]
     sigma_v = noise * 12 / g["kV"]  # the noise as a share of the top speed at 12 V
     path = simulate(
@@ -49,6 +50,11 @@ def test_recovers_the_plant(tmp_path, kind, noise):
     for fitter in (sysid_fit.fit_continuous, sysid_fit.fit_discrete):
         f = fitter(prepared, kind, info["dt"], str(path))
         err = {k: f.gains[k] / g[k] - 1 for k in g if k != "offset"}
+        if "kA" in g:  # kA: the floor plus the bound derived from the noise, both forms, every level
+            bound = FLOOR["kA"] + _kA_bound(
+                f.form, f, prepared, info["dt"], g["kA"] / g["kV"], sigma_v, 0.001, kind
+            )
+            assert abs(err["kA"]) < bound, (f.form, "kA", err["kA"], bound)
         if f.form == "discrete" and noise > 0.001:
             continue
         if noise <= 0.005:
@@ -116,7 +122,7 @@ def test_elevator_faster_than_the_log_favours_discrete(tmp_path):
     assert abs(r.fits["continuous"].gains["kA"] / card.design["kA"] - 1) > 0.3
 
 
-def _kA_bound(form, f, prepared, T, tau, sigma_v, jitter):
+def _kA_bound(form, f, prepared, T, tau, sigma_v, jitter, kind="elevator"):
     """kA's relative error the data allow, derived (README "The fit"): 4 standard deviations from the
     fit's covariance, plus
     - velocity noise σ_v in the regressor v (errors in variables): OLS shrinks v's coefficient by
@@ -127,7 +133,7 @@ def _kA_bound(form, f, prepared, T, tau, sigma_v, jitter):
       central difference (continuous), is off by up to j/T;
     - continuous only: the central difference of the exponential approach e^(−t/τ) over ±T is
       sinh(x)/x times its slope (x = T/τ), so kA down to x/sinh(x) where the dynamic test carries it."""
-    X = np.concatenate([np.column_stack(sysid_fit._columns(d, "elevator", d.v)) for d in prepared.values()])
+    X = np.concatenate([np.column_stack(sysid_fit._columns(d, kind, d.v)) for d in prepared.values()])
     v, rest = X[:, 0], X[:, 1:]
     res = v - rest @ np.linalg.lstsq(rest, v, rcond=None)[0]
     S = max(float(np.mean(res**2)) - sigma_v**2, 1e-300)
@@ -164,6 +170,20 @@ def test_fast_elevator_noise_bounds(tmp_path, noise, jitter):
         assert abs(err["kS"]) < FLOOR["kS"] + 4 * f.sigma["kS"] / g["kS"], (f.form, err)
         bound = _kA_bound(f.form, f, prepared, info["dt"], tau, noise, jitter)
         assert abs(err["kA"]) < bound, (f.form, err["kA"], bound)
+
+
+def test_a_mechanism_faster_than_its_log_gets_a_note_naming_ka(tmp_path):
+    """kA/kV under the log's step: a note names kA and gives x/sinh x (x = step/(kA/kV)); a plant
+    that the log resolves (kA/kV = 0.12 s, 10 ms) gets none."""
+    card = entries.load_card("elevator")
+    fast = fit.fit_log(
+        simulate(tmp_path / "f.wpilog", "elevator", card.design, period=0.005), "elevator", card
+    )
+    x = 0.005 / (card.design["kA"] / card.design["kV"])
+    [note] = [n for n in fast.notes if n.startswith("kA:")]
+    assert f"about {x / math.sinh(x):.2g} of it" in note
+    slow = fit.fit_log(simulate(tmp_path / "s.wpilog", "elevator", PLANTS["elevator"]), "elevator", card)
+    assert not [n for n in slow.notes if n.startswith("kA:")]
 
 
 def test_csv_with_entries_under_a_folder(tmp_path):
