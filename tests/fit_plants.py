@@ -43,7 +43,7 @@ def simulate(
     rng = np.random.default_rng(seed)
     kS, kV, kA = gains["kS"], gains["kV"], gains["kA"]
     kG, off = gains.get("kG", 0.0), gains.get("offset", 0.0)
-    linear = kind == "elevator"
+    linear = kind in ("elevator", "sprint")
     to_log = 1.0 if linear else 1 / (2 * math.pi)  # metres, or rotations as Java's angularPosition writes
 
     def load(q):

@@ -229,3 +229,32 @@ def test_apply_writes_nothing_on_a_bad_log_or_a_flywheel(capsys, tmp_path):
     )
     assert code == 2 and "not written back yet" in err
     assert wb.read_bytes() == before
+
+
+def test_sprint_card(capsys, tmp_path):
+    """`--card sprint` (issue 44 item 7): a drivetrain's log in metres, or in wheel rotations (times
+    the wheel's radius); the robot's mass and the efficiency back from kA through the sprint card's
+    motors, ratio and wheel (kA = m·R/(η·N·Kt·n), S9); --apply refused, nothing written."""
+    from gearhead.core.fit import entries
+
+    card = entries.load_card("sprint")
+    g = {"kS": card.design["kS"] * 3, "kV": card.design["kV"], "kA": card.design["kA"] * 1.2}
+    log = simulate(tmp_path / "drive.wpilog", "sprint", g, period=0.02, step=4.0, dynamic_time=1.5)
+    code, out, err = run(capsys, "fit", log, "--card", "sprint", "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    fitted = data["fits"][data["favoured"]]["gains"]
+    for k in g:
+        assert fitted[k] == pytest.approx(g[k], rel=0.01), k
+    rows = {e["entry"]: e for e in data["entries"]}
+    assert rows["moving mass"]["fitted"] == pytest.approx(1.2 * card.values["robot_mass"], rel=0.01)
+    assert rows["moving mass"]["unit"] == "kg"
+    assert rows["efficiency at the card's mass"]["fitted"] == pytest.approx(
+        card.values["efficiency"] / 1.2, rel=0.01
+    )
+    assert rows["friction"]["fitted"] == pytest.approx(2 * card.design["kS"] * card.f, rel=0.01)
+    code, out, err = run(capsys, "fit", log, "--card", "sprint", "--units", "rotation")
+    assert code == 0, err
+    assert "of the wheel, × its radius" in out
+    code, out, err = run(capsys, "fit", log, "--card", "sprint", "--apply")
+    assert code == 2 and "sprint card's fitted entries are not written back" in err

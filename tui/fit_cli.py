@@ -1,4 +1,4 @@
-"""`gearhead fit LOG --card elevator|arm|flywheel`: a card's model fitted from the robot's SysId log
+"""`gearhead fit LOG --card elevator|arm|flywheel|sprint`: a card's model fitted from the robot's SysId log
 (core/fit): the signals found, kS/kV/kA/kG in SysId's continuous and discrete forms beside the
 card's own, the entries they give (moving mass or inertia, friction, efficiency), and the logged
 voltage replayed through the card's model. `--json` prints one object; `--apply` writes the fitted
@@ -14,13 +14,20 @@ from gearhead.core.errors import InputError, printable
 
 PLOT_WIDTH = 64
 PLOT_HEIGHT = 12
-UNITS = {"elevator": ("m", "m/s"), "arm": ("rad", "rad/s"), "flywheel": ("rad", "rad/s")}
+UNITS = {
+    "elevator": ("m", "m/s"),
+    "arm": ("rad", "rad/s"),
+    "flywheel": ("rad", "rad/s"),
+    "sprint": ("m", "m/s"),
+}
 
 
 def add_parser(sub) -> None:
     f = sub.add_parser("fit", help="fit a card's kS/kV/kA/kG and entries from a SysId log (.wpilog or .csv)")
     f.add_argument("log", help="a WPILog (.wpilog) or AdvantageScope CSV export (.csv) of a SysId routine")
-    f.add_argument("--card", required=True, choices=("elevator", "arm", "flywheel"), help="the card to fit")
+    f.add_argument(
+        "--card", required=True, choices=("elevator", "arm", "flywheel", "sprint"), help="the card to fit"
+    )
     src = f.add_mutually_exclusive_group()
     src.add_argument("--preset", metavar="FILE", help="the card's entries from this preset")
     src.add_argument("--workbook", metavar="FILE", help="the card's entries from this workbook (with --name)")
@@ -117,7 +124,8 @@ def text(r) -> list[str]:
     out.append(
         "  samples: "
         + ", ".join(f"{s} {len(run.t_voltage)}" for s, run in p.runs.items())
-        + f"; mean step {r.info['dt'] * 1000:.3g} ms, velocity threshold {_g(r.info['velocity_threshold'])} {vel}"
+        + f"; mean step {r.info['dt'] * 1000:.3g} ms, velocity noise floor {_g(r.info['velocity_threshold'])} {vel} (at rest below "
+        + f"{_g(r.info['moving_threshold'])})"
     )
     gains = list(r.fits["continuous"].gains)
     unit = {"kS": "V", "kG": "V", "kV": f"V/({vel})", "kA": f"V/({vel}/s)", "offset": "rad"}

@@ -10,7 +10,8 @@ from dataclasses import dataclass, field
 
 from ..errors import InputError
 
-KINDS = ("elevator", "arm", "flywheel")
+KINDS = ("elevator", "arm", "flywheel")  # the cards the app offers "Fit from log" on
+CARDS = KINDS + ("sprint",)  # `gearhead fit --card` (a drivetrain: linear, no gravity, not applied)
 
 
 @dataclass
@@ -86,6 +87,10 @@ def fit_log(path, kind: str, card=None, **pick) -> Report:
         from ..calculators.elevator import spool_factor
 
         spool = spool_factor(card.values)
+    elif kind == "sprint":  # wheel rotations to metres: the wheel's radius per radian
+        from ..calculators.sprint import geometry
+
+        spool = geometry(card.values)[2] / 2
     picked = signals.pick(path, kind, spool=spool, **pick)
     prepared, info = sysid_fit.prepare(picked)
     source = str(path)
@@ -107,6 +112,9 @@ def fit_log(path, kind: str, card=None, **pick) -> Report:
     favoured = min(good, key=lambda f: replays[f].velocity_rmse)
     best = fits[favoured]
     notes = list(picked.notes) + [w for f in fits.values() for w in f.warnings]
+    slow = sysid_fit.ka_note(best.gains, info["dt"])
+    if slow:
+        notes.append(slow)
     moved, more = ent.moves(card, best.gains)
     rows = ent.entries(card, best.gains, best.sigma)
     from .battery import fit_battery

@@ -102,6 +102,15 @@ def _model(kind: str, v: dict, label: str) -> Card:
         ff = motion.feedforward(s, 0.0 if kind == "arm" else m.q1)
         f = m.force_per_volt
         return Card(kind, v, label, ff, f, m.loss_force, m.n / m.Kv)
+    if kind == "sprint":  # (S9): kA = m/f, kV = n/Kv, kS = R·i_f + F_rr/f, f = η·N·Kt·n/R
+        from ..calculators import sprint
+
+        s = sprint.setup(v)
+        dr = s.drive
+        f = dr.force_per_amp / dr.R
+        F_rr = s.resist()(0.0)  # the rolling resistance, as the card's kS holds it
+        ff = {"kS": dr.R * dr.free_current + F_rr / f, "kV": dr.n / dr.Kv, "kA": dr.mass / f}
+        return Card(kind, v, label, ff, f, dr.R * dr.free_current * f, dr.n / dr.Kv)
     from ..calculators.flywheel import loop_wheel
     from ..sim import shooter, velocity_loop
 
@@ -122,10 +131,11 @@ def entries(
     """(E2)-(E4): rows of (what, card's value, fitted value, its standard deviation, unit)."""
     v, f = card.values, card.f
     rows = []
-    M_unit = "kg" if card.kind == "elevator" else "kg·m²"
+    linear = card.kind in ("elevator", "sprint")
+    M_unit = "kg" if linear else "kg·m²"
     rows.append(
         (
-            "moving mass" if card.kind == "elevator" else "inertia",
+            "moving mass" if linear else "inertia",
             design_inertia(card),
             gains["kA"] * f,
             sigma["kA"] * f,
@@ -139,7 +149,7 @@ def entries(
             design_fric,
             gains["kS"] * f - card.loss,
             sigma["kS"] * f,
-            "N" if card.kind == "elevator" else "N·m",
+            "N" if linear else "N·m",
         )
     )
     if card.kind == "elevator" and "kG" in gains:

@@ -216,17 +216,20 @@ def pick(
         elif meta and not meta.startswith("{"):
             unit = meta
         else:
-            unit = {"elevator": "meter"}.get(kind, "rotation") + (" per second" if rate else "")
+            unit = {"elevator": "meter", "sprint": "meter"}.get(kind, "rotation") + (
+                " per second" if rate else ""
+            )
             notes.append(f"{names[role]}: no unit in the log; taken as {unit} (give --units)")
         quantity, k = unit_factor(unit, rate, names[role], source)
-        if kind == "elevator" and quantity == "angle":
+        if kind in ("elevator", "sprint") and quantity == "angle":
             if spool is None:
                 raise InputError(
-                    names[role], f"is in {unit}; an elevator needs a length (give --units)", source
+                    names[role], f"is in {unit}; an {kind} needs a length (give --units)", source
                 )
             k *= spool
-            notes.append(f"{names[role]}: {unit} of the spool, × r·k = {spool:.4g} m per radian")
-        elif kind != "elevator" and quantity == "length":
+            of = "the spool, × r·k" if kind == "elevator" else "the wheel, × its radius"
+            notes.append(f"{names[role]}: {unit} of {of} = {spool:.4g} m per radian")
+        elif kind not in ("elevator", "sprint") and quantity == "length":
             raise InputError(names[role], f"is in {unit}; an {kind} turns: give its angle", source)
         unit_names[role] = unit
         factors[role] = k * scale

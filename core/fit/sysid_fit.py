@@ -8,6 +8,13 @@ Data preparation (AnalysisManager::PrepareGeneralData, FilteringUtils InitialTri
     velocity threshold: the least noise floor of the quasistatic tests' velocity, the RMS of
     v[i−4] less the 9-sample moving average ending at i (GetNoiseFloor)                        (D2)
     quasistatic tests: samples with |u| = 0 or |v| below the threshold dropped                 (D3)
+    ours, beyond SysId: the quasistatic threshold is MOVING noise floors, not one. The model holds
+    only in motion; while friction holds the mechanism (the ramp below kS + kG) v is pure noise, and
+    one floor (√(8/9)·σ_v for white noise: v[i−4] less a mean of 9 that holds it) lets 35 % of those
+    samples in, with a = 0 and sgn v random, each a residual up to (kS + kG)/kA. On a mechanism
+    faster than its log (kA/kV under the step) they outweigh the few samples that carry kA: at
+    σ_v = 0.0002 m/s, 5 ms, kA/kV = 3.6 ms, SysId's one floor gives kA 4.7x (continuous) and 9.2x
+    (discrete), kS 13 % low. Four floors (3.8 σ_v) let 1.6e-4 of them in                      (D3')
     acceleration a[i] = (v[i+1] − v[i−1])/(2·T̄), a[0] = (v[1] − v[0])/(2·T̄), a[last] = 0, T̄ the
     mean dt in (0, 0.5 s) (PrepareMechData's CentralFiniteDifference<1, 3>); cos θ, sin θ      (D4)
     dynamic tests: samples before the largest sgn(v)·a dropped; then cut after the step
@@ -26,6 +33,8 @@ Discrete form (SysId before 2023), over consecutive samples of the same prepared
     with zero-order hold over T̄: α = e^(−T̄·kV/kA), β = (1 − α)/kV, so (derived with sympy)
         kV = (1 − α)/β,  kA = (α − 1)·T̄/(β·ln α) (0 < α < 1),  kS = −γ/β,  kG = −δ/β,
         arm: kG = hypot(δ, ε)/β, offset = atan2(ε, −δ)                                          (F6)
+Discrete form with the logged steps (ours): where the steps differ, (F5) with each pair's own step
+h_k in α_k = e^(−h_k·kV/kA), by nonlinear least squares from (F6) (see _per_step)               (F8)
 Uncertainty: cov(coefficients) = s²·(XᵀX)⁻¹, s² = SSE/(n − p); each gain's standard deviation by
 the delta method, its gradient in the coefficients by central differences                      (F7)
 """
@@ -43,6 +52,7 @@ from .signals import Picked, Run
 NOISE_WINDOW = 9  # kNoiseMeanWindow
 QUALITY_THRESHOLD = 10.0
 MOVED = 5.0  # a test's top speed must exceed this many times the noise floor (ours, not SysId's)
+MOVING = 4.0  # (D3'): quasistatic samples slower than this many noise floors are taken as at rest
 GAIN_NAMES = ("kS", "kV", "kA", "kG", "offset")
 
 
@@ -122,6 +132,26 @@ def mean_dt(dts: np.ndarray) -> float:
     return float(np.mean(ok))
 
 
+def ka_note(gains: dict[str, float], T: float) -> str | None:
+    """A note naming kA when the fitted time constant τ = kA/kV is under the log's mean step T: the
+    continuous form's central difference of the approach e^(−t/τ) over ±T is sinh(x)/x times its
+    slope (x = T/τ), so its kA falls towards x/sinh x of the plant's; the discrete form's
+    kA = kV·T/(−ln α) rests on α = e^(−x) alone, and jitter ±j in a step moves ln α, so kA, by j/T."""
+    kA, kV = gains.get("kA", math.nan), gains.get("kV", math.nan)
+    if not (math.isfinite(kA) and math.isfinite(kV) and kA > 0 and kV > 0 and T > 0):
+        return None
+    tau = kA / kV
+    if tau >= T:
+        return None
+    x = T / tau
+    return (
+        f"kA: the fitted time constant kA/kV = {tau * 1000:.3g} ms is under the log's step {T * 1000:.3g} ms, "
+        "so the log barely resolves kA: the continuous form's central difference gives about "
+        f"{x / math.sinh(x):.2g} of it, the discrete form's rests on one step's decay e^(-T/τ) = "
+        f"{math.exp(-x):.2g} (timestamp jitter ±j moves its kA by j/T); log faster than kA/kV to measure kA"
+    )
+
+
 def _accelerate(d: Prepared, arm: bool, source: str, state: str) -> Prepared:
     """(D4)."""
     if len(d) < 3:
@@ -170,11 +200,12 @@ def _prepare(picked: Picked) -> tuple[dict[str, Prepared], dict[str, float]]:
                 src,
             )
         if "quasistatic" in s:
-            d = d.take((np.abs(d.u) > 0) & (np.abs(d.v) >= threshold))  # (D3)
+            d = d.take((np.abs(d.u) > 0) & (np.abs(d.v) >= MOVING * threshold))  # (D3), (D3')
             if len(d) == 0:
                 raise InputError(
                     s,
-                    f"has no sample moving faster than the noise floor {threshold:.3g} with a voltage applied "
+                    f"has no sample moving faster than {MOVING:g} noise floors {MOVING * threshold:.3g} with a "
+                    "voltage applied "
                     "(the mechanism did not move)",
                     src,
                 )
@@ -196,7 +227,12 @@ def _prepare(picked: Picked) -> tuple[dict[str, Prepared], dict[str, float]]:
             raise InputError(s, "has no sample left after SysId's filtering", src)
         out[s] = d
     T = mean_dt(np.concatenate([r.dt for r in out.values()]))
-    return out, {"velocity_threshold": threshold, "step_time": step_time, "dt": T}
+    return out, {
+        "velocity_threshold": threshold,
+        "moving_threshold": MOVING * threshold,
+        "step_time": step_time,
+        "dt": T,
+    }
 
 
 def _columns(d: Prepared, kind: str, v: np.ndarray) -> list[np.ndarray]:
@@ -321,13 +357,96 @@ def fit_continuous(prepared: dict[str, Prepared], kind: str, T: float, source: s
 
 
 def fit_discrete(prepared: dict[str, Prepared], kind: str, T: float, source: str) -> Fit:
-    """(F5), (F6): pairs of samples next to each other in the log (a dropped sample breaks a pair)."""
-    rows, ys = [], []
+    """(F5), (F6): pairs of samples next to each other in the log (a dropped sample breaks a pair);
+    then (F8) where the logged steps differ."""
+    rows, ys, steps = [], [], []
     for d in prepared.values():
         nxt = np.nonzero(np.isclose(d.t[1:] - d.t[:-1], d.dt[:-1], rtol=1e-9, atol=1e-9))[0]
         e = d.take(nxt)
         rows.append(np.column_stack(_columns(e, kind, e.v)))
         ys.append(d.v[nxt + 1])
+        steps.append(d.dt[nxt])
     X = np.concatenate(rows)
     y = np.concatenate(ys)
-    return _finish("discrete", _gains_discrete, X, y, kind, T, source)
+    fit = _finish("discrete", _gains_discrete, X, y, kind, T, source)
+    h = np.concatenate(steps)
+    if fit.usable and fit.gains["kV"] > 0 and np.ptp(h) > 1e-9 * T:
+        return _per_step(fit, X, y, h, kind)
+    return fit
+
+
+def _per_step(fit: Fit, X: np.ndarray, y: np.ndarray, h: np.ndarray, kind: str) -> Fit:
+    """(F8): (F5) with each pair's own logged step h_k, the exact zero-order hold of (F1):
+        v[k+1] = α_k·v[k] + (1 − α_k)/kV·(u[k] − kS·sgn v[k] − g_k),  α_k = e^(−h_k·kV/kA),
+        g_k = kG (elevator), kG·cos(θ_k + offset) (arm), 0,
+    by nonlinear least squares (scipy) from (F6)'s gains; with one step it is (F5) itself. The mean
+    step T̄ in (F6) misplaces kA by up to the jitter j over T̄ (each pair's ln α_k is off by
+    (h_k − T̄)/τ), which the few pairs after a fast step do not average out (0.5 ms on 5 ms: kA −8 %
+    measured). Covariance s²·(JᵀJ)⁻¹ at the solution, s² = SSE/(n − p)."""
+    from scipy.optimize import least_squares
+
+    v, u, sg = X[:, 0], X[:, 1], X[:, 2]
+    names = ["kS", "kV", "kA"] + (["kG"] if kind == "elevator" else ["kG", "offset"] if kind == "arm" else [])
+
+    def gravity(q):
+        if kind == "elevator":
+            return q[3]
+        if kind == "arm":  # (F2)'s cos θ, sin θ columns: kG·cos(θ + offset)
+            return q[3] * (X[:, 3] * math.cos(q[4]) - X[:, 4] * math.sin(q[4]))
+        return 0.0
+
+    def residual(q):
+        a = np.exp(-h * q[1] / q[2])
+        return a * v + (1 - a) / q[1] * (u - q[0] * sg - gravity(q)) - y
+
+    def jacobian(q):  # analytic: a 10-minute log's pairs in tens of ms, not the half second of differences
+        kV, kA = q[1], q[2]
+        a = np.exp(-h * kV / kA)
+        w = u - q[0] * sg - gravity(q)
+        k = (1 - a) / kV
+        J = np.empty((len(y), len(q)))
+        J[:, 0] = -k * sg
+        J[:, 1] = -h / kA * a * (v - w / kV) - k / kV * w
+        J[:, 2] = h * kV / kA**2 * a * (v - w / kV)
+        if kind == "elevator":
+            J[:, 3] = -k
+        elif kind == "arm":
+            c, sn = X[:, 3], X[:, 4]
+            J[:, 3] = -k * (c * math.cos(q[4]) - sn * math.sin(q[4]))
+            J[:, 4] = -k * q[3] * (-c * math.sin(q[4]) - sn * math.cos(q[4]))
+        return J
+
+    q0 = np.array([fit.gains[k] for k in names])
+    try:
+        with np.errstate(all="ignore"):
+            r = least_squares(
+                residual, q0, jac=jacobian, x_scale=np.maximum(np.abs(q0), 1e-12), xtol=1e-12, ftol=1e-12
+            )
+            J = r.jac
+            n, p = J.shape
+            sse = float(r.fun @ r.fun)
+            cov = sse / (n - p) * np.linalg.inv(J.T @ J)
+    except (ValueError, np.linalg.LinAlgError):
+        r = None
+    if r is None or not np.all(np.isfinite(r.x)) or r.x[1] <= 0 or r.x[2] <= 0:
+        fit.warnings.append(
+            "discrete fit: the logged steps differ but the fit with each step did not converge"
+        )
+        return fit
+    ssto = float(np.sum((y - y.mean()) ** 2))
+    r2 = 1.0 - sse / ssto if ssto > 0 else 0.0
+    gains = dict(zip(names, (float(x) for x in r.x)))
+    if kind == "arm" and gains["kG"] < 0:  # the same gravity, kG ≥ 0 as (F2) gives it
+        gains["kG"], gains["offset"] = -gains["kG"], gains["offset"] + math.pi
+    if kind == "arm":
+        gains["offset"] = math.remainder(gains["offset"], 2 * math.pi)
+    sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    fit.gains = gains
+    fit.sigma = {k: float(x) for k, x in zip(names, sd)}
+    fit.adj_r2 = 1.0 - (1.0 - r2) * ((n - 1.0) / (n - p - 1.0)) if n > p + 1 else math.nan
+    fit.rmse = math.sqrt(sse / n)
+    fit.warnings.append(
+        f"discrete fit: each pair with its own logged step ({h.min() * 1000:.3g}-{h.max() * 1000:.3g} ms), "
+        "the zero-order hold exact for each"
+    )
+    return fit
