@@ -160,6 +160,7 @@ async def test_ctrl_s_writes_the_events_back_keeping_the_comments(tmp_path):
     kept = [c for c in comments if c in saved]
     lost = [c for c in comments if c not in saved]
     assert "# the arm event" in saved and COMMENTED in saved
+    assert '\n\n[[match.events]]\nat = "120 s"\n' in saved  # the added event laid out as the others
     # only the deleted event's own comment may go (its header's)
     gone_text = text.split("[[match.events]]")[gone]
     assert all(c in gone_text for c in lost), lost

@@ -147,6 +147,7 @@ async def test_a_match_that_cannot_run_shows_its_message_and_a_fix_brings_the_ch
         view = screen.match_view
         status = str(view.status.render())
         assert status.startswith("✗ bad.toml: match: match.events[1] (lift at 1 s): the card lift"), status
+        assert view.sheet.errors["e1_card"].startswith("match.events[1] (lift at 1 s): the card lift")
         # the last match that ran (ratio 9) stays below, dimmed, with its charts, as a card keeps
         # its last results while an entry is wrong
         assert "Traceback" not in status and "dimmed: the last match that ran" in status

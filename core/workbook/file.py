@@ -197,6 +197,8 @@ def _write_events(doc, events: list[tuple[int | None, Mapping[str, Any]]]) -> No
         if origin is None:
             table = tomlkit.table()
             table.update(dict(values))
+            table.trivia.indent = "\n"  # a blank line before its header, as the file's tables have
+            table.add(tomlkit.nl())  # and after it, before whatever table follows in the file
             aot.append(table)
             continue
         table = aot[position[origin]]

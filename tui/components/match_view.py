@@ -275,6 +275,12 @@ class MatchView(VerticalScroll, can_focus=True):
                 name = timeline.error_cell(e.field)
                 if name is not None and name not in errors:
                     errors[name] = f"{e.field}: {e.message}"
+        elif (
+            result is not None
+            and result.match_error
+            and (name := timeline.run_error_cell(result.match_error))
+        ):
+            errors[name] = result.match_error  # a move that could not run: under its event too
         self.sheet.set_errors(errors)
         self._status()
         if m is not None:

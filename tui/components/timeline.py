@@ -39,10 +39,20 @@ def cell_of(name: str) -> tuple[int, str] | None:
     return (int(m.group(1)), m.group(2)) if m else None
 
 
+_RUN = re.compile(r"^match\.events\[(\d+)\] \(")
+
+
 def error_cell(where: str) -> str | None:
     """The row a match refusal names ('match.events[2].card' → 'e2_card'), else None."""
     m = _WHERE.match(where)
     return field_name(int(m.group(1)), m.group(2)) if m else None
+
+
+def run_error_cell(message: str) -> str | None:
+    """The row of a move the match could not run ('match.events[2] (lift at 17 s): the card lift
+    could not be solved ...'): the event's card, whose entries or state it is about."""
+    m = _RUN.match(message)
+    return field_name(int(m.group(1)), "card") if m else None
 
 
 class Cells(Mapping):
