@@ -115,13 +115,17 @@ def edited(
     wb: Workbook,
     variables: Mapping[str, Any] | None = None,
     inputs: Mapping[str, Mapping[str, Any]] | None = None,
+    events: list[Mapping[str, Any]] | None = None,
 ) -> Workbook:
     """The workbook with variables' entries and cards' own inputs replaced (the app's edits),
-    checked as a file is; a card's linked fields keep their references. Cards whose entries did
+    checked as a file is; a card's linked fields keep their references. `events`: the match's
+    `[[match.events]]` tables in place of the file's (the app's timeline). Cards whose entries did
     not change are not solved again (the solve cache is shared)."""
     import copy
 
     data = copy.deepcopy(wb.data)
+    if events is not None and isinstance(data.get("match"), dict):
+        data["match"]["events"] = [dict(e) for e in events]
     known = data.setdefault("variables", {})
     for name, value in (variables or {}).items():
         if name in known:
@@ -144,10 +148,14 @@ def save(
     path: str | Path,
     variables: Mapping[str, Any] | None = None,
     inputs: Mapping[str, Mapping[str, Any]] | None = None,
+    events: list[tuple[int | None, Mapping[str, Any]]] | None = None,
 ) -> None:
     """Write the app's edits into the workbook file: each variable's entry and each card's own
     input given here, the rest of the file (comments, order, layout) as it was (tomlkit). A card
-    read from a preset gets an inputs table for what was changed on it. The file is replaced
+    read from a preset gets an inputs table for what was changed on it. `events`: the match's
+    timeline, each table with the index (0-based) of the file's `[[match.events]]` table it was
+    read from (None: added), in the file's order then the added ones: a kept table is changed in
+    place (its comments kept), a table no longer there is removed, an added one appended. The file is replaced
     whole (core.atomic_file: written beside it, then renamed; its mode kept; a symlink written
     through to its target), never left half written; a failure raises atomic_file.WriteError."""
     import tomlkit
@@ -168,7 +176,37 @@ def save(
             table["inputs"] = tomlkit.table()
         for key, value in values.items():
             table["inputs"][key] = value
+    if events is not None:
+        _write_events(doc, events)
     atomic_file.write_text(path, tomlkit.dumps(doc), overwrite=True, field="workbook")
+
+
+def _write_events(doc, events: list[tuple[int | None, Mapping[str, Any]]]) -> None:
+    import tomlkit
+
+    match = doc.setdefault("match", tomlkit.table())
+    if "events" not in match:
+        match["events"] = tomlkit.aot()
+    aot = match["events"]
+    kept = [origin for origin, _ in events if origin is not None]
+    for i in range(len(aot) - 1, -1, -1):  # from the end: the indices before stay valid
+        if i not in kept:
+            del aot[i]
+    position = {origin: k for k, origin in enumerate(sorted(kept))}
+    for origin, values in events:
+        if origin is None:
+            table = tomlkit.table()
+            table.update(dict(values))
+            table.trivia.indent = "\n"  # a blank line before its header, as the file's tables have
+            table.add(tomlkit.nl())  # and after it, before whatever table follows in the file
+            aot.append(table)
+            continue
+        table = aot[position[origin]]
+        for key in [k for k in table if k not in values]:
+            del table[key]
+        for key, value in values.items():
+            if key not in table or table[key] != value:
+                table[key] = value
 
 
 def is_workbook_file(path: str | Path) -> bool:

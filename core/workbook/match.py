@@ -87,6 +87,40 @@ KEYS = {  # key: (unit, default, a reference allowed)
     "channel_rating": ("A", 40.0, False),
 }
 EVENT_KEYS = ("at", "card", "action", "every", "count")
+EVENT_TIMES = ("at", "every")  # in seconds: a bare number typed in the app is written "N s"
+EVENT_WORDS = ("card", "action")  # names, kept as typed
+
+
+def event_table(entries: dict[str, Any]) -> dict[str, Any]:
+    """One `[[match.events]]` table from an event's entries as the app's timeline holds them (the
+    file's values, or text as typed): an empty entry leaves its key out (an optional one takes its
+    default, `at` or `card` is then refused as missing); a bare number of seconds gets its unit; a
+    card or an action stays the text typed; any other key (`count`, ...) is read as a TOML value
+    (`10` a whole number, `true` a yes) and kept as typed when it is not one, so parse() names it."""
+    import tomllib
+
+    out: dict[str, Any] = {}
+    for key, value in entries.items():
+        if not isinstance(value, str):
+            out[key] = value
+            continue
+        text = value.strip()
+        if not text:
+            continue
+        if key in EVENT_TIMES:
+            try:
+                bare = math.isfinite(float(text))
+            except ValueError:
+                bare = False
+            out[key] = f"{text} s" if bare else text
+        elif key in EVENT_WORDS:
+            out[key] = text
+        else:
+            try:
+                out[key] = tomllib.loads(f"v = {text}")["v"]
+            except tomllib.TOMLDecodeError:
+                out[key] = text
+    return out
 
 
 @dataclass

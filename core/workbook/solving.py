@@ -258,6 +258,7 @@ def _run_match(wb: Workbook, scope: Scope, results: dict[str, CardResult]):
         NAME,
         tuple(sorted((n, repr(scope.variables.get(n))) for n in read if n in scope.variables)),
         tuple((n, repr(sorted(c.entries.items())), c.error) for n, c in results.items() if n in moved),
+        repr(wb.data.get(NAME)),  # the table itself: the app edits its events (timeline.py)
     )
     cached = wb._cache.get(key)
     if cached is None:

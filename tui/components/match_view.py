@@ -12,6 +12,12 @@ could not be run. The charts' data (the series, thinned to what a chart can show
 is made in a thread worker of this card's own (exclusive: a newer outcome cancels it between its
 steps), posted as `Prepared` with the request it answers, and drawn while the card is on screen.
 
+Above them, the timeline (timeline.py): the events as rows of the app's sheet, edited as any card's
+entries; this card holds the events' tables, each edit asks the screen for a solve (`on_change`), and
+the screen's solve builds the match from these tables. A refusal of the match (`match.events[2].card:
+'lfit' is not a card`) is shown under its row and in the status line, the last good match's outputs
+kept below, dimmed, and its charts, until the entries solve again.
+
 The current is stacked with textual-plot's bars (filled from 0): the layers' running sums are drawn
 from the top one down, each over the last, so each card's band is its share of the current. A bar
 is one time bin of the match, showing the sample with the highest battery current in it
@@ -26,6 +32,7 @@ from typing import Any
 from rich.markup import escape
 from rich.text import Text
 from textual import work
+from textual.binding import Binding
 from textual.containers import Container, VerticalScroll
 from textual.message import Message
 from textual.widgets import Static
@@ -34,6 +41,7 @@ from textual.worker import get_current_worker
 from gearhead.core.errors import InputError
 
 from ..guard import guarded
+from . import timeline
 
 PLOT_HEIGHT = 15
 CHARTS = {
@@ -114,13 +122,27 @@ class MatchView(VerticalScroll, can_focus=True):
 
     DEFAULT_CSS = f"""
     MatchView {{ height: 1fr; }}
+    MatchView > #match-timeline-title {{ margin-bottom: 1; }}
     MatchView > .match-plot {{ height: {PLOT_HEIGHT}; }}
     MatchView > .match-heading {{ margin-top: 1; }}
     """
 
-    def __init__(self, source: str, **kwargs) -> None:
+    BINDINGS = [
+        Binding("enter", "edit_timeline", "Edit timeline"),
+        Binding(timeline.ADD_KEY, "add_event", "Add event"),
+        Binding(timeline.DELETE_KEY, "delete_event", "Delete event"),
+    ]
+
+    def __init__(self, source: str, tables: list | None = None, on_change=lambda: None, **kwargs) -> None:
         super().__init__(**kwargs)
         self.source = source  # the workbook's file, named in a failure
+        # the events' tables as the file has them, then as edited: the one copy (timeline.py)
+        self.tables: list[dict[str, Any]] = [dict(t) for t in (tables or []) if isinstance(t, dict)]
+        self.origins: list[int | None] = list(range(len(self.tables)))  # the file's table of each
+        self.saved: list = self.saved_events()  # what the file holds (as opened or last saved)
+        self.on_change = on_change  # an edit: the screen solves the workbook again
+        self.good: Any = None  # the last match that ran (shown dimmed while the entries are wrong)
+        self.good_request: int | None = None  # the request it answered
         self.result: Any = None  # the last outcome given (core.workbook.Outcome or InputError)
         self.request: int | None = None  # the solve request it answers
         self.running = True  # a newer solve is on its way
@@ -128,6 +150,19 @@ class MatchView(VerticalScroll, can_focus=True):
         self._preparing: int | None = None  # the request whose charts' data a worker is making
 
     def compose(self):
+        yield Static(self._timeline_title(), id="match-timeline-title")
+        self.sheet = timeline.TimelineSheet(
+            timeline.calculator(self.tables),
+            entries=self.entries,
+            on_entry=self._take_entry,
+            on_cursor=lambda f: None,
+            on_choose=lambda f: None,
+            on_add=self.action_add_event,
+            on_delete=self.action_delete_event,
+            id="match-timeline",
+        )
+        self._fit_sheet()
+        yield self.sheet
         self.status = Static(Text("… running the match", style="yellow"), id="match-status")
         yield self.status
         self.summary = Static("", id="match-summary")
@@ -135,6 +170,87 @@ class MatchView(VerticalScroll, can_focus=True):
         for name, title in CHARTS.items():
             yield Static(Text(title, style="bold"), classes="match-heading", id=f"match-{name}-title")
             yield Container(classes="match-plot", id=f"match-{name}")
+
+    # ---- the timeline -----------------------------------------------------------------------
+    def _timeline_title(self) -> Text:
+        text = Text(f"Timeline: {len(self.tables)} events ([[match.events]])", style="bold")
+        text.append(
+            f"  Enter edits a cell; {timeline.ADD_KEY} adds an event, {timeline.DELETE_KEY} deletes the "
+            "one under the cursor",
+            style="dim",
+        )
+        return text
+
+    def _fit_sheet(self) -> None:
+        self.sheet.styles.height = min(len(self.sheet.calculator.fields), 10) + 1
+
+    def entries(self) -> timeline.Cells:
+        """The sheet's entries: each event's values, as the file has them or as typed (read per
+        drawn row: a view of the tables, never a copy built per row of a 1000-event timeline)."""
+        return timeline.Cells(self.tables)
+
+    def event_tables(self) -> list[dict[str, Any]]:
+        """The `[[match.events]]` tables the screen's solve runs (core.workbook.match.event_table)."""
+        from gearhead.core.workbook.match import event_table
+
+        return [event_table(t) for t in self.tables]
+
+    def saved_events(self) -> list:
+        """What a save writes: each table with the file's table it came from (None: added)."""
+        return list(zip(self.origins, self.event_tables()))
+
+    @property
+    def unsaved(self) -> bool:
+        return self.saved_events() != self.saved
+
+    @guarded
+    def _take_entry(self, name: str, value: Any) -> None:
+        cell = timeline.cell_of(name)
+        if cell is None or not 1 <= cell[0] <= len(self.tables):
+            return
+        table = self.tables[cell[0] - 1]
+        if table.get(cell[1], "") == value:
+            return
+        table[cell[1]] = value
+        self.sheet.refresh_field(name)
+        self.on_change()
+
+    def _rows_changed(self) -> None:
+        self.sheet.set_calculator(timeline.calculator(self.tables))
+        self.sheet.set_errors({})  # their rows moved: the next solve names what is still wrong
+        self._fit_sheet()
+        self.query_one("#match-timeline-title", Static).update(self._timeline_title())
+        self.on_change()
+
+    @guarded
+    def action_edit_timeline(self) -> None:
+        self.sheet.focus()
+
+    @guarded
+    def action_add_event(self) -> None:
+        """A new event at the end, a copy of the time and card of the one under the cursor (or of
+        the last), its cursor on its time: an event to edit, never an empty row the match refuses."""
+        from gearhead.core.workbook.match import EVENT_KEYS
+
+        at = self.sheet.current_event
+        like = self.tables[at - 1] if at else (self.tables[-1] if self.tables else {})
+        new = {key: like[key] for key in EVENT_KEYS[:2] if key in like} or {"at": "0 s", "card": ""}
+        self.tables.append(new)
+        self.origins.append(None)
+        self._rows_changed()
+        self.sheet.move_to_field(timeline.field_name(len(self.tables), "at"))
+        self.sheet.focus()
+
+    @guarded
+    def action_delete_event(self) -> None:
+        at = self.sheet.current_event
+        if at is None:
+            self.app.notify("No event to delete.", severity="warning", markup=False)
+            return
+        del self.tables[at - 1]
+        del self.origins[at - 1]
+        self._rows_changed()
+        self.sheet.move_to_field(timeline.field_name(min(at, len(self.tables)), "at"))
 
     # ---- what the workbook screen tells it ------------------------------------------------
     @guarded
@@ -148,13 +264,35 @@ class MatchView(VerticalScroll, can_focus=True):
     def show_result(self, request: int, result: Any) -> None:
         """The outcome of solve request `request` (the latest: the screen drops older ones)."""
         self.request, self.result, self.running = request, result, False
+        m = self.match
+        if m is not None:
+            self.good, self.good_request = m, request
         if not self.is_mounted:
             return
+        errors = {}
+        if isinstance(result, InputError):  # a refusal of an event's field: said under its row too
+            for e in result.errors:
+                name = timeline.error_cell(e.field)
+                if name is not None and name not in errors:
+                    errors[name] = f"{e.field}: {e.message}"
+        elif (
+            result is not None
+            and result.match_error
+            and (name := timeline.run_error_cell(result.match_error))
+        ):
+            errors[name] = result.match_error  # a move that could not run: under its event too
+        self.sheet.set_errors(errors)
         self._status()
-        m = self.match
-        self.summary.update(summary_text(m, self.source) if m is not None else "")
-        for node in self.query(".match-heading, .match-plot"):  # no charts of a match not run
-            node.display = m is not None
+        if m is not None:
+            self.summary.update(summary_text(m, self.source))
+        elif self.good is not None:  # the last good match, dimmed, as a card keeps its last results
+            last = summary_text(self.good, self.source)
+            last.stylize("dim")
+            self.summary.update(last)
+        else:
+            self.summary.update("")
+        for node in self.query(".match-heading, .match-plot"):  # no charts of a match never run
+            node.display = self.good is not None
         if self.display:  # the card on screen (the switcher shows one pane): else when it is opened
             self.draw()
 
@@ -175,6 +313,10 @@ class MatchView(VerticalScroll, can_focus=True):
             text = Text(f"✗ {self.source}: match: {why}", style="red")
         else:
             text = Text("✓ the match of the entries on screen", style="green")  # no path: snapshots
+        if self.match is None and self.good is not None:
+            text.append(
+                "\n  (below, dimmed: the last match that ran, until the entries are fixed)", style="dim"
+            )
         if self.running:  # the charts and outputs below stay those of the last entries until then
             text = Text(
                 "… running the match for the entries on screen (below: the last entries')", style="yellow"
@@ -185,7 +327,7 @@ class MatchView(VerticalScroll, can_focus=True):
     def opened(self) -> None:
         """The card was brought on screen (the workbook screen's tab strip: Textual's Show event
         did not always come when the pane switched, in a real terminal): its charts drawn now."""
-        if self.match is not None and self.drawn != self.request:
+        if self.good is not None and self.drawn != self.good_request:
             self.draw()
         else:
             self.call_after_refresh(self._fit_plots)
@@ -217,12 +359,13 @@ class MatchView(VerticalScroll, can_focus=True):
         """The charts of the match shown: their data made in a worker (a brownout-ridden match has
         ~10⁵ samples: 0.17 s for the series alone), then drawn here. Nothing if they are drawn or
         being made for this request already."""
-        if self.match is None or self.drawn == self.request or self._preparing == self.request:
+        wanted = self.good_request  # the latest match that ran (the one shown, dimmed if it is not)
+        if self.good is None or self.drawn == wanted or self._preparing == wanted:
             return
-        self._preparing = self.request
+        self._preparing = wanted
         # about a bar per column of the chart (the card's width less the axis margin and the scrollbar)
         columns = self.size.width - 14 if self.size.width > 34 else 120
-        self._prepare(self.request, self.match, columns)
+        self._prepare(wanted, self.good, columns)
 
     # a description of our own: Textual's default is the arguments' repr, and the outcome's (10⁵ trace
     # samples in a brownout-ridden match) took 1.6 s on the UI thread at each start
@@ -249,7 +392,7 @@ class MatchView(VerticalScroll, can_focus=True):
     @guarded
     async def on_match_view_prepared(self, message: Prepared) -> None:
         message.stop()
-        if message.request != self.request:
+        if message.request != self.good_request:
             return  # a newer outcome came meanwhile: its charts are on their way
         self._preparing = None
         if message.charts is None:

@@ -267,7 +267,13 @@ class WorkbookScreen(Screen):
             if book.match is not None:  # no card may be named "match" (core/workbook/match.py)
                 from .match_view import MatchView
 
-                self.match_view = MatchView(book.source, id="wbpane-match")
+                events = book.data.get("match", {}).get("events", [])  # the timeline's rows
+                self.match_view = MatchView(
+                    book.source,
+                    events if isinstance(events, list) else [],
+                    self.request_solve,
+                    id="wbpane-match",
+                )
                 yield self.match_view
         from .key_bar import KeyBar
 
@@ -326,7 +332,8 @@ class WorkbookScreen(Screen):
     def unsaved_changes(self) -> int:
         """Entries that differ from the file (as opened or last saved)."""
         now, saved = self._own_entries(), self._saved
-        return sum(
+        timeline = 1 if self.match_view is not None and self.match_view.unsaved else 0
+        return timeline + sum(
             1 for card, entries in now.items() for k, v in entries.items() if saved.get(card, {}).get(k) != v
         )
 
@@ -393,13 +400,18 @@ class WorkbookScreen(Screen):
         for name, tab in self.cards.items():
             own = tab.own_inputs()
             inputs[name] = {k: own[k] for k in sorted(tab.edited) if k in own}
+        view = self.match_view
+        events = view.saved_events() if view is not None and view.unsaved else None  # the timeline
         try:
-            workbook.save(path, variables, inputs)
+            workbook.save(path, variables, inputs, events)
         except OSError as exc:
             self.app.notify(f"Could not save {path}: {exc.strerror or exc}", severity="error", markup=False)
             return False
         self._saved = self._own_entries()
-        changed = len(variables) + sum(len(v) for v in inputs.values())
+        if events is not None:  # the file's tables are now these, in this order
+            view.origins = list(range(len(view.tables)))
+            view.saved = view.saved_events()
+        changed = len(variables) + sum(len(v) for v in inputs.values()) + (events is not None)
         self.app.notify(f"Saved {changed} change(s) to {path}", title="Workbook saved", markup=False)
         return True
 
@@ -417,7 +429,8 @@ class WorkbookScreen(Screen):
         self._wb_generation += 1
         variables = {name: self._with_unit(name, entry) for name, entry in self.robot.entries.items()}
         inputs = {name: tab.own_inputs() for name, tab in self.cards.items()}
-        self._solve_worker(self._wb_generation, variables, inputs)
+        events = self.match_view.event_tables() if self.match_view is not None else None
+        self._solve_worker(self._wb_generation, variables, inputs, events)
         self.set_timer(0.1, self._mark_busy)
 
     @guarded
@@ -448,14 +461,14 @@ class WorkbookScreen(Screen):
         return self._wb_shown != self._wb_generation
 
     @work(thread=True, exclusive=True, group="workbook", exit_on_error=False)
-    def _solve_worker(self, generation: int, variables: dict, inputs: dict) -> None:
+    def _solve_worker(self, generation: int, variables: dict, inputs: dict, events: list | None) -> None:
         from gearhead.core import workbook
         from gearhead.core.sim.integrate import Cancelled, budget
 
         worker = get_current_worker()
         try:
             with budget(cancel=lambda: worker.is_cancelled):
-                result: Any = workbook.solve(workbook.edited(self.book, variables, inputs))
+                result: Any = workbook.solve(workbook.edited(self.book, variables, inputs, events))
         except Cancelled:  # a newer request runs: it posts
             return
         except InputError as exc:
