@@ -92,10 +92,59 @@ def test_the_example_workbook_report_has_every_card_requirement_and_match_value(
         assert html.esc(margin) in page, margin
         assert html.esc(r["name"]) in page and html.esc(r["check"]) in page
     for name, value in matched["outputs"].items():
-        v = value["value"]
-        text = f"{v:d}" if isinstance(v, int) else f"{units.format_number(v)} {value['unit']}".rstrip()
-        # the lowest voltage's time names what was running: "138.5 s (arm move running)"
-        assert _value_cell(text) in page or f'<td class="value">{html.esc(text)} (' in page, name
+        assert _has_match_value(page, value), name
+
+
+def _match_text(value: dict) -> str:
+    """A `gearhead match --json` output as the report shows it."""
+    v = value["value"]
+    return f"{v:d}" if isinstance(v, int) else f"{units.format_number(v)} {value['unit']}".rstrip()
+
+
+def _has_match_value(page: str, value: dict) -> bool:
+    text = _match_text(value)
+    # the lowest voltage's time names what was running: "138.5 s (arm move running)"
+    return _value_cell(text) in page or f'<td class="value">{html.esc(text)} (' in page
+
+
+def test_set_replaces_a_variable_as_match_set_does_and_the_title_block_says_so(tmp_path, capsys):
+    sets = ["--set", "battery_resistance=0.025 ohm"]
+    tired = cli_json(capsys, "match", EXAMPLE, *sets, "--json")
+    nominal = cli_json(capsys, "match", EXAMPLE, "--json")
+    solved = cli_json(capsys, "solve", EXAMPLE, *sets, "--json")
+    out = tmp_path / "tired.html"
+    assert main(["report", EXAMPLE, *sets, "--out", str(out)]) == 0
+    page = out.read_text(encoding="utf-8")
+    header = page.split("</header>")[0]
+    # a reader is told what the report shows: the variable set, and what the file says
+    assert "<th>Set for this report (--set)</th>" in header
+    assert html.esc("battery_resistance = 0.025 ohm (the file: 0.02 ohm ± 0.005 ohm)") in header
+    changed = []
+    for name, value in tired["outputs"].items():
+        assert _has_match_value(page, value), (name, _match_text(value))
+        if _match_text(value) != _match_text(nominal["outputs"][name]):
+            changed.append(name)
+    assert changed, "the tired battery changes the match"
+    lift = _card_html(page, "lift")
+    text = solved["cards"]["lift"]["solution"]["inputs"]["battery_resistance"]["text"]
+    assert _value_cell(text) in lift and "0.025" in text
+    assert main(["report", EXAMPLE, *sets, "--out", str(tmp_path / "tired.md")]) == 0
+    md = (tmp_path / "tired.md").read_text(encoding="utf-8")
+    head = md.split("## Requirements")[0]
+    assert markdown.esc("Set for this report (--set): battery_resistance = 0.025 ohm") in head
+    for value in tired["outputs"].values():
+        assert markdown.esc(_match_text(value)) in md
+
+
+def test_set_is_refused_as_check_refuses_it(tmp_path, capsys):
+    for bad in ("no_such_variable=3", "battery_resistance", "=3"):
+        code, err = _stderr_of(capsys, "report", EXAMPLE, "--set", bad, "--out", str(tmp_path / "x.html"))
+        assert code == 2 and err == _stderr_of(capsys, "check", EXAMPLE, "--set", bad)[1], bad
+    code, err = _stderr_of(
+        capsys, "report", "builtin:elevator/two_neo", "--set", "a=1", "--out", str(tmp_path / "y.html")
+    )
+    assert code == 2 and "--set" in err and err.count("\n") == 1
+    assert not list(tmp_path.glob("*.html"))
 
 
 def test_the_charts_are_the_series_the_cards_plot():
