@@ -399,3 +399,43 @@ def test_the_worst_case_is_the_one_check_finds(capsys):
         shown = units.format_quantity(r["worst_margin"], o.unit, o.quantity)
         assert html.esc(f"margin {shown} (") in page, key
     assert "Worst case: tolerances: 125 lb ± 5 lb, 0.02 ohm ± 0.005 ohm; 13 solves" in page
+
+
+def test_the_match_has_its_state_of_charge_and_stacked_current_per_card(capsys):
+    """The match's state of charge (and the charge available at the rates drawn) and the battery
+    current stacked by card over the match, from core.match.series as the app's Match card draws
+    them: the state of charge ends at `gearhead match`'s end_charge, and each stacked column is the
+    battery current at the sample it shows (S1: base load + each card's moves)."""
+    from gearhead.core import workbook
+    from gearhead.core.match.series import peak_bins, series
+
+    matched = cli_json(capsys, "match", EXAMPLE, "--json")
+    wb = workbook.load(EXAMPLE)
+    m = workbook.solve(wb).match
+    s = series(m)
+    report = document.from_workbook(wb)
+    charts = {c.key: c for c in report.match.charts}
+    soc = charts["match-state-of-charge"]
+    assert [x.label for x in soc.series] == ["state of charge", "charge available at the rates drawn"]
+    end = matched["outputs"]["end_charge"]["value"]
+    assert soc.series[0].y[-1] == pytest.approx(end, abs=1e-9) and soc.series[0].x[-1] == s.t[-1]
+    assert soc.series[1].y[-1] == pytest.approx(matched["outputs"]["end_available"]["value"], abs=1e-9)
+    assert min(soc.series[0].y) == pytest.approx(100 * min(s.soc))  # the envelope keeps the extremes
+    stacked = charts["match-current-by-card"]
+    assert stacked.stacked
+    assert [x.label for x in stacked.series] == ["base load", *s.by_card]
+    bins = peak_bins(s, document.STACK_BINS)
+    assert stacked.series[0].x == [x for x, _ in bins]
+    for k, (_, i) in enumerate(bins):  # each column: the sample of the bin's highest battery current
+        total = sum(layer.y[k] for layer in stacked.series)
+        assert total == pytest.approx(s.battery_current[i], rel=1e-6, abs=1e-6), k
+    top = max(sum(layer.y[k] for layer in stacked.series) for k in range(len(bins)))
+    assert top == pytest.approx(max(s.battery_current), rel=1e-6)  # the match's peak is never averaged away
+    page = html.write(report)
+    for i in range(len(stacked.series)):
+        assert f'id="match-current-by-card-s{i}"' in page
+    assert 'id="match-state-of-charge-s1"' in page
+    md_files = markdown.chart_files(report, "x")
+    assert (
+        "x_charts/match-current-by-card.svg" in md_files and "x_charts/match-state-of-charge.svg" in md_files
+    )

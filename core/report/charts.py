@@ -49,7 +49,9 @@ def figure(chart: Chart):
             _heat(fig, ax, chart)
         else:
             fig, ax = _line_axes()
-            for i, s in enumerate(chart.series):
+            if chart.stacked:
+                _stack(ax, chart)
+            for i, s in enumerate(chart.series if not chart.stacked else ()):
                 (line,) = ax.plot(
                     s.x, s.y, color=COLOURS[i % len(COLOURS)], linewidth=1.4, label=plain(s.label)
                 )
@@ -86,13 +88,28 @@ def _line_axes():
         _LINES.extend(_new_axes())
         return tuple(_LINES)
     fig, ax = _LINES
-    for line in list(ax.lines):
-        line.remove()
+    for artist in [*ax.lines, *ax.collections]:
+        artist.remove()
     if ax.get_legend() is not None:
         ax.get_legend().remove()
     ax.relim()  # no artist left: the data limits are null, the next plot's alone
     ax.set_autoscale_on(True)
     return fig, ax
+
+
+def _stack(ax, chart: Chart) -> None:
+    """Layers stacked on each other (stackplot: each a filled area from the sum of those below),
+    the first in grey (the base load), each with its group id as a line's."""
+    colours = ["#9e9e9e", *COLOURS]
+    areas = ax.stackplot(
+        chart.series[0].x,
+        *[s.y for s in chart.series],
+        labels=[plain(s.label) for s in chart.series],
+        colors=[colours[i % len(colours)] for i in range(len(chart.series))],
+        linewidth=0,
+    )
+    for i, area in enumerate(areas):
+        area.set_gid(f"{chart.key}-s{i}")
 
 
 def _heat(fig, ax, chart: Chart) -> None:

@@ -71,6 +71,7 @@ class Chart:
     series: list[Series] = field(default_factory=list)
     heat: HeatData | None = None
     level: tuple[float, str] | None = None  # a horizontal line (the brownout voltage) and its label
+    stacked: bool = False  # the series are layers stacked on each other (one x for all), not lines
 
 
 @dataclass(frozen=True)
@@ -598,7 +599,29 @@ def match_section(m) -> MatchSection:
         ],
     )
     ts = [t for t, _, _ in m.bus.trace]
-    charts = [
+    charts = _match_charts(m, ts)
+    return MatchSection(summary, shares, moves, brownouts, charts)
+
+
+# the charts are ~430 pt wide: the state of charge keeps each of LINE_BINS time bins' first, lowest,
+# highest and last sample (series.envelope, exact at the bins' edges); the stacked current shows in
+# each of STACK_BINS columns the sample of its highest battery current (series.peak_bins), as the
+# app's Match card does (a move's peak is never averaged away)
+LINE_BINS = 600
+STACK_BINS = 400
+
+
+def _match_charts(m, ts: list[float]) -> list[Chart]:
+    """The bus voltage and battery current (every sample), the state of charge and the current
+    stacked by card (core.match.series: S1, S2)."""
+    from ..match.series import envelope, peak_bins, series
+
+    s = series(m)
+    bins = peak_bins(s, STACK_BINS)
+    xs = [x for x, _ in bins]
+    layers = [Series("base load", xs, [s.base[i] for _, i in bins])]
+    layers += [Series(card, xs, [amps[i] for _, i in bins]) for card, amps in s.by_card.items()]
+    return [
         Chart(
             "match-bus-voltage",
             "Bus voltage over the match",
@@ -614,8 +637,28 @@ def match_section(m) -> MatchSection:
             "Battery current [A]",
             [Series("battery current", ts, [i for _, _, i in m.bus.trace])],
         ),
+        Chart(
+            "match-state-of-charge",
+            "State of charge over the match",
+            "Time [s]",
+            "Charge [%]",
+            [
+                Series("state of charge", *envelope(s.t, [100 * x for x in s.soc], s.length, LINE_BINS)),
+                Series(
+                    "charge available at the rates drawn",
+                    *envelope(s.t, [100 * x for x in s.available], s.length, LINE_BINS),
+                ),
+            ],
+        ),
+        Chart(
+            "match-current-by-card",
+            "Battery current by card (each column: its highest)",
+            "Time [s]",
+            "Battery current [A]",
+            layers,
+            stacked=True,
+        ),
     ]
-    return MatchSection(summary, shares, moves, brownouts, charts)
 
 
 # ---------------------------------------------------------------------------------------------
