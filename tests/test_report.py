@@ -439,3 +439,25 @@ def test_the_match_has_its_state_of_charge_and_stacked_current_per_card(capsys):
     assert (
         "x_charts/match-current-by-card.svg" in md_files and "x_charts/match-state-of-charge.svg" in md_files
     )
+
+
+def test_charts_drawn_from_several_threads_are_the_same_bytes():
+    """The app builds a report in a thread worker: charts drawn at once from several threads (one
+    Figure is reused, rcParams are set while drawing) are the bytes drawn one after another."""
+    import threading
+
+    from gearhead.core.report import charts
+
+    cs = document.build("builtin:elevator/two_neo").charts()
+    alone = [charts.svg(c) for c in cs]
+    results: list[list[str]] = []
+
+    def draw() -> None:
+        results.append([charts.svg(c) for c in cs * 2])
+
+    threads = [threading.Thread(target=draw) for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(results) == 4 and all(r == alone * 2 for r in results)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import io
 import re
+import threading
 
 from .document import Chart
 
@@ -78,6 +79,7 @@ def _new_axes():
     return fig, ax
 
 
+_DRAWING = threading.Lock()  # the app builds a report in a thread worker
 _LINES: list = []  # the line charts' Figure and Axes, made once (under RC) and emptied for each chart
 
 
@@ -150,7 +152,8 @@ def _edges(centres: list[float]) -> list[float]:
 def svg(chart: Chart) -> str:
     """The chart as one SVG document (text), the same bytes for the same chart; its ids begin with
     the chart's key, so several charts inline in one HTML page never share an id."""
-    return scoped(svg_of(figure(chart)), chart.key)
+    with _DRAWING:  # one reused Figure, and rcParams changed for the while: a thread at a time
+        return scoped(svg_of(figure(chart)), chart.key)
 
 
 _ID_USE = re.compile(r'(id="|href="#|url\(#)([^")]+)')
