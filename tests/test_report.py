@@ -92,10 +92,59 @@ def test_the_example_workbook_report_has_every_card_requirement_and_match_value(
         assert html.esc(margin) in page, margin
         assert html.esc(r["name"]) in page and html.esc(r["check"]) in page
     for name, value in matched["outputs"].items():
-        v = value["value"]
-        text = f"{v:d}" if isinstance(v, int) else f"{units.format_number(v)} {value['unit']}".rstrip()
-        # the lowest voltage's time names what was running: "138.5 s (arm move running)"
-        assert _value_cell(text) in page or f'<td class="value">{html.esc(text)} (' in page, name
+        assert _has_match_value(page, value), name
+
+
+def _match_text(value: dict) -> str:
+    """A `gearhead match --json` output as the report shows it."""
+    v = value["value"]
+    return f"{v:d}" if isinstance(v, int) else f"{units.format_number(v)} {value['unit']}".rstrip()
+
+
+def _has_match_value(page: str, value: dict) -> bool:
+    text = _match_text(value)
+    # the lowest voltage's time names what was running: "138.5 s (arm move running)"
+    return _value_cell(text) in page or f'<td class="value">{html.esc(text)} (' in page
+
+
+def test_set_replaces_a_variable_as_match_set_does_and_the_title_block_says_so(tmp_path, capsys):
+    sets = ["--set", "battery_resistance=0.025 ohm"]
+    tired = cli_json(capsys, "match", EXAMPLE, *sets, "--json")
+    nominal = cli_json(capsys, "match", EXAMPLE, "--json")
+    solved = cli_json(capsys, "solve", EXAMPLE, *sets, "--json")
+    out = tmp_path / "tired.html"
+    assert main(["report", EXAMPLE, *sets, "--out", str(out)]) == 0
+    page = out.read_text(encoding="utf-8")
+    header = page.split("</header>")[0]
+    # a reader is told what the report shows: the variable set, and what the file says
+    assert "<th>Set for this report (--set)</th>" in header
+    assert html.esc("battery_resistance = 0.025 ohm (the file: 0.02 ohm ± 0.005 ohm)") in header
+    changed = []
+    for name, value in tired["outputs"].items():
+        assert _has_match_value(page, value), (name, _match_text(value))
+        if _match_text(value) != _match_text(nominal["outputs"][name]):
+            changed.append(name)
+    assert changed, "the tired battery changes the match"
+    lift = _card_html(page, "lift")
+    text = solved["cards"]["lift"]["solution"]["inputs"]["battery_resistance"]["text"]
+    assert _value_cell(text) in lift and "0.025" in text
+    assert main(["report", EXAMPLE, *sets, "--out", str(tmp_path / "tired.md")]) == 0
+    md = (tmp_path / "tired.md").read_text(encoding="utf-8")
+    head = md.split("## Requirements")[0]
+    assert markdown.esc("Set for this report (--set): battery_resistance = 0.025 ohm") in head
+    for value in tired["outputs"].values():
+        assert markdown.esc(_match_text(value)) in md
+
+
+def test_set_is_refused_as_check_refuses_it(tmp_path, capsys):
+    for bad in ("no_such_variable=3", "battery_resistance", "=3"):
+        code, err = _stderr_of(capsys, "report", EXAMPLE, "--set", bad, "--out", str(tmp_path / "x.html"))
+        assert code == 2 and err == _stderr_of(capsys, "check", EXAMPLE, "--set", bad)[1], bad
+    code, err = _stderr_of(
+        capsys, "report", "builtin:elevator/two_neo", "--set", "a=1", "--out", str(tmp_path / "y.html")
+    )
+    assert code == 2 and "--set" in err and err.count("\n") == 1
+    assert not list(tmp_path.glob("*.html"))
 
 
 def test_the_charts_are_the_series_the_cards_plot():
@@ -350,3 +399,65 @@ def test_the_worst_case_is_the_one_check_finds(capsys):
         shown = units.format_quantity(r["worst_margin"], o.unit, o.quantity)
         assert html.esc(f"margin {shown} (") in page, key
     assert "Worst case: tolerances: 125 lb ± 5 lb, 0.02 ohm ± 0.005 ohm; 13 solves" in page
+
+
+def test_the_match_has_its_state_of_charge_and_stacked_current_per_card(capsys):
+    """The match's state of charge (and the charge available at the rates drawn) and the battery
+    current stacked by card over the match, from core.match.series as the app's Match card draws
+    them: the state of charge ends at `gearhead match`'s end_charge, and each stacked column is the
+    battery current at the sample it shows (S1: base load + each card's moves)."""
+    from gearhead.core import workbook
+    from gearhead.core.match.series import peak_bins, series
+
+    matched = cli_json(capsys, "match", EXAMPLE, "--json")
+    wb = workbook.load(EXAMPLE)
+    m = workbook.solve(wb).match
+    s = series(m)
+    report = document.from_workbook(wb)
+    charts = {c.key: c for c in report.match.charts}
+    soc = charts["match-state-of-charge"]
+    assert [x.label for x in soc.series] == ["state of charge", "charge available at the rates drawn"]
+    end = matched["outputs"]["end_charge"]["value"]
+    assert soc.series[0].y[-1] == pytest.approx(end, abs=1e-9) and soc.series[0].x[-1] == s.t[-1]
+    assert soc.series[1].y[-1] == pytest.approx(matched["outputs"]["end_available"]["value"], abs=1e-9)
+    assert min(soc.series[0].y) == pytest.approx(100 * min(s.soc))  # the envelope keeps the extremes
+    stacked = charts["match-current-by-card"]
+    assert stacked.stacked
+    assert [x.label for x in stacked.series] == ["base load", *s.by_card]
+    bins = peak_bins(s, document.STACK_BINS)
+    assert stacked.series[0].x == [x for x, _ in bins]
+    for k, (_, i) in enumerate(bins):  # each column: the sample of the bin's highest battery current
+        total = sum(layer.y[k] for layer in stacked.series)
+        assert total == pytest.approx(s.battery_current[i], rel=1e-6, abs=1e-6), k
+    top = max(sum(layer.y[k] for layer in stacked.series) for k in range(len(bins)))
+    assert top == pytest.approx(max(s.battery_current), rel=1e-6)  # the match's peak is never averaged away
+    page = html.write(report)
+    for i in range(len(stacked.series)):
+        assert f'id="match-current-by-card-s{i}"' in page
+    assert 'id="match-state-of-charge-s1"' in page
+    md_files = markdown.chart_files(report, "x")
+    assert (
+        "x_charts/match-current-by-card.svg" in md_files and "x_charts/match-state-of-charge.svg" in md_files
+    )
+
+
+def test_charts_drawn_from_several_threads_are_the_same_bytes():
+    """The app builds a report in a thread worker: charts drawn at once from several threads (one
+    Figure is reused, rcParams are set while drawing) are the bytes drawn one after another."""
+    import threading
+
+    from gearhead.core.report import charts
+
+    cs = document.build("builtin:elevator/two_neo").charts()
+    alone = [charts.svg(c) for c in cs]
+    results: list[list[str]] = []
+
+    def draw() -> None:
+        results.append([charts.svg(c) for c in cs * 2])
+
+    threads = [threading.Thread(target=draw) for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(results) == 4 and all(r == alone * 2 for r in results)

@@ -1,6 +1,7 @@
-"""`gearhead report FILE [--format html|md|pdf] [--out PATH]`: a preset or workbook as a design report
-(core/report/). A bad file exits 2 (tui/cli.py's handler of InputError) with the message `check` and
-`solve --preset` give; PDF without a Chromium exits 69 (EX_UNAVAILABLE) saying so.
+"""`gearhead report FILE [--format html|md|pdf] [--out PATH] [--set VAR=VALUE ...]`: a preset or
+workbook as a design report (core/report/). A bad file exits 2 (tui/cli.py's handler of InputError)
+with the message `check` and `solve --preset` give (a bad --set as `check --set` refuses it); PDF
+without a Chromium exits 69 (EX_UNAVAILABLE) saying so.
 
 HTML is one self-contained file; Markdown is written with its charts beside it
 (`STEM_charts/*.svg`); an existing file is replaced only with --overwrite."""
@@ -39,6 +40,14 @@ def add_parser(sub) -> None:
         metavar="TEXT",
         help="put a date in the report (today's, or TEXT) and the simulations' wall times; without it the "
         "same file gives the same report, byte for byte",
+    )
+    r.add_argument(
+        "--set",
+        dest="sets",
+        action="append",
+        default=[],
+        metavar="VAR=VALUE",
+        help="a workbook: replace a variable's value (as check --set); the report's title block names it",
     )
     r.add_argument(
         "--worst-case",
@@ -95,7 +104,9 @@ def run(args) -> int:
         raise InputError("--out", "is empty; give a file name, or - to print the report")
     if args.out == "-" and kind == "pdf":
         raise InputError("--out", "a PDF is written to a file, not printed; give a file name")
-    report = document.build(args.file, date=_date(args.date), worst_case=args.worst_case)
+    from .workbook_cli import _sets
+
+    report = document.build(args.file, date=_date(args.date), worst_case=args.worst_case, sets=_sets(args))
     out = args.out or _stem(args.file, report.title) + SUFFIXES[kind]
     stem = Path(out).stem if out != "-" else _stem(args.file, report.title)
     if kind == "md":

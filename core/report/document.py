@@ -71,6 +71,7 @@ class Chart:
     series: list[Series] = field(default_factory=list)
     heat: HeatData | None = None
     level: tuple[float, str] | None = None  # a horizontal line (the brownout voltage) and its label
+    stacked: bool = False  # the series are layers stacked on each other (one x for all), not lines
 
 
 @dataclass(frozen=True)
@@ -139,6 +140,9 @@ class Report:
     version: str  # Gearhead's
     share_code: str  # "" for a workbook (a code holds one card: each card's is with it)
     date: str = ""
+    # the variables the command line set (--set NAME=VALUE): (name, the value set, the file's entry);
+    # the title block names them, so no reader takes the report for the file's own design
+    sets: list[tuple[str, str, str]] = field(default_factory=list)
     variables: Table | None = None
     cards: list[CardSection] = field(default_factory=list)
     requirements: list[RequirementLine] = field(default_factory=list)
@@ -146,6 +150,10 @@ class Report:
     worst_case_notes: list[str] = field(default_factory=list)
     match: MatchSection | None = None
     match_error: str | None = None
+
+    def set_text(self) -> str:
+        """The variables the command line set, each with what the file says."""
+        return "; ".join(f"{name} = {value} (the file: {own})" for name, value, own in self.sets)
 
     def charts(self) -> list[Chart]:
         out = [c for card in self.cards for c in card.charts]
@@ -405,18 +413,29 @@ def _variable_text(v, value: Any) -> str:
     return str(value)
 
 
-def from_workbook(wb, *, date: str = "", worst_case: bool = False) -> Report:
-    """The report of a workbook: its variables, every card, the requirements and the match."""
+def _entry(v) -> str:
+    """A variable as written in its file: its entry, or '= ' and its expression."""
+    return str(v.entry) if v.expr is None else "= " + v.expr.text
+
+
+def from_workbook(
+    wb, *, date: str = "", worst_case: bool = False, file_entries: dict[str, str] | None = None
+) -> Report:
+    """The report of a workbook: its variables, every card, the requirements and the match.
+    `file_entries`: the file's own entry of each variable the command line set (--set), which `wb`
+    holds replaced; the title block and the variables' table say so."""
     from .. import share, workbook
     from ..presets import Preset
     from ..registry import get
 
     outcome = workbook.solve(wb)
     report = Report(wb.name, wb.description, "workbook", wb.source, version(), "", date)
+    file_entries = file_entries or {}
+    report.sets = [(k, _entry(wb.variables[k]), e) for k, e in file_entries.items() if k in wb.variables]
     rows = []
     for name, v in wb.variables.items():
-        entry = v.entry if v.expr is None else "= " + v.expr.text
-        rows.append([name, str(entry), _variable_text(v, outcome.variables.get(name))])
+        entry = _entry(v) + (" (--set)" if name in file_entries else "")
+        rows.append([name, entry, _variable_text(v, outcome.variables.get(name))])
     if rows:
         report.variables = Table("Variables", ["Variable", "As written", "Value"], rows)
     for name, card in outcome.cards.items():
@@ -580,7 +599,29 @@ def match_section(m) -> MatchSection:
         ],
     )
     ts = [t for t, _, _ in m.bus.trace]
-    charts = [
+    charts = _match_charts(m, ts)
+    return MatchSection(summary, shares, moves, brownouts, charts)
+
+
+# the charts are ~430 pt wide: the state of charge keeps each of LINE_BINS time bins' first, lowest,
+# highest and last sample (series.envelope, exact at the bins' edges); the stacked current shows in
+# each of STACK_BINS columns the sample of its highest battery current (series.peak_bins), as the
+# app's Match card does (a move's peak is never averaged away)
+LINE_BINS = 600
+STACK_BINS = 400
+
+
+def _match_charts(m, ts: list[float]) -> list[Chart]:
+    """The bus voltage and battery current (every sample), the state of charge and the current
+    stacked by card (core.match.series: S1, S2)."""
+    from ..match.series import envelope, peak_bins, series
+
+    s = series(m)
+    bins = peak_bins(s, STACK_BINS)
+    xs = [x for x, _ in bins]
+    layers = [Series("base load", xs, [s.base[i] for _, i in bins])]
+    layers += [Series(card, xs, [amps[i] for _, i in bins]) for card, amps in s.by_card.items()]
+    return [
         Chart(
             "match-bus-voltage",
             "Bus voltage over the match",
@@ -596,8 +637,28 @@ def match_section(m) -> MatchSection:
             "Battery current [A]",
             [Series("battery current", ts, [i for _, _, i in m.bus.trace])],
         ),
+        Chart(
+            "match-state-of-charge",
+            "State of charge over the match",
+            "Time [s]",
+            "Charge [%]",
+            [
+                Series("state of charge", *envelope(s.t, [100 * x for x in s.soc], s.length, LINE_BINS)),
+                Series(
+                    "charge available at the rates drawn",
+                    *envelope(s.t, [100 * x for x in s.available], s.length, LINE_BINS),
+                ),
+            ],
+        ),
+        Chart(
+            "match-current-by-card",
+            "Battery current by card (each column: its highest)",
+            "Time [s]",
+            "Battery current [A]",
+            layers,
+            stacked=True,
+        ),
     ]
-    return MatchSection(summary, shares, moves, brownouts, charts)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -620,28 +681,45 @@ def is_workbook(path: str) -> bool:
     return os.path.isfile(path) and is_workbook_file(path)
 
 
-def load(path: str, *, worst_case: bool = False):
+def load(path: str, *, worst_case: bool = False, sets: dict[str, str] | None = None):
     """What `path` holds, read and checked but not solved: a Workbook, or a (Preset, source) pair.
-    A bad file raises InputError with the message `gearhead check` / `solve --preset` give."""
+    A bad file raises InputError with the message `gearhead check` / `solve --preset` give;
+    `sets` replaces workbook variables' entries as `gearhead check --set` does."""
     from .. import share, workbook
 
     if not str(path).strip():
         raise InputError("file", "is empty; give a preset or workbook file")
     if is_workbook(path):
-        return workbook.load(path)
+        return workbook.load(path, sets or None)
     if worst_case:
         raise InputError("--worst-case", "is for a workbook; a preset's tolerances are in its entries (±)")
+    if sets:
+        raise InputError(
+            "--set", "is for a workbook's variables; a preset has none (its entries are in the file)"
+        )
     return share.load_any(path), path
 
 
-def build(path: str, *, date: str = "", worst_case: bool = False) -> Report:
-    """The report of a preset or workbook file, a `builtin:NAME`, a share code or a ReCalc link."""
-    return of(load(path, worst_case=worst_case), date=date, worst_case=worst_case)
+def build(
+    path: str, *, date: str = "", worst_case: bool = False, sets: dict[str, str] | None = None
+) -> Report:
+    """The report of a preset or workbook file, a `builtin:NAME`, a share code or a ReCalc link;
+    `sets`: workbook variables replaced (NAME: VALUE, the command line's --set)."""
+    loaded = load(path, worst_case=worst_case, sets=sets)
+    file_entries = None
+    if sets and not isinstance(loaded, tuple):  # what the file itself says, for the title block
+        from .. import workbook
+
+        own = workbook.load(path).variables
+        file_entries = {k: _entry(own[k]) for k in sets}
+    return of(loaded, date=date, worst_case=worst_case, file_entries=file_entries)
 
 
-def of(loaded, *, date: str = "", worst_case: bool = False) -> Report:
-    """The report of what `load` read (solved now)."""
+def of(
+    loaded, *, date: str = "", worst_case: bool = False, file_entries: dict[str, str] | None = None
+) -> Report:
+    """The report of what `load` read (solved now); `file_entries` as from_workbook's."""
     if isinstance(loaded, tuple):
         preset, source = loaded
         return from_preset(preset, source, date=date)
-    return from_workbook(loaded, date=date, worst_case=worst_case)
+    return from_workbook(loaded, date=date, worst_case=worst_case, file_entries=file_entries)

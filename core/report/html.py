@@ -189,6 +189,8 @@ def write(report: Report) -> str:
         ("Design report of", f"a {report.kind}: {report.source}"),
         ("Gearhead version", report.version),
     ]
+    if report.sets:
+        meta.insert(1, ("Set for this report (--set)", report.set_text()))
     if report.date:
         meta.append(("Date", report.date))
     for label, text in meta:

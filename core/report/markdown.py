@@ -120,10 +120,10 @@ def write(report: Report, stem: str) -> str:
     out = [f"# {esc(report.title)}", ""]
     if report.description:
         out += [paragraph(report.description), ""]
-    out += [
-        f"- Design report of a {report.kind}: {esc(report.source)}",
-        f"- Gearhead version: {esc(report.version)}",
-    ]
+    out.append(f"- Design report of a {report.kind}: {esc(report.source)}")
+    if report.sets:
+        out.append(f"- Set for this report (--set): {esc(report.set_text())}")
+    out.append(f"- Gearhead version: {esc(report.version)}")
     if report.date:
         out.append(f"- Date: {esc(report.date)}")
     if report.share_code:
