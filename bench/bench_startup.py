@@ -12,6 +12,29 @@ never asserted.
 
 Issue 42's targets: first visit ≤ 3x the minimal app's with no stall over 16 ms, repeat ≤ 2x.
 
+What a visit is made of (2 December 2026, scratch timers on Compositor.reflow/render_update and
+Stylesheet.update_nodes, cProfile; elevator, 140x45, 2-core machine under load 5-6, so read the
+shares, not the ms):
+- repeat visit: the key's handling (the strips' -active classes and the focus moving from one
+  sheet to the other: four style updates of one node each, 0.4-1.4 ms) 7-9 ms, then one layout
+  (1.5-3 ms) and one paint of the whole screen (11-20 ms), and a second small paint (3 ms) before
+  the bench sees the card. The paint is most of it: every visible widget (~45: the card's 21-23,
+  the two strips' tabs, the key bar) renders its lines and the compositor cuts them at every
+  widget's edge (Strip.divide, _render_chops: ~80% of a profiled layout-and-paint); of the
+  widgets' own rendering (~4 ms a paint) the sheet is the largest (~1 ms). No re-solve, no row
+  refresh and no style recomputation of the card run on show. A pane of the minimal app is one
+  Label: its switch paints one widget.
+- first visit: the card's mount is one block of the event loop (the longest stall): importing its
+  calculator's core modules (elevator: 15-45 ms, importtime), composing its widgets and applying
+  the stylesheet to them (66 nodes styled with the area's strip); then the first layout and paint
+  (4-5 ms + 19-26 ms); then the first solve's result, a layout more when the results outgrow their
+  pane (a scrollbar appears), and the chart's mount (two layouts, ~80 ms later).
+What did not pay (measured, reverted): importing the calculator in a thread (asyncio.to_thread,
+frames held by batch_update) made the elevator's first visit 474-526 ms instead of 147-225 ms and
+left stalls of 25 ms and more (the import holds the GIL; the loop gets it back every switch
+interval); showing the chart's "no data" line and the chart only when their display differs (the
+chart's own mount asks for the same layout: 4 layouts in the first visit either way).
+
 Run from a clean clone (after `python3 -m venv .venv && .venv/bin/pip install -e '.[test]'`):
     .venv/bin/python bench/bench_startup.py [--app-only] [--runs N] [--gc]
 Before/after: run this file with another checkout's .venv/bin/python (its editable install imports

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from rich.style import Style
-from textual.geometry import Region
+from textual.geometry import Region, Size
+from textual.reactive import Reactive
 from textual.screen import Screen
 from textual.scroll_view import ScrollView
 from textual.strip import Strip
@@ -15,6 +16,24 @@ class LineView(ScrollView):
     the DOM up to the screen, and asked per line it was most of a key's frame (19 of 43 ms)."""
 
     _base_style: Style | None = None
+
+    # Widget's virtual_size asks for a layout of the whole screen on every change: a reflow and a
+    # repaint of every widget on screen. A card's first solve set three of them (results and table
+    # rows; the sheet's and the list's width once sized), a second layout in its first visit, and
+    # a table whose row count follows the entries did it on keys. Here a change repaints the view
+    # and asks for a layout only when one can move something: the view is sized by its content
+    # (height: auto, as on a narrow screen) or a scrollbar shows, before or after.
+    virtual_size = Reactive(Size(0, 0), layout=False)
+
+    def watch_virtual_size(self, old: Size, new: Size) -> None:
+        styles, region = self.styles, self.scrollable_content_region
+        auto = (styles.height is not None and styles.height.is_auto and old.height != new.height) or (
+            styles.width is not None and styles.width.is_auto and old.width != new.width
+        )
+        tall = styles.overflow_y != "hidden" and max(old.height, new.height) > region.height
+        wide = styles.overflow_x != "hidden" and max(old.width, new.width) > region.width
+        if auto or tall or wide:
+            self.refresh(layout=True)
 
     @property
     def base_style(self) -> Style:
