@@ -207,12 +207,19 @@ def test_apply_to_a_preset_copy(capsys, tmp_path, arm_log):
     "extra, words",
     [
         ([], "--apply: needs the card's file"),
-        (["--preset", ROOT / "presets/arm/single_kraken.toml"], "does not change a built-in preset"),
+        # the installed built-in (from a clean clone installed without -e, the repository's presets/
+        # is a plain file beside it: the test once wrote into it there)
+        (["--preset", "BUILTIN"], "does not change a built-in preset"),
     ],
 )
 def test_apply_refused(capsys, arm_log, extra, words):
+    from gearhead.core import presets
+
+    extra = [presets.builtin_dir() / "arm/single_kraken.toml" if e == "BUILTIN" else e for e in extra]
+    before = [p.read_bytes() for p in extra if isinstance(p, Path)]
     code, out, err = run(capsys, "fit", arm_log, "--card", "arm", "--apply", *extra)
     assert code == 2 and out == "" and words in err
+    assert [p.read_bytes() for p in extra if isinstance(p, Path)] == before
 
 
 def test_apply_writes_nothing_on_a_bad_log_or_a_flywheel(capsys, tmp_path):

@@ -431,5 +431,8 @@ async def test_typing_cancels_a_running_simulation_in_the_app(monkeypatch):
             if not tab.busy:
                 break
         await settle(pilot)
-        assert outcomes[0] == "cancelled" and outcomes[-1] == "solved", outcomes
+        # the slow solve was cancelled, never finished; the new entries were solved. Their order in
+        # the list is the threads': the new solve may enter before the old one notices its cancel
+        assert "finished" not in outcomes and outcomes.count("cancelled") == 1, outcomes
+        assert "solved" in outcomes, outcomes
         assert tab.solution is not None and tab.solution.inputs["match_length"].value == 150
