@@ -661,6 +661,9 @@ async def test_the_export_and_load_dialogs_refuse_a_path_outside(tmp_path, monke
     from gearhead.tui.components.export_screen import ExportScreen
     from gearhead.tui.components.preset_screens import LoadPresetScreen
 
+    # recorded first, so the teardown puts back "not confined": setattr in `finally` recorded the
+    # confined value as the original and restored it, confining every later test in this process
+    monkeypatch.setattr(served_paths, "_allowed", None)
     monkeypatch.chdir(served_paths.confine())
     outside = tmp_path / "elsewhere"
     outside.mkdir()
