@@ -712,7 +712,19 @@ class GearheadApp(App):
         yield SystemCommand(
             "Sweep…", "Vary the focused input over a range: plot, table, CSV", self.action_sweep
         )
-        if self.current_calculator in ("elevator", "arm", "flywheel"):  # core.fit.KINDS
+        from .components.workbook_screen import WorkbookScreen
+
+        if isinstance(screen, WorkbookScreen):  # its own card, not the calculator card behind it
+            book = screen
+            fitted = book.fit_card()
+            if fitted is not None:
+                yield SystemCommand(
+                    f"Fit {fitted.card_name} from log…",
+                    f"Fit the workbook's {fitted.card_name} card from a SysId log (.wpilog, .csv); "
+                    "Apply sets its fitted entries (linked fields are left as they are)",
+                    book.action_fit_from_log,
+                )
+        elif self.current_calculator in ("elevator", "arm", "flywheel"):  # core.fit.KINDS
             yield SystemCommand(
                 "Fit from log…",
                 "Fit this card's model from a SysId log (.wpilog, .csv); Apply sets the fitted entries",

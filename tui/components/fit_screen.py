@@ -6,7 +6,12 @@ R², RMSE, the favoured form, the entries they give, and the replay of one test 
 against the favoured fit's and the design's). Apply puts the fitted entries (elevator: load mass and
 friction; arm: mass, entered inertia and friction) into the card's fields, after the screen has
 shown what each becomes; the dialog returns them and the app sets them as the sheet would take a
-typed entry. A log that cannot be fitted is one line naming the file and what is wrong."""
+typed entry. A log that cannot be fitted is one line naming the file and what is wrong.
+
+The screen knows nothing of where the card lives: the caller passes the card's calculator, its
+entries as on screen, a label for the title (a workbook's card: its name) and the fields Apply
+must not write (a workbook's links, each with its reference: the screen says what the fit gives
+for each, as `gearhead fit --apply` notes it), and takes what the dialog returns."""
 
 from __future__ import annotations
 
@@ -102,11 +107,15 @@ class FitScreen(Dialog[dict[str, Any] | None]):
         blink: bool = True,
         hide_timings: bool = False,
         path: str = "",
+        label: str = "",
+        linked: dict[str, str] | None = None,
     ) -> None:
         super().__init__()
         self.calculator = calculator
         self.kind = calculator.id
         self.entries = dict(entries)
+        self.label = label or calculator.title  # the title's name of the card
+        self.linked = dict(linked or {})  # field -> its reference ('= lift_load'): not written by Apply
         self.blink = blink
         self.hide_timings = hide_timings
         self.path = path
@@ -118,7 +127,7 @@ class FitScreen(Dialog[dict[str, Any] | None]):
 
     def compose(self) -> ComposeResult:
         with Vertical(classes="fit-dialog"):
-            yield Label(Text(f"{self.calculator.title}: fit from a SysId log"), classes="fit-title")
+            yield Label(Text(printable(f"{self.label}: fit from a SysId log")), classes="fit-title")
             with Horizontal(classes="fit-form"):
                 entry = FieldInput(
                     value=self.path,
@@ -214,7 +223,7 @@ class FitScreen(Dialog[dict[str, Any] | None]):
         report, error = None, None
         try:
             raw, _ = split_inputs(self.calculator, self.entries)  # a tolerance's nominal value
-            card = card_from_entries(self.kind, raw, f"the {self.calculator.title} card on screen")
+            card = card_from_entries(self.kind, raw, f"the {self.label} card on screen")
             report = fit.fit_log(path, self.kind, card)
         except InputError as exc:
             error = str(exc)
@@ -303,11 +312,19 @@ class FitScreen(Dialog[dict[str, Any] | None]):
         from .unit_text import pretty_unit
 
         lines = []
-        for k, v in self.changes.items():
+        for k, v in list(self.changes.items()):
             f = self.calculator.field(k)
             new = in_field_unit(f, f.kind.entry(f, v))
             old = self.entries.get(k, "")
             u = pretty_unit(f.unit) if f.kind.with_unit and f.unit else ""
+            if k in self.linked:  # as core/fit/apply.py: a link is not overwritten, its value is said
+                del self.changes[k]
+                notes = [
+                    *notes,
+                    f"{f.label} is linked ({self.linked[k]}): not written; the fit gives "
+                    + f"{shown_entry(f, str(new))} {u}".rstrip(),
+                ]
+                continue
             lines.append(f"  {f.label}: {shown_entry(f, str(old))} → {shown_entry(f, str(new))} {u}".rstrip())
         head = "Apply writes into the card:" if lines else "Apply: nothing to change in the card."
         text = "\n".join([head, *lines, *(f"  note: {n}" for n in notes)])

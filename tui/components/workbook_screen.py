@@ -93,6 +93,21 @@ class WorkbookCard(CalculatorTab):
         """What was typed on this card (not its linked fields), as a preset stores it."""
         return {k: v for k, v in self.current_inputs().items() if k not in self.links}
 
+    def take_entries(self, values: dict[str, Any]) -> dict[str, Any]:
+        """Entries put in as if typed (a fit's Apply): a linked field is left as it is; those that
+        changed are the card's own edits (ctrl+s writes them) and the workbook re-solves once.
+        Returns what was set."""
+        own = {k: v for k, v in values.items() if k not in self.links}
+        if not own:
+            return {}
+        before = dict(self.entries)
+        self.set_entries(own)
+        changed = {k for k in own if self.entries.get(k) != before.get(k)}
+        if changed:
+            self.edited |= changed
+            self.on_change()
+        return own
+
 
 def robot_calculator(book):
     """The Robot card's form: core.workbook.as_calculator's fields (numbers and quantities), then
@@ -321,6 +336,80 @@ class WorkbookScreen(Screen):
         if action == "match":  # in the key bar only when the workbook has a [match]
             return self.match_view is not None
         return super().check_action(action, parameters)
+
+    @property
+    def current_card(self) -> WorkbookCard | None:
+        """The workbook card on screen (None on the Robot and Match cards)."""
+        active = self.query_one("#workbook-tabs", Tabs).active or ""
+        return self.cards.get(active.removeprefix("wbtab-")) if active.startswith("wbtab-") else None
+
+    def fit_card(self) -> WorkbookCard | None:
+        """The card on screen when "Fit from log" fits its kind (core.fit.KINDS), else None."""
+        from gearhead.core.fit import KINDS
+
+        tab = self.current_card
+        return tab if tab is not None and tab.calculator.id in KINDS else None
+
+    @guarded
+    def action_fit_from_log(self) -> None:
+        """The card on screen fitted from a SysId log (fit_screen.py), with its entries as shown
+        (each linked field its resolved value); Apply puts the fitted entries into its own fields
+        as if typed, and says what the fit gives for each linked one instead of writing it."""
+        from gearhead.core.registry import get
+
+        from ..guard import guard
+        from .fit_screen import FitScreen
+        from .sheet import shown_entry
+
+        tab = self.fit_card()
+        if tab is None:
+            self.app.notify(
+                "Fit from log works on a workbook's elevator, arm or flywheel card: choose one first.",
+                severity="warning",
+                markup=False,
+            )
+            return
+        name = tab.card_name
+        result = self.outcome.cards.get(name) if self.outcome is not None else None
+        if self.busy or result is None:
+            self.app.notify(
+                f"The workbook is still solving: fit {name} once its linked fields show their values.",
+                severity="warning",
+                markup=False,
+            )
+            return
+        unresolved = [k for k in tab.links if k not in result.entries]
+        if unresolved:
+            self.app.notify(
+                f"{name}: the linked field {unresolved[0]} has no value ({result.error}): "
+                "the fit needs every entry.",
+                severity="error",
+                markup=False,
+            )
+            return
+        calc = get(tab.calculator.id)  # its own labels (the card's carry their link)
+
+        def applied(values) -> None:
+            if not values or not tab.is_attached:
+                return
+            done = tab.take_entries(values)
+            if done:
+                text = ", ".join(
+                    f"{calc.field(k).label} = {shown_entry(calc.field(k), v)}" for k, v in done.items()
+                )
+                self.app.notify(text, title=f"Fitted entries applied to {name}", markup=False)
+
+        self.app.push_screen(
+            FitScreen(
+                calc,
+                dict(tab.entries),
+                self.blink,
+                self.hide_timings,
+                label=f"{name} ({calc.title})",
+                linked=tab.links,
+            ),
+            guard(self, applied),
+        )
 
     def _own_entries(self) -> dict[str, dict[str, Any]]:
         """What was typed on the screen, per card ("" the Robot card): what a save writes."""
