@@ -360,6 +360,7 @@ class WorkbookScreen(Screen):
         from ..guard import guard
         from .fit_screen import FitScreen
         from .sheet import shown_entry
+        from .unit_text import pretty_unit
 
         tab = self.fit_card()
         if tab is None:
@@ -389,14 +390,17 @@ class WorkbookScreen(Screen):
             return
         calc = get(tab.calculator.id)  # its own labels (the card's carry their link)
 
+        def shown(f, entry) -> str:
+            """An entry as the sheet now shows it: in its field's unit, 6 digits."""
+            unit = pretty_unit(f.unit) if f.kind.with_unit and f.unit else ""
+            return f"{f.label} = {shown_entry(f, str(entry))} {unit}".rstrip()
+
         def applied(values) -> None:
             if not values or not tab.is_attached:
                 return
             done = tab.take_entries(values)
             if done:
-                text = ", ".join(
-                    f"{calc.field(k).label} = {shown_entry(calc.field(k), v)}" for k, v in done.items()
-                )
+                text = ", ".join(shown(calc.field(k), tab.entries[k]) for k in done)
                 self.app.notify(text, title=f"Fitted entries applied to {name}", markup=False)
 
         self.app.push_screen(
