@@ -199,3 +199,41 @@ async def test_a_card_whose_link_has_no_value_is_not_fitted(tmp_path):
         await pilot.pause(0.2)
         assert app.screen is screen
         assert any("load_mass" in m and "no value" in m for m in said), said
+
+
+async def test_the_arm_and_flywheel_cards_are_offered_by_name_and_the_arms_fit_applies(tmp_path):
+    """Each fitted kind (core.fit.KINDS) is offered on a workbook; the arm's fit applies to its card
+    (the flywheel's is shown, not applied: fit_screen.py)."""
+    pytest.importorskip("wpiutil")
+    from gearhead.core.fit import entries
+    from tests.fit_plants import simulate
+
+    path = tmp_path / "robot.toml"
+    path.write_text(
+        'name = "kinds"\n[cards.pivot]\ncalculator = "arm"\n[cards.wheel]\ncalculator = "flywheel"\n',
+        encoding="utf-8",
+    )
+    design = entries.load_card("arm").design
+    plant = {"kS": design["kS"] * 2, "kV": design["kV"], "kA": design["kA"] * 1.3, "kG": design["kG"] * 1.25}
+    log = simulate(tmp_path / "arm.wpilog", "arm", {**plant, "offset": 0.0}, period=0.005)
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.load(path))
+    async with app.run_test(size=SIZE) as pilot:
+        screen = await opened(pilot, app)
+        await show(pilot, screen, "wheel")
+        assert fit_titles(app) == ["Fit wheel from log…"]
+        await show(pilot, screen, "pivot")
+        assert fit_titles(app) == ["Fit pivot from log…"]
+        dialog = await open_fit(pilot)
+        await fit(pilot, dialog, str(log))
+        r = dialog.report
+        assert r is not None, str(dialog.query_one("#fit-status").render())
+        await pilot.click("#fit-apply")
+        await settled(pilot, screen)
+        pivot = screen.cards["pivot"]
+        got = pivot.solution.inputs
+        assert got["moment_of_inertia"].value == pytest.approx(
+            r.fits[r.favoured].gains["kA"] * r.card.f, rel=1e-9
+        )
+        assert got["inertia_model"].value == "entered"
+        assert {"arm_mass", "moment_of_inertia", "friction_torque"} <= pivot.edited
+        assert screen.unsaved_changes() == len(pivot.edited)
