@@ -237,3 +237,32 @@ async def test_the_arm_and_flywheel_cards_are_offered_by_name_and_the_arms_fit_a
         assert got["inertia_model"].value == "entered"
         assert {"arm_mass", "moment_of_inertia", "friction_torque"} <= pivot.edited
         assert screen.unsaved_changes() == len(pivot.edited)
+
+
+async def test_a_workbooks_palette_offers_its_own_commands_not_the_hidden_cards(tmp_path):
+    """The calculator cards' commands (presets, share codes, export, sweep, units, open, send) act on
+    the card hidden behind a workbook, and their keys say so there: the palette does not offer them
+    either. Its own commands do what their keys do."""
+    app = GearheadApp(
+        blink=False, initial="elevator", hide_timings=True, workbook=workbook.load(book_file(tmp_path))
+    )
+    async with app.run_test(size=SIZE) as pilot:
+        screen = await opened(pilot, app)
+        await settled(pilot, screen)
+        titles = [c.title for c in app.get_system_commands(app.screen)]
+        for hidden in ("Save preset", "Load preset", "Copy share code", "Export results", "Sweep…"):
+            assert hidden not in titles
+        assert not [t for t in titles if t.startswith(("Open ", "Send ", "Units: "))], titles
+        assert {"Save workbook", "Next card", "Previous card", "Close workbook"} <= set(titles)
+        tabs = screen.query_one("#workbook-tabs")
+        await pilot.press("ctrl+p", *"Next card")
+        await pilot.pause(0.3)
+        await pilot.press("enter")
+        await pilot.pause(0.1)
+        assert tabs.active == "wbtab-lift"
+    # back on the calculator cards, they are offered again
+    app = GearheadApp(blink=False, initial="elevator", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        await pilot.pause()
+        titles = [c.title for c in app.get_system_commands(app.screen)]
+        assert "Save preset" in titles and "Save workbook" not in titles

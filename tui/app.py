@@ -683,6 +683,11 @@ class GearheadApp(App):
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         # each command's callback is guarded (the actions by their decorator, the lambdas here)
         yield from super().get_system_commands(screen)
+        from .components.workbook_screen import WorkbookScreen
+
+        if isinstance(screen, WorkbookScreen):  # its own commands, not the calculator card's behind it
+            yield from self._workbook_commands(screen)
+            return
         yield SystemCommand(
             "Save preset", "Save the current tab's inputs as a TOML preset", self.action_save_preset
         )
@@ -712,19 +717,7 @@ class GearheadApp(App):
         yield SystemCommand(
             "Sweep…", "Vary the focused input over a range: plot, table, CSV", self.action_sweep
         )
-        from .components.workbook_screen import WorkbookScreen
-
-        if isinstance(screen, WorkbookScreen):  # its own card, not the calculator card behind it
-            book = screen
-            fitted = book.fit_card()
-            if fitted is not None:
-                yield SystemCommand(
-                    f"Fit {fitted.card_name} from log…",
-                    f"Fit the workbook's {fitted.card_name} card from a SysId log (.wpilog, .csv); "
-                    "Apply sets its fitted entries (linked fields are left as they are)",
-                    book.action_fit_from_log,
-                )
-        elif self.current_calculator in ("elevator", "arm", "flywheel"):  # core.fit.KINDS
+        if self.current_calculator in ("elevator", "arm", "flywheel"):  # core.fit.KINDS
             yield SystemCommand(
                 "Fit from log…",
                 "Fit this card's model from a SysId log (.wpilog, .csv); Apply sets the fitted entries",
@@ -741,6 +734,32 @@ class GearheadApp(App):
                     "Copy the matching outputs into that calculator's inputs",
                     lambda cid=calc.id: self._send_from(cid),
                 )
+
+    def _workbook_commands(self, book) -> Iterable[SystemCommand]:
+        """A workbook screen's palette: what its keys do, and the fit of its card. The calculator
+        cards' commands (presets, share codes, export, sweep, accuracy, units, open, send) act on the
+        cards hidden behind it (a workbook shows its units as its file gives them), so they are not
+        offered here (their keys say so: action_not_here)."""
+        yield SystemCommand(
+            "Save workbook", "Write the workbook's entries to its file (ctrl+s)", book.action_save
+        )
+        yield SystemCommand("Next card", "The workbook's next card (ctrl+right)", lambda: book.action_step(1))
+        yield SystemCommand(
+            "Previous card", "The workbook's previous card (ctrl+left)", lambda: book.action_step(-1)
+        )
+        if book.match_view is not None:
+            yield SystemCommand(
+                "Match", "The match card: one battery, every mechanism (ctrl+t)", book.action_match
+            )
+        yield SystemCommand("Close workbook", "Back to the calculator cards (Esc)", book.action_close)
+        fitted = book.fit_card()
+        if fitted is not None:
+            yield SystemCommand(
+                f"Fit {fitted.card_name} from log…",
+                f"Fit the workbook's {fitted.card_name} card from a SysId log (.wpilog, .csv); "
+                "Apply sets its fitted entries (linked fields are left as they are)",
+                book.action_fit_from_log,
+            )
 
     @guarded
     async def _send_from(self, calc_id: str) -> None:
