@@ -108,7 +108,8 @@ def apply(
             notes.append(f"{k} is linked ({old.strip()}): not written; the fit gives {v}")
             del changes[k]
             continue
-        target[k] = v
+        # a number without a unit (C_rr) stays a TOML number, as the presets write it
+        target[k] = float(v) if k in NUMBERS and " " not in v else v
     after = tomlkit.dumps(doc)
     if workbook is not None:
         from ..workbook.file import from_text

@@ -305,6 +305,8 @@ class FitScreen(Dialog[dict[str, Any] | None]):
             new = in_field_unit(f, f.kind.entry(f, v))
             old = self.entries.get(k, "")
             u = pretty_unit(f.unit) if f.kind.with_unit and f.unit else ""
+            if f.choices and str(old) in f.choices and str(new) in f.choices:  # a mode: as its menu says
+                old, new = f.label_of(str(old)), f.label_of(str(new))
             lines.append(f"  {f.label}: {shown_entry(f, str(old))} → {shown_entry(f, str(new))} {u}".rstrip())
         head = "Apply writes into the card:" if lines else "Apply: nothing to change in the card."
         text = "\n".join([head, *lines, *(f"  note: {n}" for n in notes)])
