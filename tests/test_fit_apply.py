@@ -2,11 +2,12 @@
 core/fit/entries.py (E5)-(E7)): synthetic SysId logs from known plants (tests/fit_plants.py) whose
 gains are the card's own with a heavier wheel or robot and more friction; the entries written,
 re-solved by the card itself (its kS/kV/kA outputs), give the plant's gains back:
-- a log without noise: the fit is the plant's model exactly, so the gains come back to 1e-3 (the
-  fit's rounding; measured below 5e-5) and the file's 6 significant digits to 1e-5 of the fit;
+- a log without noise: the fit is the plant's model exactly, so the gains come back to 1e-3
+  (measured: within 1.1e-6) and to 1e-5 of the fit (the file's 6 significant digits);
 - velocity noise of 0.2 % of the top speed (0.1 % on position, 1 ms of timestamp jitter): kV within
-  1 %, kA and kS within 3 % (measured: FRC shooter kS −0.4 %, kV +0.15 %, kA −1.4 %; MK4i L2 drive
-  kS +0.4 %, kV −0.03 %, kA +0.3 %).
+  1 %, kA and kS within 3 % (measured, the card re-solved against the plant: FRC shooter kA
+  −0.08 %; MK4i L2 drive kS +0.45 %, kA −0.52 %).
+kV is the card's n/Kv whatever is written (E3), here the plant's.
 The flywheel card holds no friction torque: kS beyond the motors' own loss is noted, not written.
 The written file keeps its comments and loads; a refused log writes nothing."""
 
