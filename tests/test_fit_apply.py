@@ -292,3 +292,21 @@ async def test_the_app_applies_the_flywheel_and_sprint_fits(tmp_path, kind, scal
         for k in ("kS", "kV", "kA"):
             assert on_screen.design[k] == pytest.approx(best[k], rel=1e-9), k
             assert on_screen.design[k] == pytest.approx(plant[k], rel=1e-3), k
+
+
+@pytest.mark.parametrize("kind", ["flywheel", "sprint"])
+def test_any_fitted_gains_give_entries_the_card_reads(kind):
+    """Gains from tiny to huge, kS below zero to far above the supply: the entries written are
+    ones the card reads (a value it refuses kept as the card's, with a note), never nan or inf."""
+    import itertools
+
+    from gearhead.core import registry
+    from gearhead.core.fit import entries
+    from gearhead.core.model import parse_inputs
+
+    card = entries.load_card(kind)
+    for ks, ka in itertools.product((-5.0, 0.0, 1e-9, 0.3, 11.0, 1e300), (1e-300, 1e-9, 0.01, 3.0, 1e300)):
+        raw, notes = entries.fitted_raw(card, {"kS": ks, "kV": card.design["kV"], "kA": ka})
+        parse_inputs(registry.get(kind), raw)
+        assert not any(w in str(v).lower() for v in raw.values() for w in ("nan", "inf")), raw
+        assert all(isinstance(n, str) and n for n in notes)

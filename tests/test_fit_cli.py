@@ -111,7 +111,7 @@ def test_missing_log_exits_2(capsys, tmp_path):
 
 
 @pytest.mark.parametrize("seed", range(6))
-@pytest.mark.parametrize("card", ["elevator", "arm", "flywheel"])
+@pytest.mark.parametrize("card", ["elevator", "arm", "flywheel", "sprint"])
 def test_unrelated_signals_give_a_fit_or_a_message(capsys, tmp_path, seed, card):
     """Voltage, position and velocity that have nothing to do with each other (random, some huge):
     a result or one line and exit 2, never a traceback or a NaN in the JSON."""
