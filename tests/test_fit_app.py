@@ -1,5 +1,5 @@
 """The app's "Fit from log" (issue 44 item 7, tui/components/fit_screen.py): offered by the palette
-on the elevator, arm and flywheel cards only; on the elevator card the shipped example log gives
+on the elevator, arm, flywheel and sprint cards only; on the elevator card the shipped example log gives
 the table `gearhead fit --json` gives, Apply puts the fitted entries into the card's fields; a
 hostile log is one line naming the file; Esc closes."""
 
@@ -50,7 +50,8 @@ async def fit(pilot, screen: FitScreen, path: str) -> float:
 
 
 @pytest.mark.parametrize(
-    "calc_id, offered", [("elevator", True), ("arm", True), ("flywheel", True), ("motor", False)]
+    "calc_id, offered",
+    [("elevator", True), ("arm", True), ("flywheel", True), ("sprint", True), ("motor", False)],
 )
 async def test_the_palette_offers_it_on_the_fitted_cards_only(calc_id, offered):
     app = GearheadApp(blink=False, initial=calc_id, hide_timings=True)
@@ -129,7 +130,7 @@ async def test_a_hostile_log_is_one_line_naming_the_file(tmp_path, data, words):
         assert not isinstance(app.screen, FitScreen)
 
 
-async def test_flywheel_fits_and_says_its_entries_are_not_written_back(tmp_path):
+async def test_flywheel_fits_and_offers_its_wheel_inertia(tmp_path):
     pytest.importorskip("wpiutil")
     from gearhead.core.fit import entries
     from tests.fit_plants import simulate
@@ -143,8 +144,9 @@ async def test_flywheel_fits_and_says_its_entries_are_not_written_back(tmp_path)
         assert screen.report is not None, str(screen.query_one("#fit-status").render())
         kv = screen.report.fits[screen.report.favoured].gains["kV"]
         assert kv == pytest.approx(design["kV"] * 1.2, rel=0.01) and math.isfinite(kv)
-        assert "not written back" in str(screen.query_one("#fit-diff").render())
-        assert screen.query_one("#fit-apply").disabled
+        diff = str(screen.query_one("#fit-diff").render())
+        assert "Wheel inertia (each)" in diff and "→ Moment of inertia" in diff, diff
+        assert not screen.query_one("#fit-apply").disabled  # Apply: tests/test_fit_apply.py
 
 
 @pytest.mark.parametrize("size", [(140, 45), (80, 24)])

@@ -667,7 +667,9 @@ class GearheadApp(App):
 
         tab = await self.card(self.current_calculator)
         if tab.calculator.id not in KINDS:
-            self.notify("Only the elevator, arm and flywheel cards fit from a log.", severity="warning")
+            self.notify(
+                "Only the elevator, arm, flywheel and sprint cards fit from a log.", severity="warning"
+            )
             return
         from .components.fit_screen import FitScreen
 
@@ -717,7 +719,9 @@ class GearheadApp(App):
         yield SystemCommand(
             "Sweep…", "Vary the focused input over a range: plot, table, CSV", self.action_sweep
         )
-        if self.current_calculator in ("elevator", "arm", "flywheel"):  # core.fit.KINDS
+        from gearhead.core.fit import KINDS
+
+        if self.current_calculator in KINDS:
             yield SystemCommand(
                 "Fit from log…",
                 "Fit this card's model from a SysId log (.wpilog, .csv); Apply sets the fitted entries",

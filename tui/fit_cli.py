@@ -22,6 +22,20 @@ UNITS = {
 }
 
 
+# the card's move (core.fit.entries.MOVE_OUTPUTS), in SI: label and unit ("" the card's speed unit)
+MOVES = {
+    "time_to_goal": ("time to goal", "s"),
+    "peak_stator_current": ("peak stator current", "A"),
+    "max_speed": ("top speed", ""),
+    "spin_up_time": ("spin-up time", "s"),
+    "recovery_time": ("recovery time", "s"),
+    "slowest_ball_speed": ("slowest ball", "m/s"),
+    "time_to_distance": ("time to distance", "s"),
+    "speed_at_distance": ("speed at distance", "m/s"),
+    "top_speed": ("attainable speed", "m/s"),
+}
+
+
 def add_parser(sub) -> None:
     f = sub.add_parser("fit", help="fit a card's kS/kV/kA/kG and entries from a SysId log (.wpilog or .csv)")
     f.add_argument("log", help="a WPILog (.wpilog) or AdvantageScope CSV export (.csv) of a SysId routine")
@@ -115,6 +129,8 @@ def _g(x: float) -> str:
 
 
 def text(r) -> list[str]:
+    from gearhead.core.fit.entries import MOVE_OUTPUTS
+
     pos, vel = UNITS[r.kind]
     p = r.picked
     out = [f"{r.source}: {r.kind}, card from {r.card.label}"]
@@ -149,16 +165,14 @@ def text(r) -> list[str]:
         label = "design's entries" if k == "design" else f"fitted ({k})"
         out.append(f"    {label:<22} {_g(rp.position_rmse):>10}   {_g(rp.velocity_rmse):>10}")
     if r.moves:
-        names = {
-            "time_to_goal": ("time to goal", "s"),
-            "peak_stator_current": ("peak stator current", "A"),
-            "max_speed": ("top speed", vel),
-        }
         out.append("")
         out.append(f"  the card's move, with its entries and the fitted ones ({r.favoured})")
-        for k, (label, u) in names.items():
+        for k in MOVE_OUTPUTS[r.kind]:
+            if not any(k in r.moves.get(m, {}) for m in ("design", "fitted")):
+                continue  # an output the card gives only with some effects (a flywheel's current)
+            label, u = MOVES[k]
             cells = [_g(r.moves[m][k]) if k in r.moves.get(m, {}) else "-" for m in ("design", "fitted")]
-            out.append(f"    {label:<22} {cells[0]:>10}   {cells[1]:>10}  {u}")
+            out.append(f"    {label:<22} {cells[0]:>10}   {cells[1]:>10}  {u or vel}")
     out += plot(r)
     for n in r.notes:
         out.append(f"  note: {n}")

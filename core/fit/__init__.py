@@ -10,8 +10,8 @@ from dataclasses import dataclass, field
 
 from ..errors import InputError
 
-KINDS = ("elevator", "arm", "flywheel")  # the cards the app offers "Fit from log" on
-CARDS = KINDS + ("sprint",)  # `gearhead fit --card` (a drivetrain: linear, no gravity, not applied)
+KINDS = ("elevator", "arm", "flywheel", "sprint")  # the cards the app offers "Fit from log" on
+CARDS = KINDS  # `gearhead fit --card` (sprint: a drivetrain, linear, no gravity)
 
 
 @dataclass

@@ -13,10 +13,23 @@ from pathlib import Path
 from ..errors import InputError
 from .entries import Card, fitted_raw
 
-# the entries the fit writes (fitted_raw's), as quantities with 6 significant digits
+# the entries the fit writes (fitted_raw's), numbers with 6 significant digits
 WRITTEN = {
     "elevator": ("load_mass", "friction_force", "effects"),
     "arm": ("arm_mass", "inertia_model", "moment_of_inertia", "friction_torque", "effects"),
+    "flywheel": ("mode", "wheel_inertia", "secondary_inertia"),
+    "sprint": ("robot_mass", "rolling_coefficient", "effects"),
+}
+NUMBERS = {
+    "load_mass",
+    "arm_mass",
+    "friction_force",
+    "friction_torque",
+    "moment_of_inertia",
+    "wheel_inertia",
+    "secondary_inertia",
+    "robot_mass",
+    "rolling_coefficient",
 }
 
 
@@ -29,17 +42,14 @@ class Applied:
 
 
 def _entries(card: Card, gains: dict[str, float]) -> tuple[dict[str, str], list[str]]:
-    got = fitted_raw(card, gains)
-    if got is None:
-        raise InputError("--apply", f"the {card.kind} card's fitted entries are not written back yet")
-    raw, notes = got
+    raw, notes = fitted_raw(card, gains)
     out = {}
     for k in WRITTEN[card.kind]:
         if k in raw and raw[k] != card.raw.get(k):
             v = raw[k]
-            if k in ("load_mass", "arm_mass", "friction_force", "friction_torque", "moment_of_inertia"):
-                number, unit = v.split(" ", 1)
-                v = f"{float(number):.6g} {unit}"
+            if k in NUMBERS:
+                number, _, unit = v.partition(" ")
+                v = f"{float(number):.6g} {unit}".rstrip()
             out[k] = v
     return out, notes
 
@@ -98,7 +108,8 @@ def apply(
             notes.append(f"{k} is linked ({old.strip()}): not written; the fit gives {v}")
             del changes[k]
             continue
-        target[k] = v
+        # a number without a unit (C_rr) stays a TOML number, as the presets write it
+        target[k] = float(v) if k in NUMBERS and " " not in v else v
     after = tomlkit.dumps(doc)
     if workbook is not None:
         from ..workbook.file import from_text

@@ -13,6 +13,12 @@ card's efficiency is kept; the efficiency that would explain kA at the card's ma
 it, η·kA_card/kA_fit. Gearhead's kV is n/Kv whatever η: a fitted kV above it is a loss the model
 does not hold (viscous drag, a wrong ratio or motor): its ratio kV_fit/(n/Kv) is shown         (E3)
 Each entry's standard deviation is its gain's (the fit's covariance) times the same factor      (E4)
+Written back (fitted_raw): elevator, arm as (E2); a flywheel's wheel inertia entered as a moment of
+inertia, J = kA·f less the rotors' and a secondary wheel's, over the wheels (no friction entry:
+shown, not written)                                                                              (E5)
+a sprint's robot mass m = kA·f and rolling resistance C_rr = (kS − R·i_f)/(g·kA) at the card's
+efficiency, so the card's (S9) gives the fitted kA and kS back                                  (E6)
+a fitted value the card's field refuses is not written, with a note                              (E7)
 """
 
 from __future__ import annotations
@@ -195,35 +201,153 @@ def entries(
     return rows
 
 
-MOVE_OUTPUTS = ("time_to_goal", "peak_stator_current", "max_speed")
+# the move the card solves, per card: its outputs shown with the design's and the fitted entries
+MOVE_OUTPUTS = {
+    "elevator": ("time_to_goal", "peak_stator_current", "max_speed"),
+    "arm": ("time_to_goal", "peak_stator_current", "max_speed"),
+    "flywheel": ("spin_up_time", "recovery_time", "slowest_ball_speed", "peak_stator_current"),
+    "sprint": ("time_to_distance", "speed_at_distance", "top_speed", "peak_stator_current"),
+}
+# a fitted entry the card refuses (out of its field's range) is not written, nor what goes with it
+TOGETHER = {
+    "friction_force": ("effects",),
+    "friction_torque": ("effects",),
+    "rolling_coefficient": ("effects",),
+    "moment_of_inertia": ("inertia_model",),
+    "wheel_inertia": ("mode", "secondary_inertia"),
+}
 
 
-def fitted_raw(card: Card, gains: dict[str, float]) -> tuple[dict, list[str]] | None:
-    """The card's entries with the fitted ones in (elevator, arm; None for a flywheel, whose inertia
-    is entered several ways): the moving mass from kA (an elevator's one mass serves gravity too, so
-    its kG follows from it), an arm's entered inertia from kA and mass from kG, friction from kS (E2)."""
-    if card.kind not in ("elevator", "arm"):
-        return None
+def fitted_raw(card: Card, gains: dict[str, float]) -> tuple[dict, list[str]]:
+    """The card's entries with the fitted ones in, and notes saying what was chosen (E5)-(E7):
+    elevator: the moving mass from kA (its one mass serves gravity too, so its kG follows from it)
+    and the friction force from kS; arm: the entered inertia from kA, the mass from kG, the
+    friction torque from kS (E2); flywheel (E5); sprint (E6). A fitted value the card's field
+    refuses (out of its range) is left as the card has it, with a note (E7)."""
     raw, notes = dict(card.raw), []
     f = card.f
     friction = gains["kS"] * f - card.loss
-    effects = {e for e in card.values["effects"] if e != "friction"}
-    name = "friction_force" if card.kind == "elevator" else "friction_torque"
+    if card.kind == "flywheel":
+        _flywheel(card, gains, raw, notes, friction)
+    elif card.kind == "sprint":
+        _sprint(card, gains, raw, notes, friction)
+    else:
+        effects = {e for e in card.values["effects"] if e != "friction"}
+        name = "friction_force" if card.kind == "elevator" else "friction_torque"
+        if friction > 0:
+            effects.add("friction")
+            raw[name] = f"{friction!r} {'N' if card.kind == 'elevator' else 'N*m'}"
+        else:
+            notes.append(f"fitted kS is below the motors' own loss: no friction added ({friction:.3g})")
+        raw["effects"] = ", ".join(sorted(effects))
+        if card.kind == "elevator":
+            raw["load_mass"] = f"{gains['kA'] * f!r} kg"
+        else:
+            tcb = card.values["counterbalance_torque"] if "counterbalance" in card.values["effects"] else 0.0
+            m = (gains["kG"] * f + tcb) / (G0 * card.values["com_distance"])
+            raw["arm_mass"] = f"{m!r} kg"
+            raw["inertia_model"] = "entered"
+            raw["moment_of_inertia"] = f"{gains['kA'] * f!r} kg*m**2"
+    return _valid(card, raw, notes), notes
+
+
+def _flywheel(card: Card, gains: dict[str, float], raw: dict, notes: list[str], friction: float) -> None:
+    """(E5) The flywheel's kA = R·J/k (VL2), J = n_w·I_w + N·J_r·G² + G₂₁²·n₂·I₂ (the wheels, the
+    motors' rotors and a secondary wheel, shooter (4), (D1)), so J = kA·f gives one wheel's
+        I_w = (kA·f − N·J_r·G² − G₂₁²·n₂·I₂)/n_w
+    written as an entered moment of inertia (mode = moment_of_inertia: mass and radius of
+    gyration cannot both come from one number); a secondary wheel given by its mass and radius of
+    gyration is entered as its moment of inertia m₂·(k₂·r₂)², unchanged, since the mode covers
+    both. The card holds no friction torque (its kS is the motors' own R·i_f; loss_fraction is the
+    shot's): the friction the fit gives is shown, not written, and kV is n/Kv (E3)."""
+    from ..sim.shooter import SECONDARY, rotor_reflected, secondary_reflected
+
+    v = card.values
+    J = gains["kA"] * card.f
+    others = rotor_reflected(v) + secondary_reflected(v)
+    each = (J - others) / v["wheel_count"]
+    if not (math.isfinite(each) and each > 0):
+        notes.append(
+            f"the fitted inertia {J:.4g} kg·m² is not above the rotors' and secondary wheels' "
+            f"{others:.4g} kg·m²: the wheel inertia is not written"
+        )
+    else:
+        if v["mode"] != "moment_of_inertia":
+            raw["mode"] = "moment_of_inertia"
+            if v["shooter"] in SECONDARY:
+                I2 = (
+                    v["secondary_mass"]
+                    * (v["secondary_gyration_fraction"] * v["secondary_diameter"] / 2) ** 2
+                )
+                raw["secondary_inertia"] = f"{I2!r} kg*m**2"
+            notes.append(
+                "wheel inertia now entered as a moment of inertia (was: mass and radius of gyration): "
+                f"the fitted {J:.4g} kg·m² at the wheel"
+                + (f", less the rotors' and secondary wheels' {others:.4g}," if others > 0 else "")
+                + f" over {v['wheel_count']} wheel{'s' if v['wheel_count'] > 1 else ''}"
+            )
+        raw["wheel_inertia"] = f"{each!r} kg*m**2"
     if friction > 0:
-        effects.add("friction")
-        raw[name] = f"{friction!r} {'N' if card.kind == 'elevator' else 'N*m'}"
+        notes.append(
+            f"the flywheel card holds no friction torque: the fitted {friction:.4g} N·m beyond the "
+            "motors' own loss is not written (the card's kS stays R·i_f)"
+        )
+
+
+def _sprint(card: Card, gains: dict[str, float], raw: dict, notes: list[str], friction: float) -> None:
+    """(E6) The sprint card's kA = m·R/(η·N·Kt·n) = m/f, kS = R·i_f + C_rr·m·g/f, kV = n/Kv (S9).
+    With the card's efficiency kept (E2: m and η enter kA only as m/η), the card reproduces the
+    fitted kA and kS with
+        m = kA·f,   C_rr = (kS·f − R·i_f·f)/(m·g) = (kS − R·i_f)/(g·kA)
+    (C_rr does not depend on η: kS and kA scale alike), the rolling_resistance effect on; below
+    the motors' own loss it is turned off. The fitted mass holds the wheels' and motors' rotating
+    inertia too (the card's own advice: add it to the mass); traction μ·m·g and the estimated yaw
+    inertia then follow that mass."""
+    v = card.values
+    m = gains["kA"] * card.f
+    raw["robot_mass"] = f"{m!r} kg"
+    effects = {e for e in v["effects"] if e != "rolling_resistance"}
+    if friction > 0:
+        effects.add("rolling_resistance")
+        c_rr = (gains["kS"] - card.loss / card.f) / (G0 * gains["kA"])
+        raw["rolling_coefficient"] = repr(c_rr)
     else:
-        notes.append(f"fitted kS is below the motors' own loss: no friction added ({friction:.3g})")
+        notes.append(
+            f"fitted kS is below the motors' own loss: rolling resistance turned off ({friction:.3g} N)"
+        )
     raw["effects"] = ", ".join(sorted(effects))
-    if card.kind == "elevator":
-        raw["load_mass"] = f"{gains['kA'] * f!r} kg"
-    else:
-        tcb = card.values["counterbalance_torque"] if "counterbalance" in card.values["effects"] else 0.0
-        m = (gains["kG"] * f + tcb) / (G0 * card.values["com_distance"])
-        raw["arm_mass"] = f"{m!r} kg"
-        raw["inertia_model"] = "entered"
-        raw["moment_of_inertia"] = f"{gains['kA'] * f!r} kg*m**2"
-    return raw, notes
+    notes.append(
+        f"efficiency kept at {v['efficiency']:.4g}: the robot mass is kA's at it (mass and efficiency "
+        "enter kA only as mass/efficiency), rotating parts included; the efficiency that would explain "
+        "kA at the card's mass is in the table"
+    )
+
+
+def _valid(card: Card, raw: dict, notes: list[str]) -> dict:
+    """(E7) The card's own reading of the fitted entries: a written field it refuses goes back to
+    the card's entry (with what goes with it, TOGETHER), named in a note."""
+    from .. import registry
+    from ..model import parse_inputs
+
+    calc = registry.get(card.kind)
+    for _ in range(len(raw) + 1):
+        try:
+            parse_inputs(calc, raw)
+            return raw
+        except InputError as exc:
+            bad = [e for e in exc.errors if raw.get(e.field) != card.raw.get(e.field)]
+            if not bad:
+                raise
+            for e in bad:
+                notes.append(
+                    f"{e.field}: the fitted {raw.get(e.field)} is refused by the card ({e.message}): not written"
+                )
+                for k in (e.field, *TOGETHER.get(e.field, ())):
+                    if k in card.raw:
+                        raw[k] = card.raw[k]
+                    else:
+                        raw.pop(k, None)
+    return raw
 
 
 def moves(card: Card, gains: dict[str, float]) -> tuple[dict, list[str]]:
@@ -231,10 +355,7 @@ def moves(card: Card, gains: dict[str, float]) -> tuple[dict, list[str]]:
     value}, "fitted": {...}} (SI), and notes (a solve that fails says why)."""
     from ..model import solve
 
-    got = fitted_raw(card, gains)
-    if got is None:
-        return {}, []
-    raw, notes = got
+    raw, notes = fitted_raw(card, gains)
     out = {}
     for label, entries_ in (("design", card.raw), ("fitted", raw)):
         try:
@@ -244,5 +365,5 @@ def moves(card: Card, gains: dict[str, float]) -> tuple[dict, list[str]]:
                 f"the card's move with the {label} entries cannot be solved: {exc.field}: {exc.message}"
             )
             continue
-        out[label] = {k: sol.outputs[k].value for k in MOVE_OUTPUTS if k in sol.outputs}
+        out[label] = {k: sol.outputs[k].value for k in MOVE_OUTPUTS[card.kind] if k in sol.outputs}
     return out, notes

@@ -1,10 +1,11 @@
-"""The app's "Fit from log" (issue 44 item 7) on the elevator, arm and flywheel cards: a SysId log
+"""The app's "Fit from log" (issue 44 item 7) on the elevator, arm, flywheel and sprint cards: a SysId log
 (.wpilog or .csv) chosen by path or textual-fspicker's dialog, fitted in a worker thread by
 core.fit.fit_log against the card as it is on screen (its entries, not its file), and shown as
 `gearhead fit` shows it: the signals found, both forms' gains with their standard deviations, adj.
 R², RMSE, the favoured form, the entries they give, and the replay of one test (measured velocity
 against the favoured fit's and the design's). Apply puts the fitted entries (elevator: load mass and
-friction; arm: mass, entered inertia and friction) into the card's fields, after the screen has
+friction; arm: mass, entered inertia and friction; flywheel: the wheel's entered moment of inertia;
+sprint: robot mass and rolling resistance; core.fit.entries.fitted_raw) into the card's fields, after the screen has
 shown what each becomes; the dialog returns them and the app sets them as the sheet would take a
 typed entry. A log that cannot be fitted is one line naming the file and what is wrong.
 
@@ -39,11 +40,11 @@ from .dialog import Dialog
 from .field_input import FieldInput
 from .plot_panel import COLOURS, quiet_plot_widget
 
-UNITS = {"elevator": ("m", "m/s"), "arm": ("rad", "rad/s"), "flywheel": ("rad", "rad/s")}
-# the entries Apply writes (core/fit/apply.py's, for the card's file)
-WRITTEN = {
-    "elevator": ("load_mass", "friction_force", "effects"),
-    "arm": ("arm_mass", "inertia_model", "moment_of_inertia", "friction_torque", "effects"),
+UNITS = {
+    "elevator": ("m", "m/s"),
+    "arm": ("rad", "rad/s"),
+    "flywheel": ("rad", "rad/s"),
+    "sprint": ("m", "m/s"),
 }
 
 
@@ -55,15 +56,11 @@ def g(x: float) -> str:
 def fitted_changes(report) -> tuple[dict[str, str], list[str]]:
     """The entries Apply writes (every digit the fit gives: the card then holds what the fit
     found), those that differ from the card's, and the notes (friction below the motors' loss)."""
+    from gearhead.core.fit.apply import WRITTEN  # the entries Apply writes (as into the card's file)
     from gearhead.core.fit.entries import fitted_raw
 
     card = report.card
-    got = fitted_raw(card, report.fits[report.favoured].gains)
-    if got is None:
-        return {}, [
-            f"the {card.kind} card's fitted entries are not written back yet (its inertia is entered several ways)"
-        ]
-    raw, notes = got
+    raw, notes = fitted_raw(card, report.fits[report.favoured].gains)
     return {k: raw[k] for k in WRITTEN[card.kind] if k in raw and raw[k] != card.raw.get(k)}, notes
 
 
@@ -325,6 +322,8 @@ class FitScreen(Dialog[dict[str, Any] | None]):
                     + f"{shown_entry(f, str(new))} {u}".rstrip(),
                 ]
                 continue
+            if f.choices and str(old) in f.choices and str(new) in f.choices:  # a mode: as its menu says
+                old, new = f.label_of(str(old)), f.label_of(str(new))
             lines.append(f"  {f.label}: {shown_entry(f, str(old))} → {shown_entry(f, str(new))} {u}".rstrip())
         head = "Apply writes into the card:" if lines else "Apply: nothing to change in the card."
         text = "\n".join([head, *lines, *(f"  note: {n}" for n in notes)])
