@@ -2,8 +2,13 @@
 V = kS·sgn q̇ + kG(q) + kV·q̇ + kA·q̈ (entries (E1)), with the design's gains or the fitted ones,
 from each test's first measured position and speed, the voltage held from each sample to the next:
     q̈ = (u − kS·sgn q̇ − g(q) − kV·q̇)/kA,  g = kG (elevator), kG·cos(q + offset) (arm), 0 (flywheel)
-integrated exactly over substeps of at most 1 ms with g frozen (q̇(h) = (q̇ + c/A)·e^(A·h) − c/A,
-A = −kV/kA), friction holding it at rest while |u − g| ≤ kS                                    (R1)
+With the forcing d = u − g and the direction s constant, it is solved exactly:
+    q̇(τ) = v∞ + (q̇ − v∞)·e^(Aτ),  q(τ) = q + v∞·τ + (q̇ − v∞)·(e^(Aτ) − 1)/A,
+    A = −kV/kA,  v∞ = (d − kS·s)/kV                                                           (R1)
+and it stops where q̇ reaches 0 (when s·v∞ < 0), at e^(Aτ*) = v∞/(v∞ − q̇)                    (R1a)
+then friction holds it at rest while |d| ≤ kS, else it starts off the other way. An elevator's and
+a flywheel's forcing is constant over a sample: one exact piece (two at a stop) per sample; an arm's
+g is frozen over substeps of at most 1 ms (its only approximation, O(substep))
 RMSE of the predicted position and velocity against the measured ones at the voltage samples   (R2)
 """
 
@@ -17,7 +22,31 @@ import numpy as np
 from .signals import Run
 from .sysid_fit import _lerp
 
-SUBSTEP = 1e-3
+SUBSTEP = 1e-3  # an arm's: g(q) frozen over it
+
+
+def _piece(q: float, v: float, d: float, h: float, kS: float, kV: float, A: float):
+    """(R1), (R1a): position and speed after h under the constant forcing d (kV > 0: at most a
+    run, a stop and a start the other way)."""
+    for _ in range(3):
+        if v == 0.0:
+            if abs(d) <= kS:
+                return q, 0.0  # held by friction for the rest of the piece
+            s = math.copysign(1.0, d)
+        else:
+            s = math.copysign(1.0, v)
+        v_inf = (d - kS * s) / kV
+        tau = h
+        stops = s * v_inf < 0.0
+        if stops:
+            tau = min(h, math.log(v_inf / (v_inf - v)) / A)  # (R1a)
+        e = math.exp(A * tau)
+        q += v_inf * tau + (v - v_inf) * (e - 1.0) / A
+        v = 0.0 if stops and tau < h else v_inf + (v - v_inf) * e
+        h -= tau
+        if v != 0.0 or h <= 0.0:
+            return q, v
+    return q, v
 
 
 def simulate(kind: str, gains: dict[str, float], t: np.ndarray, u: np.ndarray, q0: float, v0: float):
@@ -32,23 +61,13 @@ def simulate(kind: str, gains: dict[str, float], t: np.ndarray, u: np.ndarray, q
         qs[k], vs[k] = q, v
         if k + 1 == len(t):
             break
-        span = t[k + 1] - t[k]
+        span = float(t[k + 1] - t[k])
+        if kind != "arm":
+            q, v = _piece(q, v, u[k] - (kG if kind == "elevator" else 0.0), span, kS, kV, A)
+            continue
         n = max(1, math.ceil(span / SUBSTEP))
-        h = span / n
-        e = math.exp(A * h)
         for _ in range(n):
-            g = kG if kind == "elevator" else kG * math.cos(q + off) if kind == "arm" else 0.0
-            drive = u[k] - g
-            if v == 0.0:
-                if abs(drive) <= kS:
-                    continue
-                s = math.copysign(1.0, drive)
-            else:
-                s = math.copysign(1.0, v)
-            c = (drive - kS * s) / kA
-            v1 = (v + c / A) * e - c / A
-            q += (v + c / A) * (e - 1) / A - c / A * h
-            v = 0.0 if v != 0.0 and math.copysign(1.0, v1) != s else v1
+            q, v = _piece(q, v, u[k] - kG * math.cos(q + off), span / n, kS, kV, A)
     return qs, vs
 
 
@@ -61,9 +80,9 @@ class Replay:
 
 
 def replay(kind: str, gains: dict[str, float], runs: dict[str, Run]) -> Replay:
-    """(R2) over the four tests; not a number when the gains make no model that runs (kA ≤ 0, not
-    finite) or the model runs away past the float range."""
-    if not (all(math.isfinite(x) for x in gains.values()) and gains["kA"] > 0):
+    """(R2) over the four tests; not a number when the gains make no model that runs (kA ≤ 0, kV ≤ 0
+    (a motor that speeds itself up), not finite) or the model runs away past the float range."""
+    if not (all(math.isfinite(x) for x in gains.values()) and gains["kA"] > 0 and gains["kV"] > 0):
         return Replay(math.nan, math.nan, {}, {})
     try:
         return _replay(kind, gains, runs)
