@@ -1,0 +1,327 @@
+"""`gearhead fit` on a robot's whole log (issue 44): figures only, never asserted. Targets: a 10-minute
+log with 50 signals read and fitted ≤ 2 s; the replay of one test ≤ 50 ms.
+
+The log is written once per run, to a temporary folder, with WPILib's own DataLogWriter (robotpy's
+wpiutil, the test extra), as an AdvantageKit robot logs a practice session: 10 minutes, 50 entries:
+- the main loop every 20 ms (± 1 ms): 30 signals at 50 Hz (the driver station's booleans, match time,
+  joystick axes (float[]) and buttons (int64), the battery's voltage, the CAN bus, each swerve
+  module's current and turn voltage, the pose (double[3] and struct:Pose2d), the module states
+  (double[8]), the active command (string), the vision tag ids (int64[]), the elevator's own outputs);
+- 10 signals at 100 Hz (the modules' drive velocity and turn position, the shooter, the intake),
+  written by the main loop two at a time with their own timestamps;
+- 6 signals at 200 Hz from an odometry thread (the gyro, each module's drive position), written by the
+  main loop in batches of four, so their records come up to 20 ms behind the main loop's in the file
+  (out of time order, as the format allows);
+- a SysId routine (`sysid-test-state-elevator`, `voltage-`, `position-`, `velocity-lift-elevator`,
+  Java's unit names) in the main loop: four tests spread over the session (quasistatic 6 s at
+  1 V/s, dynamic 2 s at 7 V, from 95 s to 245 s), the plant the example log's (examples/
+  make_sysid_log.py: the default elevator card's mechanism, heavier, with more friction), velocity
+  noise 0.001 m/s, position noise 0.0001 m.
+
+Measured:
+- as a user meets it, each in a fresh process (median wall and CPU): `gearhead fit LOG --card
+  elevator`, beside `python -c "import numpy"` and `gearhead solve elevator` run in turns with it
+  (the machine's load cancels out of the ratios);
+- in one warm process (median): reading the log (the picked signals, core.fit.signals.pick), the fit
+  (SysId's preparation and both forms), the replay of one test (the longest, quasistatic-forward,
+  with the discrete fit's gains), and the whole of core.fit.fit_log.
+
+    .venv/bin/python bench/bench_fit.py [--runs N] [--keep DIR]
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+RUNS = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 5
+KEEP = sys.argv[sys.argv.index("--keep") + 1] if "--keep" in sys.argv else None
+ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+GEARHEAD = str(Path(sys.executable).with_name("gearhead"))
+ROOT = Path(__file__).resolve().parents[1]
+
+LENGTH = 600.0  # s
+LOOP = 0.02  # s, the main loop
+SEED = 44
+# (state, start time s, length s, volts at s seconds into the test)
+TESTS = (
+    ("quasistatic-forward", 95.0, 6.0, lambda s: 1.0 * s),
+    ("quasistatic-reverse", 140.0, 6.0, lambda s: -1.0 * s),
+    ("dynamic-forward", 190.0, 2.0, lambda s: 7.0),
+    ("dynamic-reverse", 240.0, 2.0, lambda s: -7.0),
+)
+VELOCITY_NOISE = 0.001  # m/s
+POSITION_NOISE = 0.0001  # m
+
+
+def _plant() -> dict[str, float]:
+    sys.path.insert(0, str(ROOT / "examples"))
+    import make_sysid_log
+
+    return make_sysid_log.plant()
+
+
+def _sysid_samples(loop_times: np.ndarray, rng) -> list[tuple[int, str, float, float, float]]:
+    """(main-loop index, state, volts, position, velocity) of the routine's records: the example's
+    elevator plant integrated exactly over 0.5 ms substeps with the voltage held for each loop
+    (tests/fit_plants.py's plant), measured with noise."""
+    g = _plant()
+    kS, kV, kA, kG = g["kS"], g["kV"], g["kA"], g["kG"]
+    A = -kV / kA
+    q = v = 0.0
+    out = []
+    for state, start, length, volts in TESTS:
+        v = 0.0  # at rest before each test
+        first = int(np.searchsorted(loop_times, start))
+        k = first
+        while loop_times[k] - loop_times[first] < length:
+            u = volts(loop_times[k] - loop_times[first])
+            out.append(
+                (
+                    k,
+                    state,
+                    u,
+                    q + rng.normal(0, POSITION_NOISE),
+                    v + rng.normal(0, VELOCITY_NOISE),
+                )
+            )
+            dt = loop_times[k + 1] - loop_times[k]
+            n = max(1, round(dt / 5e-4))
+            h = dt / n
+            e = math.exp(A * h)
+            for _ in range(n):
+                drive = u - kG
+                if v == 0.0:
+                    if abs(drive) <= kS:
+                        continue
+                    s = math.copysign(1.0, drive)
+                else:
+                    s = math.copysign(1.0, v)
+                c = (drive - kS * s) / kA
+                v1 = (v + c / A) * e - c / A
+                q += (v + c / A) * (e - 1) / A - c / A * h
+                v = 0.0 if v != 0.0 and math.copysign(1.0, v1) != s else v1
+            k += 1
+        out.append((k, "none", math.nan, math.nan, math.nan))
+    return out
+
+
+def write_log(path: Path) -> dict:
+    """The session's log (module docstring); returns its size and record count."""
+    import struct
+
+    import wpiutil
+    from wpiutil import log as wl
+
+    rng = np.random.default_rng(SEED)
+    w = wpiutil.DataLogWriter(str(path), "AdvantageKit")
+    n_loops = int(LENGTH / LOOP)
+    loop_times = 1.0 + np.arange(n_loops + 2) * LOOP + rng.uniform(-0.001, 0.001, n_loops + 2)
+    t = loop_times
+
+    def walk(n, step, start=0.0):  # a smooth random signal
+        return start + np.cumsum(rng.normal(0, step, n))
+
+    # the main loop's 50 Hz signals: (entry, values per loop); booleans, numbers, arrays, text
+    d, b, i, f = wl.DoubleLogEntry, wl.BooleanLogEntry, wl.IntegerLogEntry, wl.FloatArrayLogEntry
+    da, ia = wl.DoubleArrayLogEntry, wl.IntegerArrayLogEntry
+    enabled = (t > 20) & (t < 580)
+    battery = 12.6 - 0.4 * enabled + rng.normal(0, 0.03, len(t))
+    heading = walk(len(t), 0.01)
+    px, py = walk(len(t), 0.01, 3.0), walk(len(t), 0.01, 4.0)
+    pose = np.column_stack((px, py, heading))
+    states = np.column_stack([walk(len(t), 0.05) for _ in range(8)])
+    commands = ["", "DriveWithJoysticks", "AutoAlign", "ElevatorToGoal", "SysIdRoutine"]
+    main = [
+        (b(w, "/DriverStation/Enabled", "", 1), enabled.tolist()),
+        (b(w, "/DriverStation/Autonomous", "", 1), ((t > 20) & (t < 35)).tolist()),
+        (b(w, "/DriverStation/FMSAttached", "", 1), [False] * len(t)),
+        (b(w, "/DriverStation/DSAttached", "", 1), [True] * len(t)),
+        (d(w, "/DriverStation/MatchTime", "", 1), np.maximum(0.0, 150.0 - t).tolist()),
+        (f(w, "/DriverStation/Joystick0/AxisValues", "", 1), rng.uniform(-1, 1, (len(t), 6)).tolist()),
+        (i(w, "/DriverStation/Joystick0/ButtonValues", "", 1), rng.integers(0, 1 << 12, len(t)).tolist()),
+        (d(w, "/SystemStats/BatteryVoltage", "", 1), battery.tolist()),
+        (b(w, "/SystemStats/BrownedOut", "", 1), [False] * len(t)),
+        (d(w, "/SystemStats/CANBus/Utilization", "", 1), rng.uniform(0.4, 0.7, len(t)).tolist()),
+        (d(w, "/RealOutputs/LoggedRobot/UserCodeMS", "", 1), rng.uniform(2, 6, len(t)).tolist()),
+        (d(w, "/RealOutputs/LoggedRobot/FullCycleMS", "", 1), rng.uniform(5, 9, len(t)).tolist()),
+        (da(w, "/RealOutputs/Odometry/Robot", "", 1), pose.tolist()),
+        (
+            wl.RawLogEntry(w, "/RealOutputs/Odometry/RobotStruct", "", "struct:Pose2d", 1),
+            [struct.pack("<3d", *p) for p in pose.tolist()],
+        ),
+        (da(w, "/RealOutputs/SwerveStates/Measured", "", 1), states.tolist()),
+        (da(w, "/RealOutputs/SwerveStates/Setpoints", "", 1), (states + 0.01).tolist()),
+        (
+            wl.StringLogEntry(w, "/RealOutputs/ActiveCommand", "", 1),
+            [commands[int(x) % len(commands)] for x in t / 7],
+        ),
+        (ia(w, "/RealOutputs/Vision/TagIds", "", 1), [[int(x) % 16 + 1, 7] for x in t]),
+        *[(d(w, f"/Drive/Module{m}/DriveCurrentAmps", "", 1), walk(len(t), 0.5, 10).tolist()) for m in range(4)],
+        *[(d(w, f"/Drive/Module{m}/TurnAppliedVolts", "", 1), walk(len(t), 0.1).tolist()) for m in range(4)],
+        (d(w, "/Elevator/GoalMeters", "", 1), np.round(walk(len(t), 0.01), 1).tolist()),
+        (d(w, "/Elevator/CurrentAmps", "", 1), walk(len(t), 0.2, 5).tolist()),
+        (b(w, "/Elevator/AtGoal", "", 1), (rng.random(len(t)) < 0.8).tolist()),
+        (b(w, "/Vision/Camera0/Connected", "", 1), [True] * len(t)),
+    ]
+    # 100 Hz: two samples per loop, each with its own time
+    t100 = np.column_stack((t, t + 0.01)).ravel()
+    fast = [
+        *[(d(w, f"/Drive/Module{m}/DriveVelocityRadPerSec", "", 1), walk(len(t100), 0.2)) for m in range(4)],
+        *[(d(w, f"/Drive/Module{m}/TurnPositionRad", "", 1), walk(len(t100), 0.02)) for m in range(4)],
+        (d(w, "/Shooter/VelocityRPM", "", 1), walk(len(t100), 5.0, 3000)),
+        (d(w, "/Intake/CurrentAmps", "", 1), np.abs(walk(len(t100), 0.3))),
+    ]
+    # 200 Hz odometry thread: four samples per loop, logged at the loop's end
+    t200 = (t[:, None] - 0.02 + 0.005 * np.arange(1, 5)[None, :]).ravel()
+    odometry = [
+        (d(w, "/Drive/Gyro/YawRad", "", 1), walk(len(t200), 0.001)),
+        (d(w, "/Drive/Gyro/YawVelocityRadPerSec", "", 1), walk(len(t200), 0.01)),
+        *[(d(w, f"/Drive/Module{m}/OdometryDrivePositionRad", "", 1), walk(len(t200), 0.01)) for m in range(4)],
+    ]
+    mech = "elevator"
+    state = wl.StringLogEntry(w, f"sysid-test-state-{mech}", "", 1)
+    volts = d(w, f"voltage-lift-{mech}", "Volt", 1)
+    pos = d(w, f"position-lift-{mech}", "Meter", 1)
+    vel = d(w, f"velocity-lift-{mech}", "Meter per Second", 1)
+    sysid = {k: (s, u, q, v) for k, s, u, q, v in _sysid_samples(loop_times, rng)}
+    stamps = np.round(t * 1e6).astype(np.int64).tolist()
+    stamps100 = np.round(t100 * 1e6).astype(np.int64).tolist()
+    stamps200 = np.round(t200 * 1e6).astype(np.int64).tolist()
+    fast = [(e, v.tolist()) for e, v in fast]
+    odometry = [(e, v.tolist()) for e, v in odometry]
+    count = 0
+    for k in range(n_loops):
+        ts = stamps[k]
+        for m, (e, values) in enumerate(main):
+            e.append(values[k], ts + 3 * m)  # each a few µs after the last, as the loop logs them
+        for e, values in fast:
+            e.append(values[2 * k], stamps100[2 * k])
+            e.append(values[2 * k + 1], stamps100[2 * k + 1])
+        for e, values in odometry:
+            for j in range(4 * k, 4 * k + 4):
+                e.append(values[j], stamps200[j])
+        count += len(main) + 2 * len(fast) + 4 * len(odometry)
+        if k in sysid:
+            s, u, q, v = sysid[k]
+            state.append(s, ts + 200)
+            count += 1
+            if s != "none":
+                volts.append(u, ts + 201)
+                pos.append(q, ts + 202)
+                vel.append(v, ts + 203)
+                count += 3
+        if k % 50 == 0:
+            w.flush()  # DataLogWriter blocks once its buffers fill until they are written
+    w.flush()
+    w.stop()
+    del w
+    entries = len(main) + len(fast) + len(odometry) + 4
+    return {"bytes": path.stat().st_size, "records": count, "entries": entries}
+
+
+def timed(argv: list[str]) -> tuple[float, float]:
+    """(wall, CPU) seconds of one fresh process; a failure is shown, not timed."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    done = subprocess.run(argv, capture_output=True, env=ENV, text=True)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if done.returncode != 0:
+        sys.exit(f"{' '.join(argv)} exited {done.returncode}:\n{done.stdout}{done.stderr}")
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def median_ms(fn, runs: int) -> float:
+    fn()
+    got = []
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        fn()
+        got.append(time.perf_counter() - t0)
+    return statistics.median(got) * 1e3
+
+
+def in_process(log: Path, runs: int) -> dict[str, float]:
+    from gearhead.core import fit
+    from gearhead.core.fit import entries, replay, signals, sysid_fit
+    from gearhead.core.calculators.elevator import spool_factor
+
+    card = entries.load_card("elevator")
+    spool = spool_factor(card.values)
+    picked = signals.pick(log, "elevator", spool=spool)
+    prepared, info = sysid_fit.prepare(picked)
+
+    def fits():
+        p, i = sysid_fit.prepare(picked)
+        return (
+            sysid_fit.fit_continuous(p, "elevator", i["dt"], str(log)),
+            sysid_fit.fit_discrete(p, "elevator", i["dt"], str(log)),
+        )
+
+    gains = fits()[1].gains
+    test = {"quasistatic-forward": picked.runs["quasistatic-forward"]}
+    return {
+        "read": median_ms(lambda: signals.pick(log, "elevator", spool=spool), runs),
+        "fit": median_ms(fits, runs),
+        "replay": median_ms(lambda: replay.replay("elevator", gains, test), runs),
+        "replay_samples": len(test["quasistatic-forward"].t_voltage),
+        "fit_log": median_ms(lambda: fit.fit_log(log, "elevator", card), runs),
+    }
+
+
+def main() -> None:
+    folder = Path(KEEP) if KEEP else Path(tempfile.mkdtemp(prefix="bench_fit_"))
+    folder.mkdir(parents=True, exist_ok=True)
+    log = folder / "session.wpilog"
+    t0 = time.perf_counter()
+    made = write_log(log)
+    print(
+        f"log: {made['entries']} entries, {made['records']} records, {made['bytes'] / 1e6:.1f} MB, "
+        f"{LENGTH / 60:.0f} minutes (written in {time.perf_counter() - t0:.1f} s by DataLogWriter)"
+    )
+    numpy, solve, fitted = [], [], []
+    for _ in range(RUNS):  # in turns: a burst of load on the machine touches all three alike
+        numpy.append(timed([sys.executable, "-c", "import numpy"]))
+        solve.append(timed([GEARHEAD, "solve", "elevator"]))
+        fitted.append(timed([GEARHEAD, "fit", str(log), "--card", "elevator"]))
+
+    def med(xs, k):
+        return statistics.median(x[k] for x in xs)
+
+    print(f"fresh processes, median of {RUNS} (target: read and fitted ≤ 2 s):")
+    for label, xs in (
+        ('python -c "import numpy"', numpy),
+        ("gearhead solve elevator", solve),
+        ("gearhead fit LOG --card elevator", fitted),
+    ):
+        print(
+            f"  {label:<34} {med(xs, 0):6.2f} s wall ({med(xs, 0) / med(numpy, 0):4.1f}x numpy, "
+            f"{med(xs, 0) / med(solve, 0):4.2f}x solve), {med(xs, 1):6.2f} s CPU "
+            f"({med(xs, 1) / med(numpy, 1):4.1f}x numpy)"
+        )
+    inner = in_process(log, RUNS)
+    print(f"one warm process, median of {RUNS}:")
+    print(f"  read (signals.pick: the log scanned, 4 signals kept)  {inner['read']:8.1f} ms")
+    print(f"  fit (preparation, continuous and discrete)            {inner['fit']:8.1f} ms")
+    print(
+        f"  replay of one test ({inner['replay_samples']} samples, target ≤ 50 ms)       "
+        f"{inner['replay']:8.1f} ms"
+    )
+    print(f"  core.fit.fit_log (all of the above, 3 replays, moves) {inner['fit_log']:8.1f} ms")
+    if not KEEP:
+        log.unlink()
+        folder.rmdir()
+
+
+if __name__ == "__main__":
+    main()
