@@ -166,7 +166,10 @@ def write_log(path: Path) -> dict:
             [commands[int(x) % len(commands)] for x in t / 7],
         ),
         (ia(w, "/RealOutputs/Vision/TagIds", "", 1), [[int(x) % 16 + 1, 7] for x in t]),
-        *[(d(w, f"/Drive/Module{m}/DriveCurrentAmps", "", 1), walk(len(t), 0.5, 10).tolist()) for m in range(4)],
+        *[
+            (d(w, f"/Drive/Module{m}/DriveCurrentAmps", "", 1), walk(len(t), 0.5, 10).tolist())
+            for m in range(4)
+        ],
         *[(d(w, f"/Drive/Module{m}/TurnAppliedVolts", "", 1), walk(len(t), 0.1).tolist()) for m in range(4)],
         (d(w, "/Elevator/GoalMeters", "", 1), np.round(walk(len(t), 0.01), 1).tolist()),
         (d(w, "/Elevator/CurrentAmps", "", 1), walk(len(t), 0.2, 5).tolist()),
@@ -186,7 +189,10 @@ def write_log(path: Path) -> dict:
     odometry = [
         (d(w, "/Drive/Gyro/YawRad", "", 1), walk(len(t200), 0.001)),
         (d(w, "/Drive/Gyro/YawVelocityRadPerSec", "", 1), walk(len(t200), 0.01)),
-        *[(d(w, f"/Drive/Module{m}/OdometryDrivePositionRad", "", 1), walk(len(t200), 0.01)) for m in range(4)],
+        *[
+            (d(w, f"/Drive/Module{m}/OdometryDrivePositionRad", "", 1), walk(len(t200), 0.01))
+            for m in range(4)
+        ],
     ]
     mech = "elevator"
     state = wl.StringLogEntry(w, f"sysid-test-state-{mech}", "", 1)
@@ -253,8 +259,8 @@ def median_ms(fn, runs: int) -> float:
 
 def in_process(log: Path, runs: int) -> dict[str, float]:
     from gearhead.core import fit
-    from gearhead.core.fit import entries, replay, signals, sysid_fit
     from gearhead.core.calculators.elevator import spool_factor
+    from gearhead.core.fit import entries, replay, signals, sysid_fit
 
     card = entries.load_card("elevator")
     spool = spool_factor(card.values)

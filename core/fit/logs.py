@@ -175,7 +175,9 @@ class WPILog:
                 il, sl, tl = (b & 3) + 1, ((b >> 2) & 3) + 1, ((b >> 4) & 7) + 1
                 hl = 1 + il + sl + tl
                 if n - p < hl:  # at the end of the file (else read on above)
-                    self.warnings.append(f"{path}: ends in a partial record at byte {base + p}; read up to it")
+                    self.warnings.append(
+                        f"{path}: ends in a partial record at byte {base + p}; read up to it"
+                    )
                     break
                 entry = int.from_bytes(buf[p + 1 : p + 1 + il], "little")
                 length = hl + int.from_bytes(buf[p + 1 + il : p + 1 + il + sl], "little")
@@ -368,7 +370,9 @@ def _take(log, a, buf, base, pos, bits, il, ent, live, kept, parts) -> None:
             at = q + sl + tl
             times = ts.astype(np.float64) / 1e6
             if text:
-                values = [buf[s : s + n].decode("utf-8", "replace") for s, n in zip(at.tolist(), size.tolist())]
+                values = [
+                    buf[s : s + n].decode("utf-8", "replace") for s, n in zip(at.tolist(), size.tolist())
+                ]
                 got.append((idx, times, values))
                 continue
             width = _FIXED[typ][1]
