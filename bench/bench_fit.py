@@ -247,17 +247,19 @@ def timed(argv: list[str]) -> tuple[float, float]:
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
-def median_ms(fn, runs: int) -> float:
+def median_ms(fn, runs: int) -> tuple[float, float]:
+    """(CPU, wall) milliseconds of one call, the median of `runs` after a warm-up call."""
     fn()
-    got = []
+    cpu, wall = [], []
     for _ in range(runs):
-        t0 = time.perf_counter()
+        c0, t0 = time.process_time(), time.perf_counter()
         fn()
-        got.append(time.perf_counter() - t0)
-    return statistics.median(got) * 1e3
+        cpu.append(time.process_time() - c0)
+        wall.append(time.perf_counter() - t0)
+    return statistics.median(cpu) * 1e3, statistics.median(wall) * 1e3
 
 
-def in_process(log: Path, runs: int) -> dict[str, float]:
+def in_process(log: Path, runs: int) -> dict:
     from gearhead.core import fit
     from gearhead.core.calculators.elevator import spool_factor
     from gearhead.core.fit import entries, replay, signals, sysid_fit
@@ -265,7 +267,6 @@ def in_process(log: Path, runs: int) -> dict[str, float]:
     card = entries.load_card("elevator")
     spool = spool_factor(card.values)
     picked = signals.pick(log, "elevator", spool=spool)
-    prepared, info = sysid_fit.prepare(picked)
 
     def fits():
         p, i = sysid_fit.prepare(picked)
@@ -316,14 +317,16 @@ def main() -> None:
             f"({med(xs, 1) / med(numpy, 1):4.1f}x numpy)"
         )
     inner = in_process(log, RUNS)
-    print(f"one warm process, median of {RUNS}:")
-    print(f"  read (signals.pick: the log scanned, 4 signals kept)  {inner['read']:8.1f} ms")
-    print(f"  fit (preparation, continuous and discrete)            {inner['fit']:8.1f} ms")
-    print(
-        f"  replay of one test ({inner['replay_samples']} samples, target ≤ 50 ms)       "
-        f"{inner['replay']:8.1f} ms"
-    )
-    print(f"  core.fit.fit_log (all of the above, 3 replays, moves) {inner['fit_log']:8.1f} ms")
+    print(f"one warm process, median of {RUNS}: CPU (wall)")
+    n = inner["replay_samples"]
+    for label, key in (
+        ("read: the log scanned, 5 signals kept (signals.pick)", "read"),
+        ("fit: SysId's preparation, continuous and discrete", "fit"),
+        (f"replay of one test ({n} samples; target ≤ 50 ms)", "replay"),
+        ("core.fit.fit_log: all, 3 replays, the card's moves", "fit_log"),
+    ):
+        cpu, wall = inner[key]
+        print(f"  {label:<54} {cpu:7.1f} ms ({wall:7.1f})")
     if not KEEP:
         log.unlink()
         folder.rmdir()
