@@ -21,7 +21,8 @@ wpiutil, the test extra), as an AdvantageKit robot logs a practice session: 10 m
 Measured:
 - as a user meets it, each in a fresh process (median wall and CPU): `gearhead fit LOG --card
   elevator`, beside `python -c "import numpy"` and `gearhead solve elevator` run in turns with it
-  (the machine's load cancels out of the ratios);
+  (the machine's load cancels out of the ratios); the peak resident memory of `gearhead fit` of
+  this log and of the example log, and of a process before and after it reads the log;
 - in one warm process (median): reading the log (the picked signals, core.fit.signals.pick), the fit
   (SysId's preparation and both forms), the replay of one test (the longest, quasistatic-forward,
   with the discrete fit's gains), and the whole of core.fit.fit_log.
@@ -48,6 +49,7 @@ KEEP = sys.argv[sys.argv.index("--keep") + 1] if "--keep" in sys.argv else None
 ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 GEARHEAD = str(Path(sys.executable).with_name("gearhead"))
 ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "examples" / "elevator_sysid.wpilog"
 
 LENGTH = 600.0  # s
 LOOP = 0.02  # s, the main loop
@@ -259,6 +261,30 @@ def median_ms(fn, runs: int) -> tuple[float, float]:
     return statistics.median(cpu) * 1e3, statistics.median(wall) * 1e3
 
 
+PEAK = """
+import resource, subprocess, sys
+subprocess.run(sys.argv[1:], capture_output=True, check=True)
+print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)
+"""
+
+
+def peak_mb(argv: list[str]) -> float:
+    """The peak resident memory (MB) of one fresh process, the only child of a small parent of its
+    own (Linux carries a parent's peak into a child it forks: this one's is small)."""
+    out = subprocess.run([sys.executable, "-c", PEAK, *argv], capture_output=True, text=True, check=True)
+    return int(out.stdout) / 1024  # ru_maxrss: KiB on Linux
+
+
+READ = "import sys; from gearhead.core.fit import signals; signals.pick(sys.argv[1], 'elevator')"
+
+
+def read_peak(log: Path) -> tuple[float, float]:
+    """The peak resident memory (MB) of a fresh process that imports the reader, and of one that
+    also reads the log."""
+    imported = peak_mb([sys.executable, "-c", "from gearhead.core.fit import signals"])
+    return imported, peak_mb([sys.executable, "-c", READ, str(log)])
+
+
 def in_process(log: Path, runs: int) -> dict:
     from gearhead.core import fit
     from gearhead.core.calculators.elevator import spool_factor
@@ -316,6 +342,15 @@ def main() -> None:
             f"{med(xs, 0) / med(solve, 0):4.2f}x solve), {med(xs, 1):6.2f} s CPU "
             f"({med(xs, 1) / med(numpy, 1):4.1f}x numpy)"
         )
+    print(
+        f"  peak memory: gearhead fit {peak_mb([GEARHEAD, 'fit', str(log), '--card', 'elevator']):.0f} MB, "
+        f"of the 222 kB example log {peak_mb([GEARHEAD, 'fit', str(EXAMPLE), '--card', 'elevator']):.0f} MB, "
+        f"gearhead solve elevator {peak_mb([GEARHEAD, 'solve', 'elevator']):.0f} MB"
+    )
+    before, after = read_peak(log)
+    print(
+        f"  peak memory: the reader imported {before:.0f} MB, and the log read (signals.pick) {after:.0f} MB"
+    )
     inner = in_process(log, RUNS)
     print(f"one warm process, median of {RUNS}: CPU (wall)")
     n = inner["replay_samples"]
