@@ -14,9 +14,10 @@ wpiutil, the test extra), as an AdvantageKit robot logs a practice session: 10 m
   (out of time order, as the format allows);
 - a SysId routine (`sysid-test-state-elevator`, `voltage-`, `position-`, `velocity-lift-elevator`,
   Java's unit names) in the main loop: four tests spread over the session (quasistatic 6 s at
-  1 V/s, dynamic 2 s at 7 V, from 95 s to 245 s), the plant the example log's (examples/
-  make_sysid_log.py: the default elevator card's mechanism, heavier, with more friction), velocity
-  noise 0.001 m/s, position noise 0.0001 m.
+  1 V/s, dynamic 2 s at 7 V, from 95 s to 245 s) of an elevator the 50 Hz loop resolves
+  (tests/test_fit_sysid.py's: kS 0.2 V, kV 10 V/(m/s), kA 1.2 V/(m/s²), kG 0.6 V, kA/kV = 0.12 s;
+  the default card's own kA/kV, 2.8 ms, is far under the loop's step), velocity noise 0.001 m/s
+  (0.1 % of its top speed), position noise 0.0001 m.
 
 Measured:
 - as a user meets it, each in a fresh process (median wall and CPU): `gearhead fit LOG --card
@@ -25,9 +26,13 @@ Measured:
   this log and of the example log, and of a process before and after it reads the log;
 - in one warm process (median): reading the log (the picked signals, core.fit.signals.pick), the fit
   (SysId's preparation and both forms), the replay of one test (the longest, quasistatic-forward,
-  with the discrete fit's gains), and the whole of core.fit.fit_log.
+  with the favoured fit's gains), and the whole of core.fit.fit_log; the gains it fits.
 
-    .venv/bin/python bench/bench_fit.py [--runs N] [--keep DIR]
+- `--gigabyte`: also a 4.5-hour log of the same robot, about 1 GB (written in about a minute): one
+  `gearhead fit` of it, its time and peak memory, and the reader's peak memory (bounded: a 1 GB log
+  must not need 1 GB of memory).
+
+    .venv/bin/python bench/bench_fit.py [--runs N] [--keep DIR] [--gigabyte]
 """
 
 from __future__ import annotations
@@ -46,12 +51,14 @@ import numpy as np
 
 RUNS = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 5
 KEEP = sys.argv[sys.argv.index("--keep") + 1] if "--keep" in sys.argv else None
+GIGABYTE = "--gigabyte" in sys.argv
 ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 GEARHEAD = str(Path(sys.executable).with_name("gearhead"))
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "elevator_sysid.wpilog"
 
 LENGTH = 600.0  # s
+LONG = 16300.0  # s: 4.5 hours of the same robot, about 1 GB (--gigabyte)
 LOOP = 0.02  # s, the main loop
 SEED = 44
 # (state, start time s, length s, volts at s seconds into the test)
@@ -65,18 +72,14 @@ VELOCITY_NOISE = 0.001  # m/s
 POSITION_NOISE = 0.0001  # m
 
 
-def _plant() -> dict[str, float]:
-    sys.path.insert(0, str(ROOT / "examples"))
-    import make_sysid_log
-
-    return make_sysid_log.plant()
+PLANT = {"kS": 0.2, "kV": 10.0, "kA": 1.2, "kG": 0.6}  # tests/test_fit_sysid.py's elevator
 
 
 def _sysid_samples(loop_times: np.ndarray, rng) -> list[tuple[int, str, float, float, float]]:
     """(main-loop index, state, volts, position, velocity) of the routine's records: the example's
     elevator plant integrated exactly over 0.5 ms substeps with the voltage held for each loop
     (tests/fit_plants.py's plant), measured with noise."""
-    g = _plant()
+    g = PLANT
     kS, kV, kA, kG = g["kS"], g["kV"], g["kA"], g["kG"]
     A = -kV / kA
     q = v = 0.0
@@ -117,8 +120,12 @@ def _sysid_samples(loop_times: np.ndarray, rng) -> list[tuple[int, str, float, f
     return out
 
 
-def write_log(path: Path) -> dict:
-    """The session's log (module docstring); returns its size and record count."""
+BLOCK = 3000  # main loops generated at a time (60 s): a log of hours is written in bounded memory
+
+
+def write_log(path: Path, length: float = LENGTH) -> dict:
+    """The session's log (module docstring), `length` seconds long; returns its size, record count
+    and entry count."""
     import struct
 
     import wpiutil
@@ -126,110 +133,119 @@ def write_log(path: Path) -> dict:
 
     rng = np.random.default_rng(SEED)
     w = wpiutil.DataLogWriter(str(path), "AdvantageKit")
-    n_loops = int(LENGTH / LOOP)
+    n_loops = int(length / LOOP)
     loop_times = 1.0 + np.arange(n_loops + 2) * LOOP + rng.uniform(-0.001, 0.001, n_loops + 2)
-    t = loop_times
+    last: dict[str, float] = {}
 
-    def walk(n, step, start=0.0):  # a smooth random signal
-        return start + np.cumsum(rng.normal(0, step, n))
+    def walk(name, n, step, start=0.0):  # a smooth random signal, continued from block to block
+        x = last.get(name, start) + np.cumsum(rng.normal(0, step, n))
+        last[name] = float(x[-1])
+        return x
 
-    # the main loop's 50 Hz signals: (entry, values per loop); booleans, numbers, arrays, text
-    d, b, i, f = wl.DoubleLogEntry, wl.BooleanLogEntry, wl.IntegerLogEntry, wl.FloatArrayLogEntry
-    da, ia = wl.DoubleArrayLogEntry, wl.IntegerArrayLogEntry
-    enabled = (t > 20) & (t < 580)
-    battery = 12.6 - 0.4 * enabled + rng.normal(0, 0.03, len(t))
-    heading = walk(len(t), 0.01)
-    px, py = walk(len(t), 0.01, 3.0), walk(len(t), 0.01, 4.0)
-    pose = np.column_stack((px, py, heading))
-    states = np.column_stack([walk(len(t), 0.05) for _ in range(8)])
+    def uniform(lo, hi):
+        return lambda t, name: rng.uniform(lo, hi, len(t)).tolist()
+
+    def steady(x):
+        return lambda t, name: [x] * len(t)
+
+    def walking(step, start=0.0, f=lambda x: x):
+        return lambda t, name: f(walk(name, len(t), step, start)).tolist()
+
+    def pose(t, name):
+        return np.column_stack([walk(f"{name}{k}", len(t), 0.01, 3.0 + k) for k in range(3)])
+
+    def states(t, name):
+        return np.column_stack([walk(f"{name}{k}", len(t), 0.05) for k in range(8)])
+
+    d, b, i = wl.DoubleLogEntry, wl.BooleanLogEntry, wl.IntegerLogEntry
+    da, ia, fa = wl.DoubleArrayLogEntry, wl.IntegerArrayLogEntry, wl.FloatArrayLogEntry
     commands = ["", "DriveWithJoysticks", "AutoAlign", "ElevatorToGoal", "SysIdRoutine"]
+    # (entry, values for the times t): 30 at the main loop's 50 Hz
     main = [
-        (b(w, "/DriverStation/Enabled", "", 1), enabled.tolist()),
-        (b(w, "/DriverStation/Autonomous", "", 1), ((t > 20) & (t < 35)).tolist()),
-        (b(w, "/DriverStation/FMSAttached", "", 1), [False] * len(t)),
-        (b(w, "/DriverStation/DSAttached", "", 1), [True] * len(t)),
-        (d(w, "/DriverStation/MatchTime", "", 1), np.maximum(0.0, 150.0 - t).tolist()),
-        (f(w, "/DriverStation/Joystick0/AxisValues", "", 1), rng.uniform(-1, 1, (len(t), 6)).tolist()),
-        (i(w, "/DriverStation/Joystick0/ButtonValues", "", 1), rng.integers(0, 1 << 12, len(t)).tolist()),
-        (d(w, "/SystemStats/BatteryVoltage", "", 1), battery.tolist()),
-        (b(w, "/SystemStats/BrownedOut", "", 1), [False] * len(t)),
-        (d(w, "/SystemStats/CANBus/Utilization", "", 1), rng.uniform(0.4, 0.7, len(t)).tolist()),
-        (d(w, "/RealOutputs/LoggedRobot/UserCodeMS", "", 1), rng.uniform(2, 6, len(t)).tolist()),
-        (d(w, "/RealOutputs/LoggedRobot/FullCycleMS", "", 1), rng.uniform(5, 9, len(t)).tolist()),
-        (da(w, "/RealOutputs/Odometry/Robot", "", 1), pose.tolist()),
+        (b, "/DriverStation/Enabled", lambda t, n: ((t > 20) & (t < length - 20)).tolist()),
+        (b, "/DriverStation/Autonomous", lambda t, n: ((t > 20) & (t < 35)).tolist()),
+        (b, "/DriverStation/FMSAttached", steady(False)),
+        (b, "/DriverStation/DSAttached", steady(True)),
+        (d, "/DriverStation/MatchTime", lambda t, n: np.maximum(0.0, 150.0 - t).tolist()),
+        (fa, "/DriverStation/Joystick0/AxisValues", lambda t, n: rng.uniform(-1, 1, (len(t), 6)).tolist()),
+        (i, "/DriverStation/Joystick0/ButtonValues", lambda t, n: rng.integers(0, 1 << 12, len(t)).tolist()),
         (
-            wl.RawLogEntry(w, "/RealOutputs/Odometry/RobotStruct", "", "struct:Pose2d", 1),
-            [struct.pack("<3d", *p) for p in pose.tolist()],
+            d,
+            "/SystemStats/BatteryVoltage",
+            lambda t, n: (12.5 - 0.4 * ((t > 20) & (t < length - 20)) + rng.normal(0, 0.03, len(t))).tolist(),
         ),
-        (da(w, "/RealOutputs/SwerveStates/Measured", "", 1), states.tolist()),
-        (da(w, "/RealOutputs/SwerveStates/Setpoints", "", 1), (states + 0.01).tolist()),
+        (b, "/SystemStats/BrownedOut", steady(False)),
+        (d, "/SystemStats/CANBus/Utilization", uniform(0.4, 0.7)),
+        (d, "/RealOutputs/LoggedRobot/UserCodeMS", uniform(2, 6)),
+        (d, "/RealOutputs/LoggedRobot/FullCycleMS", uniform(5, 9)),
+        (da, "/RealOutputs/Odometry/Robot", lambda t, n: pose(t, n).tolist()),
         (
-            wl.StringLogEntry(w, "/RealOutputs/ActiveCommand", "", 1),
-            [commands[int(x) % len(commands)] for x in t / 7],
+            lambda w, n, m, ts: wl.RawLogEntry(w, n, m, "struct:Pose2d", ts),
+            "/RealOutputs/Odometry/RobotStruct",
+            lambda t, n: [struct.pack("<3d", *p) for p in pose(t, n).tolist()],
         ),
-        (ia(w, "/RealOutputs/Vision/TagIds", "", 1), [[int(x) % 16 + 1, 7] for x in t]),
-        *[
-            (d(w, f"/Drive/Module{m}/DriveCurrentAmps", "", 1), walk(len(t), 0.5, 10).tolist())
-            for m in range(4)
-        ],
-        *[(d(w, f"/Drive/Module{m}/TurnAppliedVolts", "", 1), walk(len(t), 0.1).tolist()) for m in range(4)],
-        (d(w, "/Elevator/GoalMeters", "", 1), np.round(walk(len(t), 0.01), 1).tolist()),
-        (d(w, "/Elevator/CurrentAmps", "", 1), walk(len(t), 0.2, 5).tolist()),
-        (b(w, "/Elevator/AtGoal", "", 1), (rng.random(len(t)) < 0.8).tolist()),
-        (b(w, "/Vision/Camera0/Connected", "", 1), [True] * len(t)),
+        (da, "/RealOutputs/SwerveStates/Measured", lambda t, n: states(t, n).tolist()),
+        (da, "/RealOutputs/SwerveStates/Setpoints", lambda t, n: states(t, n).tolist()),
+        (wl.StringLogEntry, "/RealOutputs/ActiveCommand", lambda t, n: [commands[int(x / 7) % 5] for x in t]),
+        (ia, "/RealOutputs/Vision/TagIds", lambda t, n: [[int(x) % 16 + 1, 7] for x in t]),
+        *[(d, f"/Drive/Module{m}/DriveCurrentAmps", walking(0.5, 10)) for m in range(4)],
+        *[(d, f"/Drive/Module{m}/TurnAppliedVolts", walking(0.1)) for m in range(4)],
+        (d, "/Elevator/GoalMeters", walking(0.01, f=lambda x: np.round(x, 1))),
+        (d, "/Elevator/CurrentAmps", walking(0.2, 5)),
+        (b, "/Elevator/AtGoal", lambda t, n: (rng.random(len(t)) < 0.8).tolist()),
+        (b, "/Vision/Camera0/Connected", steady(True)),
     ]
-    # 100 Hz: two samples per loop, each with its own time
-    t100 = np.column_stack((t, t + 0.01)).ravel()
+    # 10 at 100 Hz: two samples a loop, each with its own time
     fast = [
-        *[(d(w, f"/Drive/Module{m}/DriveVelocityRadPerSec", "", 1), walk(len(t100), 0.2)) for m in range(4)],
-        *[(d(w, f"/Drive/Module{m}/TurnPositionRad", "", 1), walk(len(t100), 0.02)) for m in range(4)],
-        (d(w, "/Shooter/VelocityRPM", "", 1), walk(len(t100), 5.0, 3000)),
-        (d(w, "/Intake/CurrentAmps", "", 1), np.abs(walk(len(t100), 0.3))),
+        *[(d, f"/Drive/Module{m}/DriveVelocityRadPerSec", walking(0.2)) for m in range(4)],
+        *[(d, f"/Drive/Module{m}/TurnPositionRad", walking(0.02)) for m in range(4)],
+        (d, "/Shooter/VelocityRPM", walking(5.0, 3000)),
+        (d, "/Intake/CurrentAmps", walking(0.3, f=np.abs)),
     ]
-    # 200 Hz odometry thread: four samples per loop, logged at the loop's end
-    t200 = (t[:, None] - 0.02 + 0.005 * np.arange(1, 5)[None, :]).ravel()
+    # 6 at 200 Hz from the odometry thread: four samples a loop, logged at the loop's end
     odometry = [
-        (d(w, "/Drive/Gyro/YawRad", "", 1), walk(len(t200), 0.001)),
-        (d(w, "/Drive/Gyro/YawVelocityRadPerSec", "", 1), walk(len(t200), 0.01)),
-        *[
-            (d(w, f"/Drive/Module{m}/OdometryDrivePositionRad", "", 1), walk(len(t200), 0.01))
-            for m in range(4)
-        ],
+        (d, "/Drive/Gyro/YawRad", walking(0.001)),
+        (d, "/Drive/Gyro/YawVelocityRadPerSec", walking(0.01)),
+        *[(d, f"/Drive/Module{m}/OdometryDrivePositionRad", walking(0.01)) for m in range(4)],
     ]
+    groups = [[(kind(w, name, "", 1), name, fn) for kind, name, fn in g] for g in (main, fast, odometry)]
     mech = "elevator"
     state = wl.StringLogEntry(w, f"sysid-test-state-{mech}", "", 1)
     volts = d(w, f"voltage-lift-{mech}", "Volt", 1)
     pos = d(w, f"position-lift-{mech}", "Meter", 1)
     vel = d(w, f"velocity-lift-{mech}", "Meter per Second", 1)
     sysid = {k: (s, u, q, v) for k, s, u, q, v in _sysid_samples(loop_times, rng)}
-    stamps = np.round(t * 1e6).astype(np.int64).tolist()
-    stamps100 = np.round(t100 * 1e6).astype(np.int64).tolist()
-    stamps200 = np.round(t200 * 1e6).astype(np.int64).tolist()
-    fast = [(e, v.tolist()) for e, v in fast]
-    odometry = [(e, v.tolist()) for e, v in odometry]
     count = 0
-    for k in range(n_loops):
-        ts = stamps[k]
-        for m, (e, values) in enumerate(main):
-            e.append(values[k], ts + 3 * m)  # each a few µs after the last, as the loop logs them
-        for e, values in fast:
-            e.append(values[2 * k], stamps100[2 * k])
-            e.append(values[2 * k + 1], stamps100[2 * k + 1])
-        for e, values in odometry:
-            for j in range(4 * k, 4 * k + 4):
-                e.append(values[j], stamps200[j])
-        count += len(main) + 2 * len(fast) + 4 * len(odometry)
-        if k in sysid:
-            s, u, q, v = sysid[k]
-            state.append(s, ts + 200)
-            count += 1
-            if s != "none":
-                volts.append(u, ts + 201)
-                pos.append(q, ts + 202)
-                vel.append(v, ts + 203)
-                count += 3
-        if k % 50 == 0:
-            w.flush()  # DataLogWriter blocks once its buffers fill until they are written
+    for k0 in range(0, n_loops, BLOCK):
+        t = loop_times[k0 : min(k0 + BLOCK, n_loops)]
+        times = (
+            t,
+            np.column_stack((t, t + 0.01)).ravel(),
+            (t[:, None] - 0.02 + 0.005 * np.arange(1, 5)).ravel(),
+        )
+        stamps = [np.round(x * 1e6).astype(np.int64).tolist() for x in times]
+        values = [[(e, fn(x, name)) for e, name, fn in g] for g, x in zip(groups, times)]
+        for j in range(len(t)):
+            ts = stamps[0][j]
+            for m, (e, v) in enumerate(values[0]):
+                e.append(v[j], ts + 3 * m)  # each a few µs after the last, as the loop logs them
+            for per, (group, st) in enumerate(zip(values[1:], stamps[1:]), start=1):
+                for e, v in group:
+                    for r in range(2 * per * j, 2 * per * (j + 1)):
+                        e.append(v[r], st[r])
+            count += len(main) + 2 * len(fast) + 4 * len(odometry)
+            k = k0 + j
+            if k in sysid:
+                s_, u, q, v_ = sysid[k]
+                state.append(s_, ts + 200)
+                count += 1
+                if s_ != "none":
+                    volts.append(u, ts + 201)
+                    pos.append(q, ts + 202)
+                    vel.append(v_, ts + 203)
+                    count += 3
+            if k % 50 == 0:
+                w.flush()  # DataLogWriter blocks once its buffers fill until they are written
     w.flush()
     w.stop()
     del w
@@ -301,7 +317,8 @@ def in_process(log: Path, runs: int) -> dict:
             sysid_fit.fit_discrete(p, "elevator", i["dt"], str(log)),
         )
 
-    gains = fits()[1].gains
+    report = fit.fit_log(log, "elevator", card)
+    gains = report.fits[report.favoured].gains
     test = {"quasistatic-forward": picked.runs["quasistatic-forward"]}
     return {
         "read": median_ms(lambda: signals.pick(log, "elevator", spool=spool), runs),
@@ -309,6 +326,8 @@ def in_process(log: Path, runs: int) -> dict:
         "replay": median_ms(lambda: replay.replay("elevator", gains, test), runs),
         "replay_samples": len(test["quasistatic-forward"].t_voltage),
         "fit_log": median_ms(lambda: fit.fit_log(log, "elevator", card), runs),
+        "favoured": report.favoured,
+        "gains": gains,
     }
 
 
@@ -362,6 +381,24 @@ def main() -> None:
     ):
         cpu, wall = inner[key]
         print(f"  {label:<54} {cpu:7.1f} ms ({wall:7.1f})")
+    fitted = ", ".join(f"{k} {x:.4g} ({PLANT[k]:g})" for k, x in inner["gains"].items())
+    print(f"  fitted, {inner['favoured']} (favoured): {fitted}")
+    if GIGABYTE:
+        big = folder / "long.wpilog"
+        t0 = time.perf_counter()
+        made = write_log(big, LONG)
+        print(
+            f"--gigabyte: {LONG / 3600:.1f} hours, {made['records']} records, {made['bytes'] / 1e9:.2f} GB "
+            f"(written in {time.perf_counter() - t0:.0f} s); one fresh process each:"
+        )
+        wall, cpu = timed([GEARHEAD, "fit", str(big), "--card", "elevator"])
+        print(f"  gearhead fit LOG --card elevator  {wall:6.1f} s wall, {cpu:6.1f} s CPU")
+        before, after = read_peak(big)
+        print(
+            f"  peak memory: gearhead fit {peak_mb([GEARHEAD, 'fit', str(big), '--card', 'elevator']):.0f} MB; "
+            f"the reader imported {before:.0f} MB, and the log read {after:.0f} MB"
+        )
+        big.unlink()
     if not KEEP:
         log.unlink()
         folder.rmdir()

@@ -314,7 +314,7 @@ def read_wpilog(path, wanted: Callable[[str], bool]) -> tuple[dict[str, Signal],
                     if eid in kept:
                         kept[eid].metadata = meta
     for name, sig in out.items():
-        _finish(sig, parts[name])
+        _finish(sig, parts.pop(name))
     return out, seen, log.warnings
 
 
@@ -431,8 +431,15 @@ def _finish(sig: Signal, got: list) -> None:
         times = times[order]
         values = [values[i] for i in order.tolist()] if text else values[order]
         sig.reordered = True
-    sig.times = array("d", times.tobytes())
-    sig.values = values if text else array("d", values.astype(np.float64).tobytes())
+    sig.times = array("d")
+    sig.times.frombytes(
+        memoryview(np.ascontiguousarray(times)).cast("B")
+    )  # numpy's buffer, not a copy in bytes first
+    if text:
+        sig.values = values
+    else:
+        sig.values = array("d")
+        sig.values.frombytes(memoryview(np.ascontiguousarray(values, dtype=np.float64)).cast("B"))
 
 
 def _sort(sig: Signal) -> None:
