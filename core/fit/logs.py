@@ -40,7 +40,8 @@ _HL = [1 + (b & 3) + 1 + ((b >> 2) & 3) + 1 + ((b >> 4) & 7) + 1 for b in range(
 _OFF = [2 + (b & 3) if (b >> 2) & 3 == 0 else 0 for b in range(256)]
 MAGIC = b"WPILOG"
 CONTROL_START, CONTROL_FINISH, CONTROL_SET_METADATA = 0, 1, 2
-_FIXED = {"double": ("<d", 8), "float": ("<f", 4), "int64": ("<q", 8), "boolean": ("<?", 1)}
+# the fixed-size types read as numbers (datalog.adoc "Data Types"): numpy's little-endian dtype
+_DTYPES = {"double": "<f8", "float": "<f4", "int64": "<i8", "boolean": "u1"}
 TIME_COLUMNS = ("timestamp", "time", "t", "timestamp (s)", "time (s)", "t (s)")
 
 
@@ -244,24 +245,6 @@ class WPILog:
         raise _error(self.path, f"{where} has an unknown kind {kind} (0-2 are defined)")
 
 
-def decode(path, entry: Entry, rec: Record):
-    """A data record's value for the entry's type (datalog.adoc "Data Types"), or None for a type
-    not read here (arrays, raw, structs)."""
-    d = rec.payload or b""
-    if entry.type in _FIXED:
-        fmt, size = _FIXED[entry.type]
-        if len(d) != size:
-            raise _error(
-                path,
-                f"entry {entry.name!r} ({entry.type}) has a {len(d)}-byte record at byte {rec.offset}; "
-                f"a {entry.type} is {size} bytes",
-            )
-        return float(struct.unpack(fmt, d)[0])
-    if entry.type in ("string", "json"):
-        return d.decode("utf-8", "replace")
-    return None
-
-
 def read_wpilog(path, wanted: Callable[[str], bool]) -> tuple[dict[str, Signal], dict[str, Entry], list[str]]:
     """The signals whose entry name `wanted` accepts, every entry the log starts (name -> Entry, the
     last Start of a name), and the reader's warnings. Memory: the kept signals' samples and a
@@ -339,9 +322,6 @@ def _record(buf: bytes, base: int, p: int) -> Record:
     return Record(int.from_bytes(buf[p + 1 : p + 1 + il], "little"), ts, buf[q + tl : q + tl + n], base + p)
 
 
-_DTYPES = {"double": "<f8", "float": "<f4", "int64": "<i8", "boolean": "u1"}
-
-
 def _take(log, a, buf, base, pos, bits, il, ent, live, kept, parts) -> None:
     """The kept entries' records among one run of data records (no control record between them):
     their times and values (datalog.adoc "Data Types": double, float, int64, boolean as numbers,
@@ -378,7 +358,7 @@ def _take(log, a, buf, base, pos, bits, il, ent, live, kept, parts) -> None:
                 ]
                 got.append((idx, times, values))
                 continue
-            width = _FIXED[typ][1]
+            width = np.dtype(_DTYPES[typ]).itemsize
             wrong = np.flatnonzero(size != width)
             if len(wrong):
                 k = int(wrong[0])
@@ -431,10 +411,8 @@ def _finish(sig: Signal, got: list) -> None:
         times = times[order]
         values = [values[i] for i in order.tolist()] if text else values[order]
         sig.reordered = True
-    sig.times = array("d")
-    sig.times.frombytes(
-        memoryview(np.ascontiguousarray(times)).cast("B")
-    )  # numpy's buffer, not a copy in bytes first
+    sig.times = array("d")  # filled from numpy's buffer, not from a copy of it in bytes
+    sig.times.frombytes(memoryview(np.ascontiguousarray(times)).cast("B"))
     if text:
         sig.values = values
     else:
