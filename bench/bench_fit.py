@@ -76,8 +76,8 @@ PLANT = {"kS": 0.2, "kV": 10.0, "kA": 1.2, "kG": 0.6}  # tests/test_fit_sysid.py
 
 
 def _sysid_samples(loop_times: np.ndarray, rng) -> list[tuple[int, str, float, float, float]]:
-    """(main-loop index, state, volts, position, velocity) of the routine's records: the example's
-    elevator plant integrated exactly over 0.5 ms substeps with the voltage held for each loop
+    """(main-loop index, state, volts, position, velocity) of the routine's records: PLANT
+    integrated exactly over 0.5 ms substeps with the voltage held for each loop
     (tests/fit_plants.py's plant), measured with noise."""
     g = PLANT
     kS, kV, kA, kG = g["kS"], g["kV"], g["kA"], g["kG"]
@@ -363,7 +363,7 @@ def main() -> None:
         )
     print(
         f"  peak memory: gearhead fit {peak_mb([GEARHEAD, 'fit', str(log), '--card', 'elevator']):.0f} MB, "
-        f"of the 222 kB example log {peak_mb([GEARHEAD, 'fit', str(EXAMPLE), '--card', 'elevator']):.0f} MB, "
+        f"of the {EXAMPLE.stat().st_size / 1e3:.0f} kB example log {peak_mb([GEARHEAD, 'fit', str(EXAMPLE), '--card', 'elevator']):.0f} MB, "
         f"gearhead solve elevator {peak_mb([GEARHEAD, 'solve', 'elevator']):.0f} MB"
     )
     before, after = read_peak(log)
@@ -381,8 +381,8 @@ def main() -> None:
     ):
         cpu, wall = inner[key]
         print(f"  {label:<54} {cpu:7.1f} ms ({wall:7.1f})")
-    fitted = ", ".join(f"{k} {x:.4g} ({PLANT[k]:g})" for k, x in inner["gains"].items())
-    print(f"  fitted, {inner['favoured']} (favoured): {fitted}")
+    gains = ", ".join(f"{k} {x:.4g} ({PLANT[k]:g})" for k, x in inner["gains"].items())
+    print(f"  fitted, {inner['favoured']} (favoured), the plant's in brackets: {gains}")
     if GIGABYTE:
         big = folder / "long.wpilog"
         t0 = time.perf_counter()
