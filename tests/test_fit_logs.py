@@ -8,6 +8,7 @@ import math
 import struct
 import tracemalloc
 
+import numpy as np
 import pytest
 
 from gearhead.core.errors import InputError
@@ -216,3 +217,90 @@ def test_hostile_csv_named(tmp_path, text, words):
     with pytest.raises(InputError) as exc:
         logs.read(path, lambda n: True)
     assert str(path) in str(exc.value) and words in str(exc.value)
+
+
+# --- the chunked reader against DataLogReader ----------------------------------------------------------
+
+
+def _robotpys_signals(path):
+    """Each entry's (times s, values) as robotpy's DataLogReader reads them, by name, in file order
+    then stably sorted by time (the numbers as floats, the strings as text; other types left out)."""
+    live, got = {}, {}
+    get = {
+        "double": lambda r: r.getDouble(),
+        "float": lambda r: float(r.getFloat()),
+        "int64": lambda r: float(r.getInteger()),
+        "boolean": lambda r: float(r.getBoolean()),
+        "string": lambda r: r.getString(),
+    }
+    for r in wlog.DataLogReader(str(path)):
+        if r.isStart():
+            d = r.getStartData()
+            live[d.entry] = (d.name, d.type)
+            got.setdefault(d.name, [])
+        elif r.isFinish():
+            live.pop(r.getFinishEntry(), None)
+        elif not r.isControl() and r.getEntry() in live:
+            name, typ = live[r.getEntry()]
+            if typ in get:
+                got[name].append((r.getTimestamp() / 1e6, get[typ](r)))
+    return {n: sorted(s, key=lambda x: x[0]) for n, s in got.items()}
+
+
+def _write_random(path, seed):
+    """A log with every record-header width the writer uses: 300 entries (2-byte ids), arrays of 1 to
+    600 doubles (1- and 2-byte sizes), raw payloads of 70-200 kB (3-byte sizes, longer than a chunk),
+    every standard type, timestamps of 1 to 6 bytes and out of order, an entry finished and its id
+    started again under another name."""
+    rng = np.random.default_rng(seed)
+    w = wpiutil.DataLogWriter(str(path))
+    d = [wlog.DoubleLogEntry(w, f"d{k}", "", 1) for k in range(280)]
+    s = wlog.StringLogEntry(w, "state", "", 1)
+    i = wlog.IntegerLogEntry(w, "int", "", 1)
+    f = wlog.FloatLogEntry(w, "float", "", 1)
+    b = wlog.BooleanLogEntry(w, "bool", "", 1)
+    da = wlog.DoubleArrayLogEntry(w, "darr", "", 1)
+    raw = wlog.RawLogEntry(w, "raw", "", 1)
+    for k in range(6000):
+        t = int(rng.choice([5, 300, 70_000, 2**20, 2**30, 2**40])) + int(rng.integers(0, 200))
+        pick = rng.integers(0, 9)
+        if pick < 3:
+            d[int(rng.integers(0, 280))].append(float(rng.normal()), t)
+        elif pick == 3:
+            s.append("x" * int(rng.integers(0, 400)) + "é", t)
+        elif pick == 4:
+            i.append(int(rng.integers(-(2**62), 2**62)), t)
+        elif pick == 5:
+            f.append(float(rng.normal()), t)
+        elif pick == 6:
+            b.append(bool(rng.integers(0, 2)), t)
+        elif pick == 7:
+            da.append(rng.normal(size=int(rng.integers(1, 600))).tolist(), t)
+        elif k % 50 == 0:
+            raw.append(bytes(int(rng.integers(70_000, 200_000))), t)
+        if k == 3000:
+            d[7].finish(t)
+            d[7] = wlog.DoubleLogEntry(w, "d7-again", "", t)
+        if k % 200 == 0:
+            w.flush()
+    w.flush()
+    w.stop()
+    del w
+
+
+@pytest.mark.parametrize("chunk", [300, 1 << 12, logs.CHUNK])
+@pytest.mark.parametrize("seed", [0, 1])
+def test_signals_equal_robotpys(tmp_path, monkeypatch, chunk, seed):
+    """Every entry's samples as read from a chunk of `chunk` bytes at a time equal DataLogReader's:
+    the chunk edges fall inside records, headers and long payloads, kept and skipped."""
+    path = tmp_path / "random.wpilog"
+    _write_random(path, seed)
+    monkeypatch.setattr(logs, "CHUNK", chunk)
+    want = _robotpys_signals(path)
+    for wanted in (lambda n: True, lambda n: n in ("d3", "d7-again", "state", "int", "bool")):
+        sigs, entries, warnings = logs.read_wpilog(path, wanted)
+        assert warnings == [] and set(entries) == set(want)
+        assert set(sigs) == {n for n in want if wanted(n)}
+        for name, sig in sigs.items():
+            assert list(zip(sig.times, sig.values)) == want[name], name
+    assert len(want["state"]) > 500 and len(want["d7-again"]) > 0 and len(want["bool"]) > 500

@@ -3,8 +3,11 @@ AdvantageScope's CSV export (a timestamp column, then one column per signal).
 
 Our own streaming reader of the documented format, not robotpy's wpiutil.log.DataLogReader: robotpy
 is ~30 MB of native wheels the default install does not have, and its reader maps the whole file;
-this one reads 256 KiB at a time and skips the payloads of entries nobody asked for, so memory is set
-by the signals kept, not by the log's size (the tests check it against DataLogReader, record by record).
+this one reads 64 KiB at a time and skips the payloads of entries nobody asked for, so memory is set
+by the signals kept, not by the log's size (the tests check it against DataLogReader, record by record
+and signal by signal). Speed (bench/bench_fit.py): the walk from record to record is a loop of one
+byte read and two table look-ups (WPILog.scan); the kept entries' records of each chunk are then
+decoded together with numpy (read_wpilog), about 0.15 µs a record in all.
 
 Format (datalog.adoc "Header", "Records", "Control Records"), all little-endian:
     header: "WPILOG", u16 version (0x0100), u32 n, n bytes of extra header (UTF-8)              (L1)
@@ -25,12 +28,20 @@ from array import array
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from ..errors import InputError
 
-CHUNK = 1 << 18  # bytes read at a time: 256 KiB (the peak memory is about three of them)
+CHUNK = 1 << 16  # bytes read at a time: 64 KiB (the reader's peak memory is a few of them)
+_FAST_MAX = 1 + 4 + 1 + 8 + 255  # the longest record with a one-byte payload size
+# per header bitfield (L2): the header's length, and the payload size's offset in it when it is one
+# byte (0: longer, read by the general header)
+_HL = [1 + (b & 3) + 1 + ((b >> 2) & 3) + 1 + ((b >> 4) & 7) + 1 for b in range(256)]
+_OFF = [2 + (b & 3) if (b >> 2) & 3 == 0 else 0 for b in range(256)]
 MAGIC = b"WPILOG"
 CONTROL_START, CONTROL_FINISH, CONTROL_SET_METADATA = 0, 1, 2
-_FIXED = {"double": ("<d", 8), "float": ("<f", 4), "int64": ("<q", 8), "boolean": ("<?", 1)}
+# the fixed-size types read as numbers (datalog.adoc "Data Types"): numpy's little-endian dtype
+_DTYPES = {"double": "<f8", "float": "<f4", "int64": "<i8", "boolean": "u1"}
 TIME_COLUMNS = ("timestamp", "time", "t", "timestamp (s)", "time (s)", "t (s)")
 
 
@@ -99,61 +110,106 @@ class WPILog:
         self.start = 12 + n
 
     def records(self, keep=None, skipped: bool = True) -> Iterator[Record]:
-        """Every record in file order (L2). A data record whose entry is not in `keep` (a set or
-        dict of ids; None: keep all) has no payload read; it is yielded without one when `skipped`,
-        else not at all. A record cut off by the end of the file ends the reading with a warning (a
-        robot that lost power mid-write leaves one)."""
-        path, size = self.path, self.size
+        """Every record in file order (L2), one by one (scan's records, their headers read here).
+        A data record whose entry is not in `keep` (a set or dict of ids; None: keep all) has no
+        payload read; it is yielded without one when `skipped`, else not at all."""
+
+        def wanted(e: int) -> bool:
+            return keep is None or e in keep
+
+        for buf, base, starts, whole in self.scan(wanted):
+            for p in starts:
+                b = buf[p]
+                il, sl, tl = (b & 3) + 1, ((b >> 2) & 3) + 1, ((b >> 4) & 7) + 1
+                q = p + 1 + il + sl
+                entry = int.from_bytes(buf[p + 1 : p + 1 + il], "little")
+                n = int.from_bytes(buf[p + 1 + il : q], "little")
+                ts = int.from_bytes(buf[q : q + tl], "little")
+                if not whole or (entry != 0 and not wanted(entry)):
+                    if skipped:
+                        yield Record(entry, ts, None, base + p)
+                    continue
+                yield Record(entry, ts, bytes(buf[q + tl : q + tl + n]), base + p)
+
+    def scan(self, keep: Callable[[int], bool]) -> Iterator[tuple[bytes, int, list[int], bool]]:
+        """The records in file order (L2), a chunk at a time: (buf, base, starts, whole), `starts`
+        the offsets in `buf` (at file offset `base`) of its records, in file order, whole (header
+        and payload) when `whole`. A record longer than what is read has its payload read when
+        `keep(entry)` or it is a control record; else it is skipped in the file, unread, and
+        yielded alone, its header only (`whole` False). A record cut off by the end of the file
+        ends the reading with a warning (a robot that lost power mid-write leaves one).
+
+        The walk from record to record is the one step that cannot be vectorised (each record's
+        length is in its own header): for a payload under 256 bytes (any id and timestamp width)
+        it is one byte read and two table look-ups (_OFF, _HL) a record; others, and the last
+        bytes of the file, go through the general header."""
+        path = self.path
+        size = self.size
+        HL, OFF = _HL, _OFF
         with open(path, "rb") as f:
             f.seek(self.start)
-            buf = b""
-            pos = 0
-            base = self.start  # file offset of buf[0]
+            base = self.start
+            buf = f.read(CHUNK)
+            p = 0
+            starts: list[int] = []
             while True:
-                if len(buf) - pos < 13:  # the longest header is 1 + 4 + 4 + 8 bytes: top up
-                    buf = buf[pos:] + f.read(CHUNK)
-                    base += pos
-                    pos = 0
-                    if not buf:
-                        return
-                b = buf[pos]
+                n = len(buf)
+                eof = base + n >= size
+                lim = n - _FAST_MAX  # a fast record starting before lim ends inside buf
+                app = starts.append
+                while p < lim:
+                    b = buf[p]
+                    o = OFF[b]
+                    if not o:
+                        break
+                    app(p)
+                    p += HL[b] + buf[p + o]
+                if p >= lim and not eof:  # near the end of what is read: read on
+                    if starts:
+                        yield buf, base, starts, True
+                        starts = []
+                    more = f.read(CHUNK)
+                    if not more:  # shorter than it was when opened
+                        size = base + n
+                    buf, base, p = buf[p:] + more, base + p, 0
+                    continue
+                if p >= n:  # the end of the file, at a record's end
+                    break
+                b = buf[p]  # one record by its general header (L2)
                 il, sl, tl = (b & 3) + 1, ((b >> 2) & 3) + 1, ((b >> 4) & 7) + 1
                 hl = 1 + il + sl + tl
-                if len(buf) - pos < hl:
+                if n - p < hl:  # at the end of the file (else read on above)
                     self.warnings.append(
-                        f"{path}: ends in a partial record at byte {base + pos}; read up to it"
+                        f"{path}: ends in a partial record at byte {base + p}; read up to it"
                     )
-                    return
-                p = pos + 1
-                entry = buf[p] if il == 1 else int.from_bytes(buf[p : p + il], "little")
-                p += il
-                n = buf[p] if sl == 1 else int.from_bytes(buf[p : p + sl], "little")
-                p += sl
-                ts = int.from_bytes(buf[p : p + tl], "little")
-                p += tl
-                offset = base + pos
-                end = offset + hl + n
+                    break
+                entry = int.from_bytes(buf[p + 1 : p + 1 + il], "little")
+                length = hl + int.from_bytes(buf[p + 1 + il : p + 1 + il + sl], "little")
+                end = base + p + length
                 if end > size:
                     self.warnings.append(
-                        f"{path}: ends in a partial record at byte {offset} (its {n}-byte payload runs past "
-                        f"the end of the file); read up to it"
+                        f"{path}: ends in a partial record at byte {base + p} (its {length - hl}-byte payload "
+                        f"runs past the end of the file); read up to it"
                     )
-                    return
-                if entry != 0 and keep is not None and entry not in keep:
-                    if p + n <= len(buf):
-                        pos = p + n
-                    else:  # the payload runs past what is read: skip it in the file
-                        f.seek(end)
-                        buf, pos, base = b"", 0, end
-                    if skipped:
-                        yield Record(entry, ts, None, offset)
+                    break
+                if p + length <= n:
+                    starts.append(p)
+                    p += length
                     continue
-                if p + n > len(buf):
-                    buf = buf[p:] + f.read(max(CHUNK, n - (len(buf) - p)))
-                    base += p
-                    p = 0
-                yield Record(entry, ts, bytes(buf[p : p + n]), offset)
-                pos = p + n
+                if starts:  # the record runs past what is read: the records before it first
+                    yield buf, base, starts, True
+                    starts = []
+                if entry != 0 and not keep(entry):
+                    yield buf[p : p + hl], base + p, [0], False
+                    f.seek(end)
+                    base, buf, p = end, f.read(CHUNK), 0
+                    continue
+                more = f.read(length - (n - p))
+                if len(more) < length - (n - p):  # shorter than it was when opened
+                    size = base + n + len(more)
+                buf, base, p = buf[p:] + more, base + p, 0
+            if starts:
+                yield buf, base, starts, True
 
     def control(self, rec: Record) -> tuple[int, Entry | int | tuple[int, str]]:
         """A control record's kind and contents (L3): Start -> Entry, Finish -> id,
@@ -189,35 +245,34 @@ class WPILog:
         raise _error(self.path, f"{where} has an unknown kind {kind} (0-2 are defined)")
 
 
-def decode(path, entry: Entry, rec: Record):
-    """A data record's value for the entry's type (datalog.adoc "Data Types"), or None for a type
-    not read here (arrays, raw, structs)."""
-    d = rec.payload or b""
-    if entry.type in _FIXED:
-        fmt, size = _FIXED[entry.type]
-        if len(d) != size:
-            raise _error(
-                path,
-                f"entry {entry.name!r} ({entry.type}) has a {len(d)}-byte record at byte {rec.offset}; "
-                f"a {entry.type} is {size} bytes",
-            )
-        return float(struct.unpack(fmt, d)[0])
-    if entry.type in ("string", "json"):
-        return d.decode("utf-8", "replace")
-    return None
-
-
 def read_wpilog(path, wanted: Callable[[str], bool]) -> tuple[dict[str, Signal], dict[str, Entry], list[str]]:
     """The signals whose entry name `wanted` accepts, every entry the log starts (name -> Entry, the
-    last Start of a name), and the reader's warnings. Memory: the kept signals' samples only."""
+    last Start of a name), and the reader's warnings. Memory: the kept signals' samples and a
+    chunk. Each chunk's records (WPILog.scan) are decoded together with numpy: their entry ids,
+    then the headers and payloads of the kept entries' records only, between the control records
+    (taken one by one, in file order, so an id finished and started again maps right)."""
     log = WPILog(path)
     live: dict[int, Entry] = {}
     kept: dict[int, Signal] = {}
     out: dict[str, Signal] = {}
     seen: dict[str, Entry] = {}
-    for rec in log.records(keep=kept, skipped=False):
-        if rec.entry == 0:
-            kind, what = log.control(rec)
+    parts: dict[str, list] = {}  # name -> [(times, values)] in file order
+    for buf, base, starts, whole in log.scan(kept.__contains__):
+        if not whole:  # a long record of an entry not kept, skipped unread
+            continue
+        a = np.frombuffer(buf, np.uint8)
+        pos = np.array(starts, dtype=np.int64)
+        bits = a[pos]
+        il = (bits & 3).astype(np.int64) + 1
+        ent = a[pos + 1].astype(np.int64) if int(il.max()) == 1 else _le(a, pos + 1, il).astype(np.int64)
+        lo = 0
+        for c in [*np.flatnonzero(ent == 0).tolist(), len(pos)]:
+            if c > lo and kept:
+                _take(log, a, buf, base, pos[lo:c], bits[lo:c], il[lo:c], ent[lo:c], live, kept, parts)
+            lo = c + 1
+            if c == len(pos):
+                break
+            kind, what = log.control(_record(buf, base, starts[c]))
             if kind == CONTROL_START:
                 live[what.id] = what
                 seen[what.name] = what
@@ -229,6 +284,7 @@ def read_wpilog(path, wanted: Callable[[str], bool]) -> tuple[dict[str, Signal],
                         if what.type in ("string", "json"):
                             sig.values = []
                         out[what.name] = sig
+                        parts[what.name] = []
                     kept[what.id] = sig
             elif kind == CONTROL_FINISH:
                 live.pop(what, None)
@@ -240,23 +296,128 @@ def read_wpilog(path, wanted: Callable[[str], bool]) -> tuple[dict[str, Signal],
                     live[eid] = seen[e.name] = Entry(e.id, e.name, e.type, meta)
                     if eid in kept:
                         kept[eid].metadata = meta
-            continue
-        sig = kept.get(rec.entry)
-        if sig is None:
-            continue
-        value = decode(path, live[rec.entry], rec)
-        if value is None:
-            continue
-        if isinstance(value, float) and not math.isfinite(value):
-            raise _error(
-                path,
-                f"entry {sig.name!r} holds a non-finite value ({value}) at t = {rec.timestamp / 1e6:g} s",
-            )
-        sig.times.append(rec.timestamp / 1e6)
-        sig.values.append(value)
-    for sig in out.values():
-        _sort(sig)
+    for name, sig in out.items():
+        _finish(sig, parts.pop(name))
     return out, seen, log.warnings
+
+
+def _le(a, at, width):
+    """Little-endian unsigned integers of `width` bytes (1-8 each) at offsets `at` of the bytes `a`."""
+    got = a[at].astype(np.uint64)
+    for k in range(1, int(width.max()) if len(width) else 0):
+        m = width > k
+        if m.all():
+            got |= a[at + k].astype(np.uint64) << np.uint64(8 * k)
+        else:
+            got[m] |= a[at[m] + k].astype(np.uint64) << np.uint64(8 * k)
+    return got
+
+
+def _record(buf: bytes, base: int, p: int) -> Record:
+    b = buf[p]
+    il, sl, tl = (b & 3) + 1, ((b >> 2) & 3) + 1, ((b >> 4) & 7) + 1
+    q = p + 1 + il + sl
+    n = int.from_bytes(buf[p + 1 + il : q], "little")
+    ts = int.from_bytes(buf[q : q + tl], "little")
+    return Record(int.from_bytes(buf[p + 1 : p + 1 + il], "little"), ts, buf[q + tl : q + tl + n], base + p)
+
+
+def _take(log, a, buf, base, pos, bits, il, ent, live, kept, parts) -> None:
+    """The kept entries' records among one run of data records (no control record between them):
+    their times and values (datalog.adoc "Data Types": double, float, int64, boolean as numbers,
+    string and json as text; arrays, raw and structs are not read) appended to `parts`, each
+    signal's in file order. The first bad record in file order (a payload of the wrong size for
+    its type, a non-finite number) is refused naming it."""
+    by_signal: dict[int, list[int]] = {}
+    for eid, sig in kept.items():
+        by_signal.setdefault(id(sig), []).append(eid)
+    errors = []  # (position in the run, message)
+    for ids in by_signal.values():
+        sig = kept[ids[0]]
+        text = not sig.numeric()
+        got = []  # (indices in the run, times, values)
+        for eid in ids:
+            idx = np.flatnonzero(ent == eid)
+            if not len(idx):
+                continue
+            entry = live[eid]
+            typ = entry.type
+            if (typ in ("string", "json")) != text or not (text or typ in _DTYPES):
+                continue  # not a type read here, or a name started again as another kind
+            p, b, w = pos[idx], bits[idx], il[idx]
+            sl = ((b >> 2) & 3).astype(np.int64) + 1
+            tl = ((b >> 4) & 7).astype(np.int64) + 1
+            q = p + 1 + w
+            size = _le(a, q, sl).astype(np.int64)
+            ts = _le(a, q + sl, tl)
+            at = q + sl + tl
+            times = ts.astype(np.float64) / 1e6
+            if text:
+                values = [
+                    buf[s : s + n].decode("utf-8", "replace") for s, n in zip(at.tolist(), size.tolist())
+                ]
+                got.append((idx, times, values))
+                continue
+            width = np.dtype(_DTYPES[typ]).itemsize
+            wrong = np.flatnonzero(size != width)
+            if len(wrong):
+                k = int(wrong[0])
+                errors.append(
+                    (
+                        int(idx[k]),
+                        f"entry {entry.name!r} ({typ}) has a {int(size[k])}-byte record at byte "
+                        f"{base + int(p[k])}; a {typ} is {width} bytes",
+                    )
+                )
+                idx, at, times, ts = idx[:k], at[:k], times[:k], ts[:k]
+            raw = a[at[:, None] + np.arange(width)]
+            values = (raw[:, 0] != 0).astype(np.float64) if typ == "boolean" else raw.view(_DTYPES[typ])[:, 0]
+            values = values.astype(np.float64)
+            bad = np.flatnonzero(~np.isfinite(values))
+            if len(bad):
+                k = int(bad[0])
+                errors.append(
+                    (
+                        int(idx[k]),
+                        f"entry {sig.name!r} holds a non-finite value ({float(values[k])}) at "
+                        f"t = {int(ts[k]) / 1e6:g} s",
+                    )
+                )
+            got.append((idx, times, values))
+        if len(got) == 1:
+            parts[sig.name].append(got[0][1:])
+        elif got:  # several ids of one name in this run: in file order
+            idx = np.concatenate([g[0] for g in got])
+            order = np.argsort(idx, kind="stable")
+            times = np.concatenate([g[1] for g in got])[order]
+            if text:
+                flat = [v for g in got for v in g[2]]
+                parts[sig.name].append((times, [flat[i] for i in order.tolist()]))
+            else:
+                parts[sig.name].append((times, np.concatenate([g[2] for g in got])[order]))
+    if errors:
+        raise _error(log.path, min(errors)[1])
+
+
+def _finish(sig: Signal, got: list) -> None:
+    """A signal's samples from its parts, sorted by time (stably) when the file had them out of order."""
+    if not got:
+        return
+    times = np.concatenate([g[0] for g in got])
+    text = not sig.numeric()
+    values = [v for g in got for v in g[1]] if text else np.concatenate([g[1] for g in got])
+    if len(times) > 1 and bool(np.any(times[1:] < times[:-1])):
+        order = np.argsort(times, kind="stable")  # equal times keep the file's order
+        times = times[order]
+        values = [values[i] for i in order.tolist()] if text else values[order]
+        sig.reordered = True
+    sig.times = array("d")  # filled from numpy's buffer, not from a copy of it in bytes
+    sig.times.frombytes(memoryview(np.ascontiguousarray(times)).cast("B"))
+    if text:
+        sig.values = values
+    else:
+        sig.values = array("d")
+        sig.values.frombytes(memoryview(np.ascontiguousarray(values, dtype=np.float64)).cast("B"))
 
 
 def _sort(sig: Signal) -> None:
