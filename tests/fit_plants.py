@@ -34,8 +34,11 @@ def simulate(
     rest: float = 1.0,
     csv_path=None,
     battery: tuple[float, float, int, float, float] | None = None,
+    card_model: bool = False,
 ):
-    """`battery` = (E, R, N, R_m, k_m): log the motor current I = (u − k_m·q̇)/R_m (Amp) and the bus
+    """`card_model`: the plant is the replay's own model (core.fit.replay.simulate, steps on the
+    log's microsecond stamps) instead of the 0.5 ms substeps below.
+    `battery` = (E, R, N, R_m, k_m): log the motor current I = (u − k_m·q̇)/R_m (Amp) and the bus
     voltage V_b of E − R·N·I·u/V_b (AdvantageKit's /SystemStats/BatteryVoltage, Volt)."""
     import wpiutil
     from wpiutil import log as wlog
@@ -98,6 +101,15 @@ def simulate(
                 count += 1
                 if count % 500 == 0:
                     w.flush()
+                if card_model:
+                    from gearhead.core.fit.replay import simulate as model
+
+                    dt = round((t + dt) * 1e6) / 1e6 - stamp / 1e6
+                    t = stamp / 1e6
+                    qs, vs = model(kind, gains, np.array([0.0, dt]), np.array([u, u]), q, v)
+                    q, v = float(qs[1]), float(vs[1])
+                    t += dt
+                    continue
                 n_sub = max(1, int(round(dt / 5e-4)))
                 h = dt / n_sub
                 for _ in range(n_sub):

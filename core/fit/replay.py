@@ -66,8 +66,9 @@ def simulate(kind: str, gains: dict[str, float], t: np.ndarray, u: np.ndarray, q
             q, v = _piece(q, v, u[k] - (kG if kind == "elevator" else 0.0), span, kS, kV, A)
             continue
         n = max(1, math.ceil(span / SUBSTEP))
-        for _ in range(n):
-            q, v = _piece(q, v, u[k] - kG * math.cos(q + off), span / n, kS, kV, A)
+        h = span / n
+        for _ in range(n):  # g at the substep's predicted midpoint (R1b): second order in h
+            q, v = _piece(q, v, u[k] - kG * math.cos(q + 0.5 * h * v + off), h, kS, kV, A)
     return qs, vs
 
 
