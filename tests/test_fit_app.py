@@ -231,3 +231,18 @@ def test_the_dialog_as_it_opens_snapshot(snap_compare):
         terminal_size=SIZE,
         run_before=open_fit,
     )
+
+
+async def test_tab_goes_from_the_log_to_apply_in_three_keys():
+    """The fit's tables are read, not browsed: Tab goes log → Browse → the fit (it scrolls) → Apply
+    → Close, so a keyboard reaches Apply in three keys."""
+    app = GearheadApp(blink=False, initial="elevator", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        dialog = await open_fit(pilot)
+        await fit(pilot, dialog, str(LOG))
+        seen = []
+        for _ in range(5):
+            seen.append(app.focused.id)
+            await pilot.press("tab")
+        assert seen == ["fit-path", "fit-browse", "fit-body", "fit-apply", "fit-close"]
+        assert not dialog.query_one("#fit-apply").disabled

@@ -148,11 +148,13 @@ class FitScreen(Dialog[dict[str, Any] | None]):
             with Horizontal(classes="fit-buttons"):
                 yield Button("Apply", id="fit-apply", variant="primary", disabled=True)
                 yield Button("Close", id="fit-close")
-            yield Static(Text("Enter: fit   Esc: close", style="dim"))
+            yield Static(Text("Enter: fit   Tab: Browse, the fit, Apply, Close   Esc: close", style="dim"))
 
     def on_mount(self) -> None:
         for wid in ("#fit-table", "#fit-entries", "#fit-plot"):
             self.query_one(wid).display = False
+        for wid in ("#fit-table", "#fit-entries"):  # read, not browsed: the body scrolls them, and Tab
+            self.query_one(wid).can_focus = False  # goes from the log to Browse, the body and Apply
         if self.path:
             self.start(self.path)
 
