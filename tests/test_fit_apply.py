@@ -310,3 +310,29 @@ def test_any_fitted_gains_give_entries_the_card_reads(kind):
         parse_inputs(registry.get(kind), raw)
         assert not any(w in str(v).lower() for v in raw.values() for w in ("nan", "inf")), raw
         assert all(isinstance(n, str) and n for n in notes)
+
+
+def test_a_linked_robot_mass_is_held_and_rolling_resistance_taken_at_it(capsys, tmp_path):
+    """The example workbook's drive links its mass (`= robot_mass`): --apply leaves it and writes
+    C_rr = (kS·f − R·i_f·f)/(m·g) at the card's mass, so the card re-solved gives the fitted kS
+    (at the fitted mass it would give kS·m_card/m_fitted: 13 % low here), its kA its own."""
+    from gearhead.core import workbook
+    from gearhead.core.fit import entries
+
+    book = tmp_path / "robot.toml"
+    book.write_text((ROOT / "examples/robot_2027.toml").read_text(encoding="utf-8"), encoding="utf-8")
+    card = entries.load_card("sprint", workbook=str(book), name="drive")
+    plant = {k: card.design[k] * s for k, s in (("kS", 1.5), ("kV", 1.0), ("kA", 1.15))}
+    log = simulate(tmp_path / "drive.wpilog", "sprint", plant, **DRIVE)
+    args = ("fit", log, "--card", "sprint", "--workbook", book, "--name", "drive", "--apply", "--json")
+    code, out, err = run(capsys, *args)
+    assert code == 0, err
+    data = json.loads(out)
+    fitted = data["fits"][data["favoured"]]["gains"]
+    notes = data["applied"]["notes"]
+    assert "robot_mass" not in data["applied"]["changes"]
+    assert any(n.startswith("robot_mass is linked (= robot_mass): not written; the fit gives") for n in notes)
+    assert any(n.startswith("the robot mass is held at the card's") for n in notes)
+    outs = workbook.solve(workbook.load(book)).cards["drive"].solution.outputs
+    assert outs["kS"].value == pytest.approx(fitted["kS"], rel=1e-5)
+    assert outs["kA"].value == pytest.approx(card.design["kA"], rel=1e-9)

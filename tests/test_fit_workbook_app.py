@@ -266,3 +266,39 @@ async def test_a_workbooks_palette_offers_its_own_commands_not_the_hidden_cards(
         await pilot.pause()
         titles = [c.title for c in app.get_system_commands(app.screen)]
         assert "Save preset" in titles and "Save workbook" not in titles
+
+
+async def test_a_sprint_with_its_mass_linked_takes_rolling_resistance_at_the_cards_mass(tmp_path):
+    """The example's drive links robot_mass: Apply leaves it, says what the fit gives, and writes
+    the rolling resistance at the card's mass, so the card gives the fitted kS (as --apply)."""
+    import sys
+
+    from gearhead.core.fit import entries
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from fit_plants import simulate
+
+    book = tmp_path / "robot.toml"
+    book.write_text(
+        (Path(__file__).parents[1] / "examples/robot_2027.toml").read_text(encoding="utf-8"), encoding="utf-8"
+    )
+    card = entries.load_card("sprint", workbook=str(book), name="drive")
+    plant = {k: card.design[k] * s for k, s in (("kS", 1.5), ("kV", 1.0), ("kA", 1.15))}
+    log = simulate(tmp_path / "drive.wpilog", "sprint", plant, period=0.02, step=4.0, dynamic_time=1.5)
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.load(book))
+    async with app.run_test(size=SIZE) as pilot:
+        screen = await opened(pilot, app)
+        await show(pilot, screen, "drive")
+        dialog = await open_fit(pilot, "Fit drive")
+        await fit(pilot, dialog, str(log))
+        r = dialog.report
+        assert r is not None, str(dialog.query_one("#fit-status").render())
+        diff = str(dialog.query_one("#fit-diff").render())
+        assert "Robot mass is linked (= robot_mass): not written; the fit gives" in diff, diff
+        assert "robot mass is held at the card's" in diff
+        assert "robot_mass" not in dialog.changes
+        await pilot.click("#fit-apply")
+        await settled(pilot, screen)
+        outs = screen.cards["drive"].solution.outputs
+        assert outs["kS"].value == pytest.approx(r.fits[r.favoured].gains["kS"], rel=1e-9)
+        assert outs["kA"].value == pytest.approx(card.design["kA"], rel=1e-9)

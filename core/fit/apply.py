@@ -41,8 +41,8 @@ class Applied:
     notes: list[str]
 
 
-def _entries(card: Card, gains: dict[str, float]) -> tuple[dict[str, str], list[str]]:
-    raw, notes = fitted_raw(card, gains)
+def _entries(card: Card, gains: dict[str, float], held=()) -> tuple[dict[str, str], list[str]]:
+    raw, notes = fitted_raw(card, gains, held)
     out = {}
     for k in WRITTEN[card.kind]:
         if k in raw and raw[k] != card.raw.get(k):
@@ -66,7 +66,6 @@ def apply(
 
     from .. import atomic_file
 
-    changes, notes = _entries(card, gains)
     if workbook is not None:
         path = Path(workbook)
         field = "workbook"
@@ -102,12 +101,13 @@ def apply(
         if "inputs" not in doc:
             doc["inputs"] = tomlkit.table()
         target = doc["inputs"]
+    linked = {k for k in WRITTEN[card.kind] if _linked(target.get(k))}
+    free, _ = _entries(card, gains)  # what the fit gives each entry
+    changes, notes = _entries(card, gains, held=linked)  # the rest computed with the links held
+    for k in sorted(linked & set(free)):
+        notes.append(f"{k} is linked ({target[k].strip()}): not written; the fit gives {free[k]}")
+        changes.pop(k, None)
     for k, v in list(changes.items()):
-        old = target.get(k)
-        if isinstance(old, str) and old.lstrip().startswith("="):
-            notes.append(f"{k} is linked ({old.strip()}): not written; the fit gives {v}")
-            del changes[k]
-            continue
         # a number without a unit (C_rr) stays a TOML number, as the presets write it
         target[k] = float(v) if k in NUMBERS and " " not in v else v
     after = tomlkit.dumps(doc)
@@ -130,6 +130,11 @@ def apply(
     if after != before:
         atomic_file.write_text(path, after, overwrite=True, field=field)
     return Applied(str(path), changes, diff, notes)
+
+
+def _linked(entry) -> bool:
+    """A workbook's link ("= EXPR"): not overwritten."""
+    return isinstance(entry, str) and entry.lstrip().startswith("=")
 
 
 def card_name(card: Card, name: str | None) -> str:

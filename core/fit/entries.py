@@ -218,7 +218,7 @@ TOGETHER = {
 }
 
 
-def fitted_raw(card: Card, gains: dict[str, float]) -> tuple[dict, list[str]]:
+def fitted_raw(card: Card, gains: dict[str, float], held=()) -> tuple[dict, list[str]]:
     """The card's entries with the fitted ones in, and notes saying what was chosen (E5)-(E7):
     elevator: the moving mass from kA (its one mass serves gravity too, so its kG follows from it)
     and the friction force from kS; arm: the entered inertia from kA, the mass from kG, the
@@ -230,7 +230,7 @@ def fitted_raw(card: Card, gains: dict[str, float]) -> tuple[dict, list[str]]:
     if card.kind == "flywheel":
         _flywheel(card, gains, raw, notes, friction)
     elif card.kind == "sprint":
-        _sprint(card, gains, raw, notes, friction)
+        _sprint(card, gains, raw, notes, friction, held)
     else:
         effects = {e for e in card.values["effects"] if e != "friction"}
         name = "friction_force" if card.kind == "elevator" else "friction_torque"
@@ -294,22 +294,31 @@ def _flywheel(card: Card, gains: dict[str, float], raw: dict, notes: list[str], 
         )
 
 
-def _sprint(card: Card, gains: dict[str, float], raw: dict, notes: list[str], friction: float) -> None:
+def _sprint(
+    card: Card, gains: dict[str, float], raw: dict, notes: list[str], friction: float, held=()
+) -> None:
     """(E6) The sprint card's kA = m·R/(η·N·Kt·n) = m/f, kS = R·i_f + C_rr·m·g/f, kV = n/Kv (S9).
     With the card's efficiency kept (E2: m and η enter kA only as m/η), the card reproduces the
     fitted kA and kS with
         m = kA·f,   C_rr = (kS·f − R·i_f·f)/(m·g) = (kS − R·i_f)/(g·kA)
     (C_rr does not depend on η: kS and kA scale alike), the rolling_resistance effect on; below
     the motors' own loss it is turned off. The fitted mass holds the wheels' and motors' rotating
-    inertia too (the card's own advice: add it to the mass); traction μ·m·g and the estimated yaw
-    inertia then follow that mass."""
+    inertia then follow that mass. A mass `held` (a workbook links it: not written) keeps the
+    card's m, and C_rr = (kS·f − R·i_f·f)/(m·g) at that m, so the card still gives the fitted kS."""
     v = card.values
     m = gains["kA"] * card.f
-    raw["robot_mass"] = f"{m!r} kg"
+    if "robot_mass" in held:
+        m = v["robot_mass"]
+        notes.append(
+            f"the robot mass is held at the card's {m:.4g} kg: rolling resistance taken at it, so the "
+            "card keeps the fitted kS (its kA stays the card's)"
+        )
+    else:
+        raw["robot_mass"] = f"{m!r} kg"
     effects = {e for e in v["effects"] if e != "rolling_resistance"}
     if friction > 0:
         effects.add("rolling_resistance")
-        c_rr = (gains["kS"] - card.loss / card.f) / (G0 * gains["kA"])
+        c_rr = friction / (G0 * m)
         raw["rolling_coefficient"] = repr(c_rr)
     else:
         notes.append(

@@ -53,14 +53,15 @@ def g(x: float) -> str:
     return f"{x:.4g}" if isinstance(x, (int, float)) and math.isfinite(x) else "-"
 
 
-def fitted_changes(report) -> tuple[dict[str, str], list[str]]:
+def fitted_changes(report, held=()) -> tuple[dict[str, str], list[str]]:
     """The entries Apply writes (every digit the fit gives: the card then holds what the fit
-    found), those that differ from the card's, and the notes (friction below the motors' loss)."""
+    found), those that differ from the card's, and the notes (friction below the motors' loss).
+    `held`: entries not written (a workbook's links), the others computed with the card's."""
     from gearhead.core.fit.apply import WRITTEN  # the entries Apply writes (as into the card's file)
     from gearhead.core.fit.entries import fitted_raw
 
     card = report.card
-    raw, notes = fitted_raw(card, report.fits[report.favoured].gains)
+    raw, notes = fitted_raw(card, report.fits[report.favoured].gains, held)
     return {k: raw[k] for k in WRITTEN[card.kind] if k in raw and raw[k] != card.raw.get(k)}, notes
 
 
@@ -302,28 +303,34 @@ class FitScreen(Dialog[dict[str, Any] | None]):
             entries.add_row(name, g(card_value), f"{g(value)} ± {g(sigma)}", u, key=name)
         entries.display = True
 
-        self.changes, notes = fitted_changes(r)
-        self._show_diff(notes)
+        # as core/fit/apply.py: a link is not overwritten (what the fit gives it is said), and the
+        # other entries are computed with it held
+        free, _ = fitted_changes(r)
+        self.changes, notes = fitted_changes(r, held=tuple(self.linked))
+        self._show_diff(notes, free)
 
-    def _show_diff(self, notes: list[str]) -> None:
+    def _show_diff(self, notes: list[str], free: dict[str, str]) -> None:
         from .card_text import in_field_unit
         from .sheet import shown_entry
         from .unit_text import pretty_unit
 
+        def shown(f, v) -> str:
+            u = pretty_unit(f.unit) if f.kind.with_unit and f.unit else ""
+            return f"{shown_entry(f, str(in_field_unit(f, f.kind.entry(f, v))))} {u}".rstrip()
+
+        for k in [k for k in free if k in self.linked]:
+            f = self.calculator.field(k)
+            notes = [
+                *notes,
+                f"{f.label} is linked ({self.linked[k]}): not written; the fit gives {shown(f, free[k])}",
+            ]
+            self.changes.pop(k, None)
         lines = []
         for k, v in list(self.changes.items()):
             f = self.calculator.field(k)
             new = in_field_unit(f, f.kind.entry(f, v))
             old = self.entries.get(k, "")
             u = pretty_unit(f.unit) if f.kind.with_unit and f.unit else ""
-            if k in self.linked:  # as core/fit/apply.py: a link is not overwritten, its value is said
-                del self.changes[k]
-                notes = [
-                    *notes,
-                    f"{f.label} is linked ({self.linked[k]}): not written; the fit gives "
-                    + f"{shown_entry(f, str(new))} {u}".rstrip(),
-                ]
-                continue
             if f.choices and str(old) in f.choices and str(new) in f.choices:  # a mode: as its menu says
                 old, new = f.label_of(str(old)), f.label_of(str(new))
             lines.append(f"  {f.label}: {shown_entry(f, str(old))} → {shown_entry(f, str(new))} {u}".rstrip())
