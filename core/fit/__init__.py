@@ -73,6 +73,15 @@ class Report:
         }
 
 
+def favour(fits: dict, replays: dict) -> str | None:
+    """The form whose gains, replayed, follow the logged velocity more closely (the smaller velocity
+    RMSE); None when neither gives a model that runs."""
+    good = [f for f in fits if fits[f].usable and math.isfinite(replays[f].velocity_rmse)]
+    if not good:
+        return None
+    return min(good, key=lambda f: replays[f].velocity_rmse)
+
+
 def fit_log(path, kind: str, card=None, **pick) -> Report:
     """Read the log, pick the routine's signals, fit both forms, derive the card's entries from
     the favoured fit and replay the design's and the fitted gains."""
@@ -101,15 +110,14 @@ def fit_log(path, kind: str, card=None, **pick) -> Report:
     replays = {"design": rp.replay(kind, card.design, picked.runs)}
     for form, f in fits.items():
         replays[form] = rp.replay(kind, f.gains, picked.runs)
-    good = [f for f in fits if fits[f].usable and math.isfinite(replays[f].velocity_rmse)]
-    if not good:
+    favoured = favour(fits, replays)
+    if favoured is None:
         raise InputError(
             "log",
             "neither form of the fit gives a model that runs (finite gains, kA > 0): "
             + "; ".join(w for f in fits.values() for w in f.warnings),
             source,
         )
-    favoured = min(good, key=lambda f: replays[f].velocity_rmse)
     best = fits[favoured]
     notes = list(picked.notes) + [w for f in fits.values() for w in f.warnings]
     slow = sysid_fit.ka_note(best.gains, info["dt"])

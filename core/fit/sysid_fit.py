@@ -54,6 +54,7 @@ QUALITY_THRESHOLD = 10.0
 MOVED = 5.0  # a test's top speed must exceed this many times the noise floor (ours, not SysId's)
 MOVING = 4.0  # (D3'): quasistatic samples slower than this many noise floors are taken as at rest
 GAIN_NAMES = ("kS", "kV", "kA", "kG", "offset")
+ITERATIONS = 4  # (F10): instruments from the previous estimate's model, at most this many times
 
 
 @dataclass
@@ -66,12 +67,16 @@ class Prepared:
     a: np.ndarray = field(default_factory=lambda: np.zeros(0))
     cos: np.ndarray = field(default_factory=lambda: np.zeros(0))
     sin: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    i: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))  # each sample's index in its run
+    run: Run | None = None  # the test's logged samples (the IV form's instruments, (F9))
 
     def take(self, keep) -> Prepared:
         def cut(y):
             return y[keep] if len(y) == len(self.t) else y
 
-        return Prepared(*(cut(getattr(self, k)) for k in ("t", "u", "x", "v", "dt", "a", "cos", "sin")))
+        return Prepared(
+            *(cut(getattr(self, k)) for k in ("t", "u", "x", "v", "dt", "a", "cos", "sin", "i")), self.run
+        )
 
     def __len__(self) -> int:
         return len(self.t)
@@ -88,6 +93,7 @@ class Fit:
     bad: list[str]  # (F4): gains the data cannot separate
     coefficients: list[float]
     warnings: list[str] = field(default_factory=list)
+    method: str = "ols"  # "ols" (SysId's least squares) or "iv" (instrumental variables, (F9))
 
     @property
     def usable(self) -> bool:
@@ -112,6 +118,8 @@ def _convert(run: Run) -> Prepared:
         _lerp(t, run.t_position, run.position),
         _lerp(t, run.t_velocity, run.velocity),
         np.diff(run.t_voltage),
+        i=np.arange(len(t)),
+        run=run,
     )
 
 
@@ -356,37 +364,179 @@ def fit_continuous(prepared: dict[str, Prepared], kind: str, T: float, source: s
     return _finish("continuous", _gains_continuous, X, y, kind, T, source)
 
 
-def fit_discrete(prepared: dict[str, Prepared], kind: str, T: float, source: str) -> Fit:
-    """(F5), (F6): pairs of samples next to each other in the log (a dropped sample breaks a pair);
-    then (F8) where the logged steps differ."""
-    rows, ys, steps = [], [], []
-    for d in prepared.values():
+def _pairs(prepared: dict[str, Prepared], kind: str):
+    """(F5)'s rows: pairs of samples next to each other in the log (a dropped sample breaks a pair):
+    the regressors at k, v[k+1], the step h_k, and for each row its test and the sample's index
+    in the test's run."""
+    rows, ys, steps, where, tests = [], [], [], [], []
+    for n, d in enumerate(prepared.values()):
         nxt = np.nonzero(np.isclose(d.t[1:] - d.t[:-1], d.dt[:-1], rtol=1e-9, atol=1e-9))[0]
         e = d.take(nxt)
         rows.append(np.column_stack(_columns(e, kind, e.v)))
         ys.append(d.v[nxt + 1])
         steps.append(d.dt[nxt])
-    X = np.concatenate(rows)
-    y = np.concatenate(ys)
+        where.append(e.i)
+        tests.append(np.full(len(nxt), n))
+    return (
+        np.concatenate(rows),
+        np.concatenate(ys),
+        np.concatenate(steps),
+        where,
+        np.concatenate(tests),
+    )
+
+
+def fit_discrete(prepared: dict[str, Prepared], kind: str, T: float, source: str, method: str = "iv") -> Fit:
+    """(F5), (F6), (F8) where the logged steps differ; by instrumental variables (F9)-(F12) unless
+    method = "ols" (SysId's least squares before 2023, kept for the bench: bench/fit_recovery.py)."""
+    X, y, h, where, tests = _pairs(prepared, kind)
     fit = _finish("discrete", _gains_discrete, X, y, kind, T, source)
-    h = np.concatenate(steps)
-    if fit.usable and fit.gains["kV"] > 0 and np.ptp(h) > 1e-9 * T:
-        return _per_step(fit, X, y, h, kind)
-    return fit
+    jittered = np.ptp(h) > 1e-9 * T
+    if fit.usable and fit.gains["kV"] > 0 and jittered:
+        fit = _per_step(fit, X, y, h, kind)
+    if method == "ols":
+        return fit
+    return _instrumented(fit, prepared, X, y, h, where, tests, kind, T, jittered)
 
 
-def _per_step(fit: Fit, X: np.ndarray, y: np.ndarray, h: np.ndarray, kind: str) -> Fit:
-    """(F8): (F5) with each pair's own logged step h_k, the exact zero-order hold of (F1):
-        v[k+1] = α_k·v[k] + (1 − α_k)/kV·(u[k] − kS·sgn v[k] − g_k),  α_k = e^(−h_k·kV/kA),
-        g_k = kG (elevator), kG·cos(θ_k + offset) (arm), 0,
-    by nonlinear least squares (scipy) from (F6)'s gains; with one step it is (F5) itself. The mean
-    step T̄ in (F6) misplaces kA by up to the jitter j over T̄ (each pair's ln α_k is off by
-    (h_k − T̄)/τ), which the few pairs after a fast step do not average out (0.5 ms on 5 ms: kA −8 %
-    measured). Covariance s²·(JᵀJ)⁻¹ at the solution, s² = SSE/(n − p)."""
-    from scipy.optimize import least_squares
+def _simulated(prepared: dict[str, Prepared], kind: str, gains: dict[str, float], where) -> list | None:
+    """(F10): each test's velocity as the model with `gains` runs it from the logged voltage alone
+    (core/fit/replay.py's exact solution (R1)), at the rows' samples; None if it does not run."""
+    from .replay import simulate
 
+    out = []
+    for d, k in zip(prepared.values(), where):
+        run = d.run
+        if run is None:
+            return None
+        t0 = run.t_voltage[:1]
+        q0 = float(_lerp(t0, run.t_position, run.position)[0])
+        v0 = float(_lerp(t0, run.t_velocity, run.velocity)[0])
+        try:
+            _, vs = simulate(kind, gains, run.t_voltage, run.voltage, q0, v0)
+        except (OverflowError, ValueError, ZeroDivisionError):
+            return None
+        if not np.all(np.isfinite(vs)):
+            return None
+        out.append(vs[k])
+    return out
+
+
+def _hac(A: np.ndarray, Z: np.ndarray, r: np.ndarray, tests: np.ndarray, p: int) -> tuple[np.ndarray, int]:
+    """(F12): cov = A⁻¹·S·A⁻ᵀ, S = Σ_|ℓ|≤L γ̂_ℓ·Σ_k z_k·z_(k−ℓ)ᵀ over rows of the same test, γ̂_ℓ the
+    residuals' autocovariance Σ r_k·r_(k−ℓ)/(n − p): the error (F11) stationary within the log (the
+    velocity's noise the same throughout) and correlated over L rows. L: |ρ_ℓ| = |γ̂_ℓ/γ̂_0| ≥ 2/√n for
+    ℓ = 1..L (at most 20): white noise gives L = 1 (ρ_1 = −α/(1 + α²)), a filter of n samples n.
+    Not White's heteroskedastic r_k² per row: a test with one or two rows (a fast mechanism's
+    dynamic step, trimmed at 0.9 of its top speed) carries kA, fits its own rows exactly, and r_k²
+    ≈ 0 there made kA's deviation 24 times too small (measured: 0.016 % stated, 0.38 % over seeds).
+    Negative eigenvalues of S (the truncated sum does not promise ≥ 0) are set to 0."""
+    n = len(r)
+    dof = max(n - p, 1)
+    gamma = [float(r @ r) / dof]
+    L = 0
+    for lag in range(1, min(21, n)):
+        same = tests[lag:] == tests[:-lag]
+        g = float(r[lag:][same] @ r[:-lag][same]) / dof
+        if gamma[0] <= 0 or abs(g / gamma[0]) < 2 / math.sqrt(n):
+            break
+        gamma.append(g)
+        L = lag
+    S = gamma[0] * (Z.T @ Z)
+    for lag in range(1, L + 1):
+        same = tests[lag:] == tests[:-lag]
+        G = Z[lag:][same].T @ Z[:-lag][same]
+        S += gamma[lag] * (G + G.T)
+    w, V = np.linalg.eigh(S)
+    S = (V * np.maximum(w, 0.0)) @ V.T
+    Ai = np.linalg.inv(A)
+    return Ai @ S @ Ai.T, L
+
+
+def _instrumented(fit, prepared, X, y, h, where, tests, kind, T, jittered) -> Fit:
+    """(F9)-(F12): the discrete form by instrumental variables, from the least-squares fit."""
+    if not (fit.usable and fit.gains["kV"] > 0):
+        fit.warnings.append(
+            "discrete fit: SysId's least squares give no model that runs, so no instruments: "
+            "its gains are shown, biased by the velocity's noise"
+        )
+        return fit
+    gains = dict(fit.gains)
+    best = None
+    for _ in range(ITERATIONS):  # (F10)'s refinement
+        sim = _simulated(prepared, kind, gains, where)
+        if sim is None:
+            break
+        Z = X.copy()
+        Z[:, 0] = np.concatenate(sim)
+        Z[:, 2] = np.copysign(1.0, X[:, 1])  # (F10): sgn u, the logged (noise-free) voltage's
+        got = _iv(fit, X, y, h, Z, tests, kind, T, jittered)
+        if got is None:
+            break
+        change = max(abs(got.gains[k] - gains[k]) / max(abs(gains[k]), 1e-12) for k in gains)
+        best, gains = got, dict(got.gains)
+        if change < 1e-6:
+            break
+    if best is None:
+        fit.warnings.append(
+            "discrete fit: the instrumental-variables estimate could not be computed (its model does not "
+            "run on the logged voltage); SysId's least squares shown, biased by the velocity's noise"
+        )
+        return fit
+    return best
+
+
+def _iv(fit, X, y, h, Z, tests, kind, T, jittered) -> Fit | None:
+    """(F9), (F11), (F12) for the instruments Z; None when it cannot be solved."""
+    with np.errstate(all="ignore"):
+        try:
+            A = Z.T @ X
+            c = np.linalg.solve(A, Z.T @ y)  # (F9)
+        except np.linalg.LinAlgError:
+            return None
+        if not np.all(np.isfinite(c)):
+            return None
+        gains = {k: float(v) for k, v in _gains_discrete(c, kind, T).items()}
+        r = y - X @ c
+        if jittered and all(math.isfinite(v) for v in gains.values()) and gains["kV"] > 0 and gains["kA"] > 0:
+            return _per_step_iv(fit, X, y, h, Z, tests, kind, gains)
+        try:
+            cov, L = _hac(A, Z, r, tests, X.shape[1])
+        except np.linalg.LinAlgError:
+            return None
+        sigma = _sigmas(_gains_discrete, c, cov, kind, T)
+    if not (all(math.isfinite(v) for v in gains.values()) and gains["kA"] > 0):
+        return None
+    return _with(fit, gains, sigma, r, y, X.shape[1], [float(x) for x in c], L)
+
+
+def _with(fit: Fit, gains, sigma, r, y, p, coefficients, L) -> Fit:
+    n = len(y)
+    sse = float(r @ r)
+    ssto = float(np.sum((y - y.mean()) ** 2))
+    r2 = 1.0 - sse / ssto if ssto > 0 else 0.0
+    warnings = [w for w in fit.warnings if "is negative" not in w and "not positive" not in w]
+    warnings = [w.replace("discrete fit: each pair", "discrete fit (IV): each pair") for w in warnings]
+    for k in ("kS", "kV", "kG"):
+        if gains.get(k, 0.0) < 0:
+            warnings.append(f"discrete fit: {k} = {gains[k]:.4g} is negative (it should be ≥ 0)")
+    return Fit(
+        "discrete",
+        gains,
+        sigma,
+        1.0 - (1.0 - r2) * ((n - 1.0) / (n - p - 1.0)) if n > p + 1 else math.nan,
+        math.sqrt(sse / n),
+        n,
+        fit.bad,
+        coefficients,
+        warnings,
+        method="iv",
+    )
+
+
+def _per_step_model(X: np.ndarray, y: np.ndarray, h: np.ndarray, kind: str):
+    """(F8)'s residual and its Jacobian in (kS, kV, kA (, kG (, offset)))."""
     v, u, sg = X[:, 0], X[:, 1], X[:, 2]
-    names = ["kS", "kV", "kA"] + (["kG"] if kind == "elevator" else ["kG", "offset"] if kind == "arm" else [])
 
     def gravity(q):
         if kind == "elevator":
@@ -416,6 +566,67 @@ def _per_step(fit: Fit, X: np.ndarray, y: np.ndarray, h: np.ndarray, kind: str) 
             J[:, 4] = -k * q[3] * (-c * math.sin(q[4]) - sn * math.cos(q[4]))
         return J
 
+    return residual, jacobian
+
+
+def _names(kind: str) -> list[str]:
+    return ["kS", "kV", "kA"] + (["kG"] if kind == "elevator" else ["kG", "offset"] if kind == "arm" else [])
+
+
+def _arm_gains(gains: dict[str, float], kind: str) -> dict[str, float]:
+    if kind == "arm" and gains["kG"] < 0:  # the same gravity, kG ≥ 0 as (F2) gives it
+        gains["kG"], gains["offset"] = -gains["kG"], gains["offset"] + math.pi
+    if kind == "arm":
+        gains["offset"] = math.remainder(gains["offset"], 2 * math.pi)
+    return gains
+
+
+def _per_step_iv(fit, X, y, h, Z, tests, kind, start) -> Fit | None:
+    """(F8) by instrumental variables: the p equations Zᵀ·r(q) = 0 of (F9) with (F8)'s residual r,
+    solved (scipy's least_squares, each instrument scaled to unit RMS) from the linear (F9)'s gains;
+    covariance (F12) with A = Zᵀ·J."""
+    from scipy.optimize import least_squares
+
+    residual, jacobian = _per_step_model(X, y, h, kind)
+    names = _names(kind)
+    scale = np.sqrt(np.mean(Z**2, axis=0))
+    Zs = Z / np.where(scale > 0, scale, 1.0)
+    q0 = np.array([start[k] for k in names])
+    try:
+        with np.errstate(all="ignore"):
+            sol = least_squares(
+                lambda q: Zs.T @ residual(q),
+                q0,
+                jac=lambda q: Zs.T @ jacobian(q),
+                x_scale=np.maximum(np.abs(q0), 1e-12),
+                xtol=1e-12,
+                ftol=1e-12,
+            )
+            q = sol.x
+            r = -residual(q)  # y − ŷ
+            J = jacobian(q)
+            cov, L = _hac(Zs.T @ J, Zs, r, tests, len(names))
+    except (ValueError, np.linalg.LinAlgError):
+        return None
+    if not np.all(np.isfinite(q)) or q[1] <= 0 or q[2] <= 0:
+        return None
+    gains = _arm_gains(dict(zip(names, (float(x) for x in q))), kind)
+    sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    return _with(fit, gains, {k: float(x) for k, x in zip(names, sd)}, r, y, len(names), fit.coefficients, L)
+
+
+def _per_step(fit: Fit, X: np.ndarray, y: np.ndarray, h: np.ndarray, kind: str) -> Fit:
+    """(F8): (F5) with each pair's own logged step h_k, the exact zero-order hold of (F1):
+        v[k+1] = α_k·v[k] + (1 − α_k)/kV·(u[k] − kS·sgn v[k] − g_k),  α_k = e^(−h_k·kV/kA),
+        g_k = kG (elevator), kG·cos(θ_k + offset) (arm), 0,
+    by nonlinear least squares (scipy) from (F6)'s gains; with one step it is (F5) itself. The mean
+    step T̄ in (F6) misplaces kA by up to the jitter j over T̄ (each pair's ln α_k is off by
+    (h_k − T̄)/τ), which the few pairs after a fast step do not average out (0.5 ms on 5 ms: kA −8 %
+    measured). Covariance s²·(JᵀJ)⁻¹ at the solution, s² = SSE/(n − p)."""
+    from scipy.optimize import least_squares
+
+    residual, jacobian = _per_step_model(X, y, h, kind)
+    names = _names(kind)
     q0 = np.array([fit.gains[k] for k in names])
     try:
         with np.errstate(all="ignore"):
@@ -435,11 +646,7 @@ def _per_step(fit: Fit, X: np.ndarray, y: np.ndarray, h: np.ndarray, kind: str) 
         return fit
     ssto = float(np.sum((y - y.mean()) ** 2))
     r2 = 1.0 - sse / ssto if ssto > 0 else 0.0
-    gains = dict(zip(names, (float(x) for x in r.x)))
-    if kind == "arm" and gains["kG"] < 0:  # the same gravity, kG ≥ 0 as (F2) gives it
-        gains["kG"], gains["offset"] = -gains["kG"], gains["offset"] + math.pi
-    if kind == "arm":
-        gains["offset"] = math.remainder(gains["offset"], 2 * math.pi)
+    gains = _arm_gains(dict(zip(names, (float(x) for x in r.x))), kind)
     sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
     fit.gains = gains
     fit.sigma = {k: float(x) for k, x in zip(names, sd)}
