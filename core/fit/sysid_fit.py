@@ -42,6 +42,7 @@ the delta method, its gradient in the coefficients by central differences       
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -54,6 +55,7 @@ QUALITY_THRESHOLD = 10.0
 MOVED = 5.0  # a test's top speed must exceed this many times the noise floor (ours, not SysId's)
 MOVING = 4.0  # (D3'): quasistatic samples slower than this many noise floors are taken as at rest
 GAIN_NAMES = ("kS", "kV", "kA", "kG", "offset")
+WHITEN = os.environ.get("FIT_WHITEN", "1") == "1"
 ITERATIONS = 4  # (F10): instruments from the previous estimate's model, at most this many times
 
 
@@ -422,34 +424,58 @@ def _simulated(prepared: dict[str, Prepared], kind: str, gains: dict[str, float]
     return out
 
 
-def _hac(A: np.ndarray, Z: np.ndarray, r: np.ndarray, tests: np.ndarray, p: int) -> tuple[np.ndarray, int]:
-    """(F12): cov = A⁻¹·S·A⁻ᵀ, S = Σ_|ℓ|≤L γ̂_ℓ·Σ_k z_k·z_(k−ℓ)ᵀ over rows of the same test, γ̂_ℓ the
-    residuals' autocovariance Σ r_k·r_(k−ℓ)/(n − p): the error (F11) stationary within the log (the
-    velocity's noise the same throughout) and correlated over L rows. L: |ρ_ℓ| = |γ̂_ℓ/γ̂_0| ≥ 2/√n for
-    ℓ = 1..L (at most 20): white noise gives L = 1 (ρ_1 = −α/(1 + α²)), a filter of n samples n.
-    Not White's heteroskedastic r_k² per row: a test with one or two rows (a fast mechanism's
-    dynamic step, trimmed at 0.9 of its top speed) carries kA, fits its own rows exactly, and r_k²
-    ≈ 0 there made kA's deviation 24 times too small (measured: 0.016 % stated, 0.38 % over seeds).
-    Negative eigenvalues of S (the truncated sum does not promise ≥ 0) are set to 0."""
+def _covariance(A: np.ndarray, B: np.ndarray, r: np.ndarray, a: np.ndarray, brk: np.ndarray, p: int):
+    """(F12): cov = A⁻¹·S·A⁻ᵀ, S = Var(Bᵀ·ε) for (F11)'s error ε_k = e_(k+1) − α_k·e_k of the velocity's
+    noise e, taken as stationary with autocovariance c_e(m), m = 0..M (white noise: M = 0; a filter of
+    n samples: M = n − 1):
+        S = Σ_m c_e(m)·Σ_j (C_j·C_(j+m)ᵀ + C_(j+m)·C_jᵀ)/(1 + [m = 0]),  C_j = B_(j−1) − α_j·B_j
+    the coefficient of e_j in Bᵀ·ε (B_(j−1) = 0 at a run's first sample, B_j = 0 past its last), over
+    each run of consecutive rows. c_e from the residuals' autocovariance γ̂_ℓ = Σ r_k·r_(k−ℓ)/(n − p)
+    within runs, ℓ = 0..M + 1, by least squares through
+        γ_ℓ = (1 + ᾱ²)·c_e(ℓ) − ᾱ·(c_e(ℓ − 1) + c_e(ℓ + 1)),  c_e(−m) = c_e(m), c_e(m > M) = 0
+    with ᾱ the mean α_k; M + 1 the last lag whose |γ̂_ℓ/γ̂_0| ≥ 2/√n (at most 20) of the first run of
+    such lags. Not the free (Newey-West-like) sum Σ γ̂_ℓ·Σ B_k·B_(k−ℓ)ᵀ: with α near 1 its lag terms
+    nearly cancel lag 0, so the few-% error of γ̂_1 made σ 3.6 times too large (kS, 2 % noise,
+    measured); nor White's r_k² per row, which a test of one or two rows (a fast mechanism's
+    dynamic step) fits exactly, making σ(kA) 24 times too small (measured)."""
     n = len(r)
     dof = max(n - p, 1)
-    gamma = [float(r @ r) / dof]
+    run = np.cumsum(brk)
+    gam = [float(r @ r) / dof]
     L = 0
     for lag in range(1, min(21, n)):
-        same = tests[lag:] == tests[:-lag]
+        same = run[lag:] == run[:-lag]
         g = float(r[lag:][same] @ r[:-lag][same]) / dof
-        if gamma[0] <= 0 or abs(g / gamma[0]) < 2 / math.sqrt(n):
+        if gam[0] <= 0 or abs(g / gam[0]) < 2 / math.sqrt(n):
             break
-        gamma.append(g)
+        gam.append(g)
         L = lag
-    S = gamma[0] * (Z.T @ Z)
-    for lag in range(1, L + 1):
-        same = tests[lag:] == tests[:-lag]
-        G = Z[lag:][same].T @ Z[:-lag][same]
-        S += gamma[lag] * (G + G.T)
+    Ai = np.linalg.inv(A)
+    if L == 0:  # ε itself white: no measurement noise carried from row to row
+        return gam[0] * Ai @ (B.T @ B) @ Ai.T, 0
+    M = L - 1
+    al = float(np.mean(a))
+    E = np.zeros((L + 1, M + 1))  # rows ℓ = 0..L, columns c_e(0..M)
+    for ell in range(L + 1):
+        for m, w in ((ell, 1 + al * al), (ell - 1, -al), (ell + 1, -al)):
+            if abs(m) <= M:
+                E[ell, abs(m)] += w
+    ce = np.linalg.lstsq(E, np.array(gam[: L + 1]), rcond=None)[0]
+    # C: the noise samples of each run (its rows and one more), row k's pair at base_k, base_k + 1
+    base = np.arange(n) + run - 1
+    C = np.zeros((n + int(run[-1]), B.shape[1]))
+    np.add.at(C, base + 1, B)
+    np.add.at(C, base, -a[:, None] * B)
+    crun = np.zeros(len(C), dtype=int)
+    np.add.at(crun, base, run)
+    crun[base + 1] = run
+    S = ce[0] * (C.T @ C)
+    for m in range(1, M + 1):
+        same = crun[m:] == crun[:-m]
+        G = C[m:][same].T @ C[:-m][same]
+        S += ce[m] * (G + G.T)
     w, V = np.linalg.eigh(S)
     S = (V * np.maximum(w, 0.0)) @ V.T
-    Ai = np.linalg.inv(A)
     return Ai @ S @ Ai.T, L
 
 
@@ -463,6 +489,9 @@ def _instrumented(fit, prepared, X, y, h, where, tests, kind, T, jittered) -> Fi
         return fit
     gains = dict(fit.gains)
     best = None
+    idx = np.concatenate(where)
+    brk = np.ones(len(y), dtype=bool)  # row k starts a run of consecutive pairs
+    brk[1:] = (tests[1:] != tests[:-1]) | (idx[1:] != idx[:-1] + 1)
     for _ in range(ITERATIONS):  # (F10)'s refinement
         sim = _simulated(prepared, kind, gains, where)
         if sim is None:
@@ -470,7 +499,9 @@ def _instrumented(fit, prepared, X, y, h, where, tests, kind, T, jittered) -> Fi
         Z = X.copy()
         Z[:, 0] = np.concatenate(sim)
         Z[:, 2] = np.copysign(1.0, X[:, 1])  # (F10): sgn u, the logged (noise-free) voltage's
-        got = _iv(fit, X, y, h, Z, tests, kind, T, jittered)
+        a = np.exp(-h * gains["kV"] / gains["kA"])
+        B = _adjoint(_whiten(Z, a, brk), a, brk) if WHITEN else Z  # (F13)
+        got = _iv(fit, X, y, h, B, np.exp(-h * gains["kV"] / gains["kA"]), brk, kind, T, jittered)
         if got is None:
             break
         change = max(abs(got.gains[k] - gains[k]) / max(abs(gains[k]), 1e-12) for k in gains)
@@ -486,7 +517,25 @@ def _instrumented(fit, prepared, X, y, h, where, tests, kind, T, jittered) -> Fi
     return best
 
 
-def _iv(fit, X, y, h, Z, tests, kind, T, jittered) -> Fit | None:
+def _whiten(M: np.ndarray, a: np.ndarray, brk: np.ndarray) -> np.ndarray:
+    """(F13): w_k = m_k + a_k·w_(k−1), restarted (w = m) where brk; the inverse of (F11)'s e_(k+1) − α_k·e_k."""
+    out = np.array(M, dtype=float, copy=True)
+    for k in range(1, len(out)):
+        if not brk[k]:
+            out[k] += a[k] * out[k - 1]
+    return out
+
+
+def _adjoint(M: np.ndarray, a: np.ndarray, brk: np.ndarray) -> np.ndarray:
+    """(F13): the transpose of _whiten: b_k = m_k + a_(k+1)·b_(k+1) unless row k+1 starts a run."""
+    out = np.array(M, dtype=float, copy=True)
+    for k in range(len(out) - 2, -1, -1):
+        if not brk[k + 1]:
+            out[k] += a[k + 1] * out[k + 1]
+    return out
+
+
+def _iv(fit, X, y, h, Z, a, brk, kind, T, jittered) -> Fit | None:
     """(F9), (F11), (F12) for the instruments Z; None when it cannot be solved."""
     with np.errstate(all="ignore"):
         try:
@@ -499,9 +548,9 @@ def _iv(fit, X, y, h, Z, tests, kind, T, jittered) -> Fit | None:
         gains = {k: float(v) for k, v in _gains_discrete(c, kind, T).items()}
         r = y - X @ c
         if jittered and all(math.isfinite(v) for v in gains.values()) and gains["kV"] > 0 and gains["kA"] > 0:
-            return _per_step_iv(fit, X, y, h, Z, tests, kind, gains)
+            return _per_step_iv(fit, X, y, h, Z, a, brk, kind, gains)
         try:
-            cov, L = _hac(A, Z, r, tests, X.shape[1])
+            cov, L = _covariance(A, Z, r, a, brk, X.shape[1])
         except np.linalg.LinAlgError:
             return None
         sigma = _sigmas(_gains_discrete, c, cov, kind, T)
@@ -581,7 +630,7 @@ def _arm_gains(gains: dict[str, float], kind: str) -> dict[str, float]:
     return gains
 
 
-def _per_step_iv(fit, X, y, h, Z, tests, kind, start) -> Fit | None:
+def _per_step_iv(fit, X, y, h, Z, a, brk, kind, start) -> Fit | None:
     """(F8) by instrumental variables: the p equations Zᵀ·r(q) = 0 of (F9) with (F8)'s residual r,
     solved (scipy's least_squares, each instrument scaled to unit RMS) from the linear (F9)'s gains;
     covariance (F12) with A = Zᵀ·J."""
@@ -589,8 +638,8 @@ def _per_step_iv(fit, X, y, h, Z, tests, kind, start) -> Fit | None:
 
     residual, jacobian = _per_step_model(X, y, h, kind)
     names = _names(kind)
-    scale = np.sqrt(np.mean(Z**2, axis=0))
-    Zs = Z / np.where(scale > 0, scale, 1.0)
+    scale = np.where((s := np.sqrt(np.mean(Z**2, axis=0))) > 0, s, 1.0)
+    Zs = Z / scale
     q0 = np.array([start[k] for k in names])
     try:
         with np.errstate(all="ignore"):
@@ -605,7 +654,7 @@ def _per_step_iv(fit, X, y, h, Z, tests, kind, start) -> Fit | None:
             q = sol.x
             r = -residual(q)  # y − ŷ
             J = jacobian(q)
-            cov, L = _hac(Zs.T @ J, Zs, r, tests, len(names))
+            cov, L = _covariance(Zs.T @ J, Zs, r, a, brk, len(names))
     except (ValueError, np.linalg.LinAlgError):
         return None
     if not np.all(np.isfinite(q)) or q[1] <= 0 or q[2] <= 0:
