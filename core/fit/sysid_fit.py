@@ -37,12 +37,38 @@ Discrete form with the logged steps (ours): where the steps differ, (F5) with ea
 h_k in α_k = e^(−h_k·kV/kA), by nonlinear least squares from (F6) (see _per_step)               (F8)
 Uncertainty: cov(coefficients) = s²·(XᵀX)⁻¹, s² = SSE/(n − p); each gain's standard deviation by
 the delta method, its gradient in the coefficients by central differences                      (F7)
+The discrete form by instrumental variables (ours, what `gearhead fit` shows as "discrete"; the
+least squares above stay as fit_discrete(method="ols"), and the continuous form is SysId's own):
+    the log holds y_k = v_k + e_k, e the velocity's noise, so (F5)/(F8) reads
+        y_(k+1) = α_k·y_k + β_k·u_k + … + ε_k,  ε_k = e_(k+1) − α_k·e_k                      (F11)
+    and its regressor y_k holds e_k, which ε_k holds too (E[y_k·ε_k] = −α·σ²): least squares
+    shrink α to α·S/(S + σ²) (S: the noise-free v's variance beyond the other regressors), so kA
+    = kV·T/(−ln α) falls: 9-17 % at 0.5 % noise, 69-91 % at 2 % (bench/fit_recovery.py). Any
+    instruments b_k with E[b_k·ε_k] = 0 that move with y_k give instead, consistently,
+        θ̂ = (BᵀX)⁻¹·Bᵀy   (Söderström & Stoica, Instrumental Variable Methods for System
+        Identification, 1983; Ljung, System Identification, 2nd ed. 1999, §7.6)                 (F9)
+    with, where the steps differ, (F8)'s residual r(q) in the p equations Bᵀ·r(q) = 0.
+    Instruments: z_k = [x̂_k, u_k, sgn u_k, 1 (, cos θ_k, sin θ_k)], x̂ the velocity the model
+    gives from the logged voltage alone (core/fit/replay.py (R1), from each test's first sample),
+    with the previous estimate's gains (Young's auxiliary model; first SysId's discrete least
+    squares; then each estimate's, until the gains move by less than 1e-6, at most ITERATIONS).
+    The voltage is what the robot commanded, free of the velocity's noise, so x̂ is too, whatever
+    the noise's colour (a velocity filter's correlated noise needs no lag, unlike a lagged y_(k−m)
+    as instrument). cos θ, sin θ from the measured position are their own instruments (an
+    encoder's position noise taken as negligible), and sgn u stands for sgn v (the same in each
+    of SysId's tests once moving)                                                               (F10)
+    Covariance A⁻¹·S·A⁻ᵀ, A = BᵀX (BᵀJ), S = Var(Bᵀ·ε) from (F11)'s structure: see _covariance (F12)
+    Whitening (Young's refined IV: Young 1976, Int. J. Control 23(5); Young & Jakeman 1980, Int. J.
+    Control 31(4)): for white e, ε is MA(1) and F: w_k = ε_k + α_k·w_(k−1) (restarted at each run
+    of consecutive rows) makes it white; (F9) on the filtered equation with filtered instruments
+    F·Z is (F9) with B = Fᵀ·F·Z. With α near 1 (kA/kV ≫ step) F weighs the slow, steady-state
+    content the raw equation drowns: flywheel, 2 % noise, 10 seeds: spread of kS 96 → 28 %, kV
+    2.5 → 0.86 %, kA 9.9 → 5.3 % (measured)                                                     (F13)
 """
 
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -55,7 +81,7 @@ QUALITY_THRESHOLD = 10.0
 MOVED = 5.0  # a test's top speed must exceed this many times the noise floor (ours, not SysId's)
 MOVING = 4.0  # (D3'): quasistatic samples slower than this many noise floors are taken as at rest
 GAIN_NAMES = ("kS", "kV", "kA", "kG", "offset")
-WHITEN = os.environ.get("FIT_WHITEN", "1") == "1"
+WHITEN = True  # (F13); False: (F9) with the instruments as they are (to compare)
 ITERATIONS = 4  # (F10): instruments from the previous estimate's model, at most this many times
 
 
