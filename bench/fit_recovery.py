@@ -1,5 +1,5 @@
-"""The fit's recovery table (issue 44, "Done when"): how far SysId's two forms land from a known plant
-as the log gets worse. Figures only, never asserted (tests/test_fit_sysid.py holds the bounds).
+"""The fit's recovery table (issue 44, "Done when"): how far each form lands from a known plant as
+the log gets worse. Figures only, never asserted (tests/test_fit_sysid.py holds the bounds).
 
 For the plants of tests/test_fit_sysid.py (an elevator, an arm with a 0.3 rad offset, a flywheel:
 time constants kA/kV of 0.1-0.2 s, which a 10 ms log resolves), each log written by
@@ -14,6 +14,11 @@ sysid_fit.prepare, fit_continuous, fit_discrete), at
   relative error |fitted/plant − 1| in % for kS, kV, kA, kG, the absolute error of the arm's offset
   in mrad. "fail": the fit refused the log (a message, as `gearhead fit` exits 2), or gave no
   finite value for that gain.
+Forms: "continuous (SysId)", SysId's least squares (F1); "discrete OLS", SysId's discrete least
+squares (F5), fit_discrete(method="ols"); "discrete IV", the discrete form by instrumental variables
+(F9)-(F13), what `gearhead fit` shows as discrete; "favoured", the form core.fit.favour picks
+between the continuous and the discrete IV (their replays through core.fit.replay), per seed,
+and "picks": how many seeds it picked each.
 
     .venv/bin/python bench/fit_recovery.py [--seeds N]
 """
@@ -99,7 +104,7 @@ def cell(x: float | None) -> str:
 def main() -> None:
     t0 = time.perf_counter()
     seeds = list(range(SEEDS))
-    head = " ".join(f"{k:>5}" for k in GAINS)
+    head = " ".join(f"{k:>6}" for k in GAINS)
     print(
         f"worst over seeds {seeds[0]}-{seeds[-1]} of |fitted/plant - 1| in % (offset: |error| in mrad); "
         "noise: velocity, of the top speed; picks: how many seeds `gearhead fit` favoured the "
@@ -123,10 +128,7 @@ def main() -> None:
                                 worst[f][k] = max(worst[f].get(k, 0.0), x)
                         if noise == 0 and not settings["jitter"]:
                             break  # nothing random: every seed writes the same log
-                    cells = [
-                        "  ".join(f"{cell(worst[f].get(k)):>5}" for k in GAINS).replace("  ", " ")
-                        for f in FORMS
-                    ]
+                    cells = [" ".join(f"{cell(worst[f].get(k)):>6}" for k in GAINS) for f in FORMS]
                     said = "".join(f"{k[0]}{n}" for k, n in picks.items() if n)
                     print(f"{kind:<8} {label:<15} {noise * 100:4.1f}%  " + "  ".join(cells) + f"  {said}")
     print(f"({time.perf_counter() - t0:.0f} s)")
