@@ -15,10 +15,10 @@ sysid_fit.prepare, fit_continuous, fit_discrete), at
   in mrad. "fail": the fit refused the log (a message, as `gearhead fit` exits 2), or gave no
   finite value for that gain.
 Forms: "continuous (SysId)", SysId's least squares (F1); "discrete OLS", SysId's discrete least
-squares (F5), fit_discrete(method="ols"); "discrete IV", the discrete form by instrumental variables
-(F9)-(F13), what `gearhead fit` shows as discrete; "favoured", the form core.fit.favour picks
-between the continuous and the discrete IV (their replays through core.fit.replay), per seed,
-and "picks": how many seeds it picked each.
+squares (F5), sysid_fit.fit_discrete; "discrete IV", the discrete form by instrumental variables
+(core/fit/iv.py (F9)-(F13), iv.fit_discrete), what `gearhead fit` shows as discrete; "favoured",
+the form core.fit.favour picks between the continuous and the discrete IV (their replays through
+core.fit.replay), per seed, and "picks": how many seeds it picked each.
 
     .venv/bin/python bench/fit_recovery.py [--seeds N]
 """
@@ -38,7 +38,7 @@ from fit_plants import simulate  # noqa: E402
 
 from gearhead.core import fit  # noqa: E402
 from gearhead.core.errors import InputError  # noqa: E402
-from gearhead.core.fit import replay, signals, sysid_fit  # noqa: E402
+from gearhead.core.fit import iv, replay, signals, sysid_fit  # noqa: E402
 
 SEEDS = int(sys.argv[sys.argv.index("--seeds") + 1]) if "--seeds" in sys.argv else 5
 # tests/test_fit_sysid.py's PLANTS
@@ -81,8 +81,8 @@ def recover(folder: Path, kind: str, noise: float, settings: dict, seed: int) ->
         prepared, info = sysid_fit.prepare(picked)
         fits = {
             "continuous": sysid_fit.fit_continuous(prepared, kind, info["dt"], str(path)),
-            "discrete OLS": sysid_fit.fit_discrete(prepared, kind, info["dt"], str(path), method="ols"),
-            "discrete IV": sysid_fit.fit_discrete(prepared, kind, info["dt"], str(path)),
+            "discrete OLS": sysid_fit.fit_discrete(prepared, kind, info["dt"], str(path)),
+            "discrete IV": iv.fit_discrete(prepared, kind, info["dt"], str(path)),
         }
     except InputError:
         return {f: {k: math.inf for k in g} for f in FORMS}, "fail"

@@ -18,7 +18,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 from fit_plants import simulate  # noqa: E402
 
 from gearhead.core import fit  # noqa: E402
-from gearhead.core.fit import entries, signals, sysid_fit  # noqa: E402
+from gearhead.core.fit import entries, iv, signals, sysid_fit  # noqa: E402
 
 # plants with a time constant kA/kV of 0.1 s or more, which a 10 ms log resolves
 PLANTS = {
@@ -47,7 +47,7 @@ def test_recovers_the_plant(tmp_path, kind, noise):
     )
     picked = signals.pick(path, kind)
     prepared, info = sysid_fit.prepare(picked)
-    for fitter in (sysid_fit.fit_continuous, sysid_fit.fit_discrete):
+    for fitter in (sysid_fit.fit_continuous, iv.fit_discrete):
         f = fitter(prepared, kind, info["dt"], str(path))
         err = {k: f.gains[k] / g[k] - 1 for k in g if k != "offset"}
         if "kA" in g:  # kA: the floor plus the bound derived from the noise, both forms, every level
@@ -165,7 +165,7 @@ def test_fast_elevator_noise_bounds(tmp_path, noise, jitter):
     )
     prepared, info = sysid_fit.prepare(signals.pick(path, "elevator"))
     tau = g["kA"] / g["kV"]
-    for fitter in (sysid_fit.fit_continuous, sysid_fit.fit_discrete):
+    for fitter in (sysid_fit.fit_continuous, iv.fit_discrete):
         f = fitter(prepared, "elevator", info["dt"], str(path))
         err = {k: f.gains[k] / g[k] - 1 for k in g}
         for k in ("kV", "kG"):
@@ -194,7 +194,7 @@ def test_discrete_form_takes_each_logged_step(tmp_path, kind):
     for seed in (44, 1):
         path = simulate(tmp_path / f"j{seed}.wpilog", kind, g, period=0.005, jitter=0.001, seed=seed)
         prepared, info = sysid_fit.prepare(signals.pick(path, kind))
-        f = sysid_fit.fit_discrete(prepared, kind, info["dt"], str(path))
+        f = iv.fit_discrete(prepared, kind, info["dt"], str(path))
         for k in g:
             assert f.gains[k] == pytest.approx(g[k], rel=tol, abs=1e-4), (seed, k, f.gains)
         assert any("own logged step" in w for w in f.warnings)
@@ -415,7 +415,7 @@ def test_battery_resistance_from_bus_voltage_and_current(tmp_path):
 def test_instrumental_variables_hold_ka_at_half_a_percent_of_noise(tmp_path, kind):
     """Velocity noise of 0.5 % of top speed, 1 ms of jitter, seeds 0-3: the discrete form by least
     squares had kA 9-17 % low (errors in the variables: the noise in the regressor v[k]); by
-    instrumental variables (sysid_fit (F9)-(F13)) kA is within the floor plus 4 of its stated σ,
+    instrumental variables (core/fit/iv.py (F9)-(F13)) kA is within the floor plus 4 of its stated σ,
     which the noise sets (1 % or less here), and within 4 % outright; kV and kG within 1 %, the
     offset within 4 σ. The bounds hold the estimator's scatter, not a bias: a bias of 12 % would
     fail them at every seed."""
@@ -424,7 +424,7 @@ def test_instrumental_variables_hold_ka_at_half_a_percent_of_noise(tmp_path, kin
     for seed in range(4):
         path = simulate(tmp_path / f"{kind}{seed}.wpilog", kind, g, noise=sigma_v, jitter=0.001, seed=seed)
         prepared, info = sysid_fit.prepare(signals.pick(path, kind))
-        f = sysid_fit.fit_discrete(prepared, kind, info["dt"], str(path))
+        f = iv.fit_discrete(prepared, kind, info["dt"], str(path))
         assert f.method == "iv"
         err = {k: f.gains[k] / g[k] - 1 for k in g if k != "offset"}
         s = f.sigma["kA"] / g["kA"]
@@ -447,7 +447,7 @@ def test_instrumental_variables_state_their_scatter(tmp_path):
     for seed in range(10):
         path = simulate(tmp_path / f"s{seed}.wpilog", "elevator", g, noise=0.006, jitter=0.001, seed=seed)
         prepared, info = sysid_fit.prepare(signals.pick(path, "elevator"))
-        f = sysid_fit.fit_discrete(prepared, "elevator", info["dt"], str(path))
+        f = iv.fit_discrete(prepared, "elevator", info["dt"], str(path))
         errs.append([f.gains[k] / g[k] - 1 for k in ("kV", "kA")])
         sigs.append([f.sigma[k] / g[k] for k in ("kV", "kA")])
     ratio = np.sqrt(np.mean(np.square(errs), axis=0)) / np.mean(sigs, axis=0)
@@ -455,24 +455,23 @@ def test_instrumental_variables_state_their_scatter(tmp_path):
 
 
 def test_least_squares_stay_available_as_sysids_discrete_form(tmp_path):
-    """method="ols" is SysId's discrete least squares (before 2023), kept for comparing: without
-    noise both give the plant; with 0.5 % noise the least squares' kA falls (errors in the variables)
+    """sysid_fit.fit_discrete is SysId's discrete least squares (before 2023), kept for comparing:
+    without noise both give the plant; with 0.5 % noise the least squares' kA falls (errors in the variables)
     and the instrumental variables' does not."""
     g = PLANTS["flywheel"]
     for noise, low in ((0.0, False), (0.005, True)):
         path = simulate(tmp_path / f"o{noise}.wpilog", "flywheel", g, noise=noise * 12 / g["kV"], seed=2)
         prepared, info = sysid_fit.prepare(signals.pick(path, "flywheel"))
-        ols = sysid_fit.fit_discrete(prepared, "flywheel", info["dt"], str(path), method="ols")
-        iv = sysid_fit.fit_discrete(prepared, "flywheel", info["dt"], str(path))
-        assert ols.method == "ols" and iv.method == "iv"
+        ols = sysid_fit.fit_discrete(prepared, "flywheel", info["dt"], str(path))
+        fit_iv = iv.fit_discrete(prepared, "flywheel", info["dt"], str(path))
+        assert ols.method == "ols" and fit_iv.method == "iv"
         if not low:
             for k in g:
-                assert ols.gains[k] == pytest.approx(g[k], rel=1e-6) and iv.gains[k] == pytest.approx(
-                    g[k], rel=1e-6
-                )
+                assert ols.gains[k] == pytest.approx(g[k], rel=1e-6)
+                assert fit_iv.gains[k] == pytest.approx(g[k], rel=1e-6)
         else:
             assert ols.gains["kA"] / g["kA"] - 1 < -0.05
-            assert abs(iv.gains["kA"] / g["kA"] - 1) < 0.04
+            assert abs(fit_iv.gains["kA"] / g["kA"] - 1) < 0.04
 
 
 def test_noise_does_not_favour_the_biased_form(tmp_path):

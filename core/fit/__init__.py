@@ -132,8 +132,8 @@ def fit_log(path, kind: str, card=None, **pick) -> Report:
     """Read the log, pick the routine's signals, fit both forms, derive the card's entries from
     the favoured fit and replay the design's and the fitted gains."""
     from . import entries as ent
+    from . import iv, signals, sysid_fit
     from . import replay as rp
-    from . import signals, sysid_fit
 
     if card is None:
         card = ent.load_card(kind)
@@ -151,7 +151,7 @@ def fit_log(path, kind: str, card=None, **pick) -> Report:
     source = str(path)
     fits = {
         "continuous": sysid_fit.fit_continuous(prepared, kind, info["dt"], source),
-        "discrete": sysid_fit.fit_discrete(prepared, kind, info["dt"], source),
+        "discrete": iv.fit_discrete(prepared, kind, info["dt"], source),
     }
     replays = {"design": rp.replay(kind, card.design, picked.runs)}
     for form, f in fits.items():
