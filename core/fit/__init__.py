@@ -50,6 +50,7 @@ class Report:
             "preparation": {k: clean(v) for k, v in self.info.items()},
             "fits": {
                 form: {
+                    "method": f.method,
                     "gains": {k: clean(v) for k, v in f.gains.items()},
                     "sigma": {k: clean(v) for k, v in f.sigma.items()},
                     "adjusted_r2": clean(f.adj_r2),
