@@ -304,7 +304,7 @@ def read_peak(log: Path) -> tuple[float, float]:
 def in_process(log: Path, runs: int) -> dict:
     from gearhead.core import fit
     from gearhead.core.calculators.elevator import spool_factor
-    from gearhead.core.fit import entries, replay, signals, sysid_fit
+    from gearhead.core.fit import entries, iv, replay, signals, sysid_fit
 
     card = entries.load_card("elevator")
     spool = spool_factor(card.values)
@@ -314,7 +314,7 @@ def in_process(log: Path, runs: int) -> dict:
         p, i = sysid_fit.prepare(picked)
         return (
             sysid_fit.fit_continuous(p, "elevator", i["dt"], str(log)),
-            sysid_fit.fit_discrete(p, "elevator", i["dt"], str(log)),
+            iv.fit_discrete(p, "elevator", i["dt"], str(log)),
         )
 
     report = fit.fit_log(log, "elevator", card)

@@ -6,7 +6,8 @@ kG·cos(q + offset) (arm), 0 (flywheel); integrated exactly over 0.5 ms substeps
 frozen (v(h) = (v + c/A)·e^(A·h) − c/A, A = −kV/kA), friction holding it at rest when |u − g| ≤ kS.
 The robot's loop logs every `period` (± `jitter`, uniform) the voltage it applies until the next
 loop, the position and velocity measured (Gaussian noise, the velocity a moving average of
-`velocity_filter` samples), and the test state, as SysIdRoutine does."""
+`velocity_filter` samples; with `filter_noise` the noise too, so correlated over them), and the
+test state, as SysIdRoutine does."""
 
 from __future__ import annotations
 
@@ -24,6 +25,7 @@ def simulate(
     jitter: float = 0.0,
     noise: float = 0.0,
     velocity_filter: int = 1,
+    filter_noise: bool = False,
     seed: int = 0,
     mech: str = "mech",
     motor: str = "motor",
@@ -84,8 +86,12 @@ def simulate(
                 u = fn(t - t0)
                 dt = period + (rng.uniform(-jitter, jitter) if jitter else 0.0)
                 stamp = int(round(t * 1e6))
-                recent = (recent + [v])[-velocity_filter:]
-                mv = sum(recent) / len(recent) + (rng.normal(0, noise) if noise else 0.0)
+                if filter_noise:  # the sensor's noise inside the filter: correlated over its samples
+                    recent = (recent + [v + (rng.normal(0, noise) if noise else 0.0)])[-velocity_filter:]
+                    mv = sum(recent) / len(recent)
+                else:
+                    recent = (recent + [v])[-velocity_filter:]
+                    mv = sum(recent) / len(recent) + (rng.normal(0, noise) if noise else 0.0)
                 mq = q + (rng.normal(0, noise * 0.1) if noise else 0.0)
                 state.append(label, stamp)
                 if label != "none":

@@ -124,11 +124,15 @@ def run(args) -> int:
     return 0
 
 
+LABELS = {("continuous", "ols"): "continuous (SysId)", ("discrete", "iv"): "discrete (IV)"}
+
+
 def _g(x: float) -> str:
     return f"{x:.4g}" if math.isfinite(x) else "-"
 
 
 def text(r) -> list[str]:
+    from gearhead.core.fit import favoured_reason
     from gearhead.core.fit.entries import MOVE_OUTPUTS
 
     pos, vel = UNITS[r.kind]
@@ -146,7 +150,8 @@ def text(r) -> list[str]:
     gains = list(r.fits["continuous"].gains)
     unit = {"kS": "V", "kG": "V", "kV": f"V/({vel})", "kA": f"V/({vel}/s)", "offset": "rad"}
     out.append("")
-    out.append(f"  {'gain':<7} {'card':>10}   {'continuous':>22}   {'discrete':>22}")
+    heads = [LABELS.get((f, x.method), f) for f, x in r.fits.items()]
+    out.append(f"  {'gain':<7} {'card':>10}   {heads[0]:>22}   {heads[1]:>22}")
     for k in gains:
         c = r.card.design.get(k, 0.0 if k == "offset" else math.nan)
         cells = [f"{_g(f.gains[k])} ± {_g(f.sigma[k])}" for f in r.fits.values()]
@@ -154,7 +159,7 @@ def text(r) -> list[str]:
     for label, key in (("adj. R²", "adj_r2"), ("RMSE", "rmse"), ("samples", "samples")):
         cells = [_g(getattr(f, key)) for f in r.fits.values()]
         out.append(f"  {label:<7} {'':>10}   {cells[0]:>22}   {cells[1]:>22}")
-    out.append(f"  favoured: {r.favoured} (the smaller velocity error when the log is replayed)")
+    out.append(f"  favoured: {r.favoured} ({favoured_reason(r)})")
     out.append("")
     out.append(f"  {'entry':<30} {'card':>10}   {'fitted':>22}")
     for name, card_value, value, sigma, u in r.entries:

@@ -37,6 +37,8 @@ Discrete form with the logged steps (ours): where the steps differ, (F5) with ea
 h_k in α_k = e^(−h_k·kV/kA), by nonlinear least squares from (F6) (see _per_step)               (F8)
 Uncertainty: cov(coefficients) = s²·(XᵀX)⁻¹, s² = SSE/(n − p); each gain's standard deviation by
 the delta method, its gradient in the coefficients by central differences                      (F7)
+The discrete form by instrumental variables, what `gearhead fit` shows as "discrete", is ours:
+core/fit/iv.py (F9)-(F13); fit_discrete here is SysId's discrete least squares.
 """
 
 from __future__ import annotations
@@ -66,12 +68,16 @@ class Prepared:
     a: np.ndarray = field(default_factory=lambda: np.zeros(0))
     cos: np.ndarray = field(default_factory=lambda: np.zeros(0))
     sin: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    i: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))  # each sample's index in its run
+    run: Run | None = None  # the test's logged samples (core/fit/iv.py's instruments (F10))
 
     def take(self, keep) -> Prepared:
         def cut(y):
             return y[keep] if len(y) == len(self.t) else y
 
-        return Prepared(*(cut(getattr(self, k)) for k in ("t", "u", "x", "v", "dt", "a", "cos", "sin")))
+        return Prepared(
+            *(cut(getattr(self, k)) for k in ("t", "u", "x", "v", "dt", "a", "cos", "sin", "i")), self.run
+        )
 
     def __len__(self) -> int:
         return len(self.t)
@@ -88,6 +94,7 @@ class Fit:
     bad: list[str]  # (F4): gains the data cannot separate
     coefficients: list[float]
     warnings: list[str] = field(default_factory=list)
+    method: str = "ols"  # "ols" (SysId's least squares) or "iv" (core/fit/iv.py's instrumental variables)
 
     @property
     def usable(self) -> bool:
@@ -112,6 +119,8 @@ def _convert(run: Run) -> Prepared:
         _lerp(t, run.t_position, run.position),
         _lerp(t, run.t_velocity, run.velocity),
         np.diff(run.t_voltage),
+        i=np.arange(len(t)),
+        run=run,
     )
 
 
@@ -356,37 +365,42 @@ def fit_continuous(prepared: dict[str, Prepared], kind: str, T: float, source: s
     return _finish("continuous", _gains_continuous, X, y, kind, T, source)
 
 
-def fit_discrete(prepared: dict[str, Prepared], kind: str, T: float, source: str) -> Fit:
-    """(F5), (F6): pairs of samples next to each other in the log (a dropped sample breaks a pair);
-    then (F8) where the logged steps differ."""
-    rows, ys, steps = [], [], []
-    for d in prepared.values():
+def _pairs(prepared: dict[str, Prepared], kind: str):
+    """(F5)'s rows: pairs of samples next to each other in the log (a dropped sample breaks a pair):
+    the regressors at k, v[k+1], the step h_k, and for each row its test and the sample's index
+    in the test's run."""
+    rows, ys, steps, where, tests = [], [], [], [], []
+    for n, d in enumerate(prepared.values()):
         nxt = np.nonzero(np.isclose(d.t[1:] - d.t[:-1], d.dt[:-1], rtol=1e-9, atol=1e-9))[0]
         e = d.take(nxt)
         rows.append(np.column_stack(_columns(e, kind, e.v)))
         ys.append(d.v[nxt + 1])
         steps.append(d.dt[nxt])
-    X = np.concatenate(rows)
-    y = np.concatenate(ys)
+        where.append(e.i)
+        tests.append(np.full(len(nxt), n))
+    return (
+        np.concatenate(rows),
+        np.concatenate(ys),
+        np.concatenate(steps),
+        where,
+        np.concatenate(tests),
+    )
+
+
+def fit_discrete(prepared: dict[str, Prepared], kind: str, T: float, source: str) -> Fit:
+    """(F5), (F6): SysId's discrete least squares over pairs of samples next to each other in the
+    log; then (F8) where the logged steps differ. Biased by the velocity's noise (core/fit/iv.py
+    (F11)): `gearhead fit` shows core.fit.iv.fit_discrete, which starts from it."""
+    X, y, h, _, _ = _pairs(prepared, kind)
     fit = _finish("discrete", _gains_discrete, X, y, kind, T, source)
-    h = np.concatenate(steps)
     if fit.usable and fit.gains["kV"] > 0 and np.ptp(h) > 1e-9 * T:
         return _per_step(fit, X, y, h, kind)
     return fit
 
 
-def _per_step(fit: Fit, X: np.ndarray, y: np.ndarray, h: np.ndarray, kind: str) -> Fit:
-    """(F8): (F5) with each pair's own logged step h_k, the exact zero-order hold of (F1):
-        v[k+1] = α_k·v[k] + (1 − α_k)/kV·(u[k] − kS·sgn v[k] − g_k),  α_k = e^(−h_k·kV/kA),
-        g_k = kG (elevator), kG·cos(θ_k + offset) (arm), 0,
-    by nonlinear least squares (scipy) from (F6)'s gains; with one step it is (F5) itself. The mean
-    step T̄ in (F6) misplaces kA by up to the jitter j over T̄ (each pair's ln α_k is off by
-    (h_k − T̄)/τ), which the few pairs after a fast step do not average out (0.5 ms on 5 ms: kA −8 %
-    measured). Covariance s²·(JᵀJ)⁻¹ at the solution, s² = SSE/(n − p)."""
-    from scipy.optimize import least_squares
-
+def _per_step_model(X: np.ndarray, y: np.ndarray, h: np.ndarray, kind: str):
+    """(F8)'s residual and its Jacobian in (kS, kV, kA (, kG (, offset)))."""
     v, u, sg = X[:, 0], X[:, 1], X[:, 2]
-    names = ["kS", "kV", "kA"] + (["kG"] if kind == "elevator" else ["kG", "offset"] if kind == "arm" else [])
 
     def gravity(q):
         if kind == "elevator":
@@ -416,6 +430,33 @@ def _per_step(fit: Fit, X: np.ndarray, y: np.ndarray, h: np.ndarray, kind: str) 
             J[:, 4] = -k * q[3] * (-c * math.sin(q[4]) - sn * math.cos(q[4]))
         return J
 
+    return residual, jacobian
+
+
+def _names(kind: str) -> list[str]:
+    return ["kS", "kV", "kA"] + (["kG"] if kind == "elevator" else ["kG", "offset"] if kind == "arm" else [])
+
+
+def _arm_gains(gains: dict[str, float], kind: str) -> dict[str, float]:
+    if kind == "arm" and gains["kG"] < 0:  # the same gravity, kG ≥ 0 as (F2) gives it
+        gains["kG"], gains["offset"] = -gains["kG"], gains["offset"] + math.pi
+    if kind == "arm":
+        gains["offset"] = math.remainder(gains["offset"], 2 * math.pi)
+    return gains
+
+
+def _per_step(fit: Fit, X: np.ndarray, y: np.ndarray, h: np.ndarray, kind: str) -> Fit:
+    """(F8): (F5) with each pair's own logged step h_k, the exact zero-order hold of (F1):
+        v[k+1] = α_k·v[k] + (1 − α_k)/kV·(u[k] − kS·sgn v[k] − g_k),  α_k = e^(−h_k·kV/kA),
+        g_k = kG (elevator), kG·cos(θ_k + offset) (arm), 0,
+    by nonlinear least squares (scipy) from (F6)'s gains; with one step it is (F5) itself. The mean
+    step T̄ in (F6) misplaces kA by up to the jitter j over T̄ (each pair's ln α_k is off by
+    (h_k − T̄)/τ), which the few pairs after a fast step do not average out (0.5 ms on 5 ms: kA −8 %
+    measured). Covariance s²·(JᵀJ)⁻¹ at the solution, s² = SSE/(n − p)."""
+    from scipy.optimize import least_squares
+
+    residual, jacobian = _per_step_model(X, y, h, kind)
+    names = _names(kind)
     q0 = np.array([fit.gains[k] for k in names])
     try:
         with np.errstate(all="ignore"):
@@ -435,11 +476,7 @@ def _per_step(fit: Fit, X: np.ndarray, y: np.ndarray, h: np.ndarray, kind: str) 
         return fit
     ssto = float(np.sum((y - y.mean()) ** 2))
     r2 = 1.0 - sse / ssto if ssto > 0 else 0.0
-    gains = dict(zip(names, (float(x) for x in r.x)))
-    if kind == "arm" and gains["kG"] < 0:  # the same gravity, kG ≥ 0 as (F2) gives it
-        gains["kG"], gains["offset"] = -gains["kG"], gains["offset"] + math.pi
-    if kind == "arm":
-        gains["offset"] = math.remainder(gains["offset"], 2 * math.pi)
+    gains = _arm_gains(dict(zip(names, (float(x) for x in r.x))), kind)
     sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
     fit.gains = gains
     fit.sigma = {k: float(x) for k, x in zip(names, sd)}

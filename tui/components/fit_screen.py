@@ -257,6 +257,8 @@ class FitScreen(Dialog[dict[str, Any] | None]):
 
     # ---- showing -----------------------------------------------------------------------------
     def _show_tables(self, r) -> None:
+        from gearhead.core.fit import favoured_reason
+
         pos, vel = UNITS[r.kind]
         p = r.picked
         lines = ["signals: " + ", ".join(f"{k} {v}" for k, v in p.names.items())]
@@ -289,8 +291,8 @@ class FitScreen(Dialog[dict[str, Any] | None]):
         )
         table.display = True
         lines = [
-            f"favoured: {r.favoured} (★: the smaller velocity error when the log is replayed; "
-            f"the replay RMSE row, the card's column with its design's gains)",
+            f"favoured: {r.favoured} ★ ({favoured_reason(r)}); the replay RMSE row: the velocity "
+            "error of each form's replay, the card's column with its design's gains",
             *(f"note: {n}" for n in r.notes),
         ]
         # printable() shows a line break as \n: each line on its own (a signal's name may hold one)
