@@ -100,21 +100,29 @@ def cli() -> None:
         row(label, med(a) * 1e3, med(b) * 1e3, "python -c 'import numpy'")
 
 
-def visits(label: str, runs: list[dict], baseline: float, base_stall: float) -> None:
-    """Per card, the median over runs of (drawn, stall, full GC); the worst card last."""
+def visits(label: str, runs: list[dict], base: tuple[float, float, float]) -> None:
+    """Per card, the median over runs of (drawn, stall, full GC, CPU); the worst card last."""
+    baseline, base_stall, base_cpu = base
     print(f"{label} (median of {len(runs)} fresh apps; baseline: the minimal app, median over panes)")
-    print(f"  {'card':<18} {'key -> drawn':>12} {'x minimal':>9} {'longest stall':>14} {'full GC':>8}")
-    worst = (0.0, 0.0)
-    for calc in runs[0]:
-        drawn = med(r[calc][0] for r in runs)
-        stall = med(r[calc][1] for r in runs)
-        full = med(r[calc][2] for r in runs)
-        worst = max(worst[0], drawn / baseline), max(worst[1], stall)
-        print(f"  {calc:<18} {drawn:9.1f} ms {drawn / baseline:8.2f}x {stall:11.1f} ms {full:5.1f} ms")
     print(
-        f"  minimal app        {baseline:9.1f} ms {1:8.2f}x {base_stall:11.1f} ms"
-        f"      worst card: {worst[0]:.2f}x, stall {worst[1]:.1f} ms"
+        f"  {'card':<18} {'key -> drawn':>12} {'x minimal':>9} {'longest stall':>14} {'full GC':>8}"
+        f" {'CPU':>9} {'x minimal':>9}"
     )
+    worst = (0.0, 0.0)
+    ratios = []
+    for calc in runs[0]:
+        drawn, stall, full, cpu = (med(r[calc][i] for r in runs) for i in range(4))
+        worst = max(worst[0], drawn / baseline), max(worst[1], stall)
+        ratios.append(drawn / baseline)
+        print(
+            f"  {calc:<18} {drawn:9.1f} ms {drawn / baseline:8.2f}x {stall:11.1f} ms {full:5.1f} ms"
+            f" {cpu:6.1f} ms {cpu / base_cpu:8.2f}x"
+        )
+    print(
+        f"  minimal app        {baseline:9.1f} ms {1:8.2f}x {base_stall:11.1f} ms         "
+        f" {base_cpu:6.1f} ms {1:8.2f}x"
+    )
+    print(f"  median card {med(ratios):.2f}x; worst card {worst[0]:.2f}x, longest stall {worst[1]:.1f} ms")
 
 
 def app() -> None:
@@ -131,11 +139,11 @@ def app() -> None:
         for kind in kinds:
             runs[kind].append(probe("visits", *(["--no-gc-freeze"] if kind == "off" else [])))
         base.extend(probe("minimal")["first"])
-    baseline, base_stall = med(x[0] for x in base), med(x[1] for x in base)
+    baseline = med(x[0] for x in base), med(x[1] for x in base), med(x[3] for x in base)
     for kind in kinds:
         note = "" if kind == "on" else ", gc.freeze() switched off"
-        visits(f"first visit to each card{note}", [r["first"] for r in runs[kind]], baseline, base_stall)
-        visits(f"repeat visit{note}", [r["repeat"] for r in runs[kind]], baseline, base_stall)
+        visits(f"first visit to each card{note}", [r["first"] for r in runs[kind]], baseline)
+        visits(f"repeat visit{note}", [r["repeat"] for r in runs[kind]], baseline)
 
 
 def main() -> None:

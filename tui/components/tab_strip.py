@@ -114,6 +114,13 @@ class TabStrip(Widget, can_focus=True):
     def _index(self, tab_id: str) -> int | None:
         return next((i for i, (tid, _) in enumerate(self.tabs) if tid == tab_id), None)
 
+    def span(self, tab_id: str) -> tuple[int, int]:
+        """The cells a tab takes on the strip (its padding included), before any scroll."""
+        index = self._index(tab_id)
+        if index is None:
+            raise KeyError(tab_id)
+        return self._spans()[index]
+
     def tab_at(self, x: int) -> str | None:
         """The id of the tab at cell x of the strip (either line), or None."""
         spans = self._spans()
