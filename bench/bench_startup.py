@@ -12,18 +12,37 @@ never asserted.
 
 Issue 42's targets: first visit ≤ 3x the minimal app's with no stall over 16 ms, repeat ≤ 2x.
 
-What a visit is made of (2 December 2026, scratch timers on Compositor.reflow/render_update and
-Stylesheet.update_nodes, cProfile; elevator, 140x45, 2-core machine under load 5-6, so read the
-shares, not the ms):
-- repeat visit: the key's handling (the strips' -active classes and the focus moving from one
-  sheet to the other: four style updates of one node each, 0.4-1.4 ms) 7-9 ms, then one layout
-  (1.5-3 ms) and one paint of the whole screen (11-20 ms), and a second small paint (3 ms) before
-  the bench sees the card. The paint is most of it: every visible widget (~45: the card's 21-23,
-  the two strips' tabs, the key bar) renders its lines and the compositor cuts them at every
-  widget's edge (Strip.divide, _render_chops: ~80% of a profiled layout-and-paint); of the
-  widgets' own rendering (~4 ms a paint) the sheet is the largest (~1 ms). No re-solve, no row
-  refresh and no style recomputation of the card run on show. A pane of the minimal app is one
-  Label: its switch paints one widget.
+What a repeat visit runs (2 December 2026, after the tab strips below; scratch timers on
+Compositor.reflow/render_update/_render_chops and Stylesheet.update_nodes, thread CPU time per
+widget, all 18 cards, 140x45, 2-core machine shared with other sessions, load 2-6):
+- the key's handling (show_calculator: the strips' active tab, two cards' display, the focus to
+  the shown sheet) 2-5 ms; two style updates of one node each (the sheets' blur and focus) 1-4 ms
+  each; one layout (reflow 1-3 ms); then, in the same tick of the screen's update timer, a paint
+  of the card's region (13-50 ms: most of the visit) and a repaint of the whole screen (2-4 ms,
+  every widget's lines cached: the cards' display change refreshes their parent, the Screen),
+  before the bench sees the card; a small paint (the sheet, a scrollbar) follows. No re-solve, no
+  chart re-render, no second layout, no full collection (gc.freeze).
+- that paint, per widget (render + the compositor's cut at every widget edge of each line): the
+  Screen's own 45 lines, refreshed by the display change and cut again (~6 ms a paint), the sheet
+  drawn whole (Textual's Widget._on_focus refreshes a widget that takes focus, widget.py:4765:
+  ~3 ms), a visible scrollbar (~2.5 ms on the cards with one), the key bar (~1 ms); the card's
+  other widgets come from their caches. A pane of the minimal app is one Label.
+- the longest stall is key -> drawn less ~1 ms: the handling, style updates, layout and paint run
+  in consecutive loop iterations, and asyncio runs a task woken meanwhile (a key read, the stall
+  watcher) only after the handles already queued, the paint among them.
+What paid (measured, kept): the two Tabs strips as one Line-API widget each
+(tui/components/tab_strip.py, drawn cell for cell as Tabs: tests/test_tab_strip.py). Tabs is a
+widget per tab in three containers with an Underline: visible widgets 31 -> 13 (gear_ratio), 43 ->
+24 (elevator); the first paint's CPU over the 18 repeat visits (render + cut) 593 and 640 ms ->
+515 and 541 ms (two runs each); and Tabs' underline animation, 0.3 s of repaints after every
+switch (~19 frames of 1.5-5 ms), is gone. Repeat visits, this file's probes, 3 fresh apps each,
+main's checkout (fe7a920) and this one interleaved with the minimal app (28.2 ms, CPU 16.0 ms), load
+5-5.6: median card 4.71x -> 3.22x, worst 9.67x -> 5.51x, longest stall 271 -> 154 ms; CPU median
+54.5 -> 36.8 ms (3.40x -> 2.30x the minimal app's), worst 104.0 -> 76.4 ms. Above the 2x target
+still; first visits unchanged within the noise (6.80x -> 7.04x median).
+What is left, not changed: the sheet's whole redraw on focus is Textual's (above); the Screen's is
+the display change's (a container around the cards would be refreshed and cut in its place).
+What a first visit runs (an earlier session's timers, same method):
 - first visit: the card's mount is one block of the event loop (the longest stall): importing its
   calculator's core modules (elevator: 15-45 ms, importtime), composing its widgets and applying
   the stylesheet to them (66 nodes styled with the area's strip); then the first layout and paint
