@@ -19,11 +19,12 @@ widget, all 18 cards, 140x45, 2-core machine shared with other sessions, load 2-
   the shown sheet) 2-5 ms; two style updates of one node each (the sheets' blur and focus) 1-4 ms
   each; one layout (reflow 1-3 ms); then, in the same tick of the screen's update timer, a paint
   of the card's region (13-50 ms: most of the visit) and a repaint of the whole screen (2-4 ms,
-  every widget's lines cached: the cards' display change refreshes their parent, the Screen),
+  every widget's lines cached: moving the focus refreshes the Screen, whose `focused` is a
+  repainting Reactive, textual/screen.py:229, set in set_focus, :1133),
   before the bench sees the card; a small paint (the sheet, a scrollbar) follows. No re-solve, no
   chart re-render, no second layout, no full collection (gc.freeze).
 - that paint, per widget (render + the compositor's cut at every widget edge of each line): the
-  Screen's own 45 lines, refreshed by the display change and cut again (~6 ms a paint), the sheet
+  Screen's own 45 lines, refreshed by the focus move and cut again (~6 ms a paint), the sheet
   drawn whole (Textual's Widget._on_focus refreshes a widget that takes focus, widget.py:4765:
   ~3 ms), a visible scrollbar (~2.5 ms on the cards with one), the key bar (~1 ms); the card's
   other widgets come from their caches. A pane of the minimal app is one Label.
@@ -40,8 +41,8 @@ main's checkout (fe7a920) and this one interleaved with the minimal app (28.2 ms
 5-5.6: median card 4.71x -> 3.22x, worst 9.67x -> 5.51x, longest stall 271 -> 154 ms; CPU median
 54.5 -> 36.8 ms (3.40x -> 2.30x the minimal app's), worst 104.0 -> 76.4 ms. Above the 2x target
 still; first visits unchanged within the noise (6.80x -> 7.04x median).
-What is left, not changed: the sheet's whole redraw on focus is Textual's (above); the Screen's is
-the display change's (a container around the cards would be refreshed and cut in its place).
+What is left, not changed: the sheet's whole redraw and the Screen's on a focus move are
+Textual's (above), and the shown card's sheet must take the keys.
 What a first visit runs (an earlier session's timers, same method):
 - first visit: the card's mount is one block of the event loop (the longest stall): importing its
   calculator's core modules (elevator: 15-45 ms, importtime), composing its widgets and applying
