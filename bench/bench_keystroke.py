@@ -36,6 +36,8 @@ it), and the result's frame came 27.6-44.7 ms after the echo's. What paces it:
   the tick it counts from its start: the boundary it aimed at has passed, so (lines 162-163,
   `_skip`) count = int((now - start) / interval + 1) and it sleeps until start + (count + 1) ·
   interval, one to two periods (17-33 ms) ahead: the result's frame.
+This bench the same day, after the tab strips (--keys 12): result in the table / drawn, gear_ratio
+8.4 / 41.8 ms, elevator 16.0 / 50.2 ms, flywheel 18.7 / 41.9 ms (baseline Input drawn 3.6 ms).
 No public API joins them but holding the echo frame until the worker answers (App.batch_update
 around the solve: a scheduling trick the project rules out) or solving on the UI thread (issue
 42 item 1 puts the solve in a worker); TEXTUAL_FPS only shortens the period (figures above).
