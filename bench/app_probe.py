@@ -13,6 +13,8 @@ and prints one JSON object on its last line; times in ms.
   key until STALL_WINDOW_S after the frame: a key typed then waits that long.
 
 - "GC": the longest full garbage collection (generation 2) in that window (gc.callbacks).
+- "CPU": the process's CPU time from the key to the frame (all threads): what load on a shared
+  machine changes least.
 
 Run one alone: .venv/bin/python bench/app_probe.py visits [--no-gc-freeze] | minimal |
 first-frame app|minimal
@@ -70,9 +72,9 @@ def _on_gc(phase: str, info: dict) -> None:
 gc.callbacks.append(_on_gc)
 
 
-async def timed_keys(app, keys: list[str], done) -> tuple[float, float, float]:
-    """(key -> `done()` holds, longest stall, longest full (generation 2) garbage collection), ms;
-    the keys posted together."""
+async def timed_keys(app, keys: list[str], done) -> tuple[float, float, float, float]:
+    """(key -> `done()` holds, longest stall, longest full (generation 2) garbage collection, CPU
+    time to `done()`), ms; the keys posted together."""
     stalls: list[float] = []
     GC_PAUSES.clear()
     _timing[0] = True
@@ -80,7 +82,7 @@ async def timed_keys(app, keys: list[str], done) -> tuple[float, float, float]:
     watcher = asyncio.create_task(_watch_stalls(stalls, stop))
     await asyncio.sleep(0.02)
     stalls.clear()
-    t0 = time.perf_counter()
+    c0, t0 = time.process_time(), time.perf_counter()
     for key in keys:
         app.post_message(key_event(key))
     try:
@@ -88,13 +90,13 @@ async def timed_keys(app, keys: list[str], done) -> tuple[float, float, float]:
     except TimeoutError:
         print("timeout", keys, app.current_calculator, app.focused, app.screen, file=sys.stderr)
         raise
-    drawn = time.perf_counter() - t0
+    drawn, cpu = time.perf_counter() - t0, time.process_time() - c0
     await asyncio.sleep(STALL_WINDOW_S)
     stop.set()
     await watcher
     _timing[0] = False
     full = max((ms for gen, ms in GC_PAUSES if gen == 2), default=0.0)
-    return drawn * 1e3, max(stalls, default=0.0) * 1e3, full
+    return drawn * 1e3, max(stalls, default=0.0) * 1e3, full, cpu * 1e3
 
 
 def visit_plan(first: bool) -> list[tuple[str, list[str], list[str]]]:

@@ -23,6 +23,25 @@ runs alternating on the 2-core machine under load 5-6, drawn (median):
 an idle spell, and the load decides more than the period. The app keeps Textual's default; the
 ≤ 16 ms target is met only in quiet moments (gear_ratio 10.1 ms above), a framework limit.
 
+Why the echo and the result cannot share a frame, even for a sub-millisecond solve (Textual 8.2.8,
+read 2 December 2026; trace of 11 keys on gear_ratio, scratch timers on Compositor.render_update
+and the card's Solved handler, 2-core machine under load): the echo frame came 9.7-21.2 ms after
+the key, the card handled Solved 0.3-4.5 ms after that frame (the result was ready, queued behind
+it), and the result's frame came 27.6-44.7 ms after the echo's. What paces it:
+- screen.py:1172-1183, Screen._on_idle: once the screen's queue is empty and something is dirty
+  (the sheet's echo) it resumes its update timer;
+- timer.py:156-176, Timer._run: a paused timer, resumed, ticks at once (the echo frame, before a
+  thread worker's message can be handled: worker.py:326 runs the work through
+  loop.run_in_executor, and its message is posted from that thread to the card's queue). After
+  the tick it counts from its start: the boundary it aimed at has passed, so (lines 162-163,
+  `_skip`) count = int((now - start) / interval + 1) and it sleeps until start + (count + 1) ·
+  interval, one to two periods (17-33 ms) ahead: the result's frame.
+This bench the same day, after the tab strips (--keys 12): result in the table / drawn, gear_ratio
+8.4 / 41.8 ms, elevator 16.0 / 50.2 ms, flywheel 18.7 / 41.9 ms (baseline Input drawn 3.6 ms).
+No public API joins them but holding the echo frame until the worker answers (App.batch_update
+around the solve: a scheduling trick the project rules out) or solving on the UI thread (issue
+42 item 1 puts the solve in a worker); TEXTUAL_FPS only shortens the period (figures above).
+
 Run alone:  .venv/bin/python bench/bench_keystroke.py [--keys N] [--only motor,pneumatics]
 (from a clean clone, after `python3 -m venv .venv && .venv/bin/pip install -e '.[test]'`)
 """

@@ -12,18 +12,38 @@ never asserted.
 
 Issue 42's targets: first visit ≤ 3x the minimal app's with no stall over 16 ms, repeat ≤ 2x.
 
-What a visit is made of (2 December 2026, scratch timers on Compositor.reflow/render_update and
-Stylesheet.update_nodes, cProfile; elevator, 140x45, 2-core machine under load 5-6, so read the
-shares, not the ms):
-- repeat visit: the key's handling (the strips' -active classes and the focus moving from one
-  sheet to the other: four style updates of one node each, 0.4-1.4 ms) 7-9 ms, then one layout
-  (1.5-3 ms) and one paint of the whole screen (11-20 ms), and a second small paint (3 ms) before
-  the bench sees the card. The paint is most of it: every visible widget (~45: the card's 21-23,
-  the two strips' tabs, the key bar) renders its lines and the compositor cuts them at every
-  widget's edge (Strip.divide, _render_chops: ~80% of a profiled layout-and-paint); of the
-  widgets' own rendering (~4 ms a paint) the sheet is the largest (~1 ms). No re-solve, no row
-  refresh and no style recomputation of the card run on show. A pane of the minimal app is one
-  Label: its switch paints one widget.
+What a repeat visit runs (2 December 2026, after the tab strips below; scratch timers on
+Compositor.reflow/render_update/_render_chops and Stylesheet.update_nodes, thread CPU time per
+widget, all 18 cards, 140x45, 2-core machine shared with other sessions, load 2-6):
+- the key's handling (show_calculator: the strips' active tab, two cards' display, the focus to
+  the shown sheet) 2-5 ms; two style updates of one node each (the sheets' blur and focus) 1-4 ms
+  each; one layout (reflow 1-3 ms); then, in the same tick of the screen's update timer, a paint
+  of the card's region (13-50 ms: most of the visit) and a repaint of the whole screen (2-4 ms,
+  every widget's lines cached: moving the focus refreshes the Screen, whose `focused` is a
+  repainting Reactive, textual/screen.py:229, set in set_focus, :1133),
+  before the bench sees the card; a small paint (the sheet, a scrollbar) follows. No re-solve, no
+  chart re-render, no second layout, no full collection (gc.freeze).
+- that paint, per widget (render + the compositor's cut at every widget edge of each line): the
+  Screen's own 45 lines, refreshed by the focus move and cut again (~6 ms a paint), the sheet
+  drawn whole (Textual's Widget._on_focus refreshes a widget that takes focus, widget.py:4765:
+  ~3 ms), a visible scrollbar (~2.5 ms on the cards with one), the key bar (~1 ms); the card's
+  other widgets come from their caches. A pane of the minimal app is one Label.
+- the longest stall is key -> drawn less ~1 ms: the handling, style updates, layout and paint run
+  in consecutive loop iterations, and asyncio runs a task woken meanwhile (a key read, the stall
+  watcher) only after the handles already queued, the paint among them.
+What paid (measured, kept): the two Tabs strips as one Line-API widget each
+(tui/components/tab_strip.py, drawn cell for cell as Tabs: tests/test_tab_strip.py). Tabs is a
+widget per tab in three containers with an Underline: visible widgets 31 -> 13 (gear_ratio), 43 ->
+24 (elevator); the first paint's CPU over the 18 repeat visits (render + cut) 593 and 640 ms ->
+515 and 541 ms (two runs each); and Tabs' underline animation, 0.3 s of repaints after every
+switch (~19 frames of 1.5-5 ms), is gone. Repeat visits, this file's probes, 3 fresh apps each,
+main's checkout (fe7a920) and this one interleaved with the minimal app (28.2 ms, CPU 16.0 ms), load
+5-5.6: median card 4.71x -> 3.22x, worst 9.67x -> 5.51x, longest stall 271 -> 154 ms; CPU median
+54.5 -> 36.8 ms (3.40x -> 2.30x the minimal app's), worst 104.0 -> 76.4 ms. Above the 2x target
+still; first visits unchanged within the noise (6.80x -> 7.04x median).
+What is left, not changed: the sheet's whole redraw and the Screen's on a focus move are
+Textual's (above), and the shown card's sheet must take the keys.
+What a first visit runs (an earlier session's timers, same method):
 - first visit: the card's mount is one block of the event loop (the longest stall): importing its
   calculator's core modules (elevator: 15-45 ms, importtime), composing its widgets and applying
   the stylesheet to them (66 nodes styled with the area's strip); then the first layout and paint
@@ -100,21 +120,29 @@ def cli() -> None:
         row(label, med(a) * 1e3, med(b) * 1e3, "python -c 'import numpy'")
 
 
-def visits(label: str, runs: list[dict], baseline: float, base_stall: float) -> None:
-    """Per card, the median over runs of (drawn, stall, full GC); the worst card last."""
+def visits(label: str, runs: list[dict], base: tuple[float, float, float]) -> None:
+    """Per card, the median over runs of (drawn, stall, full GC, CPU); the worst card last."""
+    baseline, base_stall, base_cpu = base
     print(f"{label} (median of {len(runs)} fresh apps; baseline: the minimal app, median over panes)")
-    print(f"  {'card':<18} {'key -> drawn':>12} {'x minimal':>9} {'longest stall':>14} {'full GC':>8}")
-    worst = (0.0, 0.0)
-    for calc in runs[0]:
-        drawn = med(r[calc][0] for r in runs)
-        stall = med(r[calc][1] for r in runs)
-        full = med(r[calc][2] for r in runs)
-        worst = max(worst[0], drawn / baseline), max(worst[1], stall)
-        print(f"  {calc:<18} {drawn:9.1f} ms {drawn / baseline:8.2f}x {stall:11.1f} ms {full:5.1f} ms")
     print(
-        f"  minimal app        {baseline:9.1f} ms {1:8.2f}x {base_stall:11.1f} ms"
-        f"      worst card: {worst[0]:.2f}x, stall {worst[1]:.1f} ms"
+        f"  {'card':<18} {'key -> drawn':>12} {'x minimal':>9} {'longest stall':>14} {'full GC':>8}"
+        f" {'CPU':>9} {'x minimal':>9}"
     )
+    worst = (0.0, 0.0)
+    ratios = []
+    for calc in runs[0]:
+        drawn, stall, full, cpu = (med(r[calc][i] for r in runs) for i in range(4))
+        worst = max(worst[0], drawn / baseline), max(worst[1], stall)
+        ratios.append(drawn / baseline)
+        print(
+            f"  {calc:<18} {drawn:9.1f} ms {drawn / baseline:8.2f}x {stall:11.1f} ms {full:5.1f} ms"
+            f" {cpu:6.1f} ms {cpu / base_cpu:8.2f}x"
+        )
+    print(
+        f"  minimal app        {baseline:9.1f} ms {1:8.2f}x {base_stall:11.1f} ms         "
+        f" {base_cpu:6.1f} ms {1:8.2f}x"
+    )
+    print(f"  median card {med(ratios):.2f}x; worst card {worst[0]:.2f}x, longest stall {worst[1]:.1f} ms")
 
 
 def app() -> None:
@@ -131,11 +159,11 @@ def app() -> None:
         for kind in kinds:
             runs[kind].append(probe("visits", *(["--no-gc-freeze"] if kind == "off" else [])))
         base.extend(probe("minimal")["first"])
-    baseline, base_stall = med(x[0] for x in base), med(x[1] for x in base)
+    baseline = med(x[0] for x in base), med(x[1] for x in base), med(x[3] for x in base)
     for kind in kinds:
         note = "" if kind == "on" else ", gc.freeze() switched off"
-        visits(f"first visit to each card{note}", [r["first"] for r in runs[kind]], baseline, base_stall)
-        visits(f"repeat visit{note}", [r["repeat"] for r in runs[kind]], baseline, base_stall)
+        visits(f"first visit to each card{note}", [r["first"] for r in runs[kind]], baseline)
+        visits(f"repeat visit{note}", [r["repeat"] for r in runs[kind]], baseline)
 
 
 def main() -> None:

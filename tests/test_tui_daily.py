@@ -173,7 +173,8 @@ async def test_a_digit_like_character_on_a_strip_is_ignored(character):
     F-key it picks nothing (it ends the chord and goes to the card); on a strip focused by a click
     it is ignored; a real digit after an F-key still picks."""
     from textual import events
-    from textual.widgets import Tabs
+
+    from gearhead.tui.components.tab_strip import TabStrip
 
     app = GearheadApp(blink=False, initial="motor")
     async with app.run_test(size=(140, 45)) as pilot:
@@ -182,7 +183,7 @@ async def test_a_digit_like_character_on_a_strip_is_ignored(character):
         app.post_message(events.Key(character, character))
         await settle(pilot)
         assert app.current_calculator == "motor"
-        app.home.set_focus(app.query_one("#calcs-gearing", Tabs))
+        app.home.set_focus(app.query_one("#calcs-gearing", TabStrip))
         app.post_message(events.Key(character, character))
         await settle(pilot)
         assert app.current_calculator == "motor"

@@ -12,15 +12,14 @@ from typing import TYPE_CHECKING
 from textual import events
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
-from textual.content import Content
 from textual.message import Message
 from textual.screen import Screen
-from textual.widgets import Tab, Tabs
 
 from gearhead.core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
 from gearhead.core.unit_systems import SYSTEM_LABELS, SYSTEMS
 
 from .components.key_bar import KeyBar
+from .components.tab_strip import TabStrip
 from .guard import guard, guarded
 
 if TYPE_CHECKING:
@@ -102,9 +101,8 @@ class GearheadApp(App):
         self._mounting: dict[str, object] = {}  # calc_id -> its AwaitMount, while mounting
         self._area_active: dict[str, str] = {}  # area -> the calculator shown there
         self._area = ""  # the area shown
-        self._strips: dict[str, Tabs] = {}  # area -> its calculator strip, built on its first visit
+        self._strips: dict[str, TabStrip] = {}  # area -> its calculator strip, built on its first visit
         self._strip_mounts: dict[str, object] = {}  # area -> the AwaitMount of a strip being built
-        self._strips_started: set[str] = set()  # areas whose strip has sent its first TabActivated
         self._started = False  # the first frame is on screen
         self._pick_armed = False  # the last key was an F-key: a digit now picks a calculator
         self._picking = False  # ... and the key being handled is the one after it
@@ -114,34 +112,31 @@ class GearheadApp(App):
     def compose(self) -> ComposeResult:
         # Two strips: areas (F1-F5), then the calculators of the active area (digits 1-9 on the
         # focused strip). They come from the registry's tables, without importing any calculator.
-        # Plain Tabs, one calculator strip per area (built on the area's first visit, hidden while
+        # One calculator strip per area (built on the area's first visit, hidden while
         # another area shows), and the cards below them, each shown or hidden by the app: no
         # TabbedContent, whose panes and switchers nested six containers above a card, each drawn
         # again under it on every frame.
         first = self.initial or ORDER[0]
         self._area_active = {area: first if first in ids else ids[0] for area, (_, ids) in AREAS.items()}
         self._area = area_of(first)
-        yield Tabs(
-            *(
-                Tab(Content(f"F{n} {title}"), id=f"area-{area}")
-                for n, (area, (title, _)) in enumerate(AREAS.items(), 1)
-            ),
+        yield TabStrip(
+            [(f"area-{area}", f"F{n} {title}") for n, (area, (title, _)) in enumerate(AREAS.items(), 1)],
             active=f"area-{self._area}",
             id="areas",
         )
         yield self._new_strip(self._area)
         yield KeyBar()
 
-    def _new_strip(self, area: str) -> Tabs:
-        strip = self._strips[area] = Tabs(
-            *(Tab(Content(f"{i} {TITLES[cid]}"), id=f"tab-{cid}") for i, cid in enumerate(AREAS[area][1], 1)),
+    def _new_strip(self, area: str) -> TabStrip:
+        strip = self._strips[area] = TabStrip(
+            [(f"tab-{cid}", f"{i} {TITLES[cid]}") for i, cid in enumerate(AREAS[area][1], 1)],
             active=f"tab-{self._area_active[area]}",
             id=f"calcs-{area}",
             classes="calculators",
         )
         return strip
 
-    def _strip(self, area: str) -> Tabs:
+    def _strip(self, area: str) -> TabStrip:
         """An area's calculator strip, built (mounted below the others) on its first visit."""
         strip = self._strips.get(area)
         if strip is None:
@@ -293,25 +288,17 @@ class GearheadApp(App):
         return calc_id in self._cards and calc_id not in self._mounting
 
     @guarded
-    async def on_tabs_tab_activated(self, event: Tabs.TabActivated) -> None:
-        """A tab of a strip picked (a click, ← →, or show_calculator): show its card."""
-        strip_id = event.tabs.id or ""
-        tab_id = event.tab.id or ""
+    async def on_tab_strip_tab_activated(self, event: TabStrip.TabActivated) -> None:
+        """A tab of a strip picked (a click, ← →, or show_calculator): show its card. (A strip
+        posts this when its active tab changes, not when it is built with one.)"""
+        strip_id = event.strip.id or ""
         if strip_id == "areas":
-            self._show_area(tab_id.removeprefix("area-"))
+            self._show_area(event.tab_id.removeprefix("area-"))
         elif strip_id.startswith("calcs-"):
             area = strip_id.removeprefix("calcs-")
-            calc_id = tab_id.removeprefix("tab-")
-            if area not in self._strips_started:  # its first: the tab it was built with
-                self._strips_started.add(area)
-                if calc_id != self._area_active[area]:  # another was picked before it mounted
-                    event.tabs.active = f"tab-{self._area_active[area]}"
-                    return
-            self._area_active[area] = calc_id
+            self._area_active[area] = event.tab_id.removeprefix("tab-")
             if area == self._area:
                 self._show_card(self._area_active[area])
-        else:
-            return  # a dialog's tabs
         if not self._started or self._quitting:  # start-up: on_ready builds the first card
             return
         await self.card(self.current_calculator)
@@ -373,7 +360,7 @@ class GearheadApp(App):
         if area in self._strips:  # else built now, with this tab active
             self._strips[area].active = f"tab-{calc_id}"
         self._strip(area)
-        self.home.query_one("#areas", Tabs).active = f"area-{area}"
+        self.home.query_one("#areas", TabStrip).active = f"area-{area}"
         self._show_area(area)
         if self.card_ready(calc_id):
             self.home.set_focus(self._cards[calc_id].sheet)
@@ -384,7 +371,7 @@ class GearheadApp(App):
         chain, taken while a card switches (F5 2 Tab in a burst), reached the card being left and
         TabbedContent then showed that one again."""
         strip = self.focused
-        on_strip = isinstance(strip, Tabs) and (strip.id or "").startswith("calcs-")
+        on_strip = isinstance(strip, TabStrip) and (strip.id or "").startswith("calcs-")
         if self.screen is self.home and (on_strip or strip is None):  # None: a card to come
             tab = await self.card(self.current_calculator)
             self.home.set_focus(tab.sheet)
@@ -419,7 +406,7 @@ class GearheadApp(App):
         still recorded as shown."""
         character = event.character or ""
         strip = self.focused
-        owner = (strip.id or "") if isinstance(strip, Tabs) else ""
+        owner = (strip.id or "") if isinstance(strip, TabStrip) else ""
         if event.key == "down" and owner.startswith("calcs-") and not self._quitting:
             event.stop()  # ↓ from the strip goes into the card, as Tab does (a strip has no ↓ of its own)
             await self.action_focus_next()
