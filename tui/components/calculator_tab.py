@@ -21,7 +21,7 @@ from typing import Any
 from rich.text import Text
 from textual import work
 from textual.app import ComposeResult
-from textual.containers import Horizontal, Vertical
+from textual.containers import Vertical
 from textual.message import Message
 from textual.widget import Widget
 from textual.widgets import Static
@@ -98,47 +98,49 @@ class CalculatorTab(Widget):
         calc = self.calculator
         # narrow terminals stack the results under the form: the key results and the status stay
         # in sight on this line, above the card, while typing (shown below 120 columns only)
-        yield Static("", classes="glance")
-        with Horizontal(classes="card"):
-            with Vertical(classes="inputs-pane"):
-                yield Static(Text(calc.summary), classes="summary")
-                self.sheet = self.sheet_class(
-                    calc,
-                    entries=lambda: self.entries,
-                    on_entry=self._take_entry,
-                    on_cursor=self._explain_field,
-                    on_choose=self._choose,
-                    classes="form",
-                )
-                yield self.sheet
-                yield Static(Text(card_text.HELP, style="dim"), classes="help-line")
-            with Vertical(classes="results-pane"):
-                self.results = ResultsList(
-                    on_select=self._cycle_unit,
-                    on_cursor=self._explain_output,
-                    is_current=lambda: self.asked == self.solution_key,
-                    classes="results",
-                )
-                self.results.value_width = card_text.value_width(calc)
-                widest = max((len(o.equation) for o in calc.outputs), default=0)
-                self.results.equation_width = max(widest, 3) if widest else 0
-                yield self.results
-                self.plot = None
-                if calc.plots:
-                    from .plot_panel import PlotPanel
+        yield Static("", classes="glance")  # docked above the panes (gearhead.tcss)
+        # the panes are the card's own children, side by side (stacked below 120 columns): no
+        # container around them, which every frame drew again under them (one widget the size of
+        # the card)
+        with Vertical(classes="inputs-pane"):
+            yield Static(Text(calc.summary), classes="summary")
+            self.sheet = self.sheet_class(
+                calc,
+                entries=lambda: self.entries,
+                on_entry=self._take_entry,
+                on_cursor=self._explain_field,
+                on_choose=self._choose,
+                classes="form",
+            )
+            yield self.sheet
+            yield Static(Text(card_text.HELP, style="dim"), classes="help-line")
+        with Vertical(classes="results-pane"):
+            self.results = ResultsList(
+                on_select=self._cycle_unit,
+                on_cursor=self._explain_output,
+                is_current=lambda: self.asked == self.solution_key,
+                classes="results",
+            )
+            self.results.value_width = card_text.value_width(calc)
+            widest = max((len(o.equation) for o in calc.outputs), default=0)
+            self.results.equation_width = max(widest, 3) if widest else 0
+            yield self.results
+            self.plot = None
+            if calc.plots:
+                from .plot_panel import PlotPanel
 
-                    self.plot = PlotPanel(calc.plots)
-                    self.plot.unit_system = self.unit_system
-                    yield self.plot
-                self.tables = Tables(calc, self.entries)
-                yield from self.tables.compose()
-                # long or many warnings scroll in a box of their own instead of pushing the
-                # status line out of the pane
-                self.warnings_part = Warnings()
-                self.warnings, self.warnings_box = self.warnings_part.text_widget, self.warnings_part.box
-                yield from self.warnings_part.compose()
-                self.status = Static("", classes="status")
-                yield self.status
+                self.plot = PlotPanel(calc.plots)
+                self.plot.unit_system = self.unit_system
+                yield self.plot
+            self.tables = Tables(calc, self.entries)
+            yield from self.tables.compose()
+            # long or many warnings scroll in a box of their own instead of pushing the
+            # status line out of the pane
+            self.warnings_part = Warnings()
+            self.warnings, self.warnings_box = self.warnings_part.text_widget, self.warnings_part.box
+            yield from self.warnings_part.compose()
+            self.status = Static("", classes="status")
+            yield self.status
 
     @guarded
     def on_mount(self) -> None:
