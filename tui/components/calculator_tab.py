@@ -134,12 +134,11 @@ class CalculatorTab(Widget):
                 yield self.plot
             self.tables = Tables(calc, self.entries)
             yield from self.tables.compose()
-            # long or many warnings scroll in a box of their own instead of pushing the
-            # status line out of the pane
-            self.warnings_part = Warnings()
-            self.warnings, self.warnings_box = self.warnings_part.text_widget, self.warnings_part.box
-            yield from self.warnings_part.compose()
             self.status = Static("", classes="status")
+            # long or many warnings scroll in a box of their own (above the status line, mounted
+            # with the first warnings) instead of pushing the status line out of the pane
+            self.warnings_part = Warnings(lambda box: self.status.parent.mount(box, before=self.status))
+            self.warnings, self.warnings_box = self.warnings_part.text_widget, self.warnings_part.box
             yield self.status
 
     @guarded
