@@ -19,7 +19,7 @@ from time import perf_counter
 from typing import Any
 
 from rich.text import Text
-from textual import work
+from textual import events, work
 from textual.app import ComposeResult
 from textual.containers import Vertical
 from textual.message import Message
@@ -97,8 +97,11 @@ class CalculatorTab(Widget):
     def compose(self) -> ComposeResult:
         calc = self.calculator
         # narrow terminals stack the results under the form: the key results and the status stay
-        # in sight on this line, above the card, while typing (shown below 120 columns only)
-        yield Static("", classes="glance")  # docked above the panes (gearhead.tcss)
+        # in sight on this line, docked above the panes, while typing (below 120 columns only:
+        # composed on a narrow screen, else mounted once the screen is narrow, on_resize)
+        self.glance = Static("", classes="glance")
+        if self._narrow():
+            yield self.glance
         # the panes are the card's own children, side by side (stacked below 120 columns): no
         # container around them, which every frame drew again under them (one widget the size of
         # the card)
@@ -143,11 +146,19 @@ class CalculatorTab(Widget):
 
     @guarded
     def on_mount(self) -> None:
-        self.glance = self.query_one(".glance", Static)
         self.help_line = self.query_one(".help-line", Static)
         self._mounted = True
         self._apply_mode()
         self.solve()
+
+    def _narrow(self) -> bool:
+        """The screen is below the app's width breakpoint (GearheadApp.HORIZONTAL_BREAKPOINTS)."""
+        return self.screen.has_class("-narrow")
+
+    @guarded
+    def on_resize(self, event: events.Resize) -> None:
+        if self.glance.parent is None and self._narrow():  # the terminal narrowed: the glance line
+            self.mount(self.glance, before=0)
 
     # ---- entries in -----------------------------------------------------------------------
     @guarded
