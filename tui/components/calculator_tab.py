@@ -135,12 +135,16 @@ class CalculatorTab(Widget):
                 self.plot = PlotPanel(calc.plots)
                 self.plot.unit_system = self.unit_system
                 yield self.plot
-            self.tables = Tables(calc, self.entries)
+            # a table under the results and the chart; warnings under it: mounted later (the mode
+            # that shows the table, the first warnings), each goes above what follows it
+            self.tables = Tables(
+                calc, self.entries, lambda *table: self._mount_above(table, self.warnings_box)
+            )
             yield from self.tables.compose()
             self.status = Static("", classes="status")
             # long or many warnings scroll in a box of their own (above the status line, mounted
             # with the first warnings) instead of pushing the status line out of the pane
-            self.warnings_part = Warnings(lambda box: self.status.parent.mount(box, before=self.status))
+            self.warnings_part = Warnings(lambda box: self._mount_above((box,), self.status))
             self.warnings, self.warnings_box = self.warnings_part.text_widget, self.warnings_part.box
             yield self.status
 
@@ -150,6 +154,12 @@ class CalculatorTab(Widget):
         self._mounted = True
         self._apply_mode()
         self.solve()
+
+    def _mount_above(self, widgets: tuple[Widget, ...], below: Widget) -> None:
+        """Mount widgets into the results pane above `below`, or above the status line when
+        `below` is not mounted."""
+        before = below if below.parent is not None else self.status
+        self.status.parent.mount(*widgets, before=before)
 
     def _narrow(self) -> bool:
         """The screen is below the app's width breakpoint (GearheadApp.HORIZONTAL_BREAKPOINTS)."""
