@@ -60,11 +60,14 @@ commit before; machine under load 4-6, so read the ratios):
   in the window. Not changed (the data format and the search keep the golden outputs).
 What paid (kept): fewer widgets per card, nothing drawn differently (snapshots unchanged): the
 panes are the card's own children (no Horizontal the size of the card under them), the warnings
-box is mounted with the first warnings (two widgets), the chart panel draws "no data" as its own
-text (one Static), the glance line is composed only on a narrow screen (one): 12-24 widgets a
-card before, 8-21 after (settled, chart included). CPU key -> drawn 1693 -> 1511 ms (-11%),
-longest block 773 -> 687 (-11%), CPU until settled 3954 -> 3545 (-10%), 17 of 18 cards lower; the
-Horizontal alone was within the noise (1168 -> 1156), the hidden widgets made the rest.
+box is mounted with the first warnings (two widgets), a table of another mode when that mode is
+chosen (two), the chart panel draws "no data" as its own text (one Static), the glance line is
+composed only on a narrow screen (one): 12-24 widgets a card before, 8-21 after (settled, chart
+included). CPU key -> drawn 1426 -> 1293 ms (-9%), longest block 669 -> 605 (-10%), CPU until
+settled 3590 -> 3339 (-7%), 14 of 18 cards lower (an earlier pair of runs: -11%, -11%, -10%);
+the Horizontal alone was within the noise (1168 -> 1156), the hidden widgets made the rest. The
+wall-clock figures of this bench, same runs alternating, were not conclusive at load 6 (minimal
+app 32 ms, stalls 75-250 ms either way).
 What did not pay (measured, reverted): composing the chart's PlotWidget with the card once
 textual-plot is loaded: shown, the first paint grew (37-56 ms CPU against 27-42, its empty axes
 drawn); hidden until its data, the layouts stayed 78 over the 18 first visits (its display
