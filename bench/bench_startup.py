@@ -55,6 +55,48 @@ left stalls of 25 ms and more (the import holds the GIL; the loop gets it back e
 interval); showing the chart's "no data" line and the chart only when their display differs (the
 chart's own mount asks for the same layout: 4 layouts in the first visit either way).
 
+First visits, 2 December 2026, afternoon (scratch timers: UI-thread CPU, time.thread_time, per
+event-loop callback; 18 cards, sums of per-card medians over 5 fresh apps alternating with the
+commit before; machine under load 4-6, so read the ratios):
+- the longest block of a first visit is its first full paint, the same block as a repeat visit's
+  (median longest block, wall/CPU: first 30/24 ms, repeat 28/27 ms), so the stall target falls
+  with the repeat visit's paint. In that paint every visible widget renders its whole region, the
+  containers under their children too: the two bordered panes 1.8 and 1.3 ms, the Screen 1.0, the
+  card 0.8, the sheet 1.7, the results 0.9 (of 11.4 ms of render_lines, 20 ms of layout + paint).
+- before the first frame, beyond that paint, the CPU is Textual's mounting of each widget
+  (compose, register, style: about 2 ms a widget here, hidden ones too: the A/B below) and styles (10 ms a visit,
+  4 of them the sheet styled three times, at mount, focus and the old sheet's blur, 8 component
+  classes each); the calculator's import is 0.5-17 ms (elevator 9-17: dataclass creation in
+  sim/motion, sim/profiled, gains_numbers), importing modules that only solving needs. Splitting
+  every calculator's description from its solving (motion.plots, limit_grid.table(),
+  gains_code.mechanism_documents are declared at module level) was not done here.
+- after it, 2-7 layouts: Textual sets each new widget's virtual_size (a layout reactive) in the
+  first layout, so a second one always follows; the first warnings shrink the results list (its
+  scrollbar: one more); the chart's mount (PlotWidget, Grid, 4 Canvas, Legend) two, its legend
+  placed in render one.
+- ratio_finder: its first solve (worker thread) parses the parts catalogue (tomllib, ~1100 inline
+  tables, 24-30 ms) and builds the stage classes (~55 ms profiled), pure Python: the GIL it holds
+  stretches the first paint (wall/CPU 30/25 ms) and its allocations set off the full collection (12 ms)
+  in the window. Not changed (the data format and the search keep the golden outputs).
+What paid (kept): fewer widgets per card, nothing drawn differently (snapshots unchanged): the
+panes are the card's own children (no Horizontal the size of the card under them), the warnings
+box is mounted with the first warnings (two widgets), a table of another mode when that mode is
+chosen (two), the chart panel draws "no data" as its own text (one Static), the glance line is
+composed only on a narrow screen (one): 12-24 widgets a card before, 8-21 after (settled, chart
+included). CPU key -> drawn 1426 -> 1293 ms (-9%), longest block 669 -> 605 (-10%), CPU until
+settled 3590 -> 3339 (-7%), 14 of 18 cards lower (an earlier pair of runs: -11%, -11%, -10%);
+the Horizontal alone was within the noise (1168 -> 1156), the hidden widgets made the rest. The
+wall-clock figures of this bench, same runs alternating, were not conclusive at load 6 (minimal
+app 32 ms, stalls 75-250 ms either way).
+What did not pay (measured, reverted): composing the chart's PlotWidget with the card once
+textual-plot is loaded: shown, the first paint grew (37-56 ms CPU against 27-42, its empty axes
+drawn); hidden until its data, the layouts stayed 78 over the 18 first visits (its display
+toggled instead of its mount) and the CPU within the noise (1124 against 1145 ms). Textual's
+textual.lazy.Lazy (the framework's own deferral) was not used for the chart: the chart is already
+mounted after the first frame, and a Lazy panel (16 rows) would come a frame after the card and
+lay the results list out twice. Importing tomllib in core/parts only when reading: the app has
+it at start (its settings), so only this bench would have gained.
+
 Run from a clean clone (after `python3 -m venv .venv && .venv/bin/pip install -e '.[test]'`):
     .venv/bin/python bench/bench_startup.py [--app-only] [--runs N] [--gc]
 Before/after: run this file with another checkout's .venv/bin/python (its editable install imports

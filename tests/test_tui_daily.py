@@ -112,6 +112,33 @@ async def test_at_80x24_a_result_stays_in_sight_while_typing():
         assert "✗" in text_of(glance) and "Load" in text_of(glance)
 
 
+async def test_a_card_built_wide_shows_the_glance_line_once_the_terminal_narrows():
+    """The glance line is composed only on a narrow screen (a card built wide has none: a widget
+    fewer on its first visit); narrowed below 120 columns, the card shown and a card built wide
+    while hidden both show it, with their key result, and widened it goes."""
+    app = GearheadApp(blink=False, initial="gear_ratio", hide_timings=True)
+    async with app.run_test(size=(140, 45)) as pilot:
+        await settle(pilot)
+        tab = app.query_one("#calc-gear_ratio", CalculatorTab)
+        hidden = await app.card("ratio_distance")  # built wide, not shown
+        await settle(pilot)
+        assert not tab.query(".glance") and not hidden.query(".glance")
+        await pilot.resize_terminal(80, 24)
+        await settle(pilot)
+        for card in (tab, None):
+            if card is None:  # the card built while wide, shown now
+                app.show_calculator("ratio_distance")
+                await settle(pilot)
+                card = hidden
+            glance = card.query_one(".glance", Static)
+            first = next(iter(card.solution.outputs))
+            assert glance.display and glance.region.height == 1 and glance.region.y == card.region.y
+            assert card.solution.outputs[first].text.split()[0] in text_of(glance)
+        await pilot.resize_terminal(140, 45)
+        await settle(pilot)
+        assert not glance.display and glance.region.height == 0
+
+
 async def test_status_is_one_line_whatever_the_message():
     app = GearheadApp(blink=False, initial="gear_ratio")
     async with app.run_test(size=(140, 45)) as pilot:

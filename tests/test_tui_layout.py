@@ -177,7 +177,6 @@ async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_ser
     """A title like 'Force [N]' lost '[N]' to markup in the plot selector; a plot without data
     showed an empty frame and legend; one point or all-equal values must not crash."""
     from textual.app import App
-    from textual.widgets import Static
 
     from gearhead.core.model import Plot, Solution
     from gearhead.tui.components.plot_panel import ChartChooser, PlotPanel
@@ -195,10 +194,16 @@ async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_ser
     async with app.run_test(size=(80, 24)) as pilot:
         panel = app.query_one(PlotPanel)
         assert panel.query_one(ChartChooser).render_line(0).text.startswith("Force [N] ")
-        empty = panel.query_one("#plot-empty", Static)
+        assert not panel.empty and "No data" not in panel.render().plain  # nothing solved yet
         await panel.show(Solution("x", {}, {}, [], {}))
         await pilot.pause()
-        assert empty.display
+        assert panel.empty
+        # the panel's own line, under the chooser: on screen, where the chart would be
+        lines = [app.screen.get_widget_at(x, y) for x, y in ((1, 2), (5, 2))]
+        assert all(w is panel for w, _ in lines), lines
+        assert "No data to plot for these inputs." in "".join(
+            s.text for s in panel.render_lines(panel.region.reset_offset)[2:3]
+        )
         for series in (
             {"a": ([1.0], [2.0])},
             {"a": ([1.0, 2.0, 3.0], [5.0, 5.0, 5.0])},
@@ -207,7 +212,7 @@ async def test_plot_panel_handles_bracketed_titles_and_missing_or_degenerate_ser
         ):
             await panel.show(Solution("x", {}, {}, [], series))
             await pilot.pause()
-        assert not empty.display
+        assert not panel.empty
 
 
 async def test_field_help_keeps_brackets():

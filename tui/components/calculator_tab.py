@@ -19,9 +19,9 @@ from time import perf_counter
 from typing import Any
 
 from rich.text import Text
-from textual import work
+from textual import events, work
 from textual.app import ComposeResult
-from textual.containers import Horizontal, Vertical
+from textual.containers import Vertical
 from textual.message import Message
 from textual.widget import Widget
 from textual.widgets import Static
@@ -97,56 +97,78 @@ class CalculatorTab(Widget):
     def compose(self) -> ComposeResult:
         calc = self.calculator
         # narrow terminals stack the results under the form: the key results and the status stay
-        # in sight on this line, above the card, while typing (shown below 120 columns only)
-        yield Static("", classes="glance")
-        with Horizontal(classes="card"):
-            with Vertical(classes="inputs-pane"):
-                yield Static(Text(calc.summary), classes="summary")
-                self.sheet = self.sheet_class(
-                    calc,
-                    entries=lambda: self.entries,
-                    on_entry=self._take_entry,
-                    on_cursor=self._explain_field,
-                    on_choose=self._choose,
-                    classes="form",
-                )
-                yield self.sheet
-                yield Static(Text(card_text.HELP, style="dim"), classes="help-line")
-            with Vertical(classes="results-pane"):
-                self.results = ResultsList(
-                    on_select=self._cycle_unit,
-                    on_cursor=self._explain_output,
-                    is_current=lambda: self.asked == self.solution_key,
-                    classes="results",
-                )
-                self.results.value_width = card_text.value_width(calc)
-                widest = max((len(o.equation) for o in calc.outputs), default=0)
-                self.results.equation_width = max(widest, 3) if widest else 0
-                yield self.results
-                self.plot = None
-                if calc.plots:
-                    from .plot_panel import PlotPanel
+        # in sight on this line, docked above the panes, while typing (below 120 columns only:
+        # composed on a narrow screen, else mounted once the screen is narrow, on_resize)
+        self.glance = Static("", classes="glance")
+        if self._narrow():
+            yield self.glance
+        # the panes are the card's own children, side by side (stacked below 120 columns): no
+        # container around them, which every frame drew again under them (one widget the size of
+        # the card)
+        with Vertical(classes="inputs-pane"):
+            yield Static(Text(calc.summary), classes="summary")
+            self.sheet = self.sheet_class(
+                calc,
+                entries=lambda: self.entries,
+                on_entry=self._take_entry,
+                on_cursor=self._explain_field,
+                on_choose=self._choose,
+                classes="form",
+            )
+            yield self.sheet
+            yield Static(Text(card_text.HELP, style="dim"), classes="help-line")
+        with Vertical(classes="results-pane"):
+            self.results = ResultsList(
+                on_select=self._cycle_unit,
+                on_cursor=self._explain_output,
+                is_current=lambda: self.asked == self.solution_key,
+                classes="results",
+            )
+            self.results.value_width = card_text.value_width(calc)
+            widest = max((len(o.equation) for o in calc.outputs), default=0)
+            self.results.equation_width = max(widest, 3) if widest else 0
+            yield self.results
+            self.plot = None
+            if calc.plots:
+                from .plot_panel import PlotPanel
 
-                    self.plot = PlotPanel(calc.plots)
-                    self.plot.unit_system = self.unit_system
-                    yield self.plot
-                self.tables = Tables(calc, self.entries)
-                yield from self.tables.compose()
-                # long or many warnings scroll in a box of their own instead of pushing the
-                # status line out of the pane
-                self.warnings_part = Warnings()
-                self.warnings, self.warnings_box = self.warnings_part.text_widget, self.warnings_part.box
-                yield from self.warnings_part.compose()
-                self.status = Static("", classes="status")
-                yield self.status
+                self.plot = PlotPanel(calc.plots)
+                self.plot.unit_system = self.unit_system
+                yield self.plot
+            # a table under the results and the chart; warnings under it: mounted later (the mode
+            # that shows the table, the first warnings), each goes above what follows it
+            self.tables = Tables(
+                calc, self.entries, lambda *table: self._mount_above(table, self.warnings_box)
+            )
+            yield from self.tables.compose()
+            self.status = Static("", classes="status")
+            # long or many warnings scroll in a box of their own (above the status line, mounted
+            # with the first warnings) instead of pushing the status line out of the pane
+            self.warnings_part = Warnings(lambda box: self._mount_above((box,), self.status))
+            self.warnings, self.warnings_box = self.warnings_part.text_widget, self.warnings_part.box
+            yield self.status
 
     @guarded
     def on_mount(self) -> None:
-        self.glance = self.query_one(".glance", Static)
         self.help_line = self.query_one(".help-line", Static)
         self._mounted = True
         self._apply_mode()
         self.solve()
+
+    def _mount_above(self, widgets: tuple[Widget, ...], below: Widget) -> None:
+        """Mount widgets into the results pane above `below`, or above the status line when
+        `below` is not mounted."""
+        before = below if below.parent is not None else self.status
+        self.status.parent.mount(*widgets, before=before)
+
+    def _narrow(self) -> bool:
+        """The screen is below the app's width breakpoint (GearheadApp.HORIZONTAL_BREAKPOINTS)."""
+        return self.screen.has_class("-narrow")
+
+    @guarded
+    def on_resize(self, event: events.Resize) -> None:
+        if self.glance.parent is None and self._narrow():  # the terminal narrowed: the glance line
+            self.mount(self.glance, before=0)
 
     # ---- entries in -----------------------------------------------------------------------
     @guarded

@@ -4,7 +4,7 @@ them what it solved."""
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import Any
 
 from rich.text import Text
@@ -22,10 +22,11 @@ class Tables:
     """A title and a scrollable ResultTable per declared Table (core.model.Table), each column's
     unit in its header; a table of another mode (the sprint's optimise table) is hidden."""
 
-    def __init__(self, calculator: Calculator, entries: dict[str, Any]) -> None:
+    def __init__(self, calculator: Calculator, entries: dict[str, Any], mount: Callable[..., object]) -> None:
         self.calculator = calculator
-        self.entries = entries  # the card's at compose: a table of another mode starts hidden
+        self.entries = entries  # the card's at compose: a table of another mode is not mounted
         self.grids: dict[str, tuple[Static, ResultTable]] = {}
+        self._mount = mount  # puts a table's title and grid into the pane (a mode that shows it)
 
     def compose(self) -> Iterator[Widget]:
         for t in self.calculator.tables:
@@ -38,12 +39,13 @@ class Tables:
             grid.tooltip = (
                 "ctrl+g sends the row under the cursor to the calculator it feeds" if t.exports else None
             )
-            # hidden from the start when the entries are of another mode: no layout to hide it
-            # at the first solve (the first visit's second layout)
-            grid.display = title.display = t.shown_in(self._parsed(t))
             self.grids[t.name] = (title, grid)
-            yield title
-            yield grid
+            # a table of another mode than the entries' is mounted when that mode is chosen (show):
+            # two widgets fewer to compose and style on the card's first visit, and no layout to
+            # hide it at the first solve
+            if t.shown_in(self._parsed(t)):
+                yield title
+                yield grid
 
     def _parsed(self, table) -> dict[str, Any]:
         """The entries `table.shown_in` reads (its mode and `when` fields), parsed; a field that
@@ -65,7 +67,11 @@ class Tables:
         for t in self.calculator.tables:
             title, grid = self.grids[t.name]
             shown = t.shown_in(entries)
-            if grid.display != shown:
+            if grid.parent is None:
+                if not shown:
+                    continue
+                self._mount(title, grid)
+            elif grid.display != shown:
                 grid.display = title.display = shown
             grid.show(cells[t.name])
 
@@ -82,18 +88,16 @@ class Tables:
 
 
 class Warnings:
-    """The warnings box: it grows with its text, scrolls when long, and hides when empty."""
+    """The warnings box: it grows with its text, scrolls when long, and hides when empty. Mounted
+    (by `mount`, before the status line) with the first warnings the card shows: most cards have
+    none, and two widgets fewer to compose and style made a card's first visit cheaper."""
 
-    def __init__(self) -> None:
-        self.box = VerticalScroll(classes="warnings-box")
+    def __init__(self, mount: Callable[[Widget], object]) -> None:
         self.text_widget = Static("", classes="warnings")
-        # empty and hidden as composed (tcss): a first solve without warnings changes nothing
+        self.box = VerticalScroll(self.text_widget, classes="warnings-box")
+        self._mount = mount
         self.text = ""
         self.lines = 0  # lines the text took when last shown (-1: unknown, lay out)
-
-    def compose(self) -> Iterator[Widget]:
-        with self.box:
-            yield self.text_widget
 
     def show(self, text: str) -> None:
         if text == self.text:
@@ -112,3 +116,5 @@ class Warnings:
         self.text_widget.update(content, layout=not same_height)
         if self.box.display != bool(text):
             self.box.display = bool(text)
+        if text and self.box.parent is None:  # the first warnings: the box joins the pane
+            self._mount(self.box)

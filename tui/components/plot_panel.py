@@ -14,7 +14,6 @@ from textual.containers import Vertical
 from textual.message import Message
 from textual.strip import Strip
 from textual.widget import Widget
-from textual.widgets import Static
 
 from gearhead.core import units
 from gearhead.core.model import HeatMap, Plot, Solution
@@ -105,17 +104,34 @@ class ChartChooser(Widget, can_focus=True):
 
 
 class PlotPanel(Vertical):
+    EMPTY = "No data to plot for these inputs."
+
     def __init__(self, plots: tuple[Plot | HeatMap, ...]) -> None:
         super().__init__(classes="plot-panel")
         self.plots = plots
         self.solution: Solution | None = None
         self.unit_system = "calculator"  # imperial / metric map the axes' units too
+        self.empty = False  # the chart shown has no data: the panel says so (render)
 
     def compose(self) -> ComposeResult:
         if len(self.plots) > 1:
             yield ChartChooser([p.title for p in self.plots], id="plot-choice")
-        yield Static(Text("No data to plot for these inputs.", style="dim"), id="plot-empty")
         # the PlotWidget itself is mounted on first use: textual-plot and numpy load after the first frame
+
+    def render(self) -> Text:
+        """The panel's own text, under its children: "no data" below the chooser's line while the
+        chart shown has none (its widget is hidden then). A line of the panel, not a widget of its
+        own: one widget fewer to compose and style on a card's first visit, and no layout when
+        it comes or goes."""
+        if not self.empty:
+            return Text("")
+        top = "\n" * (1 + (len(self.plots) > 1))  # a blank line under the chooser, as a padding
+        return Text.assemble(top, " ", (self.EMPTY, "dim"))
+
+    def _say_empty(self, empty: bool) -> None:
+        if empty != self.empty:
+            self.empty = empty
+            self.refresh()
 
     @on(ChartChooser.Changed, "#plot-choice")
     def _choose(self, event: ChartChooser.Changed) -> None:
@@ -209,7 +225,7 @@ class PlotPanel(Vertical):
                 label=escape(solution.series_label(name)) if len(spec.series) > 1 else None,
             )
         # an empty frame with an empty legend box looks like a drawing bug: say there is no data
-        self.query_one("#plot-empty", Static).display = drawn == 0
+        self._say_empty(drawn == 0)
         plot.display = drawn > 0
         if len(spec.series) > 1 and drawn:
             plot.show_legend()
@@ -250,7 +266,7 @@ class PlotPanel(Vertical):
                 return
             view = HeatMapView()
             await self.mount(view)
-        self.query_one("#plot-empty", Static).display = data is None
+        self._say_empty(data is None)
         view.display = data is not None
         if data is not None:
             view.show(spec, data)
