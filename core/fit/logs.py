@@ -82,6 +82,37 @@ def _error(path, message: str) -> InputError:
     return InputError("log", message, os.fspath(path))
 
 
+def _open(path, **text):
+    """The log opened for reading (binary, or text with `text`'s encoding and newline), refused
+    unless it is a regular file: a FIFO's open waits for a writer and /dev/zero never ends, so
+    they are opened without waiting (O_NONBLOCK) and looked at before anything is read. Raises
+    OSError as open() does, or the InputError naming what the path is."""
+    import stat
+
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0))
+    try:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            what = (
+                "a directory"
+                if stat.S_ISDIR(mode)
+                else "a pipe (FIFO)"
+                if stat.S_ISFIFO(mode)
+                else "a device"
+                if stat.S_ISCHR(mode) or stat.S_ISBLK(mode)
+                else "a socket"
+                if stat.S_ISSOCK(mode)
+                else "not a regular file"
+            )
+            raise _error(path, f"is {what}, not a log file")
+        if hasattr(os, "set_blocking"):
+            os.set_blocking(fd, True)
+        return os.fdopen(fd, "r" if text else "rb", **text)
+    except BaseException:
+        os.close(fd)
+        raise
+
+
 class WPILog:
     """A WPILog file opened for streaming: the header is checked here, records are read lazily."""
 
@@ -89,8 +120,8 @@ class WPILog:
         self.path = os.fspath(path)
         self.warnings: list[str] = []
         try:
-            self.size = os.path.getsize(self.path)
-            with open(self.path, "rb") as f:
+            with _open(self.path) as f:
+                self.size = os.fstat(f.fileno()).st_size
                 head = f.read(12)
                 if len(head) < 12 or head[:6] != MAGIC:
                     raise _error(path, "is not a WPILog (it does not start with the 'WPILOG' header)")
@@ -146,7 +177,11 @@ class WPILog:
         path = self.path
         size = self.size
         HL, OFF = _HL, _OFF
-        with open(path, "rb") as f:
+        try:
+            f = _open(path)
+        except OSError as exc:
+            raise _error(path, f"cannot be read ({exc.strerror or exc})") from None
+        with f:
             f.seek(self.start)
             base = self.start
             buf = f.read(CHUNK)
@@ -437,7 +472,7 @@ def read_csv(path, wanted: Callable[[str], bool]) -> tuple[dict[str, Signal], di
     (a test state). Read row by row, keeping only the wanted columns."""
     path = os.fspath(path)
     try:
-        f = open(path, newline="", encoding="utf-8-sig")
+        f = _open(path, newline="", encoding="utf-8-sig")
     except OSError as exc:
         raise _error(path, f"cannot be read ({exc.strerror or exc})") from None
     with f:
