@@ -8,6 +8,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+import warnings
 
 import pytest
 
@@ -49,3 +50,99 @@ def test_directory_is_named(tmp_path):
         d.mkdir()
         with pytest.raises(InputError, match="log: is a directory, not a log file"):
             logs.read(d, lambda n: True)
+
+
+# --- CSV: read as written, or refused naming the cell ---------------------------------------------
+
+
+@pytest.mark.parametrize("cell", ["1_000", "١٢", "0x10", "1,5"])
+def test_csv_cell_python_reads_but_no_log_writes_is_text_named(tmp_path, cell):
+    # float() took '1_000' as 1000 and Arabic-Indic digits as 12: silently another number
+    path = tmp_path / "log.csv"
+    path.write_text(f'Timestamp,v\n0.5,1.0\n0.75,"{cell}"\n', encoding="utf-8")
+    sigs, _, _ = logs.read(path, lambda n: True)
+    assert not sigs["v"].numeric()
+    assert [logs.is_number(x) for x in sigs["v"].values] == [True, False]
+
+
+def test_csv_time_python_reads_but_no_log_writes_is_refused(tmp_path):
+    path = tmp_path / "log.csv"
+    path.write_text("Timestamp,v\n1_0,1.0\n", encoding="utf-8")
+    with pytest.raises(InputError, match="line 2: the time '1_0' is not a number"):
+        logs.read(path, lambda n: True)
+
+
+def test_csv_two_columns_of_one_name_refused(tmp_path):
+    # the second silently replaced the first
+    path = tmp_path / "log.csv"
+    path.write_text("Timestamp,v,w,v\n0,1,2,3\n", encoding="utf-8")
+    with pytest.raises(InputError, match=r"has two columns named 'v' \(columns 2 and 4\)"):
+        logs.read(path, lambda n: True)
+    sigs, _, _ = logs.read(path, lambda n: n == "w")  # a twin not read is no matter
+    assert list(sigs["w"].values) == [2.0]
+
+
+def test_csv_endless_line_refused_in_bounded_memory(tmp_path, monkeypatch):
+    monkeypatch.setattr(logs, "CSV_LINE", 1 << 12)
+    path = tmp_path / "log.csv"
+    path.write_text("Timestamp," + "v," * 5000 + "\n0,1\n", encoding="utf-8")
+    with pytest.raises(InputError, match="has a line longer than"):
+        logs.read(path, lambda n: True)
+    path.write_text("Timestamp," + "v," * 1000 + "\n0,1\n", encoding="utf-8")  # long, but a line
+    with pytest.raises(InputError, match="two columns named 'v'"):
+        logs.read(path, lambda n: True)
+
+
+def test_fit_names_the_text_cell_of_a_numeric_role(tmp_path, capsys):
+    import csv as csvmod
+
+    sys.path.insert(0, os.path.dirname(__file__))
+    from fit_plants import simulate
+
+    from gearhead.tui.cli import main
+
+    pytest.importorskip("wpiutil")
+    src = tmp_path / "src.csv"
+    simulate(tmp_path / "src.wpilog", "elevator", ELEVATOR, csv_path=src, noise=1e-3)
+    rows = list(csvmod.reader(src.open()))
+    rows[700][2] = "1_000"
+    bad = tmp_path / "bad.csv"
+    with bad.open("w", newline="") as f:
+        csvmod.writer(f).writerows(rows)
+    assert main(["fit", str(bad), "--card", "elevator", "--units", "meters"]) == 2
+    err = capsys.readouterr().err
+    assert "voltage-motor-mech: holds text, not the voltage's numbers: '1_000' at t = " in err
+
+
+ELEVATOR = {"kS": 0.2, "kV": 3.0, "kA": 0.3, "kG": 0.5}
+
+
+def test_replay_overflow_is_a_note_not_a_warning(tmp_path, capsys):
+    # a position of 1e308 m overflowed the replay's squared error: numpy's RuntimeWarning on
+    # stderr and a '-' in the table with no word of why
+    sys.path.insert(0, os.path.dirname(__file__))
+    from fit_plants import simulate
+
+    from gearhead.tui.cli import main
+
+    pytest.importorskip("wpiutil")
+    src = tmp_path / "src.csv"
+    simulate(tmp_path / "src.wpilog", "elevator", ELEVATOR, csv_path=src, noise=1e-3)
+    lines = src.read_text().splitlines()
+    cells = lines[700].split(",")
+    cells[3] = "1e308"
+    lines[700] = ",".join(cells)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("\n".join(lines) + "\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        assert main(["fit", str(bad), "--card", "elevator", "--json"]) == 0
+    out = capsys.readouterr().out
+    import json
+
+    data = json.loads(out)
+    assert data["replay"][data["favoured"]]["position_rmse"] is None
+    assert any(
+        "position-motor-mech: the replay's position error is beyond the float range" in n and "1e+308" in n
+        for n in data["notes"]
+    )

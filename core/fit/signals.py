@@ -204,7 +204,9 @@ def pick(
             if s.numeric():
                 raise InputError(state, "holds numbers, not the test's state names", source)
         elif not s.numeric():
-            raise InputError(name, f"holds text, not the {role}'s numbers", source)
+            k = next((k for k, v in enumerate(s.values) if not logs.is_number(v)), 0)
+            at = f": {s.values[k][:40]!r} at t = {s.times[k]:g} s" if s.values else ""
+            raise InputError(name, f"holds text, not the {role}'s numbers{at}", source)
     unit_names: dict[str, str] = {}
     factors: dict[str, float] = {}
     for role, rate in (("position", False), ("velocity", True)):
