@@ -146,3 +146,72 @@ def test_replay_overflow_is_a_note_not_a_warning(tmp_path, capsys):
         "position-motor-mech: the replay's position error is beyond the float range" in n and "1e+308" in n
         for n in data["notes"]
     )
+
+
+# --- --apply --------------------------------------------------------------------------------------
+
+WORKBOOK = """format = 1
+name = "hostile"
+# the lift, inline
+[cards]
+lift = { calculator = "elevator", inputs = { load_mass = "15 lb", ratio = 9 } }  # keep me
+"""
+
+
+@pytest.fixture(scope="module")
+def lift_log(tmp_path_factory):
+    pytest.importorskip("wpiutil")
+    sys.path.insert(0, os.path.dirname(__file__))
+    from fit_plants import simulate
+
+    return simulate(tmp_path_factory.mktemp("lift") / "lift.wpilog", "elevator", ELEVATOR, noise=1e-3)
+
+
+def test_apply_to_a_workbook_with_a_byte_order_mark_and_crlf(tmp_path, lift_log, capsys):
+    # the card loaded (presets.read_text takes a BOM) but --apply read the file itself: "is not
+    # TOML (Empty key at line 1 col 0)"; and a CRLF file came back LF
+    from gearhead.tui.cli import main
+
+    wb = tmp_path / "wb.toml"
+    wb.write_bytes(b"\xef\xbb\xbf" + WORKBOOK.replace("\n", "\r\n").encode())
+    code = main(
+        ["fit", str(lift_log), "--card", "elevator", "--workbook", str(wb), "--name", "lift", "--apply"]
+    )
+    assert code == 0, capsys.readouterr().err
+    after = wb.read_bytes().decode("utf-8-sig")
+    assert "\n" not in after.replace("\r\n", "") and "# keep me\r\n" in after
+    assert 'load_mass = "15 lb"' not in after and "kg" in after
+    assert main(["check", str(wb)]) == 0
+
+
+@pytest.mark.parametrize("where", ["workbook", "preset"])
+def test_apply_refuses_a_file_changed_since_it_was_read(tmp_path, lift_log, monkeypatch, capsys, where):
+    # the fitted entries come from the card as read (its motor, ratio, spool): a ratio changed on
+    # disk meanwhile had them written beside it, silently wrong
+    from gearhead.core.fit import entries
+    from gearhead.tui.cli import main
+
+    path = tmp_path / "card.toml"
+    if where == "workbook":
+        path.write_text(WORKBOOK, encoding="utf-8")
+        args = ["--workbook", str(path), "--name", "lift"]
+    else:
+        path.write_text(
+            'format = 1\ncalculator = "elevator"\nname = "lift"\n[inputs]\nload_mass = "15 lb"\nratio = 9\n',
+            encoding="utf-8",
+        )
+        args = ["--preset", str(path)]
+    real = entries.load_card
+
+    def load_then_edit(*a, **k):
+        card = real(*a, **k)
+        path.write_text(path.read_text(encoding="utf-8").replace("ratio = 9", "ratio = 12"), encoding="utf-8")
+        return card
+
+    monkeypatch.setattr(entries, "load_card", load_then_edit)
+    capsys.readouterr()
+    code = main(["fit", str(lift_log), "--card", "elevator", *args, "--apply", "--json"])
+    err = capsys.readouterr().err
+    assert code == 2 and f"{where}: changed on disk since it was read" in err and "nothing written" in err
+    edited = path.read_text(encoding="utf-8")
+    assert "ratio = 12" in edited and "friction_force" not in edited and "15 lb" in edited
