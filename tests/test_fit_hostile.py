@@ -5,6 +5,7 @@ traceback, nothing written."""
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -14,6 +15,8 @@ import pytest
 
 from gearhead.core.errors import InputError
 from gearhead.core.fit import logs
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def _gearhead(*args, timeout=60):
@@ -215,3 +218,29 @@ def test_apply_refuses_a_file_changed_since_it_was_read(tmp_path, lift_log, monk
     assert code == 2 and f"{where}: changed on disk since it was read" in err and "nothing written" in err
     edited = path.read_text(encoding="utf-8")
     assert "ratio = 12" in edited and "friction_force" not in edited and "15 lb" in edited
+
+
+def test_preset_takes_what_every_preset_option_takes_and_apply_names_what_it_will_not_change(
+    lift_log, capsys, tmp_path
+):
+    # README: --preset takes a file, builtin:CALC/NAME or a share code; `fit` said "file not found"
+    # for builtin:elevator/two_neo, and --apply to `--workbook builtin:robot_2027` said the same
+    from gearhead.tui.cli import main
+
+    log = str(lift_log)
+    wb = ["--workbook", "builtin:robot_2027", "--name", "lift"]
+    assert main(["fit", log, "--card", "elevator", "--preset", "builtin:elevator/two_neo", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["card_source"] == "builtin:elevator/two_neo"
+    for args, words in (
+        (["--preset", "builtin:elevator/two_neo"], "--apply: does not change a built-in preset"),
+        (wb, "--apply: does not change an example workbook"),
+        (["--preset", ""], "--preset: is empty"),
+    ):
+        assert main(["fit", log, "--card", "elevator", *args, "--apply"]) == 2
+        err = capsys.readouterr().err
+        assert words in err and err.count("\n") == 1, err
+    assert main(["share", os.path.join(ROOT, "presets/elevator/two_neo.toml")]) == 0
+    code = capsys.readouterr().out.split()[0]
+    assert main(["fit", log, "--card", "elevator", "--preset", code, "--apply"]) == 2
+    assert "--apply: writes into a preset file; this preset is not one" in capsys.readouterr().err
+    assert not list(tmp_path.iterdir())

@@ -62,10 +62,16 @@ def apply(
     workbook: str | None = None,
     name: str | None = None,
 ) -> Applied:
+    import os
+
     import tomlkit
 
-    from .. import atomic_file, presets
+    from .. import atomic_file, builtin, presets
 
+    given = workbook if workbook is not None else preset
+    if given is not None and builtin.is_builtin(given) and not os.path.isfile(given):
+        what = "an example workbook" if workbook is not None else "a built-in preset"
+        raise InputError("--apply", f"does not change {what}: copy it and fit the copy", given)
     if workbook is not None:
         path = Path(workbook)
         field = "workbook"
@@ -81,6 +87,8 @@ def apply(
             pass
     else:
         raise InputError("--apply", "needs the card's file: --preset FILE or --workbook FILE --name CARD")
+    if preset is not None and not os.path.isfile(path):  # a share code or ReCalc link: no file to write
+        raise InputError("--apply", "writes into a preset file; this preset is not one", preset[:80])
     try:
         # as the card was read (a regular file, UTF-8 with or without a byte-order mark: a BOM was
         # "not TOML" here though the card loaded; the line ends as they are, not made \n)

@@ -47,7 +47,7 @@ def load_card(
     kind: str, preset: str | None = None, workbook: str | None = None, name: str | None = None
 ) -> Card:
     """The card's values (its defaults, a preset, or a workbook's card) and its model's figures."""
-    from .. import presets, registry
+    from .. import registry
     from ..model import parse_inputs
 
     calc = registry.get(kind)
@@ -73,7 +73,11 @@ def load_card(
             raise InputError("--name", f"card {name!r} could not be read: {result.error}", workbook)
         raw, label = result.entries, f"{workbook}: {name}"
     elif preset is not None:
-        p = presets.load(preset)
+        from .. import share
+
+        if not preset.strip():  # `--preset ""` (an unset shell variable)
+            raise InputError("--preset", "is empty; give a preset file")
+        p = share.load_any(preset)  # as every --preset: a file, builtin:CALC/NAME, a share code
         if p.calculator != kind:
             raise InputError("--preset", f"is a {p.calculator} preset, not {kind}", preset)
         raw, label = p.inputs, f"{preset}"
