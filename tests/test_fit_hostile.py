@@ -244,3 +244,56 @@ def test_preset_takes_what_every_preset_option_takes_and_apply_names_what_it_wil
     assert main(["fit", log, "--card", "elevator", "--preset", code, "--apply"]) == 2
     assert "--apply: writes into a preset file; this preset is not one" in capsys.readouterr().err
     assert not list(tmp_path.iterdir())
+
+
+# --- options and signals named wrong ------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        # a voltage named as the current (its metadata says Volt) was fitted as amps, silently
+        (["--current", "voltage-motor-mech"], "voltage-motor-mech: has the unit 'Volt'; a current in amps"),
+        (
+            ["--bus-voltage", "position-motor-mech"],
+            "position-motor-mech: has the unit 'Meter'; a voltage in volts",
+        ),
+        # an empty option (an unset shell variable) was read as not given
+        (["--units", ""], "--units: is empty"),
+        (["--state", " "], "--state: is empty"),
+        (["--motor", ""], "--motor: is empty"),
+        # position × 1e308 overflowed to inf: numpy's RuntimeWarning, then a wrong reason
+        (["--scale", "1e308"], "position-motor-mech: overflows when scaled to SI (× 1e+308"),
+    ],
+)
+def test_a_wrong_option_is_named(lift_log, capsys, args, words):
+    from gearhead.tui.cli import main
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        assert main(["fit", str(lift_log), "--card", "elevator", *args]) == 2
+    err = capsys.readouterr().err
+    assert words in err and err.count("\n") == 1, err
+
+
+def test_a_long_unit_is_cut_in_the_message(tmp_path):
+    from gearhead.core.fit.signals import unit_factor
+
+    with pytest.raises(InputError) as exc:
+        unit_factor("Furlong" * 5000, False, "position", "log")
+    assert len(str(exc.value)) < 300
+
+
+def test_a_battery_whose_voltage_rises_with_current_is_not_fitted(tmp_path):
+    # R = -0.03 Ω was shown as the "battery + wiring resistance", ± its sigma, as a fitted entry
+    pytest.importorskip("wpiutil")
+    sys.path.insert(0, os.path.dirname(__file__))
+    from fit_plants import simulate
+
+    from gearhead.core import fit
+
+    g = {"kS": 0.2, "kV": 3.0, "kA": 0.3, "kG": 0.5}
+    path = simulate(tmp_path / "bat.wpilog", "elevator", g, battery=(12.6, -0.03, 1, 0.1, 1.4), noise=1e-3)
+    r = fit.fit_log(path, "elevator")
+    assert not any(e[0] == "battery + wiring resistance" for e in r.entries)
+    assert any("battery resistance not fitted" in n and "≤ 0" in n for n in r.notes), r.notes
