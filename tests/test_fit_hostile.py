@@ -297,3 +297,35 @@ def test_a_battery_whose_voltage_rises_with_current_is_not_fitted(tmp_path):
     r = fit.fit_log(path, "elevator")
     assert not any(e[0] == "battery + wiring resistance" for e in r.entries)
     assert any("battery resistance not fitted" in n and "≤ 0" in n for n in r.notes), r.notes
+
+
+# --- the app ------------------------------------------------------------------------------------------
+
+
+def test_enter_pressed_again_as_the_palette_runs_a_command_does_not_end_the_app(tmp_path):
+    # ctrl+p, a command, then Enter Enter Enter in one burst (how "Fit from log…" is reached, and
+    # what a key storm on the fit dialog typed): Textual's palette dismissed itself once per Enter,
+    # popping the screens below it, and ended the app with ScreenStackError
+    import time
+
+    from tests.test_storm import TMUX, Storm
+
+    if TMUX is None:
+        pytest.skip("tmux is not installed")
+    storm = Storm(tmp_path)
+    try:
+        deadline = time.monotonic() + 20
+        while "F1 Motors" not in storm.screen():
+            assert time.monotonic() < deadline, storm.screen()
+            time.sleep(0.1)
+        for command in ("Open Elevator", "Open Motor", "Open Arm"):
+            storm.tmux("send-keys", "-t", "app", "C-p")
+            time.sleep(0.6)
+            storm.tmux("send-keys", "-t", "app", "-l", command)
+            time.sleep(0.8)
+            storm.tmux("send-keys", "-t", "app", "Enter", "Enter", "Enter")
+            time.sleep(1.0)
+            assert "GEARHEAD-EXIT=" not in storm.screen(), (command, storm.screen())
+        assert "Traceback" not in storm.log_text(), storm.log_text()[-3000:]
+    finally:
+        storm.tmux("kill-server")
