@@ -329,3 +329,35 @@ def test_enter_pressed_again_as_the_palette_runs_a_command_does_not_end_the_app(
         assert "Traceback" not in storm.log_text(), storm.log_text()[-3000:]
     finally:
         storm.tmux("kill-server")
+
+
+async def test_esc_during_a_long_fit_leaves_nothing_the_app_waits_for_on_quitting(monkeypatch):
+    # the fit ran in the worker's own (executor) thread: after Esc it read on (a 170 MB log:
+    # 20-45 s), and the app, whose exit joins that thread, took as long to end after ctrl+q
+    import threading
+
+    from gearhead.core import fit as fitmod
+    from gearhead.tui.app import GearheadApp
+    from tests.test_fit_app import SIZE, open_fit
+
+    release, ran = threading.Event(), []
+
+    def slow(*args, **kwargs):
+        ran.append(threading.current_thread().daemon)
+        release.wait(30)
+        raise InputError("log", "released")
+
+    monkeypatch.setattr(fitmod, "fit_log", slow)
+    app = GearheadApp(blink=False, initial="elevator", hide_timings=True)
+    try:
+        async with app.run_test(size=SIZE) as pilot:
+            screen = await open_fit(pilot)
+            screen.query_one("#fit-path").value = "whatever.wpilog"
+            await pilot.press("enter")
+            await pilot.pause(0.2)
+            assert ran == [True], "the fit runs where the app's exit would wait for it"
+            await pilot.press("escape")
+            await pilot.pause(0.2)
+            assert not isinstance(app.screen, type(screen))
+    finally:
+        release.set()
