@@ -78,7 +78,7 @@ def test_workbook_card(capsys, arm_log):
         (["--scale", "nan"], "--scale: is nan"),
         (["--scale", "-1"], "--scale: is -1.0"),
         (["--name", "arm"], "--name: names a workbook's card"),
-        (["--preset", ROOT / "presets/elevator/two_neo.toml"], "is a elevator preset, not arm"),
+        (["--preset", ROOT / "presets/elevator/two_neo.toml"], "is an elevator preset, not arm"),
         (["--routine", "nope"], "'sysid-test-state-nope' is not in the log"),
         (["--velocity", "nope"], "--velocity: no entry 'nope'"),
         (["--units", "furlongs"], "'furlongs', which cannot be converted"),

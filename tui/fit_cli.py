@@ -74,6 +74,21 @@ def run(args) -> int:
 
     if not (math.isfinite(args.scale) and args.scale > 0):
         raise InputError("--scale", f"is {args.scale!r}; give a positive number")
+    for option in (
+        "routine",
+        "motor",
+        "state",
+        "voltage",
+        "position",
+        "velocity",
+        "current",
+        "bus_voltage",
+        "units",
+        "name",
+    ):
+        value = getattr(args, option)
+        if value is not None and not value.strip():  # an unset shell variable: not "not given"
+            raise InputError(f"--{option.replace('_', '-')}", "is empty; give a name or leave the option out")
     if args.name and not args.workbook:
         raise InputError("--name", "names a workbook's card: give --workbook too")
     card = entries.load_card(args.card, args.preset, args.workbook, args.name)

@@ -180,6 +180,16 @@ def fit_log(path, kind: str, card=None, **pick) -> Report:
             + "; ".join(w for f in fits.values() for w in f.warnings),
             source,
         )
+    for role, rmse in (
+        ("position", replays[favoured].position_rmse),
+        ("velocity", replays[favoured].velocity_rmse),
+    ):
+        if not math.isfinite(rmse):  # the squared error overflowed: a value near the float limit
+            top = max(float(abs(getattr(r, role)).max(initial=0.0)) for r in picked.runs.values())
+            picked.notes.append(
+                f"{picked.names.get(role, role)}: the replay's {role} error is beyond the float range "
+                f"(the log's {role} reaches {top:.3g} in SI units): not shown"
+            )
     best = fits[favoured]
     notes = list(picked.notes) + [w for f in fits.values() for w in f.warnings]
     slow = sysid_fit.ka_note(best.gains, info["dt"])

@@ -62,16 +62,20 @@ def apply(
     workbook: str | None = None,
     name: str | None = None,
 ) -> Applied:
+    import os
+
     import tomlkit
 
-    from .. import atomic_file
+    from .. import atomic_file, builtin, presets
 
+    given = workbook if workbook is not None else preset
+    if given is not None and builtin.is_builtin(given) and not os.path.isfile(given):
+        what = "an example workbook" if workbook is not None else "a built-in preset"
+        raise InputError("--apply", f"does not change {what}: copy it and fit the copy", given)
     if workbook is not None:
         path = Path(workbook)
         field = "workbook"
     elif preset is not None:
-        from .. import presets
-
         path = Path(preset)
         field = "preset"
         try:
@@ -83,15 +87,19 @@ def apply(
             pass
     else:
         raise InputError("--apply", "needs the card's file: --preset FILE or --workbook FILE --name CARD")
+    if preset is not None and not os.path.isfile(path):  # a share code or ReCalc link: no file to write
+        raise InputError("--apply", "writes into a preset file; this preset is not one", preset[:80])
     try:
-        before = path.read_text(encoding="utf-8")
+        # as the card was read (a regular file, UTF-8 with or without a byte-order mark: a BOM was
+        # "not TOML" here though the card loaded; the line ends as they are, not made \n)
+        before = presets.read_text(path)
+    except InputError as exc:
+        raise InputError(field, exc.message, str(path)) from None
+    try:
         doc = tomlkit.parse(before)
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(
-            field, f"cannot be read ({getattr(exc, 'strerror', None) or exc})", str(path)
-        ) from None
     except Exception as exc:  # tomlkit's parse errors share no base class but Exception
         raise InputError(field, f"is not TOML ({exc})", str(path)) from None
+    _unchanged(card, before, path, field, workbook is not None and card_name(card, name))
     if workbook is not None:
         table = doc["cards"][card_name(card, name)]
         if "inputs" not in table:
@@ -111,13 +119,13 @@ def apply(
         # a number without a unit (C_rr) stays a TOML number, as the presets write it
         target[k] = float(v) if k in NUMBERS and " " not in v else v
     after = tomlkit.dumps(doc)
+    if "\r\n" in before and "\n" not in before.replace("\r\n", ""):  # a CRLF file stays CRLF
+        after = after.replace("\r\n", "\n").replace("\n", "\r\n")
     if workbook is not None:
         from ..workbook.file import from_text
 
         from_text(after, str(path), path.parent)  # never write a workbook that would not load
     else:
-        from .. import presets
-
         presets.from_dict(presets.parse_text(after, str(path)), str(path))
     diff = "".join(
         difflib.unified_diff(
@@ -130,6 +138,33 @@ def apply(
     if after != before:
         atomic_file.write_text(path, after, overwrite=True, field=field)
     return Applied(str(path), changes, diff, notes)
+
+
+def _unchanged(card: Card, text: str, path: Path, field: str, name) -> None:
+    """Refuse when the card's entries in the file's `text` are not those it was fitted with: the
+    file changed on disk since `gearhead fit` read it (the fitted entries were derived from the
+    old card's motor, ratio and geometry, and would be written beside the new ones)."""
+    from .. import presets
+
+    try:
+        if name:
+            from ..workbook import solve
+            from ..workbook.file import from_text
+
+            result = solve(from_text(text, str(path), path.parent)).cards.get(name)
+            now = None if result is None else result.entries
+        else:
+            now = presets.from_dict(presets.parse_text(text, str(path)), str(path)).inputs
+    except InputError as exc:
+        raise InputError(
+            field, f"changed on disk since it was read and no longer loads ({exc.message})", str(path)
+        ) from None
+    if now is None or dict(now) != card.raw:
+        raise InputError(
+            field,
+            "changed on disk since it was read (the card's entries are not those fitted): fit again; nothing written",
+            str(path),
+        )
 
 
 def _linked(entry) -> bool:

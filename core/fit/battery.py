@@ -50,4 +50,9 @@ def fit_battery(picked: Picked, count: int) -> tuple[float, float, float, int] |
     R, E, s = float(c[1]), float(c[0]), float(math.sqrt(cov[1, 1])) if cov[1, 1] >= 0 else math.nan
     if not (math.isfinite(R) and math.isfinite(E)):
         return "the regression of bus voltage on current gives no finite resistance"
+    if R <= 0:  # a battery's voltage falls as it is drawn on: the signals are not what they were named
+        return (
+            f"the regression of bus voltage on current gives R = {R:.3g} Ω (≤ 0: the bus voltage does "
+            "not fall as the current rises; are these the motor current and the bus voltage?)"
+        )
     return R, s, E, len(i_batt)

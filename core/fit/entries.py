@@ -43,11 +43,16 @@ class Card:
     notes: list[str] = field(default_factory=list)
 
 
+def _a(word: str) -> str:
+    """'a gear_ratio', 'an arm'."""
+    return ("an " if word[:1] in "aeiou" else "a ") + word
+
+
 def load_card(
     kind: str, preset: str | None = None, workbook: str | None = None, name: str | None = None
 ) -> Card:
     """The card's values (its defaults, a preset, or a workbook's card) and its model's figures."""
-    from .. import presets, registry
+    from .. import registry
     from ..model import parse_inputs
 
     calc = registry.get(kind)
@@ -66,16 +71,20 @@ def load_card(
             raise InputError("--name", f"no card {name!r} in the workbook", workbook)
         if wb.cards[name].calculator != kind:
             raise InputError(
-                "--name", f"{name!r} is a {wb.cards[name].calculator} card, not {kind}", workbook
+                "--name", f"{name!r} is {_a(wb.cards[name].calculator)} card, not {kind}", workbook
             )
         result = wbmod.solve(wb).cards[name]
         if result.error is not None and not result.entries:
             raise InputError("--name", f"card {name!r} could not be read: {result.error}", workbook)
         raw, label = result.entries, f"{workbook}: {name}"
     elif preset is not None:
-        p = presets.load(preset)
+        from .. import share
+
+        if not preset.strip():  # `--preset ""` (an unset shell variable)
+            raise InputError("--preset", "is empty; give a preset file")
+        p = share.load_any(preset)  # as every --preset: a file, builtin:CALC/NAME, a share code
         if p.calculator != kind:
-            raise InputError("--preset", f"is a {p.calculator} preset, not {kind}", preset)
+            raise InputError("--preset", f"is {_a(p.calculator)} preset, not {kind}", preset)
         raw, label = p.inputs, f"{preset}"
     else:
         raw, label = {}, f"the {kind} card's defaults"

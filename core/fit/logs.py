@@ -23,6 +23,7 @@ from __future__ import annotations
 import csv
 import math
 import os
+import re
 import struct
 from array import array
 from collections.abc import Callable, Iterator
@@ -42,6 +43,11 @@ MAGIC = b"WPILOG"
 CONTROL_START, CONTROL_FINISH, CONTROL_SET_METADATA = 0, 1, 2
 # the fixed-size types read as numbers (datalog.adoc "Data Types"): numpy's little-endian dtype
 _DTYPES = {"double": "<f8", "float": "<f4", "int64": "<i8", "boolean": "u1"}
+# a CSV number as a log writes it: ASCII digits, a point, an exponent; nan and inf are read (and then
+# refused, named) rather than taken as text. Python's float() also takes '1_000' and other scripts'
+# digits ('١٢'), which no log writes: such a cell is text, not silently a number.
+_NUMBER = re.compile(r"[+-]?(?:(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?|nan|inf|infinity)", re.I)
+CSV_LINE = 1 << 24  # the longest CSV line read (16 MiB): a file of one endless line is refused
 TIME_COLUMNS = ("timestamp", "time", "t", "timestamp (s)", "time (s)", "t (s)")
 
 
@@ -82,6 +88,37 @@ def _error(path, message: str) -> InputError:
     return InputError("log", message, os.fspath(path))
 
 
+def _open(path, **text):
+    """The log opened for reading (binary, or text with `text`'s encoding and newline), refused
+    unless it is a regular file: a FIFO's open waits for a writer and /dev/zero never ends, so
+    they are opened without waiting (O_NONBLOCK) and looked at before anything is read. Raises
+    OSError as open() does, or the InputError naming what the path is."""
+    import stat
+
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0))
+    try:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            what = (
+                "a directory"
+                if stat.S_ISDIR(mode)
+                else "a pipe (FIFO)"
+                if stat.S_ISFIFO(mode)
+                else "a device"
+                if stat.S_ISCHR(mode) or stat.S_ISBLK(mode)
+                else "a socket"
+                if stat.S_ISSOCK(mode)
+                else "not a regular file"
+            )
+            raise _error(path, f"is {what}, not a log file")
+        if hasattr(os, "set_blocking"):
+            os.set_blocking(fd, True)
+        return os.fdopen(fd, "r" if text else "rb", **text)
+    except BaseException:
+        os.close(fd)
+        raise
+
+
 class WPILog:
     """A WPILog file opened for streaming: the header is checked here, records are read lazily."""
 
@@ -89,8 +126,8 @@ class WPILog:
         self.path = os.fspath(path)
         self.warnings: list[str] = []
         try:
-            self.size = os.path.getsize(self.path)
-            with open(self.path, "rb") as f:
+            with _open(self.path) as f:
+                self.size = os.fstat(f.fileno()).st_size
                 head = f.read(12)
                 if len(head) < 12 or head[:6] != MAGIC:
                     raise _error(path, "is not a WPILog (it does not start with the 'WPILOG' header)")
@@ -146,7 +183,11 @@ class WPILog:
         path = self.path
         size = self.size
         HL, OFF = _HL, _OFF
-        with open(path, "rb") as f:
+        try:
+            f = _open(path)
+        except OSError as exc:
+            raise _error(path, f"cannot be read ({exc.strerror or exc})") from None
+        with f:
             f.seek(self.start)
             base = self.start
             buf = f.read(CHUNK)
@@ -431,29 +472,62 @@ def _sort(sig: Signal) -> None:
     sig.reordered = True
 
 
+def _number(text: str) -> float:
+    """A CSV cell's number (_NUMBER), or ValueError."""
+    text = text.strip()
+    if not _NUMBER.fullmatch(text):
+        raise ValueError(text)
+    return float(text)
+
+
+def is_number(text: str) -> bool:
+    """Whether a CSV cell reads as a number (_NUMBER)."""
+    return _NUMBER.fullmatch(text.strip()) is not None
+
+
+def _lines(f, path):
+    """The file's lines, each at most CSV_LINE characters (memory stays bounded on a file that
+    never ends a line)."""
+    while True:
+        line = f.readline(CSV_LINE)
+        if not line:
+            return
+        if len(line) >= CSV_LINE and not line.endswith(("\n", "\r")):
+            raise _error(path, f"has a line longer than {CSV_LINE >> 20} MiB; not a log CSV")
+        yield line
+
+
 def read_csv(path, wanted: Callable[[str], bool]) -> tuple[dict[str, Signal], dict[str, Entry], list[str]]:
     """AdvantageScope's CSV export: the first column the time in seconds, then one column per
     signal; an empty cell is no sample. A column whose every cell is a number is numeric, else text
     (a test state). Read row by row, keeping only the wanted columns."""
     path = os.fspath(path)
     try:
-        f = open(path, newline="", encoding="utf-8-sig")
+        f = _open(path, newline="", encoding="utf-8-sig")
     except OSError as exc:
         raise _error(path, f"cannot be read ({exc.strerror or exc})") from None
     with f:
-        rows = csv.reader(f)
+        rows = csv.reader(_lines(f, path))
         try:
             header = next(rows, None)
             if not header or header[0].strip().lower() not in TIME_COLUMNS:
                 raise _error(path, "is not a log CSV: its first column must be the time ('Timestamp', in s)")
             names = [h.strip() for h in header]
             cols = [i for i in range(1, len(names)) if wanted(names[i])]
+            first: dict[str, int] = {}
+            for i in cols:  # two columns of one name: which one is meant is not known
+                if names[i] in first:
+                    raise _error(
+                        path,
+                        f"has two columns named {names[i]!r} (columns {first[names[i]] + 1} and {i + 1})",
+                    )
+                first[names[i]] = i
             cells: dict[int, tuple[array, list]] = {i: (array("d"), []) for i in cols}
             for line, row in enumerate(rows, start=2):
                 if not row:
                     continue
                 try:
-                    t = float(row[0])
+                    t = _number(row[0])
                 except ValueError:
                     raise _error(path, f"line {line}: the time {row[0]!r} is not a number") from None
                 if not math.isfinite(t):
@@ -468,7 +542,7 @@ def read_csv(path, wanted: Callable[[str], bool]) -> tuple[dict[str, Signal], di
     for i in cols:
         times, text = cells[i]
         try:
-            values: array | list = array("d", (float(s) for s in text))
+            values: array | list = array("d", (_number(s) for s in text))
         except ValueError:
             values = text
         sig = Signal(names[i], "double" if isinstance(values, array) else "string", "", times, values)

@@ -67,7 +67,7 @@ def unit_factor(unit: str, rate: bool, where: str, source: str) -> tuple[str, fl
     if u not in _UNITS:
         raise InputError(
             where,
-            f"has the unit {unit!r}, which cannot be converted (meters, rotations, radians or degrees"
+            f"has the unit {unit[:40]!r}, which cannot be converted (meters, rotations, radians or degrees"
             f"{' per second' if rate else ''}; give the unit with --units)",
             source,
         )
@@ -204,7 +204,9 @@ def pick(
             if s.numeric():
                 raise InputError(state, "holds numbers, not the test's state names", source)
         elif not s.numeric():
-            raise InputError(name, f"holds text, not the {role}'s numbers", source)
+            k = next((k for k, v in enumerate(s.values) if not logs.is_number(v)), 0)
+            at = f": {s.values[k][:40]!r} at t = {s.times[k]:g} s" if s.values else ""
+            raise InputError(name, f"holds text, not the {role}'s numbers{at}", source)
     unit_names: dict[str, str] = {}
     factors: dict[str, float] = {}
     for role, rate in (("position", False), ("velocity", True)):
@@ -236,6 +238,8 @@ def pick(
     meta = sigs[names["voltage"]].metadata.strip().lower()
     if meta and not meta.startswith("{") and _normalise(meta) not in ("volt", "v"):
         raise InputError(names["voltage"], f"has the unit {meta!r}; a voltage in volts is needed", source)
+    if "current" in names:
+        _unit_is(sigs[names["current"]], ("amp", "ampere", "a"), "a current in amps", source)
     runs = _runs(sigs, names, factors, source)
     cur = None
     if "current" in names:
@@ -250,9 +254,17 @@ def pick(
         b = sigs[bus_name]
         if not b.numeric():
             raise InputError(bus_name, "holds text, not the bus voltage's numbers", source)
+        _unit_is(b, ("volt", "v"), "a voltage in volts", source)
         names["bus_voltage"] = bus_name
         bus = (np.asarray(b.times, dtype=float), np.asarray(b.values, dtype=float))
     return Picked(source, kind, names, unit_names, runs, notes, cur, bus)
+
+
+def _unit_is(sig, ok: tuple[str, ...], what: str, source: str) -> None:
+    """Refuse a signal whose unit metadata (S1) names another quantity (a current read as volts)."""
+    m = sig.metadata.strip()
+    if m and not m.startswith("{") and _normalise(m) not in ok:
+        raise InputError(sig.name, f"has the unit {m[:40]!r}; {what} is needed", source)
 
 
 def _runs(sigs, names, factors, source) -> dict[str, Run]:
@@ -287,7 +299,16 @@ def _runs(sigs, names, factors, source) -> dict[str, Run]:
         t = np.asarray(s.times, dtype=float)
         v = np.asarray(s.values, dtype=float)
         i, j = np.searchsorted(t, a, "left"), np.searchsorted(t, b, "left")
-        return t[i:j].copy(), v[i:j] * factors.get(role, 1.0)
+        with np.errstate(over="ignore"):
+            got = v[i:j] * factors.get(role, 1.0)
+        if not np.all(np.isfinite(got)):  # --scale (or a unit's factor) past the float range
+            raise InputError(
+                names[role],
+                f"overflows when scaled to SI (× {factors.get(role, 1.0):.3g}, --scale included): "
+                f"its values reach {float(np.max(np.abs(v[i:j]))):.3g}",
+                source,
+            )
+        return t[i:j].copy(), got
 
     out = {}
     for s, (a, b) in first.items():

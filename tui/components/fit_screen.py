@@ -216,23 +216,42 @@ class FitScreen(Dialog[dict[str, Any] | None]):
 
     @work(thread=True, exclusive=True, group="fit")
     def _fit(self, path: str) -> None:
+        import threading
+
         from gearhead.core import fit
         from gearhead.core.fit.entries import card_from_entries
         from gearhead.core.tolerance import split_inputs
 
-        report, error = None, None
-        try:
-            raw, _ = split_inputs(self.calculator, self.entries)  # a tolerance's nominal value
-            card = card_from_entries(self.kind, raw, f"the {self.label} card on screen")
-            report = fit.fit_log(path, self.kind, card)
-        except InputError as exc:
+        got: dict[str, Any] = {}
+
+        def run() -> None:
+            try:
+                raw, _ = split_inputs(self.calculator, self.entries)  # a tolerance's nominal value
+                card = card_from_entries(self.kind, raw, f"the {self.label} card on screen")
+                got["report"] = fit.fit_log(path, self.kind, card)
+            except Exception as exc:
+                got["exc"] = exc
+
+        # The fit runs in a daemon thread this worker waits on, so that Esc (or ctrl+q) during a
+        # long read leaves at once: the worker's own thread is joined when the app exits, and a
+        # 170 MB log held ctrl+q for 23-47 s after Esc. The daemon thread's result is dropped.
+        worker = get_current_worker()
+        thread = threading.Thread(target=run, name="gearhead-fit", daemon=True)
+        thread.start()
+        while thread.is_alive():
+            thread.join(0.05)
+            if worker.is_cancelled:  # a newer fit, or the dialog closed
+                return
+        report, error = got.get("report"), None
+        exc = got.get("exc")
+        if isinstance(exc, InputError):
             error = str(exc)
-        except Exception as exc:  # a bug: said in the status line and logged; the dialog stays
+        elif exc is not None:  # a bug: said in the status line and logged; the dialog stays
             from ..bug_log import record
             from ..guard import internal_error
 
             error = f"{path}: " + internal_error(exc, record(exc, "gearhead (the app) fit from log"))
-        if not get_current_worker().is_cancelled:  # a newer fit, or the dialog closed
+        if not worker.is_cancelled:  # a newer fit, or the dialog closed
             self.post_message(self.Fitted(path, report, error, time.perf_counter() - self._started))
 
     @on(Fitted)

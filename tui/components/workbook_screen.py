@@ -365,7 +365,7 @@ class WorkbookScreen(Screen):
         tab = self.fit_card()
         if tab is None:
             self.app.notify(
-                "Fit from log works on a workbook's elevator, arm or flywheel card: choose one first.",
+                "Fit from log works on a workbook's elevator, arm, flywheel or sprint card: choose one first.",
                 severity="warning",
                 markup=False,
             )
