@@ -297,3 +297,32 @@ async def test_a_slow_workbook_solve_says_so_and_a_newer_one_cancels_it(monkeypa
         assert outcomes[0] == "cancelled" and outcomes[-1] == "solved", outcomes
         assert screen.cards["lift"].solution.inputs["load"].value == approx(40 * LBF)
         assert "requirements hold" in str(screen.robot.status.render())
+
+
+async def test_discard_then_a_key_in_the_same_burst_still_closes_the_workbook(tmp_path: Path):
+    """d (discard) and ctrl+p in one burst, as a terminal delivers them: the workbook closes, the
+    calculator cards are left on screen (the close popped whatever screen was on top: the palette
+    opened by ctrl+p, leaving the workbook open, its edits discarded)."""
+    from textual import events
+
+    from gearhead.tui.components.leave_screen import LeaveScreen
+
+    path = tmp_path / "robot.toml"
+    path.write_text(TEXT, encoding="utf-8")
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.load(path))
+    async with app.run_test(size=(140, 40)) as pilot:
+        screen = await opened(pilot, app)
+        await settled(pilot, screen)
+        screen.robot.sheet.focus()
+        assert screen.robot.sheet.move_to_field("mass")
+        await pilot.press(*keys_of("40"), "enter")
+        await settled(pilot, screen)
+        await pilot.press("escape")
+        await pilot.pause()
+        assert isinstance(app.screen, LeaveScreen)
+        for key, char in (("d", "d"), ("ctrl+p", None)):
+            app.post_message(events.Key(key, char))
+        for _ in range(20):
+            await pilot.pause(0.02)
+        assert screen not in app.screen_stack, app.screen_stack
+    assert 'mass = "40 lb"' not in path.read_text(encoding="utf-8")

@@ -17,10 +17,12 @@ SAVE, DISCARD, STAY = "save", "discard", "stay"
 class LeaveScreen(Dialog[str]):
     """Dismissed with SAVE, DISCARD or STAY (Esc)."""
 
+    # priority: answered as the key arrives, before a key typed after it (a non-priority binding
+    # runs once the key has bubbled up: ctrl+p typed after d opened the palette first and d was lost)
     BINDINGS = [
-        Binding("escape", f"dismiss('{STAY}')", "Stay"),
-        Binding("s", f"dismiss('{SAVE}')", "Save", show=False),
-        Binding("d", f"dismiss('{DISCARD}')", "Discard", show=False),
+        Binding("escape", f"dismiss('{STAY}')", "Stay", priority=True),
+        Binding("s", f"dismiss('{SAVE}')", "Save", show=False, priority=True),
+        Binding("d", f"dismiss('{DISCARD}')", "Discard", show=False, priority=True),
     ]
     DEFAULT_CSS = """
     LeaveScreen { align: center middle; }

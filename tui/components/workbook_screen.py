@@ -433,7 +433,16 @@ class WorkbookScreen(Screen):
     @guarded
     def action_close(self) -> None:
         """Esc: leave the workbook; with unsaved changes, ask first (they were dropped silently)."""
-        self.leave(self.app.pop_screen)
+        self.leave(self._close)
+
+    def _close(self) -> None:
+        """This screen off the stack, whatever a key typed meanwhile pushed over it (the palette):
+        the answer's callback runs later, and popping the top then closed the palette instead."""
+        if self not in self.app.screen_stack:
+            return
+        if self.app.screen is not self:
+            self.pop_until_active()
+        self.app.pop_screen()
 
     def leave(self, then) -> None:
         """Run `then` (close the screen, quit the app) once the unsaved changes are saved or
