@@ -181,6 +181,11 @@ def scene_of(calc_id: str, v) -> Any:
     return (elevator if calc_id == "elevator" else arm).setup(v)
 
 
+class _Frozen(list):
+    """A state vector made for one evaluation inside a piece (_reduced's full state), never changed
+    after it is made: the bus computed on it may be kept (_Run.bus)."""
+
+
 class _Mech:
     """A mechanism's terms, from its card's Setup (its equations, its limits)."""
 
@@ -626,6 +631,7 @@ class _Run:
         # per channel: [θ, θ_max, trip, peak, t, I] along the records (B9)
         self.chan = {mk.channel: [0.0, 0.0, None, 0.0, None, 0.0] for mk in self.mechs}
         self._drawing_cache: dict[tuple, tuple] = {}
+        self._bus_memo: tuple = (None, None, None, 0.0)
 
     # --- the bus at a state, with a held configuration -------------------------------------------
     def _emf(self, k, y):
@@ -656,7 +662,19 @@ class _Run:
         return self.battery.ocv(self.battery.soc(y[0] * self.q_scale))
 
     def bus(self, y, config, root):
-        """V with each motor's branch and the quadratic's root held (B6)."""
+        """V with each motor's branch and the quadratic's root held (B6). A piece's state made by
+        _reduced (a _Frozen, never changed after it is made) keeps its last bus: the events and the
+        right-hand side ask it of the same state, each once (the same arithmetic, done once)."""
+        if type(y) is _Frozen:
+            memo = self._bus_memo
+            if memo[0] is y and memo[1] is config and memo[2] == root:
+                return memo[3]
+            v = self._bus(y, config, root)
+            self._bus_memo = (y, config, root, v)
+            return v
+        return self._bus(y, config, root)
+
+    def _bus(self, y, config, root):
         v_oc, r = self._voc(y), self.battery.R
         a, b, p = self._sums(y, config)
         pt = solve_bus(v_oc, r, a, b, p)
@@ -935,11 +953,16 @@ class _Run:
         if len(idx) == len(y):
             return self._piece(rhs, t, t1, y, events, restart, stiff, recovered)
         base = list(y)
+        last: list = [None, None]
 
         def full(yr):
-            f = base[:]
+            if yr is last[0]:  # the events of one step ask the same state (DP54's lists: never changed)
+                return last[1]
+            f = _Frozen(base)
             for i, v in zip(idx, yr):
                 f[i] = v
+            if type(yr) is list:
+                last[0], last[1] = yr, f
             return f
 
         def rhs_r(tt, yr):
@@ -959,11 +982,16 @@ class _Run:
         quad &= set(range(self.tail + 2))
         base = list(y)
         plan = [(i, i in quad) for i in idx]
+        last: list = [None, None]
 
         def full(yr):
-            f = base[:]
+            if yr is last[0]:
+                return last[1]
+            f = _Frozen(base)
             for (i, q), v in zip(plan, yr):
                 f[i] = base[i] + v if q else v
+            if type(yr) is list:
+                last[0], last[1] = yr, f
             return f
 
         def rhs_r(tt, yr):
