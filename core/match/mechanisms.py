@@ -125,7 +125,7 @@ MAX_STEPS = 200_000  # per piece (DP54)
 # a stiff piece between a recovery (the outputs back after a brownout) and the next brownout tries
 # DP54 first with this many steps: in a brownout-bound match the bus falls again within a few of them
 # (LSODA's own start costs about a hundred DP54 steps of this run's right-hand side); a longer piece
-# is integrated again by LSODA
+# is integrated again by LSODA. 0: LSODA at once (the integration before; tests/test_match_brownout_speed.py)
 RECOVERY_STEPS = 64
 MAX_LENGTH = 3600.0
 LIMIT_EFFECTS = ("stator_limit", "supply_limit")
@@ -948,7 +948,7 @@ class _Run:
             if c != DONE:
                 idx += [4 + 3 * k, 5 + 3 * k, 6 + 3 * k]
         idx += [self.tail, self.tail + 1]
-        if stiff and recovered:
+        if stiff and recovered and RECOVERY_STEPS:
             return self._increments(rhs, t, t1, y, events, restart, stiff, idx, recovered)
         if len(idx) == len(y):
             return self._piece(rhs, t, t1, y, events, restart, stiff, recovered)
@@ -1011,7 +1011,7 @@ class _Run:
         piece after a recovery (until the next brownout) tries DP54 for RECOVERY_STEPS steps first (its accuracy is
         DP54's, the same tolerance; stiffness only makes DP54 slow): in a brownout-bound match it
         ends at the next brownout within a few steps, where LSODA's start alone cost ~3 ms."""
-        if stiff and recovered:
+        if stiff and recovered and RECOVERY_STEPS:
             try:
                 return integrate(
                     rhs,
