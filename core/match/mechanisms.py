@@ -632,6 +632,7 @@ class _Run:
         self.chan = {mk.channel: [0.0, 0.0, None, 0.0, None, 0.0] for mk in self.mechs}
         self._drawing_cache: dict[tuple, tuple] = {}
         self._bus_memo: tuple = (None, None, None, 0.0)
+        self._recovery_step: float | None = None  # the last step of the last piece DP54 took after a recovery
 
     # --- the bus at a state, with a held configuration -------------------------------------------
     def _emf(self, k, y):
@@ -1013,7 +1014,7 @@ class _Run:
         ends at the next brownout within a few steps, where LSODA's start alone cost ~3 ms."""
         if stiff and recovered and RECOVERY_STEPS:
             try:
-                return integrate(
+                run = integrate(
                     rhs,
                     t,
                     t1,
@@ -1023,9 +1024,14 @@ class _Run:
                     events=events,
                     max_steps=RECOVERY_STEPS,
                     restart=restart,
+                    first_step=self._recovery_step,
                 )
             except RuntimeError:
                 pass
+            else:  # the next such piece starts with the step this one ended on (rejections spared)
+                if len(run.t) > 1:
+                    self._recovery_step = run.t[-1] - run.t[-2]
+                return run
         if not stiff:
             try:
                 return integrate(
