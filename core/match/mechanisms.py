@@ -100,7 +100,8 @@ each mechanism's ∫V_oc·N·I_s dt (the card's energy, its EMF times its curren
 The state's tail (after the moves' 4 + 3n) integrates what the match's outputs need besides: the
 Peukert-weighted charge (battery (M4)) and ∫I²dt (the RMS current); each move's charge ∫N·I_s dt (its
 share) is summed by the trapezoid rule on the trace (every accepted step and switch). A move given `after` (queued) starts at its time or when that earlier move reaches its goal.
-Bounded: every step is charged to the solve's budget (core.sim.integrate), at most MAX_PIECES
+A brownout's dwell with every move coasting at rest (or done) is stepped in closed form (B14, _Run._quiet):
+nothing moves, the battery carries the base load alone. Bounded: every step is charged to the solve's budget (core.sim.integrate), at most MAX_PIECES
 pieces and MAX_MECHANISMS mechanisms; every input checked (InputError names the field).
 """
 
@@ -117,7 +118,7 @@ from gearhead.core.match.brownout import Controller
 from gearhead.core.match.bus import solve_bus
 from gearhead.core.match.checks import number
 from gearhead.core.sim import motion
-from gearhead.core.sim.integrate import Event, charge, integrate
+from gearhead.core.sim.integrate import Event, Run, charge, integrate
 
 MAX_MECHANISMS = 200
 MAX_PIECES = 50_000
@@ -834,7 +835,12 @@ class _Run:
             events = self._events(config, root, dirs, enabled, t >= ready)
             rhs = self._rhs(config, root, dirs)
             stiff = any(self.mechs[k].stiff for k, c in enumerate(config) if c not in (COAST, DONE, HOLD))
-            run = self._reduced(rhs, t, t1, y, events, restart, stiff, config, recovered)
+            run = None
+            quiet = all(c == DONE or (c == COAST and dirs[k] == 0) for k, c in enumerate(config))
+            if not enabled and t < ready and quiet:
+                run = self._quiet(t, t1, y)  # the dwell with every move at rest: closed form (B14)
+            if run is None:
+                run = self._reduced(rhs, t, t1, y, events, restart, stiff, config, recovered)
             if run.t[-1] <= t and run.event is not None and run.event == last_event:
                 raise InputError("moves", f"the run makes no progress at {t:.6g} s (switch {run.event})")
             last_event = run.event
@@ -929,6 +935,40 @@ class _Run:
             y[5 + 3 * k] = mk.w_hold / mk.v_ref
             pending[k] = [t + i * mk.interval for i in range(mk.shots)]
             finished[k] = not pending[k]
+
+    def _quiet(self, t, t1, y):
+        """(B14) The outputs disabled, waiting for the dwell, every move coasting at rest or done:
+        nothing moves and the battery carries the base load I alone, so over [t, t1]
+            Q += I·Δt,  Q_p += rate(I)·Δt,  ∫I²dt += I²·Δt,  E_R += R·I²·Δt,
+            E_oc += I·∫V_oc dt,  E_bus += I·(∫V_oc dt − R·I·Δt),
+            ∫V_oc dt = Δt·(V_oc(t) + V_oc(t1))/2,
+        exact while V_oc is linear in the charge (M1: between two rows of its table, checked; else
+        None and the piece is integrated). DP54 gives the same to rounding (the solution is a
+        polynomial of degree 2 in t) at 8 evaluations, the events and their set-up. No event can
+        fall in it: at rest in coast a move's forces do not change (its position does not), and
+        the recovery waits for the dwell's end."""
+        bat, I, dt = self.battery, self.base, t1 - t
+        R = bat.R
+        q0 = y[0] * self.q_scale
+        q1 = q0 + I * dt
+        table = getattr(bat, "ocv_table", None)
+        if table is not None:
+            s0, s1 = bat.soc(q0), bat.soc(q1)
+            if any(min(s0, s1) < row[0] < max(s0, s1) for row in table):
+                return None
+        v0, v1 = bat.ocv(bat.soc(q0)), bat.ocv(bat.soc(q1))
+        if v0 - R * I <= 0 or v1 - R * I <= 0:  # the bus collapses even so: integrated (named there)
+            return None
+        voc_dt = 0.5 * (v0 + v1) * dt
+        rate = getattr(bat, "peukert_rate", lambda current: current)
+        out = list(y)
+        out[0] = q1 / self.q_scale
+        out[1] = y[1] + I * voc_dt / self.e_scale
+        out[2] = y[2] + I * (voc_dt - R * I * dt) / self.e_scale
+        out[3] = y[3] + R * I * I * dt / self.e_scale
+        out[self.tail] = y[self.tail] + rate(I) * dt / self.q_scale
+        out[self.tail + 1] = y[self.tail + 1] + I * I * dt / self.i2_scale
+        return Run([t, t1], [list(y), out], 0)
 
     def _reduced(self, rhs, t, t1, y, events, restart, stiff, config, recovered=False):
         """_piece on the states that change in it: the battery's, the tail's and those of the moves
