@@ -78,3 +78,34 @@ def test_the_integration_before_is_as_far_from_the_reference(monkeypatch, refere
     for key in ("charge_used", "peukert_charge_used", "energy", "rms_current"):
         assert before[key] == pytest.approx(ref[key], rel=1.5e-3), key
     assert before["brownout_time"] == pytest.approx(ref["brownout_time"], rel=5e-5)
+
+
+def test_a_quiet_dwell_in_closed_form_is_the_integration(monkeypatch):
+    """(B14): at 0.05 ohm the drive's first sprint browns out at once every time the outputs come
+    back; a dwell with every move at rest is stepped in closed form. Against the same dwells
+    integrated (DP54, _quiet refused): the same to rounding (the solution is quadratic in t)."""
+    quiet = mechanisms._Run._quiet
+    used = []
+
+    def counted(self, t, t1, y):
+        out = quiet(self, t, t1, y)
+        used.append(out is not None)
+        return out
+
+    def weak() -> dict:
+        sets = {"battery_resistance": "0.05 ohm"}
+        m = workbook.solve(
+            workbook.from_dict(first_seconds(), "first_seconds", ROOT / "examples", sets)
+        ).match
+        bus = m.bus
+        extra = {"energy_bus": bus.energy_bus, "energy_r": bus.energy_r, "i2": bus.current_squared}
+        return {**m.outputs, **extra, "trace": len(bus.trace)}
+
+    monkeypatch.setattr(mechanisms._Run, "_quiet", counted)
+    closed = weak()
+    assert sum(used) >= 100  # the case is mostly quiet dwells
+    monkeypatch.setattr(mechanisms._Run, "_quiet", lambda self, t, t1, y: None)
+    integrated = weak()
+    assert closed["brownouts"] == integrated["brownouts"] >= 200
+    for key, value in integrated.items():
+        assert closed[key] == pytest.approx(value, rel=1e-9, abs=1e-12), key
