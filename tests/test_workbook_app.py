@@ -326,3 +326,28 @@ async def test_discard_then_a_key_in_the_same_burst_still_closes_the_workbook(tm
             await pilot.pause(0.02)
         assert screen not in app.screen_stack, app.screen_stack
     assert 'mass = "40 lb"' not in path.read_text(encoding="utf-8")
+
+
+async def test_a_key_right_after_ctrl_arrow_goes_to_the_card_switched_to(tmp_path: Path):
+    """ctrl+→ then ↓ in one burst, as a terminal delivers them: the ↓ moves the next card's cursor,
+    not the card left (ctrl+→ was a binding run once its key had bubbled up from the sheet, after
+    the sheet had read the ↓; in CI's real terminal, Home after ctrl+← scrolled the old card)."""
+    from textual import events
+
+    path = tmp_path / "robot.toml"
+    path.write_text(TEXT, encoding="utf-8")
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.load(path))
+    async with app.run_test(size=(140, 40)) as pilot:
+        screen = await opened(pilot, app)
+        await settled(pilot, screen)
+        first = next(iter(screen.cards))
+        robot_row = screen.robot.sheet.current_field
+        card_row = screen.cards[first].sheet.current_field
+        for key in ("ctrl+right", "down"):
+            app.post_message(events.Key(key, None))
+        for _ in range(10):
+            await pilot.pause(0.02)
+        assert screen.query_one("#workbook-tabs").active == f"wbtab-{first}"
+        assert screen.robot.sheet.current_field == robot_row
+        assert screen.cards[first].sheet.current_field != card_row
+        assert app.focused is screen.cards[first].sheet

@@ -218,9 +218,12 @@ class WorkbookScreen(Screen):
     BINDINGS = [
         Binding("escape", "close", "Close workbook"),
         Binding("ctrl+s", "save", "Save workbook"),
-        Binding("ctrl+right", "step(1)", "Next card"),
-        Binding("ctrl+left", "step(-1)", "Previous card"),
-        Binding("ctrl+t", "match", "Match"),  # the Match card (match_view.py); shown with a [match]
+        # priority: the card switches (and takes the focus) as the key arrives, so a key typed right
+        # after it goes to the card switched to (as a non-priority binding, the key bubbled up from
+        # the sheet after the sheet had read the next key: Home after ctrl+← moved the old card)
+        Binding("ctrl+right", "step(1)", "Next card", priority=True),
+        Binding("ctrl+left", "step(-1)", "Previous card", priority=True),
+        Binding("ctrl+t", "match", "Match", priority=True),  # the Match card; shown with a [match]
         # the app's card commands act on the calculator cards behind this screen: not here
         *(Binding(key, "not_here", show=False) for key in ("ctrl+o", "ctrl+g", "ctrl+r", "ctrl+y", "ctrl+e")),
     ]
@@ -306,31 +309,43 @@ class WorkbookScreen(Screen):
         if event.tabs.id != "workbook-tabs" or event.tab is None:
             return
         event.stop()
-        pane = "wbpane-" + (event.tab.id or "").removeprefix("wbtab-")
-        self.query_one("#workbook-panes", ContentSwitcher).current = pane
+        self._show_tab(event.tab.id or "")
+
+    def _show_tab(self, tab_id: str) -> None:
+        """The card of tab `tab_id` on screen with the focus, now (Screen.set_focus, not the
+        deferred Widget.focus): a key already read after the switching one goes to it."""
+        pane = "wbpane-" + tab_id.removeprefix("wbtab-")
+        switcher = self.query_one("#workbook-panes", ContentSwitcher)
+        if switcher.current == pane and self.focused is not None:
+            return  # the strip's message after a switch made by a key: already done
+        switcher.current = pane
         if pane == "wbpane-match":
-            self.match_view.focus()  # its arrows and PageUp/PageDown scroll it
+            self.set_focus(self.match_view)  # its arrows and PageUp/PageDown scroll it
             self.match_view.opened()  # its charts are drawn while it is on screen
             return
         shown = self.robot if pane == "wbpane-robot" else self.cards[pane.removeprefix("wbpane-")]
         if shown.is_mounted:
-            shown.sheet.focus()  # typing goes to the card on screen
+            self.set_focus(shown.sheet)  # typing goes to the card on screen
+
+    def _activate(self, tab_id: str) -> None:
+        self.query_one("#workbook-tabs", Tabs).active = tab_id
+        self._show_tab(tab_id)
 
     def action_step(self, step: int) -> None:
         tabs = self.query_one("#workbook-tabs", Tabs)
         ids = ["wbtab-robot", *(f"wbtab-{n}" for n in self.book.cards)]
         ids += ["wbtab-match"] if self.match_view is not None else []
         current = ids.index(tabs.active) if tabs.active in ids else 0
-        tabs.active = ids[(current + step) % len(ids)]
+        self._activate(ids[(current + step) % len(ids)])
 
     def action_match(self) -> None:
         """ctrl+t: the Match card; from it, back to the card it was opened from."""
         tabs = self.query_one("#workbook-tabs", Tabs)
         if tabs.active == "wbtab-match":
-            tabs.active = self._before_match
+            self._activate(self._before_match)
         else:
             self._before_match = tabs.active or "wbtab-robot"
-            tabs.active = "wbtab-match"
+            self._activate("wbtab-match")
 
     def check_action(self, action: str, parameters: tuple) -> bool | None:
         if action == "match":  # in the key bar only when the workbook has a [match]
