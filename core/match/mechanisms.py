@@ -989,44 +989,20 @@ class _Run:
             if c != DONE:
                 idx += [4 + 3 * k, 5 + 3 * k, 6 + 3 * k]
         idx += [self.tail, self.tail + 1]
+        quad: set[int] = set()
         if stiff and recovered and RECOVERY_STEPS:
-            return self._increments(rhs, t, t1, y, events, restart, stiff, idx, recovered)
-        if len(idx) == len(y):
+            quad = {0, 1, 2, 3, self.tail, self.tail + 1} | {i for i in idx if i >= 4 and (i - 4) % 3 == 2}
+            quad &= set(range(self.tail + 2))
+        elif len(idx) == len(y):
             return self._piece(rhs, t, t1, y, events, restart, stiff, recovered)
-        base = list(y)
-        last: list = [None, None]
-
-        def full(yr):
-            if yr is last[0]:  # the events of one step ask the same state (DP54's lists: never changed)
-                return last[1]
-            f = _Frozen(base)
-            for i, v in zip(idx, yr):
-                f[i] = v
-            if type(yr) is list:
-                last[0], last[1] = yr, f
-            return f
-
-        def rhs_r(tt, yr):
-            d = rhs(tt, full(yr))
-            return [d[i] for i in idx]
-
-        evs = [Event(e.name, lambda tt, yr, g=e.g: g(tt, full(yr)), e.direction, e.terminal) for e in events]
-        run = self._piece(rhs_r, t, t1, [y[i] for i in idx], evs, restart, stiff, recovered)
-        run.y = [full(yk) for yk in run.y]
-        return run
-
-    def _increments(self, rhs, t, t1, y, events, restart, stiff, idx, recovered):
-        """_reduced's piece with the integrals as increments from 0 (see _reduced): the reduced
-        state holds (p, w) of each move not done as they are and the integrals' growth in this
-        piece; the full state is the totals at the piece's start plus that growth."""
-        quad = {0, 1, 2, 3, self.tail, self.tail + 1} | {i for i in idx if i >= 4 and (i - 4) % 3 == 2}
-        quad &= set(range(self.tail + 2))
         base = list(y)
         plan = [(i, i in quad) for i in idx]
         last: list = [None, None]
 
         def full(yr):
-            if yr is last[0]:
+            """The full state of a reduced one: the states not held at the piece's start, an
+            integral increment (quad) added to its total there."""
+            if yr is last[0]:  # the events of one step ask the same state (DP54's lists: never changed)
                 return last[1]
             f = _Frozen(base)
             for (i, q), v in zip(plan, yr):
