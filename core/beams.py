@@ -118,16 +118,26 @@ def rectangular_tube_section(x: float, y: float, h: float) -> Section:
 
 def tube_torsion_fem(W: float, H: float, t: float) -> float:
     """Torsion constant of a W×H rectangular tube (wall t): the midpoint of the two bounds of
-    tube_torsion_bounds, within tube_torsion_error(W, H, t) (relative) of the true J."""
-    lower, upper = _tube_torsion_bounds(W / t, H / t)  # J ∝ length⁴: solve for t = 1, scale
+    _tube_bounds, within tube_torsion_error(W, H, t) (relative) of the true J."""
+    lower, upper = _tube_bounds(W / t, H / t)  # J ∝ length⁴: solve for t = 1, scale
     return (lower + upper) / 2 * t**4
 
 
 def tube_torsion_error(W: float, H: float, t: float) -> float:
     """Half the gap between the bounds, relative, but not below the rounding of the two solves
     (TUBE_ROUNDING): the true J is within this of tube_torsion_fem."""
-    lower, upper = _tube_torsion_bounds(W / t, H / t)
+    lower, upper = _tube_bounds(W / t, H / t)
     return max(abs(upper - lower) / (upper + lower), TUBE_ROUNDING)
+
+
+def _tube_bounds(W: float, H: float) -> tuple[float, float]:
+    """_tube_torsion_bounds(W, H), read from TUBE_TABLE for the common tubes it lists (no numpy
+    import and no solve: `gearhead solve beam` paid ~120 ms for them) when both ratios are within
+    TUBE_TABLE_MATCH of a row's, else solved."""
+    row = _TUBE_ROWS.get((round(W, 6), round(H, 6)))
+    if row and abs(W - row[0]) <= TUBE_TABLE_MATCH * W and abs(H - row[1]) <= TUBE_TABLE_MATCH * H:
+        return row[2], row[3]
+    return _tube_torsion_bounds(W, H)
 
 
 @lru_cache(maxsize=64)
@@ -339,6 +349,43 @@ TUBE_ROUNDING = 2e-9
 MAX_TUBE_ASPECT = 1e6
 TUBE_LAYERS = 6
 TUBE_GRADING = 0.15
+
+# (W/t, H/t, lower, upper): _tube_torsion_bounds of common FRC/VEX and metric tubes, written by
+# `python -m tests.tube_table` (height × width × wall after each row); tests/test_beam_table.py
+# recomputes every row. A ratio within TUBE_TABLE_MATCH of a row's (1.5/(1/16) in SI is
+# 23.999999999999996) reads the row: J/t⁴ grows at most as the 4th power of either ratio, so the
+# row is within ~4·TUBE_TABLE_MATCH of the exact bounds at that ratio; a solve there differs from
+# the row by its own rounding, which moves with every bit of its input (up to 9e-11 of J seen).
+TUBE_TABLE_MATCH = 1e-12
+TUBE_TABLE = (
+    (7.936507936507937, 15.873015873015873, 1023.7440845699359, 1023.7440875601005),  # 1 x 1/2 x 0.063 in
+    (8.0, 8.0, 369.44177846978266, 369.4417800416488),  # 1 x 1 x 1/8 in; 1/2 x 1/2 x 1/16 in
+    (8.0, 16.0, 1050.7666809472812, 1050.7666840252446),  # 2 x 1 x 1/8 in; 1 x 1/2 x 1/16 in
+    (8.0, 24.0, 1791.442056707425, 1791.4420610147668),  # 3 x 1 x 1/8 in
+    (10.0, 10.0, 770.9340872593921, 770.9340900640482),  # 20 x 20 x 2 mm
+    (10.0, 20.0, 2164.977110853203, 2164.977117348926),  # 40 x 20 x 2 mm
+    (10.869565217391305, 21.73913043478261, 2827.948268993608, 2827.948277846379),  # 1 x 1/2 x 0.046 in
+    (12.0, 12.0, 1391.9572544672985, 1391.9572600324082),  # 3/4 x 3/4 x 1/16 in; 1.5 x 1.5 x 1/8 in
+    (12.5, 12.5, 1587.1396990629355, 1587.1397056042097),  # 25 x 25 x 2 mm
+    (13.333333333333332, 13.333333333333332, 1951.6378193728965, 1951.6378278040456),  # 20 x 20 x 1.5 mm
+    (15.0, 15.0, 2840.111698063377, 2840.111711900653),  # 30 x 30 x 2 mm
+    (15.873015873015873, 7.936507936507937, 1023.7440845549302, 1023.7440876117495),  # 1 x 1/2 x 0.063 in
+    (16.0, 8.0, 1050.7666809134014, 1050.766684099001),  # 2 x 1 x 1/8 in; 1 x 1/2 x 1/16 in
+    (16.0, 16.0, 3484.595028474803, 3484.595047413085),  # 1 x 1 x 1/16 in; 2 x 2 x 1/8 in
+    (16.0, 32.0, 9598.60385085732, 9598.603898853758),  # 2 x 1 x 1/16 in
+    (16.666666666666668, 16.666666666666668, 3964.3705320337, 3964.3705543869364),  # 25 x 25 x 1.5 mm
+    (20.0, 10.0, 2164.977110832215, 2164.97711743747),  # 40 x 20 x 2 mm
+    (20.0, 20.0, 7031.354052755594, 7031.354107328083),  # 40 x 40 x 2 mm
+    (21.73913043478261, 10.869565217391305, 2827.948269013067, 2827.94827806789),  # 1 x 1/2 x 0.046 in
+    (24.0, 8.0, 1791.4420567331813, 1791.4420611328987),  # 3 x 1 x 1/8 in
+    (24.0, 24.0, 12416.234022944182, 12416.234156373295),  # 1.5 x 1.5 x 1/16 in
+    (25.0, 25.0, 14094.660396874096, 14094.660562423396),  # 1 x 1 x 0.040 in
+    (25.0, 50.0, 38374.95478828595, 38374.9552128498),  # 2 x 1 x 0.040 in
+    (32.0, 16.0, 9598.60385065883, 9598.603901232093),  # 2 x 1 x 1/16 in
+    (32.0, 32.0, 30236.356378482484, 30236.356950555855),  # 2 x 2 x 1/16 in
+    (50.0, 25.0, 38374.95478741969, 38374.95522138347),  # 2 x 1 x 0.040 in
+)
+_TUBE_ROWS = {(round(row[0], 6), round(row[1], 6)): row for row in TUBE_TABLE}
 
 
 def _tube_axis(half: float, layers: int):
