@@ -150,7 +150,7 @@ def cli() -> None:
     for label, cmd in (
         ("gearhead solve gear_ratio --json", ["solve", "gear_ratio", "--json"]),
         ("gearhead solve gear_ratio --set load='40 lbf'", ["solve", "gear_ratio", "--set", "load=40 lbf"]),
-        ("gearhead solve beam", ["solve", "beam"]),  # the tube's finite-element J (numpy)
+        ("gearhead solve beam", ["solve", "beam"]),  # its tube's J bounds read from a table: no numpy
         ("gearhead solve beam ... '0.005 furlong'", ["solve", "beam", "--set", "length=0.005 furlong"]),
         ("gearhead solve elevator", ["solve", "elevator"]),
     ):
