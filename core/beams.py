@@ -21,7 +21,8 @@ Sections (seed 5.1) give the exact second moment of area I and torsion constant 
   bound (stress function and warping function, _tube_torsion_bounds) and shown as their midpoint
   with half the gap as its accuracy: 1e-9 to 1e-7 relative for FRC tubes (1×1 to 2×1 in, 1/16
   to 1/8 in wall). The old P1 grids with Richardson extrapolation were low by up to 1.6e-4,
-  below the lower bound. Bredt is shown beside it.
+  below the lower bound. Bredt is shown beside it. Common tubes read the two bounds from
+  TUBE_TABLE, written by the same solve (J = t⁴·f(W/t, H/t): one row per pair of ratios).
 
 Load cases (seed 5.2, Shigley table A-9), a measured from the left support (or the fixed end):
 - (53) is the fixed-fixed beam (Shigley A-9-14), for 0 ≤ x ≤ a. Its maximum (56)/(57) lies in
