@@ -1,6 +1,7 @@
 """The common rectangular tubes whose torsion-constant bounds core/beams.py ships (TUBE_TABLE).
 
-    python -m tests.tube_table      # print TUBE_TABLE's rows, computed by beams._tube_torsion_bounds
+    python -m tests.tube_table      # print TUBE_REFERENCE (this machine's _spectral_reference) and
+                                    # TUBE_TABLE's rows (beams._tube_torsion_bounds, from TUBE_REFERENCE)
 
 J = t⁴·f(W/t, H/t): one row per side/wall ratio pair, so a 2×2×1/8 in tube shares the 1×1×1/16
 in row. Both orientations are listed (height × width and width × height: the two solves differ by
@@ -65,6 +66,20 @@ def rows() -> list[tuple[float, float, float, float, str]]:
     return [(W, H, *beams._tube_torsion_bounds(W, H), name) for (W, H), name in sorted(ratios().items())]
 
 
+def reference_text() -> str:
+    """beams._spectral_reference(TUBE_DEGREE) as TUBE_REFERENCE's text: labelled, 4 numbers a line."""
+    from gearhead.core import beams
+
+    out = []
+    names = ("nodes", "stiffness", "mass", "weights", "moments")
+    for name, values in zip(names, beams._spectral_reference.__wrapped__(beams.TUBE_DEGREE)):
+        numbers = [repr(float(v)) for v in values.ravel()]
+        out.append(f"{name}:")
+        out += [" ".join(numbers[i : i + 4]) for i in range(0, len(numbers), 4)]
+    return "\n".join(out)
+
+
 if __name__ == "__main__":
+    print(f'TUBE_REFERENCE = """\n{reference_text()}\n"""\n')
     for W, H, lower, upper, name in rows():
         print(f"    ({W!r}, {H!r}, {lower!r}, {upper!r}),  # {name}")
