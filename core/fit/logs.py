@@ -520,6 +520,7 @@ def _take(log, a, buf, base, pos, bits, il, ent, live, kept, parts) -> None:
 # checked equal to its group's first, word by word (one that is not, a hash shared by two strings,
 # is grouped exactly by numpy's unique of its words).
 _TEXT_BYTES = 64
+_TEXT_FEW = 32  # fewer records in a chunk: decoded one by one (numpy's calls would cost more)
 _MIX = np.array(
     [0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9, 0xD6E8FEB86659FD93, 0xFF51AFD7ED558CCD,
      0xC4CEB9FE1A85EC53, 0x94D049BB133111EB, 0xBF58476D1CE4E5B9, 0x27D4EB2F165667C5],
@@ -544,7 +545,7 @@ def _text_codes(a, buf, at, size, texts: Texts) -> np.ndarray:
         return np.zeros(0, np.int32)
     width = int(size.max())
     code = texts.code
-    if width > _TEXT_BYTES:  # free text (a json entry): one decode a record, equal ones coded alike
+    if width > _TEXT_BYTES or k < _TEXT_FEW:  # free text (a json entry), or a few: one decode a record
         return np.fromiter(
             (code(buf[s : s + n].decode("utf-8", "replace")) for s, n in zip(at.tolist(), size.tolist())),
             np.int32,
