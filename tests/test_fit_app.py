@@ -149,6 +149,21 @@ async def test_flywheel_fits_and_offers_its_wheel_inertia(tmp_path):
         assert not screen.query_one("#fit-apply").disabled  # Apply: tests/test_fit_apply.py
 
 
+async def test_a_name_not_utf8_is_shown_escaped_in_the_dialog(tmp_path):
+    # the dialog's signals line showed the replacement character (as the CLI did)
+    pytest.importorskip("wpiutil")
+    from tests.test_fit_cli import named_log
+
+    path = named_log(tmp_path)
+    app = GearheadApp(blink=False, initial="elevator", hide_timings=True)
+    async with app.run_test(size=SIZE) as pilot:
+        screen = await open_fit(pilot)
+        await fit(pilot, screen, str(path))
+        assert screen.report is not None, str(screen.query_one("#fit-status").render())
+        signals = str(screen.query_one("#fit-signals").render())
+        assert "voltage voltage-m\\xff-lift" in signals and "\ufffd" not in signals, signals
+
+
 @pytest.mark.parametrize("size", [(140, 45), (80, 24)])
 def test_in_a_real_terminal_it_opens_fits_and_closes(tmp_path, size):
     from tests.test_keystrokes import TMUX, Terminal

@@ -261,3 +261,29 @@ def test_sprint_card(capsys, tmp_path):
     assert "of the wheel, × its radius" in out
     code, out, err = run(capsys, "fit", log, "--card", "sprint", "--apply")
     assert code == 2 and out == "" and "--apply: needs the card's file" in err
+
+
+def named_log(tmp_path, motor: bytes = b"m\xff") -> Path:
+    """An elevator's SysId log whose motor's name is not UTF-8 (its three entries' names: the log
+    written with motor 'mA', the two bytes then replaced)."""
+    log = simulate(tmp_path / "bad-name.wpilog", "elevator", {"kS": 0.2, "kV": 10.0, "kA": 1.2, "kG": 0.6},
+                   mech="lift", motor="mA")  # fmt: skip
+    data = log.read_bytes()
+    assert data.count(b"-mA-lift") == 3
+    log.write_bytes(data.replace(b"-mA-lift", b"-" + motor + b"-lift"))
+    return log
+
+
+def test_a_name_not_utf8_is_shown_escaped_and_can_be_typed_as_shown(capsys, tmp_path):
+    # it was shown with the replacement character (\ufffd), which no one can type back
+    log = named_log(tmp_path)
+    code, out, err = run(capsys, "fit", log, "--card", "elevator")
+    assert code == 0, err
+    assert "voltage 'voltage-m\\xff-lift'" in out and "\ufffd" not in out, out
+    # typed as shown, or with the raw byte as a shell passes it (surrogateescape, as os.fsdecode)
+    for name in ("voltage-m\\xff-lift", b"voltage-m\xff-lift".decode("utf-8", "surrogateescape")):
+        code, out, err = run(capsys, "fit", log, "--card", "elevator", "--voltage", name, "--json")
+        assert code == 0, err
+        assert json.loads(out)["signals"]["voltage"] == "voltage-m\\xff-lift"
+    code, out, err = run(capsys, "fit", log, "--card", "elevator", "--voltage", "voltage-m-lift")
+    assert code == 2 and "no entry 'voltage-m-lift' in the log" in err

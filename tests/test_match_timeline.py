@@ -127,6 +127,71 @@ async def test_ctrl_n_adds_an_event_and_ctrl_d_deletes_one():
         assert screen.unsaved_changes() == 1
 
 
+def cell_text(view, index: int, key: str) -> str:
+    """The value cell of event `index`'s `key` as the timeline draws it."""
+    sheet = view.sheet
+    return sheet.value_text(next(s for s in sheet.stops if s.field.name == field_name(index, key)))
+
+
+def drawn_line(view, index: int, key: str) -> str:
+    """The sheet's line of that cell, as rendered (label, value)."""
+    sheet = view.sheet
+    stop = next(i for i, s in enumerate(sheet.stops) if s.field.name == field_name(index, key))
+    sheet.move_to(stop)  # in sight
+    y = sheet._first_line[stop] - sheet.scroll_offset.y
+    return "".join(seg.text for seg in sheet.render_line(y))
+
+
+async def test_a_left_out_action_or_count_shows_what_the_match_runs():
+    # the action cell was blank for the default action: a reader of the timeline could not tell
+    # what an event without `action` does (a sprint's, an elevator's move; a flywheel's spin_up)
+    events = file_events(EXAMPLE)
+    assert any("action" not in e for e in events) and any("count" not in e for e in events)
+    app = GearheadApp(blink=False, hide_timings=True, workbook=workbook.load(EXAMPLE))
+    async with app.run_test(size=(140, 45)) as pilot:
+        screen, view = await open_timeline(pilot, app)
+        ran = view.match.spec.events  # the match as run: each event's action and count
+        assert len(ran) == len(events)
+        for i, (e, ev) in enumerate(zip(events, ran, strict=True), start=1):
+            action, count = cell_text(view, i, "action"), cell_text(view, i, "count")
+            if "action" in e:
+                assert action == e["action"]
+            else:
+                assert action == f"{ev.action} (default)", (i, action)
+            if "count" in e:
+                assert count == str(e["count"])
+            else:
+                assert "every" not in e and ev.count == 1 and count == "1 (default)", (i, count)
+        plain = next(i for i, e in enumerate(events, 1) if "action" not in e)
+        assert "move (default)" in drawn_line(view, plain, "action")
+        # a flywheel's default is spin_up: its action left out, the cell says so, and the match runs it
+        shot = next(i for i, e in enumerate(events, 1) if e["card"] == "shooter" and "every" not in e)
+        view._take_entry(field_name(shot, "action"), "")
+        await edited(pilot, screen, view)
+        await match_drawn(pilot, view)
+        assert cell_text(view, shot, "action") == "spin_up (default)"
+        assert view.match.spec.events[shot - 1].action == "spin_up"
+        assert "spin_up (default)" in drawn_line(view, shot, "action")
+        # the card changed: its default follows (the row redrawn)
+        view._take_entry(field_name(shot, "card"), "lift")
+        await edited(pilot, screen, view)
+        assert cell_text(view, shot, "action") == "move (default)"
+        assert "move (default)" in drawn_line(view, shot, "action")
+        # an `every` without count repeats to the end of the match
+        view._take_entry(field_name(shot, "every"), "30")
+        await edited(pilot, screen, view)
+        assert cell_text(view, shot, "count") == "to the end (default)"
+        ev = view.match.spec.events[shot - 1]
+        assert ev.every == 30.0 and ev.at + (ev.count - 1) * 30.0 <= view.match.spec.values["length"]
+        # a card that is not one: no default to show (the refusal names the card)
+        view._take_entry(field_name(shot, "card"), "nothing")
+        await edited(pilot, screen, view)
+        assert cell_text(view, shot, "action") == ""
+        # typed over, the cell shows what was typed, not the default
+        view._take_entry(field_name(shot, "action"), "stop")
+        assert cell_text(view, shot, "action") == "stop"
+
+
 COMMENTED = "# my robot's match, with my notes\n"
 
 

@@ -149,11 +149,13 @@ def _g(x: float) -> str:
 def text(r) -> list[str]:
     from gearhead.core.fit import favoured_reason
     from gearhead.core.fit.entries import MOVE_OUTPUTS
+    from gearhead.core.fit.logs import quoted
 
     pos, vel = UNITS[r.kind]
     p = r.picked
     out = [f"{r.source}: {r.kind}, card from {r.card.label}"]
-    out.append("  signals: " + ", ".join(f"{k} {v!r}" for k, v in p.names.items()))
+    # a name read is shown escaped (core.fit.logs.shown_name): quoted as is, never repr'd again
+    out.append("  signals: " + ", ".join(f"{k} {quoted(v)}" for k, v in p.names.items()))
     if p.units:
         out.append("  units: " + ", ".join(f"{k} {v}" for k, v in p.units.items()))
     out.append(

@@ -26,7 +26,7 @@ import os
 import re
 import struct
 from array import array
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -69,19 +69,97 @@ class Record:
     offset: int  # byte offset of the record in the file
 
 
+class Texts(Sequence):
+    """A string signal's samples: one code a sample (numpy int32) into `table`, its distinct
+    strings in the order first met. A SysId test state repeats a handful of values over millions
+    of records: held as a list of str it was ~80 bytes a sample (a 167 MB log: 2.6 million strings,
+    ~200 MB); here it is 4. Reads as a sequence of str (indexing, slices as lists, iteration,
+    equality with a list)."""
+
+    __hash__ = None  # type: ignore[assignment]  # equal to a list of the same strings
+
+    def __init__(self, codes: np.ndarray | None = None, table: list[str] | None = None) -> None:
+        self.codes = np.zeros(0, np.int32) if codes is None else codes
+        self.table: list[str] = table if table is not None else []
+        self._index = {t: k for k, t in enumerate(self.table)}
+
+    @classmethod
+    def of(cls, strings) -> Texts:
+        out = cls()
+        out.codes = np.fromiter((out.code(t) for t in strings), np.int32)
+        return out
+
+    def code(self, text: str) -> int:
+        """The code of `text`, added to the table when new."""
+        k = self._index.get(text)
+        if k is None:
+            k = self._index[text] = len(self.table)
+            self.table.append(text)
+        return k
+
+    def __len__(self) -> int:
+        return len(self.codes)
+
+    def __getitem__(self, k):
+        if isinstance(k, slice):
+            return [self.table[c] for c in self.codes[k].tolist()]
+        return self.table[int(self.codes[k])]
+
+    def __iter__(self):
+        table = self.table
+        for start in range(0, len(self.codes), CHUNK):  # a chunk of codes as ints at a time
+            yield from (table[c] for c in self.codes[start : start + CHUNK].tolist())
+
+    def __eq__(self, other) -> bool:
+        if isinstance(other, Texts | list | tuple):
+            return len(self) == len(other) and all(a == b for a, b in zip(self, other))
+        return NotImplemented
+
+    def __repr__(self) -> str:
+        return f"Texts({self[:5]!r}{'…' if len(self) > 5 else ''}, {len(self)} samples)"
+
+
 @dataclass
 class Signal:
-    """One entry's samples, sorted by time: numbers (an array of float) or strings (a list)."""
+    """One entry's samples, sorted by time: numbers (an array of float) or strings (Texts)."""
 
     name: str
     type: str
     metadata: str
     times: array = field(default_factory=lambda: array("d"))  # s
-    values: array | list = field(default_factory=lambda: array("d"))
+    values: array | Texts = field(default_factory=lambda: array("d"))
     reordered: bool = False  # its records were not in time order (sorted here)
 
     def numeric(self) -> bool:
         return isinstance(self.values, array)
+
+
+def shown_name(name: str) -> str:
+    """An entry's name as it is read, shown and matched: the name itself when it is valid UTF-8,
+    printable and has no backslash (every name a robot program logs); else escaped, so that two
+    distinct names never look the same and each can be typed back: a backslash as \\\\, a byte
+    that is not UTF-8 as \\xNN (80-ff), an invisible character as \\xNN (below 80), \\uNNNN or
+    \\UNNNNNNNN. `name` is the bytes decoded with surrogateescape (os.fsdecode's, as a command
+    line's argument is), so a name typed in a shell with its raw bytes is shown the same."""
+    if name.isprintable() and "\\" not in name:
+        return name
+    out = []
+    for ch in name:
+        o = ord(ch)
+        if ch == "\\":
+            out.append("\\\\")
+        elif 0xDC80 <= o <= 0xDCFF:  # surrogateescape's: the byte o - 0xDC00, not UTF-8
+            out.append(f"\\x{o - 0xDC00:02x}")
+        elif ch.isprintable():
+            out.append(ch)
+        else:
+            out.append(f"\\x{o:02x}" if o < 0x80 else f"\\u{o:04x}" if o <= 0xFFFF else f"\\U{o:08x}")
+    return "".join(out)
+
+
+def quoted(name: str) -> str:
+    """A name in a message: quoted, as is when printable (a name read is: shown_name), else repr."""
+    return f"'{name}'" if name.isprintable() else repr(name)
 
 
 def _error(path, message: str) -> InputError:
@@ -267,7 +345,10 @@ class WPILog:
             (k,) = struct.unpack_from("<I", d, p)
             if p + 4 + k > len(d):
                 raise _error(self.path, f"{where} gives its {what} {k} bytes, past the record's end")
-            return d[p + 4 : p + 4 + k].decode("utf-8", "replace"), p + 4 + k
+            text = d[p + 4 : p + 4 + k]
+            if what == "name":  # bad bytes escaped, not replaced: two names never read as one
+                return shown_name(text.decode("utf-8", "surrogateescape")), p + 4 + k
+            return text.decode("utf-8", "replace"), p + 4 + k
 
         if kind in (CONTROL_START, CONTROL_FINISH, CONTROL_SET_METADATA) and len(d) < 5:
             raise _error(self.path, f"{where} is too short for its entry id")
@@ -323,7 +404,7 @@ def read_wpilog(path, wanted: Callable[[str], bool]) -> tuple[dict[str, Signal],
                     if sig is None:
                         sig = Signal(what.name, what.type, what.metadata)
                         if what.type in ("string", "json"):
-                            sig.values = []
+                            sig.values = Texts()
                         out[what.name] = sig
                         parts[what.name] = []
                     kept[what.id] = sig
@@ -394,10 +475,7 @@ def _take(log, a, buf, base, pos, bits, il, ent, live, kept, parts) -> None:
             at = q + sl + tl
             times = ts.astype(np.float64) / 1e6
             if text:
-                values = [
-                    buf[s : s + n].decode("utf-8", "replace") for s, n in zip(at.tolist(), size.tolist())
-                ]
-                got.append((idx, times, values))
+                got.append((idx, times, _text_codes(a, buf, at, size, sig.values)))
                 continue
             width = np.dtype(_DTYPES[typ]).itemsize
             wrong = np.flatnonzero(size != width)
@@ -406,7 +484,7 @@ def _take(log, a, buf, base, pos, bits, il, ent, live, kept, parts) -> None:
                 errors.append(
                     (
                         int(idx[k]),
-                        f"entry {entry.name!r} ({typ}) has a {int(size[k])}-byte record at byte "
+                        f"entry {quoted(entry.name)} ({typ}) has a {int(size[k])}-byte record at byte "
                         f"{base + int(p[k])}; a {typ} is {width} bytes",
                     )
                 )
@@ -420,7 +498,7 @@ def _take(log, a, buf, base, pos, bits, il, ent, live, kept, parts) -> None:
                 errors.append(
                     (
                         int(idx[k]),
-                        f"entry {sig.name!r} holds a non-finite value ({float(values[k])}) at "
+                        f"entry {quoted(sig.name)} holds a non-finite value ({float(values[k])}) at "
                         f"t = {int(ts[k]) / 1e6:g} s",
                     )
                 )
@@ -431,13 +509,87 @@ def _take(log, a, buf, base, pos, bits, il, ent, live, kept, parts) -> None:
             idx = np.concatenate([g[0] for g in got])
             order = np.argsort(idx, kind="stable")
             times = np.concatenate([g[1] for g in got])[order]
-            if text:
-                flat = [v for g in got for v in g[2]]
-                parts[sig.name].append((times, [flat[i] for i in order.tolist()]))
-            else:
-                parts[sig.name].append((times, np.concatenate([g[2] for g in got])[order]))
+            parts[sig.name].append((times, np.concatenate([g[2] for g in got])[order]))
     if errors:
         raise _error(log.path, min(errors)[1])
+
+
+# A chunk's string records whose payloads are all at most _TEXT_BYTES long are read as words: the
+# string's bytes 8 at a time (little-endian, the bytes past its end masked to 0) and its size. The
+# records are grouped by a hash of their words, each group's first decoded once, and every record
+# checked equal to its group's first, word by word (one that is not, a hash shared by two strings,
+# is grouped exactly by numpy's unique of its words).
+_TEXT_BYTES = 64
+_TEXT_FEW = 32  # fewer records in a chunk: decoded one by one (numpy's calls would cost more)
+_MIX = np.array(
+    [0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9, 0xD6E8FEB86659FD93, 0xFF51AFD7ED558CCD,
+     0xC4CEB9FE1A85EC53, 0x94D049BB133111EB, 0xBF58476D1CE4E5B9, 0x27D4EB2F165667C5],
+    np.uint64,
+)  # fmt: skip  # odd 64-bit constants (hash mixing), one a word and one for the size
+# word j's mask for a string of n bytes (_MASK[j, n]): its bytes 8j.. that are the string's
+_MASK = np.array(
+    [
+        [(1 << (8 * min(max(n - 8 * j, 0), 8))) - 1 for n in range(_TEXT_BYTES + 1)]
+        for j in range(_TEXT_BYTES // 8)
+    ],
+    np.uint64,
+)
+
+
+def _text_codes(a, buf, at, size, texts: Texts) -> np.ndarray:
+    """The codes in `texts` of the strings of the records whose payloads are at offsets `at` (sizes
+    `size`) of the chunk `buf` (bytes `a`), each decoded as UTF-8 (a bad byte replaced, as before):
+    a test state's few distinct values are decoded once a chunk, not once a record."""
+    k = len(at)
+    if not k:
+        return np.zeros(0, np.int32)
+    width = int(size.max())
+    code = texts.code
+    if width > _TEXT_BYTES or k < _TEXT_FEW:  # free text (a json entry), or a few: one decode a record
+        return np.fromiter(
+            (code(buf[s : s + n].decode("utf-8", "replace")) for s, n in zip(at.tolist(), size.tolist())),
+            np.int32,
+            k,
+        )
+    n_words = (width + 7) // 8
+    if int(at.max()) + 8 * n_words > len(a):  # a word read past the chunk's end
+        a = np.concatenate((a, np.zeros(8 * n_words, np.uint8)))
+    # the 8 bytes from every byte offset, as one little-endian word (a view, nothing copied)
+    word_at = np.ndarray((len(a) - 7,), dtype="<u8", buffer=a, strides=(1,))
+    words = [word_at[at + 8 * j] & _MASK[j][size] for j in range(n_words)]
+    hashes = size.astype(np.uint64) * _MIX[-1]
+    for j, w in enumerate(words):
+        hashes += w * _MIX[j]  # wraps: a hash, checked below
+    distinct = np.unique(hashes)
+    group = np.searchsorted(distinct, hashes)
+    first = np.empty(len(distinct), np.intp)
+    first[group] = np.arange(k)  # a record of each group (any: all are checked against it)
+    lead = first[group]
+    same = size == size[lead]
+    for w in words:
+        same &= w == w[lead]
+    got = np.array(
+        [
+            code(buf[s : s + n].decode("utf-8", "replace"))
+            for s, n in zip(at[first].tolist(), size[first].tolist())
+        ],
+        np.int32,
+    )
+    codes = got[group]
+    if not same.all():  # a hash shared by two strings: those records grouped exactly
+        rest = np.flatnonzero(~same)
+        exact = np.column_stack([size[rest].astype(np.uint64), *(w[rest] for w in words)])
+        _, one, back = np.unique(exact, axis=0, return_index=True, return_inverse=True)
+        r = rest[one]
+        again = np.array(
+            [
+                code(buf[s : s + n].decode("utf-8", "replace"))
+                for s, n in zip(at[r].tolist(), size[r].tolist())
+            ],
+            np.int32,
+        )
+        codes[rest] = again[back.ravel()]
+    return codes
 
 
 def _finish(sig: Signal, got: list) -> None:
@@ -446,16 +598,17 @@ def _finish(sig: Signal, got: list) -> None:
         return
     times = np.concatenate([g[0] for g in got])
     text = not sig.numeric()
-    values = [v for g in got for v in g[1]] if text else np.concatenate([g[1] for g in got])
+    values = np.concatenate([g[1] for g in got])
+    got.clear()  # the parts go before the copies below are made (a third less at the peak)
     if len(times) > 1 and bool(np.any(times[1:] < times[:-1])):
         order = np.argsort(times, kind="stable")  # equal times keep the file's order
         times = times[order]
-        values = [values[i] for i in order.tolist()] if text else values[order]
+        values = values[order]
         sig.reordered = True
     sig.times = array("d")  # filled from numpy's buffer, not from a copy of it in bytes
     sig.times.frombytes(memoryview(np.ascontiguousarray(times)).cast("B"))
     if text:
-        sig.values = values
+        sig.values.codes = values
     else:
         sig.values = array("d")
         sig.values.frombytes(memoryview(np.ascontiguousarray(values, dtype=np.float64)).cast("B"))
@@ -468,7 +621,10 @@ def _sort(sig: Signal) -> None:
     order = sorted(range(len(t)), key=t.__getitem__)  # stable: equal times keep the file's order
     sig.times = array("d", (t[i] for i in order))
     v = sig.values
-    sig.values = array("d", (v[i] for i in order)) if isinstance(v, array) else [v[i] for i in order]
+    if isinstance(v, array):
+        sig.values = array("d", (v[i] for i in order))
+    else:
+        sig.values = Texts(v.codes[np.array(order, dtype=np.int64)], v.table)
     sig.reordered = True
 
 
@@ -512,14 +668,14 @@ def read_csv(path, wanted: Callable[[str], bool]) -> tuple[dict[str, Signal], di
             header = next(rows, None)
             if not header or header[0].strip().lower() not in TIME_COLUMNS:
                 raise _error(path, "is not a log CSV: its first column must be the time ('Timestamp', in s)")
-            names = [h.strip() for h in header]
+            names = [shown_name(h.strip()) for h in header]  # as a WPILog's (invisible ones escaped)
             cols = [i for i in range(1, len(names)) if wanted(names[i])]
             first: dict[str, int] = {}
             for i in cols:  # two columns of one name: which one is meant is not known
                 if names[i] in first:
                     raise _error(
                         path,
-                        f"has two columns named {names[i]!r} (columns {first[names[i]] + 1} and {i + 1})",
+                        f"has two columns named {quoted(names[i])} (columns {first[names[i]] + 1} and {i + 1})",
                     )
                 first[names[i]] = i
             cells: dict[int, tuple[array, list]] = {i: (array("d"), []) for i in cols}
@@ -542,16 +698,16 @@ def read_csv(path, wanted: Callable[[str], bool]) -> tuple[dict[str, Signal], di
     for i in cols:
         times, text = cells[i]
         try:
-            values: array | list = array("d", (_number(s) for s in text))
+            values: array | Texts = array("d", (_number(s) for s in text))
         except ValueError:
-            values = text
+            values = Texts.of(text)
         sig = Signal(names[i], "double" if isinstance(values, array) else "string", "", times, values)
         if isinstance(values, array):
             bad = next((k for k, v in enumerate(values) if not math.isfinite(v)), None)
             if bad is not None:
                 raise _error(
                     path,
-                    f"column {names[i]!r} holds a non-finite value ({text[bad]}) at t = {times[bad]:g} s",
+                    f"column {quoted(names[i])} holds a non-finite value ({text[bad]}) at t = {times[bad]:g} s",
                 )
         _sort(sig)
         out[names[i]] = sig

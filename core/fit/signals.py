@@ -103,8 +103,14 @@ def _base(name: str) -> str:
     return name.rsplit("/", 1)[-1]
 
 
+def _resolve(name: str, sigs) -> str:
+    """A name given (--voltage ...) as the log's: as typed, else as shown (logs.shown_name: a name
+    typed with its raw bytes, or with a backslash the log's name shows doubled)."""
+    return name if name in sigs or logs.shown_name(name) not in sigs else logs.shown_name(name)
+
+
 def _wanted(named: dict[str, str | None]):
-    explicit = {v for v in named.values() if v}
+    explicit = {v for v in named.values() if v} | {logs.shown_name(v) for v in named.values() if v}
 
     def wanted(name: str) -> bool:
         return (
@@ -165,8 +171,9 @@ def pick(
                 f"holds {len(states)} SysId routines ({', '.join(sorted(states))}); choose one with --routine",
                 source,
             )
+    state = _resolve(state, sigs)
     if state not in sigs:
-        raise InputError("--state", f"{state!r} is not in the log", source)
+        raise InputError("--state", f"{logs.quoted(state)} is not in the log", source)
     base = _base(state)
     prefix = state[: len(state) - len(base)]  # a CSV export may put the log's entries under a folder
     mech = base.removeprefix("sysid-test-state-") if base.startswith("sysid-test-state-") else None
@@ -178,15 +185,17 @@ def pick(
     if motor is None and found and not all(named[r] for r in ("voltage", "position", "velocity")):
         with_voltage = sorted(k for k, v in found.items() if any(r == "voltage" for r, _ in v))
         if not with_voltage:
-            raise InputError("log", f"routine {mech!r} logs no voltage-<motor>-{mech}", source)
+            raise InputError("log", f"routine {logs.quoted(mech)} logs no voltage-<motor>-{mech}", source)
         motor = with_voltage[0]
         if len(with_voltage) > 1:
             notes.append(
-                f"motors logged: {', '.join(with_voltage)}; fitted from {motor!r} (choose with --motor)"
+                f"motors logged: {', '.join(with_voltage)}; fitted from {logs.quoted(motor)} (choose with --motor)"
             )
     names = {"state": state}
     for role in ("voltage", "position", "velocity", "current"):
         name = named[role] or (f"{prefix}{role}-{motor}-{mech}" if motor and mech else None)
+        if name is not None:
+            name = _resolve(name, sigs)
         if name is None or name not in sigs:
             if role == "current":
                 continue
@@ -194,7 +203,9 @@ def pick(
                 continue
             raise InputError(
                 f"--{role}",
-                f"no entry {name!r} in the log" if name else f"no {role} signal found; name it with --{role}",
+                f"no entry {logs.quoted(name)} in the log"
+                if name
+                else f"no {role} signal found; name it with --{role}",
                 source,
             )
         names[role] = name
@@ -249,8 +260,9 @@ def pick(
     found_bus = [n for n in sigs if n.endswith(BUS_SUFFIX)]
     bus_name = bus_voltage or (found_bus[0] if len(found_bus) == 1 else None)
     if bus_name is not None:
+        bus_name = _resolve(bus_name, sigs)
         if bus_name not in sigs:
-            raise InputError("--bus-voltage", f"no entry {bus_name!r} in the log", source)
+            raise InputError("--bus-voltage", f"no entry {logs.quoted(bus_name)} in the log", source)
         b = sigs[bus_name]
         if not b.numeric():
             raise InputError(bus_name, "holds text, not the bus voltage's numbers", source)
@@ -270,22 +282,24 @@ def _unit_is(sig, ok: tuple[str, ...], what: str, source: str) -> None:
 def _runs(sigs, names, factors, source) -> dict[str, Run]:
     """The first run of each state (S2)."""
     st = sigs[names["state"]]
-    times = list(st.times)
-    values = st.values
-    last = max(max(sigs[n].times, default=0.0) for n in names.values()) + 1.0
+    texts = st.values if isinstance(st.values, logs.Texts) else logs.Texts.of(st.values)
+    codes, table = texts.codes, texts.table
+    # each signal is sorted by time: its last sample is its latest
+    last = max((sigs[n].times[-1] if len(sigs[n].times) else 0.0) for n in names.values()) + 1.0
+    # the runs: where the state changes; a run ends at the next run's first record (S2)
+    starts = np.flatnonzero(np.concatenate(([True], codes[1:] != codes[:-1]))) if len(codes) else codes
+    at = starts.tolist()
     first: dict[str, tuple[float, float]] = {}
-    k = 0
-    while k < len(values):
-        j = k
-        while j + 1 < len(values) and values[j + 1] == values[k]:
-            j += 1
-        end = times[j + 1] if j + 1 < len(values) else last
-        if values[k] in STATES and values[k] not in first:
-            first[values[k]] = (times[k], end)
-        k = j + 1
+    for r, c in enumerate(codes[starts].tolist()):
+        state = table[c]
+        if state in STATES and state not in first:
+            end = st.times[at[r + 1]] if r + 1 < len(at) else last
+            first[state] = (st.times[at[r]], end)
+            if len(first) == len(STATES):
+                break
     missing = [s for s in STATES if s not in first]
     if missing:
-        seen = sorted(set(values)) or ["none"]
+        seen = sorted(set(table)) or ["none"]
         raise InputError(
             names["state"],
             f"never runs {', '.join(missing)} (states logged: {', '.join(seen)}); SysId needs all four tests",

@@ -87,6 +87,14 @@ KEYS = {  # key: (unit, default, a reference allowed)
     "channel_rating": ("A", 40.0, False),
 }
 EVENT_KEYS = ("at", "card", "action", "every", "count")
+
+
+def default_action(calculator: str) -> str | None:
+    """The action an event of a card of this calculator runs when it names none (ON_BUS's first),
+    None for a calculator not on the bus."""
+    return ON_BUS[calculator][2][0] if calculator in ON_BUS else None
+
+
 EVENT_TIMES = ("at", "every")  # in seconds: a bare number typed in the app is written "N s"
 EVENT_WORDS = ("card", "action")  # names, kept as typed
 
@@ -378,7 +386,7 @@ def _event(i: int, data: dict, wb: Workbook, length: float) -> Event:
             raise InputError(
                 f"{where}.card", f"{card} is in mode {shown(mode)}; the match runs mode = {runs}", src
             )
-    action = data.get("action", actions[0])
+    action = data.get("action", default_action(calc))
     if action not in actions:
         raise InputError(
             f"{where}.action",

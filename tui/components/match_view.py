@@ -133,9 +133,17 @@ class MatchView(VerticalScroll, can_focus=True):
         Binding(timeline.DELETE_KEY, "delete_event", "Delete event"),
     ]
 
-    def __init__(self, source: str, tables: list | None = None, on_change=lambda: None, **kwargs) -> None:
+    def __init__(
+        self,
+        source: str,
+        tables: list | None = None,
+        on_change=lambda: None,
+        calculators: dict[str, str] | None = None,
+        **kwargs,
+    ) -> None:
         super().__init__(**kwargs)
         self.source = source  # the workbook's file, named in a failure
+        self.calculators = dict(calculators or {})  # card -> calculator: a left-out action's default
         # the events' tables as the file has them, then as edited: the one copy (timeline.py)
         self.tables: list[dict[str, Any]] = [dict(t) for t in (tables or []) if isinstance(t, dict)]
         self.origins: list[int | None] = list(range(len(self.tables)))  # the file's table of each
@@ -159,6 +167,7 @@ class MatchView(VerticalScroll, can_focus=True):
             on_choose=lambda f: None,
             on_add=self.action_add_event,
             on_delete=self.action_delete_event,
+            calculators=self.calculators,
             id="match-timeline",
         )
         self._fit_sheet()
@@ -213,6 +222,8 @@ class MatchView(VerticalScroll, can_focus=True):
             return
         table[cell[1]] = value
         self.sheet.refresh_field(name)
+        for key in ("action", "count"):  # their shown defaults follow the card and `every`
+            self.sheet.refresh_field(timeline.field_name(cell[0], key))
         self.on_change()
 
     def _rows_changed(self) -> None:

@@ -1,7 +1,10 @@
 """The Match card's timeline: the workbook's `[[match.events]]` as rows of the app's sheet (sheet.py),
 edited with its keys (typing replaces a cell, Enter edits it, Esc cancels, the arrows and Tab move),
 each event's fields (at, card, action, every, count: core.workbook.match.EVENT_KEYS, and any other
-key an event of the file has) one row each, labelled with the event's number.
+key an event of the file has) one row each, labelled with the event's number. A left-out action or
+count shows, dimmed, what the match runs for it ("move (default)", the card's first action: a
+flywheel's is spin_up; "1 (default)", or "to the end (default)" beside an `every`), so every row
+says what its event does.
 
 The sheet is the card's own (one widget, its keys in order, the validation message under the row)
 over a calculator made of these rows: a grid of its own would have been a second editor to keep in
@@ -16,6 +19,8 @@ import re
 from collections.abc import Mapping
 from typing import Any
 
+from rich.segment import Segment
+from rich.style import Style
 from textual import events
 
 from gearhead.core.fields import Field
@@ -24,6 +29,8 @@ from gearhead.core.model import Calculator
 from .sheet import Sheet
 
 ADD_KEY, DELETE_KEY = "ctrl+n", "ctrl+d"
+DEFAULT = " (default)"  # after a left-out cell's value, the one the match takes
+_DIM = Style(dim=True)
 _CELL = re.compile(r"^e(\d+)_(\w+)$")
 _WHERE = re.compile(r"^match\.events\[(\d+)\]\.(\w+)$")
 
@@ -84,6 +91,26 @@ def keys_of(tables: list[dict[str, Any]]) -> tuple[str, ...]:
     return (*EVENT_KEYS, *dict.fromkeys(extra))
 
 
+def _blank(value: Any) -> bool:
+    return isinstance(value, str) and not value.strip()  # left out (event_table drops it)
+
+
+def default_text(table: Mapping[str, Any], key: str, calculators: Mapping[str, str]) -> str:
+    """What the match takes for `key` of an event that leaves it out (core.workbook.match._event), as
+    the timeline shows it: the card's first action, 1 move, or moves to the match's end beside an
+    `every`; '' for any other key, or an action whose card is not known yet (the refusal says so)."""
+    if key == "action":
+        from gearhead.core.workbook.match import default_action
+
+        card = table.get("card", "")
+        calc = calculators.get(card.strip()) if isinstance(card, str) else None
+        action = default_action(calc) if calc is not None else None
+        return action + DEFAULT if action else ""
+    if key == "count":
+        return ("1" if _blank(table.get("every", "")) else "to the end") + DEFAULT
+    return ""
+
+
 def calculator(tables: list[dict[str, Any]]) -> Calculator:
     """A form whose rows are the events' cells (only their declarations: nothing is parsed here,
     the workbook's match reads the tables and names what is wrong)."""
@@ -105,9 +132,32 @@ class TimelineSheet(Sheet):
     """The sheet of the events; ctrl+n adds an event, ctrl+d deletes the one under the cursor, both
     handled in the key handler, in the order typed, as every key of the sheet is."""
 
-    def __init__(self, *args, on_add, on_delete, **kwargs) -> None:
+    def __init__(
+        self, *args, on_add, on_delete, calculators: Mapping[str, str] | None = None, **kwargs
+    ) -> None:
         super().__init__(*args, **kwargs)
         self.on_add, self.on_delete = on_add, on_delete
+        self.calculators = calculators or {}  # card name -> its calculator: the default action's
+
+    def default_of(self, stop) -> str:
+        """The default a left-out cell shows ('' when the cell holds a value, or has none)."""
+        cell = cell_of(stop.field.name)
+        entries = self._entries()
+        if cell is None or not isinstance(entries, Cells) or not 1 <= cell[0] <= len(entries.tables):
+            return ""
+        table = entries.tables[cell[0] - 1]
+        if not _blank(table.get(cell[1], "")):
+            return ""
+        return default_text(table, cell[1], self.calculators)
+
+    def value_text(self, stop) -> str:
+        return self.default_of(stop) or super().value_text(stop)
+
+    def _value_segments(self, stop, on_cursor: bool, base: Style) -> list[Segment]:
+        segments = super()._value_segments(stop, on_cursor, base)
+        if (on_cursor and self.editing) or not self.default_of(stop):
+            return segments
+        return [Segment(s.text, (s.style or base) + _DIM, s.control) for s in segments]
 
     def set_calculator(self, calc: Calculator) -> None:
         """Rows added or removed: the form's declarations replaced, the cursor kept on its row

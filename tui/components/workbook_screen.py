@@ -290,6 +290,7 @@ class WorkbookScreen(Screen):
                     book.source,
                     events if isinstance(events, list) else [],
                     self.request_solve,
+                    calculators={name: card.calculator for name, card in book.cards.items()},
                     id="wbpane-match",
                 )
                 yield self.match_view
