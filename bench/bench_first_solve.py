@@ -4,13 +4,17 @@ stage classes), beside another checkout's figures measured in the same run, alte
 processes. Figures only, never asserted (medians; CPU is the thread's own time, which load on a
 shared machine changes least).
 
-    .venv/bin/python bench/bench_first_solve.py [--runs N] [--against OTHER/.venv/bin/python]
+    .venv/bin/python bench/bench_first_solve.py [--runs N] [--against OTHER/.venv/bin/python] [--visits]
 
 - import: `registry.get(id)` once the app's modules and the first card's calculator are loaded (as
   when the app builds that card), wall and thread CPU, and how many modules it loads;
 - ratio_finder's first solve (`model.solve`, numpy already loaded as by the cards before it): the
   catalogue's read, its stage classes, the whole solve; and the full collections (generation 2)
-  that fell inside it, after `gc.freeze()` as the app does once a card is built.
+  that fell inside it, after `gc.freeze()` as the app does once a card is built;
+- --visits: the first visit to every card (bench/app_probe.py visits: key -> the frame showing
+  the card, the longest event-loop stall and full collection in the 0.3 s after, CPU), each
+  checkout's app in turn (which goes first alternates) and the minimal Textual app's pane after
+  them, per run (as bench/bench_startup.py, with the two apps interleaved).
 """
 
 from __future__ import annotations
@@ -22,6 +26,7 @@ import statistics
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 RUNS = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 5
 OTHER = sys.argv[sys.argv.index("--against") + 1] if "--against" in sys.argv else None
@@ -85,11 +90,46 @@ def probe_ratio_finder() -> dict:
     return out
 
 
-def run(python: str, *args: str) -> dict:
-    out = subprocess.run([python, __file__, *args], capture_output=True, text=True, env=ENV)
+def run(python: str, *args: str, script: str = __file__) -> dict:
+    out = subprocess.run([python, script, *args], capture_output=True, text=True, env=ENV)
     if out.returncode:
         raise RuntimeError(out.stderr[-2000:])
     return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def visits(pythons: dict[str, str]) -> None:
+    probe = str(Path(__file__).with_name("app_probe.py"))
+    med = statistics.median
+    runs: dict[str, list[dict]] = {k: [] for k in pythons}
+    minimal: list[list[float]] = []
+    for n in range(RUNS):
+        order = list(pythons.items())
+        for k, py in order if n % 2 == 0 else order[::-1]:  # neither always first
+            runs[k].append(run(py, "visits", script=probe)["first"])
+        minimal.extend(run(sys.executable, "minimal", script=probe)["first"])
+    base = [med(x[i] for x in minimal) for i in range(4)]
+    print(
+        f"first visit to each card (median of {RUNS} fresh apps; minimal app's pane {base[0]:.1f} ms, CPU {base[3]:.1f} ms)"
+    )
+    print(
+        f"  {'card':<18}"
+        + "".join(f" {k + ': drawn':>14} {'x min':>6} {'stall':>6} {'GC':>5} {'CPU':>6}" for k in pythons)
+    )
+    ratios: dict[str, list[float]] = {k: [] for k in pythons}
+    stalls: dict[str, list[float]] = {k: [] for k in pythons}
+    for calc in runs[next(iter(pythons))][0]:
+        line = f"  {calc:<18}"
+        for k in pythons:
+            drawn, stall, full, cpu = (med(r[calc][i] for r in runs[k]) for i in range(4))
+            ratios[k].append(drawn / base[0])
+            stalls[k].append(stall)
+            line += f" {drawn:11.1f} ms {drawn / base[0]:5.2f}x {stall:6.1f} {full:5.1f} {cpu:6.1f}"
+        print(line)
+    for k in pythons:
+        print(
+            f"  {k}: median card {med(ratios[k]):.2f}x, worst {max(ratios[k]):.2f}x; median stall"
+            f" {med(stalls[k]):.1f} ms, longest {max(stalls[k]):.1f} ms"
+        )
 
 
 def main() -> None:
@@ -101,6 +141,9 @@ def main() -> None:
     from gearhead.core.registry import ORDER
 
     pythons = {"this": sys.executable} | ({"other": OTHER} if OTHER else {})
+    if "--visits" in sys.argv:
+        visits(pythons)
+        return
     med = statistics.median
     print(f"import of each calculator when its card is built (median of {RUNS} fresh processes)")
     print(
