@@ -99,7 +99,7 @@ class Stage:
     alternatives: list = field(default_factory=list)  # (teeth_in, teeth_out) of the other members
 
     def __post_init__(self) -> None:
-        self.ratio_f = float(self.ratio)
+        self.ratio_f = self.ratio.numerator / self.ratio.denominator  # float(ratio), without the ABC's detour
 
     @cached_property
     def identity(self) -> tuple:
@@ -230,36 +230,42 @@ def stage_classes(q: Query, cat: Catalogue | None = None) -> list[Stage]:
             t: tuple(p for p in ps if BIT[p.bore] & (allowed_shaft | motor_bit)) for t, ps in table.items()
         }
         takers[family] = {t: tuple(p for p in ps if BIT[p.bore] & allowed_shaft) for t, ps in table.items()}
-        limits = [q.center_limits[i] if i < len(q.center_limits) else None for i in range(q.max_stages)]
-        fits: dict[tuple, bool] = {}  # (smaller, larger teeth, limits) -> stage_fits: symmetric in order
-        for n_in, n_out in itertools.permutations(table, 2):
-            if (n_out > n_in) != reducing or not drive[n_in] or not driven[n_out]:
-                continue
-            pair = (n_in, n_out) if n_in < n_out else (n_out, n_in)
-            positions = 0
-            for i, limit in enumerate(limits):
-                ok = fits.get((pair, limit))
-                if ok is None:
-                    ok = fits[(pair, limit)] = stage_fits(family, kind, *pair, limit, belt_teeth)
-                if ok:
-                    positions |= 1 << i
-            if not positions:
-                continue
-            parts = 2 if kind == "gear" else 3  # two gears; or two pulleys/sprockets and the loop
-            g = math.gcd(n_in, n_out)  # the reduced ratio as ints: hashing Fractions was slow
-            key = (family, n_out // g, n_in // g, parts, drive[n_in], driven[n_out], positions)
-            members.setdefault(key, []).append((family, n_in, n_out))
+        # the positions (bits) sharing each center-distance limit: one stage_fits per pair and limit
+        bits: dict = {}
+        for i in range(q.max_stages):
+            limit = q.center_limits[i] if i < len(q.center_limits) else None
+            bits[limit] = bits.get(limit, 0) | 1 << i
+        outs = [t for t in table if driven[t]]
+        # the pairs of itertools.permutations(table, 2), in its order, that drive and are driven
+        for n_in in (t for t in table if drive[t]):
+            for n_out in outs:
+                if n_out == n_in or (n_out > n_in) != reducing:
+                    continue
+                positions = 0
+                for limit, bit in bits.items():
+                    if stage_fits(family, kind, n_in, n_out, limit, belt_teeth):
+                        positions |= bit
+                if not positions:
+                    continue
+                parts = 2 if kind == "gear" else 3  # two gears; or two pulleys/sprockets and the loop
+                g = math.gcd(n_in, n_out)  # the reduced ratio as ints: hashing Fractions was slow
+                key = (family, n_out // g, n_in // g, parts, drive[n_in], driven[n_out], positions)
+                members.setdefault(key, []).append((family, n_in, n_out))
 
     classes = []
-    for (family, _num, _den, parts, drive_mask, out_mask, positions), group in members.items():
+    ratios: dict[tuple[int, int], Fraction] = {}  # one Fraction per ratio: classes share them
+    for (family, num, den, parts, drive_mask, out_mask, positions), group in members.items():
         # the member sold by the most vendors' parts, then the smaller pair
         group.sort(key=lambda m: (-(len(drivers[m[0]][m[1]]) + len(takers[m[0]][m[2]])), m[1] + m[2], m[1]))
         _, n_in, n_out = group[0]
+        ratio = ratios.get((num, den))
+        if ratio is None:
+            ratio = ratios[(num, den)] = Fraction(num, den)
         best = Stage(
             family,
             n_in,
             n_out,
-            Fraction(n_out, n_in),
+            ratio,
             parts,
             drive_mask,
             out_mask,
