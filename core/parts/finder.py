@@ -216,9 +216,9 @@ def stage_classes(q: Query, cat: Catalogue | None = None) -> list[Stage]:
             continue
         by_family.setdefault(part.family, {}).setdefault(part.teeth, []).append(part)
 
-    # members of a class as (family, driving teeth, driven teeth) only: a Stage (and its exact
-    # ratio) is made for the one that shows the class, not for each of the ~4000 pairs (the first
-    # solve built them all, 30-55 ms, and their garbage set off a full collection)
+    # members of a class as (family, driving teeth, driven teeth): a Stage is made for the one that
+    # shows the class; each teeth count's parts are filtered once, not once per pair (the classes
+    # are most of the ratio finder's first solve after the catalogue's read)
     members: dict[tuple, list[tuple[str, int, int]]] = {}
     drivers: dict[str, dict[int, tuple[Part, ...]]] = {}  # family -> teeth -> driving parts
     takers: dict[str, dict[int, tuple[Part, ...]]] = {}  # family -> teeth -> driven parts
