@@ -4,7 +4,8 @@ stage classes), beside another checkout's figures measured in the same run, alte
 processes. Figures only, never asserted (medians; CPU is the thread's own time, which load on a
 shared machine changes least).
 
-    .venv/bin/python bench/bench_first_solve.py [--runs N] [--against OTHER/.venv/bin/python] [--visits]
+    .venv/bin/python bench/bench_first_solve.py [--runs N] [--against OTHER/.venv/bin/python]
+        [--visits | --ui-thread]
 
 - import: `registry.get(id)` once the app's modules and the first card's calculator are loaded (as
   when the app builds that card), wall and thread CPU, and how many modules it loads;
@@ -14,7 +15,9 @@ shared machine changes least).
 - --visits: the first visit to every card (bench/app_probe.py visits: key -> the frame showing
   the card, the longest event-loop stall and full collection in the 0.3 s after, CPU), each
   checkout's app in turn (which goes first alternates) and the minimal Textual app's pane after
-  them, per run (as bench/bench_startup.py, with the two apps interleaved).
+  them, per run (as bench/bench_startup.py, with the two apps interleaved);
+- --ui-thread: the same first visits, the UI thread's own CPU from the key to the frame (what the
+  card's build and first paint cost there, the solve worker's time left out).
 """
 
 from __future__ import annotations
@@ -90,6 +93,66 @@ def probe_ratio_finder() -> dict:
     return out
 
 
+def probe_ui_thread() -> dict:
+    """Every card's first visit (bench/app_probe.py's plan and keys): the UI thread's own CPU from
+    the key to the frame showing the card (time.thread_time: the solve worker's and other
+    processes' time left out, so load changes it least), and the wall time."""
+    import asyncio
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from app_probe import SIZE, _until, key_event, visit_plan
+
+    from gearhead.tui.app import GearheadApp
+
+    async def visits() -> dict:
+        app = GearheadApp(blink=False, hide_timings=True)
+        out = {}
+        async with app.run_test(size=SIZE) as pilot:
+            await _until(lambda: app.card_ready(app.current_calculator))
+            await pilot.pause(0.5)
+            for calc, before, keys in visit_plan(True):
+                if before:
+                    await pilot.press(*before)
+                    await _until(lambda: app.card_ready(app.current_calculator))
+                    await pilot.pause(0.2)
+                shown = lambda calc=calc: (  # noqa: E731
+                    app.current_calculator == calc
+                    and app.card_ready(calc)
+                    and app.current_tab.region.height > 0
+                )
+                c0, t0 = time.thread_time(), time.perf_counter()
+                for key in keys:
+                    app.post_message(key_event(key))
+                await _until(shown)
+                out[calc] = [(time.thread_time() - c0) * 1e3, (time.perf_counter() - t0) * 1e3]
+                tab = app.current_tab
+                await _until(lambda: not tab.busy)
+                await pilot.pause(0.1)
+        return out
+
+    return asyncio.run(visits())
+
+
+def ui_thread(pythons: dict[str, str]) -> None:
+    med = statistics.median
+    runs: dict[str, list[dict]] = {k: [] for k in pythons}
+    for n in range(RUNS):
+        order = list(pythons.items())
+        for k, py in order if n % 2 == 0 else order[::-1]:
+            runs[k].append(run(py, "--probe", "ui_thread"))
+    print(f"first visit, the UI thread's CPU from the key to the frame (median of {RUNS} fresh apps)")
+    print(f"  {'card':<18}" + "".join(f" {k + ': UI CPU':>15} {'wall':>9}" for k in pythons))
+    total = {k: 0.0 for k in pythons}
+    for calc in runs[next(iter(pythons))][0]:
+        line = f"  {calc:<18}"
+        for k in pythons:
+            cpu, wall = (med(r[calc][i] for r in runs[k]) for i in range(2))
+            total[k] += cpu
+            line += f" {cpu:12.1f} ms {wall:6.1f} ms"
+        print(line)
+    print("  sum of the cards' medians: " + ", ".join(f"{k} {v:.0f} ms" for k, v in total.items()))
+
+
 def run(python: str, *args: str, script: str = __file__) -> dict:
     out = subprocess.run([python, script, *args], capture_output=True, text=True, env=ENV)
     if out.returncode:
@@ -128,14 +191,18 @@ def visits(pythons: dict[str, str]) -> None:
     for k in pythons:
         print(
             f"  {k}: median card {med(ratios[k]):.2f}x, worst {max(ratios[k]):.2f}x; median stall"
-            f" {med(stalls[k]):.1f} ms, longest {max(stalls[k]):.1f} ms"
+            f" {med(stalls[k]):.1f} ms, longest {max(stalls[k]):.1f} ms; all cards, sum of each one's"
+            f" medians: drawn {sum(ratios[k]) * base[0]:.0f} ms, stall {sum(stalls[k]):.0f} ms"
         )
 
 
 def main() -> None:
     if "--probe" in sys.argv:
         what = sys.argv[sys.argv.index("--probe") + 1]
-        result = probe_ratio_finder() if what == "ratio_finder_solve" else probe_import(what)
+        if what == "ui_thread":
+            result = probe_ui_thread()
+        else:
+            result = probe_ratio_finder() if what == "ratio_finder_solve" else probe_import(what)
         print(json.dumps(result))
         return
     from gearhead.core.registry import ORDER
@@ -143,6 +210,9 @@ def main() -> None:
     pythons = {"this": sys.executable} | ({"other": OTHER} if OTHER else {})
     if "--visits" in sys.argv:
         visits(pythons)
+        return
+    if "--ui-thread" in sys.argv:
+        ui_thread(pythons)
         return
     med = statistics.median
     print(f"import of each calculator when its card is built (median of {RUNS} fresh processes)")
