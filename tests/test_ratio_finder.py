@@ -76,17 +76,17 @@ def test_catalogue_is_consistent():
 @pytest.mark.parametrize(
     "spoil,expected",
     [
-        (lambda c: replace(c, parts=c.parts + (replace(c.parts[0], family="gear_48dp"),)), "unknown family"),
-        (lambda c: replace(c, parts=c.parts + (replace(c.parts[0], bore="hex_7_16_in"),)), "unknown bore"),
-        (lambda c: replace(c, parts=c.parts + (c.parts[3],)), "listed twice"),
+        (lambda c: c._replace(parts=c.parts + (c.parts[0]._replace(family="gear_48dp"),)), "unknown family"),
+        (lambda c: c._replace(parts=c.parts + (c.parts[0]._replace(bore="hex_7_16_in"),)), "unknown bore"),
+        (lambda c: c._replace(parts=c.parts + (c.parts[3],)), "listed twice"),
         (
-            lambda c: replace(c, parts=c.parts + (replace(c.parts[5], teeth=c.parts[5].teeth + 1),)),
+            lambda c: c._replace(parts=c.parts + (c.parts[5]._replace(teeth=c.parts[5].teeth + 1),)),
             "one part number for two different parts",
         ),
-        (lambda c: replace(c, parts=c.parts + (replace(c.parts[0], vendor="Acme"),)), "unknown vendor"),
-        (lambda c: replace(c, pitches={**c.pitches, ("gears", "REV", "gear_20dp"): "32 DP"}), "has pitch"),
+        (lambda c: c._replace(parts=c.parts + (c.parts[0]._replace(vendor="Acme"),)), "unknown vendor"),
+        (lambda c: c._replace(pitches={**c.pitches, ("gears", "REV", "gear_20dp"): "32 DP"}), "has pitch"),
         (
-            lambda c: replace(c, belts=c.belts + (replace(c.belts[0], family="chain_25"),)),
+            lambda c: c._replace(belts=c.belts + (c.belts[0]._replace(family="chain_25"),)),
             "a belt in the chain family",
         ),
     ],

@@ -83,7 +83,7 @@ from ..declarations import Calculator, Output, Plot, Result
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup, motor_fields, system_from
-from ..sim import limit_grid, motion, motor_limits, velocity_loop
+from ..sim import limit_grid, motion, motor_limits
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats
 from ..sim.shooter import (
     EFFECTS,
@@ -1035,7 +1035,7 @@ def loop_target(v, values: dict, target: float, t_end: float) -> tuple[list, lis
 def loop_wheel(sc: Scene, v):
     """The flywheel's drive for core.sim.velocity_loop (VL1): k = A/(i_s − i_f) at the wheel per amp
     of each motor (A = G·τ̃s, the stall torque before sag), the circuit (M1) and the limits."""
-    from ..sim import profiled
+    from ..sim import profiled, velocity_loop  # the solve's: the card's description needs neither
 
     on = v["effects"]
     motor, _ = lookup(v["motor"], v["source"])
@@ -1075,6 +1075,8 @@ def ramp_acceleration(v, ff: dict) -> float | None:
 
 def velocity_loop_run(sc: Scene, v, rtol: float, values: dict, warnings: list):
     """The velocity-loop mode's outputs (core.sim.velocity_loop), added to `values`."""
+    from ..sim import velocity_loop
+
     w = loop_wheel(sc, v)
     ff = velocity_loop.feedforward_gains(w)
     dt, delay = v["control_period"], v["sensor_delay"]

@@ -65,10 +65,9 @@ Brent on the accurate solve, and the same for 1 m, 3 m, 5 m and the field's 16.5
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..constants import G0 as G
 from ..constants import INCH
@@ -76,12 +75,14 @@ from ..declarations import Calculator, Column, Document, Output, Plot, Result, T
 from ..errors import InputError
 from ..fields import Field
 from ..motors import lookup
-from ..robot_config import RobotConfig, choreo_project, estimated_moi, motor_limits, pathplanner_settings
 from ..sim import motion
 from ..sim.effects import Effect, Effects, Part, Slot, nothing
 from ..sim.integrate import Event, integrate, integrate_stiff
 from ..sim.motor_limits import braking_warning, branch_emfs, bus_resistance_of, electrical, electrical_effects
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, compute_with_stats
+
+if TYPE_CHECKING:
+    from ..robot_config import RobotConfig
 
 AIR_DENSITY = 1.2  # kg/m³, sea level at 20 °C
 FIELD_LENGTH = 16.54  # m, the FRC field (2024-2026), alliance wall to alliance wall
@@ -1176,6 +1177,10 @@ def compute(values: Mapping[str, Any], estimate: str = "now") -> Result:
 
 
 def yaw_inertia(v: Mapping[str, Any]) -> float:
+    # core.robot_config (with json and core.gains_numbers, ~8 ms of dataclasses and modules) is
+    # loaded by the solve and the exports, not by the card's description
+    from ..robot_config import estimated_moi
+
     if v["inertia_model"] == "entered":
         return v["moment_of_inertia"]
     return estimated_moi(v["robot_mass"], v["bumper_length"], v["bumper_width"])  # (S13)
@@ -1184,6 +1189,8 @@ def yaw_inertia(v: Mapping[str, Any]) -> float:
 def robot_config_of(solution) -> RobotConfig:
     """The drivetrain a solved sprint describes, as the path planners see it (S13). A ValueError says
     what cannot be exported (PathPlanner and Choreo check their own limits: core.robot_config)."""
+    from ..robot_config import RobotConfig, motor_limits
+
     v = {name: value.value for name, value in solution.inputs.items()}
     out = {name: value.value for name, value in solution.outputs.items()}
     kind, G_module, wheel = geometry(v)
@@ -1221,10 +1228,18 @@ def robot_config_of(solution) -> RobotConfig:
 
 
 def _pathplanner(solution) -> str:
+    import json
+
+    from ..robot_config import pathplanner_settings
+
     return json.dumps(pathplanner_settings(robot_config_of(solution)), indent=2) + "\n"
 
 
 def _choreo(solution) -> str:
+    import json
+
+    from ..robot_config import choreo_project
+
     return json.dumps(choreo_project(robot_config_of(solution), "Gearhead sprint"), indent=1) + "\n"
 
 

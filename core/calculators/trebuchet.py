@@ -66,7 +66,6 @@ import math
 from ..declarations import Calculator, Output, Plot, Result
 from ..errors import InputError
 from ..fields import Field
-from ..sim import flight
 from ..sim import trebuchet as tb
 from ..sim.scene import STATS_OUTPUTS, SimRun, accuracy_field, run_with_stats, solve_budget
 
@@ -420,6 +419,8 @@ def sample(ts: list, ys: list, n: int = PLOT_POINTS) -> tuple[list, list]:
 
 def fly(v, g: float, z0: float, speed: float, angle: float, rtol: float):
     """(distance from the release point toward the throw, apex, path xs, path zs, nfev)."""
+    from ..sim import flight  # the solve's (its dataclasses, ~3 ms): not the card's description
+
     t_land = flight.vacuum_landing_time(z0, angle, speed, g)  # (V3), from z0 > 0
     X = flight.vacuum_range(z0, angle, speed, g)
     if "air_drag" not in v["effects"]:

@@ -2,17 +2,21 @@
 
 gears.toml, pulleys.toml, sprockets.toml and belts.toml list toothed parts by vendor and family;
 planetaries.toml lists cartridge gearbox systems. Each file says where its figures come from.
-`catalogue()` reads them once (tomllib, ~50 ms) and checks them; `problems()` lists what is wrong
-with a catalogue (unknown family, bore, pitch or vendor, duplicates), for the tests.
+`catalogue()` reads them once (tomllib, ~30 ms, at the ratio finder's first solve) and checks them;
+`problems()` lists what is wrong with a catalogue (unknown family, bore, pitch or vendor,
+duplicates), for the tests.
+
+The records are named tuples, not dataclasses: the ratio finder's card imports this module for its
+choices (FAMILIES, BORES, VENDORS) on the UI thread, where each dataclass took ~1 ms to create
+(seven of them, with tomllib, 13 ms of the card's first visit), and ~1100 parts read as tuples of
+strings and numbers are left alone by the garbage collector. (No `from __future__ import
+annotations` here: NamedTuple compiles each field's annotation when it is a string, 8 ms for these.)
 """
 
-from __future__ import annotations
-
-import tomllib
-from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
 from pathlib import Path
+from typing import NamedTuple
 
 from ..constants import INCH as IN
 
@@ -21,8 +25,7 @@ HERE = Path(__file__).parent
 MM = 1e-3
 
 
-@dataclass(frozen=True)
-class Family:
+class Family(NamedTuple):
     label: str
     kind: str  # gear, belt, chain or planetary
     pitch: str  # as written in the catalogue: "20 DP" (diametral) or a circular pitch "5 mm"
@@ -41,8 +44,7 @@ FAMILIES: dict[str, Family] = {
 }
 
 
-@dataclass(frozen=True)
-class Bore:
+class Bore(NamedTuple):
     label: str
     motor: bool  # a motor's own shaft: such a part can only sit on the motor
     fits: str = ""  # the motors with that shaft, for the motor-shaft choice
@@ -88,8 +90,7 @@ def pitch_si(text: str) -> float:
     return float(number) * scale
 
 
-@dataclass(frozen=True)
-class Part:
+class Part(NamedTuple):
     """A gear, pulley or sprocket."""
 
     vendor: str
@@ -105,8 +106,7 @@ class Part:
         return self.part_number or f"{self.vendor} {self.teeth}T {BORES[self.bore].label}"
 
 
-@dataclass(frozen=True)
-class Belt:
+class Belt(NamedTuple):
     vendor: str
     part_number: str
     family: str
@@ -115,15 +115,13 @@ class Belt:
     width_mm: float | None = None
 
 
-@dataclass(frozen=True)
-class Cartridge:
+class Cartridge(NamedTuple):
     name: str
     part_number: str
     ratio: Fraction
 
 
-@dataclass(frozen=True)
-class PlanetarySystem:
+class PlanetarySystem(NamedTuple):
     system: str
     vendor: str
     part_number: str
@@ -134,8 +132,7 @@ class PlanetarySystem:
     cartridges: tuple[Cartridge, ...]
 
 
-@dataclass(frozen=True)
-class Catalogue:
+class Catalogue(NamedTuple):
     parts: tuple[Part, ...]
     belts: tuple[Belt, ...]
     planetaries: tuple[PlanetarySystem, ...]
@@ -143,6 +140,8 @@ class Catalogue:
 
 
 def _read(name: str) -> dict:
+    import tomllib  # here: the card's description needs none of it
+
     with open(HERE / f"{name}.toml", "rb") as fh:
         return tomllib.load(fh)
 

@@ -99,7 +99,7 @@ class Stage:
     alternatives: list = field(default_factory=list)  # (teeth_in, teeth_out) of the other members
 
     def __post_init__(self) -> None:
-        self.ratio_f = float(self.ratio)
+        self.ratio_f = self.ratio.numerator / self.ratio.denominator  # float(ratio), without the ABC's detour
 
     @cached_property
     def identity(self) -> tuple:
@@ -216,39 +216,67 @@ def stage_classes(q: Query, cat: Catalogue | None = None) -> list[Stage]:
             continue
         by_family.setdefault(part.family, {}).setdefault(part.teeth, []).append(part)
 
-    members: dict[tuple, list[Stage]] = {}
+    # members of a class as (family, driving teeth, driven teeth): a Stage is made for the one that
+    # shows the class; each teeth count's parts are filtered once, not once per pair (the classes
+    # are most of the ratio finder's first solve after the catalogue's read)
+    members: dict[tuple, list[tuple[str, int, int]]] = {}
+    drivers: dict[str, dict[int, tuple[Part, ...]]] = {}  # family -> teeth -> driving parts
+    takers: dict[str, dict[int, tuple[Part, ...]]] = {}  # family -> teeth -> driven parts
     for family, table in by_family.items():
         kind = FAMILIES[family].kind
         drive = {t: mask_of(p.bore for p in ps) & (allowed_shaft | motor_bit) for t, ps in table.items()}
         driven = {t: mask_of(p.bore for p in ps) & allowed_shaft for t, ps in table.items()}
-        for n_in, n_out in itertools.permutations(table, 2):
-            if (n_out > n_in) != reducing or not drive[n_in] or not driven[n_out]:
-                continue
-            positions = 0
-            for i in range(q.max_stages):
-                limits = q.center_limits[i] if i < len(q.center_limits) else None
-                if stage_fits(family, kind, n_in, n_out, limits, belt_teeth):
-                    positions |= 1 << i
-            if not positions:
-                continue
-            parts = 2 if kind == "gear" else 3  # two gears; or two pulleys/sprockets and the loop
-            stage = Stage(
-                family,
-                n_in,
-                n_out,
-                Fraction(n_out, n_in),
-                parts,
-                drive[n_in],
-                driven[n_out],
-                positions,
-                tuple(p for p in table[n_in] if BIT[p.bore] & (allowed_shaft | motor_bit)),
-                tuple(p for p in table[n_out] if BIT[p.bore] & allowed_shaft),
-            )
-            g = math.gcd(n_in, n_out)  # the reduced ratio as ints: hashing Fractions was slow
-            key = (family, n_out // g, n_in // g, parts, stage.drive_mask, stage.out_mask, positions)
-            members.setdefault(key, []).append(stage)
+        drivers[family] = {
+            t: tuple(p for p in ps if BIT[p.bore] & (allowed_shaft | motor_bit)) for t, ps in table.items()
+        }
+        takers[family] = {t: tuple(p for p in ps if BIT[p.bore] & allowed_shaft) for t, ps in table.items()}
+        # the positions (bits) sharing each center-distance limit: one stage_fits per pair and limit
+        bits: dict = {}
+        for i in range(q.max_stages):
+            limit = q.center_limits[i] if i < len(q.center_limits) else None
+            bits[limit] = bits.get(limit, 0) | 1 << i
+        outs = [t for t in table if driven[t]]
+        # the pairs of itertools.permutations(table, 2), in its order, that drive and are driven
+        for n_in in (t for t in table if drive[t]):
+            for n_out in outs:
+                if n_out == n_in or (n_out > n_in) != reducing:
+                    continue
+                positions = 0
+                for limit, bit in bits.items():
+                    if stage_fits(family, kind, n_in, n_out, limit, belt_teeth):
+                        positions |= bit
+                if not positions:
+                    continue
+                parts = 2 if kind == "gear" else 3  # two gears; or two pulleys/sprockets and the loop
+                g = math.gcd(n_in, n_out)  # the reduced ratio as ints: hashing Fractions was slow
+                key = (family, n_out // g, n_in // g, parts, drive[n_in], driven[n_out], positions)
+                members.setdefault(key, []).append((family, n_in, n_out))
 
-    if "planetary" in q.families and reducing:
+    classes = []
+    ratios: dict[tuple[int, int], Fraction] = {}  # one Fraction per ratio: classes share them
+    for (family, num, den, parts, drive_mask, out_mask, positions), group in members.items():
+        # the member sold by the most vendors' parts, then the smaller pair
+        group.sort(key=lambda m: (-(len(drivers[m[0]][m[1]]) + len(takers[m[0]][m[2]])), m[1] + m[2], m[1]))
+        _, n_in, n_out = group[0]
+        ratio = ratios.get((num, den))
+        if ratio is None:
+            ratio = ratios[(num, den)] = Fraction(num, den)
+        best = Stage(
+            family,
+            n_in,
+            n_out,
+            ratio,
+            parts,
+            drive_mask,
+            out_mask,
+            positions,
+            drivers[family][n_in],
+            takers[family][n_out],
+        )
+        best.alternatives = [(a, b) for _, a, b in group[1:]]
+        classes.append(best)
+
+    if "planetary" in q.families and reducing:  # each stack its own class (systems are unique)
         for system in cat.planetaries:
             if system.vendor not in q.vendors:
                 continue
@@ -261,27 +289,20 @@ def stage_classes(q: Query, cat: Catalogue | None = None) -> list[Stage]:
                 # largest reduction nearest the motor, as REV advises for its stacks
                 for stack in itertools.combinations_with_replacement(ordered, count):
                     ratio = math.prod((c.ratio for c in stack), start=Fraction(1))
-                    stage = Stage(
-                        "planetary",
-                        0,
-                        0,
-                        ratio,
-                        PLANETARY_PARTS_BASE + count,
-                        inputs,
-                        outputs,
-                        (1 << q.max_stages) - 1,
-                        cartridges=stack,
-                        system=system,
+                    classes.append(
+                        Stage(
+                            "planetary",
+                            0,
+                            0,
+                            ratio,
+                            PLANETARY_PARTS_BASE + count,
+                            inputs,
+                            outputs,
+                            (1 << q.max_stages) - 1,
+                            cartridges=stack,
+                            system=system,
+                        )
                     )
-                    members.setdefault(("planetary", system.system, stack), []).append(stage)
-
-    classes = []
-    for group in members.values():
-        # the member sold by the most vendors' parts, then the smaller pair
-        group.sort(key=lambda s: (-(len(s.driving) + len(s.driven)), s.teeth_in + s.teeth_out, s.teeth_in))
-        best = group[0]
-        best.alternatives = [(s.teeth_in, s.teeth_out) for s in group[1:]]
-        classes.append(best)
     return classes
 
 

@@ -51,12 +51,14 @@ from __future__ import annotations
 import bisect
 import math
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
 from .integrate import Event, integrate
-from .profiles import Exponential, Trapezoid, derived_acceleration, exponential_of
 from .scene import SimRun
+
+if TYPE_CHECKING:
+    from .profiles import Exponential, Trapezoid
 
 SETTLE_EXTRA = 1.0  # s: the window is the profile's time plus the larger of this and that time
 MAX_PIECES = 50  # friction reversals within one period beyond which the mechanism is held stuck
@@ -760,6 +762,9 @@ def loop_of(setup, v, ff: dict, kG, arm: bool = False) -> tuple[Loop, Trapezoid 
     """The loop and profile from the entries; kP, kD from LQR (motion.lqr) or entered."""
     from .motion import check_can_move, lqr
 
+    # the profiles' dataclasses load with the first solve, not with the card's description
+    from .profiles import Trapezoid, derived_acceleration, exponential_of
+
     check_can_move(setup)
     m = setup.mech
     exponential = v.get("profile_type") == "exponential"
@@ -823,6 +828,8 @@ MAX_UPDATES = 5_000  # 100 s of a 20 ms loop: within one solve's budget (scene.S
 def run_profiled(setup, v, rtol: float, ff: dict, kG, return_move: bool = False, arm: bool = False) -> SimRun:
     """Every output of the profiled mode (the gains shown are those the loop used); with
     `return_move`, the move back as well (P16); `arm`: kG(q) = kG·cos q, ArmFeedforward's (P5a)."""
+    from .profiles import Exponential
+
     loop, profile, gains = loop_of(setup, v, ff, kG, arm)
     pr = profiled_move(setup, loop, profile, rtol)
     extra = {**ff, **gains, "free_speed": setup.mech.free_speed}
