@@ -13,13 +13,12 @@ from textual import events
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.message import Message
-from textual.reactive import Reactive
 from textual.screen import Screen
-from textual.widget import Widget
 
 from gearhead.core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
 from gearhead.core.unit_systems import SYSTEM_LABELS, SYSTEMS
 
+from .components.card_screen import CardScreen
 from .components.key_bar import KeyBar
 from .components.tab_strip import TabStrip
 from .guard import guard, guarded
@@ -51,16 +50,6 @@ def sent_text(values: dict[str, str], target) -> str:
     return ", ".join(
         f"{target.field(k).label} = {shown_entry(target.field(k), v)}" for k, v in values.items()
     )
-
-
-class HomeScreen(Screen):
-    """The screen of the strips and cards. A focus move repaints only the widgets whose look it
-    changes (Textual refreshes the widget focused and the one blurred, and restyles their
-    :focus-within ancestors), not the whole screen: Screen.focused is a repainting reactive, and
-    each card switch (a focus move to the card's sheet) drew every line of the screen once more
-    after the layout's paint."""
-
-    focused: Reactive[Widget | None] = Reactive(None, repaint=False)
 
 
 class GearheadApp(App):
@@ -158,7 +147,7 @@ class GearheadApp(App):
         return strip
 
     def get_default_screen(self) -> Screen:
-        return HomeScreen(id="_default")
+        return CardScreen(id="_default")  # a focus move does not repaint the whole screen
 
     @property
     def home(self) -> Screen:
