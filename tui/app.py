@@ -14,6 +14,7 @@ from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.message import Message
 from textual.screen import Screen
+from textual.widget import Widget
 
 from gearhead.core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
 from gearhead.core.unit_systems import SYSTEM_LABELS, SYSTEMS
@@ -127,6 +128,11 @@ class GearheadApp(App):
         )
         yield self._new_strip(self._area)
         yield KeyBar()
+        # the cards are mounted into this box, never painted itself (they cover it): a mount
+        # repaints the parent, and into the screen that was the whole screen drawn once more in a
+        # card's first visit, after the layout's paint
+        self._card_box = Widget(id="cards")
+        yield self._card_box
 
     def _new_strip(self, area: str) -> TabStrip:
         strip = self._strips[area] = TabStrip(
@@ -223,7 +229,7 @@ class GearheadApp(App):
             )
             tab.unit_system = self.unit_system
             tab.display = calc_id == self.current_calculator
-            self._mounting[calc_id] = self.home.mount(tab)
+            self._mounting[calc_id] = self._card_box.mount(tab)
         mounting = self._mounting.get(calc_id)
         strip = self._strip_mounts.get(area_of(calc_id))
         if mounting is not None or strip is not None:
