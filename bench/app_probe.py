@@ -5,7 +5,9 @@ and prints one JSON object on its last line; times in ms.
 - A key goes in as the terminal driver delivers it: `app.post_message(events.Key(...))`.
   (`pilot.press` also waits until every widget has answered a callback, ~130 on a card, which a
   real terminal does not: that wait would be counted in the figure.)
-- "Drawn": the card (or the minimal app's pane) has a region on screen (`Widget.region`, set by
+- "Drawn": the card's sheet (or the minimal app's pane) has a region on screen (`Widget.region`,
+  the sheet's: the card widget itself is `visibility: hidden`, painted by its panes, so it has
+  no region of its own on a wide screen; the sheet is placed by the same layout), set by
   the layout, whose frame is rendered in the same call, before any other task runs): the first
   frame that shows it. (`Screen.wait_for_refresh` waits for the refresh after the next, which on
   a card switch came 25-30 ms after the frame that showed the card.)
@@ -134,7 +136,7 @@ async def visits() -> dict:
                 shown = lambda calc=calc: (  # noqa: E731
                     app.current_calculator == calc
                     and app.card_ready(calc)
-                    and app.current_tab.region.height > 0
+                    and app.current_tab.sheet.region.height > 0
                 )
                 out[kind][calc] = list(await timed_keys(app, keys, shown))
                 tab = app.current_tab

@@ -97,6 +97,35 @@ mounted after the first frame, and a Lazy panel (16 rows) would come a frame aft
 lay the results list out twice. Importing tomllib in core/parts only when reading: the app has
 it at start (its settings), so only this bench would have gained.
 
+What paid, 2 December evening (kept; snapshots unchanged). A repeat visit painted the card's
+region, then, in the same tick, the whole screen again; per line, every widget's strip was cut at
+every widget edge (Strip.divide), and each Strip Textual makes carries 7 FIFOCaches (15 tracked
+objects): ~830 Strips a visit, ~20 young collections, and a full one every ~4 visits (over the
+~20-35k unfrozen objects, mostly widgets' cached Strips and the event loop's cyclic garbage).
+- the home and workbook screens are CardScreens (tui/components/card_screen.py: Screen.focused
+  with repaint=False), so the focus move no longer repaints the screen: no second, full render,
+  and the Screen's 45 lines are not rendered and cut afresh;
+- the card is `visibility: hidden` with visible panes: the card's blank background (repainted by
+  every show) is no longer rendered under the panes nor cut at their edges;
+- the sheet is not restyled on a focus move (watch_has_focus; its focused cursor is a component
+  class of its own): 2 x 9 nodes restyled a switch;
+- the cards sit in a box (#cards, not painted) instead of the screen: a mount repainted the
+  screen, a second full render in every first visit.
+Strips a visit (18 cards, mean) repeat 833 -> 193, first 1243 -> 673; over the 17 repeat visits,
+collections gen0/1/2 474/43/4 -> 161/14/1. This file, --app-only --runs 3, twice alternating with
+7a2b39c on a quiet machine (minimal app 19.8-22.7 ms): repeat visit median 2.01x, 1.99x -> 0.88x,
+0.86x, worst card 2.60x, 3.50x -> 1.19x, 1.53x, longest stall 58-68 -> 26-32 ms, no full
+collection in a repeat window (7a2b39c: sprint, chain_belt, ratio_finder 10-34 ms); first visit
+median 3.75x, 3.64x -> 3.09x, 3.04x, longest stall 76-106 -> 69-93 ms (ratio_finder's first solve,
+the card's mount in one block).
+What is left: a first visit's mount is one block of the loop (compose, style, first paint, and
+the calculator's import) over 16 ms on every card; on a repeat visit the sheet's whole redraw
+(Textual refreshes a widget taking or losing focus) and a ScrollView's scrollbars, repainted on
+every layout (ScrollView._size_updated compares the compositor's virtual size, none for a
+Line-API view, with its own, so it calls _scroll_update every time: Textual's); the chart's
+PlotPanel, PlotWidget and Grid, containers covered whole by their canvases, are still painted
+(their tint shows a stale chart).
+
 Run from a clean clone (after `python3 -m venv .venv && .venv/bin/pip install -e '.[test]'`):
     .venv/bin/python bench/bench_startup.py [--app-only] [--runs N] [--gc]
 Before/after: run this file with another checkout's .venv/bin/python (its editable install imports

@@ -14,10 +14,12 @@ from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.message import Message
 from textual.screen import Screen
+from textual.widget import Widget
 
 from gearhead.core.registry import AREAS, ORDER, TITLES, area_of, calculators, get
 from gearhead.core.unit_systems import SYSTEM_LABELS, SYSTEMS
 
+from .components.card_screen import CardScreen
 from .components.key_bar import KeyBar
 from .components.tab_strip import TabStrip
 from .guard import guard, guarded
@@ -126,6 +128,11 @@ class GearheadApp(App):
         )
         yield self._new_strip(self._area)
         yield KeyBar()
+        # the cards are mounted into this box, never painted itself (they cover it): a mount
+        # repaints the parent, and into the screen that was the whole screen drawn once more in a
+        # card's first visit, after the layout's paint
+        self._card_box = Widget(id="cards")
+        yield self._card_box
 
     def _new_strip(self, area: str) -> TabStrip:
         strip = self._strips[area] = TabStrip(
@@ -144,6 +151,9 @@ class GearheadApp(App):
             strip = self._new_strip(area)
             self._strip_mounts[area] = self.home.mount(strip, after=last)
         return strip
+
+    def get_default_screen(self) -> Screen:
+        return CardScreen(id="_default")  # a focus move does not repaint the whole screen
 
     @property
     def home(self) -> Screen:
@@ -219,7 +229,7 @@ class GearheadApp(App):
             )
             tab.unit_system = self.unit_system
             tab.display = calc_id == self.current_calculator
-            self._mounting[calc_id] = self.home.mount(tab)
+            self._mounting[calc_id] = self._card_box.mount(tab)
         mounting = self._mounting.get(calc_id)
         strip = self._strip_mounts.get(area_of(calc_id))
         if mounting is not None or strip is not None:

@@ -19,7 +19,6 @@ from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical, VerticalScroll
 from textual.message import Message
-from textual.screen import Screen
 from textual.widgets import ContentSwitcher, Static, Tab, Tabs
 from textual.worker import get_current_worker
 
@@ -27,6 +26,7 @@ from gearhead.core.errors import InputError
 
 from ..guard import guarded
 from .calculator_tab import CalculatorTab
+from .card_screen import CardScreen
 from .sheet import Sheet
 
 LINK_MARK = "⇐"  # after a linked field's label: 'Robot mass ⇐ = robot_mass'
@@ -206,7 +206,7 @@ class RobotCard(Vertical):
         )
 
 
-class WorkbookScreen(Screen):
+class WorkbookScreen(CardScreen):
     """One workbook: a strip of its cards (Robot first), the card chosen below it."""
 
     # the panes fill what the strip and the key bar leave (a ContentSwitcher is as tall as its
