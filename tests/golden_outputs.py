@@ -43,6 +43,10 @@ def current() -> dict[str, dict[str, dict]]:
 
 
 CLOSED_FORM_RTOL = 1e-12  # an exact formula: only the last few bits of its floating point may move
+# A simulation's results carry the rounding of its steps, which follows the CPU's BLAS kernel: the
+# elevator's two_neo_exponential (solved exactly between control updates: error estimate 0) moved
+# 9.5e-12 between an AMD EPYC (AVX2) and CI's machine over its 133 updates and feedback.
+SIM_ROUNDING_RTOL = 1e-10
 # What a finite-element J moves, as a multiple of J's relative error (core/calculators/beam.py):
 # J and the twist T·l/(G·J) by that error relatively; the thin-wall error B/J − 1 by (1 + it) times
 # it, absolutely. J's stated accuracy is itself half the gap of two bounds, each carrying the
@@ -56,7 +60,8 @@ def tolerance(name: str, want: dict, got: dict) -> tuple[float, float]:
     Each solution states how far its results may be from the truth: a simulation by its error
     estimate (relative, of its key results: the difference to a run at 100x tighter tolerance),
     a rectangular tube's J by its accuracy (relative). Two runs each within their accuracy of the
-    truth differ by at most the sum of the two, which is the tolerance; never below 1e-12.
+    truth differ by at most the sum of the two, which is the tolerance; never below 1e-12 (1e-10
+    for a simulation: SIM_ROUNDING_RTOL).
     """
     if "torsion_constant_error" in want and "torsion_constant_error" in got:
         j_accuracy = want["torsion_constant_error"] + got["torsion_constant_error"]
@@ -70,7 +75,7 @@ def tolerance(name: str, want: dict, got: dict) -> tuple[float, float]:
         if name == "error_estimate":
             # a difference of two runs: it carries their rounding (~1e-15 of the results) absolutely
             return CLOSED_FORM_RTOL, CLOSED_FORM_RTOL
-        return max(CLOSED_FORM_RTOL, want["error_estimate"] + got["error_estimate"]), 0.0
+        return max(SIM_ROUNDING_RTOL, want["error_estimate"] + got["error_estimate"]), 0.0
     return CLOSED_FORM_RTOL, 0.0
 
 

@@ -73,6 +73,8 @@ def module_doc(calc: Calculator) -> str:
         getattr(v, "__module__", None) if not isinstance(v, type(module)) else v.__name__
         for v in vars(module).values()
     }
+    # and those its docstring names (core.sim.velocity_loop): a module the solve imports lazily
+    sims |= {f"gearhead.{name}" for name in re.findall(r"\bcore\.sim\.\w+", module.__doc__ or "")}
     docs = [module.__doc__ or ""]
     docs += [
         importlib.import_module(name).__doc__ or ""

@@ -178,8 +178,9 @@ BOUND_ROUNDING = 5e-9  # relative rounding of a finite-element bound across CPU 
     "W,H,accuracy",
     [
         (4.0, 4.0, 2e-8),
-        (32.0, 16.0, 4e-9),  # 1.3e-9 apart at most, but crossed by up to 3.1e-9 (kernels, below)
-        (16.0, 32.0, 4e-9),
+        (32.0, 16.0, 5e-9),  # the rounding floor, TUBE_ROUNDING 4e-9: 1.3e-9 apart at most, but
+        # crossed by up to 3.1e-9 (kernels, below)
+        (16.0, 32.0, 5e-9),
         (16.0, 16.0, 1e-8),
         (2.5, 2.2, 1e-7),
         (2.0001, 2.0001, 2e-7),
