@@ -75,13 +75,31 @@ POSITION_NOISE = 0.0001  # m
 PLANT = {"kS": 0.2, "kV": 10.0, "kA": 1.2, "kG": 0.6}  # tests/test_fit_sysid.py's elevator
 
 
+def plant_substeps(q: float, v: float, u: float, h: float, n: int) -> tuple[float, float]:
+    """PLANT from position q, velocity v over n substeps of h s with u volts held, integrated
+    exactly (tests/fit_plants.py's plant: static friction holds it at rest)."""
+    kS, kV, kA, kG = PLANT["kS"], PLANT["kV"], PLANT["kA"], PLANT["kG"]
+    A = -kV / kA
+    e = math.exp(A * h)
+    for _ in range(n):
+        drive = u - kG
+        if v == 0.0:
+            if abs(drive) <= kS:
+                continue
+            s = math.copysign(1.0, drive)
+        else:
+            s = math.copysign(1.0, v)
+        c = (drive - kS * s) / kA
+        v1 = (v + c / A) * e - c / A
+        q += (v + c / A) * (e - 1) / A - c / A * h
+        v = 0.0 if v != 0.0 and math.copysign(1.0, v1) != s else v1
+    return q, v
+
+
 def _sysid_samples(loop_times: np.ndarray, rng) -> list[tuple[int, str, float, float, float]]:
     """(main-loop index, state, volts, position, velocity) of the routine's records: PLANT
     integrated exactly over 0.5 ms substeps with the voltage held for each loop
     (tests/fit_plants.py's plant), measured with noise."""
-    g = PLANT
-    kS, kV, kA, kG = g["kS"], g["kV"], g["kA"], g["kG"]
-    A = -kV / kA
     q = v = 0.0
     out = []
     for state, start, length, volts in TESTS:
@@ -101,20 +119,7 @@ def _sysid_samples(loop_times: np.ndarray, rng) -> list[tuple[int, str, float, f
             )
             dt = loop_times[k + 1] - loop_times[k]
             n = max(1, round(dt / 5e-4))
-            h = dt / n
-            e = math.exp(A * h)
-            for _ in range(n):
-                drive = u - kG
-                if v == 0.0:
-                    if abs(drive) <= kS:
-                        continue
-                    s = math.copysign(1.0, drive)
-                else:
-                    s = math.copysign(1.0, v)
-                c = (drive - kS * s) / kA
-                v1 = (v + c / A) * e - c / A
-                q += (v + c / A) * (e - 1) / A - c / A * h
-                v = 0.0 if v != 0.0 and math.copysign(1.0, v1) != s else v1
+            q, v = plant_substeps(q, v, u, dt / n, n)
             k += 1
         out.append((k, "none", math.nan, math.nan, math.nan))
     return out

@@ -19,7 +19,6 @@ with this one: the machine's load cancels out of the ratios. The fits of both mu
 from __future__ import annotations
 
 import json
-import math
 import statistics
 import subprocess
 import sys
@@ -28,6 +27,9 @@ import time
 from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_fit import plant_substeps  # noqa: E402  bench_fit.py's elevator
 
 
 def _arg(name: str, default=None):
@@ -40,7 +42,6 @@ KEEP = _arg("--keep")
 OTHER = _arg("--other")
 LOOP = 0.005  # s: a 200 Hz routine
 SEED = 45
-PLANT = {"kS": 0.2, "kV": 10.0, "kA": 1.2, "kG": 0.6}  # bench_fit.py's elevator
 # a cycle of the four tests, repeated over the log: (state, start s in the cycle, length s, volts(s))
 CYCLE = 40.0
 TESTS = (
@@ -54,9 +55,6 @@ TESTS = (
 def _cycle(rng) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray]:
     """One cycle's loops: (state, volts, position m, velocity m/s), the plant integrated exactly
     over 0.5 ms substeps with the voltage held for each loop, at rest between tests."""
-    g = PLANT
-    kS, kV, kA, kG = g["kS"], g["kV"], g["kA"], g["kG"]
-    A = -kV / kA
     n = int(round(CYCLE / LOOP))
     state, u_, q_, v_ = ["none"] * n, np.zeros(n), np.zeros(n), np.zeros(n)
     q = 0.0
@@ -66,21 +64,7 @@ def _cycle(rng) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray]:
         for k in range(k0, k0 + int(round(length / LOOP))):
             u = volts((k - k0) * LOOP)
             state[k], u_[k], q_[k], v_[k] = name, u, q, v
-            m = 10
-            h = LOOP / m
-            e = math.exp(A * h)
-            for _ in range(m):
-                drive = u - kG
-                if v == 0.0:
-                    if abs(drive) <= kS:
-                        continue
-                    s = math.copysign(1.0, drive)
-                else:
-                    s = math.copysign(1.0, v)
-                c = (drive - kS * s) / kA
-                v1 = (v + c / A) * e - c / A
-                q += (v + c / A) * (e - 1) / A - c / A * h
-                v = 0.0 if v != 0.0 and math.copysign(1.0, v1) != s else v1
+            q, v = plant_substeps(q, v, u, LOOP / 10, 10)
         q_[k0 + int(round(length / LOOP)) :] = q
     q_ += rng.normal(0, 1e-4, n)
     v_ += rng.normal(0, 1e-3, n)
