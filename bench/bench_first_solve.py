@@ -118,7 +118,7 @@ def probe_ui_thread() -> dict:
                 shown = lambda calc=calc: (  # noqa: E731
                     app.current_calculator == calc
                     and app.card_ready(calc)
-                    and app.current_tab.region.height > 0
+                    and app.current_tab.sheet.region.height > 0
                 )
                 c0, t0 = time.thread_time(), time.perf_counter()
                 for key in keys:

@@ -73,7 +73,9 @@ async def main() -> None:
                 await _until(lambda: app.card_ready(app.current_calculator))
                 await pilot.pause(0.2)
             shown = lambda calc=calc: (  # noqa: E731
-                app.current_calculator == calc and app.card_ready(calc) and app.current_tab.region.height > 0
+                app.current_calculator == calc
+                and app.card_ready(calc)
+                and app.current_tab.sheet.region.height > 0
             )
             profile = cProfile.Profile()
             profile.enable()
