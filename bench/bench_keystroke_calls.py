@@ -10,8 +10,8 @@ call on the UI thread (Textual's and Rich's included).
 
 Gearhead calls per key (issue 42): 557 and 2 479 when filed; 348 and 528 with the solve in a
 worker; 288 and 441 once the worker builds the texts the card draws (card_text.drawn); 376 and
-503 at 7a2b39c and after the card-visit work (2 December 2026, same run: the key's frame draws the
-sheet and the results list's lines, unit_text.fit_cells and line_view.base_style on top).
+503 at 7a2b39c and after the card-visit work (2 December 2026, same run; most called, -v:
+unit_text.fit_cells, line_view.base_style, results.render_line).
 """
 
 from __future__ import annotations
